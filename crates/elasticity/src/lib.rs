@@ -1,0 +1,1 @@
+//! Curvilinear linear elasticity: Navier operator, discretisations, contact.

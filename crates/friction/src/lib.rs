@@ -1,0 +1,1 @@
+//! Friction laws and membrane capstan models.

@@ -1,0 +1,1 @@
+//! Linear and nonlinear solver backends for capstan. Knows no physics.
