@@ -1,0 +1,1 @@
+//! Math expressions in one variable `t`.
