@@ -1,0 +1,169 @@
+//! Forward-mode automatic differentiation of charts (the only module naming num-dual types).
+//!
+//! A surface `sigma(x1, x2)` written generically over [`crate::Scalar`] is evaluated on
+//! hyper-hyper-dual numbers, which carry exact first, second and third partial derivatives
+//! along three chosen directions. Four evaluations give every distinct derivative of a map
+//! of two variables up to third order:
+//!
+//! ```text
+//! directions (1,1,1): d_1, d_11, d_111
+//! directions (1,1,2): d_2, d_12, d_112
+//! directions (1,2,2): d_22, d_122
+//! directions (2,2,2): d_222
+//! ```
+
+use num_dual::{Dual3, HyperHyperDual};
+
+use crate::Real;
+
+/// A scalar type carrying third-order mixed derivatives, used to differentiate charts.
+pub type Jet3<F> = HyperHyperDual<F>;
+
+/// Position and exact partial derivatives of a surface map up to third order at one point.
+///
+/// Indices are 0-based (paper index 1 is array index 0); every array is symmetric in its
+/// derivative indices, e.g. `d2[a][b] = d2[b][a] = d_a d_b sigma`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfaceJet<F> {
+    /// `sigma(x)`.
+    pub point: [F; 3],
+    /// `d1[a] = d_a sigma` (the tangent vectors `a_a`).
+    pub d1: [[F; 3]; 2],
+    /// `d2[a][b] = d_a d_b sigma`.
+    pub d2: [[[F; 3]; 2]; 2],
+    /// `d3[a][b][c] = d_a d_b d_c sigma`.
+    pub d3: [[[[F; 3]; 2]; 2]; 2],
+}
+
+impl<F: Real> SurfaceJet<F> {
+    /// Whether every entry is finite.
+    pub fn is_finite(&self) -> bool {
+        let finite = |v: &[F; 3]| v.iter().all(|c| c.is_finite());
+        finite(&self.point)
+            && self.d1.iter().all(finite)
+            && self.d2.iter().flatten().all(finite)
+            && self.d3.iter().flatten().flatten().all(finite)
+    }
+}
+
+/// Seeds `x` for the derivative directions `dirs` (each 0 or 1) and evaluates `f`.
+fn eval_along<F: Real, G>(f: &G, x: [F; 2], dirs: [usize; 3]) -> [Jet3<F>; 3]
+where
+    G: Fn([Jet3<F>; 2]) -> [Jet3<F>; 3],
+{
+    let seed = |k: usize| {
+        let mut v = Jet3::from_re(x[k]);
+        if dirs[0] == k {
+            v = v.derivative1();
+        }
+        if dirs[1] == k {
+            v = v.derivative2();
+        }
+        if dirs[2] == k {
+            v = v.derivative3();
+        }
+        v
+    };
+    f([seed(0), seed(1)])
+}
+
+/// Exact derivatives up to third order of a map `R^2 -> R^3` written generically.
+///
+/// # Math
+/// With hyper-hyper-dual inputs `x_k + eps1 [p=k] + eps2 [q=k] + eps3 [r=k]`, the output's
+/// `eps1 eps2 eps3` part is `d_p d_q d_r f` exactly (no truncation error).
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{ad::surface_jet, Scalar};
+/// // f(x, y) = (x y^2, sin x, 0), written once for every scalar type
+/// fn f<S: Scalar<f64>>([x, y]: [S; 2]) -> [S; 3] {
+///     [x * y * y, x.sin(), x * 0.0]
+/// }
+/// let jet = surface_jet(f, [0.5_f64, 2.0]);
+/// assert!((jet.d3[0][1][1][0] - 2.0).abs() < 1e-15); // d_x d_y d_y (x y^2) = 2
+/// assert!((jet.d2[0][0][1] + 0.5_f64.sin()).abs() < 1e-15);
+/// ```
+pub fn surface_jet<F: Real, G>(f: G, x: [F; 2]) -> SurfaceJet<F>
+where
+    G: Fn([Jet3<F>; 2]) -> [Jet3<F>; 3],
+{
+    let z = F::zero();
+    let mut jet = SurfaceJet {
+        point: [z; 3],
+        d1: [[z; 3]; 2],
+        d2: [[[z; 3]; 2]; 2],
+        d3: [[[[z; 3]; 2]; 2]; 2],
+    };
+    let e000 = eval_along(&f, x, [0, 0, 0]);
+    let e001 = eval_along(&f, x, [0, 0, 1]);
+    let e011 = eval_along(&f, x, [0, 1, 1]);
+    let e111 = eval_along(&f, x, [1, 1, 1]);
+    for c in 0..3 {
+        jet.point[c] = e000[c].re;
+        jet.d1[0][c] = e000[c].eps1;
+        jet.d1[1][c] = e001[c].eps3;
+        jet.d2[0][0][c] = e000[c].eps1eps2;
+        let d01 = e001[c].eps1eps3;
+        jet.d2[0][1][c] = d01;
+        jet.d2[1][0][c] = d01;
+        jet.d2[1][1][c] = e011[c].eps2eps3;
+        jet.d3[0][0][0][c] = e000[c].eps1eps2eps3;
+        let d001 = e001[c].eps1eps2eps3;
+        jet.d3[0][0][1][c] = d001;
+        jet.d3[0][1][0][c] = d001;
+        jet.d3[1][0][0][c] = d001;
+        let d011 = e011[c].eps1eps2eps3;
+        jet.d3[0][1][1][c] = d011;
+        jet.d3[1][0][1][c] = d011;
+        jet.d3[1][1][0][c] = d011;
+        jet.d3[1][1][1][c] = e111[c].eps1eps2eps3;
+    }
+    jet
+}
+
+/// Value and first three derivatives of a map `R -> R^N` written generically.
+///
+/// Returns `out[k] = [f_k, f_k', f_k'', f_k''']`.
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{ad::curve_jet, Scalar};
+/// fn f<S: Scalar<f64>>(t: S) -> [S; 1] {
+///     [t.sin()]
+/// }
+/// let [s] = curve_jet(f, 0.3_f64);
+/// assert!((s[3] + 0.3_f64.cos()).abs() < 1e-15);
+/// ```
+pub fn curve_jet<F: Real, const N: usize, G>(f: G, t: F) -> [[F; 4]; N]
+where
+    G: Fn(Dual3<F>) -> [Dual3<F>; N],
+{
+    let out = f(Dual3::from_re(t).derivative());
+    out.map(|d| [d.re, d.v1, d.v2, d.v3])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn surface_jet_of_polynomial_is_exact() {
+        // f = (x^3 y, x y^3, x^2 y^2)
+        let (x, y) = (0.7_f64, -1.3_f64);
+        let jet = surface_jet(
+            |[x, y]| [x * x * x * y, x * y * y * y, x * x * y * y],
+            [x, y],
+        );
+        assert_eq!(jet.point[0], x * x * x * y);
+        assert!((jet.d1[0][0] - 3.0 * x * x * y).abs() < 1e-14);
+        assert!((jet.d1[1][1] - 3.0 * x * y * y).abs() < 1e-14);
+        assert!((jet.d2[0][1][2] - 4.0 * x * y).abs() < 1e-14);
+        assert!((jet.d2[1][1][0]).abs() < 1e-14);
+        assert!((jet.d3[0][0][0][0] - 6.0 * y).abs() < 1e-14);
+        assert!((jet.d3[0][0][1][0] - 6.0 * x).abs() < 1e-14);
+        assert!((jet.d3[0][1][1][2] - 4.0 * x).abs() < 1e-14);
+        assert!((jet.d3[1][1][1][1] - 6.0 * x).abs() < 1e-14);
+        assert!((jet.d3[1][0][1][2] - 4.0 * x).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,226 @@
+//! The shell chart `Theta(x1, x2, x3) = sigma(x1, x2) + x3 N(x1, x2)` and its 3-D geometry.
+
+use crate::ad::SurfaceJet;
+use crate::error::GeometryError;
+use crate::surface::point3;
+use crate::vector::{add, axpy, cross, dot, is_finite, norm, scale};
+use crate::{Real, Surface};
+
+/// The 3-D geometry of a shell chart at one point `(x1, x2, x3)`.
+///
+/// # Math
+/// ```text
+/// g_a = a_a + x3 d_a N,   g_3 = N                     covariant basis (a = 1, 2)
+/// g_ij = g_i . g_j,   g^ij = (g_ij)^-1                metric and inverse
+/// sqrt(g) = g_1 . (g_2 x g_3)                         volume element (> 0 off the focal surface)
+/// g^1 = g_2 x g_3 / sqrt(g)  (and cyclic)             contravariant basis
+/// Gamma^k_ij = g^k . d_i g_j                          Christoffel symbols of the second kind
+/// d_b g_a = d_a d_b sigma + x3 d_a d_b N,  d_3 g_a = d_a g_3 = d_a N,  d_3 g_3 = 0
+/// ```
+/// With `x3 = 0` on the obstacle, `g_ab = a_ab - 2 x3 b_ab + x3^2 b_ac b^c_b`, `g_a3 = 0`, `g_33 = 1`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShellPoint<F> {
+    /// `Theta(x)` in E^3.
+    pub position: [F; 3],
+    /// `covariant_basis[i] = g_i`.
+    pub covariant_basis: [[F; 3]; 3],
+    /// `contravariant_basis[i] = g^i`.
+    pub contravariant_basis: [[F; 3]; 3],
+    /// `metric[i][j] = g_ij`.
+    pub metric: [[F; 3]; 3],
+    /// `inverse_metric[i][j] = g^ij`.
+    pub inverse_metric: [[F; 3]; 3],
+    /// `sqrt(g) = sqrt(det g_ij)`.
+    pub sqrt_g: F,
+    /// `christoffel[k][i][j] = Gamma^k_ij`.
+    pub christoffel: [[[F; 3]; 3]; 3],
+}
+
+/// Derivatives of the unit normal: `(N, d_a N, d_a d_b N)`, from the jet of `sigma`.
+///
+/// # Math
+/// ```text
+/// n = a_1 x a_2,  r = |n|,  N = n / r
+/// n_c  = d_1c sigma x a_2 + a_1 x d_2c sigma
+/// n_cd = d_1cd sigma x a_2 + d_1c sigma x d_2d sigma + d_1d sigma x d_2c sigma + a_1 x d_2cd sigma
+/// r_c  = n . n_c / r,   r_cd = (n_c . n_d + n . n_cd - r_c r_d) / r
+/// N_c  = n_c / r - n r_c / r^2
+/// N_cd = n_cd / r - (n_c r_d + n_d r_c + n r_cd) / r^2 + 2 n r_c r_d / r^3
+/// ```
+#[allow(clippy::type_complexity, clippy::needless_range_loop)] // (N, dN, ddN) and index loops mirror the math
+pub fn normal_derivatives<F: Real>(jet: &SurfaceJet<F>) -> ([F; 3], [[F; 3]; 2], [[[F; 3]; 2]; 2]) {
+    let (a1, a2) = (&jet.d1[0], &jet.d1[1]);
+    let n = cross(a1, a2);
+    let r = norm(&n);
+    let nc: [[F; 3]; 2] = [0, 1].map(|c| add(&cross(&jet.d2[0][c], a2), &cross(a1, &jet.d2[1][c])));
+    let z = F::zero();
+    let mut ncd = [[[z; 3]; 2]; 2];
+    for (c, row) in ncd.iter_mut().enumerate() {
+        for (d, v) in row.iter_mut().enumerate() {
+            let t1 = cross(&jet.d3[0][c][d], a2);
+            let t2 = cross(&jet.d2[0][c], &jet.d2[1][d]);
+            let t3 = cross(&jet.d2[0][d], &jet.d2[1][c]);
+            let t4 = cross(a1, &jet.d3[1][c][d]);
+            *v = add(&add(&t1, &t2), &add(&t3, &t4));
+        }
+    }
+    let inv_r = F::one() / r;
+    let rc = [0, 1].map(|c| dot(&n, &nc[c]) * inv_r);
+    let mut rcd = [[z; 2]; 2];
+    for c in 0..2 {
+        for d in 0..2 {
+            rcd[c][d] = (dot(&nc[c], &nc[d]) + dot(&n, &ncd[c][d]) - rc[c] * rc[d]) * inv_r;
+        }
+    }
+    let normal = scale(inv_r, &n);
+    let inv_r2 = inv_r * inv_r;
+    let dn = [0, 1].map(|c| axpy(&scale(inv_r, &nc[c]), -rc[c] * inv_r2, &n));
+    let mut ddn = [[[z; 3]; 2]; 2];
+    let two = F::one() + F::one();
+    for c in 0..2 {
+        for d in c..2 {
+            let mut v = scale(inv_r, &ncd[c][d]);
+            v = axpy(&v, -rc[d] * inv_r2, &nc[c]);
+            v = axpy(&v, -rc[c] * inv_r2, &nc[d]);
+            v = axpy(
+                &v,
+                -rcd[c][d] * inv_r2 + two * rc[c] * rc[d] * inv_r2 * inv_r,
+                &n,
+            );
+            ddn[c][d] = v;
+            ddn[d][c] = v;
+        }
+    }
+    (normal, dn, ddn)
+}
+
+impl<F: Real> ShellPoint<F> {
+    /// The shell geometry at height `x3` above the surface point whose jet is given.
+    ///
+    /// # Errors
+    /// [`GeometryError::NonFinite`] for a non-finite jet; [`GeometryError::Degenerate`] when the
+    /// normal is undefined or `sqrt(g) <= 0` (`x3` at or past the focal surface, e.g.
+    /// `x3 <= -R` under a cylinder of radius `R`).
+    #[allow(clippy::needless_range_loop)] // index loops mirror g_ij and Gamma^k_ij
+    pub fn from_jet(jet: &SurfaceJet<F>, x: [F; 3]) -> Result<Self, GeometryError> {
+        let at = point3([x[0], x[1]], x[2]);
+        // Validates finiteness and regularity of the surface point.
+        crate::surface::SurfaceGeometry::from_jet(jet, [x[0], x[1]])?;
+        let x3 = x[2];
+        let (normal, dn, ddn) = normal_derivatives(jet);
+        let g = [
+            axpy(&jet.d1[0], x3, &dn[0]),
+            axpy(&jet.d1[1], x3, &dn[1]),
+            normal,
+        ];
+        let sqrt_g = dot(&g[0], &cross(&g[1], &g[2]));
+        if !sqrt_g.is_finite() {
+            return Err(GeometryError::NonFinite {
+                what: "sqrt(g)",
+                at,
+            });
+        }
+        if sqrt_g <= F::zero() {
+            return Err(GeometryError::Degenerate {
+                what: "sqrt(g) <= 0: x3 at or past the focal surface",
+                at,
+            });
+        }
+        let inv = F::one() / sqrt_g;
+        let contra = [
+            scale(inv, &cross(&g[1], &g[2])),
+            scale(inv, &cross(&g[2], &g[0])),
+            scale(inv, &cross(&g[0], &g[1])),
+        ];
+        let z = F::zero();
+        let mut metric = [[z; 3]; 3];
+        let mut inverse_metric = [[z; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                metric[i][j] = dot(&g[i], &g[j]);
+                inverse_metric[i][j] = dot(&contra[i], &contra[j]);
+            }
+        }
+        // dg[i][j] = d_i g_j (symmetric in i, j).
+        let mut dg = [[[z; 3]; 3]; 3];
+        for a in 0..2 {
+            for b in 0..2 {
+                dg[a][b] = axpy(&jet.d2[a][b], x3, &ddn[a][b]);
+            }
+            dg[2][a] = dn[a];
+            dg[a][2] = dn[a];
+        }
+        let mut christoffel = [[[z; 3]; 3]; 3];
+        for (k, gk) in christoffel.iter_mut().enumerate() {
+            for i in 0..3 {
+                for j in i..3 {
+                    // symmetric by construction: computed once, mirrored exactly
+                    gk[i][j] = dot(&contra[k], &dg[i][j]);
+                    gk[j][i] = gk[i][j];
+                }
+            }
+        }
+        let position = axpy(&jet.point, x3, &normal);
+        let point = Self {
+            position,
+            covariant_basis: g,
+            contravariant_basis: contra,
+            metric,
+            inverse_metric,
+            sqrt_g,
+            christoffel,
+        };
+        let finite = is_finite(&point.position)
+            && point.christoffel.iter().flatten().all(is_finite)
+            && point.inverse_metric.iter().all(is_finite);
+        if !finite {
+            return Err(GeometryError::NonFinite {
+                what: "shell geometry",
+                at,
+            });
+        }
+        Ok(point)
+    }
+}
+
+/// The shell chart `Theta = sigma + x3 N` over a surface.
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{CircularCylinder, ShellChart};
+/// let chart = ShellChart::new(CircularCylinder::new(2.0_f64).unwrap());
+/// let p = chart.point([0.0_f64, 0.3, 0.5]).unwrap();
+/// // polar coordinates with r = 2 + x3: g_22 = r^2, Gamma^3_22 = -r, Gamma^2_23 = 1/r
+/// assert!((p.metric[1][1] - 6.25).abs() < 1e-13);
+/// assert!((p.christoffel[2][1][1] + 2.5).abs() < 1e-13);
+/// assert!((p.christoffel[1][1][2] - 0.4).abs() < 1e-13);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShellChart<S> {
+    surface: S,
+}
+
+impl<S> ShellChart<S> {
+    /// The shell chart over `surface`.
+    pub fn new(surface: S) -> Self {
+        Self { surface }
+    }
+
+    /// The underlying surface.
+    pub fn surface(&self) -> &S {
+        &self.surface
+    }
+}
+
+impl<S> ShellChart<S> {
+    /// The shell geometry at `x = (x1, x2, x3)`.
+    ///
+    /// # Errors
+    /// See [`ShellPoint::from_jet`].
+    pub fn point<F: Real>(&self, x: [F; 3]) -> Result<ShellPoint<F>, GeometryError>
+    where
+        S: Surface<F>,
+    {
+        ShellPoint::from_jet(&self.surface.jet([x[0], x[1]]), x)
+    }
+}

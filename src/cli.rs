@@ -1,0 +1,86 @@
+//! The `capstan` command line.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::commands;
+use crate::error::CliError;
+use crate::scene::Scene;
+
+/// Friction between elastic bodies and rough rigid curved obstacles.
+///
+/// Without a subcommand, runs the paper's default scene.
+#[derive(Debug, Parser)]
+#[command(name = "capstan", version, about, long_about = None, after_help = EXAMPLES)]
+pub struct Cli {
+    /// What to run.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+const EXAMPLES: &str = "Examples:\n  capstan geometry --set obstacle.shape=ellipse --set obstacle.b=1 --json\n  capstan geometry scene.toml";
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Differential geometry of the obstacle on the contact interval.
+    #[command(
+        after_help = "Example:\n  capstan geometry --set obstacle.shape=prism --set 'obstacle.u=2*sin(t)+0.2*sin(2*t)' --json"
+    )]
+    Geometry(SceneArgs),
+}
+
+/// Arguments shared by commands that read a scene.
+#[derive(Debug, Args, Clone, Default)]
+pub struct SceneArgs {
+    /// Scene file (TOML); built-in defaults when omitted.
+    pub scene: Option<PathBuf>,
+    /// Override a scene key, e.g. `--set obstacle.b=1.5` (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub sets: Vec<String>,
+    /// Print one JSON object instead of a table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+impl SceneArgs {
+    /// Loads the scene these arguments describe.
+    ///
+    /// # Errors
+    /// See [`Scene::load`].
+    pub fn load(&self) -> Result<Scene, CliError> {
+        Scene::load(self.scene.as_deref(), &self.sets)
+    }
+}
+
+/// Runs the command line; returns what to print on stdout.
+///
+/// # Errors
+/// Any [`CliError`]; the caller maps it to an exit code.
+pub fn run(cli: Cli) -> Result<String, CliError> {
+    match cli.command {
+        None => default_job(),
+        Some(Command::Geometry(args)) => geometry(&args),
+    }
+}
+
+fn geometry(args: &SceneArgs) -> Result<String, CliError> {
+    let scene = args.load()?;
+    let report = commands::geometry::report(&scene)?;
+    if args.json {
+        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+    } else {
+        Ok(commands::geometry::table(&report, &scene.obstacle.build()?))
+    }
+}
+
+/// The main job on built-in defaults.
+fn default_job() -> Result<String, CliError> {
+    let scene = Scene::default();
+    let report = commands::geometry::report(&scene)?;
+    Ok(format!(
+        "capstan: the paper's default scene (section 3)\n\n{}",
+        commands::geometry::table(&report, &scene.obstacle.build()?)
+    ))
+}

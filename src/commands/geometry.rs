@@ -1,0 +1,96 @@
+//! `capstan geometry`: a report of the obstacle's differential geometry on the contact interval.
+
+use capstan_geometry::{Obstacle, ShellChart, Surface};
+use serde::Serialize;
+
+use crate::error::CliError;
+use crate::scene::Scene;
+
+/// Sampled geometry of the scene's obstacle on `[membrane.theta0, membrane.theta_max]`.
+#[derive(Debug, Clone, Serialize)]
+pub struct GeometryReport {
+    /// The obstacle description (`obstacle.*`).
+    pub obstacle: crate::scene::ObstacleSpec,
+    /// The generator coordinate at which the report is taken (1 for cones, 0 for prisms).
+    pub x1: f64,
+    /// Sample points `x2`.
+    pub x2: Vec<f64>,
+    /// Mean curvature `H = -1/2 b^a_a` (paper's sign).
+    pub mean_curvature: Vec<f64>,
+    /// Gaussian curvature `K`.
+    pub gaussian_curvature: Vec<f64>,
+    /// `a_22` (first fundamental form).
+    pub a22: Vec<f64>,
+    /// `b_22` (second fundamental form).
+    pub b22: Vec<f64>,
+    /// Surface Christoffel symbol `Gamma^2_22`.
+    pub christoffel_222: Vec<f64>,
+    /// `sqrt(g)` of the shell chart at `x3 = body.thickness`.
+    pub sqrt_g_outer: Vec<f64>,
+}
+
+/// Evenly spaced samples on `[a, b]`, both ends included.
+pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    match n {
+        0 => vec![],
+        1 => vec![a],
+        _ => (0..n)
+            .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+            .collect(),
+    }
+}
+
+/// Builds the report.
+///
+/// # Errors
+/// Invalid obstacle parameters, or a degenerate point in the interval (typed geometry error).
+pub fn report(scene: &Scene) -> Result<GeometryReport, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    let x1 = if obstacle.is_cone() { 1.0 } else { 0.0 };
+    let chart = ShellChart::new(&obstacle);
+    let m = &scene.membrane;
+    let x2 = linspace(m.theta0, m.theta_max, m.samples.max(2));
+    let mut r = GeometryReport {
+        obstacle: scene.obstacle.clone(),
+        x1,
+        x2: x2.clone(),
+        mean_curvature: vec![],
+        gaussian_curvature: vec![],
+        a22: vec![],
+        b22: vec![],
+        christoffel_222: vec![],
+        sqrt_g_outer: vec![],
+    };
+    for &t in &x2 {
+        let g = Surface::<f64>::geometry(&obstacle, [x1, t])?;
+        r.mean_curvature.push(g.mean_curvature);
+        r.gaussian_curvature.push(g.gaussian_curvature);
+        r.a22.push(g.first_form[1][1]);
+        r.b22.push(g.second_form[1][1]);
+        r.christoffel_222.push(g.christoffel[1][1][1]);
+        r.sqrt_g_outer
+            .push(chart.point([x1, t, scene.body.thickness])?.sqrt_g);
+    }
+    Ok(r)
+}
+
+/// Human-readable table of the report.
+pub fn table(r: &GeometryReport, obstacle: &Obstacle) -> String {
+    let mut s = format!(
+        "obstacle: {:?}\n{:>10} {:>12} {:>12} {:>12} {:>12} {:>12}\n",
+        obstacle, "x2", "H", "K", "a22", "b22", "sqrt(g) top"
+    );
+    let step = (r.x2.len() / 12).max(1);
+    for i in (0..r.x2.len()).step_by(step) {
+        s.push_str(&format!(
+            "{:>10.5} {:>12.6} {:>12.3e} {:>12.6} {:>12.6} {:>12.6}\n",
+            r.x2[i],
+            r.mean_curvature[i],
+            r.gaussian_curvature[i],
+            r.a22[i],
+            r.b22[i],
+            r.sqrt_g_outer[i]
+        ));
+    }
+    s
+}

@@ -1,0 +1,46 @@
+//! The command line's error type and exit codes.
+
+use capstan_geometry::GeometryError;
+
+/// Everything the command line can report; each maps to an exit code.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum CliError {
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// The scene is malformed (TOML syntax, unknown key, wrong type).
+    #[error("scene {origin}: {message}")]
+    Scene {
+        /// File name or `--set`.
+        origin: String,
+        /// What is wrong, naming the key.
+        message: String,
+    },
+    /// A `--set KEY=VALUE` argument is malformed.
+    #[error("--set {set}: {message}")]
+    Set {
+        /// The argument.
+        set: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// An obstacle parameter or expression is invalid.
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+}
+
+impl CliError {
+    /// Process exit code: 2 for bad input, 1 otherwise.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Self::Io { .. } => 1,
+            Self::Scene { .. } | Self::Set { .. } | Self::Geometry(_) => 2,
+        }
+    }
+}
