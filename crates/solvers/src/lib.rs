@@ -1,1 +1,93 @@
 //! Linear and nonlinear solver backends for capstan. Knows no physics.
+//!
+//! # Purpose
+//! The discretised contact problems of capstan are sparse nonlinear systems `r(u) = 0` whose
+//! Jacobian keeps one sparsity pattern for the whole solve. This crate provides:
+//!
+//! - [`SparsityPattern`]: a CSC pattern built once from `(row, col)` entries, with the slot of
+//!   every entry so assembly is `values[slot[k]] += v`; views for faer and `sprs`.
+//! - [`LinearSolver`]: `analyse` once per pattern, `factor` per set of values, `solve_in_place`
+//!   for many right-hand sides. Backends: [`SparseLu`] and [`SparseCholesky`] (faer, symbolic
+//!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
+//!   [`CondensedSolver`] (static condensation when only a small interface block changes).
+//!   [`LinearBackend`] picks one by name.
+//! - [`Residual`] / [`Jacobian`] capability traits and [`NonlinearSolver`]s: [`Newton`] with a
+//!   backtracking line search and [`JacobiNewton`]; [`NonlinearMethod`] picks one by name.
+//!   Progress goes to an [`Observer`]; results come as a [`SolveReport`] or a typed
+//!   [`SolverError`], never as a silent NaN.
+//! - [`samples`]: model problems (2-D Poisson, convection–diffusion, random diagonally dominant
+//!   matrices, nonlinear systems with known roots) shared by tests and benches.
+//!
+//! # Status
+//! Complete for the needs of the elasticity crate: all backends are tested on the same
+//! problems against each other and against the residual `|b - A x|`.
+//!
+//! # Limitations
+//! - The faer backends, [`CondensedSolver`] and the nonlinear solvers are implemented for
+//!   `f64` only; the pattern helpers and the iterative backends are generic over
+//!   [`SolverScalar`].
+//! - The iterative backends are stationary methods without preconditioning or Krylov
+//!   acceleration: they are baselines, and need diagonally dominant (Jacobi) or SPD /
+//!   diagonally dominant (Gauss–Seidel) matrices.
+//! - Singularity of a direct factorisation is detected from the solution (non-finite, or a
+//!   residual above [`DirectParams::residual_tolerance`] after refinement), because faer
+//!   factorises numerically singular matrices without complaint; very ill-conditioned
+//!   matrices (condition number above about `1e7` with the default) are reported as singular.
+//! - Parallelism of the faer backends follows `faer::get_global_parallelism()`.
+//!
+//! # Example
+//! ```
+//! use capstan_solvers::{LinearBackend, samples::Poisson2d};
+//! let system = Poisson2d::new(16).system();
+//! let mut solutions = Vec::new();
+//! for backend in LinearBackend::ALL {
+//!     let mut solver = backend.build(&Default::default()).unwrap();
+//!     solver.analyse(&system.pattern).unwrap();
+//!     solver.factor(&system.values).unwrap();
+//!     let mut x = system.rhs.clone();
+//!     solver.solve_in_place(&mut x).unwrap();
+//!     assert!(system.residual_norm(&x) < 1e-10);
+//!     solutions.push(x);
+//! }
+//! assert!(solutions[0].iter().zip(&solutions[3]).all(|(a, b)| (a - b).abs() < 1e-8));
+//! ```
+#![warn(missing_docs)]
+
+mod condensed_solver;
+mod direct_params;
+mod error;
+mod gauss_seidel;
+mod iterative_params;
+mod jacobi;
+mod jacobi_newton;
+mod linear_backend;
+mod linear_solver;
+mod newton;
+mod nonlinear_method;
+mod nonlinear_solver;
+mod observer;
+mod problem;
+pub mod samples;
+mod scalar;
+mod sparse_cholesky;
+mod sparse_lu;
+mod sparsity_pattern;
+
+pub use condensed_solver::CondensedSolver;
+pub use direct_params::DirectParams;
+pub use error::SolverError;
+pub use gauss_seidel::GaussSeidel;
+pub use iterative_params::IterativeParams;
+pub use jacobi::Jacobi;
+pub use jacobi_newton::JacobiNewton;
+pub use linear_backend::LinearBackend;
+pub use linear_solver::LinearSolver;
+pub use newton::{LineSearch, Newton, NewtonParams};
+pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
+pub use nonlinear_solver::{NonlinearSolver, SolveReport};
+pub use observer::{Observer, SilentObserver};
+pub use problem::{Jacobian, Residual};
+pub use scalar::SolverScalar;
+pub use sparse_cholesky::SparseCholesky;
+pub use sparse_lu::SparseLu;
+pub use sparsity_pattern::SparsityPattern;

@@ -1,0 +1,147 @@
+//! Choosing a linear backend by value (scene files, command lines).
+
+use core::fmt;
+use core::str::FromStr;
+
+use crate::direct_params::DirectParams;
+use crate::error::SolverError;
+use crate::gauss_seidel::GaussSeidel;
+use crate::iterative_params::IterativeParams;
+use crate::jacobi::Jacobi;
+use crate::linear_solver::LinearSolver;
+use crate::sparse_cholesky::SparseCholesky;
+use crate::sparse_lu::SparseLu;
+
+/// The linear backends, by name: `lu`, `cholesky`, `jacobi`, `gauss-seidel`.
+///
+/// The same spelling is used by serde, [`FromStr`] and [`fmt::Display`].
+///
+/// # Example
+/// ```
+/// use capstan_solvers::LinearBackend;
+/// let b: LinearBackend = "gauss-seidel".parse().unwrap();
+/// assert_eq!(b, LinearBackend::GaussSeidel);
+/// assert_eq!(b.to_string(), "gauss-seidel");
+/// assert!("superlu".parse::<LinearBackend>().is_err());
+/// let solver = LinearBackend::Lu.build(&Default::default()).unwrap();
+/// assert_eq!(solver.last_iterations(), None); // direct backend
+/// ```
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinearBackend {
+    /// [`SparseLu`]: general matrices.
+    #[default]
+    Lu,
+    /// [`SparseCholesky`]: symmetric positive definite matrices.
+    Cholesky,
+    /// [`Jacobi`]: the paper's iterative baseline.
+    Jacobi,
+    /// [`GaussSeidel`].
+    GaussSeidel,
+}
+
+impl LinearBackend {
+    /// Every backend, in declaration order.
+    pub const ALL: [Self; 4] = [Self::Lu, Self::Cholesky, Self::Jacobi, Self::GaussSeidel];
+
+    /// The accepted spellings, for messages.
+    pub const NAMES: &'static str = "`lu`, `cholesky`, `jacobi`, `gauss-seidel`";
+
+    /// The backend's name as used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Lu => "lu",
+            Self::Cholesky => "cholesky",
+            Self::Jacobi => "jacobi",
+            Self::GaussSeidel => "gauss-seidel",
+        }
+    }
+
+    /// Whether the backend factorises (direct) rather than iterates.
+    pub fn is_direct(self) -> bool {
+        matches!(self, Self::Lu | Self::Cholesky)
+    }
+
+    /// Builds the backend with default direct settings; `iterative` configures Jacobi and
+    /// Gauss–Seidel and is ignored by the direct backends.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] if the settings of the chosen backend are out of range.
+    pub fn build(
+        self,
+        iterative: &IterativeParams,
+    ) -> Result<Box<dyn LinearSolver<f64> + Send>, SolverError> {
+        self.build_with(iterative, &DirectParams::default())
+    }
+
+    /// Builds the backend with explicit settings for both families.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] if the settings of the chosen backend are out of range.
+    pub fn build_with(
+        self,
+        iterative: &IterativeParams,
+        direct: &DirectParams,
+    ) -> Result<Box<dyn LinearSolver<f64> + Send>, SolverError> {
+        Ok(match self {
+            Self::Lu => Box::new(SparseLu::new(*direct)?),
+            Self::Cholesky => Box::new(SparseCholesky::new(*direct)?),
+            Self::Jacobi => Box::new(Jacobi::<f64>::new(*iterative)?),
+            Self::GaussSeidel => Box::new(GaussSeidel::<f64>::new(*iterative)?),
+        })
+    }
+}
+
+impl fmt::Display for LinearBackend {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for LinearBackend {
+    type Err = SolverError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|b| b.name() == s)
+            .ok_or_else(|| SolverError::UnknownName {
+                kind: "linear backend",
+                name: s.to_owned(),
+                allowed: Self::NAMES,
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_through_display_fromstr_and_serde() {
+        for b in LinearBackend::ALL {
+            assert_eq!(b.to_string().parse::<LinearBackend>().unwrap(), b);
+            let json = serde_json::to_string(&b).unwrap();
+            assert_eq!(json, format!("\"{}\"", b.name()));
+            assert_eq!(serde_json::from_str::<LinearBackend>(&json).unwrap(), b);
+        }
+    }
+
+    #[test]
+    fn build_rejects_bad_iterative_params_only_for_iterative_backends() {
+        let bad = IterativeParams {
+            tolerance: -1.0,
+            ..Default::default()
+        };
+        assert!(LinearBackend::Lu.build(&bad).is_ok());
+        assert!(matches!(
+            LinearBackend::Jacobi.build(&bad),
+            Err(SolverError::InvalidParameter {
+                field: "tolerance",
+                ..
+            })
+        ));
+    }
+}

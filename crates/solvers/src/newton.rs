@@ -1,0 +1,428 @@
+//! Newton's method with a backtracking line search.
+
+use core::fmt;
+
+use crate::error::SolverError;
+use crate::iterative_params::IterativeParams;
+use crate::linear_backend::LinearBackend;
+use crate::linear_solver::LinearSolver;
+use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
+use crate::observer::Observer;
+use crate::problem::Jacobian;
+use crate::scalar::{first_non_finite, norm2};
+use crate::sparsity_pattern::SparsityPattern;
+
+/// Step-length control along the Newton direction.
+///
+/// # Math
+/// ```text
+/// phi(alpha) = |r(u + alpha du)|^2,   J du = -r  =>  phi'(0) = -2 phi(0)
+/// accept alpha  iff  phi(alpha) <= (1 - 2 armijo alpha) phi(0)      (Armijo)
+/// alpha = 1, 1/2, 1/4, ...  while alpha >= min_step
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum LineSearch {
+    /// Always take the full step (pure Newton).
+    None,
+    /// Backtracking by halving until the Armijo condition on `|r|^2` holds.
+    Backtracking {
+        /// Sufficient-decrease constant `c` in `(0, 1/2)`; `1e-4` is customary.
+        armijo: f64,
+        /// Smallest step tried, in `(0, 1)`; below it the solve has stagnated.
+        min_step: f64,
+    },
+}
+
+impl Default for LineSearch {
+    fn default() -> Self {
+        Self::Backtracking {
+            armijo: 1e-4,
+            min_step: 1e-10,
+        }
+    }
+}
+
+/// Settings of [`Newton`] (and of [`crate::JacobiNewton`], which ignores `linear`).
+///
+/// # Math
+/// ```text
+/// converged      when |r(u_k)|_2 <= max(absolute_tolerance, relative_tolerance |r(u_0)|_2)
+/// diverged       when |r(u_k)|_2 >  divergence_limit * max(|r(u_0)|_2, absolute_tolerance)
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct NewtonParams {
+    /// Iteration cap (at least 1); reaching it is [`SolverError::NotConverged`].
+    pub max_iterations: usize,
+    /// Absolute residual tolerance, `>= 0`.
+    pub absolute_tolerance: f64,
+    /// Tolerance relative to the initial residual, in `[0, 1)`; at least one of the two
+    /// tolerances must be positive.
+    pub relative_tolerance: f64,
+    /// Step-length control.
+    pub line_search: LineSearch,
+    /// Linear backend for the Newton systems `J du = -r`.
+    pub linear: LinearBackend,
+    /// Settings of the iterative linear backends (inner tolerance for Jacobi–Newton).
+    pub iterative: IterativeParams,
+    /// Residual growth factor (> 1) that counts as divergence.
+    pub divergence_limit: f64,
+}
+
+impl Default for NewtonParams {
+    fn default() -> Self {
+        Self {
+            max_iterations: 50,
+            absolute_tolerance: 1e-10,
+            relative_tolerance: 1e-10,
+            line_search: LineSearch::default(),
+            linear: LinearBackend::Lu,
+            iterative: IterativeParams::default(),
+            divergence_limit: 1e8,
+        }
+    }
+}
+
+impl NewtonParams {
+    /// Checks every field (the linear settings are checked when the backend is built).
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] naming the first field out of range.
+    pub fn validate(&self) -> Result<(), SolverError> {
+        let invalid = |field, value, allowed| {
+            Err(SolverError::InvalidParameter {
+                field,
+                value,
+                allowed,
+            })
+        };
+        if self.max_iterations == 0 {
+            return invalid("max_iterations", 0.0, "[1, inf)");
+        }
+        if !(self.absolute_tolerance >= 0.0 && self.absolute_tolerance.is_finite()) {
+            return invalid("absolute_tolerance", self.absolute_tolerance, "[0, inf)");
+        }
+        if !(self.relative_tolerance >= 0.0 && self.relative_tolerance < 1.0) {
+            return invalid("relative_tolerance", self.relative_tolerance, "[0, 1)");
+        }
+        if self.absolute_tolerance == 0.0 && self.relative_tolerance == 0.0 {
+            return invalid(
+                "absolute_tolerance",
+                0.0,
+                "(0, inf) when relative_tolerance is 0",
+            );
+        }
+        if !(self.divergence_limit > 1.0) {
+            return invalid("divergence_limit", self.divergence_limit, "(1, inf]");
+        }
+        if let LineSearch::Backtracking { armijo, min_step } = self.line_search {
+            if !(armijo > 0.0 && armijo < 0.5) {
+                return invalid("line_search.armijo", armijo, "(0, 0.5)");
+            }
+            if !(min_step > 0.0 && min_step < 1.0) {
+                return invalid("line_search.min_step", min_step, "(0, 1)");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Newton's method for `r(u) = 0` with a sparse Jacobian and an interchangeable linear
+/// backend.
+///
+/// The pattern is analysed once (and again only if a later problem brings a different
+/// pattern); each iteration refills the Jacobian values, refactors and solves.
+///
+/// # Math
+/// ```text
+/// J(u_k) du_k = -r(u_k)                 (linear backend)
+/// u_{k+1}     = u_k + alpha_k du_k      (alpha_k from the line search)
+/// ```
+/// Near a root with a nonsingular Jacobian the full step is accepted and convergence is
+/// quadratic: `|r_{k+1}| <= C |r_k|^2`.
+///
+/// # Errors
+/// See [`NonlinearSolver::solve`].
+///
+/// # Example
+/// ```
+/// use capstan_solvers::{Newton, NonlinearSolver, SilentObserver, samples::CubicReaction};
+/// let problem = CubicReaction::new(20); // u^3 + A u = b with a known root
+/// let mut u = vec![0.0; 20];
+/// let report = Newton::new(Default::default()).unwrap()
+///     .solve(&problem, &mut u, &mut SilentObserver).unwrap();
+/// assert!(report.iterations <= 8);
+/// let exact = problem.exact_solution();
+/// assert!(u.iter().zip(&exact).all(|(a, b)| (a - b).abs() < 1e-9));
+/// ```
+pub struct Newton {
+    params: NewtonParams,
+    linear: Box<dyn LinearSolver<f64> + Send>,
+    analysed: Option<SparsityPattern>,
+}
+
+impl fmt::Debug for Newton {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Newton")
+            .field("params", &self.params)
+            .field("analysed", &self.analysed.as_ref().map(|p| p.nrows()))
+            .finish_non_exhaustive()
+    }
+}
+
+impl Newton {
+    /// Newton with the backend named in `params.linear`.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] if a setting is out of range.
+    pub fn new(params: NewtonParams) -> Result<Self, SolverError> {
+        params.validate()?;
+        let linear = params.linear.build(&params.iterative)?;
+        Ok(Self {
+            params,
+            linear,
+            analysed: None,
+        })
+    }
+
+    /// Newton with a caller-supplied linear solver (e.g. a [`crate::CondensedSolver`]);
+    /// `params.linear` is ignored.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] if a setting is out of range.
+    pub fn with_linear_solver(
+        params: NewtonParams,
+        linear: Box<dyn LinearSolver<f64> + Send>,
+    ) -> Result<Self, SolverError> {
+        params.validate()?;
+        Ok(Self {
+            params,
+            linear,
+            analysed: None,
+        })
+    }
+
+    /// The settings in use.
+    pub fn params(&self) -> &NewtonParams {
+        &self.params
+    }
+}
+
+fn non_finite(quantity: &'static str, index: usize, iteration: usize) -> SolverError {
+    SolverError::NonFinite {
+        quantity,
+        index,
+        iteration: Some(iteration),
+    }
+}
+
+impl NonlinearSolver<f64> for Newton {
+    fn solve<P: Jacobian<f64> + ?Sized>(
+        &mut self,
+        problem: &P,
+        u: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<SolveReport<f64>, SolverError> {
+        let params = self.params;
+        let pattern = problem.pattern();
+        let n = u.len();
+        if !pattern.is_square() {
+            return Err(SolverError::NotSquare {
+                nrows: pattern.nrows(),
+                ncols: pattern.ncols(),
+            });
+        }
+        if pattern.ncols() != n {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "u",
+                expected: pattern.ncols(),
+                found: n,
+            });
+        }
+        if let Some(index) = first_non_finite(u) {
+            return Err(non_finite("initial guess", index, 0));
+        }
+        if self.analysed.as_ref() != Some(pattern) {
+            self.analysed = None;
+            self.linear.analyse(pattern)?;
+            self.analysed = Some(pattern.clone());
+        }
+
+        let evaluate = |u: &[f64], r: &mut [f64]| {
+            problem
+                .residual(u, r)
+                .map_err(|e| SolverError::problem("residual", e))
+        };
+        let mut r = vec![0.0; n];
+        evaluate(u, &mut r)?;
+        if let Some(index) = first_non_finite(&r) {
+            return Err(non_finite("residual", index, 0));
+        }
+        let mut rn = norm2(&r);
+        let r0 = rn;
+        let target = params
+            .absolute_tolerance
+            .max(params.relative_tolerance * r0);
+        let divergence = params.divergence_limit * r0.max(params.absolute_tolerance);
+        let mut report = SolveReport::new(0, vec![rn], 0, 0);
+        observer.iteration(0, rn, 0.0);
+
+        let mut values = vec![0.0; pattern.nnz()];
+        let mut du = vec![0.0; n];
+        let mut u_trial = vec![0.0; n];
+        let mut r_trial = vec![0.0; n];
+        loop {
+            let k = report.iterations;
+            if rn <= target {
+                return Ok(report);
+            }
+            if k == params.max_iterations {
+                return Err(SolverError::NotConverged {
+                    iterations: k,
+                    residual: rn,
+                });
+            }
+            values.fill(0.0);
+            problem
+                .jacobian(u, &mut values)
+                .map_err(|e| SolverError::problem("jacobian", e))?;
+            if let Some(index) = first_non_finite(&values) {
+                return Err(non_finite("jacobian", index, k + 1));
+            }
+            self.linear.factor(&values)?;
+            report.factorisations += 1;
+            for (d, ri) in du.iter_mut().zip(&r) {
+                *d = -ri;
+            }
+            let solved = self.linear.solve_in_place(&mut du);
+            report.linear_iterations += self.linear.last_iterations().unwrap_or(0);
+            solved?;
+            if let Some(index) = first_non_finite(&du) {
+                return Err(non_finite("step", index, k + 1));
+            }
+
+            // Line search on phi(alpha) = |r(u + alpha du)|^2.
+            let mut alpha = 1.0;
+            let rn_trial = loop {
+                for ((t, ui), di) in u_trial.iter_mut().zip(u.iter()).zip(&du) {
+                    *t = ui + alpha * di;
+                }
+                evaluate(&u_trial, &mut r_trial)?;
+                let bad = first_non_finite(&r_trial);
+                let trial = if bad.is_some() {
+                    f64::NAN
+                } else {
+                    norm2(&r_trial)
+                };
+                match params.line_search {
+                    LineSearch::None => match bad {
+                        Some(index) => return Err(non_finite("residual", index, k + 1)),
+                        None => break trial,
+                    },
+                    LineSearch::Backtracking { armijo, min_step } => {
+                        if trial * trial <= (1.0 - 2.0 * armijo * alpha) * rn * rn {
+                            break trial;
+                        }
+                        alpha *= 0.5;
+                        if alpha < min_step {
+                            return Err(match bad {
+                                Some(index) => non_finite("residual", index, k + 1),
+                                None => SolverError::Stagnated {
+                                    iterations: k,
+                                    residual: rn,
+                                },
+                            });
+                        }
+                    }
+                }
+            };
+            let step = alpha * norm2(&du);
+            u.copy_from_slice(&u_trial);
+            core::mem::swap(&mut r, &mut r_trial);
+            rn = rn_trial;
+            report.iterations = k + 1;
+            report.residuals.push(rn);
+            observer.iteration(k + 1, rn, alpha);
+            if rn > divergence {
+                return Err(SolverError::Diverged {
+                    iteration: k + 1,
+                    residual: rn,
+                });
+            }
+            if rn > target && step <= f64::EPSILON * norm2(u) {
+                return Err(SolverError::Stagnated {
+                    iterations: k + 1,
+                    residual: rn,
+                });
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn validate_rejects_each_bad_field() {
+        NewtonParams::default().validate().unwrap();
+        let d = NewtonParams::default();
+        let field = |p: NewtonParams| match p.validate() {
+            Err(SolverError::InvalidParameter { field, .. }) => field,
+            other => panic!("expected InvalidParameter, got {other:?}"),
+        };
+        assert_eq!(
+            field(NewtonParams {
+                max_iterations: 0,
+                ..d
+            }),
+            "max_iterations"
+        );
+        assert_eq!(
+            field(NewtonParams {
+                relative_tolerance: 1.0,
+                ..d
+            }),
+            "relative_tolerance"
+        );
+        assert_eq!(
+            field(NewtonParams {
+                absolute_tolerance: 0.0,
+                relative_tolerance: 0.0,
+                ..d
+            }),
+            "absolute_tolerance"
+        );
+        assert_eq!(
+            field(NewtonParams {
+                divergence_limit: 0.5,
+                ..d
+            }),
+            "divergence_limit"
+        );
+        assert_eq!(
+            field(NewtonParams {
+                line_search: LineSearch::Backtracking {
+                    armijo: 0.7,
+                    min_step: 1e-3
+                },
+                ..d
+            }),
+            "line_search.armijo"
+        );
+    }
+
+    #[test]
+    fn params_round_trip_through_json_with_defaults() {
+        let p: NewtonParams =
+            serde_json::from_str(r#"{"max_iterations": 7, "linear": "gauss-seidel"}"#).unwrap();
+        assert_eq!(p.max_iterations, 7);
+        assert_eq!(p.linear, LinearBackend::GaussSeidel);
+        assert_eq!(p.line_search, LineSearch::default());
+        let json = serde_json::to_string(&p).unwrap();
+        assert_eq!(serde_json::from_str::<NewtonParams>(&json).unwrap(), p);
+        let none: LineSearch = serde_json::from_str(r#""none""#).unwrap();
+        assert_eq!(none, LineSearch::None);
+    }
+}

@@ -1,0 +1,127 @@
+//! Choosing a nonlinear solver by value.
+
+use core::fmt;
+use core::str::FromStr;
+
+use crate::error::SolverError;
+use crate::jacobi_newton::JacobiNewton;
+use crate::newton::{Newton, NewtonParams};
+use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
+use crate::observer::Observer;
+use crate::problem::Jacobian;
+
+/// The nonlinear methods, by name: `newton`, `jacobi-newton`.
+///
+/// # Example
+/// ```
+/// use capstan_solvers::{NonlinearMethod, NonlinearSolver, SilentObserver, samples::CubicReaction};
+/// let method: NonlinearMethod = "jacobi-newton".parse().unwrap();
+/// assert_eq!(method.to_string(), "jacobi-newton");
+/// let problem = CubicReaction::new(8);
+/// let mut u = vec![0.0; 8];
+/// let mut solver = method.build(Default::default()).unwrap();
+/// solver.solve(&problem, &mut u, &mut SilentObserver).unwrap();
+/// assert!((u[3] - problem.exact_solution()[3]).abs() < 1e-9);
+/// ```
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum NonlinearMethod {
+    /// [`Newton`] with the backend of `NewtonParams::linear`.
+    #[default]
+    Newton,
+    /// [`JacobiNewton`].
+    JacobiNewton,
+}
+
+impl NonlinearMethod {
+    /// Every method, in declaration order.
+    pub const ALL: [Self; 2] = [Self::Newton, Self::JacobiNewton];
+
+    /// The accepted spellings, for messages.
+    pub const NAMES: &'static str = "`newton`, `jacobi-newton`";
+
+    /// The method's name as used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Newton => "newton",
+            Self::JacobiNewton => "jacobi-newton",
+        }
+    }
+
+    /// Builds the solver.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] if a setting is out of range.
+    pub fn build(self, params: NewtonParams) -> Result<AnyNonlinearSolver, SolverError> {
+        Ok(match self {
+            Self::Newton => AnyNonlinearSolver::Newton(Newton::new(params)?),
+            Self::JacobiNewton => AnyNonlinearSolver::JacobiNewton(JacobiNewton::new(params)?),
+        })
+    }
+}
+
+impl fmt::Display for NonlinearMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for NonlinearMethod {
+    type Err = SolverError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| SolverError::UnknownName {
+                kind: "nonlinear method",
+                name: s.to_owned(),
+                allowed: Self::NAMES,
+            })
+    }
+}
+
+/// A nonlinear solver chosen at run time ([`NonlinearSolver::solve`] is generic, so the
+/// choice is an enum rather than a trait object).
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum AnyNonlinearSolver {
+    /// Newton's method.
+    Newton(Newton),
+    /// Jacobi–Newton.
+    JacobiNewton(JacobiNewton),
+}
+
+impl NonlinearSolver<f64> for AnyNonlinearSolver {
+    fn solve<P: Jacobian<f64> + ?Sized>(
+        &mut self,
+        problem: &P,
+        u: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<SolveReport<f64>, SolverError> {
+        match self {
+            Self::Newton(s) => s.solve(problem, u, observer),
+            Self::JacobiNewton(s) => s.solve(problem, u, observer),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_through_display_fromstr_and_serde() {
+        for m in NonlinearMethod::ALL {
+            assert_eq!(m.to_string().parse::<NonlinearMethod>().unwrap(), m);
+            let json = serde_json::to_string(&m).unwrap();
+            assert_eq!(serde_json::from_str::<NonlinearMethod>(&json).unwrap(), m);
+        }
+        assert!(matches!(
+            "broyden".parse::<NonlinearMethod>(),
+            Err(SolverError::UnknownName { .. })
+        ));
+    }
+}
