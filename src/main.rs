@@ -1,9 +1,14 @@
+use std::io::Write;
+
 use clap::Parser;
 
 fn main() {
     let cli = capstan::cli::Cli::parse();
     match capstan::cli::run(cli) {
-        Ok(out) => println!("{out}"),
+        Ok(out) => {
+            // A closed pipe (e.g. `| head`) is not an error worth a panic.
+            let _ = writeln!(std::io::stdout().lock(), "{out}");
+        }
         Err(e) => {
             eprintln!("error: {e}");
             std::process::exit(e.exit_code());

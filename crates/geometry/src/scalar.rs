@@ -27,5 +27,6 @@ impl<F: Real, D: DualNum<Primitive = F> + Copy> Scalar<F> for D {}
 #[inline]
 #[track_caller]
 pub fn real<F: Real>(value: f64) -> F {
-    <F as num_traits::NumCast>::from(value).expect("f64 constant representable in the primitive float type")
+    <F as num_traits::NumCast>::from(value)
+        .expect("f64 constant representable in the primitive float type")
 }

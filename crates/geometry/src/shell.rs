@@ -104,8 +104,7 @@ impl<F: Real> ShellPoint<F> {
     #[allow(clippy::needless_range_loop)] // index loops mirror g_ij and Gamma^k_ij
     pub fn from_jet(jet: &SurfaceJet<F>, x: [F; 3]) -> Result<Self, GeometryError> {
         let at = point3([x[0], x[1]], x[2]);
-        // Validates finiteness and regularity of the surface point.
-        crate::surface::SurfaceGeometry::from_jet(jet, [x[0], x[1]])?;
+        crate::surface::check_regular(jet, at)?;
         let x3 = x[2];
         let (normal, dn, ddn) = normal_derivatives(jet);
         let g = [

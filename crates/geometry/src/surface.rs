@@ -54,27 +54,9 @@ impl<F: Real> SurfaceGeometry<F> {
     #[allow(clippy::needless_range_loop)] // index loops mirror Gamma^c_ab and b^a_b
     pub fn from_jet(jet: &SurfaceJet<F>, x: [F; 2]) -> Result<Self, GeometryError> {
         let at = point3(x, F::zero());
-        if !jet.is_finite() {
-            return Err(GeometryError::NonFinite {
-                what: "sigma or its derivatives",
-                at,
-            });
-        }
         let t = jet.d1;
+        let ln = check_regular(jet, at)?;
         let n = cross(&t[0], &t[1]);
-        let (l0, l1, ln) = (norm(&t[0]), norm(&t[1]), norm(&n));
-        if l0 == F::zero() || l1 == F::zero() {
-            return Err(GeometryError::Degenerate {
-                what: "zero tangent vector",
-                at,
-            });
-        }
-        if ln <= crate::real::<F>(DEGENERACY_TOLERANCE) * l0 * l1 {
-            return Err(GeometryError::Degenerate {
-                what: "parallel tangents: normal undefined",
-                at,
-            });
-        }
         let normal = scale(F::one() / ln, &n);
         let first_form = [
             [dot(&t[0], &t[0]), dot(&t[0], &t[1])],
@@ -136,6 +118,34 @@ impl<F: Real> SurfaceGeometry<F> {
         }
         Ok(geometry)
     }
+}
+
+/// Checks that the jet is finite and the tangents span a plane; returns `|a_1 x a_2|`.
+pub(crate) fn check_regular<F: Real>(
+    jet: &SurfaceJet<F>,
+    at: [f64; 3],
+) -> Result<F, GeometryError> {
+    if !jet.is_finite() {
+        return Err(GeometryError::NonFinite {
+            what: "sigma or its derivatives",
+            at,
+        });
+    }
+    let t = &jet.d1;
+    let (l0, l1, ln) = (norm(&t[0]), norm(&t[1]), norm(&cross(&t[0], &t[1])));
+    if l0 == F::zero() || l1 == F::zero() {
+        return Err(GeometryError::Degenerate {
+            what: "zero tangent vector",
+            at,
+        });
+    }
+    if ln <= crate::real::<F>(DEGENERACY_TOLERANCE) * l0 * l1 {
+        return Err(GeometryError::Degenerate {
+            what: "parallel tangents: normal undefined",
+            at,
+        });
+    }
+    Ok(ln)
 }
 
 pub(crate) fn point3<F: Real>(x: [F; 2], x3: F) -> [f64; 3] {
