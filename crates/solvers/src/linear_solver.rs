@@ -99,7 +99,7 @@ pub(crate) fn check_many_len(len: usize, ncols: usize) -> Result<usize, SolverEr
             })
         };
     }
-    if len % ncols != 0 {
+    if !len.is_multiple_of(ncols) {
         return Err(SolverError::DimensionMismatch {
             quantity: "rhs",
             expected: (len / ncols + 1) * ncols,

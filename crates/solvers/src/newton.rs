@@ -113,7 +113,7 @@ impl NewtonParams {
                 "(0, inf) when relative_tolerance is 0",
             );
         }
-        if !(self.divergence_limit > 1.0) {
+        if self.divergence_limit.is_nan() || self.divergence_limit <= 1.0 {
             return invalid("divergence_limit", self.divergence_limit, "(1, inf]");
         }
         if let LineSearch::Backtracking { armijo, min_step } = self.line_search {

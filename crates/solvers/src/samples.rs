@@ -155,7 +155,7 @@ impl RandomDiagonallyDominant {
             let mut sum = 0.0;
             if self.n > 1 {
                 for _ in 0..self.off_diagonals {
-                    let mut j = (rng.next() % self.n as u64) as usize;
+                    let mut j = (rng.next_u64() % self.n as u64) as usize;
                     if j == i {
                         j = (j + 1) % self.n;
                     }
@@ -177,7 +177,7 @@ pub struct SplitMix64(pub u64);
 
 impl SplitMix64 {
     /// Next 64 random bits.
-    pub fn next(&mut self) -> u64 {
+    pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -187,7 +187,7 @@ impl SplitMix64 {
 
     /// Uniform in `[-1, 1)`.
     pub fn uniform(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
     }
 }
 

@@ -163,8 +163,12 @@ impl LinearSolver<f64> for SparseCholesky {
         let row_idx = pattern.row_idx();
         self.transpose_slot = vec![None; pattern.nnz()];
         for j in 0..n {
-            for s in col_ptr[j]..col_ptr[j + 1] {
-                self.transpose_slot[s] = pattern.slot(j, row_idx[s]);
+            let range = col_ptr[j]..col_ptr[j + 1];
+            for (t, &i) in self.transpose_slot[range.clone()]
+                .iter_mut()
+                .zip(&row_idx[range])
+            {
+                *t = pattern.slot(j, i);
             }
         }
         self.pattern = Some(pattern.clone());

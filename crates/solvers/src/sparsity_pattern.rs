@@ -143,6 +143,12 @@ impl SparsityPattern {
         &self.row_idx
     }
 
+    /// `(row, col)` of every slot, in slot order (column by column, rows ascending), so
+    /// `pattern.entries().enumerate()` yields `(slot, (row, col))`.
+    pub fn entries(&self) -> impl Iterator<Item = (usize, usize)> + '_ {
+        (0..self.ncols).flat_map(move |j| self.column_rows(j).iter().map(move |&i| (i, j)))
+    }
+
     /// Rows of column `col` (sorted).
     ///
     /// # Panics
@@ -346,6 +352,8 @@ mod tests {
         assert_eq!(p.slot(1, 1), None);
         assert_eq!(p.slot(0, 7), None);
         assert_eq!(p.diagonal_slots(), vec![Some(0), None, Some(2)]);
+        let all: Vec<_> = p.entries().collect();
+        assert_eq!(all, vec![(0, 0), (1, 2), (2, 2)]);
     }
 
     #[test]
