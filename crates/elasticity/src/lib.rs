@@ -1,1 +1,58 @@
-//! Curvilinear linear elasticity: Navier operator, discretisations, contact.
+//! Curvilinear linear elasticity for capstan: the plane-strain Navier operator of a thick
+//! body over a rigid prism, discretised by second-order finite differences on the
+//! `(x2, x3)` rectangle `[theta0, theta1] x [0, h]` of a shell chart.
+//!
+//! # Math
+//! ```text
+//! nabla_i T^i_j + f_j = 0,   T^ij = A^ijkl E_kl,   E_kl = (nabla_k v_l + nabla_l v_k)/2
+//! A^ijkl = lambda g^ij g^kl + mu (g^ik g^jl + g^il g^jk)
+//! nabla_i T^i_j = (1/sqrt(g)) d_i (sqrt(g) T^i_j) - Gamma^k_ij T^i_k
+//! nabla_k v_l = g_ln (d_k v^n + Gamma^n_km v^m)
+//! ```
+//! Plane strain: `d_1 = 0`, `v^1 = 0`; unknowns are the contravariant `v^2` (radians on an
+//! angular chart) and `v^3` (length). Paper indices 1, 2, 3 are array indices 0, 1, 2.
+//!
+//! # Status
+//! - [`Material`], pointwise [`kinematics`], [`Grid`], [`BoundaryConditions`] (Dirichlet,
+//!   traction `n_i T^i_j = t_j`, stress `T^a_j`, periodic `x2`, pinned dofs),
+//! - [`FiniteDifferenceNavier`] behind the [`Discretisation`] trait: dof numbering,
+//!   assembly into a [`LinearSystem`] whose pattern is built once, the contact rows
+//!   ([`ContactNode`]) with the sparse maps `v -> T^3_3, T^3_2`, output [`NodalFields`],
+//! - [`samples`] (manufactured solutions, the Lamé cylinder, the paper's ellipse) and
+//!   [`verification`] (convergence studies with observed orders).
+//!
+//! Verified: second order in max and L2 norms by manufactured solutions on elliptical and
+//! expression-defined prisms and on the Lamé thick cylinder (full wrap).
+//!
+//! # Limitations
+//! Prisms only (plane strain; charts that depend on `x1` are rejected). Uniform grids. The
+//! contact problem itself (friction law on `x3 = 0`) is built on top of this crate's
+//! [`ContactNode`] rows, not here.
+#![warn(missing_docs)]
+
+mod boundary;
+mod discretisation;
+mod error;
+mod fields;
+mod finite_difference;
+mod grid;
+pub mod kinematics;
+mod material;
+pub mod samples;
+mod shell_geometry;
+pub mod verification;
+
+pub use boundary::{
+    BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
+    SideCondition, X2Ends,
+};
+pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
+pub use error::ElasticityError;
+pub use fields::NodalFields;
+pub use finite_difference::{BodyForce, FiniteDifferenceNavier};
+pub use grid::Grid;
+pub use material::Material;
+pub use shell_geometry::ShellGeometry;
+
+/// The solver crate, re-exported for users of [`Discretisation::solve`].
+pub use capstan_solvers as solvers;

@@ -1,0 +1,255 @@
+//! Boundary conditions on the four sides of the parameter rectangle.
+
+use std::fmt;
+use std::sync::Arc;
+
+/// A side of the rectangle `[theta0, theta1] x [0, h]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Side {
+    /// `x2 = theta0`.
+    X2Min,
+    /// `x2 = theta1`.
+    X2Max,
+    /// `x3 = 0`, the contact surface.
+    X3Min,
+    /// `x3 = h`, the outer surface.
+    X3Max,
+}
+
+impl Side {
+    /// All sides.
+    pub const ALL: [Self; 4] = [Self::X2Min, Self::X2Max, Self::X3Min, Self::X3Max];
+
+    /// The coordinate normal to the side as an array index (1 for `x2`, 2 for `x3`).
+    pub fn normal_index(self) -> usize {
+        match self {
+            Self::X2Min | Self::X2Max => 1,
+            Self::X3Min | Self::X3Max => 2,
+        }
+    }
+
+    /// `+1` on the maximum side, `-1` on the minimum side (sign of the outward normal).
+    pub fn sign(self) -> f64 {
+        match self {
+            Self::X2Min | Self::X3Min => -1.0,
+            Self::X2Max | Self::X3Max => 1.0,
+        }
+    }
+
+    /// Name as in scene files and reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::X2Min => "x2-min",
+            Self::X2Max => "x2-max",
+            Self::X3Min => "x3-min",
+            Self::X3Max => "x3-max",
+        }
+    }
+}
+
+/// A displacement component (`v^2` or `v^3`) or the matching equation / traction component
+/// (`j = 2` or `j = 3`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Component {
+    /// `v^2` (tangential, radians on an angular chart) / the `j = 2` equation.
+    X2,
+    /// `v^3` (normal, length) / the `j = 3` equation.
+    X3,
+}
+
+impl Component {
+    /// Both components.
+    pub const ALL: [Self; 2] = [Self::X2, Self::X3];
+
+    /// 0 for `X2`, 1 for `X3` (index into `[v^2, v^3]`).
+    pub fn index(self) -> usize {
+        match self {
+            Self::X2 => 0,
+            Self::X3 => 1,
+        }
+    }
+}
+
+/// A scalar function of the boundary coordinate (`x3` on the `x2` sides, `x2` on the `x3`
+/// sides).
+#[derive(Clone)]
+pub struct BoundaryFunction(Arc<dyn Fn(f64) -> f64 + Send + Sync>);
+
+impl BoundaryFunction {
+    /// Wraps a closure.
+    pub fn new(f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+        Self(Arc::new(f))
+    }
+    /// The constant `c`.
+    pub fn constant(c: f64) -> Self {
+        Self::new(move |_| c)
+    }
+    /// Zero.
+    pub fn zero() -> Self {
+        Self::constant(0.0)
+    }
+    /// Evaluates at the boundary coordinate `s`.
+    pub fn eval(&self, s: f64) -> f64 {
+        (self.0)(s)
+    }
+}
+
+impl fmt::Debug for BoundaryFunction {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("BoundaryFunction(..)")
+    }
+}
+
+/// The condition on one component of one side.
+///
+/// # Math
+/// With `a` the coordinate normal to the side and `s = +-1` the sign of the outward normal,
+/// the unit outward normal has covariant components `n_i = s delta_i^a / sqrt(g^aa)`, so
+/// ```text
+/// Displacement(f):  v^c = f                         (Dirichlet)
+/// Traction(f):      n_i T^i_c = s T^a_c / sqrt(g^aa) = f     (force per area, covariant)
+/// Stress(f):        T^a_c = f                       (the paper's end condition T^2_2 = tau)
+/// ```
+/// `Traction` and `Stress` are the same natural condition with different scalings: on
+/// `x3 = 0` (where `g^33 = 1`, `s = -1`) `Traction(f)` means `T^3_c = -f`.
+#[derive(Debug, Clone)]
+pub enum ComponentCondition {
+    /// Prescribed contravariant displacement `v^c`.
+    Displacement(BoundaryFunction),
+    /// Prescribed traction `t_c = n_i T^i_c` (unit outward normal).
+    Traction(BoundaryFunction),
+    /// Prescribed stress component `T^a_c` (`a` normal to the side).
+    Stress(BoundaryFunction),
+}
+
+impl ComponentCondition {
+    /// Zero traction.
+    pub fn free() -> Self {
+        Self::Traction(BoundaryFunction::zero())
+    }
+    /// Zero displacement.
+    pub fn fixed() -> Self {
+        Self::Displacement(BoundaryFunction::zero())
+    }
+    /// Whether this is a Dirichlet condition.
+    pub fn is_displacement(&self) -> bool {
+        matches!(self, Self::Displacement(_))
+    }
+}
+
+/// The conditions on both components of one side, `[j = 2, j = 3]`.
+#[derive(Debug, Clone)]
+pub struct SideCondition(pub [ComponentCondition; 2]);
+
+impl SideCondition {
+    /// Traction-free (`n_i T^i_j = 0`).
+    pub fn free() -> Self {
+        Self([ComponentCondition::free(), ComponentCondition::free()])
+    }
+    /// Clamped (`v^2 = v^3 = 0`).
+    pub fn clamped() -> Self {
+        Self([ComponentCondition::fixed(), ComponentCondition::fixed()])
+    }
+    /// The paper's end condition: `T^a_2 = tension` and zero shear `T^a_3 = 0`.
+    pub fn end_tension(tension: f64) -> Self {
+        Self([
+            ComponentCondition::Stress(BoundaryFunction::constant(tension)),
+            ComponentCondition::Stress(BoundaryFunction::zero()),
+        ])
+    }
+    /// Bilateral contact with a prescribed tangential traction: `v^3 = 0`, `t_2 = f`.
+    pub fn bilateral(tangential_traction: BoundaryFunction) -> Self {
+        Self([
+            ComponentCondition::Traction(tangential_traction),
+            ComponentCondition::fixed(),
+        ])
+    }
+    /// The condition of one component.
+    pub fn component(&self, c: Component) -> &ComponentCondition {
+        &self.0[c.index()]
+    }
+}
+
+/// The `x2` ends: two sides, or periodic (a full wrap).
+#[derive(Debug, Clone)]
+pub enum X2Ends {
+    /// Conditions at `x2 = theta0` and `x2 = theta1`.
+    Sides {
+        /// At `x2 = theta0`.
+        min: SideCondition,
+        /// At `x2 = theta1`.
+        max: SideCondition,
+    },
+    /// Periodic in `x2` (the grid must be periodic too).
+    Periodic,
+}
+
+impl X2Ends {
+    /// Whether the ends are periodic.
+    pub fn is_periodic(&self) -> bool {
+        matches!(self, Self::Periodic)
+    }
+}
+
+/// A Dirichlet condition on one node and component, e.g. to pin the rigid rotation of a
+/// full wrap (`v^2 = 0` at one node).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct PinnedDof {
+    /// `(i2, i3)`.
+    pub node: [usize; 2],
+    /// The component.
+    pub component: Component,
+    /// The prescribed value.
+    pub value: f64,
+}
+
+/// Boundary conditions on the rectangle.
+///
+/// At a corner a `Displacement` condition on either side wins; if both sides are
+/// `Displacement`, the `x3` side's function is used. Two natural conditions at a corner both
+/// act (each on its half of the corner cell).
+#[derive(Debug, Clone)]
+pub struct BoundaryConditions {
+    /// The `x2` ends.
+    pub x2: X2Ends,
+    /// `x3 = 0`, the contact surface.
+    pub x3_min: SideCondition,
+    /// `x3 = h`, the outer surface.
+    pub x3_max: SideCondition,
+    /// Extra Dirichlet nodes (gauge conditions).
+    pub pinned: Vec<PinnedDof>,
+}
+
+impl BoundaryConditions {
+    /// The paper's section 3 stand-in: end tensions `tau0`, `tau_max` (zero shear), free outer
+    /// surface, and `v^2 = v^3 = 0` on `x3 = 0` (a linear stand-in for the contact).
+    pub fn paper_clamped(tau0: f64, tau_max: f64) -> Self {
+        Self {
+            x2: X2Ends::Sides {
+                min: SideCondition::end_tension(tau0),
+                max: SideCondition::end_tension(tau_max),
+            },
+            x3_min: SideCondition::clamped(),
+            x3_max: SideCondition::free(),
+            pinned: vec![],
+        }
+    }
+
+    /// The condition on a side, `None` for the `x2` sides of a periodic problem.
+    pub fn side(&self, side: Side) -> Option<&SideCondition> {
+        match (side, &self.x2) {
+            (Side::X3Min, _) => Some(&self.x3_min),
+            (Side::X3Max, _) => Some(&self.x3_max),
+            (Side::X2Min, X2Ends::Sides { min, .. }) => Some(min),
+            (Side::X2Max, X2Ends::Sides { max, .. }) => Some(max),
+            (_, X2Ends::Periodic) => None,
+        }
+    }
+
+    /// Whether `x2` is periodic.
+    pub fn is_periodic(&self) -> bool {
+        self.x2.is_periodic()
+    }
+}

@@ -1,0 +1,253 @@
+//! The interface between a discretisation of the Navier operator and the solvers: dof
+//! numbering, assembly into a fixed sparsity pattern, the contact boundary rows, output fields.
+
+use capstan_solvers::{LinearSolver, SparsityPattern};
+
+use crate::boundary::Component;
+use crate::error::ElasticityError;
+use crate::fields::NodalFields;
+
+/// A sparse row `r`: the linear functional `v -> sum_k values[k] v[columns[k]]`.
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize)]
+pub struct SparseRow {
+    /// Column (dof) indices, increasing.
+    pub columns: Vec<usize>,
+    /// Coefficients.
+    pub values: Vec<f64>,
+}
+
+impl SparseRow {
+    /// Builds a row from `(column, value)` terms, summing duplicates and sorting the columns.
+    pub fn from_terms(terms: &mut [(usize, f64)]) -> Self {
+        terms.sort_unstable_by_key(|t| t.0);
+        let mut row = Self::default();
+        for &(c, v) in terms.iter() {
+            if row.columns.last() == Some(&c) {
+                *row.values.last_mut().expect("same length") += v;
+            } else {
+                row.columns.push(c);
+                row.values.push(v);
+            }
+        }
+        row
+    }
+
+    /// `sum_k values[k] v[columns[k]]`.
+    ///
+    /// # Panics
+    /// If a column is out of range of `v`.
+    #[track_caller]
+    pub fn dot(&self, v: &[f64]) -> f64 {
+        self.columns
+            .iter()
+            .zip(&self.values)
+            .map(|(&c, &a)| a * v[c])
+            .sum()
+    }
+}
+
+/// One node of the contact surface `x3 = 0`, with everything a friction law needs to add its
+/// terms (and their exact Jacobian) to the assembled system.
+///
+/// # Math
+/// The assembled system is `A v = b`. If a tangential traction `t_2 = n_i T^i_2` (covariant,
+/// unit outward normal `n = -g^3`, so `t_2 = -T^3_2`) acts on the contact face of this node,
+/// ```text
+/// residual[tangential_row] = (A v - b)[tangential_row] - traction_weight * t_2
+/// ```
+/// with `b` assembled for zero tangential traction on `x3 = 0`. The tangential physical
+/// displacement is `sqrt_g22 * v^2` and the physical tangential traction is `t_2 / sqrt_g22`.
+/// `normal_stress . v = T^3_3` and `shear_stress . v = T^3_2` at the node (the pressure is
+/// `p = -T^3_3`); their columns are in the sparsity pattern of `tangential_row`, so a friction
+/// Jacobian `d t_2/d v^2 e_{v^2} + d t_2/d T^3_3 normal_stress` fits the pattern.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ContactNode {
+    /// `(i2, 0)`.
+    pub node: [usize; 2],
+    /// `x2` of the node.
+    pub x2: f64,
+    /// Row of the `j = 2` balance equation; `None` if `v^2` is prescribed at this node.
+    pub tangential_row: Option<usize>,
+    /// Dof of `v^2` at the node.
+    pub tangential_dof: usize,
+    /// Dof of `v^3` at the node.
+    pub normal_dof: usize,
+    /// Coefficient of the traction `t_2` in the right-hand side of `tangential_row`.
+    pub traction_weight: f64,
+    /// `sqrt(g_22)` at the node: physical tangential displacement `= sqrt_g22 v^2`.
+    pub sqrt_g22: f64,
+    /// `v -> T^3_3` at the node (second-order one-sided in `x3`).
+    pub normal_stress: SparseRow,
+    /// `v -> T^3_2` at the node.
+    pub shear_stress: SparseRow,
+}
+
+/// An assembled linear system `A v = b` on a sparsity pattern built once.
+#[derive(Debug, Clone)]
+pub struct LinearSystem {
+    /// The pattern of `A` (fixed for the life of the discretisation).
+    pub pattern: SparsityPattern,
+    /// The values of `A` in `pattern` order.
+    pub values: Vec<f64>,
+    /// The right-hand side `b`.
+    pub rhs: Vec<f64>,
+    slots: Vec<u32>,
+}
+
+impl LinearSystem {
+    /// The system for the structural `entries` (duplicates allowed), values zero.
+    ///
+    /// # Errors
+    /// [`ElasticityError::Solver`] for out-of-range entries; `InvalidParameter` if the pattern
+    /// has more than `u32::MAX` nonzeros.
+    pub fn from_entries(n: usize, entries: &[(usize, usize)]) -> Result<Self, ElasticityError> {
+        let (pattern, slots) = SparsityPattern::from_entries(n, n, entries)?;
+        if pattern.nnz() > u32::MAX as usize {
+            return Err(ElasticityError::InvalidParameter {
+                field: "pattern nonzeros",
+                value: pattern.nnz() as f64,
+                allowed: "[0, 2^32)",
+            });
+        }
+        let slots = slots.into_iter().map(|s| s as u32).collect();
+        Ok(Self {
+            values: vec![0.0; pattern.nnz()],
+            rhs: vec![0.0; n],
+            pattern,
+            slots,
+        })
+    }
+
+    /// Zeroes values and right-hand side; returns an adder `add(entry_index, value)` target.
+    pub fn clear(&mut self) {
+        self.values.iter_mut().for_each(|v| *v = 0.0);
+        self.rhs.iter_mut().for_each(|v| *v = 0.0);
+    }
+
+    /// Adds `value` to the slot of structural entry number `k` (in `entries` order).
+    #[track_caller]
+    pub fn add_entry(&mut self, k: usize, value: f64) {
+        self.values[self.slots[k] as usize] += value;
+    }
+
+    /// Dimension `n`.
+    pub fn dimension(&self) -> usize {
+        self.rhs.len()
+    }
+
+    /// `r = A v - b`.
+    ///
+    /// # Panics
+    /// If `v` or `r` have the wrong length.
+    #[track_caller]
+    pub fn residual_into(&self, v: &[f64], r: &mut [f64]) {
+        self.pattern.matvec(&self.values, v, r);
+        for (ri, bi) in r.iter_mut().zip(&self.rhs) {
+            *ri -= bi;
+        }
+    }
+
+    /// `max_i |A v - b|_i / max(1, max_i |b_i|)`.
+    pub fn relative_residual(&self, v: &[f64]) -> f64 {
+        let mut r = vec![0.0; self.dimension()];
+        self.residual_into(v, &mut r);
+        let b = self.rhs.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1.0);
+        r.iter().fold(0.0f64, |m, x| m.max(x.abs())) / b
+    }
+
+    /// Solves `A v = b` with `solver` (analyse, factor, solve).
+    ///
+    /// # Errors
+    /// The solver's typed error.
+    pub fn solve(&self, solver: &mut dyn LinearSolver<f64>) -> Result<Vec<f64>, ElasticityError> {
+        solver.analyse(&self.pattern)?;
+        solver.factor(&self.values)?;
+        let mut v = self.rhs.clone();
+        solver.solve_in_place(&mut v)?;
+        Ok(v)
+    }
+}
+
+/// A discretisation of the plane-strain curvilinear Navier operator on the `(x2, x3)`
+/// rectangle, with nodal unknowns `v^2, v^3` on an `n2 x n3` structured grid (finite
+/// differences today; a finite-element discretisation on the same nodes fits behind it).
+///
+/// The structural nonzeros are listed once by [`Discretisation::entries`]; [`Discretisation::fill`]
+/// produces the values in exactly that order, so the sparsity pattern (and a direct solver's
+/// symbolic analysis) is built once and refilled.
+pub trait Discretisation {
+    /// Short name of the method (`"fd"`).
+    fn method(&self) -> &'static str;
+
+    /// The grid.
+    fn grid(&self) -> &crate::grid::Grid;
+
+    /// Number of unknowns.
+    fn dof_count(&self) -> usize;
+
+    /// The unknown of `component` at node `(i2, i3)`.
+    ///
+    /// # Panics
+    /// If the node is outside the grid.
+    fn dof(&self, node: [usize; 2], component: Component) -> usize;
+
+    /// The structural nonzeros `(row, column)` of `A`, duplicates allowed, in fill order. They
+    /// include, in each contact tangential row, the columns of [`ContactNode::normal_stress`]
+    /// and [`ContactNode::shear_stress`].
+    ///
+    /// # Errors
+    /// Non-finite boundary data.
+    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError>;
+
+    /// Calls `add(k, value)` for every structural entry `k` in the order of
+    /// [`Discretisation::entries`] and writes the right-hand side into `rhs`.
+    ///
+    /// # Errors
+    /// Non-finite boundary or forcing data.
+    fn fill(&self, add: &mut dyn FnMut(usize, f64), rhs: &mut [f64])
+    -> Result<(), ElasticityError>;
+
+    /// The nodes of the contact surface `x3 = 0`, in increasing `i2`.
+    ///
+    /// # Errors
+    /// Geometry failures.
+    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError>;
+
+    /// Displacement, strain and stress at the nodes for the solution `v`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
+    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError>;
+
+    /// Builds the pattern and fills it.
+    ///
+    /// # Errors
+    /// See [`Discretisation::entries`] and [`Discretisation::fill`].
+    fn system(&self) -> Result<LinearSystem, ElasticityError> {
+        let entries = self.entries()?;
+        let mut system = LinearSystem::from_entries(self.dof_count(), &entries)?;
+        drop(entries);
+        self.refill(&mut system)?;
+        Ok(system)
+    }
+
+    /// Refills the values and right-hand side of a system built by [`Discretisation::system`].
+    ///
+    /// # Errors
+    /// See [`Discretisation::fill`].
+    fn refill(&self, system: &mut LinearSystem) -> Result<(), ElasticityError> {
+        system.clear();
+        let mut rhs = core::mem::take(&mut system.rhs);
+        let result = self.fill(&mut |k, v| system.add_entry(k, v), &mut rhs);
+        system.rhs = rhs;
+        result
+    }
+
+    /// Assembles and solves with `solver`.
+    ///
+    /// # Errors
+    /// Assembly or solver errors.
+    fn solve(&self, solver: &mut dyn LinearSolver<f64>) -> Result<Vec<f64>, ElasticityError> {
+        self.system()?.solve(solver)
+    }
+}

@@ -1,0 +1,652 @@
+//! Second-order finite differences (vertex-centred finite volumes) for the plane-strain
+//! curvilinear Navier operator.
+
+use std::sync::Arc;
+
+use capstan_geometry::ShellPoint;
+
+use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::discretisation::{ContactNode, Discretisation, SparseRow};
+use crate::error::ElasticityError;
+use crate::fields::NodalFields;
+use crate::grid::Grid;
+use crate::kinematics::{
+    LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
+    strain,
+};
+use crate::material::Material;
+use crate::shell_geometry::ShellGeometry;
+
+/// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
+pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
+
+/// Coefficients of two scalar linear functionals (one per equation `j = 2, 3`) of the six
+/// local inputs `[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]`.
+type Coefficients = [[f64; 6]; 2];
+
+/// Stencil weights `[value, d_2, d_3]` of one node in a local reconstruction.
+type Stencil = Vec<([usize; 2], [f64; 3])>;
+
+/// Relative tolerance of the plane-strain check on the chart.
+const PLANE_STRAIN_TOLERANCE: f64 = 1e-10;
+
+/// The plane-strain curvilinear Navier operator by second-order finite differences on an
+/// `n2 x n3` grid, with the geometry cached once.
+///
+/// # Math
+/// The equilibrium equations `nabla_i T^i_j + f_j = 0` (`j = 2, 3`) in conservative form,
+/// ```text
+/// d_a (sqrt(g) T^a_j) - sqrt(g) Gamma^k_ij T^i_k + sqrt(g) f_j = 0      (a = 2, 3; d_1 = 0)
+/// T^i_j = lambda E^m_m delta^i_j + 2 mu g^ik E_kj,   E_kl = (nabla_k v_l + nabla_l v_k)/2
+/// nabla_k v_l = g_ln (d_k v^n + Gamma^n_km v^m)                          (v^1 = 0)
+/// ```
+/// are integrated over the control volume of each node, `[x2 -+ dx2/2] x [x3 -+ dx3/2]`
+/// clipped to the rectangle (half and quarter cells on the boundary). Row `(i2, i3, j)` is
+/// ```text
+/// -(1/|V|) sum_faces (outward flux sqrt(g) T^a_j) |face| + sqrt(g) Gamma^k_ij T^i_k = sqrt(g) f_j
+/// ```
+/// Fluxes are evaluated at face midpoints with the geometry there: on an `x2` face
+/// `v = (v_i + v_{i+1})/2`, `d_2 v = (v_{i+1} - v_i)/dx2` and `d_3 v` the mean of the nodal
+/// central differences (second-order one-sided on boundaries); likewise on `x3` faces. The
+/// Christoffel term uses nodal differences. On a boundary face the outward flux is the data:
+/// `sqrt(g) sqrt(g^aa) t_j` for a traction, `s sqrt(g) T^a_j` for a stress condition. Dirichlet
+/// rows are `s v^c = s f` with `s = (lambda + 2 mu)/dx3^2` (a scale like the balance rows').
+///
+/// Only the chart's metric, inverse metric, `sqrt(g)` and Christoffel symbols are used: a new
+/// obstacle needs no new code here. The chart must be `x1`-invariant (a prism); this is
+/// checked at every cached point.
+///
+/// # Errors
+/// See [`FiniteDifferenceNavier::new`].
+///
+/// # Example
+/// ```
+/// use capstan_elasticity::{BoundaryConditions, Discretisation, FiniteDifferenceNavier, Grid, Material};
+/// use capstan_geometry::{EllipticalPrism, ShellChart};
+/// use capstan_solvers::SparseLu;
+/// let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
+/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
+/// let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
+/// let op = FiniteDifferenceNavier::new(chart, Material::new(1e3, 0.25).unwrap(), grid, bc, None).unwrap();
+/// let v = op.solve(&mut SparseLu::default()).unwrap();
+/// // equal end tensions: the tangential displacement is odd in x2
+/// let (left, right) = (v[op.dof([0, 4], capstan_elasticity::Component::X2)], v[op.dof([24, 4], capstan_elasticity::Component::X2)]);
+/// assert!(left < 0.0 && (left + right).abs() < 1e-10);
+/// ```
+pub struct FiniteDifferenceNavier<G> {
+    chart: G,
+    material: Material,
+    grid: Grid,
+    boundary: BoundaryConditions,
+    body_force: Option<BodyForce>,
+    /// `sqrt(g) Gamma^k_ij T^i_k` coefficients at the nodes.
+    source: Vec<Coefficients>,
+    /// `[sqrt(g), sqrt(g^22), sqrt(g^33)]` at the nodes.
+    node_scale: Vec<[f64; 3]>,
+    /// `sqrt(g) T^2_j` at `(x2_i + dx2/2, x3_j)`, index `i n3 + j`.
+    east: Vec<Coefficients>,
+    /// `sqrt(g) T^3_j` at `(x2_i, x3_j + dx3/2)`, index `i (n3 - 1) + j`.
+    north: Vec<Coefficients>,
+    /// `[T^3_2, T^3_3]` coefficients and `sqrt(g_22)` on `x3 = 0`.
+    contact: Vec<(Coefficients, f64)>,
+    /// Prescribed value of each dof, `None` for a balance row.
+    dirichlet: Vec<Option<f64>>,
+    dirichlet_scale: f64,
+}
+
+impl<G> core::fmt::Debug for FiniteDifferenceNavier<G> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FiniteDifferenceNavier")
+            .field("material", &self.material)
+            .field("grid", &self.grid)
+            .field("boundary", &self.boundary)
+            .finish_non_exhaustive()
+    }
+}
+
+fn check_plane_strain(p: &ShellPoint<f64>, at: [f64; 3]) -> Result<(), ElasticityError> {
+    let gscale = 1.0
+        + p.metric
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    if p.metric[0][1].abs() > PLANE_STRAIN_TOLERANCE * gscale
+        || p.metric[0][2].abs() > PLANE_STRAIN_TOLERANCE * gscale
+    {
+        return Err(ElasticityError::NotPlaneStrain {
+            what: "g_12 or g_13 is not zero",
+            at,
+        });
+    }
+    let cscale = 1.0
+        + p.christoffel
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let index_one = (0..3).any(|i| {
+        (0..3).any(|j| {
+            p.christoffel[0][i][j].abs() > PLANE_STRAIN_TOLERANCE * cscale
+                || p.christoffel[i][0][j].abs() > PLANE_STRAIN_TOLERANCE * cscale
+        })
+    });
+    if index_one {
+        return Err(ElasticityError::NotPlaneStrain {
+            what: "a Christoffel symbol with index 1 is not zero",
+            at,
+        });
+    }
+    Ok(())
+}
+
+impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
+    /// Builds the operator and caches the geometry at the nodes and face midpoints.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InconsistentBoundary`] if periodicity of grid and conditions differ or
+    /// a pinned node is outside the grid; [`ElasticityError::Geometry`] where the chart cannot
+    /// be evaluated (e.g. past the focal surface); [`ElasticityError::NotPlaneStrain`] for a
+    /// chart that is not `x1`-invariant; [`ElasticityError::NonFinite`] for non-finite
+    /// Dirichlet data.
+    pub fn new(
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+    ) -> Result<Self, ElasticityError> {
+        if grid.is_periodic() != boundary.is_periodic() {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "the grid and the x2 conditions must both be periodic or both not",
+            });
+        }
+        if boundary
+            .pinned
+            .iter()
+            .any(|p| p.node[0] >= grid.n2() || p.node[1] >= grid.n3())
+        {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "a pinned node is outside the grid",
+            });
+        }
+        let (n2, n3) = (grid.n2(), grid.n3());
+        let (dx2, dx3) = (grid.dx2(), grid.dx3());
+        let point = |x2: f64, x3: f64| -> Result<ShellPoint<f64>, ElasticityError> {
+            let at = [0.0, x2, x3];
+            let p = chart.shell_point(at)?;
+            check_plane_strain(&p, at)?;
+            Ok(p)
+        };
+        let flux = |p: &ShellPoint<f64>, a: usize| -> Coefficients {
+            let c = mixed_stress_coefficients(p, &material);
+            core::array::from_fn(|e| core::array::from_fn(|k| p.sqrt_g * c[k][a][e + 1]))
+        };
+        let mut source = Vec::with_capacity(grid.node_count());
+        let mut node_scale = Vec::with_capacity(grid.node_count());
+        let mut contact = Vec::with_capacity(n2);
+        for i in 0..n2 {
+            for j in 0..n3 {
+                let p = point(grid.x2(i), grid.x3(j))?;
+                let c = mixed_stress_coefficients(&p, &material);
+                source.push(core::array::from_fn(|e| {
+                    core::array::from_fn(|k| p.sqrt_g * christoffel_contraction(&p, &c[k], e + 1))
+                }));
+                node_scale.push([
+                    p.sqrt_g,
+                    p.inverse_metric[1][1].sqrt(),
+                    p.inverse_metric[2][2].sqrt(),
+                ]);
+                if j == 0 {
+                    let t3: Coefficients =
+                        core::array::from_fn(|e| core::array::from_fn(|k| c[k][2][e + 1]));
+                    contact.push((t3, p.metric[1][1].sqrt()));
+                }
+            }
+        }
+        let n_east = if grid.is_periodic() { n2 } else { n2 - 1 };
+        let mut east = Vec::with_capacity(n_east * n3);
+        for i in 0..n_east {
+            for j in 0..n3 {
+                east.push(flux(&point(grid.x2(i) + 0.5 * dx2, grid.x3(j))?, 1));
+            }
+        }
+        let mut north = Vec::with_capacity(n2 * (n3 - 1));
+        for i in 0..n2 {
+            for j in 0..n3 - 1 {
+                north.push(flux(&point(grid.x2(i), grid.x3(j) + 0.5 * dx3)?, 2));
+            }
+        }
+        let mut op = Self {
+            chart,
+            dirichlet_scale: (material.lambda() + 2.0 * material.mu()) / (dx3 * dx3),
+            material,
+            grid,
+            boundary,
+            body_force,
+            source,
+            node_scale,
+            east,
+            north,
+            contact,
+            dirichlet: vec![],
+        };
+        op.dirichlet = (0..op.dof_count())
+            .map(|d| op.dirichlet_value(grid.node(d / 2), Component::ALL[d % 2]))
+            .collect::<Result<_, _>>()?;
+        Ok(op)
+    }
+
+    /// The material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// The boundary conditions.
+    pub fn boundary(&self) -> &BoundaryConditions {
+        &self.boundary
+    }
+
+    /// The chart.
+    pub fn chart(&self) -> &G {
+        &self.chart
+    }
+
+    /// The value prescribed at a node and component, if any (pins first, then the `x3` sides,
+    /// then the `x2` sides).
+    fn dirichlet_value(
+        &self,
+        node: [usize; 2],
+        c: Component,
+    ) -> Result<Option<f64>, ElasticityError> {
+        if let Some(p) = self
+            .boundary
+            .pinned
+            .iter()
+            .find(|p| p.node == node && p.component == c)
+        {
+            return Ok(Some(p.value));
+        }
+        let [x2, x3] = self.grid.coordinates(node);
+        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        let mut sides = Vec::with_capacity(2);
+        if node[1] == 0 {
+            sides.push((Side::X3Min, x2));
+        }
+        if node[1] == n3 - 1 {
+            sides.push((Side::X3Max, x2));
+        }
+        if !self.grid.is_periodic() {
+            if node[0] == 0 {
+                sides.push((Side::X2Min, x3));
+            }
+            if node[0] == n2 - 1 {
+                sides.push((Side::X2Max, x3));
+            }
+        }
+        for (side, s) in sides {
+            if let Some(ComponentCondition::Displacement(f)) =
+                self.boundary.side(side).map(|sc| sc.component(c))
+            {
+                let value = f.eval(s);
+                if !value.is_finite() {
+                    return Err(ElasticityError::NonFinite {
+                        what: "boundary displacement",
+                        at: [x2, x3],
+                    });
+                }
+                return Ok(Some(value));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Nodal difference `d_2` at `(i, .)`: `(i2, weight)` triples (central, or second-order
+    /// one-sided at a bounded end).
+    fn d2_stencil(&self, i: usize) -> [(usize, f64); 3] {
+        let (n, h) = (self.grid.n2(), self.grid.dx2());
+        let w = 0.5 / h;
+        if self.grid.is_periodic() {
+            [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
+        } else if i == 0 {
+            [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
+        } else if i == n - 1 {
+            [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
+        } else {
+            [(i - 1, -w), (i + 1, w), (i, 0.0)]
+        }
+    }
+
+    /// Nodal difference `d_3` at `(., j)`.
+    fn d3_stencil(&self, j: usize) -> [(usize, f64); 3] {
+        let (n, h) = (self.grid.n3(), self.grid.dx3());
+        let w = 0.5 / h;
+        if j == 0 {
+            [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
+        } else if j == n - 1 {
+            [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
+        } else {
+            [(j - 1, -w), (j + 1, w), (j, 0.0)]
+        }
+    }
+
+    fn node_stencil(&self, [i, j]: [usize; 2], out: &mut Stencil) {
+        out.clear();
+        out.push(([i, j], [1.0, 0.0, 0.0]));
+        for (ii, w) in self.d2_stencil(i) {
+            out.push(([ii, j], [0.0, w, 0.0]));
+        }
+        for (jj, w) in self.d3_stencil(j) {
+            out.push(([i, jj], [0.0, 0.0, w]));
+        }
+    }
+
+    /// Face `(i + 1/2, j)` between nodes `i` and `ip`.
+    fn east_stencil(&self, i: usize, ip: usize, j: usize, out: &mut Stencil) {
+        out.clear();
+        let w = 1.0 / self.grid.dx2();
+        out.push(([i, j], [0.5, -w, 0.0]));
+        out.push(([ip, j], [0.5, w, 0.0]));
+        for (jj, w3) in self.d3_stencil(j) {
+            out.push(([i, jj], [0.0, 0.0, 0.5 * w3]));
+            out.push(([ip, jj], [0.0, 0.0, 0.5 * w3]));
+        }
+    }
+
+    /// Face `(i, j + 1/2)`.
+    fn north_stencil(&self, i: usize, j: usize, out: &mut Stencil) {
+        out.clear();
+        let w = 1.0 / self.grid.dx3();
+        out.push(([i, j], [0.5, 0.0, -w]));
+        out.push(([i, j + 1], [0.5, 0.0, w]));
+        for (ii, w2) in self.d2_stencil(i) {
+            out.push(([ii, j], [0.0, 0.5 * w2, 0.0]));
+            out.push(([ii, j + 1], [0.0, 0.5 * w2, 0.0]));
+        }
+    }
+
+    fn add_terms(
+        &self,
+        terms: &mut Vec<(usize, f64)>,
+        scale: f64,
+        coef: &Coefficients,
+        e: usize,
+        stencil: &Stencil,
+    ) {
+        for (node, w) in stencil {
+            for c in 0..2 {
+                let a = coef[e][c] * w[0] + coef[e][2 + c] * w[1] + coef[e][4 + c] * w[2];
+                terms.push((self.dof(*node, Component::ALL[c]), scale * a));
+            }
+        }
+    }
+
+    /// Outward parameter-space flux `s sqrt(g) T^a_e` through `side` at `node`, from the data.
+    fn boundary_flux(
+        &self,
+        side: Side,
+        e: usize,
+        node: [usize; 2],
+    ) -> Result<f64, ElasticityError> {
+        let k = self.grid.node_index(node);
+        let [sqrt_g, s22, s33] = self.node_scale[k];
+        let x = self.grid.coordinates(node);
+        let s = if side.normal_index() == 1 { x[1] } else { x[0] };
+        let cond = self
+            .boundary
+            .side(side)
+            .ok_or(ElasticityError::InconsistentBoundary {
+                what: "no condition on a bounded side",
+            })?
+            .component(Component::ALL[e]);
+        let value = match cond {
+            ComponentCondition::Traction(f) => {
+                let normal = if side.normal_index() == 1 { s22 } else { s33 };
+                sqrt_g * normal * f.eval(s)
+            }
+            ComponentCondition::Stress(f) => side.sign() * sqrt_g * f.eval(s),
+            ComponentCondition::Displacement(_) => {
+                return Err(ElasticityError::InconsistentBoundary {
+                    what: "a balance row on a side with a prescribed displacement",
+                });
+            }
+        };
+        if !value.is_finite() {
+            return Err(ElasticityError::NonFinite {
+                what: "boundary traction",
+                at: x,
+            });
+        }
+        Ok(value)
+    }
+
+    /// The terms and right-hand side of the row of dof `d`.
+    fn row(
+        &self,
+        d: usize,
+        terms: &mut Vec<(usize, f64)>,
+        st: &mut Stencil,
+    ) -> Result<f64, ElasticityError> {
+        terms.clear();
+        if let Some(value) = self.dirichlet[d] {
+            terms.push((d, self.dirichlet_scale));
+            return Ok(self.dirichlet_scale * value);
+        }
+        let node @ [i, j] = self.grid.node(d / 2);
+        let e = d % 2;
+        let (n2, n3, periodic) = (self.grid.n2(), self.grid.n3(), self.grid.is_periodic());
+        let (dx2, dx3) = (self.grid.dx2(), self.grid.dx3());
+        let h2 = if !periodic && (i == 0 || i == n2 - 1) {
+            0.5 * dx2
+        } else {
+            dx2
+        };
+        let h3 = if j == 0 || j == n3 - 1 {
+            0.5 * dx3
+        } else {
+            dx3
+        };
+        let area = h2 * h3;
+        let mut rhs = 0.0;
+        if periodic || i < n2 - 1 {
+            let ip = (i + 1) % n2;
+            self.east_stencil(i, ip, j, st);
+            self.add_terms(terms, -h3 / area, &self.east[i * n3 + j], e, st);
+        } else {
+            rhs += h3 / area * self.boundary_flux(Side::X2Max, e, node)?;
+        }
+        if periodic || i > 0 {
+            let im = (i + n2 - 1) % n2;
+            self.east_stencil(im, i, j, st);
+            self.add_terms(terms, h3 / area, &self.east[im * n3 + j], e, st);
+        } else {
+            rhs += h3 / area * self.boundary_flux(Side::X2Min, e, node)?;
+        }
+        if j < n3 - 1 {
+            self.north_stencil(i, j, st);
+            self.add_terms(terms, -h2 / area, &self.north[i * (n3 - 1) + j], e, st);
+        } else {
+            rhs += h2 / area * self.boundary_flux(Side::X3Max, e, node)?;
+        }
+        if j > 0 {
+            self.north_stencil(i, j - 1, st);
+            self.add_terms(terms, h2 / area, &self.north[i * (n3 - 1) + j - 1], e, st);
+        } else {
+            rhs += h2 / area * self.boundary_flux(Side::X3Min, e, node)?;
+        }
+        self.node_stencil(node, st);
+        let k = self.grid.node_index(node);
+        self.add_terms(terms, 1.0, &self.source[k], e, st);
+        if let Some(f) = &self.body_force {
+            let x = self.grid.coordinates(node);
+            let fe = f(x)[e];
+            if !fe.is_finite() {
+                return Err(ElasticityError::NonFinite {
+                    what: "body force",
+                    at: x,
+                });
+            }
+            rhs += self.node_scale[k][0] * fe;
+        }
+        // No structural zeros are needed for a friction Jacobian: the Christoffel term above
+        // already couples this row to every column of the nodal stencil, which holds the
+        // columns of `T^3_j` at the node (see `contact_nodes`).
+        Ok(rhs)
+    }
+
+    /// Visits every row in dof order with its merged, column-sorted terms.
+    fn visit(&self, mut f: impl FnMut(usize, &[(usize, f64)], f64)) -> Result<(), ElasticityError> {
+        let mut terms = Vec::with_capacity(64);
+        let mut st = Vec::with_capacity(16);
+        let mut merged: Vec<(usize, f64)> = Vec::with_capacity(64);
+        for d in 0..self.dof_count() {
+            let rhs = self.row(d, &mut terms, &mut st)?;
+            terms.sort_unstable_by_key(|t| t.0);
+            merged.clear();
+            for &(c, v) in &terms {
+                match merged.last_mut() {
+                    Some(last) if last.0 == c => last.1 += v,
+                    _ => merged.push((c, v)),
+                }
+            }
+            f(d, &merged, rhs);
+        }
+        Ok(())
+    }
+
+    /// The local displacement at a node from nodal values `v`.
+    fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
+        let mut st = Vec::with_capacity(8);
+        self.node_stencil(node, &mut st);
+        let mut u = [0.0; 6];
+        for (n, w) in &st {
+            for c in 0..2 {
+                let x = v[self.dof(*n, Component::ALL[c])];
+                u[c] += w[0] * x;
+                u[2 + c] += w[1] * x;
+                u[4 + c] += w[2] * x;
+            }
+        }
+        LocalDisplacement {
+            value: [u[0], u[1]],
+            gradient: [[u[2], u[3]], [u[4], u[5]]],
+        }
+    }
+}
+
+impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
+    fn method(&self) -> &'static str {
+        "fd"
+    }
+
+    fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    fn dof_count(&self) -> usize {
+        2 * self.grid.node_count()
+    }
+
+    #[track_caller]
+    fn dof(&self, node: [usize; 2], component: Component) -> usize {
+        assert!(
+            node[0] < self.grid.n2() && node[1] < self.grid.n3(),
+            "node {node:?} outside the grid"
+        );
+        2 * self.grid.node_index(node) + component.index()
+    }
+
+    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
+        let mut entries = Vec::with_capacity(self.dof_count() * 20);
+        self.visit(|d, terms, _| entries.extend(terms.iter().map(|t| (d, t.0))))?;
+        Ok(entries)
+    }
+
+    fn fill(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        if rhs.len() != self.dof_count() {
+            return Err(ElasticityError::DimensionMismatch {
+                quantity: "rhs",
+                expected: self.dof_count(),
+                found: rhs.len(),
+            });
+        }
+        let mut k = 0;
+        self.visit(|d, terms, b| {
+            for t in terms {
+                add(k, t.1);
+                k += 1;
+            }
+            rhs[d] = b;
+        })
+    }
+
+    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        let mut st = Vec::with_capacity(8);
+        let h3 = 0.5 * self.grid.dx3();
+        (0..self.grid.n2())
+            .map(|i| {
+                let node = [i, 0];
+                let k = self.grid.node_index(node);
+                let (coef, sqrt_g22) = &self.contact[i];
+                let [sqrt_g, _, s33] = self.node_scale[k];
+                self.node_stencil(node, &mut st);
+                let mut rows = [0, 1].map(|e| {
+                    let mut terms = Vec::with_capacity(16);
+                    self.add_terms(&mut terms, 1.0, coef, e, &st);
+                    SparseRow::from_terms(&mut terms)
+                });
+                let tangential_dof = self.dof(node, Component::X2);
+                Ok(ContactNode {
+                    node,
+                    x2: self.grid.x2(i),
+                    tangential_row: self.dirichlet[tangential_dof]
+                        .is_none()
+                        .then_some(tangential_dof),
+                    tangential_dof,
+                    normal_dof: self.dof(node, Component::X3),
+                    traction_weight: sqrt_g * s33 / h3,
+                    sqrt_g22: *sqrt_g22,
+                    normal_stress: core::mem::take(&mut rows[1]),
+                    shear_stress: core::mem::take(&mut rows[0]),
+                })
+            })
+            .collect()
+    }
+
+    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
+        if v.len() != self.dof_count() {
+            return Err(ElasticityError::DimensionMismatch {
+                quantity: "displacement",
+                expected: self.dof_count(),
+                found: v.len(),
+            });
+        }
+        let n = self.grid.node_count();
+        let mut out = NodalFields {
+            grid: self.grid,
+            displacement: Vec::with_capacity(n),
+            strain: Vec::with_capacity(n),
+            stress: Vec::with_capacity(n),
+            scale: Vec::with_capacity(n),
+            cartesian_displacement: Vec::with_capacity(n),
+        };
+        for k in 0..n {
+            let node = self.grid.node(k);
+            let [x2, x3] = self.grid.coordinates(node);
+            let p = self.chart.shell_point([0.0, x2, x3])?;
+            let u = self.local(node, v);
+            out.displacement.push(u.value);
+            out.strain.push(strain(&p, &u));
+            out.stress
+                .push(contravariant_stress(&p, &self.material, &u));
+            out.scale.push([0, 1, 2].map(|i| p.metric[i][i].sqrt()));
+            let g = &p.covariant_basis;
+            out.cartesian_displacement
+                .push([0, 1, 2].map(|a| u.value[0] * g[1][a] + u.value[1] * g[2][a]));
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,563 @@
+//! Reference problems shared by tests, benches and the `capstan verify` command: manufactured
+//! solutions on prisms, the Lamé thick cylinder and the paper's section 3 ellipse.
+
+use std::sync::Arc;
+
+use capstan_geometry::{
+    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism, Obstacle, ShellChart,
+    ShellPoint,
+};
+
+use crate::boundary::{
+    BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
+    SideCondition, X2Ends,
+};
+use crate::discretisation::Discretisation;
+use crate::error::ElasticityError;
+use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
+use crate::grid::Grid;
+use crate::kinematics::{LocalDisplacement, christoffel_contraction, mixed_stress};
+use crate::material::Material;
+use crate::shell_geometry::ShellGeometry;
+use crate::verification::{GridLevel, Study, StudyPoint};
+
+/// The chart type of the samples.
+pub type SampleChart = ShellChart<Obstacle>;
+
+/// A smooth displacement field with its exact first derivatives.
+pub trait ManufacturedField: Send + Sync {
+    /// `v^2, v^3` and their `x2`, `x3` derivatives at `(x2, x3)`.
+    fn displacement(&self, x: [f64; 2]) -> LocalDisplacement;
+}
+
+/// The manufactured field of the convergence studies (zero `v^3` on `x3 = 0`, so it also
+/// satisfies bilateral contact):
+///
+/// ```text
+/// v^2 = 0.05 sin(1.3 x2 + 0.2) (1 + x3/2 + x3^2/4)
+/// v^3 = 0.1 sin(1.2 x3) (1 + cos(0.8 x2)/2)
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct TrigonometricField;
+
+impl ManufacturedField for TrigonometricField {
+    fn displacement(&self, [x2, x3]: [f64; 2]) -> LocalDisplacement {
+        let (s, c) = (1.3 * x2 + 0.2).sin_cos();
+        let q = 1.0 + 0.5 * x3 + 0.25 * x3 * x3;
+        let dq = 0.5 + 0.5 * x3;
+        let (s3, c3) = (1.2 * x3).sin_cos();
+        let (s8, c8) = (0.8 * x2).sin_cos();
+        let w = 1.0 + 0.5 * c8;
+        LocalDisplacement {
+            value: [0.05 * s * q, 0.1 * s3 * w],
+            gradient: [
+                [0.05 * 1.3 * c * q, 0.1 * s3 * (-0.4 * s8)],
+                [0.05 * s * dq, 0.1 * 1.2 * c3 * w],
+            ],
+        }
+    }
+}
+
+/// The exact radial field of the Lamé cylinder: `v^2 = 0`, `v^3 = A r + B/r`, `r = R + x3`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RadialField {
+    /// `R`, radius of the inner surface.
+    pub radius: f64,
+    /// `A`.
+    pub a: f64,
+    /// `B`.
+    pub b: f64,
+}
+
+impl ManufacturedField for RadialField {
+    fn displacement(&self, [_, x3]: [f64; 2]) -> LocalDisplacement {
+        let r = self.radius + x3;
+        LocalDisplacement {
+            value: [0.0, self.a * r + self.b / r],
+            gradient: [[0.0, 0.0], [0.0, self.a - self.b / (r * r)]],
+        }
+    }
+}
+
+/// Stresses, tractions and the forcing of a manufactured field, pointwise on a chart.
+pub struct ExactSolution<G, M> {
+    /// The chart.
+    pub chart: G,
+    /// The material.
+    pub material: Material,
+    /// The field.
+    pub field: M,
+}
+
+impl<G: ShellGeometry, M: ManufacturedField> ExactSolution<G, M> {
+    fn point(&self, x: [f64; 2]) -> Result<ShellPoint<f64>, ElasticityError> {
+        Ok(self.chart.shell_point([0.0, x[0], x[1]])?)
+    }
+
+    /// `T^i_j` of the exact field at `x`.
+    ///
+    /// # Errors
+    /// Geometry failures.
+    pub fn mixed_stress(&self, x: [f64; 2]) -> Result<[[f64; 3]; 3], ElasticityError> {
+        Ok(mixed_stress(
+            &self.point(x)?,
+            &self.material,
+            &self.field.displacement(x),
+        ))
+    }
+
+    /// The forcing `f_j = -nabla_i T^i_j` (`j = 2, 3`) of the exact field.
+    ///
+    /// # Math
+    /// ```text
+    /// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k
+    /// d_a P ~ (4 D(h/2) - D(h))/3,  D(h) = (P(x + h e_a) - P(x - h e_a))/(2h),  h = 2e-3
+    /// ```
+    /// The Richardson-extrapolated central difference has truncation error `O(h^4) ~ 1e-12`
+    /// relative to the field's fifth derivatives, and round-off `~1e-13`.
+    ///
+    /// # Errors
+    /// Geometry failures.
+    pub fn forcing(&self, x: [f64; 2]) -> Result<[f64; 2], ElasticityError> {
+        let h = 2e-3;
+        let flux = |y: [f64; 2], a: usize| -> Result<[f64; 2], ElasticityError> {
+            let p = self.point(y)?;
+            let t = mixed_stress(&p, &self.material, &self.field.displacement(y));
+            Ok([p.sqrt_g * t[a][1], p.sqrt_g * t[a][2]])
+        };
+        let mut div = [0.0; 2];
+        for (axis, a) in [(0usize, 1usize), (1, 2)] {
+            let diff = |step: f64| -> Result<[f64; 2], ElasticityError> {
+                let (mut yp, mut ym) = (x, x);
+                yp[axis] += step;
+                ym[axis] -= step;
+                let (fp, fm) = (flux(yp, a)?, flux(ym, a)?);
+                Ok([0, 1].map(|e| (fp[e] - fm[e]) / (2.0 * step)))
+            };
+            let (d1, d2) = (diff(h)?, diff(0.5 * h)?);
+            for e in 0..2 {
+                div[e] += (4.0 * d2[e] - d1[e]) / 3.0;
+            }
+        }
+        let p = self.point(x)?;
+        let t = mixed_stress(&p, &self.material, &self.field.displacement(x));
+        Ok([0, 1].map(|e| -(div[e] / p.sqrt_g - christoffel_contraction(&p, &t, e + 1))))
+    }
+
+    /// The traction `t_j = n_i T^i_j` on `side` at `x`.
+    ///
+    /// # Errors
+    /// Geometry failures.
+    pub fn traction(&self, side: Side, x: [f64; 2]) -> Result<[f64; 2], ElasticityError> {
+        let p = self.point(x)?;
+        let a = side.normal_index();
+        let t = mixed_stress(&p, &self.material, &self.field.displacement(x));
+        let n = side.sign() / p.inverse_metric[a][a].sqrt();
+        Ok([n * t[a][1], n * t[a][2]])
+    }
+}
+
+/// The exact solution of the prism studies.
+pub type TrigonometricExact = ExactSolution<SampleChart, TrigonometricField>;
+
+/// Which conditions a manufactured-solution study imposes (all data from the exact field).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MmsBoundaries {
+    /// Dirichlet at both `x2` ends; traction on `x3 = 0` (the contact side) and on `x3 = h`.
+    TractionContact,
+    /// Bilateral contact on `x3 = 0` (`v^3 = 0` and a traction in `j = 2`), traction on
+    /// `x3 = h`, stress `T^2_j` at `x2 = theta0` (the paper's end condition), Dirichlet at
+    /// `x2 = theta1`.
+    BilateralContact,
+}
+
+impl MmsBoundaries {
+    /// Name used in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::TractionContact => "traction-contact",
+            Self::BilateralContact => "bilateral-contact",
+        }
+    }
+}
+
+/// A manufactured-solution study on a prism: [`TrigonometricField`] on
+/// `[theta0, theta1] x [0, h]`, forcing and boundary data from the exact field.
+#[derive(Debug, Clone)]
+pub struct PrismMms {
+    /// Short name of the geometry, e.g. `ellipse b/a=0.5`.
+    pub geometry: String,
+    /// The obstacle.
+    pub obstacle: Obstacle,
+    /// `[theta0, theta1]`.
+    pub theta: [f64; 2],
+    /// Thickness `h`.
+    pub thickness: f64,
+    /// The material.
+    pub material: Material,
+    /// The boundary conditions.
+    pub boundaries: MmsBoundaries,
+}
+
+fn material(young: f64, poisson: f64) -> Material {
+    Material::new(young, poisson).expect("sample material is valid")
+}
+
+impl PrismMms {
+    /// The elliptical prism `(x1, a sin t, b cos t)` with `a = 1` and `b = b_over_a`.
+    ///
+    /// # Panics
+    /// If `b_over_a` is not positive.
+    #[track_caller]
+    pub fn ellipse(b_over_a: f64, boundaries: MmsBoundaries) -> Self {
+        Self {
+            geometry: format!("ellipse a=1 b={b_over_a}"),
+            obstacle: Obstacle::Ellipse(
+                EllipticalPrism::new(1.0, b_over_a).expect("positive radii"),
+            ),
+            theta: [-1.2, 1.0],
+            thickness: 0.5,
+            material: material(10.0, 0.3),
+            boundaries,
+        }
+    }
+
+    /// The expression-defined prism `u = 2 sin(t) + 0.2 sin(2t)`, `v = 1.5 cos(t)`.
+    pub fn expression_prism(boundaries: MmsBoundaries) -> Self {
+        let profile = ExpressionProfile::parse("2*sin(t) + 0.2*sin(2*t)", "1.5*cos(t)")
+            .expect("sample expressions parse");
+        Self {
+            geometry: "prism u=2*sin(t)+0.2*sin(2*t) v=1.5*cos(t)".to_owned(),
+            obstacle: Obstacle::Prism(GeneralPrism::new(profile)),
+            theta: [-1.0, 1.1],
+            thickness: 0.4,
+            material: material(10.0, 0.3),
+            boundaries,
+        }
+    }
+
+    fn exact(&self) -> Arc<TrigonometricExact> {
+        Arc::new(ExactSolution {
+            chart: ShellChart::new(self.obstacle.clone()),
+            material: self.material,
+            field: TrigonometricField,
+        })
+    }
+
+    /// The operator on an `n2 x n3` grid, with its exact solution.
+    ///
+    /// # Errors
+    /// Grid or geometry errors.
+    pub fn operator(
+        &self,
+        level: GridLevel,
+    ) -> Result<(FiniteDifferenceNavier<SampleChart>, Arc<TrigonometricExact>), ElasticityError>
+    {
+        let exact = self.exact();
+        let grid = Grid::new(self.theta, self.thickness, level.n2, level.n3, false)?;
+        let traction = |side: Side, c: Component| {
+            let ex = exact.clone();
+            ComponentCondition::Traction(BoundaryFunction::new(move |s| {
+                let x = if side.normal_index() == 1 {
+                    [ex_side_x2(side, &grid), s]
+                } else {
+                    [s, ex_side_x3(side, &grid)]
+                };
+                ex.traction(side, x).map_or(f64::NAN, |t| t[c.index()])
+            }))
+        };
+        let stress = |side: Side, c: Component| {
+            let ex = exact.clone();
+            ComponentCondition::Stress(BoundaryFunction::new(move |s| {
+                let x = [ex_side_x2(side, &grid), s];
+                ex.mixed_stress(x)
+                    .map_or(f64::NAN, |t| t[side.normal_index()][c.index() + 1])
+            }))
+        };
+        let dirichlet = |side: Side, c: Component| {
+            let ex = exact.clone();
+            ComponentCondition::Displacement(BoundaryFunction::new(move |s| {
+                let x = if side.normal_index() == 1 {
+                    [ex_side_x2(side, &grid), s]
+                } else {
+                    [s, ex_side_x3(side, &grid)]
+                };
+                ex.field.displacement(x).value[c.index()]
+            }))
+        };
+        let both = |f: &dyn Fn(Side, Component) -> ComponentCondition, side| {
+            SideCondition([f(side, Component::X2), f(side, Component::X3)])
+        };
+        let boundary = match self.boundaries {
+            MmsBoundaries::TractionContact => BoundaryConditions {
+                x2: X2Ends::Sides {
+                    min: both(&dirichlet, Side::X2Min),
+                    max: both(&dirichlet, Side::X2Max),
+                },
+                x3_min: both(&traction, Side::X3Min),
+                x3_max: both(&traction, Side::X3Max),
+                pinned: vec![],
+            },
+            MmsBoundaries::BilateralContact => BoundaryConditions {
+                x2: X2Ends::Sides {
+                    min: both(&stress, Side::X2Min),
+                    max: both(&dirichlet, Side::X2Max),
+                },
+                x3_min: SideCondition([
+                    traction(Side::X3Min, Component::X2),
+                    ComponentCondition::fixed(),
+                ]),
+                x3_max: both(&traction, Side::X3Max),
+                pinned: vec![],
+            },
+        };
+        let ex = exact.clone();
+        let force: BodyForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 2]));
+        let op = FiniteDifferenceNavier::new(
+            ShellChart::new(self.obstacle.clone()),
+            self.material,
+            grid,
+            boundary,
+            Some(force),
+        )?;
+        Ok((op, exact))
+    }
+}
+
+fn ex_side_x2(side: Side, grid: &Grid) -> f64 {
+    if side == Side::X2Min {
+        grid.theta()[0]
+    } else {
+        grid.theta()[1]
+    }
+}
+
+fn ex_side_x3(side: Side, grid: &Grid) -> f64 {
+    if side == Side::X3Min {
+        0.0
+    } else {
+        grid.thickness()
+    }
+}
+
+/// Max and L2 (trapezoidal RMS over the parameter rectangle) norms of the error of the
+/// Cartesian displacement, `|U_h - U| = sqrt(g_22 e^2 e^2 + g_33 e^3 e^3)` (orthogonal charts).
+///
+/// # Errors
+/// Geometry failures.
+pub fn displacement_error<D: Discretisation, M: ManufacturedField>(
+    op: &D,
+    v: &[f64],
+    field: &M,
+) -> Result<[f64; 2], ElasticityError> {
+    let fields = op.fields(v)?;
+    let grid = *op.grid();
+    let (mut max, mut sum, mut weight) = (0.0f64, 0.0, 0.0);
+    for k in 0..grid.node_count() {
+        let node = grid.node(k);
+        let exact = field.displacement(grid.coordinates(node)).value;
+        let (d, s) = (fields.displacement[k], fields.scale[k]);
+        let e = ((s[1] * (d[0] - exact[0])).powi(2) + (s[2] * (d[1] - exact[1])).powi(2)).sqrt();
+        let w = grid.quadrature_weight(node);
+        max = max.max(e);
+        sum += w * e * e;
+        weight += w;
+    }
+    Ok([max, (sum / weight).sqrt()])
+}
+
+impl Study for PrismMms {
+    fn name(&self) -> String {
+        format!("mms {} {}", self.geometry, self.boundaries.name())
+    }
+    fn geometry(&self) -> String {
+        self.geometry.clone()
+    }
+    fn discretisation(&self) -> &'static str {
+        "fd"
+    }
+    fn levels(&self) -> Vec<GridLevel> {
+        [12, 24, 48, 96]
+            .map(|m| GridLevel {
+                n2: 2 * m + 1,
+                n3: m + 1,
+            })
+            .to_vec()
+    }
+    fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
+        let (op, exact) = self.operator(level)?;
+        let v = op.solve(&mut capstan_solvers::SparseLu::default())?;
+        let [max_error, l2_error] = displacement_error(&op, &v, &exact.field)?;
+        Ok(StudyPoint {
+            level,
+            h: op.grid().dx3(),
+            max_error,
+            l2_error,
+        })
+    }
+}
+
+/// The Lamé thick cylinder: a circular tube `R <= r <= R + h` under internal pressure `p`,
+/// free outside, in plane strain, over a full wrap (periodic `x2`), with `v^2 = 0` pinned at
+/// one node to remove the rigid rotation.
+///
+/// # Math
+/// ```text
+/// u_r = A r + B/r,   sigma_rr = 2 (lambda + mu) A - 2 mu B / r^2
+/// sigma_rr(R) = -p,  sigma_rr(R + h) = 0
+/// => B = p / (2 mu (1/R^2 - 1/(R+h)^2)),   A = mu B / ((lambda + mu) (R+h)^2)
+/// ```
+/// On `x3 = 0` the traction is `t_3 = n_i T^i_3 = -T^3_3 = p`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LameCylinder {
+    /// Inner radius `R`.
+    pub radius: f64,
+    /// Wall thickness `h`.
+    pub thickness: f64,
+    /// Internal pressure `p`.
+    pub pressure: f64,
+    /// The material.
+    pub material: Material,
+}
+
+impl Default for LameCylinder {
+    fn default() -> Self {
+        Self {
+            radius: 1.0,
+            thickness: 1.0,
+            pressure: 1.0,
+            material: material(10.0, 0.3),
+        }
+    }
+}
+
+impl LameCylinder {
+    /// The exact solution.
+    pub fn field(&self) -> RadialField {
+        let (l, m) = (self.material.lambda(), self.material.mu());
+        let (r1, r2) = (self.radius, self.radius + self.thickness);
+        let b = self.pressure / (2.0 * m * (1.0 / (r1 * r1) - 1.0 / (r2 * r2)));
+        let a = m * b / ((l + m) * r2 * r2);
+        RadialField {
+            radius: self.radius,
+            a,
+            b,
+        }
+    }
+
+    /// The operator on an `n2 x n3` periodic grid.
+    ///
+    /// # Errors
+    /// Grid or geometry errors.
+    pub fn operator(
+        &self,
+        level: GridLevel,
+    ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
+        let grid = Grid::new(
+            [0.0, 2.0 * core::f64::consts::PI],
+            self.thickness,
+            level.n2,
+            level.n3,
+            true,
+        )?;
+        let boundary = BoundaryConditions {
+            x2: X2Ends::Periodic,
+            x3_min: SideCondition([
+                ComponentCondition::free(),
+                ComponentCondition::Traction(BoundaryFunction::constant(self.pressure)),
+            ]),
+            x3_max: SideCondition::free(),
+            pinned: vec![PinnedDof {
+                node: [0, 0],
+                component: Component::X2,
+                value: 0.0,
+            }],
+        };
+        let chart = ShellChart::new(Obstacle::Cylinder(CircularCylinder::new(self.radius)?));
+        FiniteDifferenceNavier::new(chart, self.material, grid, boundary, None)
+    }
+}
+
+impl Study for LameCylinder {
+    fn name(&self) -> String {
+        "lame cylinder full wrap".to_owned()
+    }
+    fn geometry(&self) -> String {
+        format!(
+            "circle R={} h={} p={}",
+            self.radius, self.thickness, self.pressure
+        )
+    }
+    fn discretisation(&self) -> &'static str {
+        "fd"
+    }
+    fn levels(&self) -> Vec<GridLevel> {
+        [8, 16, 32, 64]
+            .map(|m| GridLevel {
+                n2: 4 * m,
+                n3: m + 1,
+            })
+            .to_vec()
+    }
+    fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
+        let op = self.operator(level)?;
+        let v = op.solve(&mut capstan_solvers::SparseLu::default())?;
+        let [max_error, l2_error] = displacement_error(&op, &v, &self.field())?;
+        Ok(StudyPoint {
+            level,
+            h: op.grid().dx3(),
+            max_error,
+            l2_error,
+        })
+    }
+}
+
+/// The paper's section 3 body on the ellipse `a = b = 2`, `h = 1`, `x2 in [-pi/2, pi/2]`,
+/// `E = 1e3`, `nu = 1/4`, end tensions `tau0 = 1`, `tau_max = 2`, free outer surface, and
+/// `v^2 = v^3 = 0` on `x3 = 0` as a linear stand-in for the contact (the benchmark problem).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PaperEllipse {
+    /// Horizontal radius `a`.
+    pub a: f64,
+    /// Vertical radius `b`.
+    pub b: f64,
+    /// Thickness `h`.
+    pub thickness: f64,
+    /// Traction at `x2 = -pi/2`.
+    pub tau0: f64,
+    /// Traction at `x2 = pi/2`.
+    pub tau_max: f64,
+    /// The material.
+    pub material: Material,
+}
+
+impl Default for PaperEllipse {
+    fn default() -> Self {
+        Self {
+            a: 2.0,
+            b: 2.0,
+            thickness: 1.0,
+            tau0: 1.0,
+            tau_max: 2.0,
+            material: material(1e3, 0.25),
+        }
+    }
+}
+
+impl PaperEllipse {
+    /// The operator on an `n2 x n3` grid.
+    ///
+    /// # Errors
+    /// Grid or geometry errors.
+    pub fn operator(
+        &self,
+        level: GridLevel,
+    ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
+        let half = core::f64::consts::FRAC_PI_2;
+        let grid = Grid::new([-half, half], self.thickness, level.n2, level.n3, false)?;
+        let chart = ShellChart::new(Obstacle::Ellipse(EllipticalPrism::new(self.a, self.b)?));
+        let boundary = BoundaryConditions::paper_clamped(self.tau0, self.tau_max);
+        FiniteDifferenceNavier::new(chart, self.material, grid, boundary, None)
+    }
+}
