@@ -1,1 +1,33 @@
-//! Friction laws and membrane capstan models.
+//! Friction for capstan: pointwise friction laws for contact problems, and membrane capstan
+//! models — the generalised capstan equation of the paper's section 2, forward and inverse.
+//!
+//! # Status
+//! - [`FrictionLaw`] with [`RegularisedCoulomb`] (Kikuchi–Oden) and [`Frictionless`], with
+//!   consistent Newton tangents.
+//! - [`membrane`]: tension profiles on the cylinder, elliptical and general prisms (Theorem 1,
+//!   with gravity and steady speed), the infinite membrane (Corollary 1), right circular and
+//!   general cones (Theorem 2), and the coefficient of friction implied by a tension pair.
+//!   Closed forms where they exist; otherwise adaptive Gauss–Kronrod quadrature
+//!   ([`quadrature`]) of the exponent, or Dormand–Prince 8(5,3) ([`ode`]) of the equilibrium
+//!   ODE when loads act. Everything is checked against the ODE built from the geometry layer.
+//!
+//! # Limitations
+//! Membrane models are written for `f64` (the friction laws, the quadrature and the ODE
+//! integrator are generic). Cones carry no external loads (as in Theorem 2). Loads are
+//! gravity, steady speed and any [`membrane::LoadField`] on prisms.
+#![warn(missing_docs)]
+
+mod error;
+mod friction_law;
+mod frictionless;
+pub mod membrane;
+pub mod ode;
+pub mod quadrature;
+mod regularised_coulomb;
+pub mod root;
+pub mod samples;
+
+pub use error::{ErrorCategory, FrictionError};
+pub use friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+pub use frictionless::Frictionless;
+pub use regularised_coulomb::{RegularisedCoulomb, RegularisedCoulombParams};

@@ -1,0 +1,201 @@
+//! The friction crate's error type.
+
+use capstan_geometry::GeometryError;
+
+/// What can go wrong in a friction law or a membrane capstan model.
+///
+/// [`FrictionError::category`] sorts the variants into bad input, no equilibrium (the model's
+/// hypotheses fail on the interval) and numerical non-convergence.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum FrictionError {
+    /// A parameter is non-finite or outside its allowed range.
+    #[error("`{field}` = {value} is outside {allowed}")]
+    InvalidParameter {
+        /// The parameter's name, as in scene files (e.g. `friction.mu`).
+        field: &'static str,
+        /// The offending value.
+        value: f64,
+        /// The allowed range in words (e.g. `[0, inf)`).
+        allowed: &'static str,
+    },
+    /// A parameter the computation needs was not given.
+    #[error("`{field}` is required: {why}")]
+    MissingParameter {
+        /// The parameter's name, as in scene files (e.g. `membrane.t_max`).
+        field: &'static str,
+        /// What needs it.
+        why: &'static str,
+    },
+    /// The obstacle could not be evaluated (invalid parameter, degenerate point, bad expression).
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    /// The contact interval is not convex: the mean curvature is not positive at `angle`.
+    #[error(
+        "the contact interval is not convex: mean curvature H = {mean_curvature:.6e} <= 0 at theta = {angle:.9}"
+    )]
+    NonPositiveCurvature {
+        /// The first angle `x2` found where `H <= 0`.
+        angle: f64,
+        /// `H` there.
+        mean_curvature: f64,
+    },
+    /// The normal reaction is negative: the membrane lifts off the obstacle.
+    #[error(
+        "the membrane lifts off at theta = {angle:.9}: normal reaction {reaction:.6e} < 0 per unit length"
+    )]
+    LiftOff {
+        /// The first angle found where the reaction is negative.
+        angle: f64,
+        /// The reaction there (force per unit length).
+        reaction: f64,
+    },
+    /// The tension is not positive: the membrane goes slack.
+    #[error("the membrane goes slack at theta = {angle:.9}: tension {tension:.6e} <= 0")]
+    NonPositiveTension {
+        /// The first angle found where `T <= 0`.
+        angle: f64,
+        /// `T` there.
+        tension: f64,
+    },
+    /// On a cone the developed strip is a straight line only while `|phi| < pi/2` (Theorem 2).
+    #[error(
+        "Theorem 2 needs |phi| < pi/2 (the developed strip is a straight line): phi = {phi:.9} at theta = {angle:.9}"
+    )]
+    DevelopmentLimit {
+        /// The first angle found where `|phi| >= pi/2`.
+        angle: f64,
+        /// `phi` there.
+        phi: f64,
+    },
+    /// `T_max / T0 < 1`: no coefficient of friction `mu >= 0` gives a tension that falls.
+    #[error("tension ratio T_max/T0 = {ratio:.9} is below 1: no mu >= 0 produces it")]
+    TensionRatioBelowOne {
+        /// `T_max / T0`.
+        ratio: f64,
+    },
+    /// No coefficient of friction in `[0, mu_limit]` produces the measured tension pair.
+    #[error(
+        "no mu in [0, {mu_limit}] gives T_max = {t_max:.9}: reachable tensions are [{reachable_min:.9}, {reachable_max:.9}]"
+    )]
+    NoFrictionCoefficient {
+        /// The measured `T_max`.
+        t_max: f64,
+        /// `T_max` at `mu = 0`.
+        reachable_min: f64,
+        /// `T_max` at `mu = mu_limit`.
+        reachable_max: f64,
+        /// The largest `mu` tried.
+        mu_limit: f64,
+    },
+    /// `T_max(mu)` is not increasing, so the inverse problem is not well posed on the bracket.
+    #[error("T_max(mu) is not increasing between mu = {mu_low} and mu = {mu_high}")]
+    NotMonotone {
+        /// Lower end.
+        mu_low: f64,
+        /// Upper end.
+        mu_high: f64,
+    },
+    /// A value that must be finite is not (overflowing tension, non-finite integrand).
+    #[error("{what} is not finite at theta = {angle:.9}")]
+    NonFinite {
+        /// Which quantity.
+        what: &'static str,
+        /// Where.
+        angle: f64,
+    },
+    /// The ODE integrator's step size fell below round-off.
+    #[error("ODE step size {step:.3e} too small at t = {at:.9}")]
+    StepSizeTooSmall {
+        /// Where it stalled.
+        at: f64,
+        /// The step size.
+        step: f64,
+    },
+    /// The ODE integrator needed more steps than allowed.
+    #[error("ODE integration needed more than {max_steps} steps (stopped at t = {at:.9})")]
+    TooManySteps {
+        /// Where it stopped.
+        at: f64,
+        /// The limit.
+        max_steps: usize,
+    },
+    /// Adaptive quadrature did not reach its tolerance within its panel budget.
+    #[error(
+        "quadrature on [{a:.9}, {b:.9}] did not converge: error estimate {error:.3e} after {panels} panels"
+    )]
+    QuadratureNotConverged {
+        /// Lower limit.
+        a: f64,
+        /// Upper limit.
+        b: f64,
+        /// The final error estimate.
+        error: f64,
+        /// Panels used.
+        panels: usize,
+    },
+    /// A bracketing root finder did not converge.
+    #[error(
+        "root finding did not converge after {iterations} iterations (bracket width {width:.3e})"
+    )]
+    RootNotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// Final bracket width.
+        width: f64,
+    },
+}
+
+/// The three kinds of failure, for callers that map errors to exit codes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ErrorCategory {
+    /// A parameter is invalid or missing, or the obstacle cannot be evaluated.
+    InvalidInput,
+    /// The model's hypotheses fail (non-convex interval, lift-off, slack membrane, no `mu`):
+    /// no limiting equilibrium of this kind exists.
+    NoEquilibrium,
+    /// A numerical method did not converge.
+    NotConverged,
+}
+
+impl FrictionError {
+    /// Which kind of failure this is.
+    pub fn category(&self) -> ErrorCategory {
+        match self {
+            Self::InvalidParameter { .. } | Self::MissingParameter { .. } | Self::Geometry(_) => {
+                ErrorCategory::InvalidInput
+            }
+            Self::NonPositiveCurvature { .. }
+            | Self::LiftOff { .. }
+            | Self::NonPositiveTension { .. }
+            | Self::DevelopmentLimit { .. }
+            | Self::TensionRatioBelowOne { .. }
+            | Self::NoFrictionCoefficient { .. }
+            | Self::NotMonotone { .. } => ErrorCategory::NoEquilibrium,
+            Self::NonFinite { .. }
+            | Self::StepSizeTooSmall { .. }
+            | Self::TooManySteps { .. }
+            | Self::QuadratureNotConverged { .. }
+            | Self::RootNotConverged { .. } => ErrorCategory::NotConverged,
+        }
+    }
+}
+
+/// Checks that `value` is finite and in the range described by `ok`.
+pub(crate) fn check(
+    field: &'static str,
+    value: f64,
+    allowed: &'static str,
+    ok: impl Fn(f64) -> bool,
+) -> Result<f64, FrictionError> {
+    if value.is_finite() && ok(value) {
+        Ok(value)
+    } else {
+        Err(FrictionError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        })
+    }
+}

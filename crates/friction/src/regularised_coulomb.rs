@@ -1,0 +1,132 @@
+//! Regularised Coulomb friction (Kikuchi–Oden).
+
+use capstan_geometry::Real;
+
+use crate::error::{FrictionError, check};
+use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+
+/// Regularised Coulomb friction (Kikuchi–Oden): Coulomb above a slip `eps`, linear below.
+///
+/// # Math
+/// ```text
+/// t(u) = mu p u / |u|    if |u| >= eps        u: tangential slip (physical length)
+/// t(u) = mu p u / eps    if |u| <  eps        p: normal stress sigma_n (< 0 in contact)
+/// ```
+/// `t` is continuous at `|u| = eps`, but its tangent jumps there: Newton needs the line search.
+/// The derivatives are
+/// ```text
+/// |u| >= eps:  dt_i/du_j = mu p (delta_ij / |u| - u_i u_j / |u|^3),   dt/dp = mu u / |u|
+/// |u| <  eps:  dt_i/du_j = mu p delta_ij / eps,                       dt/dp = mu u / eps
+/// ```
+/// With `p < 0` the traction opposes the slip and `|t| <= mu |p|`.
+///
+/// # References
+/// Paper section 3, eq. CoulombOden; Kikuchi and Oden, *Contact problems in elasticity*, 11.3.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RegularisedCoulomb;
+
+/// Parameters of [`RegularisedCoulomb`] at one point: `mu >= 0` and `eps > 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RegularisedCoulombParams<F> {
+    mu: F,
+    eps: F,
+}
+
+impl<F: Real> RegularisedCoulombParams<F> {
+    /// Coefficient of friction `mu` and regularisation width `eps` (physical slip length).
+    ///
+    /// # Errors
+    /// [`FrictionError::InvalidParameter`] naming `friction.mu` unless `mu` is finite and
+    /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
+    pub fn new(mu: F, eps: F) -> Result<Self, FrictionError> {
+        let f = |x: F| x.to_f64().unwrap_or(f64::NAN);
+        check("friction.mu", f(mu), "[0, inf)", |v| v >= 0.0)?;
+        check("friction.eps", f(eps), "(0, inf)", |v| v > 0.0)?;
+        Ok(Self { mu, eps })
+    }
+    /// The coefficient of friction `mu`.
+    pub fn mu(&self) -> F {
+        self.mu
+    }
+    /// The regularisation width `eps`.
+    pub fn eps(&self) -> F {
+        self.eps
+    }
+}
+
+impl<F: Real> FrictionLaw<F> for RegularisedCoulomb {
+    type Params = RegularisedCoulombParams<F>;
+
+    fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
+        let [u1, u2] = c.slip;
+        let norm = (u1 * u1 + u2 * u2).sqrt();
+        // t = mu p u / max(|u|, eps)
+        let scale = p.mu * c.normal_pressure / norm.max(p.eps);
+        [scale * u1, scale * u2]
+    }
+
+    fn traction_derivatives(
+        &self,
+        c: &ContactState<F>,
+        p: &Self::Params,
+    ) -> TractionDerivatives<F> {
+        let [u1, u2] = c.slip;
+        let norm = (u1 * u1 + u2 * u2).sqrt();
+        let mp = p.mu * c.normal_pressure;
+        if norm >= p.eps {
+            // mu p (delta_ij/|u| - u_i u_j/|u|^3)
+            let inv = F::one() / norm;
+            let inv3 = inv * inv * inv;
+            TractionDerivatives::new(
+                [
+                    [mp * (inv - u1 * u1 * inv3), -mp * u1 * u2 * inv3],
+                    [-mp * u2 * u1 * inv3, mp * (inv - u2 * u2 * inv3)],
+                ],
+                [p.mu * u1 * inv, p.mu * u2 * inv],
+            )
+        } else {
+            let inv = F::one() / p.eps;
+            TractionDerivatives::new(
+                [[mp * inv, F::zero()], [F::zero(), mp * inv]],
+                [p.mu * u1 * inv, p.mu * u2 * inv],
+            )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn new_rejects_negative_mu_and_zero_eps() {
+        assert!(matches!(
+            RegularisedCoulombParams::new(-0.1, 1e-3),
+            Err(FrictionError::InvalidParameter {
+                field: "friction.mu",
+                ..
+            })
+        ));
+        assert!(matches!(
+            RegularisedCoulombParams::new(0.5, 0.0),
+            Err(FrictionError::InvalidParameter {
+                field: "friction.eps",
+                ..
+            })
+        ));
+        assert!(RegularisedCoulombParams::new(f64::NAN, 1.0).is_err());
+    }
+
+    #[test]
+    fn traction_is_continuous_at_eps_and_bounded_by_mu_p() {
+        let p = RegularisedCoulombParams::new(0.4, 0.01).unwrap();
+        let at =
+            |s: f64| RegularisedCoulomb.traction(&ContactState::new([s * 0.6, s * 0.8], -3.0), &p);
+        let (below, above) = (at(0.01 * (1.0 - 1e-12)), at(0.01));
+        assert!((below[0] - above[0]).abs() < 1e-11 && (below[1] - above[1]).abs() < 1e-11);
+        let far = at(7.0);
+        let mag = (far[0] * far[0] + far[1] * far[1]).sqrt();
+        assert!((mag - 1.2).abs() < 1e-15); // mu |p| = 0.4 * 3
+        assert!(far[0] < 0.0 && far[1] < 0.0); // opposes slip in compression
+    }
+}
