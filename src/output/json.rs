@@ -1,0 +1,592 @@
+//! Pretty JSON that never contains a NaN.
+//!
+//! serde_json writes a non-finite float as `null`, silently. Every value is therefore walked
+//! first by a small checking serializer that stops at the first NaN or infinity and reports
+//! its path (`profiles[1].tension`, index 7).
+
+use std::fmt;
+use std::io::Write;
+
+use serde::Serialize;
+use serde::ser::{self, Impossible};
+
+use super::error::OutputError;
+
+/// Writes `value` as pretty-printed JSON followed by a newline.
+///
+/// # Errors
+/// [`OutputError::NonFinite`] naming the path of the first NaN or infinity (checked before
+/// anything is written); [`OutputError::Json`] if serialisation fails; an I/O error.
+///
+/// # Example
+/// ```
+/// use capstan::output::{OutputError, write_json};
+/// #[derive(serde::Serialize)]
+/// struct Summary { ratio: f64, x2: Vec<f64> }
+/// let mut s = Vec::new();
+/// write_json(&mut s, &Summary { ratio: 2.0, x2: vec![0.0, 0.5] }).unwrap();
+/// assert!(String::from_utf8(s).unwrap().starts_with("{\n  \"ratio\": 2.0,"));
+/// let bad = Summary { ratio: 2.0, x2: vec![0.0, f64::INFINITY] };
+/// match write_json(&mut Vec::new(), &bad) {
+///     Err(OutputError::NonFinite { column, index, .. }) => assert_eq!((column.as_str(), index), ("x2", 1)),
+///     other => panic!("{other:?}"),
+/// }
+/// ```
+pub fn write_json<W: Write + ?Sized, T: Serialize + ?Sized>(
+    w: &mut W,
+    value: &T,
+) -> Result<(), OutputError> {
+    check_finite_json(value)?;
+    serde_json::to_writer_pretty(&mut *w, value).map_err(json_error)?;
+    w.write_all(b"\n")?;
+    Ok(())
+}
+
+/// `value` as a pretty-printed JSON string (for stdout), with the same NaN refusal.
+///
+/// # Errors
+/// As [`write_json`].
+pub fn to_json_string<T: Serialize + ?Sized>(value: &T) -> Result<String, OutputError> {
+    check_finite_json(value)?;
+    Ok(serde_json::to_string_pretty(value)?)
+}
+
+/// An I/O failure inside serde_json stays an I/O error (so [`write_atomic`](super::write_atomic)
+/// names the file).
+fn json_error(e: serde_json::Error) -> OutputError {
+    if e.is_io() {
+        OutputError::from(std::io::Error::from(e))
+    } else {
+        OutputError::Json(e)
+    }
+}
+
+/// Checks that `value` serialises without a NaN or infinity.
+///
+/// # Errors
+/// [`OutputError::NonFinite`] with the path of the first offender (`column` is the path up to
+/// the innermost array, `index` the position in it, 0 outside arrays); [`OutputError::Json`] if
+/// `value`'s `Serialize` implementation fails.
+pub fn check_finite_json<T: Serialize + ?Sized>(value: &T) -> Result<(), OutputError> {
+    let mut checker = Checker {
+        path: String::new(),
+    };
+    match value.serialize(&mut checker) {
+        Ok(()) => Ok(()),
+        Err(CheckError::NonFinite { path, value }) => {
+            let (column, index) = split_index(&path);
+            Err(OutputError::NonFinite {
+                column,
+                index,
+                value,
+            })
+        }
+        Err(CheckError::Custom(message)) => Err(OutputError::Json(ser::Error::custom(message))),
+    }
+}
+
+/// `a.b[3]` -> (`a.b`, 3); `a.b` -> (`a.b`, 0).
+fn split_index(path: &str) -> (String, usize) {
+    if let Some(stripped) = path.strip_suffix(']')
+        && let Some(open) = stripped.rfind('[')
+        && let Ok(i) = stripped[open + 1..].parse()
+    {
+        return (stripped[..open].to_owned(), i);
+    }
+    let column = if path.is_empty() { "(value)" } else { path };
+    (column.to_owned(), 0)
+}
+
+#[derive(Debug)]
+enum CheckError {
+    NonFinite { path: String, value: f64 },
+    Custom(String),
+}
+
+impl fmt::Display for CheckError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::NonFinite { path, value } => write!(f, "{path} = {value}"),
+            Self::Custom(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for CheckError {}
+
+impl ser::Error for CheckError {
+    fn custom<T: fmt::Display>(msg: T) -> Self {
+        Self::Custom(msg.to_string())
+    }
+}
+
+/// Walks a value, keeping the JSON path of the current position.
+struct Checker {
+    path: String,
+}
+
+impl Checker {
+    fn float(&self, value: f64) -> Result<(), CheckError> {
+        if value.is_finite() {
+            Ok(())
+        } else {
+            Err(CheckError::NonFinite {
+                path: self.path.clone(),
+                value,
+            })
+        }
+    }
+
+    fn nested<T: Serialize + ?Sized>(
+        &mut self,
+        segment: fmt::Arguments<'_>,
+        value: &T,
+    ) -> Result<(), CheckError> {
+        let len = self.path.len();
+        fmt::write(&mut self.path, segment).expect("writing to a String");
+        let r = value.serialize(&mut *self);
+        self.path.truncate(len);
+        r
+    }
+
+    fn field<T: Serialize + ?Sized>(&mut self, key: &str, value: &T) -> Result<(), CheckError> {
+        if self.path.is_empty() {
+            self.nested(format_args!("{key}"), value)
+        } else {
+            self.nested(format_args!(".{key}"), value)
+        }
+    }
+}
+
+/// Sequences, tuples and maps: counts elements, remembers the pending map key.
+struct Compound<'a> {
+    checker: &'a mut Checker,
+    index: usize,
+    key: String,
+}
+
+impl Compound<'_> {
+    fn element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+        let i = self.index;
+        self.index += 1;
+        self.checker.nested(format_args!("[{i}]"), value)
+    }
+}
+
+macro_rules! accept {
+    ($($method:ident($ty:ty)),* $(,)?) => {
+        $(fn $method(self, _v: $ty) -> Result<(), CheckError> { Ok(()) })*
+    };
+}
+
+impl<'a> ser::Serializer for &'a mut Checker {
+    type Ok = ();
+    type Error = CheckError;
+    type SerializeSeq = Compound<'a>;
+    type SerializeTuple = Compound<'a>;
+    type SerializeTupleStruct = Compound<'a>;
+    type SerializeTupleVariant = Compound<'a>;
+    type SerializeMap = Compound<'a>;
+    type SerializeStruct = Compound<'a>;
+    type SerializeStructVariant = Compound<'a>;
+
+    accept!(
+        serialize_bool(bool),
+        serialize_i8(i8),
+        serialize_i16(i16),
+        serialize_i32(i32),
+        serialize_i64(i64),
+        serialize_i128(i128),
+        serialize_u8(u8),
+        serialize_u16(u16),
+        serialize_u32(u32),
+        serialize_u64(u64),
+        serialize_u128(u128),
+        serialize_char(char),
+        serialize_str(&str),
+        serialize_bytes(&[u8]),
+        serialize_unit_struct(&'static str),
+    );
+
+    fn serialize_f32(self, v: f32) -> Result<(), CheckError> {
+        self.float(f64::from(v))
+    }
+    fn serialize_f64(self, v: f64) -> Result<(), CheckError> {
+        self.float(v)
+    }
+    fn serialize_none(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> Result<(), CheckError> {
+        value.serialize(self)
+    }
+    fn serialize_unit(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+    fn serialize_unit_variant(
+        self,
+        _name: &'static str,
+        _index: u32,
+        _variant: &'static str,
+    ) -> Result<(), CheckError> {
+        Ok(())
+    }
+    fn serialize_newtype_struct<T: Serialize + ?Sized>(
+        self,
+        _name: &'static str,
+        value: &T,
+    ) -> Result<(), CheckError> {
+        value.serialize(self)
+    }
+    fn serialize_newtype_variant<T: Serialize + ?Sized>(
+        self,
+        _name: &'static str,
+        _index: u32,
+        variant: &'static str,
+        value: &T,
+    ) -> Result<(), CheckError> {
+        self.field(variant, value)
+    }
+    fn serialize_seq(self, _len: Option<usize>) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+    fn serialize_tuple(self, _len: usize) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+    fn serialize_tuple_struct(
+        self,
+        _name: &'static str,
+        _len: usize,
+    ) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+    fn serialize_tuple_variant(
+        self,
+        _name: &'static str,
+        _index: u32,
+        _variant: &'static str,
+        _len: usize,
+    ) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+    fn serialize_map(self, _len: Option<usize>) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+    fn serialize_struct(
+        self,
+        _name: &'static str,
+        _len: usize,
+    ) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+    fn serialize_struct_variant(
+        self,
+        _name: &'static str,
+        _index: u32,
+        _variant: &'static str,
+        _len: usize,
+    ) -> Result<Compound<'a>, CheckError> {
+        Ok(self.compound())
+    }
+}
+
+impl Checker {
+    fn compound(&mut self) -> Compound<'_> {
+        Compound {
+            checker: self,
+            index: 0,
+            key: String::new(),
+        }
+    }
+}
+
+impl ser::SerializeSeq for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+        self.element(value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+impl ser::SerializeTuple for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+        self.element(value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+impl ser::SerializeTupleStruct for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+        self.element(value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+impl ser::SerializeTupleVariant for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+        self.element(value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+impl ser::SerializeMap for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> Result<(), CheckError> {
+        key.serialize(KeyName(&mut self.key))
+    }
+    fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+        let key = std::mem::take(&mut self.key);
+        self.checker.field(&key, value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+impl ser::SerializeStruct for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_field<T: Serialize + ?Sized>(
+        &mut self,
+        key: &'static str,
+        value: &T,
+    ) -> Result<(), CheckError> {
+        self.checker.field(key, value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+impl ser::SerializeStructVariant for Compound<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    fn serialize_field<T: Serialize + ?Sized>(
+        &mut self,
+        key: &'static str,
+        value: &T,
+    ) -> Result<(), CheckError> {
+        self.checker.field(key, value)
+    }
+    fn end(self) -> Result<(), CheckError> {
+        Ok(())
+    }
+}
+
+/// Renders a map key (a string, number, bool or unit variant, as JSON allows) into a name.
+struct KeyName<'a>(&'a mut String);
+
+macro_rules! key_display {
+    ($($method:ident($ty:ty)),* $(,)?) => {
+        $(fn $method(self, v: $ty) -> Result<(), CheckError> {
+            *self.0 = v.to_string();
+            Ok(())
+        })*
+    };
+}
+
+impl ser::Serializer for KeyName<'_> {
+    type Ok = ();
+    type Error = CheckError;
+    type SerializeSeq = Impossible<(), CheckError>;
+    type SerializeTuple = Impossible<(), CheckError>;
+    type SerializeTupleStruct = Impossible<(), CheckError>;
+    type SerializeTupleVariant = Impossible<(), CheckError>;
+    type SerializeMap = Impossible<(), CheckError>;
+    type SerializeStruct = Impossible<(), CheckError>;
+    type SerializeStructVariant = Impossible<(), CheckError>;
+
+    key_display!(
+        serialize_bool(bool),
+        serialize_i8(i8),
+        serialize_i16(i16),
+        serialize_i32(i32),
+        serialize_i64(i64),
+        serialize_i128(i128),
+        serialize_u8(u8),
+        serialize_u16(u16),
+        serialize_u32(u32),
+        serialize_u64(u64),
+        serialize_u128(u128),
+        serialize_f32(f32),
+        serialize_f64(f64),
+        serialize_char(char),
+        serialize_str(&str),
+    );
+
+    fn serialize_bytes(self, _v: &[u8]) -> Result<(), CheckError> {
+        Err(key_error())
+    }
+    fn serialize_none(self) -> Result<(), CheckError> {
+        Err(key_error())
+    }
+    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> Result<(), CheckError> {
+        value.serialize(self)
+    }
+    fn serialize_unit(self) -> Result<(), CheckError> {
+        Err(key_error())
+    }
+    fn serialize_unit_struct(self, _name: &'static str) -> Result<(), CheckError> {
+        Err(key_error())
+    }
+    fn serialize_unit_variant(
+        self,
+        _name: &'static str,
+        _index: u32,
+        variant: &'static str,
+    ) -> Result<(), CheckError> {
+        *self.0 = variant.to_owned();
+        Ok(())
+    }
+    fn serialize_newtype_struct<T: Serialize + ?Sized>(
+        self,
+        _name: &'static str,
+        value: &T,
+    ) -> Result<(), CheckError> {
+        value.serialize(self)
+    }
+    fn serialize_newtype_variant<T: Serialize + ?Sized>(
+        self,
+        _name: &'static str,
+        _index: u32,
+        _variant: &'static str,
+        _value: &T,
+    ) -> Result<(), CheckError> {
+        Err(key_error())
+    }
+    fn serialize_seq(self, _len: Option<usize>) -> Result<Self::SerializeSeq, CheckError> {
+        Err(key_error())
+    }
+    fn serialize_tuple(self, _len: usize) -> Result<Self::SerializeTuple, CheckError> {
+        Err(key_error())
+    }
+    fn serialize_tuple_struct(
+        self,
+        _name: &'static str,
+        _len: usize,
+    ) -> Result<Self::SerializeTupleStruct, CheckError> {
+        Err(key_error())
+    }
+    fn serialize_tuple_variant(
+        self,
+        _name: &'static str,
+        _index: u32,
+        _variant: &'static str,
+        _len: usize,
+    ) -> Result<Self::SerializeTupleVariant, CheckError> {
+        Err(key_error())
+    }
+    fn serialize_map(self, _len: Option<usize>) -> Result<Self::SerializeMap, CheckError> {
+        Err(key_error())
+    }
+    fn serialize_struct(
+        self,
+        _name: &'static str,
+        _len: usize,
+    ) -> Result<Self::SerializeStruct, CheckError> {
+        Err(key_error())
+    }
+    fn serialize_struct_variant(
+        self,
+        _name: &'static str,
+        _index: u32,
+        _variant: &'static str,
+        _len: usize,
+    ) -> Result<Self::SerializeStructVariant, CheckError> {
+        Err(key_error())
+    }
+}
+
+/// The same message serde_json gives for a key it cannot write.
+fn key_error() -> CheckError {
+    CheckError::Custom("key must be a string".to_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+
+    #[derive(Serialize)]
+    struct Inner {
+        tension: Vec<f64>,
+    }
+
+    #[derive(Serialize)]
+    struct Outer {
+        name: &'static str,
+        profiles: Vec<Inner>,
+        extra: Option<f64>,
+    }
+
+    fn non_finite(r: Result<(), OutputError>) -> (String, usize) {
+        match r {
+            Err(OutputError::NonFinite { column, index, .. }) => (column, index),
+            other => panic!("expected NonFinite, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn nested_nan_is_named_by_path() {
+        let v = Outer {
+            name: "x",
+            profiles: vec![
+                Inner { tension: vec![1.0] },
+                Inner {
+                    tension: vec![1.0, 2.0, f64::NAN],
+                },
+            ],
+            extra: None,
+        };
+        assert_eq!(
+            non_finite(check_finite_json(&v)),
+            ("profiles[1].tension".to_owned(), 2)
+        );
+    }
+
+    #[test]
+    fn option_and_map_values_are_checked() {
+        let v = Outer {
+            name: "x",
+            profiles: vec![],
+            extra: Some(f64::NEG_INFINITY),
+        };
+        assert_eq!(non_finite(check_finite_json(&v)), ("extra".to_owned(), 0));
+        let m: BTreeMap<&str, f64> = [("ok", 1.0), ("bad", f64::NAN)].into();
+        assert_eq!(non_finite(check_finite_json(&m)), ("bad".to_owned(), 0));
+        assert_eq!(
+            non_finite(check_finite_json(&f32::NAN)),
+            ("(value)".to_owned(), 0)
+        );
+    }
+
+    #[test]
+    fn finite_values_pass() {
+        let v = Outer {
+            name: "x",
+            profiles: vec![Inner {
+                tension: vec![1.0, 2.0],
+            }],
+            extra: Some(3.0),
+        };
+        check_finite_json(&v).unwrap();
+        assert!(to_json_string(&v).unwrap().contains("\"tension\""));
+    }
+}

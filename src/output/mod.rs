@@ -1,0 +1,24 @@
+//! Output files that researchers' tools read: CSV, JSON, VTU (+ `.pvd`), SVG and PNG plots.
+//!
+//! Every file is written atomically ([`write_atomic`]): into a temporary file in the same
+//! directory, renamed into place only when complete, so a failed run leaves no half file.
+//! No NaN or infinity ever reaches a file: each writer checks its data first and returns
+//! [`OutputError::NonFinite`] naming the column, array or JSON path.
+//!
+//! The writers are generic over the data (columns, arrays, any `Serialize` value); the
+//! commands assemble what they computed and hand it over, usually through an [`OutputDir`].
+//!
+//! Known limitations: VTU data arrays are `Float64` only (a stick/slip state is written as
+//! -1.0/0.0/1.0); VTU files are uncompressed.
+
+mod atomic;
+mod csv;
+mod error;
+mod json;
+mod vtu;
+
+pub use atomic::{OutputDir, write_atomic};
+pub use csv::{Column, ColumnData, Table, format_f64};
+pub use error::OutputError;
+pub use json::{check_finite_json, to_json_string, write_json};
+pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_QUAD, Vtu};

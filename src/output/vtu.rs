@@ -1,0 +1,709 @@
+//! VTU files (VTK XML `UnstructuredGrid`) of fields on the curved body, and `.pvd` collections.
+//!
+//! The body's `(x2, x3)` grid is written as VTK quads (cell type 9) whose points are the
+//! Cartesian positions `Theta(x1, x2, x3)` of the shell chart, so ParaView and meshio show
+//! the body as it lies on the obstacle, not the parameter rectangle.
+//!
+//! Two encodings, both read by meshio 5 and VTK/ParaView: ASCII (shortest round-trip decimals,
+//! so values read back exactly) and appended raw binary (`header_type="UInt64"`, little-endian).
+//! No compression: vtkio 0.6's compressed output is unreadable by both readers, and the
+//! files are small.
+
+use std::fmt::Write as _;
+use std::io::Write;
+
+use capstan_geometry::{ShellChart, Surface};
+
+use super::csv::format_f64;
+use super::error::{OutputError, check_all_finite, check_finite};
+
+/// VTK's cell type number for a 4-node quadrilateral.
+pub const VTK_QUAD: u8 = 9;
+
+/// A structured `n2 x n3` grid of points in E^3, written as quads.
+///
+/// Node `k = i2 n3 + i3` (`x3` fastest), the numbering of the elasticity crate's grid, so
+/// nodal fields pass through unchanged. Cell `c = i2 (n3 - 1) + i3` has the nodes
+/// `(i2, i3), (i2 + 1, i3), (i2 + 1, i3 + 1), (i2, i3 + 1)`; on a periodic grid `i2 + 1`
+/// wraps to 0, so a full wrap closes without a seam (and has `n2` cells in `x2`, not `n2 - 1`).
+///
+/// # Example
+/// ```
+/// use capstan::geometry::{EllipticalPrism, ShellChart};
+/// use capstan::output::QuadGrid;
+/// let chart = ShellChart::new(EllipticalPrism::new(2.0, 1.0).unwrap());
+/// let grid = QuadGrid::from_chart(&chart, 0.0, &[0.0, 0.5, 1.0], &[0.0, 0.1], false).unwrap();
+/// assert_eq!((grid.node_count(), grid.cell_count()), (6, 2));
+/// // sigma = (x1, a sin t, b cos t); x3 moves along the outward normal
+/// assert_eq!(grid.points()[0], [0.0, 0.0, 1.0]);
+/// assert!((grid.points()[1][2] - 1.1).abs() < 1e-14);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuadGrid {
+    n2: usize,
+    n3: usize,
+    periodic: bool,
+    points: Vec<[f64; 3]>,
+    bases: Option<Vec<[[f64; 3]; 3]>>,
+}
+
+impl QuadGrid {
+    /// A grid from its points, `points[i2 * n3 + i3]`.
+    ///
+    /// # Errors
+    /// [`OutputError::InvalidParameter`] for `n2 < 2` (`< 3` when periodic) or `n3 < 2`;
+    /// [`OutputError::LengthMismatch`] unless there are `n2 n3` points;
+    /// [`OutputError::NonFinite`] for a non-finite coordinate.
+    pub fn new(
+        n2: usize,
+        n3: usize,
+        periodic: bool,
+        points: Vec<[f64; 3]>,
+    ) -> Result<Self, OutputError> {
+        let min2 = if periodic { 3 } else { 2 };
+        if n2 < min2 {
+            return Err(OutputError::InvalidParameter {
+                field: "n2",
+                value: n2 as f64,
+                allowed: if periodic { "[3, inf)" } else { "[2, inf)" },
+            });
+        }
+        if n3 < 2 {
+            return Err(OutputError::InvalidParameter {
+                field: "n3",
+                value: n3 as f64,
+                allowed: "[2, inf)",
+            });
+        }
+        if points.len() != n2 * n3 {
+            return Err(OutputError::LengthMismatch {
+                column: "points".to_owned(),
+                expected: n2 * n3,
+                found: points.len(),
+            });
+        }
+        check_all_finite("points", points.as_flattened())?;
+        Ok(Self {
+            n2,
+            n3,
+            periodic,
+            points,
+            bases: None,
+        })
+    }
+
+    /// The grid `Theta(x1, x2[i2], x3[i3])` of a shell chart, keeping the covariant bases
+    /// `g_i` at the nodes for [`QuadGrid::to_cartesian`].
+    ///
+    /// For a periodic grid, `x2` lists the distinct nodes of one period (the last is not
+    /// repeated).
+    ///
+    /// # Errors
+    /// [`OutputError::Geometry`] if the chart fails at a node (for example `x3` past the
+    /// focal surface); otherwise as [`QuadGrid::new`].
+    pub fn from_chart<S: Surface<f64>>(
+        chart: &ShellChart<S>,
+        x1: f64,
+        x2: &[f64],
+        x3: &[f64],
+        periodic: bool,
+    ) -> Result<Self, OutputError> {
+        let mut points = Vec::with_capacity(x2.len() * x3.len());
+        let mut bases = Vec::with_capacity(points.capacity());
+        for &t in x2 {
+            for &h in x3 {
+                let p = chart.point([x1, t, h])?;
+                points.push(p.position);
+                bases.push(p.covariant_basis);
+            }
+        }
+        let mut grid = Self::new(x2.len(), x3.len(), periodic, points)?;
+        grid.bases = Some(bases);
+        Ok(grid)
+    }
+
+    /// Nodes in `x2`.
+    pub fn n2(&self) -> usize {
+        self.n2
+    }
+
+    /// Nodes in `x3`.
+    pub fn n3(&self) -> usize {
+        self.n3
+    }
+
+    /// Whether `x2` wraps around.
+    pub fn is_periodic(&self) -> bool {
+        self.periodic
+    }
+
+    /// Number of nodes, `n2 n3`.
+    pub fn node_count(&self) -> usize {
+        self.n2 * self.n3
+    }
+
+    /// Cells in `x2`: `n2` when periodic, `n2 - 1` otherwise.
+    fn cells2(&self) -> usize {
+        if self.periodic { self.n2 } else { self.n2 - 1 }
+    }
+
+    /// Number of quad cells.
+    pub fn cell_count(&self) -> usize {
+        self.cells2() * (self.n3 - 1)
+    }
+
+    /// The points, `points()[i2 * n3 + i3]`.
+    pub fn points(&self) -> &[[f64; 3]] {
+        &self.points
+    }
+
+    /// The node numbers of every cell, in cell order (see the type's docs).
+    pub fn cells(&self) -> Vec<[usize; 4]> {
+        let (n2, n3) = (self.n2, self.n3);
+        let mut cells = Vec::with_capacity(self.cell_count());
+        for i2 in 0..self.cells2() {
+            let j2 = (i2 + 1) % n2;
+            for i3 in 0..n3 - 1 {
+                cells.push([
+                    i2 * n3 + i3,
+                    j2 * n3 + i3,
+                    j2 * n3 + i3 + 1,
+                    i2 * n3 + i3 + 1,
+                ]);
+            }
+        }
+        cells
+    }
+
+    /// Cartesian vectors `v = v^i g_i` from contravariant components `v^i` at the nodes
+    /// (displacements, tractions), for a grid built by [`QuadGrid::from_chart`].
+    ///
+    /// # Errors
+    /// [`OutputError::LengthMismatch`] unless there is one vector per node;
+    /// [`OutputError::InvalidParameter`] for a grid built from bare points (no bases).
+    pub fn to_cartesian(&self, contravariant: &[[f64; 3]]) -> Result<Vec<[f64; 3]>, OutputError> {
+        let Some(bases) = &self.bases else {
+            return Err(OutputError::InvalidParameter {
+                field: "QuadGrid bases",
+                value: 0.0,
+                allowed: "a grid built by QuadGrid::from_chart",
+            });
+        };
+        if contravariant.len() != bases.len() {
+            return Err(OutputError::LengthMismatch {
+                column: "contravariant components".to_owned(),
+                expected: bases.len(),
+                found: contravariant.len(),
+            });
+        }
+        Ok(contravariant
+            .iter()
+            .zip(bases)
+            .map(|(v, g)| std::array::from_fn(|k| v[0] * g[0][k] + v[1] * g[1][k] + v[2] * g[2][k]))
+            .collect())
+    }
+}
+
+/// How the arrays of a VTU file are stored.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Encoding {
+    /// Decimal text inside each `DataArray`: readable, larger, exact (shortest round-trip).
+    Ascii,
+    /// One `<AppendedData encoding="raw">` block of little-endian bytes, each array preceded by
+    /// its byte count as a `UInt64`: compact and exact.
+    #[default]
+    AppendedRaw,
+}
+
+/// A named array of `f64` tuples attached to points or cells.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DataArray {
+    /// The array's name (`displacement`, `slip_state`).
+    pub name: String,
+    /// Components per tuple: 1 scalar, 3 vector, 9 tensor (row-major `T[i][j]`), or any other.
+    pub components: usize,
+    /// `tuples x components` values, tuple-major.
+    pub values: Vec<f64>,
+}
+
+/// One VTU file: a [`QuadGrid`] with point data, cell data and an optional time value.
+///
+/// Checked before anything is written ([`Vtu::validate`]): array lengths, distinct names,
+/// no NaN or infinity anywhere.
+///
+/// # Example
+/// ```
+/// use capstan::output::{Encoding, QuadGrid, Vtu};
+/// let grid = QuadGrid::new(2, 2, false, vec![[0.0, 0.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]]).unwrap();
+/// let vtu = Vtu::new(&grid)
+///     .encoding(Encoding::Ascii)
+///     .time(0.5)
+///     .point_scalars("pressure", vec![1.0, 2.0, 3.0, 4.0])
+///     .point_vectors("displacement", &[[0.0; 3]; 4])
+///     .cell_scalars("area", vec![1.0]);
+/// let mut s = Vec::new();
+/// vtu.write(&mut s).unwrap();
+/// let s = String::from_utf8(s).unwrap();
+/// assert!(s.contains(r#"Name="TimeValue" NumberOfTuples="1""#));
+/// assert!(s.contains(r#"<DataArray type="UInt8" Name="types" format="ascii">9</DataArray>"#));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vtu<'g> {
+    grid: &'g QuadGrid,
+    encoding: Encoding,
+    time: Option<f64>,
+    point_data: Vec<DataArray>,
+    cell_data: Vec<DataArray>,
+}
+
+impl<'g> Vtu<'g> {
+    /// A file for `grid` with no data, appended raw encoding and no time value.
+    pub fn new(grid: &'g QuadGrid) -> Self {
+        Self {
+            grid,
+            encoding: Encoding::default(),
+            time: None,
+            point_data: Vec::new(),
+            cell_data: Vec::new(),
+        }
+    }
+
+    /// Sets the encoding.
+    pub fn encoding(mut self, encoding: Encoding) -> Self {
+        self.encoding = encoding;
+        self
+    }
+
+    /// Sets the dataset's `TimeValue` (FieldData, one tuple): the load step or sweep parameter.
+    pub fn time(mut self, time: f64) -> Self {
+        self.time = Some(time);
+        self
+    }
+
+    /// Adds a scalar field, one value per node.
+    pub fn point_scalars(self, name: impl Into<String>, values: impl Into<Vec<f64>>) -> Self {
+        self.point_components(name, 1, values)
+    }
+
+    /// Adds a 3-vector field in Cartesian components, one per node (see
+    /// [`QuadGrid::to_cartesian`] for contravariant components).
+    pub fn point_vectors(self, name: impl Into<String>, values: &[[f64; 3]]) -> Self {
+        self.point_components(name, 3, values.as_flattened())
+    }
+
+    /// Adds a 3x3 tensor field (stress, strain), one per node, written row-major (9 components).
+    pub fn point_tensors(self, name: impl Into<String>, values: &[[[f64; 3]; 3]]) -> Self {
+        self.point_components(name, 9, values.as_flattened().as_flattened())
+    }
+
+    /// Adds a point field with `components` values per node, tuple-major.
+    pub fn point_components(
+        mut self,
+        name: impl Into<String>,
+        components: usize,
+        values: impl Into<Vec<f64>>,
+    ) -> Self {
+        self.point_data.push(DataArray {
+            name: name.into(),
+            components,
+            values: values.into(),
+        });
+        self
+    }
+
+    /// Adds a scalar field, one value per cell (in [`QuadGrid::cells`] order).
+    pub fn cell_scalars(self, name: impl Into<String>, values: impl Into<Vec<f64>>) -> Self {
+        self.cell_components(name, 1, values)
+    }
+
+    /// Adds a 3-vector field, one per cell.
+    pub fn cell_vectors(self, name: impl Into<String>, values: &[[f64; 3]]) -> Self {
+        self.cell_components(name, 3, values.as_flattened())
+    }
+
+    /// Adds a cell field with `components` values per cell, tuple-major.
+    pub fn cell_components(
+        mut self,
+        name: impl Into<String>,
+        components: usize,
+        values: impl Into<Vec<f64>>,
+    ) -> Self {
+        self.cell_data.push(DataArray {
+            name: name.into(),
+            components,
+            values: values.into(),
+        });
+        self
+    }
+
+    /// Checks the file can be written.
+    ///
+    /// # Errors
+    /// [`OutputError::InvalidName`] for an empty name or one with `"`, `<`, `>` or `&`;
+    /// [`OutputError::InvalidParameter`] for zero components; [`OutputError::DuplicateName`]
+    /// within point or cell data; [`OutputError::LengthMismatch`] unless an array has
+    /// `tuples x components` values; [`OutputError::NonFinite`] naming the array (the index is
+    /// into its flat values) or `TimeValue`.
+    pub fn validate(&self) -> Result<(), OutputError> {
+        if let Some(t) = self.time {
+            check_finite("TimeValue", 0, t)?;
+        }
+        let groups = [
+            (&self.point_data, self.grid.node_count()),
+            (&self.cell_data, self.grid.cell_count()),
+        ];
+        for (arrays, tuples) in groups {
+            for (i, a) in arrays.iter().enumerate() {
+                check_xml_name(&a.name)?;
+                if arrays[..i].iter().any(|b| b.name == a.name) {
+                    return Err(OutputError::DuplicateName {
+                        name: a.name.clone(),
+                    });
+                }
+                if a.components == 0 {
+                    return Err(OutputError::InvalidParameter {
+                        field: "components",
+                        value: 0.0,
+                        allowed: "[1, inf)",
+                    });
+                }
+                if a.values.len() != tuples * a.components {
+                    return Err(OutputError::LengthMismatch {
+                        column: a.name.clone(),
+                        expected: tuples * a.components,
+                        found: a.values.len(),
+                    });
+                }
+                check_all_finite(&a.name, &a.values)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes the file.
+    ///
+    /// # Errors
+    /// As [`Vtu::validate`] (checked before anything is written), or an I/O error.
+    pub fn write<W: Write + ?Sized>(&self, w: &mut W) -> Result<(), OutputError> {
+        self.validate()?;
+        let cells = self.grid.cells();
+        let connectivity: Vec<i64> = cells.iter().flatten().map(|&k| k as i64).collect();
+        let offsets: Vec<i64> = (1..=cells.len() as i64).map(|c| 4 * c).collect();
+        let types = vec![VTK_QUAD; cells.len()];
+
+        // The document as a list of text and arrays, rendered once the encoding is known.
+        let mut items: Vec<Item<'_>> = Vec::new();
+        let text = |items: &mut Vec<Item<'_>>, s: String| items.push(Item::Text(s));
+        text(&mut items, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n".to_owned());
+        if let Some(t) = self.time {
+            // ASCII in every encoding: one value; VTK needs NumberOfTuples="1" to take it.
+            text(
+                &mut items,
+                format!(
+                    "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{}</DataArray>\n    </FieldData>\n",
+                    format_f64(t)
+                ),
+            );
+        }
+        text(
+            &mut items,
+            format!(
+                "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+                self.grid.node_count(),
+                cells.len()
+            ),
+        );
+        for (tag, arrays) in [
+            ("PointData", &self.point_data),
+            ("CellData", &self.cell_data),
+        ] {
+            if arrays.is_empty() {
+                continue;
+            }
+            text(&mut items, format!("      <{tag}>\n"));
+            for a in arrays {
+                // Scalars omit NumberOfComponents (VTK's default, 1): meshio then gives
+                // shape (n,) rather than (n, 1).
+                let attributes = if a.components == 1 {
+                    format!("type=\"Float64\" Name=\"{}\"", a.name)
+                } else {
+                    format!(
+                        "type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"",
+                        a.name, a.components
+                    )
+                };
+                items.push(Item::Array(attributes, Block::F64(&a.values)));
+            }
+            text(&mut items, format!("      </{tag}>\n"));
+        }
+        text(&mut items, "      <Points>\n".to_owned());
+        items.push(Item::Array(
+            "type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"".to_owned(),
+            Block::F64(self.grid.points.as_flattened()),
+        ));
+        text(&mut items, "      </Points>\n      <Cells>\n".to_owned());
+        items.push(Item::Array(
+            "type=\"Int64\" Name=\"connectivity\"".to_owned(),
+            Block::I64(&connectivity),
+        ));
+        items.push(Item::Array(
+            "type=\"Int64\" Name=\"offsets\"".to_owned(),
+            Block::I64(&offsets),
+        ));
+        items.push(Item::Array(
+            "type=\"UInt8\" Name=\"types\"".to_owned(),
+            Block::U8(&types),
+        ));
+        text(
+            &mut items,
+            "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n".to_owned(),
+        );
+
+        let mut xml = String::new();
+        let mut blocks = Vec::new();
+        let mut offset = 0usize;
+        for item in items {
+            match item {
+                Item::Text(s) => xml.push_str(&s),
+                Item::Array(attributes, data) => {
+                    let _ = write!(xml, "        <DataArray {attributes}");
+                    match self.encoding {
+                        Encoding::Ascii => {
+                            xml.push_str(" format=\"ascii\">");
+                            data.ascii(&mut xml);
+                            xml.push_str("</DataArray>\n");
+                        }
+                        Encoding::AppendedRaw => {
+                            let _ = writeln!(xml, " format=\"appended\" offset=\"{offset}\"/>");
+                            offset += 8 + data.byte_len();
+                            blocks.push(data);
+                        }
+                    }
+                }
+            }
+        }
+        w.write_all(xml.as_bytes())?;
+        if self.encoding == Encoding::AppendedRaw {
+            w.write_all(b"  <AppendedData encoding=\"raw\">\n   _")?;
+            for b in &blocks {
+                w.write_all(&(b.byte_len() as u64).to_le_bytes())?;
+                b.write_le(w)?;
+            }
+            // meshio drops everything after the last newline of the block: end with one.
+            w.write_all(b"\n  </AppendedData>\n")?;
+        }
+        w.write_all(b"</VTKFile>\n")?;
+        Ok(())
+    }
+}
+
+/// A piece of the XML document: literal text or a data array (attributes, values).
+enum Item<'a> {
+    Text(String),
+    Array(String, Block<'a>),
+}
+
+/// The values of one array on its way out.
+enum Block<'a> {
+    F64(&'a [f64]),
+    I64(&'a [i64]),
+    U8(&'a [u8]),
+}
+
+impl Block<'_> {
+    fn byte_len(&self) -> usize {
+        match self {
+            Self::F64(v) => 8 * v.len(),
+            Self::I64(v) => 8 * v.len(),
+            Self::U8(v) => v.len(),
+        }
+    }
+
+    fn ascii(&self, out: &mut String) {
+        fn join<T>(out: &mut String, v: &[T], f: impl Fn(&T) -> String) {
+            for (i, x) in v.iter().enumerate() {
+                if i > 0 {
+                    out.push(' ');
+                }
+                out.push_str(&f(x));
+            }
+        }
+        match self {
+            Self::F64(v) => join(out, v, |x| format_f64(*x)),
+            Self::I64(v) => join(out, v, i64::to_string),
+            Self::U8(v) => join(out, v, u8::to_string),
+        }
+    }
+
+    fn write_le<W: Write + ?Sized>(&self, w: &mut W) -> std::io::Result<()> {
+        let mut buf = Vec::with_capacity(self.byte_len());
+        match self {
+            Self::F64(v) => v.iter().for_each(|x| buf.extend(x.to_le_bytes())),
+            Self::I64(v) => v.iter().for_each(|x| buf.extend(x.to_le_bytes())),
+            Self::U8(v) => buf.extend_from_slice(v),
+        }
+        w.write_all(&buf)
+    }
+}
+
+/// Names go into XML attributes unescaped: refuse the characters that would need escaping.
+fn check_xml_name(name: &str) -> Result<(), OutputError> {
+    let reason = if name.is_empty() {
+        "is empty"
+    } else if name.contains(['"', '<', '>', '&']) {
+        "contains one of \" < > &"
+    } else if name.chars().any(char::is_control) {
+        "contains a control character"
+    } else {
+        return Ok(());
+    };
+    Err(OutputError::InvalidName {
+        name: name.to_owned(),
+        reason,
+    })
+}
+
+/// A ParaView `.pvd` collection: one VTU file per time step or sweep point.
+///
+/// ParaView opens the collection as a time series, its `TimeValue` being the step's `timestep`
+/// (a load factor or a swept parameter such as `b/a`). meshio cannot read `.pvd`; read the
+/// VTU files one by one there.
+///
+/// # Example
+/// ```
+/// use capstan::output::Pvd;
+/// let mut pvd = Pvd::new();
+/// pvd.push(0.5, "fields/ratio_0.vtu").push(1.0, "fields/ratio_1.vtu");
+/// let mut s = Vec::new();
+/// pvd.write(&mut s).unwrap();
+/// assert!(String::from_utf8(s).unwrap().contains(r#"<DataSet timestep="1" part="0" file="fields/ratio_1.vtu"/>"#));
+/// ```
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Pvd {
+    entries: Vec<(f64, String)>,
+}
+
+impl Pvd {
+    /// An empty collection.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds the VTU file `file` (relative to the `.pvd` file) at time `time`.
+    pub fn push(&mut self, time: f64, file: impl Into<String>) -> &mut Self {
+        self.entries.push((time, file.into()));
+        self
+    }
+
+    /// The entries `(time, file)`, in order.
+    pub fn entries(&self) -> &[(f64, String)] {
+        &self.entries
+    }
+
+    /// Checks the collection can be written.
+    ///
+    /// # Errors
+    /// [`OutputError::NonFinite`] for a non-finite time (index = entry), [`OutputError::InvalidName`]
+    /// for a file name that is empty or needs XML escaping.
+    pub fn validate(&self) -> Result<(), OutputError> {
+        for (i, (t, file)) in self.entries.iter().enumerate() {
+            check_finite("timestep", i, *t)?;
+            check_xml_name(file)?;
+        }
+        Ok(())
+    }
+
+    /// Writes the collection.
+    ///
+    /// # Errors
+    /// As [`Pvd::validate`] (checked before anything is written), or an I/O error.
+    pub fn write<W: Write + ?Sized>(&self, w: &mut W) -> Result<(), OutputError> {
+        self.validate()?;
+        let mut xml = String::from(
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <Collection>\n",
+        );
+        for (t, file) in &self.entries {
+            let _ = writeln!(
+                xml,
+                "    <DataSet timestep=\"{}\" part=\"0\" file=\"{file}\"/>",
+                format_f64(*t)
+            );
+        }
+        xml.push_str("  </Collection>\n</VTKFile>\n");
+        w.write_all(xml.as_bytes())?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_square() -> QuadGrid {
+        QuadGrid::new(
+            2,
+            2,
+            false,
+            vec![[0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0, 0.0, 1.0]],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn periodic_grid_closes_the_ring() {
+        let pts = vec![[0.0; 3]; 8];
+        let g = QuadGrid::new(4, 2, true, pts).unwrap();
+        assert_eq!(g.cell_count(), 4);
+        assert_eq!(g.cells()[3], [6, 0, 1, 7]);
+    }
+
+    #[test]
+    fn new_rejects_short_point_list() {
+        let r = QuadGrid::new(3, 2, false, vec![[0.0; 3]; 5]);
+        assert!(matches!(
+            r,
+            Err(OutputError::LengthMismatch {
+                expected: 6,
+                found: 5,
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn appended_offsets_count_headers() {
+        let g = unit_square();
+        let vtu = Vtu::new(&g).point_scalars("p", vec![0.0; 4]);
+        let mut s = Vec::new();
+        vtu.write(&mut s).unwrap();
+        let text = String::from_utf8_lossy(&s);
+        // p: 8 + 32 bytes, Points at 40: 8 + 96, connectivity at 144
+        assert!(
+            text.contains(r#"Name="Points" NumberOfComponents="3" format="appended" offset="40""#)
+        );
+        assert!(text.contains(r#"Name="connectivity" format="appended" offset="144""#));
+    }
+
+    #[test]
+    fn validate_names_bad_array() {
+        let g = unit_square();
+        let r = Vtu::new(&g)
+            .point_scalars("p", vec![0.0, 1.0, f64::NAN, 0.0])
+            .validate();
+        assert!(
+            matches!(r, Err(OutputError::NonFinite { ref column, index: 2, .. }) if column == "p")
+        );
+        let r = Vtu::new(&g).cell_scalars("c", vec![0.0, 1.0]).validate();
+        assert!(matches!(
+            r,
+            Err(OutputError::LengthMismatch {
+                expected: 1,
+                found: 2,
+                ..
+            })
+        ));
+        let r = Vtu::new(&g).point_scalars("a<b", vec![0.0; 4]).validate();
+        assert!(matches!(r, Err(OutputError::InvalidName { .. })));
+    }
+}
