@@ -222,4 +222,20 @@ impl OutputDir {
         vtu.validate()?;
         self.write(name, |w| vtu.write(w))
     }
+
+    /// Writes plot `name` as `name.svg` and `name.png`; returns both paths.
+    ///
+    /// # Errors
+    /// As [`write_plot`](super::write_plot) and [`OutputDir::file`].
+    pub fn write_plot<P: super::Plot + ?Sized>(
+        &self,
+        name: &str,
+        plot: &P,
+    ) -> Result<[PathBuf; 2], OutputError> {
+        let stem = self.file(name)?;
+        if let Some(parent) = stem.parent() {
+            fs::create_dir_all(parent).map_err(|e| OutputError::io(parent, e))?;
+        }
+        super::write_plot(&stem, plot)
+    }
 }

@@ -22,3 +22,9 @@ pub use csv::{Column, ColumnData, Table, format_f64};
 pub use error::OutputError;
 pub use json::{check_finite_json, to_json_string, write_json};
 pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_QUAD, Vtu};
+mod plot;
+
+pub use plot::{
+    ColourMap, Legend, LinePlot, Plot, Scale, Series, StateStrip, register_fonts, render_png,
+    render_svg, write_plot,
+};
