@@ -29,6 +29,20 @@ pub enum Command {
         after_help = "Example:\n  capstan geometry --set obstacle.shape=prism --set 'obstacle.u=2*sin(t)+0.2*sin(2*t)' --json"
     )]
     Geometry(SceneArgs),
+    /// Convergence studies of the elasticity discretisations: errors and observed orders.
+    #[command(after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json")]
+    Verify(VerifyArgs),
+}
+
+/// Arguments of `capstan verify`.
+#[derive(Debug, Args, Clone, Default)]
+pub struct VerifyArgs {
+    /// Print one JSON object instead of tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Only the three coarsest grids of each study.
+    #[arg(long)]
+    pub quick: bool,
 }
 
 /// Arguments shared by commands that read a scene.
@@ -62,6 +76,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
     match cli.command {
         None => default_job(),
         Some(Command::Geometry(args)) => geometry(&args),
+        Some(Command::Verify(args)) => verify(&args),
     }
 }
 
@@ -72,6 +87,15 @@ fn geometry(args: &SceneArgs) -> Result<String, CliError> {
         Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
     } else {
         Ok(commands::geometry::table(&report, &scene.obstacle.build()?))
+    }
+}
+
+fn verify(args: &VerifyArgs) -> Result<String, CliError> {
+    let report = commands::verify::report(args.quick)?;
+    if args.json {
+        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+    } else {
+        Ok(commands::verify::table(&report))
     }
 }
 

@@ -33,6 +33,9 @@ pub enum CliError {
     /// An obstacle parameter or expression is invalid.
     #[error(transparent)]
     Geometry(#[from] GeometryError),
+    /// An elasticity problem failed (bad material, grid or boundary data: exit code 2).
+    #[error(transparent)]
+    Elasticity(#[from] capstan_elasticity::ElasticityError),
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
@@ -43,7 +46,7 @@ impl CliError {
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
-            Self::Scene { .. } | Self::Set { .. } | Self::Geometry(_) => 2,
+            Self::Scene { .. } | Self::Set { .. } | Self::Geometry(_) | Self::Elasticity(_) => 2,
         }
     }
 }

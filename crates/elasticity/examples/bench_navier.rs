@@ -1,0 +1,111 @@
+//! Benchmark of the finite-difference Navier operator on the paper's ellipse (section 3:
+//! `a = b = 2`, `h = 1`, end tractions 1 and 2, free outer surface, `v^2 = v^3 = 0` on
+//! `x3 = 0` as a linear stand-in for the contact).
+//!
+//! Run one size per process so the peak memory (VmHWM) belongs to that size:
+//! ```text
+//! cargo run --release -p capstan-elasticity --example bench_navier -- 2000 321
+//! cargo run --release -p capstan-elasticity --example bench_navier -- 250 41 --iterative
+//! ```
+//! Prints one JSON line: grid, unknowns, nonzeros, seconds for geometry+operator, pattern,
+//! fill, LU analyse, factor, solve, relative residual, VmHWM in MiB; with `--iterative`
+//! also damped Jacobi (relaxation 1/2) and Gauss-Seidel to a relative residual of 1e-8.
+
+use std::time::Instant;
+
+use capstan_elasticity::samples::PaperEllipse;
+use capstan_elasticity::solvers::{IterativeParams, LinearBackend, LinearSolver, SparseLu};
+use capstan_elasticity::verification::GridLevel;
+use capstan_elasticity::{Discretisation, LinearSystem};
+
+fn vm_hwm_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|k| k.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kib| kib / 1024.0)
+}
+
+fn iterative(
+    system: &LinearSystem,
+    backend: LinearBackend,
+    relaxation: f64,
+    reference: &[f64],
+) -> String {
+    let params = IterativeParams {
+        tolerance: 1e-8,
+        max_iterations: 2_000_000,
+        relaxation,
+    };
+    let mut solver = backend.build(&params).expect("valid parameters");
+    let t = Instant::now();
+    let result = system.solve(&mut *solver);
+    let seconds = t.elapsed().as_secs_f64();
+    let diff = result.as_ref().map_or(f64::NAN, |v| {
+        v.iter()
+            .zip(reference)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+    });
+    format!(
+        "{{\"backend\":\"{backend}\",\"relaxation\":{relaxation},\"ok\":{},\"iterations\":{:?},\"seconds\":{seconds:.3},\"max_diff_to_lu\":{diff:.3e}}}",
+        result.is_ok(),
+        solver.last_iterations()
+    )
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let n2 = args.first().and_then(|a| a.parse().ok()).unwrap_or(250);
+    let n3 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(41);
+    let with_iterative = args.iter().any(|a| a == "--iterative");
+    let problem = PaperEllipse::default();
+
+    let t = Instant::now();
+    let op = problem.operator(GridLevel { n2, n3 }).expect("operator");
+    let t_operator = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let entries = op.entries().expect("entries");
+    let mut system = LinearSystem::from_entries(op.dof_count(), &entries).expect("pattern");
+    drop(entries);
+    let t_pattern = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    op.refill(&mut system).expect("fill");
+    let t_fill = t.elapsed().as_secs_f64();
+
+    let mut lu = SparseLu::default();
+    let t = Instant::now();
+    lu.analyse(&system.pattern).expect("analyse");
+    let t_analyse = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    lu.factor(&system.values).expect("factor");
+    let t_factor = t.elapsed().as_secs_f64();
+    let mut v = system.rhs.clone();
+    let t = Instant::now();
+    lu.solve_in_place(&mut v).expect("solve");
+    let t_solve = t.elapsed().as_secs_f64();
+    let residual = system.relative_residual(&v);
+    let hwm = vm_hwm_mib();
+    let max_v2 = (0..n2)
+        .map(|i| v[op.dof([i, n3 - 1], capstan_elasticity::Component::X2)].abs())
+        .fold(0.0, f64::max);
+
+    let mut extra = String::new();
+    if with_iterative {
+        extra = format!(
+            ",\"iterative\":[{},{}]",
+            iterative(&system, LinearBackend::Jacobi, 0.5, &v),
+            iterative(&system, LinearBackend::GaussSeidel, 1.0, &v)
+        );
+    }
+    println!(
+        "{{\"n2\":{n2},\"n3\":{n3},\"unknowns\":{},\"nnz\":{},\"operator_s\":{t_operator:.3},\"pattern_s\":{t_pattern:.3},\"fill_s\":{t_fill:.3},\"lu_analyse_s\":{t_analyse:.3},\"lu_factor_s\":{t_factor:.3},\"lu_solve_s\":{t_solve:.3},\"lu_total_s\":{:.3},\"relative_residual\":{residual:.2e},\"max_outer_v2\":{max_v2:.4e},\"vm_hwm_mib\":{hwm:.1}{extra}}}",
+        op.dof_count(),
+        system.pattern.nnz(),
+        t_operator + t_pattern + t_fill + t_analyse + t_factor + t_solve,
+    );
+}
