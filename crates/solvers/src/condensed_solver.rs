@@ -162,6 +162,24 @@ impl CondensedSolver {
         self.layout.as_ref().map_or(&[], |l| &l.ii_slots)
     }
 
+    /// `(row, col)` in the full numbering of each `I-I` block entry, in the order of
+    /// [`CondensedSolver::interface_slots`] (the order [`CondensedSolver::refactor_interface_block`]
+    /// expects).
+    pub fn interface_entries(&self) -> Vec<(usize, usize)> {
+        let Some(layout) = self.layout.as_ref() else {
+            return Vec::new();
+        };
+        let ni = self.interface.len();
+        layout
+            .ii_slots
+            .iter()
+            .map(|&s| match layout.slot_map[s] {
+                BlockSlot::Ii(k) => (self.interface[k % ni], self.interface[k / ni]),
+                _ => unreachable!("ii_slots holds I-I slots only"),
+            })
+            .collect()
+    }
+
     /// Sparse LU factorisations of `A_BB` (each followed by forming `S_0`).
     pub fn bulk_factorisations(&self) -> usize {
         self.bulk_factorisations
@@ -204,6 +222,46 @@ impl CondensedSolver {
         }
         for &s in &layout.ii_slots {
             self.values[s] = values[s];
+        }
+        self.factor_interface()
+    }
+
+    /// Refactorises with new values of the `I-I` block alone: `block_values[k]` is the value
+    /// of entry [`CondensedSolver::interface_entries`]`()[k]` (full slot
+    /// [`CondensedSolver::interface_slots`]`()[k]`).
+    ///
+    /// # Errors
+    /// As [`CondensedSolver::refactor_interface`], with
+    /// [`SolverError::DimensionMismatch`] if `block_values` has the wrong length.
+    pub fn refactor_interface_block(&mut self, block_values: &[f64]) -> Result<(), SolverError> {
+        let Some(layout) = self.layout.as_ref() else {
+            return Err(SolverError::CallOrder {
+                called: "refactor_interface_block",
+                requires: "analyse",
+            });
+        };
+        if !self.bulk_factored {
+            return Err(SolverError::CallOrder {
+                called: "refactor_interface_block",
+                requires: "factor",
+            });
+        }
+        if block_values.len() != layout.ii_slots.len() {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "block_values",
+                expected: layout.ii_slots.len(),
+                found: block_values.len(),
+            });
+        }
+        if let Some(index) = crate::scalar::first_non_finite(block_values) {
+            return Err(SolverError::NonFinite {
+                quantity: "matrix value",
+                index: layout.ii_slots[index],
+                iteration: None,
+            });
+        }
+        for (&s, &v) in layout.ii_slots.iter().zip(block_values) {
+            self.values[s] = v;
         }
         self.factor_interface()
     }

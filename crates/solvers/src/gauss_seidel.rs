@@ -90,12 +90,17 @@ impl<F: SolverScalar> LinearSolver<F> for GaussSeidel<F> {
         let w = F::from_f64(self.params.relaxation);
         let result = self.matrix.iterate(&self.params, rhs, |m, x, b, _r| {
             for i in 0..m.n {
+                // `factor` succeeded, so every row has its diagonal
+                let d = m.diag_pos[i].expect("diagonal checked in factor");
+                let (start, end) = (m.row_ptr[i], m.row_ptr[i + 1]);
                 let mut s = b[i];
-                for p in m.row_ptr[i]..m.row_ptr[i + 1] {
-                    let j = m.col_idx[p];
-                    if j != i {
-                        s = s - m.values[p] * x[j];
-                    }
+                // Old values above the diagonal first, then the new values below it, nearest
+                // (just updated) last: this keeps the row-to-row dependency chain short.
+                for (a, &j) in m.values[d + 1..end].iter().zip(&m.col_idx[d + 1..end]) {
+                    s = s - *a * x[j];
+                }
+                for (a, &j) in m.values[start..d].iter().zip(&m.col_idx[start..d]).rev() {
+                    s = s - *a * x[j];
                 }
                 x[i] = (F::one() - w) * x[i] + w * s * m.inv_diag[i];
             }

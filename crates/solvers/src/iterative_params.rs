@@ -77,6 +77,8 @@ pub(crate) struct RowMatrix<F> {
     pub(crate) values: Vec<F>,
     /// `1 / a_ii`.
     pub(crate) inv_diag: Vec<F>,
+    /// Position of `a_ii` in row `i` (`None`: structurally zero diagonal).
+    pub(crate) diag_pos: Vec<Option<usize>>,
     pub(crate) analysed: bool,
     pub(crate) factored: bool,
 }
@@ -91,6 +93,7 @@ impl<F: SolverScalar> RowMatrix<F> {
             row_slot: Vec::new(),
             values: Vec::new(),
             inv_diag: Vec::new(),
+            diag_pos: Vec::new(),
             analysed: false,
             factored: false,
         }
@@ -99,7 +102,11 @@ impl<F: SolverScalar> RowMatrix<F> {
     pub(crate) fn analyse(&mut self, pattern: &SparsityPattern) -> Result<(), SolverError> {
         let n = check_square(pattern)?;
         let (row_ptr, col_idx, row_slot) = pattern.row_layout();
+        let diag_pos = (0..n)
+            .map(|i| (row_ptr[i]..row_ptr[i + 1]).find(|&p| col_idx[p] == i))
+            .collect();
         *self = Self {
+            diag_pos,
             n,
             values: vec![F::zero(); col_idx.len()],
             inv_diag: vec![F::zero(); n],
@@ -139,12 +146,7 @@ impl<F: SolverScalar> RowMatrix<F> {
             self.values[p] = values[s];
         }
         for i in 0..self.n {
-            let mut diag = F::zero();
-            for p in self.row_ptr[i]..self.row_ptr[i + 1] {
-                if self.col_idx[p] == i {
-                    diag = self.values[p];
-                }
-            }
+            let diag = self.diag_pos[i].map_or(F::zero(), |p| self.values[p]);
             if diag == F::zero() {
                 return Err(SolverError::Singular { pivot: Some(i) });
             }
@@ -156,12 +158,13 @@ impl<F: SolverScalar> RowMatrix<F> {
 
     /// `r = b - A x`, returns `|r|_2`.
     pub(crate) fn residual(&self, x: &[F], b: &[F], r: &mut [F]) -> F {
-        for i in 0..self.n {
+        for (i, ri) in r.iter_mut().enumerate() {
+            let range = self.row_ptr[i]..self.row_ptr[i + 1];
             let mut s = b[i];
-            for p in self.row_ptr[i]..self.row_ptr[i + 1] {
-                s = s - self.values[p] * x[self.col_idx[p]];
+            for (a, &j) in self.values[range.clone()].iter().zip(&self.col_idx[range]) {
+                s = s - *a * x[j];
             }
-            r[i] = s;
+            *ri = s;
         }
         norm2(r)
     }

@@ -20,20 +20,23 @@ pub trait SolverScalar: num_traits::Float + Send + Sync + Debug + Display + 'sta
 
 impl<T: num_traits::Float + Send + Sync + Debug + Display + 'static> SolverScalar for T {}
 
-/// Euclidean norm `|x|_2`, scaled to avoid overflow and underflow.
+/// Euclidean norm `|x|_2`: a plain sum of squares, redone with scaling only when that
+/// overflows or underflows.
 pub(crate) fn norm2<F: SolverScalar>(x: &[F]) -> F {
+    let plain = x.iter().fold(F::zero(), |s, v| s + *v * *v);
+    if plain.is_finite() && plain > F::min_positive_value() / F::epsilon() {
+        return plain.sqrt();
+    }
+    if plain.is_nan() {
+        return plain;
+    }
     let scale = x.iter().fold(F::zero(), |m, v| m.max(v.abs()));
     if scale == F::zero() || !scale.is_finite() {
-        // zero vector, or a NaN/inf that the caller reports
-        return if x.iter().any(|v| v.is_nan()) {
-            F::nan()
-        } else {
-            scale
-        };
+        // zero vector, or an infinity that the caller reports
+        return scale;
     }
-    let sum = x
-        .iter()
-        .fold(F::zero(), |s, v| s + (*v / scale) * (*v / scale));
+    let inv = F::one() / scale;
+    let sum = x.iter().fold(F::zero(), |s, v| s + (*v * inv) * (*v * inv));
     scale * sum.sqrt()
 }
 
@@ -57,6 +60,12 @@ mod tests {
         let x = [1e200_f64, 1e200];
         let expected = 1e200 * 2f64.sqrt();
         assert!((norm2(&x) - expected).abs() <= 1e-15 * expected); // round-off only
+    }
+
+    #[test]
+    fn norm2_does_not_underflow_on_tiny_entries() {
+        let x = [3e-200_f64, 4e-200];
+        assert!((norm2(&x) - 5e-200).abs() <= 1e-15 * 5e-200); // round-off only
     }
 
     #[test]

@@ -75,6 +75,12 @@ fn condensed_matches_lu_on_a_laplacian_with_a_changing_boundary_block() {
     solver.analyse(&system.pattern).unwrap();
     // the II block of the bottom row is its tridiagonal part: 3n - 2 slots
     assert_eq!(solver.interface_slots().len(), 3 * n - 2);
+    let entries = solver.interface_entries();
+    assert!(
+        entries
+            .iter()
+            .all(|&(r, c)| r < n && c < n && r.abs_diff(c) <= 1)
+    );
     let rhs2: Vec<f64> = (0..n * n).map(|k| ((k % 13) as f64 - 6.0) / 13.0).collect();
     for step in 0..4 {
         // a Robin-like diagonal term and a nonsymmetric tangential coupling on the boundary
@@ -86,7 +92,17 @@ fn condensed_matches_lu_on_a_laplacian_with_a_changing_boundary_block() {
                 system.values[s] = -1.0 + 0.2 * step as f64;
             }
         }
-        solver.factor(&system.values).unwrap();
+        if step % 2 == 0 {
+            solver.factor(&system.values).unwrap();
+        } else {
+            // the same update through the block-only entry point
+            let block: Vec<f64> = solver
+                .interface_slots()
+                .iter()
+                .map(|&s| system.values[s])
+                .collect();
+            solver.refactor_interface_block(&block).unwrap();
+        }
         for rhs in [&system.rhs, &rhs2] {
             let mut x = rhs.clone();
             solver.solve_in_place(&mut x).unwrap();
@@ -109,6 +125,22 @@ fn condensed_matches_lu_on_a_laplacian_with_a_changing_boundary_block() {
 
 fn slot_position(system: &LinearSystem, slot: usize) -> (usize, usize) {
     system.pattern.entries().nth(slot).unwrap()
+}
+
+#[test]
+fn block_update_rejects_wrong_length() {
+    let system = Poisson2d::new(4).system();
+    let mut solver = CondensedSolver::new(&[0, 1]);
+    solver.analyse(&system.pattern).unwrap();
+    solver.factor(&system.values).unwrap();
+    assert!(matches!(
+        solver.refactor_interface_block(&[1.0]),
+        Err(SolverError::DimensionMismatch {
+            expected: 4,
+            found: 1,
+            ..
+        })
+    ));
 }
 
 #[test]

@@ -478,3 +478,22 @@ fn exact_zero_pivot_inside_a_large_matrix_is_singular_not_a_panic() {
         );
     }
 }
+
+#[test]
+fn structurally_singular_matrix_without_empty_lines_is_singular() {
+    // columns 0 and 1 live only in row 0: no perfect matching, though no row or column is empty
+    let entries = [(0, 0), (0, 1), (1, 2), (2, 2), (1, 3), (2, 3), (3, 3)];
+    let (pattern, slots) = SparsityPattern::from_entries(4, 4, &entries).unwrap();
+    let mut values = vec![0.0; pattern.nnz()];
+    for (k, v) in [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0].into_iter().enumerate() {
+        values[slots[k]] += v;
+    }
+    let mut lu = SparseLu::default();
+    lu.analyse(&pattern).unwrap();
+    let mut x = vec![1.0; 4];
+    let result = lu.factor(&values).and_then(|()| lu.solve_in_place(&mut x));
+    assert!(
+        matches!(result, Err(SolverError::Singular { .. })),
+        "{result:?}"
+    );
+}
