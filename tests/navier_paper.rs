@@ -49,6 +49,7 @@ fn divergence(x: [f64; 2]) -> [f64; 1] {
 
 /// `sqrt(g) g^ab d_b U` (Cartesian, 3 components) for the outer derivative along `a`;
 /// `d_b U = d_b v^c g_c + v^c Gamma^k_bc g_k`.
+#[allow(clippy::needless_range_loop)] // index loops mirror v^c Gamma^k_bc g_k
 fn laplacian_flux(x: [f64; 2], a: usize) -> [f64; 3] {
     let (p, u) = (point(x), TrigonometricField.displacement(x));
     let v = [0.0, u.value[0], u.value[1]];
