@@ -10,6 +10,7 @@ use capstan_geometry::{Real, real};
 use crate::error::FrictionError;
 
 /// Nodes `c_i` of the 16 stages (12 for the step, 1 at `t + h`, 3 for dense output).
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const C: [f64; 16] = [
     0.0,
     0.526001519587677318785587544488e-01,
@@ -29,6 +30,7 @@ const C: [f64; 16] = [
     0.777777777777777777777777777778,
 ];
 /// Nonzero `a_ij` of the stages, as `(i, j, a_ij)`; row 12 holds the 8th-order weights `b_j`.
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const A_ENTRIES: [(usize, usize, f64); 82] = [
     (1, 0, 5.26001519587677318785587544488e-2),
     (2, 0, 1.97250569845378994544595329183e-2),
@@ -114,12 +116,14 @@ const A_ENTRIES: [(usize, usize, f64); 82] = [
     (15, 14, -9.15095847217987001081870187138),
 ];
 /// Weights `bhat` of the embedded 3rd-order method (stages 1, 9, 12).
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const BHH: [(usize, f64); 3] = [
     (0, 0.244094488188976377952755905512),
     (8, 0.733846688281611857341361741547),
     (11, 0.220588235294117647058823529412e-1),
 ];
 /// Error weights `b - b5` of the embedded 5th-order method.
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const E5: [(usize, f64); 8] = [
     (0, 0.1312004499419488073250102996e-1),
     (5, -0.1225156446376204440720569753e1),
@@ -131,6 +135,7 @@ const E5: [(usize, f64); 8] = [
     (11, -0.2235530786388629525884427845e-1),
 ];
 /// Dense-output coefficients `d_{4..7, j}` (Hairer's `d4j ... d7j`).
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const D: [[(usize, f64); 12]; 4] = [
     [
         (0, -0.84289382761090128651353491142e1),
@@ -236,7 +241,7 @@ impl<F: Real, const N: usize> DenseStep<F, N> {
     pub fn end(&self) -> [F; N] {
         let mut y = self.coefficients[0];
         for (yi, d) in y.iter_mut().zip(self.coefficients[1]) {
-            *yi = *yi + d;
+            *yi += d;
         }
         y
     }
@@ -310,7 +315,7 @@ fn weighted_rms<F: Real, const N: usize>(v: &[F; N], scale: &[F; N]) -> F {
     let mut s = F::zero();
     for (x, w) in v.iter().zip(scale) {
         let r = *x / *w;
-        s = s + r * r;
+        s += r * r;
     }
     (s / real::<F>(N as f64)).sqrt()
 }
@@ -325,9 +330,9 @@ fn combine<F: Real, const N: usize>(
     for (i, o) in out.iter_mut().enumerate() {
         let mut acc = F::zero();
         for &(j, a) in w {
-            acc = acc + a * k[j][i];
+            acc += a * k[j][i];
         }
-        *o = *o + h * acc;
+        *o += h * acc;
     }
     out
 }
@@ -505,8 +510,8 @@ impl<F: Real> Dop853<F> {
                 for i in 0..N {
                     let r5 = err5[i] / sc[i];
                     let r3 = (b8[i] - bh[i]) / sc[i];
-                    s5 = s5 + r5 * r5;
-                    s3 = s3 + r3 * r3;
+                    s5 += r5 * r5;
+                    s3 += r3 * r3;
                 }
                 let mut deno = s5 + real::<F>(0.01) * s3;
                 if deno <= F::zero() {
@@ -561,7 +566,7 @@ impl<F: Real> Dop853<F> {
             } else {
                 solution.rejected += 1;
                 let factor = (safety * err.powf(real::<F>(-0.125))).max(min_factor);
-                h = h * factor.min(F::one());
+                h *= factor.min(F::one());
                 last_rejected = true;
             }
         }
@@ -576,9 +581,9 @@ mod tests {
 
     #[test]
     fn tableau_satisfies_row_sums_and_quadrature_order_8() {
-        for i in 1..16 {
+        for (i, c) in C.iter().enumerate().skip(1) {
             let s: f64 = A_ENTRIES.iter().filter(|e| e.0 == i).map(|e| e.2).sum();
-            assert!((s - C[i]).abs() < 1e-14, "row {i}: {}", s - C[i]);
+            assert!((s - c).abs() < 1e-14, "row {i}: {}", s - c);
         }
         for q in 0..8 {
             let s: f64 = A_ENTRIES

@@ -6,6 +6,7 @@ use crate::error::FrictionError;
 
 /// Kronrod nodes in `(0, 1]`, largest first; odd indices (1, 3, 5) and the centre are the
 /// Gauss nodes. QUADPACK `qk15` (Piessens et al. 1983).
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const XGK: [f64; 8] = [
     0.991_455_371_120_812_639_206_854_697_526_329,
     0.949_107_912_342_758_524_526_189_684_047_851,
@@ -17,6 +18,7 @@ const XGK: [f64; 8] = [
     0.0,
 ];
 /// Kronrod weights for [`XGK`].
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const WGK: [f64; 8] = [
     0.022_935_322_010_529_224_963_732_008_058_970,
     0.063_092_092_629_978_553_290_700_663_189_204,
@@ -28,6 +30,7 @@ const WGK: [f64; 8] = [
     0.209_482_141_084_727_828_012_999_174_891_714,
 ];
 /// Gauss weights for `XGK[1], XGK[3], XGK[5]` and the centre.
+#[allow(clippy::excessive_precision)] // published digits kept verbatim; they round to the nearest f64
 const WG: [f64; 4] = [
     0.129_484_966_168_869_693_270_611_432_679_082,
     0.279_705_391_489_276_667_901_467_771_423_780,
@@ -104,16 +107,16 @@ where
         let (f1, f2) = (eval(c - dx)?, eval(c + dx)?);
         *slot = (f1, f2);
         let w = real::<F>(WGK[k]);
-        kronrod = kronrod + w * (f1 + f2);
-        abs = abs + w * (f1.abs() + f2.abs());
+        kronrod += w * (f1 + f2);
+        abs += w * (f1.abs() + f2.abs());
         if k % 2 == 1 {
-            gauss = gauss + real::<F>(WG[k / 2]) * (f1 + f2);
+            gauss += real::<F>(WG[k / 2]) * (f1 + f2);
         }
     }
     let mean = kronrod * half;
     let mut asc = real::<F>(WGK[7]) * (fc - mean).abs();
     for (k, (f1, f2)) in fv.iter().enumerate() {
-        asc = asc + real::<F>(WGK[k]) * ((*f1 - mean).abs() + (*f2 - mean).abs());
+        asc += real::<F>(WGK[k]) * ((*f1 - mean).abs() + (*f2 - mean).abs());
     }
     let ah = h.abs();
     let (integral, abs_integral, asc) = (kronrod * h, abs * ah, asc * ah);
@@ -182,9 +185,9 @@ impl<F: Real> GaussKronrod<F> {
         loop {
             let (mut value, mut error, mut abs) = (F::zero(), F::zero(), F::zero());
             for p in &panels {
-                value = value + p.integral;
-                error = error + p.error;
-                abs = abs + p.abs_integral;
+                value += p.integral;
+                error += p.error;
+                abs += p.abs_integral;
             }
             let target = self.abs_tol.max(self.rel_tol * abs);
             // Split a panel that is too large in value, else the one with the largest error.

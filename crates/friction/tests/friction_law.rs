@@ -50,6 +50,7 @@ proptest! {
         let (fd_slip, fd_p) = central_differences(&RegularisedCoulomb, &c, &p, h);
         // scale of the slip derivatives: mu |p| / min(|u|, eps); central differences are O(h^2)
         let scale = mu * pressure.abs().max(1.0) / norm.max(eps);
+        #[allow(clippy::needless_range_loop)] // mirrors d t_i / d u_j
         for i in 0..2 {
             for j in 0..2 {
                 prop_assert!((d.d_slip[i][j] - fd_slip[i][j]).abs() <= 1e-6 * scale.max(1e-300) + 1e-12,
