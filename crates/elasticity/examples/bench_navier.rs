@@ -5,16 +5,24 @@
 //! Run one size per process so the peak memory (VmHWM) belongs to that size:
 //! ```text
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 2000 321
+//! cargo run --release -p capstan-elasticity --example bench_navier -- 2000 321 --ordering nd
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 250 41 --iterative
 //! ```
-//! Prints one JSON line: grid, unknowns, nonzeros, seconds for geometry+operator, pattern,
-//! fill, LU analyse, factor, solve, relative residual, VmHWM in MiB; with `--iterative`
-//! also damped Jacobi (relaxation 1/2) and Gauss-Seidel to a relative residual of 1e-8.
+//! Prints one JSON line: grid, unknowns, nonzeros, LU column ordering, seconds for
+//! geometry+operator, pattern, fill, LU analyse, factor, solve, the static fill bound of the LU
+//! (`2 nnz(R) - n`, `R^T R = A^T A` permuted), relative residual, VmHWM in MiB; with
+//! `--iterative` also damped Jacobi (relaxation 1/2) and Gauss-Seidel to a relative residual
+//! of 1e-8.
+//!
+//! `--ordering colamd` (default, faer's choice), `nd` (nested dissection of the grid, with
+//! separators `--separator-width W` lines wide, default 4) or `amd` (AMD on `A + A^T`).
 
 use std::time::Instant;
 
 use capstan_elasticity::samples::PaperEllipse;
-use capstan_elasticity::solvers::{IterativeParams, LinearBackend, LinearSolver, SparseLu};
+use capstan_elasticity::solvers::{
+    ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver, SparseLu,
+};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, LinearSystem};
 
@@ -63,6 +71,31 @@ fn main() {
     let n2 = args.first().and_then(|a| a.parse().ok()).unwrap_or(250);
     let n3 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(41);
     let with_iterative = args.iter().any(|a| a == "--iterative");
+    let option = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|k| args.get(k + 1))
+            .map(String::as_str)
+    };
+    let ordering_name = option("--ordering").unwrap_or("colamd");
+    let separator_width: usize =
+        option("--separator-width").map_or(4, |w| w.parse().expect("width"));
+    // dof = 2 (i2 n3 + i3) + c, the numbering GridShape describes
+    let grid = GridShape {
+        n2,
+        n3,
+        dofs_per_node: 2,
+        periodic: false,
+    };
+    let ordering = match ordering_name {
+        "colamd" => ColumnOrdering::Auto,
+        "amd" => ColumnOrdering::Amd,
+        "nd" => ColumnOrdering::NestedDissection {
+            grid,
+            separator_width,
+        },
+        other => panic!("unknown ordering `{other}`: expected colamd, nd or amd"),
+    };
     let problem = PaperEllipse::default();
 
     let t = Instant::now();
@@ -76,11 +109,21 @@ fn main() {
     let t = Instant::now();
     op.refill(&mut system).expect("fill");
     let t_fill = t.elapsed().as_secs_f64();
+    assert_eq!(op.dof_count(), grid.dof_count());
+    assert_eq!(
+        op.dof([n2 - 1, 1], capstan_elasticity::Component::X2),
+        2 * ((n2 - 1) * n3 + 1)
+    );
 
-    let mut lu = SparseLu::default();
+    let mut lu = SparseLu::new(DirectParams {
+        ordering,
+        ..Default::default()
+    })
+    .expect("valid parameters");
     let t = Instant::now();
     lu.analyse(&system.pattern).expect("analyse");
     let t_analyse = t.elapsed().as_secs_f64();
+    let fill_bound = lu.structural_fill_bound().unwrap_or(0);
     let t = Instant::now();
     lu.factor(&system.values).expect("factor");
     let t_factor = t.elapsed().as_secs_f64();
@@ -103,7 +146,7 @@ fn main() {
         );
     }
     println!(
-        "{{\"n2\":{n2},\"n3\":{n3},\"unknowns\":{},\"nnz\":{},\"operator_s\":{t_operator:.3},\"pattern_s\":{t_pattern:.3},\"fill_s\":{t_fill:.3},\"lu_analyse_s\":{t_analyse:.3},\"lu_factor_s\":{t_factor:.3},\"lu_solve_s\":{t_solve:.3},\"lu_total_s\":{:.3},\"relative_residual\":{residual:.2e},\"max_outer_v2\":{max_v2:.4e},\"vm_hwm_mib\":{hwm:.1}{extra}}}",
+        "{{\"n2\":{n2},\"n3\":{n3},\"unknowns\":{},\"nnz\":{},\"ordering\":\"{ordering_name}\",\"separator_width\":{separator_width},\"operator_s\":{t_operator:.3},\"pattern_s\":{t_pattern:.3},\"fill_s\":{t_fill:.3},\"lu_analyse_s\":{t_analyse:.3},\"lu_factor_s\":{t_factor:.3},\"lu_solve_s\":{t_solve:.3},\"lu_total_s\":{:.3},\"lu_fill_bound\":{fill_bound},\"relative_residual\":{residual:.2e},\"max_outer_v2\":{max_v2:.4e},\"vm_hwm_mib\":{hwm:.1}{extra}}}",
         op.dof_count(),
         system.pattern.nnz(),
         t_operator + t_pattern + t_fill + t_analyse + t_factor + t_solve,

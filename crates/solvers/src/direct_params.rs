@@ -1,6 +1,7 @@
 //! Settings shared by the direct (factorising) backends, and their solution check.
 
 use crate::error::SolverError;
+use crate::ordering::ColumnOrdering;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// Settings of the direct backends ([`crate::SparseLu`], [`crate::SparseCholesky`],
@@ -28,6 +29,9 @@ pub struct DirectParams {
     pub refinement_steps: usize,
     /// Cholesky only: largest accepted `|a_ij - a_ji| / max |a|` (in `[0, 1)`).
     pub symmetry_tolerance: f64,
+    /// Fill-reducing ordering computed by `analyse` (default: the backend's own, COLAMD for LU
+    /// and AMD for Cholesky).
+    pub ordering: ColumnOrdering,
 }
 
 impl Default for DirectParams {
@@ -36,6 +40,7 @@ impl Default for DirectParams {
             residual_tolerance: 1e-8,
             refinement_steps: 2,
             symmetry_tolerance: 1e-10,
+            ordering: ColumnOrdering::Auto,
         }
     }
 }

@@ -66,6 +66,7 @@ mod newton;
 mod nonlinear_method;
 mod nonlinear_solver;
 mod observer;
+mod ordering;
 mod problem;
 pub mod samples;
 mod scalar;
@@ -86,6 +87,9 @@ pub use newton::{LineSearch, Newton, NewtonParams};
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{Observer, SilentObserver};
+pub use ordering::{
+    ColumnOrdering, GridShape, amd_symmetrised, is_permutation, nested_dissection_grid,
+};
 pub use problem::{Jacobian, Residual};
 pub use scalar::SolverScalar;
 pub use sparse_cholesky::SparseCholesky;

@@ -1,6 +1,7 @@
 //! faer sparse Cholesky (`L L^T`) for symmetric positive definite systems.
 
 use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
 };
@@ -8,11 +9,13 @@ use faer::sparse::linalg::cholesky::{
 use crate::direct_params::{DirectParams, check_and_refine, empty_line, inf_norm, scratch};
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_many_len, check_rhs, check_square, check_values};
+use crate::ordering::ColumnOrdering;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// Sparse Cholesky factorisation (faer) for symmetric positive definite (SPD) matrices.
 ///
-/// `analyse` computes an approximate-minimum-degree ordering and the symbolic factor once;
+/// `analyse` computes an approximate-minimum-degree ordering (or the nested dissection of
+/// [`DirectParams::ordering`]) and the symbolic factor once;
 /// `factor` refills the numeric factor. Only the lower triangle is factorised, so `factor`
 /// first checks that the values are symmetric (the pattern may hold both triangles or just
 /// the lower one; a missing transpose counts as zero). On SPD systems (FEM stiffness with
@@ -151,10 +154,26 @@ impl LinearSolver<f64> for SparseCholesky {
         self.factored = false;
         self.pattern = None;
         self.symbolic = None;
+        // AMD unless a nested dissection is asked for (`Auto` and `Amd` are the same here)
+        let perm = match self.params.ordering {
+            ColumnOrdering::Auto | ColumnOrdering::Amd => None,
+            ordering @ ColumnOrdering::NestedDissection { .. } => ordering.permutation(pattern)?,
+        };
+        let inverse = perm.as_ref().map(|p| {
+            let mut inv = vec![0usize; n];
+            for (k, &j) in p.iter().enumerate() {
+                inv[j] = k;
+            }
+            inv
+        });
+        let ordering = match (&perm, &inverse) {
+            (Some(p), Some(inv)) => SymmetricOrdering::Custom(PermRef::new_checked(p, inv, n)),
+            _ => SymmetricOrdering::Amd,
+        };
         let symbolic = factorize_symbolic_cholesky(
             pattern.as_faer_symbolic(),
             faer::Side::Lower,
-            SymmetricOrdering::Amd,
+            ordering,
             Default::default(),
         )?;
         self.l_values = vec![0.0; symbolic.len_val()];

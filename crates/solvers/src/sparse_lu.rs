@@ -1,34 +1,48 @@
 //! faer sparse LU with the symbolic analysis reused across factorisations.
 
-use faer::sparse::linalg::lu::{
-    LuRef, LuSymbolicParams, NumericLu, SymbolicLu, factorize_symbolic_lu,
+use faer::dyn_stack::{MemStack, StackReq};
+use faer::perm::PermRef;
+use faer::sparse::linalg::LuError;
+use faer::sparse::linalg::colamd;
+use faer::sparse::linalg::lu::supernodal::{
+    SupernodalLu, SymbolicSupernodalLu, factorize_supernodal_numeric_lu,
+    factorize_supernodal_numeric_lu_scratch, factorize_supernodal_symbolic_lu,
+    factorize_supernodal_symbolic_lu_scratch, solve_in_place_scratch,
 };
-use faer::sparse::linalg::{LuError, SupernodalThreshold};
+use faer::sparse::linalg::qr::{
+    col_etree, col_etree_scratch, column_counts_aat_scratch, column_counts_ata, postorder,
+    postorder_scratch,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
 use crate::direct_params::{DirectParams, check_and_refine, empty_line, scratch};
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_many_len, check_rhs, check_square, check_values};
+use crate::ordering::is_permutation;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// Sparse LU with partial pivoting (faer): for general (unsymmetric) systems.
 ///
-/// `analyse` computes the COLAMD column ordering and the (supernodal) symbolic structure once
-/// (`faer::sparse::linalg::lu::SymbolicLu`); every `factor` reuses it and the numeric storage.
-/// Parallelism follows `faer::get_global_parallelism()` (set it to `Par::Seq` inside parallel
-/// sweeps).
+/// `analyse` computes the column ordering ([`DirectParams::ordering`]: COLAMD by default, AMD
+/// on `A + A^T`, a nested dissection of a structured grid, or a permutation given with
+/// [`SparseLu::with_column_permutation`]) and faer's supernodal symbolic structure once; every
+/// `factor` reuses it and the numeric storage. Parallelism follows
+/// `faer::get_global_parallelism()` (set it to `Par::Seq` inside parallel sweeps).
 ///
 /// # Math
 /// ```text
 /// P A Q = L U     Q: fill-reducing column order (symbolic, once)
 ///                 P: row pivoting (numeric, per factor)
 /// x = Q U^-1 L^-1 P b
+/// struct(L), struct(U^T) within struct(R),  R^T R = Q^T A^T A Q  (any P)
 /// ```
 /// Every solution is checked as described in [`DirectParams`].
 ///
 /// # Errors
 /// [`SolverError::Singular`] for an empty row or column (checked before faer sees the values),
 /// a structurally singular pattern, or a solution that is non-finite or fails the residual
-/// check; the common errors of [`LinearSolver`].
+/// check; [`SolverError::InvalidParameter`] or [`SolverError::DimensionMismatch`] for an
+/// ordering that does not fit the pattern; the common errors of [`LinearSolver`].
 ///
 /// # Example
 /// ```
@@ -48,16 +62,38 @@ use crate::sparsity_pattern::SparsityPattern;
 #[derive(Debug, Default)]
 pub struct SparseLu {
     params: DirectParams,
+    column_permutation: Option<Vec<usize>>,
     pattern: Option<SparsityPattern>,
-    symbolic: Option<SymbolicLu<usize>>,
-    numeric: NumericLu<usize, f64>,
+    symbolic: Option<Symbolic>,
+    numeric: SupernodalLu<usize, f64>,
+    row_perm_fwd: Vec<usize>,
+    row_perm_inv: Vec<usize>,
     values: Vec<f64>,
     factored: bool,
     factorisations: usize,
 }
 
+/// What `analyse` keeps: the column order and faer's supernodal structure.
+#[derive(Debug)]
+struct Symbolic {
+    supernodal: SymbolicSupernodalLu<usize>,
+    col_perm_fwd: Vec<usize>,
+    col_perm_inv: Vec<usize>,
+    structural_bound: usize,
+}
+
+impl Symbolic {
+    fn col_perm(&self) -> PermRef<'_, usize> {
+        PermRef::new_checked(
+            &self.col_perm_fwd,
+            &self.col_perm_inv,
+            self.col_perm_fwd.len(),
+        )
+    }
+}
+
 impl SparseLu {
-    /// A solver with the given solution-check settings.
+    /// A solver with the given solution-check and ordering settings.
     ///
     /// # Errors
     /// [`SolverError::InvalidParameter`] if `params` is out of range.
@@ -67,6 +103,29 @@ impl SparseLu {
             params,
             ..Default::default()
         })
+    }
+
+    /// Uses `perm` as the column order (`perm[k]` = column eliminated `k`-th) instead of
+    /// [`DirectParams::ordering`]; `analyse` checks it is a permutation of the columns.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_solvers::{LinearSolver, SparseLu, samples::Poisson2d};
+    /// let system = Poisson2d::new(8).system();
+    /// let reversed: Vec<usize> = (0..64).rev().collect();
+    /// let mut lu = SparseLu::default().with_column_permutation(reversed);
+    /// lu.analyse(&system.pattern).unwrap();
+    /// lu.factor(&system.values).unwrap();
+    /// let mut x = system.rhs.clone();
+    /// lu.solve_in_place(&mut x).unwrap();
+    /// assert!(system.residual_norm(&x) < 1e-14);
+    /// ```
+    pub fn with_column_permutation(mut self, perm: Vec<usize>) -> Self {
+        self.column_permutation = Some(perm);
+        self.symbolic = None;
+        self.pattern = None;
+        self.factored = false;
+        self
     }
 
     /// Numeric factorisations done since construction.
@@ -79,18 +138,34 @@ impl SparseLu {
         self.pattern.as_ref()
     }
 
+    /// The column order of the analysis (`perm[k]` = column eliminated `k`-th), if analysed.
+    pub fn column_permutation(&self) -> Option<&[usize]> {
+        self.symbolic.as_ref().map(|s| s.col_perm_fwd.as_slice())
+    }
+
+    /// The static bound on the fill, if analysed: `2 nnz(R) - n`, where `R` is the Cholesky
+    /// factor of `Q^T A^T A Q`; `nnz(L) + nnz(U)` never exceeds it, whatever the pivoting.
+    /// A measure for comparing orderings (faer stores dense supernodal panels, so the memory
+    /// used is of this order).
+    pub fn structural_fill_bound(&self) -> Option<usize> {
+        self.symbolic.as_ref().map(|s| s.structural_bound)
+    }
+
     fn raw_solve(
-        symbolic: &SymbolicLu<usize>,
-        numeric: &NumericLu<usize, f64>,
+        symbolic: &Symbolic,
+        numeric: &SupernodalLu<usize, f64>,
+        row_perm: PermRef<'_, usize>,
         rhs: &mut [f64],
         n: usize,
         ncols: usize,
     ) -> Result<(), SolverError> {
         let par = faer::get_global_parallelism();
-        let mut mem = scratch(symbolic.solve_in_place_scratch::<f64>(ncols, par))?;
-        let stack = faer::dyn_stack::MemStack::new(&mut mem);
+        let mut mem = scratch(solve_in_place_scratch::<usize, f64>(n, ncols, par))?;
+        let stack = MemStack::new(&mut mem);
         let mat = faer::MatMut::from_column_major_slice_mut(rhs, n, ncols);
-        LuRef::new_unchecked(symbolic, numeric).solve_in_place_with_conj(
+        numeric.solve_in_place_with_conj(
+            row_perm,
+            symbolic.col_perm(),
             faer::Conj::No,
             mat,
             par,
@@ -120,14 +195,15 @@ impl SparseLu {
         if n == 0 {
             return Ok(());
         }
+        let row_perm = PermRef::new_checked(&self.row_perm_fwd, &self.row_perm_inv, n);
         let b = rhs.to_vec();
-        Self::raw_solve(symbolic, &self.numeric, rhs, n, ncols)?;
+        Self::raw_solve(symbolic, &self.numeric, row_perm, rhs, n, ncols)?;
         let mut work = vec![0.0; n];
         for (x, b) in rhs.chunks_exact_mut(n).zip(b.chunks_exact(n)) {
             let numeric = &self.numeric;
             let mut failure = None;
             check_and_refine(&self.params, pattern, &self.values, b, x, &mut work, |r| {
-                if let Err(e) = Self::raw_solve(symbolic, numeric, r, n, 1) {
+                if let Err(e) = Self::raw_solve(symbolic, numeric, row_perm, r, n, 1) {
                     failure = Some(e);
                 }
             })?;
@@ -136,6 +212,100 @@ impl SparseLu {
             }
         }
         Ok(())
+    }
+
+    /// The column order: the explicit permutation, the configured ordering, or COLAMD.
+    fn column_order(&self, pattern: &SparsityPattern) -> Result<Vec<usize>, SolverError> {
+        let n = pattern.ncols();
+        let perm = match &self.column_permutation {
+            Some(perm) => Some(perm.clone()),
+            None => self.params.ordering.permutation(pattern)?,
+        };
+        if let Some(perm) = perm {
+            if perm.len() != n {
+                return Err(SolverError::DimensionMismatch {
+                    quantity: "column permutation",
+                    expected: n,
+                    found: perm.len(),
+                });
+            }
+            if !is_permutation(&perm, n) {
+                return Err(SolverError::InvalidParameter {
+                    field: "column permutation",
+                    value: n as f64,
+                    allowed: "a permutation of 0..n",
+                });
+            }
+            return Ok(perm);
+        }
+        // faer's own choice for LU, with its default settings
+        let mut fwd = vec![0usize; n];
+        let mut inv = vec![0usize; n];
+        let mut mem = scratch(colamd::order_scratch::<usize>(n, n, pattern.nnz()))?;
+        colamd::order(
+            &mut fwd,
+            &mut inv,
+            pattern.as_faer_symbolic(),
+            Default::default(),
+            MemStack::new(&mut mem),
+        )?;
+        Ok(fwd)
+    }
+
+    /// faer's supernodal LU analysis (what `faer::sparse::linalg::lu::factorize_symbolic_lu`
+    /// does after COLAMD), for any column order: column elimination tree and column counts of
+    /// `A^T A`, then the supernodes.
+    fn symbolic(
+        pattern: &SparsityPattern,
+        col_perm_fwd: Vec<usize>,
+    ) -> Result<Symbolic, SolverError> {
+        let n = pattern.ncols();
+        let mut col_perm_inv = vec![0usize; n];
+        for (k, &p) in col_perm_fwd.iter().enumerate() {
+            col_perm_inv[p] = k;
+        }
+        let a = pattern.as_faer_symbolic();
+        let (at_col_ptr, at_row_idx, _) = pattern.row_layout();
+        let at = SymbolicSparseColMatRef::new_checked(n, n, &at_col_ptr, None, &at_row_idx);
+        let col_perm = PermRef::new_checked(&col_perm_fwd, &col_perm_inv, n);
+        let mut mem = scratch(StackReq::any_of(&[
+            col_etree_scratch::<usize>(n, n),
+            postorder_scratch::<usize>(n),
+            column_counts_aat_scratch::<usize>(n, n),
+            factorize_supernodal_symbolic_lu_scratch::<usize>(n, n),
+        ]))?;
+        let stack = MemStack::new(&mut mem);
+        let mut etree = vec![0usize; n];
+        let mut post = vec![0usize; n];
+        let mut col_counts = vec![0usize; n];
+        let mut min_row = vec![0usize; n];
+        let etree = col_etree(a, Some(col_perm), &mut etree, stack);
+        postorder(&mut post, etree, stack);
+        column_counts_ata(
+            &mut col_counts,
+            &mut min_row,
+            at,
+            Some(col_perm),
+            etree,
+            &post,
+            stack,
+        );
+        let structural_bound = (2 * col_counts.iter().sum::<usize>()).saturating_sub(n);
+        let supernodal = factorize_supernodal_symbolic_lu(
+            a,
+            Some(col_perm),
+            &min_row,
+            etree,
+            &col_counts,
+            stack,
+            Default::default(),
+        )?;
+        Ok(Symbolic {
+            supernodal,
+            col_perm_fwd,
+            col_perm_inv,
+            structural_bound,
+        })
     }
 }
 
@@ -150,11 +320,8 @@ impl LinearSolver<f64> for SparseLu {
         // 27 ms vs 8.6 ms per numeric factorisation, one core), and below ~100 unknowns the
         // difference is under a microsecond. It also keeps clear of the simplicial kernel's
         // zero-pivot panic (faer issue 232).
-        let params = LuSymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        self.symbolic = Some(factorize_symbolic_lu(pattern.as_faer_symbolic(), params)?);
+        let order = self.column_order(pattern)?;
+        self.symbolic = Some(Self::symbolic(pattern, order)?);
         self.pattern = Some(pattern.clone());
         self.values = vec![0.0; pattern.nnz()];
         Ok(())
@@ -174,26 +341,52 @@ impl LinearSolver<f64> for SparseLu {
             return Err(SolverError::Singular { pivot: Some(line) });
         }
         self.values.copy_from_slice(values);
-        if pattern.nrows() > 0 {
+        let n = pattern.nrows();
+        if n > 0 {
             let par = faer::get_global_parallelism();
-            let mut mem =
-                scratch(symbolic.factorize_numeric_lu_scratch::<f64>(par, Default::default()))?;
-            let stack = faer::dyn_stack::MemStack::new(&mut mem);
-            symbolic
-                .factorize_numeric_lu(
-                    &mut self.numeric,
-                    pattern.as_faer(&self.values),
-                    par,
-                    stack,
+            let nnz = pattern.nnz();
+            // the transpose lives only during the factorisation, as in faer's own LU
+            let mut at_values = vec![0.0f64; nnz];
+            let mut at_col_ptr = vec![0usize; n + 1];
+            let mut at_row_idx = vec![0usize; nnz];
+            let mut mem = scratch(StackReq::any_of(&[
+                faer::sparse::utils::transpose_scratch::<usize>(n, n),
+                factorize_supernodal_numeric_lu_scratch::<usize, f64>(
+                    &symbolic.supernodal,
                     Default::default(),
-                )
-                .map_err(|e| match e {
-                    LuError::SymbolicSingular { index } => SolverError::Singular {
-                        // `index` is a step of the column-permuted elimination
-                        pivot: Some(symbolic.col_perm().arrays().0[index]),
-                    },
-                    LuError::Generic(e) => SolverError::Backend(e),
-                })?;
+                ),
+            ]))?;
+            let stack = MemStack::new(&mut mem);
+            let a = pattern.as_faer(&self.values);
+            let at = faer::sparse::utils::transpose(
+                &mut at_values,
+                &mut at_col_ptr,
+                &mut at_row_idx,
+                a,
+                stack,
+            );
+            let at = SparseColMatRef::new(at.symbolic(), at.val());
+            self.row_perm_fwd.resize(n, 0);
+            self.row_perm_inv.resize(n, 0);
+            factorize_supernodal_numeric_lu(
+                &mut self.row_perm_fwd,
+                &mut self.row_perm_inv,
+                &mut self.numeric,
+                a,
+                at,
+                symbolic.col_perm(),
+                &symbolic.supernodal,
+                par,
+                stack,
+                Default::default(),
+            )
+            .map_err(|e| match e {
+                LuError::SymbolicSingular { index } => SolverError::Singular {
+                    // `index` is a step of the column-permuted elimination
+                    pivot: Some(symbolic.col_perm_fwd[index]),
+                },
+                LuError::Generic(e) => SolverError::Backend(e),
+            })?;
         }
         self.factored = true;
         self.factorisations += 1;
