@@ -36,6 +36,7 @@ mod error;
 mod fields;
 mod finite_difference;
 mod grid;
+pub mod finite_element;
 pub mod kinematics;
 mod material;
 pub mod samples;

@@ -30,7 +30,7 @@ pub trait Study {
     fn name(&self) -> String;
     /// Geometry description.
     fn geometry(&self) -> String;
-    /// The discretisation (`"fd"`).
+    /// The discretisation (`"fd"`, `"fem-q1"`, `"fem-q2"`).
     fn discretisation(&self) -> &'static str;
     /// The grids, coarsest first.
     fn levels(&self) -> Vec<GridLevel>;
@@ -126,11 +126,14 @@ pub fn observed_order(points: &[(f64, f64)]) -> f64 {
 /// The registered studies, in report order. Later discretisations append theirs.
 pub fn studies() -> Vec<Box<dyn Study>> {
     use crate::samples::{LameCylinder, MmsBoundaries, PrismMms};
-    vec![
+    let mut studies: Vec<Box<dyn Study>> = vec![
         Box::new(PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)),
         Box::new(PrismMms::ellipse(2.0, MmsBoundaries::BilateralContact)),
         Box::new(PrismMms::expression_prism(MmsBoundaries::TractionContact)),
         Box::new(PrismMms::expression_prism(MmsBoundaries::BilateralContact)),
         Box::new(LameCylinder::default()),
-    ]
+    ];
+    // the same problems with Q1 and Q2 finite elements
+    studies.extend(crate::finite_element::fem_studies());
+    studies
 }

@@ -1,0 +1,200 @@
+//! Lagrange elements on the parameter rectangle: Q1 and Q2 shape functions and the tensor
+//! Gauss rules that integrate them.
+
+use crate::error::ElasticityError;
+
+/// The polynomial degree of the tensor-product Lagrange element.
+///
+/// # Math
+/// One-dimensional shape functions on the reference interval `xi in [-1, 1]`:
+/// ```text
+/// Q1: N_0 = (1 - xi)/2,       N_1 = (1 + xi)/2
+/// Q2: N_0 = xi (xi - 1)/2,    N_1 = 1 - xi^2,      N_2 = xi (xi + 1)/2
+/// ```
+/// and `N_(a2, a3)(xi, eta) = N_a2(xi) N_a3(eta)` on the rectangle.
+///
+/// Quadrature: `k + 1` Gauss points per direction (2 x 2 for Q1, 3 x 3 for Q2), exact for
+/// polynomials of degree `2k + 1` per direction. The constant-coefficient stiffness integrand
+/// `d N_a d N_b` and the mass-like Christoffel terms `N_a N_b` have degree `2k` per direction,
+/// so they are integrated exactly; with the smooth curvilinear coefficients
+/// (`A^ijkl sqrt(g)`, Christoffel symbols) the quadrature error is `O(h^(2k+2))` per unit
+/// area, below the `O(h^(k+1))` L2 discretisation error (Ciarlet's condition: exactness for
+/// degree `2k - 1` keeps the optimal orders).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ElementOrder {
+    /// Bilinear (4 nodes).
+    Q1,
+    /// Biquadratic (9 nodes).
+    Q2,
+}
+
+impl ElementOrder {
+    /// Polynomial degree `k`.
+    pub fn degree(self) -> usize {
+        match self {
+            Self::Q1 => 1,
+            Self::Q2 => 2,
+        }
+    }
+
+    /// Nodes per direction, `k + 1`.
+    pub fn nodes_per_direction(self) -> usize {
+        self.degree() + 1
+    }
+
+    /// Nodes per element, `(k + 1)^2`.
+    pub fn nodes_per_element(self) -> usize {
+        self.nodes_per_direction().pow(2)
+    }
+
+    /// Name of the discretisation (`"fem-q1"`, `"fem-q2"`).
+    pub fn method_name(self) -> &'static str {
+        match self {
+            Self::Q1 => "fem-q1",
+            Self::Q2 => "fem-q2",
+        }
+    }
+
+    /// The one-dimensional shape functions and their `xi` derivatives at `xi`.
+    pub fn shape_1d(self, xi: f64) -> ([f64; 3], [f64; 3]) {
+        match self {
+            Self::Q1 => ([0.5 * (1.0 - xi), 0.5 * (1.0 + xi), 0.0], [-0.5, 0.5, 0.0]),
+            Self::Q2 => (
+                [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)],
+                [xi - 0.5, -2.0 * xi, xi + 0.5],
+            ),
+        }
+    }
+
+    /// The one-dimensional Gauss rule with `k + 1` points: `(points, weights)` on `[-1, 1]`.
+    pub fn gauss_1d(self) -> (Vec<f64>, Vec<f64>) {
+        gauss_rule(self.nodes_per_direction())
+    }
+
+    /// Checks that an `n`-node grid direction is a whole number of elements.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `field` if `n - 1` (bounded) or `n`
+    /// (periodic) is not a multiple of `k` (Q2 needs odd `n` on a bounded direction, even `n`
+    /// on a periodic one).
+    pub fn check_nodes(
+        self,
+        field: &'static str,
+        n: usize,
+        periodic: bool,
+    ) -> Result<(), ElasticityError> {
+        let k = self.degree();
+        let intervals = if periodic { n } else { n - 1 };
+        if !intervals.is_multiple_of(k) {
+            return Err(ElasticityError::InvalidParameter {
+                field,
+                value: n as f64,
+                allowed: if periodic {
+                    "even node counts for Q2 on a periodic direction"
+                } else {
+                    "odd node counts for Q2"
+                },
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Gauss–Legendre rule with `n` points (`1 <= n <= 5`) on `[-1, 1]`.
+///
+/// # Panics
+/// For other `n` (a programmer error: the elements use 2 to 4 points).
+#[track_caller]
+pub fn gauss_rule(n: usize) -> (Vec<f64>, Vec<f64>) {
+    let (p, w): (&[f64], &[f64]) = match n {
+        1 => (&[0.0], &[2.0]),
+        2 => {
+            const A: f64 = 0.577_350_269_189_625_8; // 1/sqrt(3)
+            (&[-A, A], &[1.0, 1.0])
+        }
+        3 => {
+            const A: f64 = 0.774_596_669_241_483_4; // sqrt(3/5)
+            (&[-A, 0.0, A], &[5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0])
+        }
+        4 => (
+            &[
+                -0.861_136_311_594_052_6,
+                -0.339_981_043_584_856_3,
+                0.339_981_043_584_856_3,
+                0.861_136_311_594_052_6,
+            ],
+            &[
+                0.347_854_845_137_453_9,
+                0.652_145_154_862_546_1,
+                0.652_145_154_862_546_1,
+                0.347_854_845_137_453_9,
+            ],
+        ),
+        5 => (
+            &[
+                -0.906_179_845_938_664,
+                -0.538_469_310_105_683_1,
+                0.0,
+                0.538_469_310_105_683_1,
+                0.906_179_845_938_664,
+            ],
+            &[
+                0.236_926_885_056_189_1,
+                0.478_628_670_499_366_5,
+                0.568_888_888_888_888_9,
+                0.478_628_670_499_366_5,
+                0.236_926_885_056_189_1,
+            ],
+        ),
+        _ => panic!("gauss_rule: {n} points not tabulated (1..=5)"),
+    };
+    (p.to_vec(), w.to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_rules_integrate_their_degree_exactly() {
+        for n in 1..=5 {
+            let (p, w) = gauss_rule(n);
+            for deg in 0..2 * n {
+                let q: f64 = p.iter().zip(&w).map(|(x, w)| w * x.powi(deg as i32)).sum();
+                let exact = if deg % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (deg as f64 + 1.0)
+                };
+                assert!((q - exact).abs() < 1e-14, "n {n} degree {deg}"); // round-off
+            }
+        }
+    }
+
+    #[test]
+    fn shape_functions_are_a_partition_of_unity_and_interpolate_at_nodes() {
+        for order in [ElementOrder::Q1, ElementOrder::Q2] {
+            let k = order.degree();
+            for a in 0..=k {
+                let xi = -1.0 + 2.0 * a as f64 / k as f64;
+                let (n, d) = order.shape_1d(xi);
+                for (b, nb) in n.iter().enumerate().take(k + 1) {
+                    assert!((nb - if a == b { 1.0 } else { 0.0 }).abs() < 1e-15);
+                }
+                assert!(d[..=k].iter().sum::<f64>().abs() < 1e-15);
+            }
+            let (n, _) = order.shape_1d(0.3);
+            assert!((n[..=k].iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn q2_rejects_even_bounded_and_odd_periodic_node_counts() {
+        assert!(ElementOrder::Q2.check_nodes("grid.n2", 10, false).is_err());
+        assert!(ElementOrder::Q2.check_nodes("grid.n2", 11, false).is_ok());
+        assert!(ElementOrder::Q2.check_nodes("grid.n2", 11, true).is_err());
+        assert!(ElementOrder::Q2.check_nodes("grid.n2", 12, true).is_ok());
+        assert!(ElementOrder::Q1.check_nodes("grid.n2", 10, false).is_ok());
+    }
+}

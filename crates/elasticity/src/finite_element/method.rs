@@ -1,0 +1,111 @@
+//! Choosing a discretisation by name (`discretisation.method` in scene files).
+
+use core::fmt;
+
+use super::element::ElementOrder;
+use super::navier::FiniteElementNavier;
+use crate::boundary::BoundaryConditions;
+use crate::discretisation::Discretisation;
+use crate::error::ElasticityError;
+use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
+use crate::grid::Grid;
+use crate::material::Material;
+use crate::shell_geometry::ShellGeometry;
+
+/// The discretisations of the Navier operator, by name: `fd`, `fem-q1`, `fem-q2`.
+///
+/// The same spelling is used by serde and [`fmt::Display`].
+///
+/// # Example
+/// ```
+/// use capstan_elasticity::{BoundaryConditions, Discretisation, Grid, Material};
+/// use capstan_elasticity::finite_element::DiscretisationMethod;
+/// use capstan_geometry::{EllipticalPrism, ShellChart};
+/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
+/// for method in DiscretisationMethod::ALL {
+///     assert_eq!(DiscretisationMethod::from_name(method.name()), Some(method));
+///     let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
+///     let op = method
+///         .build(chart, Material::new(1e3, 0.25).unwrap(), grid, BoundaryConditions::paper_clamped(1.0, 2.0), None)
+///         .unwrap();
+///     assert_eq!(op.method(), method.name());
+/// }
+/// ```
+#[derive(
+    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum DiscretisationMethod {
+    /// [`FiniteDifferenceNavier`]: second-order finite differences (finite volumes).
+    #[default]
+    Fd,
+    /// [`FiniteElementNavier`] with bilinear (Q1) elements.
+    FemQ1,
+    /// [`FiniteElementNavier`] with biquadratic (Q2) elements (odd `n2`, `n3`).
+    FemQ2,
+}
+
+impl DiscretisationMethod {
+    /// Every method, in declaration order.
+    pub const ALL: [Self; 3] = [Self::Fd, Self::FemQ1, Self::FemQ2];
+
+    /// The accepted spellings, for messages.
+    pub const NAMES: &'static str = "`fd`, `fem-q1`, `fem-q2`";
+
+    /// The name as used in files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Fd => "fd",
+            Self::FemQ1 => "fem-q1",
+            Self::FemQ2 => "fem-q2",
+        }
+    }
+
+    /// The method of a name, `None` if unknown.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// The element order of a finite-element method.
+    pub fn element_order(self) -> Option<ElementOrder> {
+        match self {
+            Self::Fd => None,
+            Self::FemQ1 => Some(ElementOrder::Q1),
+            Self::FemQ2 => Some(ElementOrder::Q2),
+        }
+    }
+
+    /// Whether the assembled matrix is symmetric (and, with enough Dirichlet conditions,
+    /// positive definite): the Cholesky backend applies.
+    pub fn is_symmetric(self) -> bool {
+        self != Self::Fd
+    }
+
+    /// Builds the discretisation.
+    ///
+    /// # Errors
+    /// The constructor's errors ([`FiniteDifferenceNavier::new`], [`FiniteElementNavier::new`]).
+    pub fn build<G: ShellGeometry + Send + Sync + 'static>(
+        self,
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+    ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
+        Ok(match self.element_order() {
+            None => Box::new(FiniteDifferenceNavier::new(
+                chart, material, grid, boundary, body_force,
+            )?),
+            Some(order) => Box::new(FiniteElementNavier::new(
+                chart, material, grid, boundary, body_force, order,
+            )?),
+        })
+    }
+}
+
+impl fmt::Display for DiscretisationMethod {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}

@@ -1,0 +1,1071 @@
+//! The Galerkin discretisation of the plane-strain curvilinear Navier operator with Q1/Q2
+//! Lagrange elements on the parameter rectangle.
+
+use capstan_geometry::ShellPoint;
+use rayon::prelude::*;
+
+use super::element::{ElementOrder, gauss_rule};
+use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::discretisation::{ContactNode, Discretisation, SparseRow};
+use crate::error::ElasticityError;
+use crate::fields::NodalFields;
+use crate::finite_difference::BodyForce;
+use crate::grid::Grid;
+use crate::kinematics::{
+    LocalDisplacement, contravariant_stress, mixed_stress_coefficients, strain,
+};
+use crate::material::Material;
+use crate::shell_geometry::ShellGeometry;
+
+/// Relative tolerance of the plane-strain check on the chart (as the finite differences).
+const PLANE_STRAIN_TOLERANCE: f64 = 1e-10;
+
+/// No slot: the local entry is dropped (Dirichlet row) or lifted to the right-hand side
+/// (Dirichlet column).
+const NO_SLOT: u32 = u32::MAX;
+
+/// Elements whose local matrices are computed in parallel before one sequential scatter.
+const BATCH: usize = 2048;
+
+/// Coefficients of `[T^3_2, T^3_3]` in the six local inputs (see [`LocalDisplacement`]).
+type Coefficients = [[f64; 6]; 2];
+
+/// Index of `(k, l)`, `k <= l`, in the packed upper triangle of a symmetric 6 x 6 matrix.
+const PACK: [[usize; 6]; 6] = {
+    let mut p = [[0; 6]; 6];
+    let mut idx = 0;
+    let mut k = 0;
+    while k < 6 {
+        let mut l = k;
+        while l < 6 {
+            p[k][l] = idx;
+            p[l][k] = idx;
+            idx += 1;
+            l += 1;
+        }
+        k += 1;
+    }
+    p
+};
+
+/// The plane-strain curvilinear Navier operator by Q1 or Q2 finite elements on the
+/// `n2 x n3` grid of the finite differences (same nodes, same dof numbering).
+///
+/// # Math
+/// Weak form on the parameter rectangle `Omega = [theta0, theta1] x [0, h]` (per unit `x1`):
+/// ```text
+/// a(v, w) = int_Omega T^i_j(v) nabla_i w^j sqrt(g) dx2 dx3
+///         = int_Omega A^ijkl E_kl(v) E_ij(w) sqrt(g) dx2 dx3            (symmetric)
+/// l(w)    = int_Omega f_j w^j sqrt(g) dx2 dx3 + int_{sides} phi_j w^j ds
+/// nabla_i w^j = d_i w^j + Gamma^j_im w^m                              (d_1 = 0, w^1 = 0)
+/// ```
+/// with the boundary flux `phi_j = sqrt(g) sqrt(g^aa) t_j` for a traction
+/// (`t_j = n_i T^i_j`, `dS = sqrt(g) sqrt(g^aa) ds` per unit `x1`) and `phi_j = s sqrt(g) f`
+/// for a stress condition `T^a_j = f` (`s = +-1` the outward sign), exactly the fluxes of the
+/// finite differences. By linearity `T^i_j = sum_k u_k C_k^i_j` and
+/// `nabla_i w^j = sum_l w_l D_l^i_j` in the six local inputs
+/// `u = [v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]`, so the integrand is `u^T K_q w` with
+/// `K_q[k][l] = sqrt(g) sum_ij C_k^i_j D_l^i_j`, a symmetric 6 x 6 matrix cached at every
+/// quadrature point (packed upper triangle, times the quadrature weight and `det J`): the
+/// geometry is evaluated once per discretisation and reused by every refill (Newton steps,
+/// sweeps). Element matrices are computed in parallel (rayon) in batches and scattered
+/// sequentially in element order, so the values are bitwise reproducible.
+///
+/// Dirichlet conditions are imposed strongly and symmetrically: the row and column of a
+/// prescribed dof are removed from the pattern (except the diagonal), the column's
+/// contribution `K_rc g_c` moves to the right-hand side, and the row becomes
+/// `K_dd v_d = K_dd g_d` with the assembled diagonal `K_dd`. The matrix is symmetric
+/// (bitwise: element matrices are symmetrised) and, with enough Dirichlet conditions to stop
+/// the rigid motions, positive definite, so [`capstan_solvers::SparseCholesky`] applies; LU
+/// works too. Corner rules are those of [`crate::FiniteDifferenceNavier`] (a displacement on
+/// either side wins; pinned dofs first).
+///
+/// # Contact rows
+/// [`ContactNode::traction_weight`] is the lumped boundary weight
+/// `sqrt(g) sqrt(g^33) int N_i dx2` at the node (row sums of the boundary mass matrix:
+/// trapezoid for Q1, Simpson's `1/3, 4/3` pattern for Q2), so a nodal friction traction
+/// enters as in the finite differences. [`ContactNode::normal_stress`] and
+/// [`ContactNode::shear_stress`] recover `T^3_3`, `T^3_2` at the node from the nodal values
+/// with second-order differences (central in `x2`, one-sided `(-3, 4, -1)/(2 dx3)` in `x3`;
+/// for Q2 the `x3` rule is the element's own derivative at its face). The recovery is second
+/// order for both elements (the Q2 displacement is third order in L2, its gradient second
+/// order), and uses the same stencil as the finite differences, so both paths feed the
+/// friction law the same kind of data.
+///
+/// # Errors
+/// See [`FiniteElementNavier::new`].
+///
+/// # Example
+/// ```
+/// use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Grid, Material};
+/// use capstan_elasticity::finite_element::{ElementOrder, FiniteElementNavier};
+/// use capstan_geometry::{EllipticalPrism, ShellChart};
+/// use capstan_solvers::SparseCholesky;
+/// let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
+/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
+/// let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
+/// let m = Material::new(1e3, 0.25).unwrap();
+/// let op = FiniteElementNavier::new(chart, m, grid, bc, None, ElementOrder::Q2).unwrap();
+/// let v = op.solve(&mut SparseCholesky::default()).unwrap(); // symmetric positive definite
+/// // equal end tensions: the tangential displacement is odd in x2
+/// let (left, right) = (v[op.dof([0, 4], Component::X2)], v[op.dof([24, 4], Component::X2)]);
+/// assert!(left < 0.0 && (left + right).abs() < 1e-10);
+/// ```
+pub struct FiniteElementNavier<G> {
+    chart: G,
+    material: Material,
+    grid: Grid,
+    boundary: BoundaryConditions,
+    order: ElementOrder,
+    /// Elements in `x2` and `x3`.
+    elements: [usize; 2],
+    /// `[N_a, d_2 N_a, d_3 N_a]` at reference quadrature point `q`, index `q nen + a`.
+    shape: Vec<[f64; 3]>,
+    /// Packed `K_q` times weight and `det J`, index `e nq + q`.
+    stiffness: Vec<[f64; 21]>,
+    /// Prescribed value of each dof.
+    dirichlet: Vec<Option<f64>>,
+    /// Right-hand side from the body force and the natural boundary data.
+    load: Vec<f64>,
+    /// The pattern, row by row (`entries()` order).
+    row_ptr: Vec<usize>,
+    columns: Vec<usize>,
+    /// Slot of each local entry `(I, J)` of each element, `NO_SLOT` if none.
+    local_slots: Vec<u32>,
+    /// Slot of the diagonal of each dof.
+    diagonal_slots: Vec<usize>,
+    /// `[T^3_2, T^3_3]` coefficients and `[sqrt(g), sqrt(g^33), sqrt(g_22)]` on `x3 = 0`.
+    contact: Vec<(Coefficients, [f64; 3])>,
+}
+
+impl<G> core::fmt::Debug for FiniteElementNavier<G> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FiniteElementNavier")
+            .field("order", &self.order)
+            .field("material", &self.material)
+            .field("grid", &self.grid)
+            .field("boundary", &self.boundary)
+            .finish_non_exhaustive()
+    }
+}
+
+fn check_plane_strain(p: &ShellPoint<f64>, at: [f64; 3]) -> Result<(), ElasticityError> {
+    let gscale = 1.0
+        + p.metric
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    if p.metric[0][1].abs() > PLANE_STRAIN_TOLERANCE * gscale
+        || p.metric[0][2].abs() > PLANE_STRAIN_TOLERANCE * gscale
+    {
+        return Err(ElasticityError::NotPlaneStrain {
+            what: "g_12 or g_13 is not zero",
+            at,
+        });
+    }
+    let cscale = 1.0
+        + p.christoffel
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let index_one = (0..3).any(|i| {
+        (0..3).any(|j| {
+            p.christoffel[0][i][j].abs() > PLANE_STRAIN_TOLERANCE * cscale
+                || p.christoffel[i][0][j].abs() > PLANE_STRAIN_TOLERANCE * cscale
+        })
+    });
+    if index_one {
+        return Err(ElasticityError::NotPlaneStrain {
+            what: "a Christoffel symbol with index 1 is not zero",
+            at,
+        });
+    }
+    Ok(())
+}
+
+/// The symmetric 6 x 6 matrix `K_q[k][l] = sqrt(g) sum_ij C_k^i_j D_l^i_j`, packed.
+///
+/// `D_l^i_j = nabla_i w^j` for the unit input `l`: `Gamma^j_{i m}` for the value `w^m`
+/// (`l = m - 1`), and `delta_i^p delta_j^c` for `d_p w^c` (`l = 2 (p - 1) + (c - 1)`).
+#[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+fn point_stiffness(p: &ShellPoint<f64>, material: &Material, scale: f64) -> [f64; 21] {
+    let c = mixed_stress_coefficients(p, material);
+    let mut k = [[0.0; 6]; 6];
+    for trial in 0..6 {
+        for test in 0..6 {
+            let s = if test < 2 {
+                let m = test + 1;
+                let mut s = 0.0;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        s += c[trial][i][j] * p.christoffel[j][i][m];
+                    }
+                }
+                s
+            } else {
+                let (dir, comp) = (test / 2, test % 2 + 1);
+                c[trial][dir][comp]
+            };
+            k[trial][test] = s;
+        }
+    }
+    let mut packed = [0.0; 21];
+    for a in 0..6 {
+        for b in a..6 {
+            packed[PACK[a][b]] = 0.5 * (k[a][b] + k[b][a]) * p.sqrt_g * scale;
+        }
+    }
+    packed
+}
+
+/// Second-order nodal difference weights `(index, weight)` along a grid direction.
+fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
+    let w = 0.5 / h;
+    if periodic {
+        [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
+    } else if i == 0 {
+        [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
+    } else if i == n - 1 {
+        [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
+    } else {
+        [(i - 1, -w), (i + 1, w), (i, 0.0)]
+    }
+}
+
+/// Errors of a discrete displacement against an exact one.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct DisplacementErrors {
+    /// Max over the nodes of `|U_h - U|` (Cartesian displacement error).
+    pub max: f64,
+    /// RMS over the parameter rectangle, `sqrt(int |U_h - U|^2 dx2 dx3 / area)` (the
+    /// verification norm of the finite differences, integrated exactly instead of by the
+    /// nodal trapezoid rule).
+    pub rms: f64,
+    /// Physical L2 norm `sqrt(int |U_h - U|^2 dA)` (per unit `x1`, `dA = sqrt(g) dx2 dx3`).
+    pub l2: f64,
+    /// `sqrt(int |U|^2 dA)`, for relative errors.
+    pub l2_exact: f64,
+}
+
+impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
+    /// Builds the discretisation: caches the geometry at the quadrature points, the load
+    /// vector and the sparsity pattern.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] if the grid is not a whole number of elements
+    /// (Q2: odd `n2` and `n3`, even `n2` when periodic); [`ElasticityError::InconsistentBoundary`]
+    /// if periodicity of grid and conditions differ or a pinned node is outside the grid;
+    /// [`ElasticityError::Geometry`] where the chart cannot be evaluated;
+    /// [`ElasticityError::NotPlaneStrain`] for a chart that is not `x1`-invariant;
+    /// [`ElasticityError::NonFinite`] for non-finite boundary data or body force.
+    pub fn new(
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+        order: ElementOrder,
+    ) -> Result<Self, ElasticityError> {
+        if grid.is_periodic() != boundary.is_periodic() {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "the grid and the x2 conditions must both be periodic or both not",
+            });
+        }
+        if boundary
+            .pinned
+            .iter()
+            .any(|p| p.node[0] >= grid.n2() || p.node[1] >= grid.n3())
+        {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "a pinned node is outside the grid",
+            });
+        }
+        order.check_nodes("grid.n2", grid.n2(), grid.is_periodic())?;
+        order.check_nodes("grid.n3", grid.n3(), false)?;
+        let k = order.degree();
+        let elements = [
+            if grid.is_periodic() {
+                grid.n2() / k
+            } else {
+                (grid.n2() - 1) / k
+            },
+            (grid.n3() - 1) / k,
+        ];
+        let mut op = Self {
+            chart,
+            material,
+            grid,
+            boundary,
+            order,
+            elements,
+            shape: vec![],
+            stiffness: vec![],
+            dirichlet: vec![],
+            load: vec![],
+            row_ptr: vec![],
+            columns: vec![],
+            local_slots: vec![],
+            diagonal_slots: vec![],
+            contact: vec![],
+        };
+        op.dirichlet = (0..op.dof_count())
+            .map(|d| op.dirichlet_value(grid.node(d / 2), Component::ALL[d % 2]))
+            .collect::<Result<_, _>>()?;
+        op.shape = op.reference_shape();
+        op.cache_geometry(body_force.as_ref())?;
+        op.add_boundary_loads()?;
+        op.contact = (0..grid.n2())
+            .map(|i| {
+                let p = op.point(grid.x2(i), 0.0)?;
+                let c = mixed_stress_coefficients(&p, &op.material);
+                let coef: Coefficients =
+                    core::array::from_fn(|e| core::array::from_fn(|q| c[q][2][e + 1]));
+                Ok((
+                    coef,
+                    [
+                        p.sqrt_g,
+                        p.inverse_metric[2][2].sqrt(),
+                        p.metric[1][1].sqrt(),
+                    ],
+                ))
+            })
+            .collect::<Result<_, ElasticityError>>()?;
+        op.build_pattern();
+        Ok(op)
+    }
+
+    /// The element order.
+    pub fn order(&self) -> ElementOrder {
+        self.order
+    }
+
+    /// The material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// The boundary conditions.
+    pub fn boundary(&self) -> &BoundaryConditions {
+        &self.boundary
+    }
+
+    /// The chart.
+    pub fn chart(&self) -> &G {
+        &self.chart
+    }
+
+    /// Number of elements `[in x2, in x3]`.
+    pub fn element_counts(&self) -> [usize; 2] {
+        self.elements
+    }
+
+    fn point(&self, x2: f64, x3: f64) -> Result<ShellPoint<f64>, ElasticityError> {
+        let at = [0.0, x2, x3];
+        let p = self.chart.shell_point(at)?;
+        check_plane_strain(&p, at)?;
+        Ok(p)
+    }
+
+    fn nodes_per_element(&self) -> usize {
+        self.order.nodes_per_element()
+    }
+
+    fn quadrature_points(&self) -> usize {
+        self.order.nodes_per_direction().pow(2)
+    }
+
+    /// Element lengths `[L2, L3]` in parameter space.
+    fn element_size(&self) -> [f64; 2] {
+        let k = self.order.degree() as f64;
+        [k * self.grid.dx2(), k * self.grid.dx3()]
+    }
+
+    /// Node numbers of element `e`, local node `a = a2 (k + 1) + a3`.
+    fn element_nodes(&self, e: usize, out: &mut [usize; 9]) {
+        let (k, np) = (self.order.degree(), self.order.nodes_per_direction());
+        let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
+        let n2 = self.grid.n2();
+        for a2 in 0..np {
+            let i2 = (k * e2 + a2) % n2; // wraps only on a periodic grid
+            for a3 in 0..np {
+                out[a2 * np + a3] = self.grid.node_index([i2, k * e3 + a3]);
+            }
+        }
+    }
+
+    /// Lower-left corner `(x2, x3)` of element `e`.
+    fn element_origin(&self, e: usize) -> [f64; 2] {
+        let k = self.order.degree();
+        let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
+        [self.grid.x2(k * e2), self.grid.x3(k * e3)]
+    }
+
+    fn reference_shape(&self) -> Vec<[f64; 3]> {
+        let (gp, _) = self.order.gauss_1d();
+        let [l2, l3] = self.element_size();
+        let np = self.order.nodes_per_direction();
+        let mut out = Vec::with_capacity(self.quadrature_points() * self.nodes_per_element());
+        for &xi in &gp {
+            for &eta in &gp {
+                let (n2, d2) = self.order.shape_1d(xi);
+                let (n3, d3) = self.order.shape_1d(eta);
+                for a2 in 0..np {
+                    for a3 in 0..np {
+                        out.push([
+                            n2[a2] * n3[a3],
+                            d2[a2] * n3[a3] * 2.0 / l2,
+                            n2[a2] * d3[a3] * 2.0 / l3,
+                        ]);
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Evaluates the geometry at every quadrature point (in parallel) and adds the body force.
+    fn cache_geometry(&mut self, body_force: Option<&BodyForce>) -> Result<(), ElasticityError> {
+        let (gp, gw) = self.order.gauss_1d();
+        let [l2, l3] = self.element_size();
+        let det = 0.25 * l2 * l3;
+        let (nq, nen) = (self.quadrature_points(), self.nodes_per_element());
+        let ne = self.elements[0] * self.elements[1];
+        let mut stiffness = vec![[0.0; 21]; ne * nq];
+        let mut local_loads = vec![
+            0.0;
+            if body_force.is_some() {
+                ne * 2 * nen
+            } else {
+                0
+            }
+        ];
+        let this = &*self;
+        let compute = |e: usize,
+                       kq: &mut [[f64; 21]],
+                       load: Option<&mut [f64]>|
+         -> Result<(), ElasticityError> {
+            let [x0, y0] = this.element_origin(e);
+            let mut load = load;
+            for (i, &xi) in gp.iter().enumerate() {
+                for (j, &eta) in gp.iter().enumerate() {
+                    let q = i * gp.len() + j;
+                    let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
+                    let p = this.point(x[0], x[1])?;
+                    let w = gw[i] * gw[j] * det;
+                    kq[q] = point_stiffness(&p, &this.material, w);
+                    if let (Some(f), Some(load)) = (body_force, load.as_deref_mut()) {
+                        let fx = f(x);
+                        if !(fx[0].is_finite() && fx[1].is_finite()) {
+                            return Err(ElasticityError::NonFinite {
+                                what: "body force",
+                                at: x,
+                            });
+                        }
+                        for a in 0..nen {
+                            let n = this.shape[q * nen + a][0] * p.sqrt_g * w;
+                            load[2 * a] += n * fx[0];
+                            load[2 * a + 1] += n * fx[1];
+                        }
+                    }
+                }
+            }
+            Ok(())
+        };
+        if body_force.is_some() {
+            stiffness
+                .par_chunks_mut(nq)
+                .zip(local_loads.par_chunks_mut(2 * nen))
+                .enumerate()
+                .try_for_each(|(e, (kq, load))| compute(e, kq, Some(load)))?;
+        } else {
+            stiffness
+                .par_chunks_mut(nq)
+                .enumerate()
+                .try_for_each(|(e, kq)| compute(e, kq, None))?;
+        }
+        self.stiffness = stiffness;
+        self.load = vec![0.0; self.dof_count()];
+        if body_force.is_some() {
+            let mut nodes = [0; 9];
+            for e in 0..ne {
+                self.element_nodes(e, &mut nodes);
+                for a in 0..nen {
+                    for c in 0..2 {
+                        self.load[2 * nodes[a] + c] += local_loads[e * 2 * nen + 2 * a + c];
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds `int phi_j N_a ds` over every side with a natural condition (Gauss rule of the
+    /// element along each boundary edge).
+    fn add_boundary_loads(&mut self) -> Result<(), ElasticityError> {
+        let (gp, gw) = self.order.gauss_1d();
+        let (k, np) = (self.order.degree(), self.order.nodes_per_direction());
+        let [l2, l3] = self.element_size();
+        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        for side in Side::ALL {
+            let Some(cond) = self.boundary.side(side).cloned() else {
+                continue; // periodic x2
+            };
+            let along_x2 = side.normal_index() == 2;
+            let (count, length) = if along_x2 {
+                (self.elements[0], l2)
+            } else {
+                (self.elements[1], l3)
+            };
+            for e in 0..count {
+                for (&xi, &w) in gp.iter().zip(&gw) {
+                    let (shape, _) = self.order.shape_1d(xi);
+                    let (x, nodes): ([f64; 2], Vec<[usize; 2]>) = if along_x2 {
+                        let i3 = if side == Side::X3Min { 0 } else { n3 - 1 };
+                        let x2 = self.grid.x2(k * e) + 0.5 * (xi + 1.0) * length;
+                        (
+                            [x2, self.grid.x3(i3)],
+                            (0..np).map(|a| [(k * e + a) % n2, i3]).collect(),
+                        )
+                    } else {
+                        let i2 = if side == Side::X2Min { 0 } else { n2 - 1 };
+                        let x3 = self.grid.x3(k * e) + 0.5 * (xi + 1.0) * length;
+                        (
+                            [self.grid.x2(i2), x3],
+                            (0..np).map(|a| [i2, k * e + a]).collect(),
+                        )
+                    };
+                    let s = if along_x2 { x[0] } else { x[1] };
+                    let p = self.point(x[0], x[1])?;
+                    let a = side.normal_index();
+                    for c in Component::ALL {
+                        let flux = match cond.component(c) {
+                            ComponentCondition::Displacement(_) => continue,
+                            ComponentCondition::Traction(f) => {
+                                p.sqrt_g * p.inverse_metric[a][a].sqrt() * f.eval(s)
+                            }
+                            ComponentCondition::Stress(f) => side.sign() * p.sqrt_g * f.eval(s),
+                        };
+                        if !flux.is_finite() {
+                            return Err(ElasticityError::NonFinite {
+                                what: "boundary traction",
+                                at: x,
+                            });
+                        }
+                        for (node, n) in nodes.iter().zip(shape) {
+                            let d = 2 * self.grid.node_index(*node) + c.index();
+                            self.load[d] += n * flux * w * 0.5 * length;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value prescribed at a node and component, if any (pins first, then the `x3` sides,
+    /// then the `x2` sides), as in the finite differences.
+    fn dirichlet_value(
+        &self,
+        node: [usize; 2],
+        c: Component,
+    ) -> Result<Option<f64>, ElasticityError> {
+        if let Some(p) = self
+            .boundary
+            .pinned
+            .iter()
+            .find(|p| p.node == node && p.component == c)
+        {
+            return Ok(Some(p.value));
+        }
+        let [x2, x3] = self.grid.coordinates(node);
+        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        let mut sides = Vec::with_capacity(2);
+        if node[1] == 0 {
+            sides.push((Side::X3Min, x2));
+        }
+        if node[1] == n3 - 1 {
+            sides.push((Side::X3Max, x2));
+        }
+        if !self.grid.is_periodic() {
+            if node[0] == 0 {
+                sides.push((Side::X2Min, x3));
+            }
+            if node[0] == n2 - 1 {
+                sides.push((Side::X2Max, x3));
+            }
+        }
+        for (side, s) in sides {
+            if let Some(ComponentCondition::Displacement(f)) =
+                self.boundary.side(side).map(|sc| sc.component(c))
+            {
+                let value = f.eval(s);
+                if !value.is_finite() {
+                    return Err(ElasticityError::NonFinite {
+                        what: "boundary displacement",
+                        at: [x2, x3],
+                    });
+                }
+                return Ok(Some(value));
+            }
+        }
+        Ok(None)
+    }
+
+    /// Elements containing grid index `i` along one direction.
+    fn elements_along(&self, i: usize, count: usize, periodic: bool) -> Vec<usize> {
+        let k = self.order.degree();
+        if !i.is_multiple_of(k) {
+            return vec![i / k];
+        }
+        let mut out = Vec::with_capacity(2);
+        if periodic {
+            out.push((i / k) % count);
+            out.push((i / k + count - 1) % count);
+        } else {
+            if i / k < count {
+                out.push(i / k);
+            }
+            if i > 0 {
+                out.push(i / k - 1);
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+
+    /// The gradient-recovery stencil at a node: `(node, [value, d_2, d_3])` weights.
+    fn node_stencil(&self, [i, j]: [usize; 2]) -> Vec<([usize; 2], [f64; 3])> {
+        let mut out = Vec::with_capacity(7);
+        out.push(([i, j], [1.0, 0.0, 0.0]));
+        let g = &self.grid;
+        for (ii, w) in difference_stencil(i, g.n2(), g.dx2(), g.is_periodic()) {
+            out.push(([ii, j], [0.0, w, 0.0]));
+        }
+        for (jj, w) in difference_stencil(j, g.n3(), g.dx3(), false) {
+            out.push(([i, jj], [0.0, 0.0, w]));
+        }
+        out
+    }
+
+    /// The contact rows `[T^3_2, T^3_3]` at node `(i, 0)`.
+    fn contact_rows(&self, i: usize) -> [SparseRow; 2] {
+        let (coef, _) = &self.contact[i];
+        let st = self.node_stencil([i, 0]);
+        [0, 1].map(|e| {
+            let mut terms = Vec::with_capacity(2 * st.len());
+            for (node, w) in &st {
+                for c in 0..2 {
+                    let a = coef[e][c] * w[0] + coef[e][2 + c] * w[1] + coef[e][4 + c] * w[2];
+                    terms.push((self.dof(*node, Component::ALL[c]), a));
+                }
+            }
+            SparseRow::from_terms(&mut terms)
+        })
+    }
+
+    /// Builds the row-wise pattern and the slot of every local element entry.
+    fn build_pattern(&mut self) {
+        let g = self.grid;
+        let n2 = g.n2();
+        let ndof = self.dof_count();
+        let mut nodes = [0; 9];
+        let nen = self.nodes_per_element();
+        // contact extras: the columns of T^3_j in each free tangential row on x3 = 0
+        let mut extras: Vec<Vec<usize>> = vec![vec![]; n2];
+        for (i, extra) in extras.iter_mut().enumerate() {
+            let d = self.dof([i, 0], Component::X2);
+            if self.dirichlet[d].is_none() {
+                let rows = self.contact_rows(i);
+                extra.extend(rows.iter().flat_map(|r| r.columns.iter().copied()));
+            }
+        }
+        let rows: Vec<Vec<usize>> = (0..g.node_count())
+            .into_par_iter()
+            .map(|node| {
+                let [i2, i3] = g.node(node);
+                let mut neighbours = Vec::with_capacity(25);
+                for e2 in self.elements_along(i2, self.elements[0], g.is_periodic()) {
+                    for e3 in self.elements_along(i3, self.elements[1], false) {
+                        let mut nn = [0; 9];
+                        self.element_nodes(e2 * self.elements[1] + e3, &mut nn);
+                        neighbours.extend_from_slice(&nn[..nen]);
+                    }
+                }
+                neighbours.sort_unstable();
+                neighbours.dedup();
+                let mut cols = Vec::with_capacity(2 * neighbours.len());
+                for m in neighbours {
+                    for c in 0..2 {
+                        if self.dirichlet[2 * m + c].is_none() {
+                            cols.push(2 * m + c);
+                        }
+                    }
+                }
+                cols
+            })
+            .collect();
+        let mut row_ptr = Vec::with_capacity(ndof + 1);
+        let mut columns = Vec::with_capacity(ndof * 20);
+        row_ptr.push(0);
+        for d in 0..ndof {
+            let node = d / 2;
+            if self.dirichlet[d].is_some() {
+                columns.push(d);
+            } else {
+                let start = columns.len();
+                columns.extend_from_slice(&rows[node]);
+                let [i2, i3] = g.node(node);
+                if i3 == 0 && d % 2 == 0 {
+                    columns.extend_from_slice(&extras[i2]);
+                }
+                columns[start..].sort_unstable();
+                let mut w = start;
+                for r in start..columns.len() {
+                    if r == start || columns[r] != columns[w - 1] {
+                        columns[w] = columns[r];
+                        w += 1;
+                    }
+                }
+                columns.truncate(w);
+            }
+            row_ptr.push(columns.len());
+        }
+        let slot = |r: usize, c: usize| -> Option<usize> {
+            let row = &columns[row_ptr[r]..row_ptr[r + 1]];
+            row.binary_search(&c).ok().map(|p| row_ptr[r] + p)
+        };
+        let ne = self.elements[0] * self.elements[1];
+        let l = 2 * nen;
+        let mut local_slots = vec![NO_SLOT; ne * l * l];
+        for e in 0..ne {
+            self.element_nodes(e, &mut nodes);
+            for a in 0..l {
+                let r = 2 * nodes[a / 2] + a % 2;
+                for b in 0..l {
+                    let c = 2 * nodes[b / 2] + b % 2;
+                    let keep = if self.dirichlet[r].is_some() {
+                        r == c
+                    } else {
+                        self.dirichlet[c].is_none()
+                    };
+                    if keep {
+                        local_slots[(e * l + a) * l + b] =
+                            slot(r, c).expect("element entry in the pattern") as u32;
+                    }
+                }
+            }
+        }
+        self.diagonal_slots = (0..ndof)
+            .map(|d| slot(d, d).expect("diagonal in the pattern"))
+            .collect();
+        self.row_ptr = row_ptr;
+        self.columns = columns;
+        self.local_slots = local_slots;
+    }
+
+    /// The element matrix of element `e` into `out` (`2 nen x 2 nen`, row-major, local dof
+    /// `2 a + c`), exactly symmetric.
+    fn element_matrix(&self, e: usize, out: &mut [f64]) {
+        let (nq, nen) = (self.quadrature_points(), self.nodes_per_element());
+        let l = 2 * nen;
+        out.iter_mut().for_each(|x| *x = 0.0);
+        let mut kb = [[[0.0f64; 2]; 6]; 9];
+        for q in 0..nq {
+            let packed = &self.stiffness[e * nq + q];
+            let kq: [[f64; 6]; 6] =
+                core::array::from_fn(|r| core::array::from_fn(|s| packed[PACK[r][s]]));
+            let phi = &self.shape[q * nen..(q + 1) * nen];
+            for (b, kbb) in kb.iter_mut().enumerate().take(nen) {
+                let f = phi[b];
+                for (row, kr) in kbb.iter_mut().enumerate() {
+                    for (d, x) in kr.iter_mut().enumerate() {
+                        *x = kq[row][d] * f[0] + kq[row][2 + d] * f[1] + kq[row][4 + d] * f[2];
+                    }
+                }
+            }
+            for a in 0..nen {
+                let f = phi[a];
+                for c in 0..2 {
+                    let row = &mut out[(2 * a + c) * l..(2 * a + c + 1) * l];
+                    for (b, kbb) in kb.iter().enumerate().take(nen) {
+                        for d in 0..2 {
+                            row[2 * b + d] +=
+                                f[0] * kbb[c][d] + f[1] * kbb[2 + c][d] + f[2] * kbb[4 + c][d];
+                        }
+                    }
+                }
+            }
+        }
+        for i in 0..l {
+            for j in i + 1..l {
+                let s = 0.5 * (out[i * l + j] + out[j * l + i]);
+                out[i * l + j] = s;
+                out[j * l + i] = s;
+            }
+        }
+    }
+
+    /// The assembled values (in `entries()` order) and right-hand side.
+    fn assemble(&self, rhs: &mut [f64]) -> Vec<f64> {
+        let nen = self.nodes_per_element();
+        let l = 2 * nen;
+        let ne = self.elements[0] * self.elements[1];
+        let mut values = vec![0.0; self.columns.len()];
+        rhs.copy_from_slice(&self.load);
+        let mut buffer = vec![0.0; BATCH.min(ne) * l * l];
+        let mut nodes = [0; 9];
+        for start in (0..ne).step_by(BATCH) {
+            let end = (start + BATCH).min(ne);
+            let buf = &mut buffer[..(end - start) * l * l];
+            buf.par_chunks_mut(l * l)
+                .enumerate()
+                .for_each(|(i, out)| self.element_matrix(start + i, out));
+            for e in start..end {
+                let local = &buf[(e - start) * l * l..(e - start + 1) * l * l];
+                let slots = &self.local_slots[e * l * l..(e + 1) * l * l];
+                self.element_nodes(e, &mut nodes);
+                for (idx, (&s, &x)) in slots.iter().zip(local).enumerate() {
+                    if s != NO_SLOT {
+                        values[s as usize] += x;
+                    } else {
+                        let (a, b) = (idx / l, idx % l);
+                        let r = 2 * nodes[a / 2] + a % 2;
+                        let c = 2 * nodes[b / 2] + b % 2;
+                        if let (None, Some(g)) = (self.dirichlet[r], self.dirichlet[c]) {
+                            rhs[r] -= x * g;
+                        }
+                    }
+                }
+            }
+        }
+        for (d, g) in self.dirichlet.iter().enumerate() {
+            if let Some(g) = g {
+                rhs[d] = values[self.diagonal_slots[d]] * g;
+            }
+        }
+        values
+    }
+
+    /// Interpolates the discrete displacement `[v^2, v^3]` and the exact one over every
+    /// element with a `(k + 2)`-point Gauss rule per direction and returns the error norms.
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
+    pub fn displacement_errors(
+        &self,
+        v: &[f64],
+        exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
+    ) -> Result<DisplacementErrors, ElasticityError> {
+        if v.len() != self.dof_count() {
+            return Err(ElasticityError::DimensionMismatch {
+                quantity: "displacement",
+                expected: self.dof_count(),
+                found: v.len(),
+            });
+        }
+        let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
+            let g = &p.metric;
+            g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
+        };
+        let max = (0..self.grid.node_count())
+            .into_par_iter()
+            .map(|k| -> Result<f64, ElasticityError> {
+                let [x2, x3] = self.grid.coordinates(self.grid.node(k));
+                let p = self.chart.shell_point([0.0, x2, x3])?;
+                let u = exact([x2, x3]);
+                Ok(norm2(&p, [v[2 * k] - u[0], v[2 * k + 1] - u[1]]).sqrt())
+            })
+            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
+        let (gp, gw) = gauss_rule(self.order.nodes_per_direction() + 1);
+        let [l2, l3] = self.element_size();
+        let det = 0.25 * l2 * l3;
+        let np = self.order.nodes_per_direction();
+        let ne = self.elements[0] * self.elements[1];
+        let sums = (0..ne)
+            .into_par_iter()
+            .map(|e| -> Result<[f64; 3], ElasticityError> {
+                let mut nodes = [0; 9];
+                self.element_nodes(e, &mut nodes);
+                let [x0, y0] = self.element_origin(e);
+                let mut s = [0.0; 3];
+                for (i, &xi) in gp.iter().enumerate() {
+                    let (n2, _) = self.order.shape_1d(xi);
+                    for (j, &eta) in gp.iter().enumerate() {
+                        let (n3, _) = self.order.shape_1d(eta);
+                        let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
+                        let mut uh = [0.0; 2];
+                        for a2 in 0..np {
+                            for a3 in 0..np {
+                                let node = nodes[a2 * np + a3];
+                                let n = n2[a2] * n3[a3];
+                                uh[0] += n * v[2 * node];
+                                uh[1] += n * v[2 * node + 1];
+                            }
+                        }
+                        let p = self.chart.shell_point([0.0, x[0], x[1]])?;
+                        let u = exact(x);
+                        let w = gw[i] * gw[j] * det;
+                        let err2 = norm2(&p, [uh[0] - u[0], uh[1] - u[1]]);
+                        s[0] += w * err2;
+                        s[1] += w * p.sqrt_g * err2;
+                        s[2] += w * p.sqrt_g * norm2(&p, u);
+                    }
+                }
+                Ok(s)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        // sequential sum in element order: reproducible
+        let s = sums.iter().fold([0.0; 3], |acc, x| {
+            [acc[0] + x[0], acc[1] + x[1], acc[2] + x[2]]
+        });
+        let [t0, t1] = self.grid.theta();
+        let area = (t1 - t0) * self.grid.thickness();
+        Ok(DisplacementErrors {
+            max,
+            rms: (s[0] / area).sqrt(),
+            l2: s[1].sqrt(),
+            l2_exact: s[2].sqrt(),
+        })
+    }
+
+    /// The local displacement at a node by the recovery stencil.
+    fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
+        let mut u = [0.0; 6];
+        for (n, w) in self.node_stencil(node) {
+            for c in 0..2 {
+                let x = v[self.dof(n, Component::ALL[c])];
+                u[c] += w[0] * x;
+                u[2 + c] += w[1] * x;
+                u[4 + c] += w[2] * x;
+            }
+        }
+        LocalDisplacement {
+            value: [u[0], u[1]],
+            gradient: [[u[2], u[3]], [u[4], u[5]]],
+        }
+    }
+}
+
+impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
+    fn method(&self) -> &'static str {
+        self.order.method_name()
+    }
+
+    fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    fn dof_count(&self) -> usize {
+        2 * self.grid.node_count()
+    }
+
+    #[track_caller]
+    fn dof(&self, node: [usize; 2], component: Component) -> usize {
+        assert!(
+            node[0] < self.grid.n2() && node[1] < self.grid.n3(),
+            "node {node:?} outside the grid"
+        );
+        2 * self.grid.node_index(node) + component.index()
+    }
+
+    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
+        let mut entries = Vec::with_capacity(self.columns.len());
+        for r in 0..self.dof_count() {
+            entries.extend(
+                self.columns[self.row_ptr[r]..self.row_ptr[r + 1]]
+                    .iter()
+                    .map(|&c| (r, c)),
+            );
+        }
+        Ok(entries)
+    }
+
+    fn fill(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        if rhs.len() != self.dof_count() {
+            return Err(ElasticityError::DimensionMismatch {
+                quantity: "rhs",
+                expected: self.dof_count(),
+                found: rhs.len(),
+            });
+        }
+        let values = self.assemble(rhs);
+        for (k, x) in values.into_iter().enumerate() {
+            add(k, x);
+        }
+        Ok(())
+    }
+
+    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        let g = &self.grid;
+        let (n2, k) = (g.n2(), self.order.degree());
+        (0..n2)
+            .map(|i| {
+                let node = [i, 0];
+                let (_, [sqrt_g, s33, sqrt_g22]) = self.contact[i];
+                // int N_i dx2 on x3 = 0: row sums of the 1-D boundary mass matrix
+                let interior = match (k, i % 2) {
+                    (1, _) => g.dx2(),
+                    (_, 0) => 2.0 * g.dx2() / 3.0,
+                    _ => 4.0 * g.dx2() / 3.0,
+                };
+                let end = !g.is_periodic() && (i == 0 || i == n2 - 1);
+                let length = if end { 0.5 * interior } else { interior };
+                let [shear, normal] = self.contact_rows(i);
+                let tangential_dof = self.dof(node, Component::X2);
+                Ok(ContactNode {
+                    node,
+                    x2: g.x2(i),
+                    tangential_row: self.dirichlet[tangential_dof]
+                        .is_none()
+                        .then_some(tangential_dof),
+                    tangential_dof,
+                    normal_dof: self.dof(node, Component::X3),
+                    traction_weight: sqrt_g * s33 * length,
+                    sqrt_g22,
+                    normal_stress: normal,
+                    shear_stress: shear,
+                })
+            })
+            .collect()
+    }
+
+    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
+        if v.len() != self.dof_count() {
+            return Err(ElasticityError::DimensionMismatch {
+                quantity: "displacement",
+                expected: self.dof_count(),
+                found: v.len(),
+            });
+        }
+        let n = self.grid.node_count();
+        let mut out = NodalFields {
+            grid: self.grid,
+            displacement: Vec::with_capacity(n),
+            strain: Vec::with_capacity(n),
+            stress: Vec::with_capacity(n),
+            scale: Vec::with_capacity(n),
+            cartesian_displacement: Vec::with_capacity(n),
+        };
+        for k in 0..n {
+            let node = self.grid.node(k);
+            let [x2, x3] = self.grid.coordinates(node);
+            let p = self.chart.shell_point([0.0, x2, x3])?;
+            let u = self.local(node, v);
+            out.displacement.push(u.value);
+            out.strain.push(strain(&p, &u));
+            out.stress
+                .push(contravariant_stress(&p, &self.material, &u));
+            out.scale.push([0, 1, 2].map(|i| p.metric[i][i].sqrt()));
+            let g = &p.covariant_basis;
+            out.cartesian_displacement
+                .push([0, 1, 2].map(|a| u.value[0] * g[1][a] + u.value[1] * g[2][a]));
+        }
+        Ok(out)
+    }
+}
