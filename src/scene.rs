@@ -8,6 +8,7 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
+use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
     RightCircularCone,
@@ -34,6 +35,8 @@ pub struct Scene {
     pub grid: GridSpec,
     /// `[solver]`: linear and nonlinear solver backends.
     pub solver: SolverSpec,
+    /// `[discretisation]`: how the thick body's Navier operator is discretised.
+    pub discretisation: DiscretisationSpec,
 }
 
 /// The obstacle's shape (`obstacle.shape`).
@@ -258,6 +261,15 @@ impl Default for SolverSpec {
     }
 }
 
+/// `[discretisation]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct DiscretisationSpec {
+    /// `fd` (finite differences, the default) | `fem-q1` | `fem-q2` (finite elements on the
+    /// same grid; Q2 needs odd `grid.n2`, `grid.n3`).
+    pub method: DiscretisationMethod,
+}
+
 impl Scene {
     /// Loads a scene from an optional TOML file and applies `--set KEY=VALUE` overrides.
     ///
@@ -397,6 +409,21 @@ mod tests {
         assert_eq!(s.obstacle.shape, Shape::Prism);
         assert_eq!(s.obstacle.u, "2*sin(t) + 0.2*sin(2*t)");
         assert_eq!(s.friction.mu, 0.3);
+    }
+
+    #[test]
+    fn discretisation_method_defaults_to_fd_and_accepts_fem() {
+        assert_eq!(
+            Scene::default().discretisation.method,
+            DiscretisationMethod::Fd
+        );
+        assert!(known_keys().contains(&"discretisation.method".to_string()));
+        let s = Scene::load(None, &["discretisation.method=fem-q2".into()]).unwrap();
+        assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ2);
+        let e = Scene::load(None, &["discretisation.method=fem-q3".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("fem-q3"), "{e}");
     }
 
     #[test]
