@@ -24,9 +24,11 @@ fn central_differences<L: FrictionLaw<f64>>(
             d_slip[i][j] = (tu[i] - td[i]) / (2.0 * h);
         }
     }
-    let tu = law.traction(&ContactState::new(c.slip, c.normal_pressure + h), p);
-    let td = law.traction(&ContactState::new(c.slip, c.normal_pressure - h), p);
-    (d_slip, [0, 1].map(|i| (tu[i] - td[i]) / (2.0 * h)))
+    // t is linear in p: a step relative to |p| keeps round-off small
+    let hp = 1e-6 * c.normal_pressure.abs().max(1.0);
+    let tu = law.traction(&ContactState::new(c.slip, c.normal_pressure + hp), p);
+    let td = law.traction(&ContactState::new(c.slip, c.normal_pressure - hp), p);
+    (d_slip, [0, 1].map(|i| (tu[i] - td[i]) / (2.0 * hp)))
 }
 
 proptest! {
@@ -56,7 +58,7 @@ proptest! {
                 prop_assert!((d.d_slip[i][j] - fd_slip[i][j]).abs() <= 1e-6 * scale.max(1e-300) + 1e-12,
                     "d_slip[{}][{}] = {} vs {}", i, j, d.d_slip[i][j], fd_slip[i][j]);
             }
-            prop_assert!((d.d_pressure[i] - fd_p[i]).abs() <= 1e-9 * mu.max(1e-300) + 1e-12);
+            prop_assert!((d.d_pressure[i] - fd_p[i]).abs() <= 4e-9 * mu.max(1e-300) + 1e-12);
         }
     }
 }
