@@ -32,6 +32,9 @@ pub enum Command {
     /// Convergence studies of the elasticity discretisations: errors and observed orders.
     #[command(after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json")]
     Verify(VerifyArgs),
+    /// Benchmarks: `work-precision` (run time against error, FD vs FEM vs scikit-fem).
+    #[command(after_help = "Example:\n  capstan bench work-precision --quick")]
+    Bench(commands::bench::BenchArgs),
 }
 
 /// Arguments of `capstan verify`.
@@ -77,6 +80,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         None => default_job(),
         Some(Command::Geometry(args)) => geometry(&args),
         Some(Command::Verify(args)) => verify(&args),
+        Some(Command::Bench(args)) => bench(&args),
     }
 }
 
@@ -96,6 +100,19 @@ fn verify(args: &VerifyArgs) -> Result<String, CliError> {
         Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
     } else {
         Ok(commands::verify::table(&report))
+    }
+}
+
+fn bench(args: &commands::bench::BenchArgs) -> Result<String, CliError> {
+    match &args.what {
+        commands::bench::BenchCommand::WorkPrecision(a) => {
+            let report = commands::bench::report(a)?;
+            if a.json {
+                Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+            } else {
+                Ok(commands::bench::table(&report))
+            }
+        }
     }
 }
 
