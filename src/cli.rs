@@ -35,6 +35,16 @@ pub enum Command {
     /// Benchmarks: `work-precision` (run time against error, FD vs FEM vs scikit-fem).
     #[command(after_help = "Example:\n  capstan bench work-precision --quick")]
     Bench(commands::bench::BenchArgs),
+    /// Tension profile of a membrane at limiting equilibrium (generalised capstan equation).
+    #[command(
+        after_help = "Examples:\n  capstan tension --set obstacle.shape=ellipse --set obstacle.b=1 --set membrane.theta0=-0.785398 --set membrane.theta_max=0.785398 --json\n  capstan tension --set obstacle.shape=cylinder --set loads.gravity=9.81 --set loads.density=0.1 --set membrane.theta0=0"
+    )]
+    Tension(SceneArgs),
+    /// Coefficient of friction implied by a tension pair {membrane.t0, membrane.t_max}.
+    #[command(
+        after_help = "Example:\n  capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75"
+    )]
+    InferMu(SceneArgs),
 }
 
 /// Arguments of `capstan verify`.
@@ -81,6 +91,8 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         Some(Command::Geometry(args)) => geometry(&args),
         Some(Command::Verify(args)) => verify(&args),
         Some(Command::Bench(args)) => bench(&args),
+        Some(Command::Tension(args)) => tension(&args),
+        Some(Command::InferMu(args)) => infer_mu(&args),
     }
 }
 
@@ -91,6 +103,26 @@ fn geometry(args: &SceneArgs) -> Result<String, CliError> {
         Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
     } else {
         Ok(commands::geometry::table(&report, &scene.obstacle.build()?))
+    }
+}
+
+fn tension(args: &SceneArgs) -> Result<String, CliError> {
+    let scene = args.load()?;
+    let report = commands::tension::report(&scene)?;
+    if args.json {
+        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+    } else {
+        Ok(commands::tension::table(&report, &scene))
+    }
+}
+
+fn infer_mu(args: &SceneArgs) -> Result<String, CliError> {
+    let scene = args.load()?;
+    let report = commands::infer_mu::report(&scene)?;
+    if args.json {
+        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+    } else {
+        Ok(commands::infer_mu::table(&report, &scene))
     }
 }
 

@@ -1,5 +1,6 @@
 //! The command line's error type and exit codes.
 
+use capstan_friction::{ErrorCategory, FrictionError};
 use capstan_geometry::GeometryError;
 
 /// Everything the command line can report; each maps to an exit code.
@@ -36,17 +37,28 @@ pub enum CliError {
     /// An elasticity problem failed (bad material, grid or boundary data: exit code 2).
     #[error(transparent)]
     Elasticity(#[from] capstan_elasticity::ElasticityError),
+    /// A membrane capstan model failed: bad input (exit code 2), no limiting equilibrium on
+    /// the interval (lift-off, slack, non-convex, no `mu`: 3), or non-convergence (4).
+    #[error(transparent)]
+    Friction(#[from] FrictionError),
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
 }
 
 impl CliError {
-    /// Process exit code: 2 for bad input, 1 otherwise.
+    /// Process exit code: 2 for bad input, 3 when no limiting equilibrium exists, 4 for
+    /// non-convergence, 1 otherwise.
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
             Self::Scene { .. } | Self::Set { .. } | Self::Geometry(_) | Self::Elasticity(_) => 2,
+            Self::Friction(e) => match e.category() {
+                ErrorCategory::InvalidInput => 2,
+                ErrorCategory::NoEquilibrium => 3,
+                ErrorCategory::NotConverged => 4,
+                _ => 1,
+            },
         }
     }
 }

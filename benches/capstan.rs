@@ -1,0 +1,66 @@
+//! Membrane capstan profiles of 1000 samples: the closed form (ellipse), quadrature
+//! (expression prism, no loads) and the ODE (expression prism with gravity and speed).
+//!
+//! Run: `cargo bench --bench capstan`. Accuracy against the closed-form ellipse is printed
+//! once before timing (the expression prism is the same ellipse given as expressions).
+
+use std::hint::black_box;
+
+use capstan_friction::membrane::{MembraneProblem, Method, tension_profile};
+use capstan_friction::samples::{ReferenceEllipse, heavy_fast_belt};
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn max_relative(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| ((x - y) / y).abs())
+        .fold(0.0, f64::max)
+}
+
+fn profiles(c: &mut Criterion) {
+    let r = ReferenceEllipse::default();
+    let (closed, expr) = (r.closed_form(), r.expressions());
+    let free = MembraneProblem {
+        mu: 0.5,
+        theta0: -1.0,
+        theta_max: 4.0,
+        samples: 1000,
+        ..Default::default()
+    };
+    let loaded = MembraneProblem {
+        t0: 5.0,
+        loads: heavy_fast_belt(),
+        ..free
+    };
+    for (name, p) in [("no loads", &free), ("gravity + speed", &loaded)] {
+        let exact = tension_profile(&closed, p).unwrap();
+        let other = tension_profile(&expr, p).unwrap();
+        eprintln!(
+            "capstan accuracy ({name}): ellipse {} vs expression prism {}: max relative difference {:.2e}",
+            exact.method,
+            other.method,
+            max_relative(&other.tension, &exact.tension)
+        );
+    }
+    assert_eq!(
+        tension_profile(&closed, &free).unwrap().method,
+        Method::ClosedForm
+    );
+    let mut g = c.benchmark_group("capstan/profile_1000");
+    g.bench_function("ellipse_closed_form", |b| {
+        b.iter(|| tension_profile(black_box(&closed), black_box(&free)).unwrap())
+    });
+    g.bench_function("expression_prism_quadrature", |b| {
+        b.iter(|| tension_profile(black_box(&expr), black_box(&free)).unwrap())
+    });
+    g.bench_function("expression_prism_gravity_speed_ode", |b| {
+        b.iter(|| tension_profile(black_box(&expr), black_box(&loaded)).unwrap())
+    });
+    g.bench_function("ellipse_gravity_speed_ode", |b| {
+        b.iter(|| tension_profile(black_box(&closed), black_box(&loaded)).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, profiles);
+criterion_main!(benches);

@@ -1,0 +1,247 @@
+//! `capstan tension` and `capstan infer-mu`: numbers through the library and the binary.
+
+use std::f64::consts::{FRAC_PI_4, PI};
+use std::process::Command;
+
+use capstan::cli::{Cli, run};
+use clap::Parser;
+use serde_json::Value;
+
+fn json(args: &[&str]) -> Value {
+    let mut argv = vec!["capstan"];
+    argv.extend_from_slice(args);
+    argv.push("--json");
+    let out = run(Cli::parse_from(argv)).unwrap();
+    serde_json::from_str(&out).unwrap()
+}
+
+fn array(v: &Value, key: &str) -> Vec<f64> {
+    v[key]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn tension_on_an_ellipse_quarter_is_exp_2_mu_atan_b_over_a() {
+    let theta0 = format!("membrane.theta0={}", -FRAC_PI_4);
+    let theta1 = format!("membrane.theta_max={}", FRAC_PI_4);
+    let v = json(&[
+        "tension",
+        "--set",
+        "obstacle.shape=ellipse",
+        "--set",
+        "obstacle.a=1",
+        "--set",
+        "obstacle.b=1.5",
+        "--set",
+        &theta0,
+        "--set",
+        &theta1,
+        "--set",
+        "membrane.samples=7",
+    ]);
+    assert_eq!(v["method"], "closed-form");
+    let (theta, tension) = (array(&v, "theta"), array(&v, "tension"));
+    assert_eq!(theta.len(), 7);
+    assert_eq!(tension.len(), 7);
+    assert_eq!(theta[0], -FRAC_PI_4);
+    assert_eq!(theta[6], FRAC_PI_4);
+    let expected = (2.0 * 0.5 * 1.5f64.atan()).exp(); // friction.mu defaults to 1/2
+    assert!((v["tension_ratio"].as_f64().unwrap() - expected).abs() < 1e-14);
+    assert!((v["t_max"].as_f64().unwrap() - expected).abs() < 1e-14);
+}
+
+#[test]
+fn tension_methods_follow_the_scene() {
+    let prism = json(&[
+        "tension",
+        "--set",
+        "obstacle.shape=prism",
+        "--set",
+        "obstacle.u=2*sin(t)",
+        "--set",
+        "obstacle.v=cos(t)",
+    ]);
+    assert_eq!(prism["method"], "quadrature");
+    let ellipse = json(&["tension", "--set", "obstacle.a=2", "--set", "obstacle.b=1"]);
+    assert!(
+        (prism["t_max"].as_f64().unwrap() - ellipse["t_max"].as_f64().unwrap()).abs() < 1e-13,
+        "expression ellipse vs closed form"
+    );
+    let heavy = json(&[
+        "tension",
+        "--set",
+        "obstacle.shape=prism",
+        "--set",
+        "obstacle.u=2*sin(t)",
+        "--set",
+        "obstacle.v=cos(t)",
+        "--set",
+        "loads.gravity=9.81",
+        "--set",
+        "loads.density=0.1",
+        "--set",
+        "loads.thickness=0.1",
+        "--set",
+        "membrane.t0=5",
+    ]);
+    assert_eq!(heavy["method"], "ode");
+    let cone = json(&[
+        "tension",
+        "--set",
+        "obstacle.shape=circular-cone",
+        "--set",
+        "obstacle.half_angle=0.5",
+        "--set",
+        "membrane.theta0=0",
+        "--set",
+        "membrane.theta_max=2",
+    ]);
+    assert_eq!(cone["method"], "closed-form");
+    let expected = (0.5 / 0.5f64.tan() * (0.5f64.sin() * 2.0).sin()).exp();
+    assert!((cone["tension_ratio"].as_f64().unwrap() - expected).abs() < 1e-14);
+    let general = json(&[
+        "tension",
+        "--set",
+        "obstacle.shape=cone",
+        "--set",
+        "membrane.theta0=0",
+        "--set",
+        "membrane.theta_max=2",
+    ]);
+    assert_eq!(general["method"], "quadrature");
+}
+
+#[test]
+fn cylinder_with_gravity_is_cap_grav() {
+    let v = json(&[
+        "tension",
+        "--set",
+        "obstacle.shape=cylinder",
+        "--set",
+        "obstacle.radius=1",
+        "--set",
+        "membrane.theta0=0",
+        "--set",
+        "membrane.theta_max=1.5",
+        "--set",
+        "membrane.t0=3",
+        "--set",
+        "loads.gravity=9.81",
+        "--set",
+        "loads.density=0.2",
+        "--set",
+        "loads.width=0.5",
+        "--set",
+        "loads.thickness=0.5",
+        "--set",
+        "friction.mu=0.3",
+    ]);
+    assert_eq!(v["method"], "closed-form");
+    let (w, mu, t) = (9.81 * 0.2 * 0.25, 0.3f64, 1.5f64);
+    let k = (1.0 - mu * mu) / (1.0 + mu * mu);
+    let cap_grav =
+        (3.0 - w * k) * (mu * t).exp() + w * (k * t.cos() + 2.0 * mu / (1.0 + mu * mu) * t.sin());
+    assert!((v["t_max"].as_f64().unwrap() - cap_grav).abs() < 1e-13 * cap_grav);
+}
+
+#[test]
+fn infer_mu_on_a_circle_half_wrap_is_0_322() {
+    let theta1 = format!("membrane.theta_max={PI}");
+    let v = json(&[
+        "infer-mu",
+        "--set",
+        "obstacle.shape=cylinder",
+        "--set",
+        "membrane.theta0=0",
+        "--set",
+        &theta1,
+        "--set",
+        "membrane.t_max=2.75",
+    ]);
+    let mu = v["mu"].as_f64().unwrap();
+    assert!((mu - 2.75f64.ln() / PI).abs() < 1e-15);
+    assert!(format!("{mu:.5}") == "0.32200");
+    assert_eq!(v["method"], "closed-form");
+}
+
+#[test]
+fn human_readable_output_is_a_table() {
+    let out = run(Cli::parse_from([
+        "capstan",
+        "tension",
+        "--set",
+        "membrane.samples=5",
+    ]))
+    .unwrap();
+    assert!(
+        out.contains("T_max/T0") && out.contains("closed-form"),
+        "{out}"
+    );
+    assert_eq!(
+        out.lines()
+            .filter(|l| l
+                .trim_start()
+                .starts_with(|c: char| c == '-' || c.is_ascii_digit()))
+            .count(),
+        5
+    );
+    let out = run(Cli::parse_from([
+        "capstan",
+        "infer-mu",
+        "--set",
+        "membrane.t_max=3",
+    ]))
+    .unwrap();
+    assert!(out.contains("mu = "), "{out}");
+}
+
+fn exit_code(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn errors_map_to_exit_codes() {
+    // bad input: 2, naming the key
+    let (code, err) = exit_code(&["tension", "--set", "friction.mu=-1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("friction.mu"), "{err}");
+    let (code, err) = exit_code(&["infer-mu"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("membrane.t_max"), "{err}");
+    // no limiting equilibrium: 3, naming the angle
+    let (code, err) = exit_code(&["infer-mu", "--set", "membrane.t_max=0.5"]);
+    assert_eq!(code, 3, "{err}");
+    let (code, err) = exit_code(&[
+        "tension",
+        "--set",
+        "obstacle.shape=prism",
+        "--set",
+        "obstacle.u=sin(t) + 0.3*sin(3*t)",
+        "--set",
+        "obstacle.v=cos(t)",
+    ]);
+    assert_eq!(code, 3, "{err}");
+    assert!(
+        err.contains("not convex") && err.contains("theta ="),
+        "{err}"
+    );
+    let (code, err) = exit_code(&[
+        "tension",
+        "--set",
+        "obstacle.shape=circular-cone",
+        "--set",
+        "membrane.theta_max=4",
+    ]);
+    assert_eq!(code, 3, "{err}");
+}
