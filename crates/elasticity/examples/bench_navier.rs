@@ -15,7 +15,7 @@
 //! of 1e-8.
 //!
 //! `--ordering colamd` (default, faer's choice), `nd` (nested dissection of the grid, with
-//! separators `--separator-width W` lines wide, default 4) or `amd` (AMD on `A + A^T`).
+//! separators `--separator-width W` lines wide, default 2) or `amd` (AMD on `A + A^T`).
 
 use std::time::Instant;
 
@@ -79,7 +79,7 @@ fn main() {
     };
     let ordering_name = option("--ordering").unwrap_or("colamd");
     let separator_width: usize =
-        option("--separator-width").map_or(4, |w| w.parse().expect("width"));
+        option("--separator-width").map_or(2, |w| w.parse().expect("width"));
     // dof = 2 (i2 n3 + i3) + c, the numbering GridShape describes
     let grid = GridShape {
         n2,

@@ -11,6 +11,10 @@
 //!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
 //!   [`CondensedSolver`] (static condensation when only a small interface block changes).
 //!   [`LinearBackend`] picks one by name.
+//! - Fill-reducing orderings for the direct backends ([`DirectParams::ordering`],
+//!   [`ColumnOrdering`]): COLAMD (LU's default), AMD on `A + A^T`, and a geometric nested
+//!   dissection of a structured grid described by [`GridShape`] (no physics: only how the
+//!   unknowns are numbered).
 //! - [`Residual`] / [`Jacobian`] capability traits and [`NonlinearSolver`]s: [`Newton`] with a
 //!   backtracking line search and [`JacobiNewton`]; [`NonlinearMethod`] picks one by name.
 //!   Progress goes to an [`Observer`]; results come as a [`SolveReport`] or a typed
@@ -34,6 +38,11 @@
 //!   factorises numerically singular matrices without complaint; very ill-conditioned
 //!   matrices (condition number above about `1e7` with the default) are reported as singular.
 //! - Parallelism of the faer backends follows `faer::get_global_parallelism()`.
+//! - [`SparseLu`] takes its static structure from `A^T A` (faer's partial-pivoting LU), so its
+//!   fronts are about twice as wide as those of a factorisation of `A` itself: on the
+//!   2000 x 321 Navier grid (1.28 M unknowns) the nested dissection brings the peak to about
+//!   7.7 GiB (COLAMD: about 9.8 GiB). A symmetric-structure LU (`A + A^T`, pivoting kept
+//!   inside supernodes) would be needed for much less; faer 0.24 has none.
 //!
 //! # Example
 //! ```
