@@ -42,14 +42,15 @@ impl GridShape {
 ///
 /// Which ordering wins depends on the stencil. Measured with LU (bench `bench_navier` of the
 /// elasticity crate: 2 unknowns per node, 9-point stencil with reach-2 one-sided boundary
-/// rows), nested dissection with 2-line separators against COLAMD:
+/// rows; 2 shared cores, timings within about 30%), nested dissection with 2-line separators
+/// against COLAMD:
 /// ```text
 /// grid        unknowns   fill bound (1e6)   analyse s     factor s      VmHWM MiB
 ///                        colamd    nd       colamd  nd    colamd  nd    colamd   nd
-/// 250 x 41      20,500     7.8      6.5      0.10  0.02    0.19  0.28     102     83
-/// 500 x 81      81,000    43.2     32.3      0.81  0.12    1.74  1.37     496    355
-/// 1000 x 161   322,000   215.1    169.4      3.07  0.60   12.6   9.2     2280   1794
-/// 2000 x 321 1,284,000     -      797.7        -   2.45     -   38.7       -    7881
+/// 250 x 41      20,500     7.8      6.1      0.08  0.01    0.15  0.11     102     76
+/// 500 x 81      81,000    43.2     32.3      0.44  0.05    0.89  0.58     496    355
+/// 1000 x 161   322,000   215.1    163.3      1.89  0.21    4.84  3.72    2280   1677
+/// 2000 x 321 1,284,000   975.0    797.7      5.68  1.05   30.6  25.1     9998   7881
 /// ```
 /// (fill bound: [`crate::SparseLu::structural_fill_bound`]; separators 3 and 4 lines wide
 /// were worse, 1 line far worse: it leaves the halves coupled in `A^T A`). On the 5-point
