@@ -6,7 +6,9 @@
 
 use std::hint::black_box;
 
+use capstan_friction::membrane::closed_form::ellipse_turning_angle;
 use capstan_friction::membrane::{MembraneProblem, Method, tension_profile};
+use capstan_friction::quadrature::GaussKronrod;
 use capstan_friction::samples::{ReferenceEllipse, heavy_fast_belt};
 use criterion::{Criterion, criterion_group, criterion_main};
 
@@ -42,6 +44,33 @@ fn profiles(c: &mut Criterion) {
             max_relative(&other.tension, &exact.tension)
         );
     }
+    // The ODE against Theorem 1 by quadrature (variation of constants, continuous Psi):
+    // T - c = e^{mu dPsi} [T0 - c - int (g_r2 + mu sqrt(a22) g_r3) e^{-mu dPsi}],
+    // g_r2 = -w v', sqrt(a22) g_r3 = -w u' for gravity on (a sin t, b cos t).
+    let (a, b, mu) = (r.a, r.b, loaded.mu);
+    let (w, c0) = (
+        loaded.loads.weight_per_length(),
+        loaded.loads.speed_tension(),
+    );
+    let psi = |t: f64| ellipse_turning_angle(a, b, t) - ellipse_turning_angle(a, b, loaded.theta0);
+    let ode = tension_profile(&expr, &loaded).unwrap();
+    let (mut integral, mut worst) = (0.0, 0.0f64);
+    for i in 1..ode.theta.len() {
+        integral += GaussKronrod::default()
+            .integrate(
+                |s: f64| Ok((w * b * s.sin() - mu * w * a * s.cos()) * (-mu * psi(s)).exp()),
+                ode.theta[i - 1],
+                ode.theta[i],
+            )
+            .unwrap()
+            .value;
+        let t = ode.theta[i];
+        let reference = c0 + (mu * psi(t)).exp() * (loaded.t0 - c0 - integral);
+        worst = worst.max(((ode.tension[i] - reference) / reference).abs());
+    }
+    eprintln!(
+        "capstan accuracy (gravity + speed): ODE vs Theorem 1 by quadrature: max relative difference {worst:.2e}"
+    );
     assert_eq!(
         tension_profile(&closed, &free).unwrap().method,
         Method::ClosedForm
