@@ -31,6 +31,7 @@
 #![warn(missing_docs)]
 
 mod boundary;
+pub mod contact;
 mod discretisation;
 mod error;
 mod fields;
@@ -55,5 +56,7 @@ pub use grid::Grid;
 pub use material::Material;
 pub use shell_geometry::ShellGeometry;
 
+/// The friction crate, re-exported for users of [`contact`].
+pub use capstan_friction as friction;
 /// The solver crate, re-exported for users of [`Discretisation::solve`].
 pub use capstan_solvers as solvers;

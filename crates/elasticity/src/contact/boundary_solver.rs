@@ -1,0 +1,661 @@
+//! The boundary-only (condensed) contact solver: factor the bulk once, Newton on the contact
+//! tractions only.
+
+use std::sync::Mutex;
+
+use capstan_friction::{ContactState, FrictionLaw};
+use capstan_solvers::{LinearSolver, SparseLu};
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+
+use crate::contact::error::ContactError;
+use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::solution::{ContactSolution, SolveStats};
+use crate::discretisation::Discretisation;
+
+/// Settings of the contact Newton iterations (both solvers) and of the load continuation.
+///
+/// # Math
+/// ```text
+/// converged when max_k |G_k| <= tolerance * max(|tau0|, |tau_max|) * max_k sqrt(g_22)
+/// continuation: lambda = 0 -> 1 on the loads, step x1.5 after success, /2 after failure
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ContactSettings {
+    /// Newton iterations per continuation step.
+    pub max_iterations: usize,
+    /// Relative tolerance on the condensed residual (see above).
+    pub tolerance: f64,
+    /// First load step of the continuation (used only when plain Newton fails).
+    pub initial_load_step: f64,
+    /// Smallest load step before giving up.
+    pub min_load_step: f64,
+    /// Cap on continuation steps.
+    pub max_continuation_steps: usize,
+}
+
+impl Default for ContactSettings {
+    fn default() -> Self {
+        Self {
+            max_iterations: 60,
+            tolerance: 1e-10,
+            initial_load_step: 0.25,
+            min_load_step: 1e-4,
+            max_continuation_steps: 400,
+        }
+    }
+}
+
+impl ContactSettings {
+    /// Checks every field.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] naming the first bad field.
+    pub fn validate(&self) -> Result<(), ContactError> {
+        let bad = |field, value, allowed| {
+            Err(ContactError::InvalidParameter {
+                field,
+                value,
+                allowed,
+            })
+        };
+        if self.max_iterations == 0 {
+            return bad("max_iterations", 0.0, "[1, inf)");
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return bad("tolerance", self.tolerance, "(0, 1)");
+        }
+        if !(self.initial_load_step > 0.0 && self.initial_load_step <= 1.0) {
+            return bad("initial_load_step", self.initial_load_step, "(0, 1]");
+        }
+        if !(self.min_load_step > 0.0 && self.min_load_step <= self.initial_load_step) {
+            return bad(
+                "min_load_step",
+                self.min_load_step,
+                "(0, initial_load_step]",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// The rigid sliding mode of the bilaterally constrained body (a circular obstacle) and the
+/// range of tension ratios friction can hold against it.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SlidingMode {
+    /// Smallest singular value over the largest of the frictionless condensed operator.
+    pub relative_singular_value: f64,
+    /// `tau_max / tau0` at which the whole contact slides in the negative direction.
+    pub lower_ratio: f64,
+    /// `tau_max / tau0` at which the whole contact slides in the positive direction.
+    pub upper_ratio: f64,
+}
+
+/// Work done once by [`BoundarySolver::new`].
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SetupStats {
+    /// Contact unknowns `m`.
+    pub contact_unknowns: usize,
+    /// Bulk unknowns `n`.
+    pub bulk_unknowns: usize,
+    /// Sparse LU factorisations of the bulk (1).
+    pub factorisations: usize,
+    /// Sparse solves with the bulk factors (`m + 2`).
+    pub bulk_solves: usize,
+}
+
+/// Relative singular value below which the frictionless bulk counts as having a sliding mode.
+const SLIDING_MODE_THRESHOLD: f64 = 1e-8;
+
+/// The boundary-only contact solver.
+///
+/// # Math
+/// The friction traction acts only on the `m` tangential contact rows. With a stabilising
+/// spring `c_k` on those rows (so the bulk stays invertible even when the body can slide
+/// rigidly, as on a circle) and the unknowns `s_k = t_2,k + c_k v^2_k`:
+/// ```text
+/// A~ = A + sum_k w_k c_k e_row_k e_tdof_k^T         factorised once (sparse LU)
+/// v(s) = v_a tau0 + v_b tau_max + Z s,   Z = A~^-1 W  (m solves; only P Z, N Z are kept)
+/// x = P v = x0 + (P Z) s        (v^2 at the contact nodes)
+/// sigma = N v = n0 + (N Z) s    (T^3_3 at the contact nodes)
+/// G(s) = s - t_2(sqrt(g22) x, sigma) - C x = 0      m equations, dense Newton
+/// dG/ds = I - diag(dt_2/dv^2 + c) P Z - diag(dt_2/dsigma) N Z
+/// ```
+/// The spring cancels exactly: `G = 0` is `A v - b - W t_2 = 0`. Because `b` is linear in the
+/// loads, every tension ratio reuses the same factorisation and the same `m x m` matrices; a
+/// point of a ratio sweep costs only dense `m x m` work and one sparse solve for the field.
+///
+/// If the frictionless condensed operator `I - C P Z` is singular (the bulk admits a rigid
+/// sliding along the contact: the circle), equilibrium needs friction to balance the loads:
+/// the full-slip operators `I - diag(g kappa+-) N Z - C P Z` (`kappa` = `dt/dsigma` at large
+/// slip, `mu` sign for Coulomb) are singular too, and their left null vectors `y` give the
+/// solvability conditions `y . q(tau) = 0`, i.e. the limiting ratios (a discrete moment
+/// balance). Loads outside are [`ContactError::NoEquilibrium`].
+pub struct BoundarySolver<'a, D, L: FrictionLaw<f64>> {
+    model: &'a ContactModel<D, L>,
+    lu: Mutex<SparseLu>,
+    spring: Vec<f64>,
+    pz: Mat<f64>,
+    nz: Mat<f64>,
+    /// `(P v_i, N v_i)` for unit `tau0` (`i = 0`) and unit `tau_max` (`i = 1`).
+    base: [(Vec<f64>, Vec<f64>); 2],
+    /// The stuck state (`v^2 = 0` at every contact node) for the unit loads: Newton's start.
+    stuck: [Vec<f64>; 2],
+    sliding: Option<SlidingMode>,
+    setup: SetupStats,
+    settings: ContactSettings,
+}
+
+impl<D, L: FrictionLaw<f64>> core::fmt::Debug for BoundarySolver<'_, D, L> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("BoundarySolver")
+            .field("setup", &self.setup)
+            .field("sliding", &self.sliding)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
+    /// Factorises the stabilised bulk and forms the condensed matrices.
+    ///
+    /// # Errors
+    /// Solver failures (a singular stabilised bulk); invalid settings.
+    pub fn new(
+        model: &'a ContactModel<D, L>,
+        settings: ContactSettings,
+    ) -> Result<Self, ContactError> {
+        settings.validate()?;
+        let ext = model.extended();
+        let m = model.active().len();
+        let n = model.dof_count();
+        let mut values = vec![0.0; ext.pattern.nnz()];
+        for (k, &a) in model.system().values.iter().enumerate() {
+            values[ext.a_slot[k]] += a;
+        }
+        let mut spring = Vec::with_capacity(m);
+        for k in 0..m {
+            let node = model.active_node(k);
+            let slot = ext.tangential_slot[k];
+            let diag = values[slot].abs();
+            let diag = if diag > 0.0 {
+                diag
+            } else {
+                row_max(&ext.pattern, &values, node.tangential_row.expect("active"))
+            };
+            let c = diag / node.traction_weight;
+            values[slot] += node.traction_weight * c;
+            spring.push(c);
+        }
+        let mut lu = SparseLu::default();
+        lu.analyse(&ext.pattern)?;
+        lu.factor(&values)?;
+        let mut pz = Mat::<f64>::zeros(m, m);
+        let mut nz = Mat::<f64>::zeros(m, m);
+        let mut col = vec![0.0; n];
+        for k in 0..m {
+            let node = model.active_node(k);
+            col.iter_mut().for_each(|x| *x = 0.0);
+            col[node.tangential_row.expect("active")] = node.traction_weight;
+            lu.solve_in_place(&mut col)?;
+            for j in 0..m {
+                let nj = model.active_node(j);
+                pz[(j, k)] = col[nj.tangential_dof];
+                nz[(j, k)] = nj.normal_stress.dot(&col);
+            }
+        }
+        let base = [0, 1].map(|i| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
+            let mut v = model.rhs_basis(i).to_vec();
+            lu.solve_in_place(&mut v)?;
+            Ok(project(model, &v))
+        });
+        let [b0, b1] = base;
+        let (b0, b1) = (b0?, b1?);
+        // P Z s = -x_i: the contact tractions that hold every contact node in place.
+        let lu_pz = pz.partial_piv_lu();
+        let stuck = [&b0.0, &b1.0].map(|x| {
+            let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -x[i]);
+            let s = lu_pz.solve(&rhs);
+            (0..m).map(|i| s[(i, 0)]).collect::<Vec<f64>>()
+        });
+        if stuck.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(capstan_solvers::SolverError::Singular { pivot: None }.into());
+        }
+        let mut solver = Self {
+            model,
+            lu: Mutex::new(lu),
+            spring,
+            pz,
+            nz,
+            base: [b0, b1],
+            stuck,
+            sliding: None,
+            setup: SetupStats {
+                contact_unknowns: m,
+                bulk_unknowns: n,
+                factorisations: 1,
+                bulk_solves: m + 2,
+            },
+            settings,
+        };
+        solver.sliding = solver.sliding_mode()?;
+        Ok(solver)
+    }
+
+    /// The work done at construction.
+    pub fn setup(&self) -> SetupStats {
+        self.setup
+    }
+
+    /// The rigid sliding mode and the limiting tension ratios, if the bulk has one.
+    pub fn sliding(&self) -> Option<SlidingMode> {
+        self.sliding
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &ContactSettings {
+        &self.settings
+    }
+
+    fn sliding_mode(&self) -> Result<Option<SlidingMode>, ContactError> {
+        let m = self.pz.nrows();
+        let h0 = Mat::<f64>::from_fn(m, m, |i, j| {
+            f64::from(u8::from(i == j)) - self.spring[i] * self.pz[(i, j)]
+        });
+        let sv = h0
+            .singular_values()
+            .map_err(|_| ContactError::NotConverged {
+                iterations: 0,
+                residual: f64::NAN,
+                load_factor: 0.0,
+            })?;
+        let (max, min) = (sv[0], sv[m - 1]);
+        let relative = min / max;
+        if relative.is_nan() || relative >= SLIDING_MODE_THRESHOLD {
+            return Ok(None);
+        }
+        let mut ratios = [0.0; 2];
+        for (r, direction) in ratios.iter_mut().zip([-1.0, 1.0]) {
+            // kappa = dt_phys/dsigma at a large slip in `direction`.
+            let kappa: Vec<f64> = (0..m)
+                .map(|k| {
+                    let node = self.model.active_node(k);
+                    let u = direction * 1e6 * self.model.slip_threshold();
+                    let st = ContactState::new([0.0, u], -1.0);
+                    node.sqrt_g22
+                        * self
+                            .model
+                            .law()
+                            .traction_derivatives(&st, self.model.params())
+                            .d_pressure[1]
+                })
+                .collect();
+            let h = Mat::<f64>::from_fn(m, m, |i, j| {
+                f64::from(u8::from(i == j))
+                    - kappa[i] * self.nz[(i, j)]
+                    - self.spring[i] * self.pz[(i, j)]
+            });
+            // Row equilibration keeps the null vector accurate when kappa is large:
+            // y^T H = 0  <=>  (D^-1 y)^T (D H) = 0.
+            let row_scale: Vec<f64> = (0..m)
+                .map(|i| {
+                    let r = (0..m).fold(0.0f64, |a, j| a.max(h[(i, j)].abs()));
+                    if r > 0.0 { 1.0 / r } else { 1.0 }
+                })
+                .collect();
+            let h = Mat::<f64>::from_fn(m, m, |i, j| row_scale[i] * h[(i, j)]);
+            let svd = h.svd().map_err(|_| ContactError::NotConverged {
+                iterations: 0,
+                residual: f64::NAN,
+                load_factor: 0.0,
+            })?;
+            let u = svd.U();
+            let q = |i: usize| -> f64 {
+                let (x, s) = &self.base[i];
+                (0..m)
+                    .map(|k| {
+                        row_scale[k] * u[(k, m - 1)] * (kappa[k] * s[k] + self.spring[k] * x[k])
+                    })
+                    .sum()
+            };
+            let (qa, qb) = (q(0), q(1));
+            // tau0 qa + tau_max qb = 0; qb = 0: tau_max cannot tip the balance
+            let ratio = if qb.abs() > 1e-14 * qa.abs() {
+                -qa / qb
+            } else {
+                f64::INFINITY
+            };
+            // The limit bounds the loads only if its full-slip state presses everywhere
+            // (sigma_n < 0): then |t| <= mu |sigma_n| caps the friction moment. Otherwise (e.g.
+            // huge mu, where the full-slip solution needs tensile contact) it is no bound.
+            *r = if ratio.is_finite() && self.full_slip_compressive(&svd, &row_scale, &kappa, ratio)
+            {
+                ratio
+            } else {
+                direction * f64::INFINITY
+            };
+        }
+        let (lower, upper) = (ratios[0].min(ratios[1]), ratios[0].max(ratios[1]));
+        Ok(Some(SlidingMode {
+            relative_singular_value: relative,
+            lower_ratio: lower,
+            upper_ratio: upper,
+        }))
+    }
+
+    /// Whether the least-squares full-slip state at `tau = (1, ratio)` has `sigma_n < 0` at
+    /// every contact node (`svd` of the row-scaled full-slip operator).
+    fn full_slip_compressive(
+        &self,
+        svd: &faer::linalg::solvers::Svd<f64>,
+        row_scale: &[f64],
+        kappa: &[f64],
+        ratio: f64,
+    ) -> bool {
+        let m = kappa.len();
+        let (x0, n0) = self.loaded_base(EndLoads::ratio(ratio));
+        let q: Vec<f64> = (0..m)
+            .map(|k| row_scale[k] * (kappa[k] * n0[k] + self.spring[k] * x0[k]))
+            .collect();
+        let (u, v, sv) = (svd.U(), svd.V(), svd.S().column_vector());
+        let mut s = vec![0.0; m];
+        for i in 0..m - 1 {
+            let c = (0..m).map(|k| u[(k, i)] * q[k]).sum::<f64>() / sv[i];
+            for (k, sk) in s.iter_mut().enumerate() {
+                *sk += c * v[(k, i)];
+            }
+        }
+        (0..m).all(|i| {
+            let sigma = n0[i] + (0..m).map(|j| self.nz[(i, j)] * s[j]).sum::<f64>();
+            sigma < 0.0
+        })
+    }
+
+    /// `(x0, n0)` for the loads.
+    fn loaded_base(&self, loads: EndLoads) -> (Vec<f64>, Vec<f64>) {
+        let [(xa, na), (xb, nb)] = &self.base;
+        let x = xa
+            .iter()
+            .zip(xb)
+            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .collect();
+        let s = na
+            .iter()
+            .zip(nb)
+            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .collect();
+        (x, s)
+    }
+
+    /// `G(s)` and, optionally, `dG/ds`.
+    fn eval(
+        &self,
+        x0: &[f64],
+        n0: &[f64],
+        s: &[f64],
+        g: &mut [f64],
+        jac: Option<&mut Mat<f64>>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let m = s.len();
+        let mut dx = vec![0.0; m];
+        let mut dn = vec![0.0; m];
+        for (i, (gi, (dxi, dni))) in g.iter_mut().zip(dx.iter_mut().zip(&mut dn)).enumerate() {
+            let mut x = x0[i];
+            let mut sig = n0[i];
+            for (j, sj) in s.iter().enumerate() {
+                x += self.pz[(i, j)] * sj;
+                sig += self.nz[(i, j)] * sj;
+            }
+            let node = self.model.active_node(i);
+            let nt = self.model.traction_at(node, node.sqrt_g22 * x, sig);
+            *gi = s[i] - nt.t2 - self.spring[i] * x;
+            *dxi = nt.d_tangential + self.spring[i];
+            *dni = nt.d_normal_stress;
+        }
+        if let Some(jac) = jac {
+            for j in 0..m {
+                for i in 0..m {
+                    jac[(i, j)] = f64::from(u8::from(i == j))
+                        - dx[i] * self.pz[(i, j)]
+                        - dn[i] * self.nz[(i, j)];
+                }
+            }
+        }
+        (dx, dn)
+    }
+
+    /// Damped Newton on `G(s) = 0` from `s`; `Ok(iterations)` or `Err((iterations, residual))`.
+    fn newton(&self, loads: EndLoads, s: &mut [f64]) -> Result<usize, (usize, f64)> {
+        let (x0, n0) = self.loaded_base(loads);
+        let m = s.len();
+        let gmax = (0..m)
+            .map(|k| self.model.active_node(k).sqrt_g22)
+            .fold(0.0f64, f64::max);
+        let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
+        let tol = self.settings.tolerance * scale;
+        let mut g = vec![0.0; m];
+        let mut trial = vec![0.0; m];
+        let mut gt = vec![0.0; m];
+        let mut jac = Mat::<f64>::zeros(m, m);
+        let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
+        let max_norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        for it in 0..self.settings.max_iterations {
+            self.eval(&x0, &n0, s, &mut g, Some(&mut jac));
+            let r = max_norm(&g);
+            if !r.is_finite() {
+                return Err((it, f64::INFINITY));
+            }
+            if r <= tol {
+                return Ok(it);
+            }
+            let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -g[i]);
+            let ds = jac.partial_piv_lu().solve(&rhs);
+            if (0..m).any(|i| !ds[(i, 0)].is_finite()) {
+                return Err((it, r / scale));
+            }
+            let phi0 = norm2(&g);
+            let mut alpha = 1.0;
+            loop {
+                for i in 0..m {
+                    trial[i] = s[i] + alpha * ds[(i, 0)];
+                }
+                self.eval(&x0, &n0, &trial, &mut gt, None);
+                let phi = norm2(&gt);
+                if phi.is_finite() && phi <= (1.0 - 1e-4 * alpha) * phi0 {
+                    break;
+                }
+                alpha *= 0.5;
+                if alpha < 1e-8 {
+                    return Err((it + 1, r / scale));
+                }
+            }
+            s.copy_from_slice(&trial);
+        }
+        self.eval(&x0, &n0, s, &mut g, None);
+        let r = max_norm(&g);
+        if r <= tol {
+            Ok(self.settings.max_iterations)
+        } else {
+            Err((self.settings.max_iterations, r / scale))
+        }
+    }
+
+    /// Checks the loads against the limiting ratios of a sliding mode.
+    ///
+    /// # Errors
+    /// [`ContactError::NoEquilibrium`] outside the range.
+    pub fn check_equilibrium(&self, loads: EndLoads) -> Result<(), ContactError> {
+        let Some(mode) = self.sliding else {
+            return Ok(());
+        };
+        if loads.tau0 <= 0.0 {
+            return Ok(());
+        }
+        let r = loads.tension_ratio();
+        let tol = 1e-9 * r.abs().max(1.0);
+        if r > mode.upper_ratio + tol || r < mode.lower_ratio - tol {
+            return Err(ContactError::NoEquilibrium {
+                ratio: r,
+                lower: mode.lower_ratio,
+                upper: mode.upper_ratio,
+            });
+        }
+        Ok(())
+    }
+
+    /// The stuck contact unknowns for the loads (every contact node held in place).
+    pub fn stuck_unknowns(&self, loads: EndLoads) -> Vec<f64> {
+        self.stuck[0]
+            .iter()
+            .zip(&self.stuck[1])
+            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .collect()
+    }
+
+    /// Solves for the loads: plain Newton from the stuck state, then load continuation if
+    /// that fails.
+    ///
+    /// # Errors
+    /// [`ContactError::NoEquilibrium`] beyond limiting equilibrium; [`ContactError::NotConverged`].
+    pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
+        self.solve_from(loads, None)
+    }
+
+    /// As [`BoundarySolver::solve`], starting Newton from the contact unknowns `s` of a nearby
+    /// solution ([`BoundarySolver::unknowns`]).
+    ///
+    /// # Errors
+    /// See [`BoundarySolver::solve`].
+    pub fn solve_from(
+        &self,
+        loads: EndLoads,
+        guess: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError> {
+        loads.check()?;
+        self.check_equilibrium(loads)?;
+        let m = self.pz.nrows();
+        let mut s = guess.map_or_else(|| self.stuck_unknowns(loads), <[f64]>::to_vec);
+        if s.len() != m {
+            return Err(crate::ElasticityError::DimensionMismatch {
+                quantity: "contact unknowns",
+                expected: m,
+                found: s.len(),
+            }
+            .into());
+        }
+        let mut iterations = 0;
+        let mut steps = 1;
+        match self.newton(loads, &mut s) {
+            Ok(it) => iterations += it,
+            Err((it, _)) => {
+                iterations += it;
+                let (it, st) = self.continuation(loads, &mut s)?;
+                iterations += it;
+                steps = st;
+            }
+        }
+        self.finish(loads, &s, iterations, steps)
+    }
+
+    fn continuation(&self, loads: EndLoads, s: &mut [f64]) -> Result<(usize, usize), ContactError> {
+        let m = s.len();
+        let mut lambda = 0.0;
+        let mut current = vec![0.0; m];
+        let mut step = self.settings.initial_load_step;
+        let mut iterations = 0;
+        let mut steps = 0;
+        let mut last_residual = f64::INFINITY;
+        while lambda < 1.0 {
+            if steps >= self.settings.max_continuation_steps {
+                break;
+            }
+            steps += 1;
+            let next = (lambda + step).min(1.0);
+            let mut trial: Vec<f64> = if lambda > 0.0 {
+                current.iter().map(|x| x * next / lambda).collect()
+            } else {
+                self.stuck_unknowns(loads.scaled(next))
+            };
+            match self.newton(loads.scaled(next), &mut trial) {
+                Ok(it) => {
+                    iterations += it;
+                    lambda = next;
+                    current = trial;
+                    step = (step * 1.5).min(1.0);
+                }
+                Err((it, r)) => {
+                    iterations += it;
+                    last_residual = r;
+                    step *= 0.5;
+                    if step < self.settings.min_load_step {
+                        break;
+                    }
+                }
+            }
+        }
+        if lambda < 1.0 {
+            return Err(ContactError::NotConverged {
+                iterations,
+                residual: last_residual,
+                load_factor: lambda,
+            });
+        }
+        s.copy_from_slice(&current);
+        Ok((iterations, steps))
+    }
+
+    fn finish(
+        &self,
+        loads: EndLoads,
+        s: &[f64],
+        iterations: usize,
+        steps: usize,
+    ) -> Result<ContactSolution, ContactError> {
+        let mut v = self.model.rhs(loads);
+        for (k, sk) in s.iter().enumerate() {
+            let node = self.model.active_node(k);
+            v[node.tangential_row.expect("active")] += node.traction_weight * sk;
+        }
+        self.lu
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .solve_in_place(&mut v)?;
+        let mut sol = ContactSolution::new(
+            self.model,
+            loads,
+            v,
+            SolveStats {
+                method: "condensed",
+                newton_iterations: iterations,
+                continuation_steps: steps,
+                residual: 0.0,
+                linear_iterations: 0,
+                factorisations: 0,
+            },
+        );
+        sol.unknowns = s.to_vec();
+        Ok(sol)
+    }
+}
+
+/// `(P v, N v)`: `v^2` and `T^3_3` at the active contact nodes.
+fn project<D: Discretisation, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+    v: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    (0..model.active().len())
+        .map(|k| {
+            let node = model.active_node(k);
+            (v[node.tangential_dof], node.normal_stress.dot(v))
+        })
+        .unzip()
+}
+
+fn row_max(pattern: &capstan_solvers::SparsityPattern, values: &[f64], row: usize) -> f64 {
+    pattern
+        .entries()
+        .zip(values)
+        .filter(|((r, _), _)| *r == row)
+        .fold(0.0f64, |m, (_, v)| m.max(v.abs()))
+        .max(1.0)
+}

@@ -1,0 +1,105 @@
+//! The contact problem's error type.
+
+use capstan_friction::FrictionError;
+use capstan_solvers::SolverError;
+
+use crate::error::ElasticityError;
+
+/// Everything that can go wrong while building or solving a frictional contact problem.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ContactError {
+    /// A parameter (loads, settings) is outside its allowed range.
+    #[error("`{field}` = {value} is outside {allowed}")]
+    InvalidParameter {
+        /// The parameter, named as in a scene file where there is one.
+        field: &'static str,
+        /// The offending value.
+        value: f64,
+        /// The allowed range.
+        allowed: &'static str,
+    },
+    /// The discretisations built for different end loads do not share one bulk operator.
+    #[error(
+        "the bulk operator depends on the loads ({what}); contact condensation needs it linear"
+    )]
+    InconsistentLoads {
+        /// What differs.
+        what: &'static str,
+    },
+    /// No contact node has a free tangential row (nothing for friction to act on).
+    #[error("the contact surface has no node with a free tangential displacement")]
+    NoContactNodes,
+    /// No static equilibrium exists: the tension ratio exceeds what friction can hold (the body
+    /// slides off as a rigid body).
+    #[error(
+        "no static equilibrium: tension ratio {ratio:.6} is outside the limiting range [{lower:.6}, {upper:.6}] that friction can hold"
+    )]
+    NoEquilibrium {
+        /// `tau_max / tau0` asked for.
+        ratio: f64,
+        /// Smallest ratio friction can hold.
+        lower: f64,
+        /// Largest ratio friction can hold.
+        upper: f64,
+    },
+    /// The nonlinear solve failed even with load continuation.
+    #[error(
+        "contact Newton did not converge: residual {residual:.3e} after {iterations} iterations (load factor reached {load_factor:.4})"
+    )]
+    NotConverged {
+        /// Newton iterations spent in total.
+        iterations: usize,
+        /// Last residual (max norm, relative).
+        residual: f64,
+        /// The last load factor in `[0, 1]` that converged.
+        load_factor: f64,
+    },
+    /// The elasticity layer failed (assembly, geometry).
+    #[error(transparent)]
+    Elasticity(#[from] ElasticityError),
+    /// A linear or nonlinear solver failed.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// Invalid friction-law parameters.
+    #[error(transparent)]
+    Friction(#[from] FrictionError),
+}
+
+/// The kind of a [`ContactError`], for exit codes and statuses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ContactErrorKind {
+    /// Bad input (exit code 2).
+    InvalidInput,
+    /// No static equilibrium exists (exit code 3, status `no-equilibrium`).
+    NoEquilibrium,
+    /// The solver did not converge (exit code 4, status `not-converged`).
+    NotConverged,
+}
+
+impl ContactError {
+    /// Which kind of failure this is.
+    pub fn kind(&self) -> ContactErrorKind {
+        match self {
+            Self::NoEquilibrium { .. } => ContactErrorKind::NoEquilibrium,
+            Self::NotConverged { .. } => ContactErrorKind::NotConverged,
+            Self::Solver(
+                SolverError::Diverged { .. }
+                | SolverError::Stagnated { .. }
+                | SolverError::NotConverged { .. }
+                | SolverError::Singular { .. },
+            ) => ContactErrorKind::NotConverged,
+            _ => ContactErrorKind::InvalidInput,
+        }
+    }
+
+    /// The status string of a failed run: `no-equilibrium`, `not-converged` or `invalid-input`.
+    pub fn status(&self) -> &'static str {
+        match self.kind() {
+            ContactErrorKind::InvalidInput => "invalid-input",
+            ContactErrorKind::NoEquilibrium => "no-equilibrium",
+            ContactErrorKind::NotConverged => "not-converged",
+        }
+    }
+}

@@ -1,0 +1,50 @@
+//! Frictional contact of the thick body with a rough rigid prism: the paper's section 3
+//! (Kikuchi–Oden regularised Coulomb friction in curvilinear coordinates), on any
+//! [`crate::Discretisation`].
+//!
+//! # Math
+//! Bilateral contact on `x3 = 0` (`v^3 = 0`) with a pointwise friction law for the tangential
+//! traction (paper eq. CoulombOden3, derived again here):
+//! ```text
+//! A v - b(tau) - sum_k w_k e_row_k t_2,k(v) = 0
+//! t_2 = sqrt(g_22) t(u, sigma_n),  u = sqrt(g_22) v^2,  sigma_n = n.T.n = T^3_3   (n = -g^3)
+//! regularised Coulomb: t = mu sigma_n u / max(|u|, eps)   (opposes u when sigma_n < 0)
+//! ```
+//! Stick/slip per node: `+1` if `u >= eps`, `-1` if `u <= -eps`, else `0`; the paper's Slip is
+//! their mean over the contact nodes.
+//!
+//! # Solvers
+//! - [`BoundarySolver`]: the bulk is linear, so it is factorised once and the problem is
+//!   condensed onto the `m` contact tractions (dense `m x m` Newton with line search and load
+//!   continuation). One factorisation serves every tension ratio.
+//! - [`FullSystemSolver`]: Newton on the whole residual with the friction Jacobian, LU
+//!   refactorised each step, or the paper's Jacobi–Newton; the cross-check and the baseline.
+//!
+//! # Limiting equilibrium
+//! On a circle the bilaterally constrained body can rotate rigidly; only friction holds it.
+//! [`BoundarySolver`] detects the sliding mode (a singular frictionless condensed operator),
+//! computes the limiting tension ratios from the solvability of the full-slip system, and
+//! reports loads beyond them as [`ContactError::NoEquilibrium`] instead of iterating.
+//!
+//! # Limitations
+//! Plane strain, one friction law with one parameter set for the whole contact surface;
+//! tensile normal stress on the bilateral contact is not excluded (counted in
+//! [`ContactSolution::tensile_contact_nodes`]).
+
+mod body;
+mod boundary_solver;
+mod error;
+mod full_system;
+mod model;
+mod solution;
+mod threshold;
+
+pub use body::{ThickBody, ThickBodyOperator};
+pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
+pub use error::{ContactError, ContactErrorKind};
+pub use full_system::{FullSystemProblem, FullSystemSettings, FullSystemSolver};
+pub use model::{ContactModel, EndLoads, NodeTraction};
+pub use solution::{
+    ContactProfile, ContactSolution, Extremum, SolveStats, StateInterval, classify, state_intervals,
+};
+pub use threshold::{ThresholdResult, ThresholdSettings, threshold_ratio};

@@ -1,0 +1,285 @@
+//! A converged contact solution: displacement, contact profile, stick/slip classification.
+
+use capstan_friction::FrictionLaw;
+
+use crate::boundary::Component;
+use crate::contact::model::{ContactModel, EndLoads};
+use crate::discretisation::Discretisation;
+
+/// A signed extreme value and where it occurs.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Extremum {
+    /// The value of largest magnitude (signed).
+    pub value: f64,
+    /// `x2` of the node.
+    pub x2: f64,
+    /// `x3` of the node.
+    pub x3: f64,
+}
+
+/// A maximal run of contact nodes in one state, with interpolated ends.
+///
+/// # Math
+/// `nodes` are the `x2` of the first and last node of the run. `from`, `to` are where the
+/// piecewise-linear slip `u(x2)` crosses `+-eps` between the run and its neighbours (the node
+/// itself at an end of the contact surface): a grid-independent description of the region.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct StateInterval {
+    /// `+1` positive slip, `-1` negative slip, `0` stick.
+    pub state: i8,
+    /// Interpolated start.
+    pub from: f64,
+    /// Interpolated end.
+    pub to: f64,
+    /// `[x2 of the first node, x2 of the last node]`.
+    pub nodes: [f64; 2],
+    /// Number of nodes in the run.
+    pub count: usize,
+}
+
+/// The fields on the contact surface `x3 = 0`, one entry per contact node.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ContactProfile {
+    /// `x2` of the nodes.
+    pub x2: Vec<f64>,
+    /// `v^2` (radians on an angular chart).
+    pub v2: Vec<f64>,
+    /// `v^3` (zero: bilateral contact).
+    pub v3: Vec<f64>,
+    /// `sigma_n = T^3_3` (negative in compression).
+    pub normal_stress: Vec<f64>,
+    /// `T^3_2` (covariant shear; the tangential traction on the body is `t_2 = -T^3_2`).
+    pub shear_stress: Vec<f64>,
+    /// Physical tangential displacement `u = sqrt(g_22) v^2`.
+    pub slip: Vec<f64>,
+    /// Physical friction traction on the body, `t_2 / sqrt(g_22)`, from the law.
+    pub friction_traction: Vec<f64>,
+    /// `+1` where `u >= eps`, `-1` where `u <= -eps`, `0` otherwise.
+    pub state: Vec<i8>,
+}
+
+/// How a solution was computed.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SolveStats {
+    /// `condensed` (boundary-only Newton) or `full-newton` / `full-jacobi-newton`.
+    pub method: &'static str,
+    /// Newton iterations in total (over all continuation steps).
+    pub newton_iterations: usize,
+    /// Load-continuation steps (1 when plain Newton converged).
+    pub continuation_steps: usize,
+    /// Relative max-norm residual of the full system `R(v)` at the solution.
+    pub residual: f64,
+    /// Inner linear iterations (Jacobi–Newton), 0 for direct solvers.
+    pub linear_iterations: usize,
+    /// Sparse factorisations done for this solve.
+    pub factorisations: usize,
+}
+
+/// A converged contact solution.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct ContactSolution {
+    /// The loads.
+    pub loads: EndLoads,
+    /// The nodal displacement vector (the discretisation's numbering).
+    #[serde(skip)]
+    pub displacement: Vec<f64>,
+    /// The condensed contact unknowns `s_k = t_2,k + c_k v^2_k` (empty for the full-system
+    /// solvers): a warm start for [`crate::contact::BoundarySolver::solve_from`].
+    #[serde(skip)]
+    pub unknowns: Vec<f64>,
+    /// The contact surface fields.
+    pub contact: ContactProfile,
+    /// The paper's Slip: mean of the states over the contact nodes.
+    pub slip_fraction: f64,
+    /// The longest stick run (interpolated ends), if any node sticks.
+    pub stick_interval: Option<StateInterval>,
+    /// All runs of equal state, in increasing `x2`.
+    pub intervals: Vec<StateInterval>,
+    /// `v^2` of largest magnitude over the body.
+    pub max_azimuthal_displacement: Extremum,
+    /// `v^3` of largest magnitude over the body.
+    pub max_radial_displacement: Extremum,
+    /// Contact nodes with `sigma_n > 0` (tension on a bilateral contact: the regularised law
+    /// then drives rather than resists the slip).
+    pub tensile_contact_nodes: usize,
+    /// Solver statistics.
+    pub stats: SolveStats,
+}
+
+impl ContactSolution {
+    /// Assembles the solution report from the displacement `v`.
+    pub fn new<D: Discretisation, L: FrictionLaw<f64>>(
+        model: &ContactModel<D, L>,
+        loads: EndLoads,
+        v: Vec<f64>,
+        mut stats: SolveStats,
+    ) -> Self {
+        let disc = model.discretisation();
+        let eps = model.slip_threshold();
+        let nodes = model.contact_nodes();
+        let n = nodes.len();
+        let mut p = ContactProfile {
+            x2: Vec::with_capacity(n),
+            v2: Vec::with_capacity(n),
+            v3: Vec::with_capacity(n),
+            normal_stress: Vec::with_capacity(n),
+            shear_stress: Vec::with_capacity(n),
+            slip: Vec::with_capacity(n),
+            friction_traction: Vec::with_capacity(n),
+            state: Vec::with_capacity(n),
+        };
+        for node in nodes {
+            let nt = model.node_traction(node, &v);
+            p.x2.push(node.x2);
+            p.v2.push(v[node.tangential_dof]);
+            p.v3.push(v[node.normal_dof]);
+            p.normal_stress.push(nt.normal_stress);
+            p.shear_stress.push(node.shear_stress.dot(&v));
+            p.slip.push(nt.slip);
+            p.friction_traction.push(nt.t2 / node.sqrt_g22);
+            p.state.push(classify(nt.slip, eps));
+        }
+        let slip_fraction = p.state.iter().map(|&s| f64::from(s)).sum::<f64>() / n as f64;
+        let intervals = state_intervals(&p.x2, &p.slip, &p.state, eps);
+        let stick_interval = intervals
+            .iter()
+            .filter(|i| i.state == 0)
+            .max_by_key(|i| i.count)
+            .copied();
+        let grid = disc.grid();
+        let extreme = |c: Component| {
+            let mut best = Extremum {
+                value: 0.0,
+                x2: grid.x2(0),
+                x3: grid.x3(0),
+            };
+            for i in 0..grid.n2() {
+                for j in 0..grid.n3() {
+                    let x = v[disc.dof([i, j], c)];
+                    if x.abs() > best.value.abs() {
+                        best = Extremum {
+                            value: x,
+                            x2: grid.x2(i),
+                            x3: grid.x3(j),
+                        };
+                    }
+                }
+            }
+            best
+        };
+        let max_azimuthal_displacement = extreme(Component::X2);
+        let max_radial_displacement = extreme(Component::X3);
+        stats.residual = model.relative_residual(loads, &v);
+        let tensile_contact_nodes = p.normal_stress.iter().filter(|&&s| s > 0.0).count();
+        Self {
+            loads,
+            displacement: v,
+            unknowns: Vec::new(),
+            contact: p,
+            slip_fraction,
+            stick_interval,
+            intervals,
+            max_azimuthal_displacement,
+            max_radial_displacement,
+            tensile_contact_nodes,
+            stats,
+        }
+    }
+
+    /// The slip intervals (runs with state `+-1`).
+    pub fn slip_intervals(&self) -> impl Iterator<Item = &StateInterval> {
+        self.intervals.iter().filter(|i| i.state != 0)
+    }
+
+    /// Whether every contact node slides in the positive direction.
+    pub fn fully_slipping(&self) -> bool {
+        self.contact.state.iter().all(|&s| s == 1)
+    }
+}
+
+/// `+1` if `u >= eps`, `-1` if `u <= -eps`, else `0`.
+pub fn classify(u: f64, eps: f64) -> i8 {
+    if u >= eps {
+        1
+    } else if u <= -eps {
+        -1
+    } else {
+        0
+    }
+}
+
+/// Runs of equal state with interpolated ends (see [`StateInterval`]).
+pub fn state_intervals(x2: &[f64], slip: &[f64], state: &[i8], eps: f64) -> Vec<StateInterval> {
+    let n = state.len();
+    let mut out = Vec::new();
+    let mut start = 0;
+    while start < n {
+        let mut end = start;
+        while end + 1 < n && state[end + 1] == state[start] {
+            end += 1;
+        }
+        // Crossing between node a (outside) and node b (inside the run) of the level that
+        // separates their states.
+        let crossing = |a: usize, b: usize| -> f64 {
+            let (sa, sb) = (state[a], state[b]);
+            let level = if sa == 1 || sb == 1 {
+                eps
+            } else if sa == -1 || sb == -1 {
+                -eps
+            } else {
+                0.0
+            };
+            let (ua, ub) = (slip[a], slip[b]);
+            if (ub - ua).abs() < f64::MIN_POSITIVE {
+                return 0.5 * (x2[a] + x2[b]);
+            }
+            let s = ((level - ua) / (ub - ua)).clamp(0.0, 1.0);
+            x2[a] + s * (x2[b] - x2[a])
+        };
+        let from = if start == 0 {
+            x2[0]
+        } else {
+            crossing(start - 1, start)
+        };
+        let to = if end == n - 1 {
+            x2[n - 1]
+        } else {
+            crossing(end + 1, end)
+        };
+        out.push(StateInterval {
+            state: state[start],
+            from,
+            to,
+            nodes: [x2[start], x2[end]],
+            count: end - start + 1,
+        });
+        start = end + 1;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classify_uses_closed_thresholds() {
+        assert_eq!(classify(1e-5, 1e-5), 1);
+        assert_eq!(classify(-1e-5, 1e-5), -1);
+        assert_eq!(classify(0.99e-5, 1e-5), 0);
+    }
+
+    #[test]
+    fn intervals_interpolate_the_eps_crossings() {
+        let x2 = [0.0, 1.0, 2.0, 3.0];
+        let slip = [-3.0, -0.5, 0.5, 3.0];
+        let state: Vec<i8> = slip.iter().map(|&u| classify(u, 1.0)).collect();
+        let runs = state_intervals(&x2, &slip, &state, 1.0);
+        assert_eq!(runs.len(), 3);
+        assert_eq!(runs[1].state, 0);
+        assert!((runs[1].from - 0.8).abs() < 1e-12); // -3 + 2.5 s = -1 at s = 0.8
+        assert!((runs[1].to - 2.2).abs() < 1e-12);
+        assert_eq!(runs[0].from, 0.0);
+        assert_eq!(runs[2].to, 3.0);
+    }
+}

@@ -1,0 +1,137 @@
+//! The tension ratio at which the whole contact slides (Slip = 1), by bracketing and bisection.
+
+use capstan_friction::FrictionLaw;
+
+use crate::contact::boundary_solver::BoundarySolver;
+use crate::contact::error::ContactError;
+use crate::contact::model::EndLoads;
+use crate::discretisation::Discretisation;
+
+/// Settings of [`threshold_ratio`].
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ThresholdSettings {
+    /// Stop when the bracket is shorter than `tolerance * upper`.
+    pub tolerance: f64,
+    /// Give up bracketing past this ratio.
+    pub max_ratio: f64,
+}
+
+impl Default for ThresholdSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-6,
+            max_ratio: 1e4,
+        }
+    }
+}
+
+/// The result of a threshold search.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct ThresholdResult {
+    /// The threshold ratio `tau_max / tau0` (upper end of the final bracket).
+    pub ratio: f64,
+    /// Largest ratio found with a stick node (Slip < 1).
+    pub below: f64,
+    /// Smallest ratio found fully slipping or without equilibrium.
+    pub above: f64,
+    /// Slip at `below`.
+    pub slip_fraction_below: f64,
+    /// Whether `above` had no static solution (rather than a fully slipping one).
+    pub above_is_no_equilibrium: bool,
+    /// Contact solves done.
+    pub solves: usize,
+    /// The limiting ratio from the sliding mode's solvability condition, when the bulk has one.
+    pub limiting_ratio: Option<f64>,
+}
+
+/// Finds the smallest `tau_max / tau0 >= 1` (with `tau0 = 1`) at which every contact node slides
+/// in the positive direction, or beyond which no static solution exists.
+///
+/// # Errors
+/// [`ContactError::NotConverged`] if a solve fails for another reason or no bracket is found
+/// below `settings.max_ratio`.
+pub fn threshold_ratio<D: Discretisation, L: FrictionLaw<f64>>(
+    solver: &BoundarySolver<'_, D, L>,
+    settings: ThresholdSettings,
+) -> Result<ThresholdResult, ContactError> {
+    let mut solves = 0;
+    // Ok(Some(slip)) below threshold, Ok(None) at/above, with the warm start updated.
+    let mut warm: Option<Vec<f64>> = None;
+    let mut probe =
+        |ratio: f64, warm: &mut Option<Vec<f64>>| -> Result<Option<(f64, bool)>, ContactError> {
+            solves += 1;
+            match solver.solve_from(EndLoads::ratio(ratio), warm.as_deref()) {
+                Ok(sol) if sol.fully_slipping() => Ok(None),
+                Ok(sol) => {
+                    *warm = Some(sol.unknowns.clone());
+                    Ok(Some((sol.slip_fraction, false)))
+                }
+                Err(ContactError::NoEquilibrium { .. }) => Ok(None),
+                // At the limiting ratio of a sliding mode the full-slip solution is singular:
+                // failure within 1e-3 of it counts as reaching the threshold.
+                Err(ContactError::NotConverged { .. })
+                    if solver
+                        .sliding()
+                        .is_some_and(|m| ratio >= m.upper_ratio * (1.0 - 1e-3)) =>
+                {
+                    Ok(None)
+                }
+                Err(e) => Err(e),
+            }
+        };
+    let limiting_ratio = solver.sliding().map(|m| m.upper_ratio);
+    let mut lo = 1.0;
+    let mut slip_lo = match probe(lo, &mut warm)? {
+        Some((s, _)) => s,
+        None => {
+            return Ok(ThresholdResult {
+                ratio: 1.0,
+                below: 1.0,
+                above: 1.0,
+                slip_fraction_below: 1.0,
+                above_is_no_equilibrium: false,
+                solves,
+                limiting_ratio,
+            });
+        }
+    };
+    let mut hi = limiting_ratio.map_or(2.0, |r| r.max(1.0) * (1.0 + 1e-6));
+    loop {
+        match probe(hi, &mut warm)? {
+            None => break,
+            Some((s, _)) => {
+                lo = hi;
+                slip_lo = s;
+                hi *= 2.0;
+                if hi > settings.max_ratio {
+                    return Err(ContactError::NotConverged {
+                        iterations: solves,
+                        residual: f64::NAN,
+                        load_factor: 1.0,
+                    });
+                }
+            }
+        }
+    }
+    while hi - lo > settings.tolerance * hi {
+        let mid = 0.5 * (lo + hi);
+        match probe(mid, &mut warm)? {
+            None => hi = mid,
+            Some((s, _)) => {
+                lo = mid;
+                slip_lo = s;
+            }
+        }
+    }
+    let above_is_no_equilibrium = solver.check_equilibrium(EndLoads::ratio(hi)).is_err();
+    Ok(ThresholdResult {
+        ratio: hi,
+        below: lo,
+        above: hi,
+        slip_fraction_below: slip_lo,
+        above_is_no_equilibrium,
+        solves,
+        limiting_ratio,
+    })
+}

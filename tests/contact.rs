@@ -1,0 +1,382 @@
+//! The frictional contact problem of the paper's section 3 on coarse grids: the boundary-only
+//! solver against the full-system Newton, the Jacobian against finite differences, limits
+//! (frictionless, huge friction), invariances (E, symmetric loads), limiting equilibrium and
+//! typed errors.
+
+use capstan_elasticity::contact::{
+    BoundarySolver, ContactError, ContactSettings, EndLoads, FullSystemProblem, FullSystemSettings,
+    FullSystemSolver, ThickBody, ThresholdSettings, threshold_ratio,
+};
+use capstan_elasticity::friction::{Frictionless, RegularisedCoulomb, RegularisedCoulombParams};
+use capstan_elasticity::solvers::{Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu};
+use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Material};
+use capstan_geometry::{EllipticalPrism, Obstacle};
+
+const EPS: f64 = 1e-5;
+
+fn coulomb(mu: f64, eps: f64) -> RegularisedCoulombParams<f64> {
+    RegularisedCoulombParams::new(mu, eps).unwrap()
+}
+
+fn ellipse(a: f64, b: f64, n2: usize, n3: usize) -> ThickBody {
+    ThickBody {
+        obstacle: Obstacle::Ellipse(EllipticalPrism::new(a, b).unwrap()),
+        ..ThickBody::paper(n2, n3).unwrap()
+    }
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+#[test]
+fn condensed_solver_agrees_with_full_system_newton() {
+    // odd n2: a node at x2 = 0, so a stick node exists at every ratio below the limit (with
+    // no stick node the rigid rotation on the circle is not unique)
+    for body in [ThickBody::paper(41, 9).unwrap(), ellipse(2.0, 1.2, 41, 9)] {
+        let model = body
+            .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+            .unwrap();
+        let condensed = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let full = FullSystemSolver::new(&model, FullSystemSettings::default()).unwrap();
+        for ratio in [1.0, 2.0, 2.9] {
+            let loads = EndLoads::ratio(ratio);
+            let a = condensed.solve(loads).unwrap();
+            let b = full.solve(loads).unwrap();
+            let scale = max_abs(&a.displacement);
+            // both converge to 1e-10 relative residual; the difference is solver tolerance
+            assert!(
+                max_diff(&a.displacement, &b.displacement) < 1e-7 * scale,
+                "ratio {ratio}: {:e}",
+                max_diff(&a.displacement, &b.displacement) / scale
+            );
+            assert_eq!(a.contact.state, b.contact.state);
+            assert!(a.contact.state.contains(&0));
+            assert!(a.stats.residual < 1e-10 && b.stats.residual < 1e-9);
+        }
+    }
+}
+
+#[test]
+fn jacobi_newton_agrees_with_lu_newton_on_a_small_grid() {
+    let body = ThickBody::paper(16, 5).unwrap();
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let loads = EndLoads::ratio(2.0);
+    let lu = FullSystemSolver::new(&model, FullSystemSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    let mut settings = FullSystemSettings {
+        method: NonlinearMethod::JacobiNewton,
+        ..Default::default()
+    };
+    settings.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges on this operator
+    settings.newton.iterative.max_iterations = 200_000;
+    settings.newton.iterative.tolerance = 1e-12;
+    settings.newton.linear = LinearBackend::Jacobi;
+    settings.continuation.tolerance = 1e-9;
+    let jacobi = FullSystemSolver::new(&model, settings)
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    let scale = max_abs(&lu.displacement);
+    assert!(max_diff(&lu.displacement, &jacobi.displacement) < 1e-5 * scale);
+    assert!(
+        jacobi.stats.linear_iterations > 100 * jacobi.stats.newton_iterations.max(1),
+        "{:?}",
+        jacobi.stats
+    );
+}
+
+#[test]
+fn full_jacobian_matches_central_differences() {
+    let body = ellipse(2.0, 1.5, 20, 5);
+    // eps large enough that the state below has both stick and slip nodes, all off the kink
+    let eps = 2e-4;
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, eps), eps)
+        .unwrap();
+    let sol = BoundarySolver::new(&model, ContactSettings::default())
+        .unwrap()
+        .solve(EndLoads::ratio(1.6))
+        .unwrap();
+    assert!(sol.contact.state.contains(&0) && sol.contact.state.contains(&1));
+    let problem = FullSystemProblem::new(&model, EndLoads::ratio(1.6));
+    let v = &sol.displacement;
+    let pattern = problem.pattern().clone();
+    let mut values = vec![0.0; pattern.nnz()];
+    problem.jacobian(v, &mut values).unwrap();
+    let n = v.len();
+    let (mut rp, mut rm) = (vec![0.0; n], vec![0.0; n]);
+    let mut worst: f64 = 0.0;
+    for col in 0..n {
+        let h = 1e-9;
+        // stay off the kink |u| = eps of stick/slip nodes
+        let mut vp = v.clone();
+        vp[col] += h;
+        let mut vm = v.clone();
+        vm[col] -= h;
+        problem.residual(&vp, &mut rp).unwrap();
+        problem.residual(&vm, &mut rm).unwrap();
+        let rows = pattern.column_rows(col);
+        for (i, &row) in rows.iter().enumerate() {
+            let fd = (rp[row] - rm[row]) / (2.0 * h);
+            let exact = values[pattern.col_ptr()[col] + i];
+            worst = worst.max((fd - exact).abs() / exact.abs().max(1.0));
+        }
+        // rows outside the pattern must not change
+        for row in 0..n {
+            if !rows.contains(&row) {
+                assert!(
+                    (rp[row] - rm[row]).abs() < 1e-9,
+                    "({row}, {col}) outside the pattern"
+                );
+            }
+        }
+    }
+    assert!(worst < 1e-4, "worst relative difference {worst:e}");
+}
+
+#[test]
+fn frictionless_limit_is_the_linear_solve_with_zero_tangential_traction() {
+    // not a circle: the frictionless body on a circle has a rigid rotation
+    let body = ellipse(2.0, 1.5, 30, 7);
+    let loads = EndLoads::new(1.0, 1.3);
+    let model = body.model(Frictionless, (), EPS).unwrap();
+    let sol = BoundarySolver::new(&model, ContactSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    let linear = body
+        .discretisation(loads.tau0, loads.tau_max)
+        .unwrap()
+        .solve(&mut SparseLu::default())
+        .unwrap();
+    assert!(max_diff(&sol.displacement, &linear) < 1e-10 * max_abs(&linear));
+    // and Coulomb with mu = 0 is the same
+    let model0 = body
+        .model(RegularisedCoulomb, coulomb(0.0, EPS), EPS)
+        .unwrap();
+    let sol0 = BoundarySolver::new(&model0, ContactSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    assert!(max_diff(&sol0.displacement, &linear) < 1e-10 * max_abs(&linear));
+}
+
+#[test]
+fn frictionless_circle_has_no_equilibrium_unless_balanced() {
+    let body = ThickBody::paper(24, 5).unwrap();
+    let model = body.model(Frictionless, (), EPS).unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let mode = solver.sliding().expect("a circle has a sliding mode");
+    assert!((mode.lower_ratio - 1.0).abs() < 1e-8 && (mode.upper_ratio - 1.0).abs() < 1e-8);
+    assert!(matches!(
+        solver.solve(EndLoads::ratio(1.01)),
+        Err(ContactError::NoEquilibrium { .. })
+    ));
+}
+
+#[test]
+fn huge_friction_approaches_the_stuck_linear_solution() {
+    let body = ThickBody::paper(30, 7).unwrap();
+    let loads = EndLoads::ratio(2.0);
+    let model = body
+        .model(RegularisedCoulomb, coulomb(1e3, EPS), EPS)
+        .unwrap();
+    let sol = BoundarySolver::new(&model, ContactSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    // the end nodes carry almost no normal stress and may still slide
+    let sticking = sol.contact.state.iter().filter(|&&s| s == 0).count();
+    assert!(
+        sticking + 4 >= sol.contact.state.len(),
+        "{:?}",
+        sol.contact.state
+    );
+    let clamped = {
+        let grid = body.discretisation(1.0, 2.0).unwrap();
+        capstan_elasticity::FiniteDifferenceNavier::new(
+            capstan_geometry::ShellChart::new(body.obstacle.clone()),
+            body.material,
+            *grid.grid(),
+            BoundaryConditions::paper_clamped(1.0, 2.0),
+            None,
+        )
+        .unwrap()
+        .solve(&mut SparseLu::default())
+        .unwrap()
+    };
+    // stick stiffness mu |sigma| / eps ~ 1e8 in the interior (measured 2.4e-4: the end nodes,
+    // where sigma_n -> 0, still slide a little)
+    let d = max_diff(&sol.displacement, &clamped) / max_abs(&clamped);
+    assert!(d < 1e-3, "{d:e}");
+}
+
+#[test]
+fn young_modulus_scales_displacements_when_eps_scales_with_it() {
+    let loads = EndLoads::ratio(2.0);
+    let solve = |young: f64, eps: f64| {
+        let body = ThickBody {
+            material: Material::new(young, 0.25).unwrap(),
+            ..ThickBody::paper(40, 9).unwrap()
+        };
+        let model = body
+            .model(RegularisedCoulomb, coulomb(0.5, eps), eps)
+            .unwrap();
+        BoundarySolver::new(&model, ContactSettings::default())
+            .unwrap()
+            .solve(loads)
+            .unwrap()
+    };
+    let a = solve(1e3, EPS);
+    let b = solve(2.5e3, EPS / 2.5);
+    let scaled: Vec<f64> = b.displacement.iter().map(|x| 2.5 * x).collect();
+    // the problem is exactly invariant under (E, eps, v) -> (k E, eps / k, v / k)
+    assert!(max_diff(&a.displacement, &scaled) < 1e-8 * max_abs(&a.displacement));
+    assert_eq!(a.contact.state, b.contact.state);
+    assert_eq!(a.slip_fraction, b.slip_fraction);
+    for (x, y) in a.contact.normal_stress.iter().zip(&b.contact.normal_stress) {
+        assert!((x - y).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn symmetric_loads_on_the_circle_give_an_odd_tangential_displacement() {
+    let body = ThickBody::paper(41, 9).unwrap();
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let sol = BoundarySolver::new(&model, ContactSettings::default())
+        .unwrap()
+        .solve(EndLoads::new(1.0, 1.0))
+        .unwrap();
+    let disc = model.discretisation();
+    let scale = max_abs(&sol.displacement);
+    for i in 0..41 {
+        for j in 0..9 {
+            let v2 = sol.displacement[disc.dof([i, j], Component::X2)];
+            let m2 = sol.displacement[disc.dof([40 - i, j], Component::X2)];
+            let v3 = sol.displacement[disc.dof([i, j], Component::X3)];
+            let m3 = sol.displacement[disc.dof([40 - i, j], Component::X3)];
+            assert!((v2 + m2).abs() < 1e-9 * scale);
+            assert!((v3 - m3).abs() < 1e-9 * scale);
+        }
+    }
+    assert!(sol.slip_fraction.abs() < 1e-12);
+}
+
+#[test]
+fn circle_past_the_limiting_ratio_has_no_equilibrium() {
+    let body = ThickBody::paper(40, 9).unwrap();
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let mode = solver.sliding().unwrap();
+    assert!(mode.upper_ratio > 3.0 && mode.upper_ratio < 3.6);
+    assert!((mode.lower_ratio * mode.upper_ratio - 1.0).abs() < 1e-8); // mirror symmetry
+    let err = solver
+        .solve(EndLoads::ratio(mode.upper_ratio * 1.01))
+        .unwrap_err();
+    assert!(matches!(err, ContactError::NoEquilibrium { .. }), "{err}");
+    assert_eq!(err.status(), "no-equilibrium");
+    // just below the limit a solution exists and nearly everything slides forward
+    let sol = solver
+        .solve(EndLoads::ratio(mode.upper_ratio * 0.999))
+        .unwrap();
+    assert!(sol.slip_fraction > 0.9);
+    // an ellipse has no sliding mode
+    let model = ellipse(2.0, 1.5, 40, 9)
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    assert!(
+        BoundarySolver::new(&model, ContactSettings::default())
+            .unwrap()
+            .sliding()
+            .is_none()
+    );
+}
+
+#[test]
+fn threshold_on_the_circle_is_the_limiting_ratio() {
+    let body = ThickBody::paper(40, 9).unwrap();
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let t = threshold_ratio(&solver, ThresholdSettings::default()).unwrap();
+    let limit = t.limiting_ratio.unwrap();
+    assert!(
+        t.ratio <= limit * (1.0 + 2e-6) && t.ratio > limit * 0.99,
+        "{t:?}"
+    );
+}
+
+#[test]
+fn threshold_on_an_ellipse_is_where_slip_reaches_one() {
+    let body = ellipse(2.0, 1.0, 40, 9);
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let t = threshold_ratio(&solver, ThresholdSettings::default()).unwrap();
+    assert!(t.limiting_ratio.is_none());
+    assert!(
+        solver
+            .solve(EndLoads::ratio(t.above))
+            .unwrap()
+            .fully_slipping()
+    );
+    assert!(
+        !solver
+            .solve(EndLoads::ratio(t.below))
+            .unwrap()
+            .fully_slipping()
+    );
+}
+
+#[test]
+fn bad_inputs_are_typed_errors() {
+    let body = ThickBody::paper(20, 5).unwrap();
+    assert!(matches!(
+        body.model(RegularisedCoulomb, coulomb(0.5, EPS), 0.0),
+        Err(ContactError::InvalidParameter {
+            field: "friction.eps",
+            ..
+        })
+    ));
+    let model = body
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let err = solver.solve(EndLoads::new(f64::NAN, 1.0)).unwrap_err();
+    assert!(matches!(
+        err,
+        ContactError::InvalidParameter {
+            field: "loads.tau0",
+            ..
+        }
+    ));
+    assert_eq!(err.status(), "invalid-input");
+    assert!(matches!(
+        BoundarySolver::new(
+            &model,
+            ContactSettings {
+                tolerance: 0.0,
+                ..Default::default()
+            }
+        ),
+        Err(ContactError::InvalidParameter { .. })
+    ));
+    assert!(RegularisedCoulombParams::new(-1.0, EPS).is_err());
+}
