@@ -31,7 +31,10 @@ use capstan_elasticity::finite_element::{
 use capstan_elasticity::samples::{
     LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms,
 };
-use capstan_elasticity::solvers::{IterativeParams, LinearBackend};
+use capstan_elasticity::solvers::{
+    ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver,
+    SparseCholesky,
+};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError, ShellGeometry};
 use clap::{Args, Subcommand};
@@ -254,15 +257,9 @@ struct Timed<D> {
 
 fn solve_timed<D: Discretisation>(
     build: impl FnOnce() -> Result<D, ElasticityError>,
-    backend: LinearBackend,
+    mut solver: Box<dyn LinearSolver<f64> + Send>,
     use_vmhwm: bool,
 ) -> Result<Timed<D>, CliError> {
-    let iterative = IterativeParams {
-        tolerance: 1e-10,
-        max_iterations: 20_000,
-        ..Default::default()
-    };
-    let mut solver = backend.build(&iterative).map_err(ElasticityError::from)?;
     if use_vmhwm {
         reset_peak();
     }
@@ -291,12 +288,63 @@ fn solve_timed<D: Discretisation>(
     })
 }
 
+/// A linear backend of the benchmark: one of [`LinearBackend`], or Cholesky with the nested
+/// dissection of the structured grid (separators as wide as the element's reach, `k` lines).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Backend {
+    Named(LinearBackend),
+    CholeskyNestedDissection,
+}
+
+impl Backend {
+    fn name(self) -> &'static str {
+        match self {
+            Self::Named(b) => b.name(),
+            Self::CholeskyNestedDissection => "cholesky-nd",
+        }
+    }
+}
+
+fn build_solver(
+    backend: Backend,
+    parts: &ProblemParts,
+    method: Option<ElementOrder>,
+) -> Result<Box<dyn LinearSolver<f64> + Send>, CliError> {
+    Ok(match backend {
+        Backend::Named(b) => {
+            let iterative = IterativeParams {
+                tolerance: 1e-10,
+                max_iterations: 20_000,
+                ..Default::default()
+            };
+            b.build(&iterative).map_err(ElasticityError::from)?
+        }
+        Backend::CholeskyNestedDissection => {
+            let grid = GridShape {
+                n2: parts.grid.n2(),
+                n3: parts.grid.n3(),
+                dofs_per_node: 2,
+                periodic: parts.grid.is_periodic(),
+            };
+            let separator_width = method.map_or(1, ElementOrder::degree);
+            let params = DirectParams {
+                ordering: ColumnOrdering::NestedDissection {
+                    grid,
+                    separator_width,
+                },
+                ..Default::default()
+            };
+            Box::new(SparseCholesky::new(params).map_err(ElasticityError::from)?)
+        }
+    })
+}
+
 /// One method/backend on one grid: time, error, memory (fastest of three if under 50 ms).
 fn run_one(
     problem: Problem,
     m: usize,
     method: Option<ElementOrder>,
-    backend: LinearBackend,
+    backend: Backend,
     reference: &Reference<'_>,
     use_vmhwm: bool,
 ) -> Result<Run, CliError> {
@@ -304,14 +352,15 @@ fn run_one(
     for _ in 0..3 {
         let parts = problem.parts(m)?;
         let chart = parts.chart.clone();
+        let solver = build_solver(backend, &parts, method)?;
         let (grid, dofs, seconds, peak_mib, error) = match method {
             None => {
-                let t = solve_timed(|| parts.finite_difference(), backend, use_vmhwm)?;
+                let t = solve_timed(|| parts.finite_difference(), solver, use_vmhwm)?;
                 let error = nodal_error(&t.op, &chart, &t.v, reference)?;
                 (*t.op.grid(), t.op.dof_count(), t.seconds, t.peak_mib, error)
             }
             Some(order) => {
-                let t = solve_timed(|| parts.finite_element(order), backend, use_vmhwm)?;
+                let t = solve_timed(|| parts.finite_element(order), solver, use_vmhwm)?;
                 let error = match reference {
                     Reference::Exact(f) => {
                         let e = t.op.displacement_errors(&t.v, *f)?;
@@ -508,9 +557,10 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             Problem::Paper => Reference::Nodal(&reference_values),
         };
         for method in [None, Some(ElementOrder::Q1), Some(ElementOrder::Q2)] {
-            let mut backends = vec![LinearBackend::Lu];
+            let mut backends = vec![Backend::Named(LinearBackend::Lu)];
             if method.is_some() {
-                backends.push(LinearBackend::Cholesky);
+                backends.push(Backend::Named(LinearBackend::Cholesky));
+                backends.push(Backend::CholeskyNestedDissection);
             }
             for &backend in &backends {
                 for &m in &levels {
@@ -522,7 +572,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 problem,
                 levels[0],
                 method,
-                LinearBackend::GaussSeidel,
+                Backend::Named(LinearBackend::GaussSeidel),
                 &reference,
                 use_vmhwm,
             ) {
@@ -680,4 +730,36 @@ pub fn table(r: &WorkPrecisionReport) -> String {
         s += &format!("wrote {}\n", f.display());
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(error: f64, seconds: f64) -> Run {
+        Run {
+            problem: "lame",
+            method: "fem-q2".into(),
+            backend: "cholesky".into(),
+            n2: 0,
+            n3: 0,
+            dofs: 0,
+            setup_seconds: 0.0,
+            assemble_seconds: 0.0,
+            solve_seconds: 0.0,
+            seconds,
+            error,
+            peak_mib: 0.0,
+        }
+    }
+
+    #[test]
+    fn time_to_error_interpolates_log_log_and_refuses_to_extrapolate() {
+        let runs = [run(1e-3, 0.01), run(1e-5, 0.1), run(1e-7, 1.0)];
+        let refs: Vec<&Run> = runs.iter().collect();
+        // error ~ t^-2 here: 1e-6 lies half way (in logs) between 0.1 s and 1 s
+        let t = time_to_error(&refs, 1e-6).unwrap();
+        assert!((t - 10f64.powf(-0.5)).abs() < 1e-12);
+        assert!(time_to_error(&refs, 1e-8).is_none());
+    }
 }

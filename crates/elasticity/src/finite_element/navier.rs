@@ -132,6 +132,8 @@ pub struct FiniteElementNavier<G> {
     columns: Vec<usize>,
     /// Slot of each local entry `(I, J)` of each element, `NO_SLOT` if none.
     local_slots: Vec<u32>,
+    /// Index in `entries()` (column-major) of each row-wise slot.
+    entry_of_slot: Vec<u32>,
     /// Slot of the diagonal of each dof.
     diagonal_slots: Vec<usize>,
     /// `[T^3_2, T^3_3]` coefficients and `[sqrt(g), sqrt(g^33), sqrt(g_22)]` on `x3 = 0`.
@@ -306,6 +308,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             row_ptr: vec![],
             columns: vec![],
             local_slots: vec![],
+            entry_of_slot: vec![],
             diagonal_slots: vec![],
             contact: vec![],
         };
@@ -760,6 +763,24 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         self.diagonal_slots = (0..ndof)
             .map(|d| slot(d, d).expect("diagonal in the pattern"))
             .collect();
+        // entries() lists the pattern column by column (rows increasing), the order in which
+        // `SparsityPattern::from_entries` sorts: its sort then only has to confirm the order.
+        let mut next = vec![0usize; ndof + 1];
+        for &c in &columns {
+            next[c + 1] += 1;
+        }
+        for c in 0..ndof {
+            next[c + 1] += next[c];
+        }
+        let mut entry_of_slot = vec![0u32; columns.len()];
+        for r in 0..ndof {
+            for k in row_ptr[r]..row_ptr[r + 1] {
+                let c = columns[k];
+                entry_of_slot[k] = next[c] as u32;
+                next[c] += 1;
+            }
+        }
+        self.entry_of_slot = entry_of_slot;
         self.row_ptr = row_ptr;
         self.columns = columns;
         self.local_slots = local_slots;
@@ -971,13 +992,11 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
     }
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
-        let mut entries = Vec::with_capacity(self.columns.len());
+        let mut entries = vec![(0, 0); self.columns.len()];
         for r in 0..self.dof_count() {
-            entries.extend(
-                self.columns[self.row_ptr[r]..self.row_ptr[r + 1]]
-                    .iter()
-                    .map(|&c| (r, c)),
-            );
+            for k in self.row_ptr[r]..self.row_ptr[r + 1] {
+                entries[self.entry_of_slot[k] as usize] = (r, self.columns[k]);
+            }
         }
         Ok(entries)
     }
@@ -995,7 +1014,11 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
             });
         }
         let values = self.assemble(rhs);
-        for (k, x) in values.into_iter().enumerate() {
+        let mut ordered = vec![0.0; values.len()];
+        for (x, &e) in values.iter().zip(&self.entry_of_slot) {
+            ordered[e as usize] = *x;
+        }
+        for (k, x) in ordered.into_iter().enumerate() {
             add(k, x);
         }
         Ok(())

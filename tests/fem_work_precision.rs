@@ -1,0 +1,100 @@
+//! `capstan bench work-precision`: argument parsing, a smoke run of the benchmark on its
+//! quick grids (ignored in CI: several seconds), and a very small smoke test of the
+//! scikit-fem peer script when `.venv/bin/python` has scikit-fem (skipped otherwise).
+
+use std::process::Command;
+
+use capstan::cli::{Cli, Command as Sub};
+use capstan::commands::bench::{BenchCommand, WorkPrecisionArgs, report};
+use clap::Parser;
+
+#[test]
+fn work_precision_arguments_parse() {
+    let cli = Cli::try_parse_from([
+        "capstan",
+        "bench",
+        "work-precision",
+        "--quick",
+        "--json",
+        "--out",
+        "x",
+    ])
+    .unwrap();
+    let Some(Sub::Bench(b)) = cli.command else {
+        panic!("not bench")
+    };
+    let BenchCommand::WorkPrecision(a) = b.what;
+    assert!(a.quick && a.json && !a.no_peer);
+    assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
+}
+
+#[test]
+#[ignore = "runs every method on three grids per problem: several seconds"]
+fn quick_work_precision_writes_csv_and_plots() {
+    let dir = std::env::temp_dir().join(format!("capstan-wp-{}", std::process::id()));
+    let r = report(&WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        json: false,
+    })
+    .unwrap();
+    // 3 problems x (fd lu, q1 lu+chol, q2 lu+chol) x 3 grids, plus Gauss-Seidel on the
+    // smallest grid where it converges
+    assert!(r.runs.len() >= 45, "{}", r.runs.len());
+    for run in &r.runs {
+        assert!(run.error > 0.0 && run.error < 0.2, "{run:?}");
+    }
+    // refining the grid reduces the error of every direct series
+    let q2: Vec<_> = r
+        .runs
+        .iter()
+        .filter(|x| x.problem == "lame" && x.method == "fem-q2" && x.backend == "cholesky")
+        .collect();
+    assert!(q2.windows(2).all(|w| w[1].error < w[0].error / 4.0));
+    for f in [
+        "work-precision.csv",
+        "work-precision-lame.svg",
+        "work-precision-lame.png",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn peer_script_smoke_when_scikit_fem_is_installed() {
+    let python = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
+    let has_skfem = Command::new(&python)
+        .args(["-c", "import skfem"])
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !has_skfem {
+        eprintln!("skipped: no .venv/bin/python with scikit-fem");
+        return;
+    }
+    let out = Command::new(&python)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "bench/peers/skfem_lame.py",
+            "--order",
+            "2",
+            "--levels",
+            "2,4",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2);
+    let e: Vec<f64> = lines.iter().map(|l| l["error"].as_f64().unwrap()).collect();
+    // Q2 on the exact annulus: third order, so halving h divides the error by about 8
+    assert!(e[1] < e[0] / 5.0 && e[1] < 1e-2, "{e:?}");
+}
