@@ -45,6 +45,55 @@ pub enum Command {
         after_help = "Example:\n  capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75"
     )]
     InferMu(SceneArgs),
+    /// Thick body on a rough prism under regularised Coulomb friction (paper section 3).
+    #[command(
+        after_help = "Examples:\n  capstan contact --set loads.tau_max=1 --json\n  capstan contact --set grid.n2=80 --set grid.n3=17 --set solver.nonlinear=full-newton --out out/contact"
+    )]
+    Contact(ContactArgs),
+    /// One scene key swept over a range: Slip and the contact numbers per point (parallel).
+    #[command(
+        after_help = "Example:\n  capstan sweep --param loads.tau_max --from 1 --to 3.5 --steps 26 --json"
+    )]
+    Sweep(SweepArgs),
+    /// Tension ratio at which the whole contact slides, and the capstan mu it implies.
+    #[command(
+        after_help = "Example:\n  capstan threshold --set grid.n2=80 --set grid.n3=17 --json"
+    )]
+    Threshold(SceneArgs),
+}
+
+/// Arguments of `capstan contact`.
+#[derive(Debug, Args, Clone, Default)]
+pub struct ContactArgs {
+    /// The scene.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Write `contact.json`, `contact.csv` and `displacement.csv` into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// Arguments of `capstan sweep`.
+#[derive(Debug, Args, Clone, Default)]
+pub struct SweepArgs {
+    /// The scene.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// The scene key to vary, e.g. `loads.tau_max`, `obstacle.b`, `body.thickness`.
+    #[arg(long, value_name = "KEY")]
+    pub param: String,
+    /// First value.
+    #[arg(long)]
+    pub from: f64,
+    /// Last value.
+    #[arg(long)]
+    pub to: f64,
+    /// Number of points (both ends included).
+    #[arg(long)]
+    pub steps: usize,
+    /// Write `sweep.json` and `sweep.csv` into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 /// Arguments of `capstan verify`.
@@ -93,6 +142,9 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         Some(Command::Bench(args)) => bench(&args),
         Some(Command::Tension(args)) => tension(&args),
         Some(Command::InferMu(args)) => infer_mu(&args),
+        Some(Command::Contact(args)) => contact(&args),
+        Some(Command::Sweep(args)) => sweep(&args),
+        Some(Command::Threshold(args)) => threshold(&args),
     }
 }
 
@@ -123,6 +175,47 @@ fn infer_mu(args: &SceneArgs) -> Result<String, CliError> {
         Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
     } else {
         Ok(commands::infer_mu::table(&report, &scene))
+    }
+}
+
+fn contact(args: &ContactArgs) -> Result<String, CliError> {
+    let scene = args.scene.load()?;
+    let (report, solved) = commands::contact::solve(&scene)?;
+    if let Some(dir) = &args.out {
+        commands::contact::write_out(dir, &report, &solved)?;
+    }
+    if args.scene.json {
+        Ok(crate::output::to_json_string(&report)?)
+    } else {
+        Ok(commands::contact::table(&report))
+    }
+}
+
+fn sweep(args: &SweepArgs) -> Result<String, CliError> {
+    let values = commands::sweep::values(args.from, args.to, args.steps)?;
+    let report = commands::sweep::report(
+        args.scene.scene.as_deref(),
+        &args.scene.sets,
+        &args.param,
+        &values,
+    )?;
+    if let Some(dir) = &args.out {
+        commands::sweep::write_out(dir, &report)?;
+    }
+    if args.scene.json {
+        Ok(crate::output::to_json_string(&report)?)
+    } else {
+        Ok(commands::sweep::table(&report))
+    }
+}
+
+fn threshold(args: &SceneArgs) -> Result<String, CliError> {
+    let scene = args.load()?;
+    let report = commands::threshold::report(&scene)?;
+    if args.json {
+        Ok(crate::output::to_json_string(&report)?)
+    } else {
+        Ok(commands::threshold::table(&report))
     }
 }
 

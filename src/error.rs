@@ -41,6 +41,10 @@ pub enum CliError {
     /// the interval (lift-off, slack, non-convex, no `mu`: 3), or non-convergence (4).
     #[error(transparent)]
     Friction(#[from] FrictionError),
+    /// A thick-body contact problem failed: bad input (exit code 2), no static equilibrium
+    /// (tension ratio beyond what friction holds: 3), or non-convergence (4).
+    #[error(transparent)]
+    Contact(#[from] capstan_elasticity::contact::ContactError),
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
@@ -53,6 +57,11 @@ impl CliError {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
             Self::Scene { .. } | Self::Set { .. } | Self::Geometry(_) | Self::Elasticity(_) => 2,
+            Self::Contact(e) => match e.kind() {
+                capstan_elasticity::contact::ContactErrorKind::InvalidInput => 2,
+                capstan_elasticity::contact::ContactErrorKind::NoEquilibrium => 3,
+                capstan_elasticity::contact::ContactErrorKind::NotConverged => 4,
+            },
             Self::Friction(e) => match e.category() {
                 ErrorCategory::InvalidInput => 2,
                 ErrorCategory::NoEquilibrium => 3,

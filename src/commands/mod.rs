@@ -1,7 +1,10 @@
 //! One module per subcommand.
 
 pub mod bench;
+pub mod contact;
 pub mod geometry;
 pub mod infer_mu;
+pub mod sweep;
 pub mod tension;
+pub mod threshold;
 pub mod verify;

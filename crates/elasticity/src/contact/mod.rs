@@ -48,3 +48,9 @@ pub use solution::{
     ContactProfile, ContactSolution, Extremum, SolveStats, StateInterval, classify, state_intervals,
 };
 pub use threshold::{ThresholdResult, ThresholdSettings, threshold_ratio};
+
+/// Makes faer's dense and sparse kernels sequential (`Par::Seq`), for callers that run many
+/// contact solves in parallel themselves (rayon sweeps): avoids oversubscription.
+pub fn sequential_linear_algebra() {
+    faer::set_global_parallelism(faer::Par::Seq);
+}

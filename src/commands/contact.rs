@@ -1,0 +1,456 @@
+//! `capstan contact`: the thick body on a rough prism under regularised Coulomb friction
+//! (paper section 3).
+
+use std::time::Instant;
+
+use capstan_elasticity::Material;
+use capstan_elasticity::contact::{
+    BoundarySolver, ContactError, ContactModel, ContactSettings, ContactSolution, EndLoads,
+    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
+};
+use capstan_elasticity::friction::{
+    ContactState, FrictionLaw, Frictionless, RegularisedCoulomb, RegularisedCoulombParams,
+    TractionDerivatives,
+};
+use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
+use serde::Serialize;
+
+use crate::error::CliError;
+use crate::output::{OutputDir, Table};
+use crate::scene::Scene;
+
+/// The friction laws a scene can name (`friction.law`): `coulomb` (regularised Coulomb with
+/// `friction.mu`, `friction.eps`) or `frictionless`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SceneLaw {
+    /// Regularised Coulomb.
+    Coulomb,
+    /// No friction.
+    Frictionless,
+}
+
+/// Parameters of [`SceneLaw`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SceneLawParams {
+    coulomb: RegularisedCoulombParams<f64>,
+}
+
+impl FrictionLaw<f64> for SceneLaw {
+    type Params = SceneLawParams;
+    fn traction(&self, c: &ContactState<f64>, p: &SceneLawParams) -> [f64; 2] {
+        match self {
+            Self::Coulomb => RegularisedCoulomb.traction(c, &p.coulomb),
+            Self::Frictionless => Frictionless.traction(c, &()),
+        }
+    }
+    fn traction_derivatives(
+        &self,
+        c: &ContactState<f64>,
+        p: &SceneLawParams,
+    ) -> TractionDerivatives<f64> {
+        match self {
+            Self::Coulomb => RegularisedCoulomb.traction_derivatives(c, &p.coulomb),
+            Self::Frictionless => Frictionless.traction_derivatives(c, &()),
+        }
+    }
+}
+
+/// The contact model a scene describes.
+pub type SceneModel = ContactModel<ThickBodyOperator, SceneLaw>;
+
+/// The solver a scene selects (`solver.nonlinear`, `solver.linear`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SceneSolver {
+    /// `newton` (default): boundary-only Newton on the condensed contact tractions, bulk
+    /// factorised once.
+    Condensed,
+    /// `full-newton`: Newton on the full residual with `solver.linear`, refactorised each step.
+    FullNewton(LinearBackend),
+    /// `jacobi-newton`: the paper's Jacobi–Newton (damped Jacobi, relaxation 1/2).
+    JacobiNewton,
+}
+
+impl SceneSolver {
+    /// Reads the scene's solver keys.
+    ///
+    /// # Errors
+    /// [`CliError::Scene`] for an unknown name.
+    pub fn from_scene(scene: &Scene) -> Result<Self, CliError> {
+        let linear: LinearBackend = scene.solver.linear.parse().map_err(
+            |e: capstan_elasticity::solvers::SolverError| CliError::Scene {
+                origin: "solver.linear".into(),
+                message: e.to_string(),
+            },
+        )?;
+        match scene.solver.nonlinear.as_str() {
+            "newton" => Ok(Self::Condensed),
+            "full-newton" => Ok(Self::FullNewton(linear)),
+            "jacobi-newton" => Ok(Self::JacobiNewton),
+            other => Err(CliError::Scene {
+                origin: "solver.nonlinear".into(),
+                message: format!(
+                    "unknown contact solver `{other}`; expected `newton` (boundary-only), `full-newton` or `jacobi-newton`"
+                ),
+            }),
+        }
+    }
+
+    /// The settings of the full-system solvers.
+    pub fn full_settings(self) -> FullSystemSettings {
+        let mut s = FullSystemSettings::default();
+        match self {
+            Self::FullNewton(linear) => s.newton.linear = linear,
+            Self::JacobiNewton => {
+                s.method = NonlinearMethod::JacobiNewton;
+                s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here
+                s.newton.iterative.max_iterations = 10_000_000;
+                s.newton.iterative.tolerance = 1e-12;
+                s.continuation.tolerance = 1e-9;
+            }
+            Self::Condensed => {}
+        }
+        s
+    }
+}
+
+/// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`, and the
+/// contact interval `membrane.theta0`, `membrane.theta_max` (default `[-pi/2, pi/2]`).
+///
+/// # Errors
+/// Bad obstacle (a cone), geometry or material values.
+pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    if !obstacle.is_prism() {
+        return Err(CliError::Scene {
+            origin: "obstacle.shape".into(),
+            message:
+                "the thick body needs a prism (cylinder, ellipse or prism); cones are membrane-only"
+                    .into(),
+        });
+    }
+    Ok(ThickBody {
+        obstacle,
+        theta: [scene.membrane.theta0, scene.membrane.theta_max],
+        thickness: scene.body.thickness,
+        material: Material::new(scene.body.young, scene.body.poisson)?,
+        n2: scene.grid.n2,
+        n3: scene.grid.n3,
+    })
+}
+
+/// The contact model of a scene.
+///
+/// # Errors
+/// See [`thick_body`]; bad friction values; assembly errors.
+pub fn model(scene: &Scene) -> Result<SceneModel, CliError> {
+    let law = match scene.friction.law.as_str() {
+        "coulomb" => SceneLaw::Coulomb,
+        "frictionless" => SceneLaw::Frictionless,
+        other => {
+            return Err(CliError::Scene {
+                origin: "friction.law".into(),
+                message: format!(
+                    "unknown friction law `{other}`; expected `coulomb` or `frictionless`"
+                ),
+            });
+        }
+    };
+    let coulomb = RegularisedCoulombParams::new(scene.friction.mu, scene.friction.eps)?;
+    let body = thick_body(scene)?;
+    Ok(body.model(law, SceneLawParams { coulomb }, scene.friction.eps)?)
+}
+
+/// The scene's loads.
+pub fn loads(scene: &Scene) -> EndLoads {
+    EndLoads::new(scene.loads.tau0, scene.loads.tau_max)
+}
+
+/// A signed extreme value with its place (JSON `{"value", "x2", "x3"}`).
+pub type Extremum = capstan_elasticity::contact::Extremum;
+
+/// One interval of the contact surface.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct IntervalReport {
+    /// `+1` positive slip, `-1` negative slip, `0` stick.
+    pub state: i8,
+    /// Interpolated start (where `u` crosses `+-eps`).
+    pub from: f64,
+    /// Interpolated end.
+    pub to: f64,
+    /// `x2` of the first and last node.
+    pub nodes: [f64; 2],
+}
+
+/// The contact surface fields.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactArrays {
+    /// `x2` of the contact nodes.
+    pub x2: Vec<f64>,
+    /// `v^2` (rad on an angular chart).
+    pub v2: Vec<f64>,
+    /// `v^3` (0: bilateral).
+    pub v3: Vec<f64>,
+    /// `sigma_n = T^3_3` (negative in compression).
+    pub normal_stress: Vec<f64>,
+    /// `T^3_2`.
+    pub shear_stress: Vec<f64>,
+    /// `+1`, `-1`, `0`.
+    pub state: Vec<i8>,
+    /// Physical tangential displacement `sqrt(g_22) v^2`.
+    pub slip: Vec<f64>,
+    /// Physical friction traction on the body.
+    pub friction_traction: Vec<f64>,
+}
+
+/// `capstan contact --json` (keys are a public contract).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ContactReport {
+    /// `converged`.
+    pub status: &'static str,
+    /// `true`.
+    pub converged: bool,
+    /// Newton iterations in total.
+    pub newton_iterations: usize,
+    /// The paper's Slip (mean of the node states).
+    pub slip_fraction: f64,
+    /// `[from, to]` of the longest stick run (interpolated), `null` if nothing sticks.
+    pub stick_interval: Option<[f64; 2]>,
+    /// `x2` of the first and last node of that run.
+    pub stick_nodes: Option<[f64; 2]>,
+    /// Runs of positive / negative slip.
+    pub slip_intervals: Vec<IntervalReport>,
+    /// `v^2` of largest magnitude over the body.
+    pub max_azimuthal_displacement: Extremum,
+    /// `v^3` of largest magnitude over the body.
+    pub max_radial_displacement: Extremum,
+    /// Fields on the contact surface.
+    pub contact: ContactArrays,
+    /// `tau0`.
+    pub tau0: f64,
+    /// `tau_max`.
+    pub tau_max: f64,
+    /// `tau_max / tau0`.
+    pub tension_ratio: f64,
+    /// `condensed`, `full-newton` or `full-jacobi-newton`.
+    pub method: &'static str,
+    /// Load-continuation steps.
+    pub continuation_steps: usize,
+    /// Relative max-norm residual of the full system.
+    pub residual: f64,
+    /// Inner Jacobi iterations (Jacobi–Newton only).
+    pub linear_iterations: usize,
+    /// `[lower, upper]` tension ratios friction can hold, when the body can slide rigidly (circle).
+    pub limiting_ratios: Option<[f64; 2]>,
+    /// Contact nodes under tension (`sigma_n > 0`).
+    pub tensile_contact_nodes: usize,
+    /// `[n2, n3]`.
+    pub grid: [usize; 2],
+    /// Wall time of the setup (bulk factorisation and condensation), seconds.
+    pub setup_seconds: f64,
+    /// Wall time of the nonlinear solve, seconds.
+    pub solve_seconds: f64,
+}
+
+impl ContactReport {
+    /// The report of a solution.
+    pub fn new(
+        sol: &ContactSolution,
+        limiting: Option<[f64; 2]>,
+        grid: [usize; 2],
+        times: [f64; 2],
+    ) -> Self {
+        let c = &sol.contact;
+        Self {
+            status: "converged",
+            converged: true,
+            newton_iterations: sol.stats.newton_iterations,
+            slip_fraction: sol.slip_fraction,
+            stick_interval: sol.stick_interval.map(|i| [i.from, i.to]),
+            stick_nodes: sol.stick_interval.map(|i| i.nodes),
+            slip_intervals: sol
+                .slip_intervals()
+                .map(|i| IntervalReport {
+                    state: i.state,
+                    from: i.from,
+                    to: i.to,
+                    nodes: i.nodes,
+                })
+                .collect(),
+            max_azimuthal_displacement: sol.max_azimuthal_displacement,
+            max_radial_displacement: sol.max_radial_displacement,
+            contact: ContactArrays {
+                x2: c.x2.clone(),
+                v2: c.v2.clone(),
+                v3: c.v3.clone(),
+                normal_stress: c.normal_stress.clone(),
+                shear_stress: c.shear_stress.clone(),
+                state: c.state.clone(),
+                slip: c.slip.clone(),
+                friction_traction: c.friction_traction.clone(),
+            },
+            tau0: sol.loads.tau0,
+            tau_max: sol.loads.tau_max,
+            tension_ratio: sol.loads.tension_ratio(),
+            method: sol.stats.method,
+            continuation_steps: sol.stats.continuation_steps,
+            residual: sol.stats.residual,
+            linear_iterations: sol.stats.linear_iterations,
+            limiting_ratios: limiting,
+            tensile_contact_nodes: sol.tensile_contact_nodes,
+            grid,
+            setup_seconds: times[0],
+            solve_seconds: times[1],
+        }
+    }
+}
+
+/// The displacement at every node of the body.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct NodalDisplacement {
+    /// `x2` of the nodes.
+    pub x2: Vec<f64>,
+    /// `x3` of the nodes.
+    pub x3: Vec<f64>,
+    /// `v^2`.
+    pub v2: Vec<f64>,
+    /// `v^3`.
+    pub v3: Vec<f64>,
+}
+
+/// A solved scene: the solution and its nodal displacement.
+#[derive(Debug, Clone)]
+pub struct Solved {
+    /// The solution.
+    pub solution: ContactSolution,
+    /// Nodal displacement.
+    pub nodes: NodalDisplacement,
+}
+
+fn solved(model: &SceneModel, solution: ContactSolution) -> Solved {
+    use capstan_elasticity::{Component, Discretisation};
+    let disc = model.discretisation();
+    let grid = disc.grid();
+    let mut nodes = NodalDisplacement::default();
+    for i in 0..grid.n2() {
+        for j in 0..grid.n3() {
+            nodes.x2.push(grid.x2(i));
+            nodes.x3.push(grid.x3(j));
+            nodes
+                .v2
+                .push(solution.displacement[disc.dof([i, j], Component::X2)]);
+            nodes
+                .v3
+                .push(solution.displacement[disc.dof([i, j], Component::X3)]);
+        }
+    }
+    Solved { solution, nodes }
+}
+
+/// Solves a scene's contact problem with its solver.
+///
+/// # Errors
+/// Bad input (exit 2), no equilibrium (3), non-convergence (4).
+pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
+    let method = SceneSolver::from_scene(scene)?;
+    let loads = loads(scene);
+    let t0 = Instant::now();
+    let model = model(scene)?;
+    let grid = [scene.grid.n2, scene.grid.n3];
+    match method {
+        SceneSolver::Condensed => {
+            let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+            let setup = t0.elapsed().as_secs_f64();
+            let t1 = Instant::now();
+            let sol = solver.solve(loads)?;
+            let limiting = solver.sliding().map(|m| [m.lower_ratio, m.upper_ratio]);
+            let report =
+                ContactReport::new(&sol, limiting, grid, [setup, t1.elapsed().as_secs_f64()]);
+            Ok((report, solved(&model, sol)))
+        }
+        full => {
+            let solver = FullSystemSolver::new(&model, full.full_settings())?;
+            let setup = t0.elapsed().as_secs_f64();
+            let t1 = Instant::now();
+            match solver.solve(loads) {
+                Ok(sol) => {
+                    let report =
+                        ContactReport::new(&sol, None, grid, [setup, t1.elapsed().as_secs_f64()]);
+                    Ok((report, solved(&model, sol)))
+                }
+                Err(e @ ContactError::NotConverged { .. }) => {
+                    // Tell a missing equilibrium from a solver failure.
+                    let check = BoundarySolver::new(&model, ContactSettings::default())?;
+                    check.check_equilibrium(loads)?;
+                    Err(e.into())
+                }
+                Err(e) => Err(e.into()),
+            }
+        }
+    }
+}
+
+/// A plain-text summary.
+pub fn table(r: &ContactReport) -> String {
+    let mut s = format!(
+        "contact: tau0 = {}, tau_max = {} (ratio {:.6}), grid {} x {}, {}\n",
+        r.tau0, r.tau_max, r.tension_ratio, r.grid[0], r.grid[1], r.method
+    );
+    s += &format!(
+        "  status {}: {} Newton iterations ({} continuation steps), residual {:.2e}, setup {:.3} s, solve {:.3} s\n",
+        r.status,
+        r.newton_iterations,
+        r.continuation_steps,
+        r.residual,
+        r.setup_seconds,
+        r.solve_seconds
+    );
+    let e = |x: &Extremum| format!("{:+.6e} at (x2, x3) = ({:.6}, {:.6})", x.value, x.x2, x.x3);
+    s += &format!("  max |v2| {}\n", e(&r.max_azimuthal_displacement));
+    s += &format!("  max |v3| {}\n", e(&r.max_radial_displacement));
+    s += &format!("  Slip {:.6}\n", r.slip_fraction);
+    match r.stick_interval {
+        Some([a, b]) => s += &format!("  stick ({a:.6}, {b:.6})\n"),
+        None => s += "  stick: none\n",
+    }
+    for i in &r.slip_intervals {
+        s += &format!("  slip {:+} [{:.6}, {:.6}]\n", i.state, i.from, i.to);
+    }
+    if let Some([lo, hi]) = r.limiting_ratios {
+        s += &format!("  limiting tension ratios (rigid sliding): [{lo:.6}, {hi:.6}]\n");
+    }
+    s
+}
+
+/// Writes `contact.json`, `contact.csv` (contact surface) and `displacement.csv` (nodes).
+///
+/// # Errors
+/// Output errors.
+pub fn write_out(
+    dir: &std::path::Path,
+    report: &ContactReport,
+    sol: &Solved,
+) -> Result<(), CliError> {
+    let out = OutputDir::create(dir)?;
+    out.write_json("contact.json", report)?;
+    let c = &report.contact;
+    let table = Table::new()
+        .f64("x2", c.x2.clone())
+        .f64("v2", c.v2.clone())
+        .f64("v3", c.v3.clone())
+        .f64("normal_stress", c.normal_stress.clone())
+        .f64("shear_stress", c.shear_stress.clone())
+        .f64("slip", c.slip.clone())
+        .f64("friction_traction", c.friction_traction.clone())
+        .i32(
+            "state",
+            c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
+        );
+    out.write_csv("contact.csv", &table)?;
+    let nodes = Table::new()
+        .f64("x2", sol.nodes.x2.clone())
+        .f64("x3", sol.nodes.x3.clone())
+        .f64("v2", sol.nodes.v2.clone())
+        .f64("v3", sol.nodes.v3.clone());
+    out.write_csv("displacement.csv", &nodes)?;
+    Ok(())
+}

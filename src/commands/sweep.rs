@@ -1,0 +1,262 @@
+//! `capstan sweep`: one scene key varied over a range; Slip and the other contact numbers per
+//! point, in parallel over the points.
+
+use std::io::IsTerminal;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads};
+use rayon::prelude::*;
+use serde::Serialize;
+
+use crate::commands::contact::{loads, model};
+use crate::error::CliError;
+use crate::output::{OutputDir, Table};
+use crate::scene::Scene;
+
+/// One point of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepPoint {
+    /// The swept key's value.
+    pub value: f64,
+    /// `converged`, `no-equilibrium`, `not-converged` or `invalid-input`.
+    pub status: &'static str,
+    /// Whether a solution was found.
+    pub converged: bool,
+    /// Slip (mean state), `null` without a solution.
+    pub slip_fraction: Option<f64>,
+    /// Newton iterations.
+    pub newton_iterations: Option<usize>,
+    /// Interpolated stick interval.
+    pub stick_interval: Option<[f64; 2]>,
+    /// Signed max `v^2` with its place.
+    pub max_azimuthal_displacement: Option<capstan_elasticity::contact::Extremum>,
+    /// Signed max `v^3` with its place.
+    pub max_radial_displacement: Option<capstan_elasticity::contact::Extremum>,
+    /// `tau_max / tau0`.
+    pub tension_ratio: f64,
+    /// The error message of a failed point.
+    pub error: Option<String>,
+}
+
+/// `capstan sweep --json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepReport {
+    /// The swept key.
+    pub param: String,
+    /// The points in order.
+    pub points: Vec<SweepPoint>,
+    /// Whether one bulk factorisation served every point (a sweep of `loads.tau0` or
+    /// `loads.tau_max`).
+    pub shared_factorisation: bool,
+    /// Wall time, seconds.
+    pub seconds: f64,
+}
+
+/// The sweep's values: `steps` points from `from` to `to`, both included.
+///
+/// # Errors
+/// [`CliError::Scene`] for `steps == 0` or non-finite ends.
+pub fn values(from: f64, to: f64, steps: usize) -> Result<Vec<f64>, CliError> {
+    if steps == 0 || !from.is_finite() || !to.is_finite() {
+        return Err(CliError::Scene {
+            origin: "--steps/--from/--to".into(),
+            message: "need finite --from, --to and --steps >= 1".into(),
+        });
+    }
+    Ok((0..steps)
+        .map(|i| {
+            if steps == 1 {
+                from
+            } else {
+                from + (to - from) * i as f64 / (steps - 1) as f64
+            }
+        })
+        .collect())
+}
+
+fn point(
+    value: f64,
+    loads: EndLoads,
+    result: Result<capstan_elasticity::contact::ContactSolution, CliError>,
+) -> SweepPoint {
+    match result {
+        Ok(sol) => SweepPoint {
+            value,
+            status: "converged",
+            converged: true,
+            slip_fraction: Some(sol.slip_fraction),
+            newton_iterations: Some(sol.stats.newton_iterations),
+            stick_interval: sol.stick_interval.map(|i| [i.from, i.to]),
+            max_azimuthal_displacement: Some(sol.max_azimuthal_displacement),
+            max_radial_displacement: Some(sol.max_radial_displacement),
+            tension_ratio: loads.tension_ratio(),
+            error: None,
+        },
+        Err(e) => SweepPoint {
+            value,
+            status: match &e {
+                CliError::Contact(c) => c.status(),
+                _ => "invalid-input",
+            },
+            converged: false,
+            slip_fraction: None,
+            newton_iterations: None,
+            stick_interval: None,
+            max_azimuthal_displacement: None,
+            max_radial_displacement: None,
+            tension_ratio: loads.tension_ratio(),
+            error: Some(e.to_string()),
+        },
+    }
+}
+
+/// Runs the sweep of `key` over `values` (in parallel; the linear algebra inside each point
+/// stays sequential).
+///
+/// # Errors
+/// Bad input that concerns every point (the base scene, an unknown key).
+pub fn report(
+    path: Option<&std::path::Path>,
+    sets: &[String],
+    key: &str,
+    values: &[f64],
+) -> Result<SweepReport, CliError> {
+    let t = Instant::now();
+    let scene = &Scene::load(path, sets)?;
+    capstan_elasticity::contact::sequential_linear_algebra();
+    let done = AtomicUsize::new(0);
+    let progress = std::io::stdout().is_terminal();
+    let tick = || {
+        let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+        if progress {
+            eprint!("\r{key}: {k}/{} points", values.len());
+        }
+    };
+    let with = |value: f64| -> Result<Scene, CliError> {
+        let mut s = sets.to_vec();
+        s.push(format!("{key}={value}"));
+        Scene::load(path, &s)
+    };
+    // Validate the key once (and that there is a point).
+    with(*values.first().ok_or(CliError::Scene {
+        origin: "--steps".into(),
+        message: "no points".into(),
+    })?)?;
+    let shared = key == "loads.tau_max" || key == "loads.tau0";
+    let points: Vec<SweepPoint> = if shared {
+        let model = model(scene)?;
+        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        values
+            .par_iter()
+            .map(|&v| {
+                let mut l = loads(scene);
+                if key == "loads.tau_max" {
+                    l.tau_max = v;
+                } else {
+                    l.tau0 = v;
+                }
+                let r = solver.solve(l).map_err(CliError::from);
+                tick();
+                point(v, l, r)
+            })
+            .collect()
+    } else {
+        values
+            .par_iter()
+            .map(|&v| {
+                let run = || -> Result<(EndLoads, Result<_, CliError>), CliError> {
+                    let sc = with(v)?;
+                    let m = model(&sc)?;
+                    let solver = BoundarySolver::new(&m, ContactSettings::default())?;
+                    let l = loads(&sc);
+                    Ok((l, solver.solve(l).map_err(CliError::from)))
+                };
+                let p = match run() {
+                    Ok((l, r)) => point(v, l, r),
+                    Err(e) => point(v, loads(scene), Err(e)),
+                };
+                tick();
+                p
+            })
+            .collect()
+    };
+    if progress {
+        eprintln!();
+    }
+    Ok(SweepReport {
+        param: key.to_owned(),
+        points,
+        shared_factorisation: shared,
+        seconds: t.elapsed().as_secs_f64(),
+    })
+}
+
+/// Plain text.
+pub fn table(r: &SweepReport) -> String {
+    let mut s = format!(
+        "sweep of {} ({} points, {:.2} s)\n{:>12} {:>16} {:>10} {:>8}\n",
+        r.param,
+        r.points.len(),
+        r.seconds,
+        r.param,
+        "status",
+        "Slip",
+        "Newton"
+    );
+    for p in &r.points {
+        s += &format!(
+            "{:>12.6} {:>16} {:>10} {:>8}\n",
+            p.value,
+            p.status,
+            p.slip_fraction.map_or("-".into(), |x| format!("{x:.4}")),
+            p.newton_iterations.map_or("-".into(), |x| x.to_string())
+        );
+    }
+    s
+}
+
+/// Writes `sweep.json` and `sweep.csv`.
+///
+/// # Errors
+/// Output errors.
+pub fn write_out(dir: &std::path::Path, r: &SweepReport) -> Result<(), CliError> {
+    let out = OutputDir::create(dir)?;
+    out.write_json("sweep.json", r)?;
+    let converged: Vec<&SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
+    let table = Table::new()
+        .f64(
+            "value",
+            converged.iter().map(|p| p.value).collect::<Vec<_>>(),
+        )
+        .f64(
+            "slip_fraction",
+            converged
+                .iter()
+                .map(|p| p.slip_fraction.unwrap_or(0.0))
+                .collect::<Vec<_>>(),
+        )
+        .f64(
+            "tension_ratio",
+            converged
+                .iter()
+                .map(|p| p.tension_ratio)
+                .collect::<Vec<_>>(),
+        )
+        .f64(
+            "max_v2",
+            converged
+                .iter()
+                .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
+                .collect::<Vec<_>>(),
+        )
+        .f64(
+            "max_v3",
+            converged
+                .iter()
+                .map(|p| p.max_radial_displacement.map_or(0.0, |e| e.value))
+                .collect::<Vec<_>>(),
+        );
+    out.write_csv("sweep.csv", &table)?;
+    Ok(())
+}
