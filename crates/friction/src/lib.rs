@@ -2,8 +2,10 @@
 //! models — the generalised capstan equation of the paper's section 2, forward and inverse.
 //!
 //! # Status
-//! - [`FrictionLaw`] with [`RegularisedCoulomb`] (Kikuchi–Oden) and [`Frictionless`], with
-//!   consistent Newton tangents.
+//! - [`FrictionLaw`] with [`RegularisedCoulomb`] (Kikuchi–Oden), [`SmoothCoulomb`],
+//!   [`Tresca`], [`Howell`]'s power law, [`OrthotropicCoulomb`] and [`Frictionless`], with
+//!   consistent Newton tangents; [`AnyFrictionLaw`] selects among them at run time
+//!   (`friction.law`).
 //! - [`membrane`]: tension profiles on the cylinder, elliptical and general prisms (Theorem 1,
 //!   with gravity and steady speed), the infinite membrane (Corollary 1), right circular and
 //!   general cones (Theorem 2), and the coefficient of friction implied by a tension pair.
@@ -17,17 +19,27 @@
 //! gravity, steady speed and any [`membrane::LoadField`] on prisms.
 #![warn(missing_docs)]
 
+mod any_friction_law;
 mod error;
 mod friction_law;
 mod frictionless;
+mod howell;
 pub mod membrane;
 pub mod ode;
+mod orthotropic_coulomb;
 pub mod quadrature;
 mod regularised_coulomb;
 pub mod root;
 pub mod samples;
+mod smooth_coulomb;
+mod tresca;
 
+pub use any_friction_law::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind, FrictionSettings};
 pub use error::{ErrorCategory, FrictionError};
 pub use friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 pub use frictionless::Frictionless;
+pub use howell::{Howell, HowellParams};
+pub use orthotropic_coulomb::{OrthotropicCoulomb, OrthotropicCoulombParams};
 pub use regularised_coulomb::{RegularisedCoulomb, RegularisedCoulombParams};
+pub use smooth_coulomb::{SmoothCoulomb, SmoothCoulombParams};
+pub use tresca::{Tresca, TrescaParams};

@@ -1,0 +1,115 @@
+//! Smoothly regularised Coulomb friction: `mu p u / sqrt(|u|^2 + eps^2)`.
+
+use capstan_geometry::Real;
+
+use crate::error::{FrictionError, check};
+use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+
+/// Coulomb friction with a smooth (`C^infinity`) regularisation: no kink for Newton.
+///
+/// # Math
+/// ```text
+/// t(u, p) = mu p u / r,     r = sqrt(|u|^2 + eps^2)      u: slip (physical length)
+/// dt_i/du_j = mu p (delta_ij / r - u_i u_j / r^3)          p: sigma_n (< 0 in contact)
+/// dt/dp     = mu u / r
+/// ```
+/// `|t| < mu |p|` for every slip (the Coulomb bound is reached only as `|u|/eps -> inf`):
+/// `|t| = mu |p| (1 - eps^2/(2 |u|^2) + O(eps^4/|u|^4))`, so at a slip `|u| >> eps` it differs
+/// from [`crate::RegularisedCoulomb`] by `O(eps^2)`, not `O(eps)`.
+///
+/// # Example
+/// ```
+/// use capstan_friction::{ContactState, FrictionLaw, SmoothCoulomb, SmoothCoulombParams};
+/// let p = SmoothCoulombParams::new(0.5, 0.03).unwrap();
+/// let t: [f64; 2] = SmoothCoulomb.traction(&ContactState::new([0.04, 0.0], -2.0), &p);
+/// assert!((t[0] + 0.5 * 2.0 * 0.8).abs() < 1e-15); // |u|/r = 0.04/0.05
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SmoothCoulomb;
+
+/// Parameters of [`SmoothCoulomb`]: `mu >= 0` (`friction.mu`), `eps > 0` (`friction.eps`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SmoothCoulombParams<F> {
+    mu: F,
+    eps: F,
+}
+
+impl<F: Real> SmoothCoulombParams<F> {
+    /// Coefficient of friction and regularisation width.
+    ///
+    /// # Errors
+    /// [`FrictionError::InvalidParameter`] naming `friction.mu` unless `mu` is finite and
+    /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
+    pub fn new(mu: F, eps: F) -> Result<Self, FrictionError> {
+        check("friction.mu", to_f64(mu), "[0, inf)", |v| v >= 0.0)?;
+        check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0)?;
+        Ok(Self { mu, eps })
+    }
+    /// The coefficient of friction.
+    pub fn mu(&self) -> F {
+        self.mu
+    }
+    /// The regularisation width.
+    pub fn eps(&self) -> F {
+        self.eps
+    }
+}
+
+pub(crate) fn to_f64<F: Real>(x: F) -> f64 {
+    x.to_f64().unwrap_or(f64::NAN)
+}
+
+impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
+    type Params = SmoothCoulombParams<F>;
+
+    fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
+        let [u1, u2] = c.slip;
+        let r = (u1 * u1 + u2 * u2 + p.eps * p.eps).sqrt();
+        let s = p.mu * c.normal_pressure / r;
+        [s * u1, s * u2]
+    }
+
+    fn traction_derivatives(
+        &self,
+        c: &ContactState<F>,
+        p: &Self::Params,
+    ) -> TractionDerivatives<F> {
+        let [u1, u2] = c.slip;
+        let r = (u1 * u1 + u2 * u2 + p.eps * p.eps).sqrt();
+        let (inv, mp) = (F::one() / r, p.mu * c.normal_pressure);
+        let inv3 = inv * inv * inv;
+        TractionDerivatives::new(
+            [
+                [mp * (inv - u1 * u1 * inv3), -mp * u1 * u2 * inv3],
+                [-mp * u2 * u1 * inv3, mp * (inv - u2 * u2 * inv3)],
+            ],
+            [p.mu * u1 * inv, p.mu * u2 * inv],
+        )
+    }
+}
+
+/// `s u / max(|u|, eps)` and its slip derivatives: the direction kernel shared by the
+/// isotropic laws whose magnitude `s` does not depend on the slip.
+pub(crate) fn direction_kernel<F: Real>(u: [F; 2], s: F, eps: F) -> ([F; 2], [[F; 2]; 2], F) {
+    let [u1, u2] = u;
+    let norm = (u1 * u1 + u2 * u2).sqrt();
+    if norm >= eps {
+        let inv = F::one() / norm;
+        let inv3 = inv * inv * inv;
+        (
+            [s * u1 * inv, s * u2 * inv],
+            [
+                [s * (inv - u1 * u1 * inv3), -s * u1 * u2 * inv3],
+                [-s * u2 * u1 * inv3, s * (inv - u2 * u2 * inv3)],
+            ],
+            inv,
+        )
+    } else {
+        let inv = F::one() / eps;
+        (
+            [s * u1 * inv, s * u2 * inv],
+            [[s * inv, F::zero()], [F::zero(), s * inv]],
+            inv,
+        )
+    }
+}
