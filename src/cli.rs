@@ -152,7 +152,7 @@ fn geometry(args: &SceneArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::geometry::report(&scene)?;
     if args.json {
-        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+        Ok(crate::output::to_json_string(&report)?)
     } else {
         Ok(commands::geometry::table(&report, &scene.obstacle.build()?))
     }
@@ -162,7 +162,7 @@ fn tension(args: &SceneArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::tension::report(&scene)?;
     if args.json {
-        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+        Ok(crate::output::to_json_string(&report)?)
     } else {
         Ok(commands::tension::table(&report, &scene))
     }
@@ -172,7 +172,7 @@ fn infer_mu(args: &SceneArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::infer_mu::report(&scene)?;
     if args.json {
-        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+        Ok(crate::output::to_json_string(&report)?)
     } else {
         Ok(commands::infer_mu::table(&report, &scene))
     }
@@ -222,7 +222,7 @@ fn threshold(args: &SceneArgs) -> Result<String, CliError> {
 fn verify(args: &VerifyArgs) -> Result<String, CliError> {
     let report = commands::verify::report(args.quick)?;
     if args.json {
-        Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+        Ok(crate::output::to_json_string(&report)?)
     } else {
         Ok(commands::verify::table(&report))
     }
@@ -233,7 +233,7 @@ fn bench(args: &commands::bench::BenchArgs) -> Result<String, CliError> {
         commands::bench::BenchCommand::WorkPrecision(a) => {
             let report = commands::bench::report(a)?;
             if a.json {
-                Ok(serde_json::to_string_pretty(&report).expect("report serialises"))
+                Ok(crate::output::to_json_string(&report)?)
             } else {
                 Ok(commands::bench::table(&report))
             }

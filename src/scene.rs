@@ -5,10 +5,13 @@
 //! `E = 1e3`, `nu = 1/4`, `eps = 1e-5`, grid 250 x 41). Keys are a public contract: they are
 //! only ever added, never renamed.
 
+use std::collections::{HashMap, HashSet};
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
 use capstan_elasticity::finite_element::DiscretisationMethod;
+use capstan_elasticity::solvers::LinearBackend;
+use capstan_geometry::expression::Expression;
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
     RightCircularCone,
@@ -271,37 +274,78 @@ pub struct DiscretisationSpec {
 }
 
 impl Scene {
-    /// Loads a scene from an optional TOML file and applies `--set KEY=VALUE` overrides.
+    /// Loads a scene from an optional TOML file, applies `--set KEY=VALUE` overrides and
+    /// validates every field ([`Scene::validate`]).
     ///
     /// A value is read as a TOML value (`1.5`, `true`, `"text"`); anything that is not valid
     /// TOML is taken as a string, so `--set obstacle.u=2*sin(t)` needs no quotes.
     ///
+    /// Errors about a value that came from the file name its line (`scene.toml:12`); values
+    /// from `--set` are named as `--set`.
+    ///
     /// # Errors
     /// [`CliError::Io`] if the file cannot be read, [`CliError::Scene`] for malformed TOML,
-    /// unknown keys or wrong types (naming the key), [`CliError::Set`] for a malformed override.
+    /// unknown keys, wrong types or values outside their allowed range (naming the key, the
+    /// value and the range), [`CliError::Set`] for a malformed override.
     pub fn load(path: Option<&Path>, sets: &[String]) -> Result<Self, CliError> {
+        let mut origins = Origins::default();
+        let mut text = String::new();
         let mut table = match path {
             Some(p) => {
-                let text = std::fs::read_to_string(p).map_err(|source| CliError::Io {
-                    path: p.display().to_string(),
-                    source,
+                text = std::fs::read_to_string(p).map_err(|source| {
+                    if source.kind() == std::io::ErrorKind::InvalidData {
+                        CliError::Scene {
+                            origin: p.display().to_string(),
+                            message: "not a text file (a TOML scene must be UTF-8)".into(),
+                        }
+                    } else {
+                        CliError::Io {
+                            path: p.display().to_string(),
+                            source,
+                        }
+                    }
                 })?;
-                text.parse::<toml::Table>().map_err(|e| CliError::Scene {
+                origins.file = Some(p.display().to_string());
+                let table = text.parse::<toml::Table>().map_err(|e| CliError::Scene {
                     origin: p.display().to_string(),
                     message: e.to_string(),
-                })?
+                })?;
+                origins.lines = key_lines(&text);
+                table
             }
             None => toml::Table::new(),
         };
         for set in sets {
-            apply_set(&mut table, set)?;
+            let key = apply_set(&mut table, set)?;
+            origins.set.insert(key);
         }
-        let origin = path.map_or_else(|| "--set".to_string(), |p| p.display().to_string());
-        check_known_keys(&table, &origin)?;
-        Scene::deserialize(toml::Value::Table(table)).map_err(|e| CliError::Scene {
-            origin,
-            message: e.to_string(),
-        })
+        check_known_keys(&table, &origins)?;
+        let scene = match Scene::deserialize(toml::Value::Table(table)) {
+            Ok(scene) => scene,
+            Err(e) => {
+                // The merged table carries no spans: when the file alone is already wrong,
+                // report the file's error, which points to the line.
+                if let Some(file) = &origins.file
+                    && let Err(file_error) = toml::from_str::<Scene>(&text)
+                {
+                    return Err(CliError::Scene {
+                        origin: file.clone(),
+                        message: file_error.to_string(),
+                    });
+                }
+                let origin = if sets.is_empty() {
+                    origins.file.clone().unwrap_or_else(|| "scene".into())
+                } else {
+                    "--set".into()
+                };
+                return Err(CliError::Scene {
+                    origin,
+                    message: e.to_string(),
+                });
+            }
+        };
+        scene.validate_with(&origins)?;
+        Ok(scene)
     }
 }
 
@@ -318,12 +362,12 @@ pub fn known_keys() -> Vec<String> {
     keys
 }
 
-fn check_known_keys(table: &toml::Table, origin: &str) -> Result<(), CliError> {
+fn check_known_keys(table: &toml::Table, origins: &Origins) -> Result<(), CliError> {
     let known = known_keys();
     for (section, value) in table {
         let toml::Value::Table(t) = value else {
             return Err(CliError::Scene {
-                origin: origin.into(),
+                origin: origins.locate(section),
                 message: format!("`{section}` must be a table such as [{section}]"),
             });
         };
@@ -336,7 +380,7 @@ fn check_known_keys(table: &toml::Table, origin: &str) -> Result<(), CliError> {
                     .map(String::as_str)
                     .collect();
                 return Err(CliError::Scene {
-                    origin: origin.into(),
+                    origin: origins.locate(&dotted),
                     message: if hint.is_empty() {
                         format!("unknown key `{dotted}` (unknown table `[{section}]`)")
                     } else {
@@ -352,7 +396,8 @@ fn check_known_keys(table: &toml::Table, origin: &str) -> Result<(), CliError> {
     Ok(())
 }
 
-fn apply_set(table: &mut toml::Table, set: &str) -> Result<(), CliError> {
+/// Applies one `--set KEY=VALUE`; returns the dotted key.
+fn apply_set(table: &mut toml::Table, set: &str) -> Result<String, CliError> {
     let bad = |why: &str| CliError::Set {
         set: set.to_string(),
         message: why.to_string(),
@@ -380,7 +425,302 @@ fn apply_set(table: &mut toml::Table, set: &str) -> Result<(), CliError> {
         return Err(bad("that table is not a table in the scene file"));
     };
     t.insert(field.to_string(), value);
-    Ok(())
+    Ok(format!("{section}.{field}"))
+}
+
+/// Where each key's value came from, for error messages: a line of the scene file, `--set`,
+/// or the built-in default.
+#[derive(Debug, Clone, Default)]
+pub struct Origins {
+    /// The scene file, if any.
+    file: Option<String>,
+    /// 1-based line of each dotted key in the file.
+    lines: HashMap<String, usize>,
+    /// Dotted keys given by `--set` (they override the file).
+    set: HashSet<String>,
+}
+
+impl Origins {
+    /// `file:line` for a key from the file, `--set` for an override, else
+    /// `(built-in default)` (a default or a scene built in code).
+    pub fn locate(&self, key: &str) -> String {
+        if self.set.contains(key) {
+            return "--set".into();
+        }
+        match (&self.file, self.lines.get(key)) {
+            (Some(file), Some(line)) => format!("{file}:{line}"),
+            (Some(file), None) if !key.contains('.') => file.clone(),
+            _ => "(built-in default)".into(),
+        }
+    }
+}
+
+/// The 1-based line of every key of a TOML text, as dotted names (`section` and
+/// `section.key`); empty if the text does not parse.
+fn key_lines(text: &str) -> HashMap<String, usize> {
+    let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+    let mut lines = HashMap::new();
+    let Ok(doc) = toml::de::DeTable::parse(text) else {
+        return lines;
+    };
+    for (section, value) in doc.get_ref() {
+        lines.insert(section.get_ref().to_string(), line_of(section.span().start));
+        if let Some(t) = value.get_ref().as_table() {
+            for (key, _) in t {
+                lines.insert(
+                    format!("{}.{}", section.get_ref(), key.get_ref()),
+                    line_of(key.span().start),
+                );
+            }
+        }
+    }
+    lines
+}
+
+/// Largest `grid.n2` accepted before any memory estimate.
+pub const MAX_N2: usize = 10_000_000;
+/// Largest `grid.n3` accepted before any memory estimate.
+pub const MAX_N3: usize = 1_000_000;
+/// Largest `membrane.samples` (as in the membrane models).
+pub const MAX_SAMPLES: usize = 10_000_000;
+/// Sample points at which obstacle expressions are checked finite on the contact interval.
+const EXPRESSION_CHECK_SAMPLES: usize = 1025;
+
+/// A conservative estimate of the peak memory of a thick-body contact solve.
+///
+/// # Math
+/// ```text
+/// N     = 2 n2 n3                         unknowns (plane strain)
+/// fill  = 38 N log2(N)  (x2 for fem-q2)   LU fill bound; fits COLAMD's measured bound
+///                                         (7.8e6 at 250x41 .. 9.75e8 at 2000x321) from above
+/// bytes = 10.5 fill + 32 n2^2             10.5 bytes per fill-bound entry (measured VmHWM),
+///                                         four dense m x m condensed matrices, m ~ n2
+/// ```
+/// The measurements are in `capstan_solvers`' ordering table (2 shared cores, faer 0.24).
+pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod) -> f64 {
+    let (n2, n3) = (n2 as f64, n3 as f64);
+    let unknowns = 2.0 * n2 * n3;
+    let width = if method == DiscretisationMethod::FemQ2 {
+        2.0
+    } else {
+        1.0
+    };
+    let fill = 38.0 * width * unknowns * unknowns.log2().max(1.0);
+    10.5 * fill + 32.0 * n2 * n2
+}
+
+/// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where there is no such file.
+pub fn available_memory() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024.0)
+}
+
+/// Bytes in human units (`1.2 GiB`).
+pub fn human_bytes(bytes: f64) -> String {
+    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut b = bytes;
+    let mut unit = 0;
+    while b >= 1024.0 && unit + 1 < UNITS.len() {
+        b /= 1024.0;
+        unit += 1;
+    }
+    format!("{b:.1} {}", UNITS[unit])
+}
+
+impl Scene {
+    /// Checks every field against its allowed range (see [`Scene::load`], which calls it).
+    ///
+    /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
+    /// shape's expressions parse and are finite with finite first and second derivatives on
+    /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is `coulomb` or `frictionless`,
+    /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
+    /// `samples` in `[2, 10^7]`, `t_max > 0` when given; `loads.gravity, density >= 0`,
+    /// `loads.width, thickness > 0`; `body.thickness > 0`, `body.young > 0`, `body.poisson`
+    /// in `(-1, 1/2)`; `grid.n2, n3 >= 3` (odd for `fem-q2`), at most [`MAX_N2`], [`MAX_N3`],
+    /// and a thick-body solve that fits in the available memory ([`memory_estimate`]); known
+    /// solver names. Every number must be finite (TOML allows `nan` and `inf`).
+    ///
+    /// Whether the interval is convex is checked by the models that need it (the membrane
+    /// models report [`capstan_friction::FrictionError::NonPositiveCurvature`], exit code 3).
+    ///
+    /// # Errors
+    /// [`CliError::Scene`] naming the key, the value and the allowed range.
+    pub fn validate(&self) -> Result<(), CliError> {
+        self.validate_with(&Origins::default())
+    }
+
+    fn validate_with(&self, at: &Origins) -> Result<(), CliError> {
+        let bad = |key: &str, value: String, allowed: &str| CliError::Scene {
+            origin: at.locate(key),
+            message: format!("`{key}` = {value} is outside {allowed}"),
+        };
+        let real = |key: &str, v: f64, allowed: &str, ok: bool| {
+            if v.is_finite() && ok {
+                Ok(())
+            } else {
+                Err(bad(key, format!("{v}"), allowed))
+            }
+        };
+        let o = &self.obstacle;
+        let m = &self.membrane;
+        real("membrane.theta0", m.theta0, "finite values", true)?;
+        real(
+            "membrane.theta_max",
+            m.theta_max,
+            "(membrane.theta0, inf)",
+            m.theta_max > m.theta0,
+        )?;
+        match o.shape {
+            Shape::Cylinder => real("obstacle.radius", o.radius, "(0, inf)", o.radius > 0.0)?,
+            Shape::Ellipse => {
+                real("obstacle.a", o.a, "(0, inf)", o.a > 0.0)?;
+                real("obstacle.b", o.b, "(0, inf)", o.b > 0.0)?;
+            }
+            Shape::CircularCone => real(
+                "obstacle.half_angle",
+                o.half_angle,
+                "(0, pi/2)",
+                o.half_angle > 0.0 && o.half_angle < FRAC_PI_2,
+            )?,
+            Shape::Prism | Shape::Cone => {}
+        }
+        for (key, src) in [
+            ("obstacle.u", &o.u),
+            ("obstacle.v", &o.v),
+            ("obstacle.ubar", &o.ubar),
+            ("obstacle.vbar", &o.vbar),
+        ] {
+            let used = matches!(
+                (o.shape, key),
+                (Shape::Prism, "obstacle.u" | "obstacle.v")
+                    | (Shape::Cone, "obstacle.ubar" | "obstacle.vbar")
+            );
+            let expression = Expression::parse(src).map_err(|e| CliError::Scene {
+                origin: at.locate(key),
+                message: format!("`{key}` = {src:?}: {e}"),
+            })?;
+            if used {
+                expression
+                    .check_finite_on(m.theta0, m.theta_max, EXPRESSION_CHECK_SAMPLES)
+                    .map_err(|e| CliError::Scene {
+                        origin: at.locate(key),
+                        message: format!(
+                            "`{key}` = {src:?} must be finite with finite first and second derivatives on [membrane.theta0, membrane.theta_max] = [{}, {}]: {e}",
+                            m.theta0, m.theta_max
+                        ),
+                    })?;
+            }
+        }
+        let f = &self.friction;
+        if !matches!(f.law.as_str(), "coulomb" | "frictionless") {
+            return Err(bad(
+                "friction.law",
+                format!("{:?}", f.law),
+                "{\"coulomb\", \"frictionless\"}",
+            ));
+        }
+        real("friction.mu", f.mu, "[0, inf)", f.mu >= 0.0)?;
+        real("friction.eps", f.eps, "(0, inf)", f.eps > 0.0)?;
+        real("membrane.t0", m.t0, "(0, inf)", m.t0 > 0.0)?;
+        if !(2..=MAX_SAMPLES).contains(&m.samples) {
+            return Err(bad("membrane.samples", m.samples.to_string(), "[2, 10^7]"));
+        }
+        if let Some(t_max) = m.t_max {
+            real("membrane.t_max", t_max, "(0, inf)", t_max > 0.0)?;
+        }
+        let l = &self.loads;
+        real("loads.gravity", l.gravity, "[0, inf)", l.gravity >= 0.0)?;
+        real("loads.density", l.density, "[0, inf)", l.density >= 0.0)?;
+        real("loads.width", l.width, "(0, inf)", l.width > 0.0)?;
+        real(
+            "loads.thickness",
+            l.thickness,
+            "(0, inf)",
+            l.thickness > 0.0,
+        )?;
+        real("loads.speed", l.speed, "finite values", true)?;
+        real("loads.tau0", l.tau0, "finite values", true)?;
+        real("loads.tau_max", l.tau_max, "finite values", true)?;
+        let b = &self.body;
+        real("body.thickness", b.thickness, "(0, inf)", b.thickness > 0.0)?;
+        real("body.young", b.young, "(0, inf)", b.young > 0.0)?;
+        real(
+            "body.poisson",
+            b.poisson,
+            "(-1, 1/2)",
+            b.poisson > -1.0 && b.poisson < 0.5,
+        )?;
+        self.validate_grid(at)?;
+        if self.solver.linear.parse::<LinearBackend>().is_err() {
+            return Err(bad(
+                "solver.linear",
+                format!("{:?}", self.solver.linear),
+                LinearBackend::NAMES,
+            ));
+        }
+        if !matches!(
+            self.solver.nonlinear.as_str(),
+            "newton" | "full-newton" | "jacobi-newton"
+        ) {
+            return Err(bad(
+                "solver.nonlinear",
+                format!("{:?}", self.solver.nonlinear),
+                "{\"newton\", \"full-newton\", \"jacobi-newton\"}",
+            ));
+        }
+        Ok(())
+    }
+
+    fn validate_grid(&self, at: &Origins) -> Result<(), CliError> {
+        let g = &self.grid;
+        let method = self.discretisation.method;
+        let q2 = method == DiscretisationMethod::FemQ2;
+        for (key, n, max, allowed, allowed_q2) in [
+            (
+                "grid.n2",
+                g.n2,
+                MAX_N2,
+                "[3, 10^7]",
+                "odd values in [3, 10^7] (fem-q2)",
+            ),
+            (
+                "grid.n3",
+                g.n3,
+                MAX_N3,
+                "[3, 10^6]",
+                "odd values in [3, 10^6] (fem-q2)",
+            ),
+        ] {
+            if !(3..=max).contains(&n) || (q2 && n % 2 == 0) {
+                return Err(CliError::Scene {
+                    origin: at.locate(key),
+                    message: format!(
+                        "`{key}` = {n} is outside {}",
+                        if q2 { allowed_q2 } else { allowed }
+                    ),
+                });
+            }
+        }
+        let need = memory_estimate(g.n2, g.n3, method);
+        if let Some(have) = available_memory()
+            && need > have
+        {
+            return Err(CliError::Scene {
+                origin: at.locate("grid.n2"),
+                message: format!(
+                    "grid {} x {} ({method}) needs about {} for the sparse LU factors (estimate: 10.5 bytes x 38 N log2 N fill entries, N = {} unknowns), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
+                    g.n2,
+                    g.n3,
+                    human_bytes(need),
+                    2 * g.n2 * g.n3,
+                    human_bytes(have)
+                ),
+            });
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
@@ -418,12 +758,48 @@ mod tests {
             DiscretisationMethod::Fd
         );
         assert!(known_keys().contains(&"discretisation.method".to_string()));
-        let s = Scene::load(None, &["discretisation.method=fem-q2".into()]).unwrap();
+        let s = Scene::load(
+            None,
+            &[
+                "discretisation.method=fem-q2".into(),
+                "grid.n2=251".into(), // Q2 needs odd node counts
+            ],
+        )
+        .unwrap();
         assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ2);
         let e = Scene::load(None, &["discretisation.method=fem-q3".into()])
             .unwrap_err()
             .to_string();
         assert!(e.contains("fem-q3"), "{e}");
+    }
+
+    #[test]
+    fn validate_names_key_value_and_range() {
+        let mut s = Scene::default();
+        assert!(s.validate().is_ok());
+        s.body.poisson = 0.5;
+        let e = s.validate().unwrap_err().to_string();
+        assert!(e.contains("`body.poisson` = 0.5 is outside (-1, 1/2)"), "{e}");
+        assert!(e.contains("(built-in default)"), "{e}");
+    }
+
+    #[test]
+    fn key_lines_point_to_the_key() {
+        let lines = key_lines("# c\n[friction]\nmu = 1\n\n[grid]\nn2 = 5\n");
+        assert_eq!(lines["friction.mu"], 3);
+        assert_eq!(lines["grid.n2"], 6);
+        assert_eq!(lines["grid"], 5);
+        assert!(key_lines("[broken").is_empty());
+    }
+
+    #[test]
+    fn memory_estimate_brackets_the_measured_peaks() {
+        // Measured VmHWM (COLAMD): 496 MiB at 500x81, 9998 MiB at 2000x321.
+        let fd = DiscretisationMethod::Fd;
+        let mib = |b: f64| b / 1048576.0;
+        assert!((496.0..1200.0).contains(&mib(memory_estimate(500, 81, fd))));
+        assert!((9998.0..13000.0).contains(&mib(memory_estimate(2000, 321, fd))));
+        assert_eq!(human_bytes(1536.0), "1.5 KiB");
     }
 
     #[test]
