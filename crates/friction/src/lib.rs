@@ -6,6 +6,9 @@
 //!   [`Tresca`], [`Howell`]'s power law, [`OrthotropicCoulomb`] and [`Frictionless`], with
 //!   consistent Newton tangents; [`AnyFrictionLaw`] selects among them at run time
 //!   (`friction.law`).
+//! - [`membrane_displacement`]: the membrane as a 1-D displacement problem with a pointwise
+//!   friction law and bilateral contact, solved by Newton; its full-slip limit is the capstan
+//!   profile.
 //! - [`membrane`]: tension profiles on the cylinder, elliptical and general prisms (Theorem 1,
 //!   with gravity and steady speed), the infinite membrane (Corollary 1), right circular and
 //!   general cones (Theorem 2), and the coefficient of friction implied by a tension pair.
@@ -25,6 +28,7 @@ mod friction_law;
 mod frictionless;
 mod howell;
 pub mod membrane;
+pub mod membrane_displacement;
 pub mod ode;
 mod orthotropic_coulomb;
 pub mod quadrature;
