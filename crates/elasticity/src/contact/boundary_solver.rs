@@ -390,6 +390,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     /// `G(s)` and, optionally, `dG/ds`.
     fn eval(
         &self,
+        beta: f64,
         x0: &[f64],
         n0: &[f64],
         s: &[f64],
@@ -407,9 +408,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 sig += self.nz[(i, j)] * sj;
             }
             let node = self.model.active_node(i);
-            let nt = self.model.traction_at(node, node.sqrt_g22 * x, sig);
+            // slip homotopy: the law sees beta u (for regularised Coulomb: eps / beta)
+            let nt = self.model.traction_at(node, beta * node.sqrt_g22 * x, sig);
             *gi = s[i] - nt.t2 - self.spring[i] * x;
-            *dxi = nt.d_tangential + self.spring[i];
+            *dxi = beta * nt.d_tangential + self.spring[i];
             *dni = nt.d_normal_stress;
         }
         if let Some(jac) = jac {
@@ -425,22 +427,32 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     }
 
     /// Damped Newton on `G(s) = 0` from `s`; `Ok(iterations)` or `Err((iterations, residual))`.
-    fn newton(&self, loads: EndLoads, s: &mut [f64]) -> Result<usize, (usize, f64)> {
+    fn newton(&self, beta: f64, loads: EndLoads, s: &mut [f64]) -> Result<usize, (usize, f64)> {
+        self.newton_with(&self.settings, beta, loads, s)
+    }
+
+    fn newton_with(
+        &self,
+        settings: &ContactSettings,
+        beta: f64,
+        loads: EndLoads,
+        s: &mut [f64],
+    ) -> Result<usize, (usize, f64)> {
         let (x0, n0) = self.loaded_base(loads);
         let m = s.len();
         let gmax = (0..m)
             .map(|k| self.model.active_node(k).sqrt_g22)
             .fold(0.0f64, f64::max);
         let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
-        let tol = self.settings.tolerance * scale;
+        let tol = settings.tolerance * scale;
         let mut g = vec![0.0; m];
         let mut trial = vec![0.0; m];
         let mut gt = vec![0.0; m];
         let mut jac = Mat::<f64>::zeros(m, m);
         let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
         let max_norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        for it in 0..self.settings.max_iterations {
-            self.eval(&x0, &n0, s, &mut g, Some(&mut jac));
+        for it in 0..settings.max_iterations {
+            self.eval(beta, &x0, &n0, s, &mut g, Some(&mut jac));
             let r = max_norm(&g);
             if !r.is_finite() {
                 return Err((it, f64::INFINITY));
@@ -459,7 +471,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 for i in 0..m {
                     trial[i] = s[i] + alpha * ds[(i, 0)];
                 }
-                self.eval(&x0, &n0, &trial, &mut gt, None);
+                self.eval(beta, &x0, &n0, &trial, &mut gt, None);
                 let phi = norm2(&gt);
                 if phi.is_finite() && phi <= (1.0 - 1e-4 * alpha) * phi0 {
                     break;
@@ -471,12 +483,12 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             }
             s.copy_from_slice(&trial);
         }
-        self.eval(&x0, &n0, s, &mut g, None);
+        self.eval(beta, &x0, &n0, s, &mut g, None);
         let r = max_norm(&g);
         if r <= tol {
-            Ok(self.settings.max_iterations)
+            Ok(settings.max_iterations)
         } else {
-            Err((self.settings.max_iterations, r / scale))
+            Err((settings.max_iterations, r / scale))
         }
     }
 
@@ -545,16 +557,76 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         }
         let mut iterations = 0;
         let mut steps = 1;
-        match self.newton(loads, &mut s) {
+        let plain = ContactSettings {
+            max_iterations: self.settings.max_iterations.min(25),
+            ..self.settings
+        };
+        match self.newton_with(&plain, 1.0, loads, &mut s) {
             Ok(it) => iterations += it,
             Err((it, _)) => {
                 iterations += it;
-                let (it, st) = self.continuation(loads, &mut s)?;
-                iterations += it;
-                steps = st;
+                match self.slip_homotopy(loads) {
+                    Ok((it, st, sh)) => {
+                        iterations += it;
+                        steps = st;
+                        s = sh;
+                    }
+                    Err(it) => {
+                        iterations += it;
+                        let (it, st) = self.continuation(loads, &mut s)?;
+                        iterations += it;
+                        steps = st;
+                    }
+                }
             }
         }
         self.finish(loads, &s, iterations, steps)
+    }
+
+    /// Continuation in the slip scale `beta` (the law sees `beta u`): from `1e-3` (for
+    /// regularised Coulomb `eps / beta`: smooth, nearly all stick) to 1, from the stuck state.
+    /// `Ok((iterations, steps, s))` or `Err(iterations)`.
+    fn slip_homotopy(&self, loads: EndLoads) -> Result<(usize, usize, Vec<f64>), usize> {
+        let mut s = self.stuck_unknowns(loads);
+        let mut log_beta = -3.0f64;
+        let mut step = 1.0f64;
+        let mut iterations = 0;
+        let mut steps = 0;
+        let mut first = true;
+        loop {
+            steps += 1;
+            if steps > self.settings.max_continuation_steps {
+                return Err(iterations);
+            }
+            let target = if first {
+                log_beta
+            } else {
+                (log_beta + step).min(0.0)
+            };
+            let mut trial = s.clone();
+            match self.newton(10f64.powf(target), loads, &mut trial) {
+                Ok(it) => {
+                    iterations += it;
+                    s = trial;
+                    log_beta = target;
+                    first = false;
+                    if log_beta >= 0.0 {
+                        return Ok((iterations, steps, s));
+                    }
+                    step = (step * 1.5).min(1.0);
+                }
+                Err((it, _)) => {
+                    iterations += it;
+                    if first {
+                        return Err(iterations);
+                    }
+                    step *= 0.5;
+                    if step < 1e-3 {
+                        return Err(iterations);
+                    }
+                }
+            }
+        }
     }
 
     fn continuation(&self, loads: EndLoads, s: &mut [f64]) -> Result<(usize, usize), ContactError> {
@@ -576,7 +648,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             } else {
                 self.stuck_unknowns(loads.scaled(next))
             };
-            match self.newton(loads.scaled(next), &mut trial) {
+            match self.newton(1.0, loads.scaled(next), &mut trial) {
                 Ok(it) => {
                     iterations += it;
                     lambda = next;
