@@ -11,6 +11,7 @@ use std::path::Path;
 
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::solvers::LinearBackend;
+use capstan_friction::FrictionLawKind;
 use capstan_geometry::expression::Expression;
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
@@ -534,7 +535,8 @@ impl Scene {
     ///
     /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
     /// shape's expressions parse and are finite with finite first and second derivatives on
-    /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is `coulomb` or `frictionless`,
+    /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is one of
+    /// [`FrictionLawKind::NAMES`],
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
     /// `samples` in `[2, 10^7]`, `t_max > 0` when given; `loads.gravity, density >= 0`,
     /// `loads.width, thickness > 0`; `body.thickness > 0`, `body.young > 0`, `body.poisson`
@@ -614,11 +616,11 @@ impl Scene {
             }
         }
         let f = &self.friction;
-        if !matches!(f.law.as_str(), "coulomb" | "frictionless") {
+        if FrictionLawKind::parse(&f.law).is_none() {
             return Err(bad(
                 "friction.law",
                 format!("{:?}", f.law),
-                "{\"coulomb\", \"frictionless\"}",
+                FrictionLawKind::NAMES,
             ));
         }
         real("friction.mu", f.mu, "[0, inf)", f.mu >= 0.0)?;
@@ -779,7 +781,10 @@ mod tests {
         assert!(s.validate().is_ok());
         s.body.poisson = 0.5;
         let e = s.validate().unwrap_err().to_string();
-        assert!(e.contains("`body.poisson` = 0.5 is outside (-1, 1/2)"), "{e}");
+        assert!(
+            e.contains("`body.poisson` = 0.5 is outside (-1, 1/2)"),
+            "{e}"
+        );
         assert!(e.contains("(built-in default)"), "{e}");
     }
 

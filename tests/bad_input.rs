@@ -280,3 +280,24 @@ fn exit_code_4_when_a_solve_does_not_converge() {
     assert!(stdout.is_empty(), "no NaN or inf reaches stdout: {stdout}");
     assert!(stderr.contains("not finite"), "{stderr}");
 }
+
+#[test]
+fn contact_beyond_limiting_equilibrium_is_exit_code_3() {
+    let (code, stdout, stderr) = capstan(&[
+        "contact",
+        "--set",
+        "grid.n2=40",
+        "--set",
+        "grid.n3=9",
+        "--set",
+        "loads.tau_max=100",
+        "--json",
+    ]);
+    assert_eq!(code, 3, "{stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    assert!(stderr.contains("no static equilibrium"), "{stderr}");
+    refused(
+        &["contact", "--set", "grid.n3=2"],
+        &["grid.n3", "[3, 10^6]"],
+    );
+}
