@@ -17,9 +17,15 @@ pub struct Cli {
     /// What to run.
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// No progress bars or notes on stderr (results and errors still print).
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
+    /// More notes on stderr (repeatable: `-vv`).
+    #[arg(long, short = 'v', action = clap::ArgAction::Count, global = true)]
+    pub verbose: u8,
 }
 
-const EXAMPLES: &str = "Examples:\n  capstan geometry --set obstacle.shape=ellipse --set obstacle.b=1 --json\n  capstan geometry scene.toml";
+const EXAMPLES: &str = "Examples:\n  capstan geometry --set obstacle.shape=ellipse --set obstacle.b=1 --json\n  capstan tension examples/scenes/capstan_ellipse.toml --out out/tension\n  capstan contact --set loads.tau_max=1 --out out/contact\n  capstan figure all --quick --out out/figures";
 
 /// The subcommands.
 #[derive(Debug, Subcommand)]
@@ -60,6 +66,11 @@ pub enum Command {
         after_help = "Example:\n  capstan threshold --set grid.n2=80 --set grid.n3=17 --json"
     )]
     Threshold(SceneArgs),
+    /// The paper's figures and tables (sections 2 and 3) as PNG + SVG + CSV, with an index.
+    #[command(
+        after_help = "Examples:\n  capstan figure all --out figures\n  capstan figure slip-ratio --quick --out /tmp/fig"
+    )]
+    Figure(commands::figure::FigureArgs),
 }
 
 /// Arguments of `capstan contact`.
@@ -135,6 +146,7 @@ impl SceneArgs {
 /// # Errors
 /// Any [`CliError`]; the caller maps it to an exit code.
 pub fn run(cli: Cli) -> Result<String, CliError> {
+    crate::progress::set_flags(cli.quiet, cli.verbose);
     match cli.command {
         None => default_job(),
         Some(Command::Geometry(args)) => geometry(&args),
@@ -145,6 +157,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         Some(Command::Contact(args)) => contact(&args),
         Some(Command::Sweep(args)) => sweep(&args),
         Some(Command::Threshold(args)) => threshold(&args),
+        Some(Command::Figure(args)) => figure(&args, cli.quiet),
     }
 }
 
@@ -216,6 +229,15 @@ fn threshold(args: &SceneArgs) -> Result<String, CliError> {
         Ok(crate::output::to_json_string(&report)?)
     } else {
         Ok(commands::threshold::table(&report))
+    }
+}
+
+fn figure(args: &commands::figure::FigureArgs, quiet: bool) -> Result<String, CliError> {
+    let index = commands::figure::run(args, quiet)?;
+    if args.json {
+        Ok(crate::output::to_json_string(&index)?)
+    } else {
+        Ok(commands::figure::table(&index))
     }
 }
 

@@ -7,7 +7,9 @@
 pub mod cli;
 pub mod commands;
 pub mod error;
+pub mod figures;
 pub mod output;
+pub mod progress;
 pub mod scene;
 
 pub use capstan_geometry as geometry;

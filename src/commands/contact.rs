@@ -317,16 +317,28 @@ pub struct NodalDisplacement {
     pub v3: Vec<f64>,
 }
 
-/// A solved scene: the solution and its nodal displacement.
+/// A solved scene: the solution, its nodal displacement and fields, and the obstacle.
 #[derive(Debug, Clone)]
 pub struct Solved {
     /// The solution.
     pub solution: ContactSolution,
     /// Nodal displacement.
     pub nodes: NodalDisplacement,
+    /// Displacement, strain and stress at the nodes.
+    pub fields: capstan_elasticity::NodalFields,
+    /// The obstacle (for the body's points in E^3).
+    pub obstacle: capstan_geometry::Obstacle,
 }
 
-fn solved(model: &SceneModel, solution: ContactSolution) -> Solved {
+/// The nodal fields of a solution of `model`, with the scene's obstacle.
+///
+/// # Errors
+/// Geometry failures; bad obstacle values.
+pub fn solved(
+    scene: &Scene,
+    model: &SceneModel,
+    solution: ContactSolution,
+) -> Result<Solved, CliError> {
     use capstan_elasticity::{Component, Discretisation};
     let disc = model.discretisation();
     let grid = disc.grid();
@@ -343,7 +355,13 @@ fn solved(model: &SceneModel, solution: ContactSolution) -> Solved {
                 .push(solution.displacement[disc.dof([i, j], Component::X3)]);
         }
     }
-    Solved { solution, nodes }
+    let fields = disc.fields(&solution.displacement)?;
+    Ok(Solved {
+        solution,
+        nodes,
+        fields,
+        obstacle: scene.obstacle.build()?,
+    })
 }
 
 /// Solves a scene's contact problem with its solver.
@@ -365,7 +383,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let limiting = solver.sliding().map(|m| [m.lower_ratio, m.upper_ratio]);
             let report =
                 ContactReport::new(&sol, limiting, grid, [setup, t1.elapsed().as_secs_f64()]);
-            Ok((report, solved(&model, sol)))
+            Ok((report, solved(scene, &model, sol)?))
         }
         full => {
             let solver = FullSystemSolver::new(&model, full.full_settings())?;
@@ -375,7 +393,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
                 Ok(sol) => {
                     let report =
                         ContactReport::new(&sol, None, grid, [setup, t1.elapsed().as_secs_f64()]);
-                    Ok((report, solved(&model, sol)))
+                    Ok((report, solved(scene, &model, sol)?))
                 }
                 Err(e @ ContactError::NotConverged { .. }) => {
                     // Tell a missing equilibrium from a solver failure.
@@ -421,7 +439,10 @@ pub fn table(r: &ContactReport) -> String {
     s
 }
 
-/// Writes `contact.json`, `contact.csv` (contact surface) and `displacement.csv` (nodes).
+/// Writes `contact.json`, `contact.csv` (contact surface), `displacement.csv` (nodes),
+/// `body.vtu` (every field on the curved body, see [`crate::figures::body::VTU_ARRAYS`]) and the
+/// plots `body_v2`, `body_v3` (displacement colour maps) and `body_state` (stick/slip strip),
+/// each as SVG and PNG.
 ///
 /// # Errors
 /// Output errors.
@@ -452,5 +473,14 @@ pub fn write_out(
         .f64("v2", sol.nodes.v2.clone())
         .f64("v3", sol.nodes.v3.clone());
     out.write_csv("displacement.csv", &nodes)?;
+    crate::figures::body::write_body(
+        &out,
+        "body",
+        &sol.obstacle,
+        &sol.fields,
+        &sol.solution.contact,
+        None,
+        true,
+    )?;
     Ok(())
 }

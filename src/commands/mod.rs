@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod contact;
+pub mod figure;
 pub mod geometry;
 pub mod infer_mu;
 pub mod sweep;

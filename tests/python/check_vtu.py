@@ -12,8 +12,12 @@ EXPECTED.json lists cases, each with:
   cell_data    {name: {"components": c, "values": [...]}}
   time         TimeValue or null
   ellipse      optional {"a": a, "b": b, "x3": [...]}: the body sits on sigma = (x1, a sin t, b cos t)
+  atol         optional absolute tolerance for point_data values (default 0: exact)
+  point_shapes optional {name: components}: further point arrays checked for shape and
+               finiteness only (for fields the test cannot recompute, e.g. stress)
 
-Values must match exactly: both encodings (ASCII shortest round-trip, raw binary) are lossless.
+Values must match exactly unless `atol` is given: both encodings (ASCII shortest round-trip,
+raw binary) are lossless.
 Exits non-zero with a message on the first mismatch.
 """
 import json
@@ -27,9 +31,17 @@ def fail(case, message):
     sys.exit(f"{case['path']}: {message}")
 
 
-def check_arrays(case, kind, got, expected, tuples):
-    if set(got) != set(expected):
-        fail(case, f"{kind} names {sorted(got)} != {sorted(expected)}")
+def check_arrays(case, kind, got, expected, tuples, shapes=None, atol=0.0):
+    shapes = shapes or {}
+    if set(got) != set(expected) | set(shapes):
+        fail(case, f"{kind} names {sorted(got)} != {sorted(set(expected) | set(shapes))}")
+    for name, c in shapes.items():
+        shape = (tuples,) if c == 1 else (tuples, c)
+        have = np.asarray(got[name])
+        if have.shape != shape:
+            fail(case, f"{kind} {name}: shape {have.shape}, expected {shape}")
+        if not np.all(np.isfinite(have)):
+            fail(case, f"{kind} {name}: non-finite values")
     for name, spec in expected.items():
         c = spec["components"]
         want = np.array(spec["values"], dtype=np.float64)
@@ -40,7 +52,11 @@ def check_arrays(case, kind, got, expected, tuples):
             fail(case, f"{kind} {name}: dtype {have.dtype}, expected float64")
         if have.shape != shape:
             fail(case, f"{kind} {name}: shape {have.shape}, expected {shape}")
-        if not np.array_equal(have, want):
+        if atol == 0.0:
+            same = np.array_equal(have, want)
+        else:
+            same = np.allclose(have, want, rtol=0.0, atol=atol)
+        if not same:
             fail(case, f"{kind} {name}: values differ, max |diff| {np.abs(have - want).max()}")
 
 
@@ -62,7 +78,15 @@ def check(case):
     if not np.array_equal(quads, np.array(case["cells"])):
         fail(case, "connectivity differs")
 
-    check_arrays(case, "point data", mesh.point_data, case["point_data"], n2 * n3)
+    check_arrays(
+        case,
+        "point data",
+        mesh.point_data,
+        case["point_data"],
+        n2 * n3,
+        case.get("point_shapes"),
+        case.get("atol", 0.0),
+    )
     cell_data = {name: blocks[0] for name, blocks in mesh.cell_data.items()}
     check_arrays(case, "cell data", cell_data, case["cell_data"], n_cells)
 

@@ -1,0 +1,168 @@
+//! The thick body's fields as files a researcher can open: a VTU on the curved body, colour
+//! maps of the displacement and the stick/slip strip along the contact surface.
+//!
+//! Shared by `capstan contact --out`, `capstan sweep --out` (one VTU per point plus a `.pvd`)
+//! and `capstan figure`.
+
+use capstan_elasticity::NodalFields;
+use capstan_elasticity::contact::ContactProfile;
+use capstan_geometry::{Obstacle, ShellChart};
+
+use crate::output::{ColourMap, OutputDir, OutputError, QuadGrid, StateStrip, Vtu};
+
+/// Names of the VTU point arrays written by [`body_vtu`], with their component counts
+/// (a public contract, documented in `docs/guide.md`).
+pub const VTU_ARRAYS: [(&str, usize); 11] = [
+    ("displacement", 3),
+    ("displacement_contravariant", 3),
+    ("displacement_physical", 3),
+    ("stress", 9),
+    ("stress_physical", 9),
+    ("strain", 9),
+    ("strain_physical", 9),
+    ("contact_state", 1),
+    ("contact_slip", 1),
+    ("x2", 1),
+    ("x3", 1),
+];
+
+/// The body's nodes as quads in E^3: `Theta(0, x2, x3)` of the obstacle's shell chart.
+///
+/// # Errors
+/// Geometry failures at a node; a grid too small for quads.
+pub fn body_grid(obstacle: &Obstacle, fields: &NodalFields) -> Result<QuadGrid, OutputError> {
+    let g = &fields.grid;
+    let x2: Vec<f64> = (0..g.n2()).map(|i| g.x2(i)).collect();
+    let x3: Vec<f64> = (0..g.n3()).map(|j| g.x3(j)).collect();
+    QuadGrid::from_chart(&ShellChart::new(obstacle), 0.0, &x2, &x3, g.is_periodic())
+}
+
+/// The contact state and physical slip of the contact node in each node's `x2` column
+/// (`0` where the column has no contact node, e.g. a Dirichlet end).
+fn column_contact(fields: &NodalFields, contact: &ContactProfile) -> (Vec<f64>, Vec<f64>) {
+    let g = &fields.grid;
+    let (n2, n3) = (g.n2(), g.n3());
+    let mut state = vec![0.0; n2];
+    let mut slip = vec![0.0; n2];
+    for (k, &x) in contact.x2.iter().enumerate() {
+        let i = ((x - g.x2(0)) / g.dx2()).round();
+        if i >= 0.0 && (i as usize) < n2 {
+            state[i as usize] = f64::from(contact.state[k]);
+            slip[i as usize] = contact.slip[k];
+        }
+    }
+    let spread = |v: &[f64]| -> Vec<f64> { (0..n2 * n3).map(|node| v[node / n3]).collect() };
+    (spread(&state), spread(&slip))
+}
+
+/// A VTU of the fields on `grid` (see [`VTU_ARRAYS`]): Cartesian, contravariant and physical
+/// displacement (`v^1 = 0` on a prism), contravariant stress `T^ij` and covariant strain `E_ij`
+/// with their physical components (row-major 3x3), the contact state `-1/0/+1` and physical
+/// slip of the contact node in each `x2` column, and the parametric coordinates.
+pub fn body_vtu<'g>(grid: &'g QuadGrid, fields: &NodalFields, contact: &ContactProfile) -> Vtu<'g> {
+    let n = fields.displacement.len();
+    let contravariant: Vec<[f64; 3]> = fields
+        .displacement
+        .iter()
+        .map(|v| [0.0, v[0], v[1]])
+        .collect();
+    let physical: Vec<[f64; 3]> = (0..n)
+        .map(|k| {
+            let p = fields.physical_displacement(k);
+            [0.0, p[0], p[1]]
+        })
+        .collect();
+    let stress_physical: Vec<_> = (0..n).map(|k| fields.physical_stress(k)).collect();
+    let strain_physical: Vec<_> = (0..n).map(|k| fields.physical_strain(k)).collect();
+    let (state, slip) = column_contact(fields, contact);
+    let g = &fields.grid;
+    let x2: Vec<f64> = (0..n).map(|k| g.x2(g.node(k)[0])).collect();
+    let x3: Vec<f64> = (0..n).map(|k| g.x3(g.node(k)[1])).collect();
+    Vtu::new(grid)
+        .point_vectors("displacement", &fields.cartesian_displacement)
+        .point_vectors("displacement_contravariant", &contravariant)
+        .point_vectors("displacement_physical", &physical)
+        .point_tensors("stress", &fields.stress)
+        .point_tensors("stress_physical", &stress_physical)
+        .point_tensors("strain", &fields.strain)
+        .point_tensors("strain_physical", &strain_physical)
+        .point_scalars("contact_state", state)
+        .point_scalars("contact_slip", slip)
+        .point_scalars("x2", x2)
+        .point_scalars("x3", x3)
+}
+
+/// Colour maps of `v^2` (rad) and `v^3` on the curved body, seen along `x1` (axes y, z).
+///
+/// # Errors
+/// Non-finite values.
+pub fn displacement_maps(
+    grid: &QuadGrid,
+    fields: &NodalFields,
+    title: &str,
+) -> Result<[ColourMap; 2], OutputError> {
+    let v2: Vec<f64> = fields.displacement.iter().map(|v| v[0]).collect();
+    let v3: Vec<f64> = fields.displacement.iter().map(|v| v[1]).collect();
+    Ok([
+        ColourMap::nodal(
+            format!("{title}: azimuthal displacement v^2"),
+            grid,
+            [1, 2],
+            &v2,
+        )?
+        .label("v^2 (rad)"),
+        ColourMap::nodal(
+            format!("{title}: radial displacement v^3"),
+            grid,
+            [1, 2],
+            &v3,
+        )?
+        .label("v^3 (m)"),
+    ])
+}
+
+/// The stick/slip state along the contact surface.
+pub fn state_strip(contact: &ContactProfile, title: &str) -> StateStrip {
+    StateStrip::new(
+        title,
+        contact.x2.clone(),
+        contact
+            .state
+            .iter()
+            .map(|&s| i32::from(s))
+            .collect::<Vec<_>>(),
+    )
+    .x_label("x2 = theta (rad)")
+}
+
+/// Writes `STEM.vtu`, `STEM_v2.{svg,png}`, `STEM_v3.{svg,png}` and `STEM_state.{svg,png}`
+/// into `out` (each atomically); `time` becomes the VTU's `TimeValue`.
+///
+/// # Errors
+/// Geometry or output errors.
+pub fn write_body(
+    out: &OutputDir,
+    stem: &str,
+    obstacle: &Obstacle,
+    fields: &NodalFields,
+    contact: &ContactProfile,
+    time: Option<f64>,
+    plots: bool,
+) -> Result<(), OutputError> {
+    let grid = body_grid(obstacle, fields)?;
+    let mut vtu = body_vtu(&grid, fields, contact);
+    if let Some(t) = time {
+        vtu = vtu.time(t);
+    }
+    out.write_vtu(&format!("{stem}.vtu"), &vtu)?;
+    if plots {
+        let [v2, v3] = displacement_maps(&grid, fields, "Thick body")?;
+        out.write_plot(&format!("{stem}_v2"), &v2)?;
+        out.write_plot(&format!("{stem}_v3"), &v3)?;
+        out.write_plot(
+            &format!("{stem}_state"),
+            &state_strip(contact, "Stick and slip along the contact surface"),
+        )?;
+    }
+    Ok(())
+}

@@ -1,0 +1,5 @@
+//! Figures: the thick body's fields as files ([`body`]) and the paper's figures and tables of
+//! sections 2 and 3 regenerated from built-in scenes ([`paper`], `capstan figure`).
+
+pub mod body;
+pub mod paper;
