@@ -80,7 +80,10 @@ pub fn threshold_ratio<D: Discretisation, L: FrictionLaw<f64>>(
                 Err(e) => Err(e),
             }
         };
-    let limiting_ratio = solver.sliding().map(|m| m.upper_ratio);
+    let limiting_ratio = solver
+        .sliding()
+        .map(|m| m.upper_ratio)
+        .filter(|r| r.is_finite());
     let mut lo = 1.0;
     let mut slip_lo = match probe(lo, &mut warm)? {
         Some((s, _)) => s,
