@@ -34,7 +34,7 @@ pub enum Command {
     #[command(
         after_help = "Example:\n  capstan geometry --set obstacle.shape=prism --set 'obstacle.u=2*sin(t)+0.2*sin(2*t)' --json"
     )]
-    Geometry(SceneArgs),
+    Geometry(OutSceneArgs),
     /// Convergence studies of the elasticity discretisations: errors and observed orders.
     #[command(after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json")]
     Verify(VerifyArgs),
@@ -45,12 +45,12 @@ pub enum Command {
     #[command(
         after_help = "Examples:\n  capstan tension --set obstacle.shape=ellipse --set obstacle.b=1 --set membrane.theta0=-0.785398 --set membrane.theta_max=0.785398 --json\n  capstan tension --set obstacle.shape=cylinder --set loads.gravity=9.81 --set loads.density=0.1 --set membrane.theta0=0"
     )]
-    Tension(SceneArgs),
+    Tension(OutSceneArgs),
     /// Coefficient of friction implied by a tension pair {membrane.t0, membrane.t_max}.
     #[command(
         after_help = "Example:\n  capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75"
     )]
-    InferMu(SceneArgs),
+    InferMu(OutSceneArgs),
     /// Thick body on a rough prism under regularised Coulomb friction (paper section 3).
     #[command(
         after_help = "Examples:\n  capstan contact --set loads.tau_max=1 --json\n  capstan contact --set grid.n2=80 --set grid.n3=17 --set solver.nonlinear=full-newton --out out/contact"
@@ -65,7 +65,7 @@ pub enum Command {
     #[command(
         after_help = "Example:\n  capstan threshold --set grid.n2=80 --set grid.n3=17 --json"
     )]
-    Threshold(SceneArgs),
+    Threshold(OutSceneArgs),
     /// The paper's figures and tables (sections 2 and 3) as PNG + SVG + CSV, with an index.
     #[command(
         after_help = "Examples:\n  capstan figure all --out figures\n  capstan figure slip-ratio --quick --out /tmp/fig"
@@ -107,6 +107,18 @@ pub struct SweepArgs {
     pub out: Option<PathBuf>,
 }
 
+/// A scene and an output directory (`capstan geometry`, `tension`, `infer-mu`, `threshold`).
+#[derive(Debug, Args, Clone, Default)]
+pub struct OutSceneArgs {
+    /// The scene.
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Also write the report as files into this directory (JSON; CSV and SVG/PNG plots for
+    /// profiles).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
 /// Arguments of `capstan verify`.
 #[derive(Debug, Args, Clone, Default)]
 pub struct VerifyArgs {
@@ -116,6 +128,9 @@ pub struct VerifyArgs {
     /// Only the three coarsest grids of each study.
     #[arg(long)]
     pub quick: bool,
+    /// Also write `verify.json` into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
 }
 
 /// Arguments shared by commands that read a scene.
@@ -161,9 +176,13 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
     }
 }
 
-fn geometry(args: &SceneArgs) -> Result<String, CliError> {
+fn geometry(out: &OutSceneArgs) -> Result<String, CliError> {
+    let args = &out.scene;
     let scene = args.load()?;
     let report = commands::geometry::report(&scene)?;
+    if let Some(dir) = &out.out {
+        crate::figures::reports::write_geometry(dir, &report)?;
+    }
     if args.json {
         Ok(crate::output::to_json_string(&report)?)
     } else {
@@ -171,9 +190,13 @@ fn geometry(args: &SceneArgs) -> Result<String, CliError> {
     }
 }
 
-fn tension(args: &SceneArgs) -> Result<String, CliError> {
+fn tension(out: &OutSceneArgs) -> Result<String, CliError> {
+    let args = &out.scene;
     let scene = args.load()?;
     let report = commands::tension::report(&scene)?;
+    if let Some(dir) = &out.out {
+        crate::figures::reports::write_tension(dir, &report)?;
+    }
     if args.json {
         Ok(crate::output::to_json_string(&report)?)
     } else {
@@ -181,9 +204,13 @@ fn tension(args: &SceneArgs) -> Result<String, CliError> {
     }
 }
 
-fn infer_mu(args: &SceneArgs) -> Result<String, CliError> {
+fn infer_mu(out: &OutSceneArgs) -> Result<String, CliError> {
+    let args = &out.scene;
     let scene = args.load()?;
     let report = commands::infer_mu::report(&scene)?;
+    if let Some(dir) = &out.out {
+        crate::figures::reports::write_json_report(dir, "infer-mu", &report)?;
+    }
     if args.json {
         Ok(crate::output::to_json_string(&report)?)
     } else {
@@ -206,11 +233,16 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
 
 fn sweep(args: &SweepArgs) -> Result<String, CliError> {
     let values = commands::sweep::values(args.from, args.to, args.steps)?;
-    let report = commands::sweep::report(
+    let fields = match &args.out {
+        Some(dir) => Some(crate::output::OutputDir::create(dir)?),
+        None => None,
+    };
+    let report = commands::sweep::report_with_fields(
         args.scene.scene.as_deref(),
         &args.scene.sets,
         &args.param,
         &values,
+        fields.as_ref(),
     )?;
     if let Some(dir) = &args.out {
         commands::sweep::write_out(dir, &report)?;
@@ -222,9 +254,13 @@ fn sweep(args: &SweepArgs) -> Result<String, CliError> {
     }
 }
 
-fn threshold(args: &SceneArgs) -> Result<String, CliError> {
+fn threshold(out: &OutSceneArgs) -> Result<String, CliError> {
+    let args = &out.scene;
     let scene = args.load()?;
     let report = commands::threshold::report(&scene)?;
+    if let Some(dir) = &out.out {
+        crate::figures::reports::write_json_report(dir, "threshold", &report)?;
+    }
     if args.json {
         Ok(crate::output::to_json_string(&report)?)
     } else {
@@ -243,6 +279,9 @@ fn figure(args: &commands::figure::FigureArgs, quiet: bool) -> Result<String, Cl
 
 fn verify(args: &VerifyArgs) -> Result<String, CliError> {
     let report = commands::verify::report(args.quick)?;
+    if let Some(dir) = &args.out {
+        crate::figures::reports::write_json_report(dir, "verify", &report)?;
+    }
     if args.json {
         Ok(crate::output::to_json_string(&report)?)
     } else {

@@ -1,8 +1,6 @@
 //! `capstan sweep`: one scene key varied over a range; Slip and the other contact numbers per
 //! point, in parallel over the points.
 
-use std::io::IsTerminal;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads};
@@ -122,17 +120,52 @@ pub fn report(
     key: &str,
     values: &[f64],
 ) -> Result<SweepReport, CliError> {
+    report_with_fields(path, sets, key, values, None)
+}
+
+/// The VTU of sweep point `index` (`points/point_NNNN.vtu`, `TimeValue` = the swept value).
+fn point_vtu(
+    out: &OutputDir,
+    index: usize,
+    value: f64,
+    scene: &Scene,
+    model: &crate::commands::contact::SceneModel,
+    sol: &capstan_elasticity::contact::ContactSolution,
+) -> Result<(), CliError> {
+    let solved = crate::commands::contact::solved(scene, model, sol.clone())?;
+    crate::figures::body::write_body(
+        out,
+        &point_vtu_name(index),
+        &solved.obstacle,
+        &solved.fields,
+        &sol.contact,
+        Some(value),
+        false,
+    )?;
+    Ok(())
+}
+
+fn point_vtu_name(index: usize) -> String {
+    format!("points/point_{index:04}")
+}
+
+/// As [`report`]; with `fields`, also writes the body fields of every converged point as
+/// `points/point_NNNN.vtu` into it (see [`write_out`] for the `.pvd` collection).
+///
+/// # Errors
+/// As [`report`].
+pub fn report_with_fields(
+    path: Option<&std::path::Path>,
+    sets: &[String],
+    key: &str,
+    values: &[f64],
+    fields: Option<&OutputDir>,
+) -> Result<SweepReport, CliError> {
     let t = Instant::now();
     let scene = &Scene::load(path, sets)?;
     capstan_elasticity::contact::sequential_linear_algebra();
-    let done = AtomicUsize::new(0);
-    let progress = std::io::stdout().is_terminal();
-    let tick = || {
-        let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-        if progress {
-            eprint!("\r{key}: {k}/{} points", values.len());
-        }
-    };
+    let bar = crate::progress::bar(values.len(), key, false);
+    let tick = || bar.inc(1);
     let with = |value: f64| -> Result<Scene, CliError> {
         let mut s = sets.to_vec();
         s.push(format!("{key}={value}"));
@@ -149,14 +182,20 @@ pub fn report(
         let solver = BoundarySolver::new(&model, ContactSettings::default())?;
         values
             .par_iter()
-            .map(|&v| {
+            .enumerate()
+            .map(|(i, &v)| {
                 let mut l = loads(scene);
                 if key == "loads.tau_max" {
                     l.tau_max = v;
                 } else {
                     l.tau0 = v;
                 }
-                let r = solver.solve(l).map_err(CliError::from);
+                let mut r = solver.solve(l).map_err(CliError::from);
+                if let (Some(out), Ok(sol)) = (fields, &r)
+                    && let Err(e) = point_vtu(out, i, v, scene, &model, sol)
+                {
+                    r = Err(e);
+                }
                 tick();
                 point(v, l, r)
             })
@@ -164,13 +203,20 @@ pub fn report(
     } else {
         values
             .par_iter()
-            .map(|&v| {
+            .enumerate()
+            .map(|(i, &v)| {
                 let run = || -> Result<(EndLoads, Result<_, CliError>), CliError> {
                     let sc = with(v)?;
                     let m = model(&sc)?;
                     let solver = BoundarySolver::new(&m, ContactSettings::default())?;
                     let l = loads(&sc);
-                    Ok((l, solver.solve(l).map_err(CliError::from)))
+                    let mut r = solver.solve(l).map_err(CliError::from);
+                    if let (Some(out), Ok(sol)) = (fields, &r)
+                        && let Err(e) = point_vtu(out, i, v, &sc, &m, sol)
+                    {
+                        r = Err(e);
+                    }
+                    Ok((l, r))
                 };
                 let p = match run() {
                     Ok((l, r)) => point(v, l, r),
@@ -181,9 +227,7 @@ pub fn report(
             })
             .collect()
     };
-    if progress {
-        eprintln!();
-    }
+    bar.finish_and_clear();
     Ok(SweepReport {
         param: key.to_owned(),
         points,
@@ -216,13 +260,42 @@ pub fn table(r: &SweepReport) -> String {
     s
 }
 
-/// Writes `sweep.json` and `sweep.csv`.
+/// Writes `sweep.json`, `sweep.csv`, the plot `sweep.{svg,png}` (Slip against the swept
+/// value) and, when `points/point_NNNN.vtu` files were written by [`report_with_fields`],
+/// their collection `sweep.pvd` (time = the swept value; ParaView reads it, meshio does not).
 ///
 /// # Errors
 /// Output errors.
 pub fn write_out(dir: &std::path::Path, r: &SweepReport) -> Result<(), CliError> {
     let out = OutputDir::create(dir)?;
     out.write_json("sweep.json", r)?;
+    let mut pvd = crate::output::Pvd::new();
+    for (i, p) in r.points.iter().enumerate() {
+        let name = format!("{}.vtu", point_vtu_name(i));
+        if p.converged && out.file(&name)?.is_file() {
+            pvd.push(p.value, name);
+        }
+    }
+    if !pvd.entries().is_empty() {
+        out.write("sweep.pvd", |w| pvd.write(w))?;
+    }
+    let ok: Vec<&SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
+    if !ok.is_empty() {
+        let plot = crate::output::LinePlot::new(format!("Slip against {}", r.param))
+            .x_label(r.param.clone())
+            .y_label("Slip (mean of -1/0/+1 states)")
+            .series(
+                crate::output::Series::line(
+                    "Slip",
+                    ok.iter().map(|p| p.value).collect::<Vec<_>>(),
+                    ok.iter()
+                        .map(|p| p.slip_fraction.unwrap_or(0.0))
+                        .collect::<Vec<_>>(),
+                )
+                .with_markers(),
+            );
+        out.write_plot("sweep", &plot)?;
+    }
     let converged: Vec<&SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
     let table = Table::new()
         .f64(
