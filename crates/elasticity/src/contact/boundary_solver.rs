@@ -538,7 +538,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     }
 
     /// As [`BoundarySolver::solve`], starting Newton from the contact unknowns `s` of a nearby
-    /// solution ([`BoundarySolver::unknowns`]).
+    /// solution ([`ContactSolution::unknowns`]).
     ///
     /// # Errors
     /// See [`BoundarySolver::solve`].
