@@ -71,6 +71,16 @@ pub enum Command {
         after_help = "Examples:\n  capstan figure all --out figures\n  capstan figure slip-ratio --quick --out /tmp/fig"
     )]
     Figure(commands::figure::FigureArgs),
+    /// Sweep parts written by `capstan sweep --shard I/N`, checked and merged into one sweep.
+    #[command(
+        after_help = "Example:\n  capstan sweep --param body.poisson --from 0.1 --to 0.4 --steps 8 --shard 1/2 --out parts\n  capstan sweep --param body.poisson --from 0.1 --to 0.4 --steps 8 --shard 2/2 --out parts\n  capstan merge parts --out sweep"
+    )]
+    Merge(commands::merge::MergeArgs),
+    /// The contact problem's linear system (Newton Jacobian at a state) in Matrix Market.
+    #[command(
+        after_help = "Example:\n  capstan export-system --set grid.n2=40 --set grid.n3=9 --out system --state solution"
+    )]
+    ExportSystem(commands::export_system::ExportSystemArgs),
 }
 
 /// Arguments of `capstan contact`.
@@ -102,9 +112,14 @@ pub struct SweepArgs {
     /// Number of points (both ends included).
     #[arg(long)]
     pub steps: usize,
-    /// Write `sweep.json` and `sweep.csv` into this directory.
+    /// Write `sweep.json` and `sweep.csv` into this directory (with `--shard`, the part
+    /// `shard-I-of-N.json` instead).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Run only part `I` of `N` (1-based): the points `k` (0-based) with `k % N == I - 1`;
+    /// merge the parts with `capstan merge`.
+    #[arg(long, value_name = "I/N")]
+    pub shard: Option<crate::scale::ShardSpec>,
 }
 
 /// A scene and an output directory (`capstan geometry`, `tension`, `infer-mu`, `threshold`).
@@ -173,6 +188,8 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         Some(Command::Sweep(args)) => sweep(&args),
         Some(Command::Threshold(args)) => threshold(&args),
         Some(Command::Figure(args)) => figure(&args, cli.quiet),
+        Some(Command::Merge(args)) => commands::merge::run(&args),
+        Some(Command::ExportSystem(args)) => export_system(&args),
     }
 }
 
@@ -233,6 +250,9 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
 
 fn sweep(args: &SweepArgs) -> Result<String, CliError> {
     let values = commands::sweep::values(args.from, args.to, args.steps)?;
+    if let Some(spec) = args.shard {
+        return sweep_shard(args, &values, spec);
+    }
     let fields = match &args.out {
         Some(dir) => Some(crate::output::OutputDir::create(dir)?),
         None => None,
@@ -251,6 +271,47 @@ fn sweep(args: &SweepArgs) -> Result<String, CliError> {
         Ok(crate::output::to_json_string(&report)?)
     } else {
         Ok(commands::sweep::table(&report))
+    }
+}
+
+/// `capstan sweep --shard I/N`: one part, written as `shard-I-of-N.json`.
+fn sweep_shard(
+    args: &SweepArgs,
+    values: &[f64],
+    spec: crate::scale::ShardSpec,
+) -> Result<String, CliError> {
+    let part = crate::scale::run_shard(
+        args.scene.scene.as_deref(),
+        &args.scene.sets,
+        &args.param,
+        values,
+        spec,
+    )?;
+    if let Some(dir) = &args.out {
+        let out = crate::output::OutputDir::create(dir)?;
+        out.write_json(&crate::scale::shard_file_name(spec), &part)?;
+    }
+    if args.scene.json {
+        Ok(crate::output::to_json_string(&part)?)
+    } else {
+        Ok(format!(
+            "sweep of {}: shard {}/{} holds points {:?} of {} ({})\n",
+            part.param,
+            spec.index,
+            spec.count,
+            part.indices,
+            part.values.len(),
+            part.scene_hash
+        ))
+    }
+}
+
+fn export_system(args: &commands::export_system::ExportSystemArgs) -> Result<String, CliError> {
+    let report = commands::export_system::run(args)?;
+    if args.scene.json {
+        Ok(crate::output::to_json_string(&report)?)
+    } else {
+        Ok(commands::export_system::table(&report))
     }
 }
 

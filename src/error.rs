@@ -48,6 +48,10 @@ pub enum CliError {
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// Sweep parts that cannot be run or merged (bad `--shard`, parts that do not belong
+    /// together, missing or duplicate points: exit code 2).
+    #[error(transparent)]
+    Shard(#[from] crate::scale::ShardError),
 }
 
 impl CliError {
@@ -56,7 +60,11 @@ impl CliError {
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
-            Self::Scene { .. } | Self::Set { .. } | Self::Geometry(_) | Self::Elasticity(_) => 2,
+            Self::Scene { .. }
+            | Self::Set { .. }
+            | Self::Geometry(_)
+            | Self::Elasticity(_)
+            | Self::Shard(_) => 2,
             Self::Contact(e) => match e.kind() {
                 capstan_elasticity::contact::ContactErrorKind::InvalidInput => 2,
                 capstan_elasticity::contact::ContactErrorKind::NoEquilibrium => 3,

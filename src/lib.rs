@@ -9,6 +9,7 @@ pub mod commands;
 pub mod error;
 pub mod figures;
 pub mod output;
+pub mod scale;
 pub mod progress;
 pub mod scene;
 

@@ -2,9 +2,11 @@
 
 pub mod bench;
 pub mod contact;
+pub mod export_system;
 pub mod figure;
 pub mod geometry;
 pub mod infer_mu;
+pub mod merge;
 pub mod sweep;
 pub mod tension;
 pub mod threshold;
