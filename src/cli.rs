@@ -66,6 +66,12 @@ pub enum Command {
         after_help = "Example:\n  capstan threshold --set grid.n2=80 --set grid.n3=17 --json"
     )]
     Threshold(OutSceneArgs),
+    /// Numerical stability under stress: each parameter toward its hard limit (contact and
+    /// capstan models), with iterations, residuals, condition estimates, refinement changes.
+    #[command(
+        after_help = "Examples:\n  capstan stress --quick\n  capstan stress --json --out out/stress"
+    )]
+    Stress(commands::stress::StressArgs),
     /// The paper's figures and tables (sections 2 and 3) as PNG + SVG + CSV, with an index.
     #[command(
         after_help = "Examples:\n  capstan figure all --out figures\n  capstan figure slip-ratio --quick --out /tmp/fig"
@@ -187,6 +193,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         Some(Command::Contact(args)) => contact(&args),
         Some(Command::Sweep(args)) => sweep(&args),
         Some(Command::Threshold(args)) => threshold(&args),
+        Some(Command::Stress(args)) => stress(&args),
         Some(Command::Figure(args)) => figure(&args, cli.quiet),
         Some(Command::Merge(args)) => commands::merge::run(&args),
         Some(Command::ExportSystem(args)) => export_system(&args),
@@ -335,6 +342,18 @@ fn figure(args: &commands::figure::FigureArgs, quiet: bool) -> Result<String, Cl
         Ok(crate::output::to_json_string(&index)?)
     } else {
         Ok(commands::figure::table(&index))
+    }
+}
+
+fn stress(args: &commands::stress::StressArgs) -> Result<String, CliError> {
+    let report = commands::stress::report(args.quick)?;
+    if let Some(dir) = &args.out {
+        commands::stress::write_out(dir, &report)?;
+    }
+    if args.json {
+        Ok(crate::output::to_json_string(&report)?)
+    } else {
+        Ok(commands::stress::table(&report))
     }
 }
 

@@ -8,6 +8,7 @@ pub mod geometry;
 pub mod infer_mu;
 pub mod merge;
 pub mod sweep;
+pub mod stress;
 pub mod tension;
 pub mod threshold;
 pub mod verify;
