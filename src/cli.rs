@@ -383,11 +383,20 @@ fn bench(args: &commands::bench::BenchArgs) -> Result<String, CliError> {
 }
 
 /// The main job on built-in defaults.
+///
+/// The paper's default scene (section 3): the membrane capstan profile on the obstacle
+/// (section 2, Theorem 1) and the thick body under regularised Coulomb friction on the
+/// default 250 x 41 grid, side by side.
 fn default_job() -> Result<String, CliError> {
     let scene = Scene::default();
-    let report = commands::geometry::report(&scene)?;
+    let tension = commands::tension::report(&scene)?;
+    let (contact, _) = commands::contact::solve(&scene)?;
     Ok(format!(
-        "capstan: the paper's default scene (section 3)\n\n{}",
-        commands::geometry::table(&report, &scene.obstacle.build()?)
+        "capstan: the paper's default scene (a = b = 2, mu = 1/2, tau0 = 1, tau_max = 2, h = 1, \
+         E = 1e3, nu = 1/4, eps = 1e-5, grid 250 x 41)\n\n\
+         Membrane (generalised capstan equation, section 2)\n{}\n\
+         Thick body (Kikuchi-Oden regularised Coulomb, section 3)\n{}",
+        commands::tension::table(&tension, &scene),
+        commands::contact::table(&contact)
     ))
 }
