@@ -260,6 +260,10 @@ fn sweep(args: &SweepArgs) -> Result<String, CliError> {
     if let Some(spec) = args.shard {
         return sweep_shard(args, &values, spec);
     }
+    #[cfg(feature = "mpi")]
+    if let Some(out) = sweep_mpi(args, &values)? {
+        return Ok(out);
+    }
     let fields = match &args.out {
         Some(dir) => Some(crate::output::OutputDir::create(dir)?),
         None => None,
@@ -310,6 +314,28 @@ fn sweep_shard(
             part.values.len(),
             part.scene_hash
         ))
+    }
+}
+
+/// `mpirun -n K capstan sweep ...` (feature `mpi`): `None` when not under MPI with 2+ ranks.
+#[cfg(feature = "mpi")]
+fn sweep_mpi(args: &SweepArgs, values: &[f64]) -> Result<Option<String>, CliError> {
+    use crate::scale::mpi::MpiSweep;
+    let scene = &args.scene;
+    match crate::scale::mpi::sweep(scene.scene.as_deref(), &scene.sets, &args.param, values)? {
+        MpiSweep::Serial => Ok(None),
+        // Other ranks print nothing (MPI is finalised when `sweep` returns).
+        MpiSweep::Worker => std::process::exit(0),
+        MpiSweep::Root(report) => {
+            if let Some(dir) = &args.out {
+                commands::sweep::write_out(dir, &report)?;
+            }
+            Ok(Some(if scene.json {
+                crate::output::to_json_string(&report)?
+            } else {
+                commands::sweep::table(&report)
+            }))
+        }
     }
 }
 

@@ -14,6 +14,8 @@
 
 mod error;
 mod matrix_market;
+#[cfg(feature = "mpi")]
+pub mod mpi;
 mod scene_hash;
 mod shard;
 
