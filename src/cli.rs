@@ -46,11 +46,12 @@ pub enum Command {
         after_help = "Examples:\n  capstan tension --set obstacle.shape=ellipse --set obstacle.b=1 --set membrane.theta0=-0.785398 --set membrane.theta_max=0.785398 --json\n  capstan tension --set obstacle.shape=cylinder --set loads.gravity=9.81 --set loads.density=0.1 --set membrane.theta0=0"
     )]
     Tension(OutSceneArgs),
-    /// Coefficient of friction implied by a tension pair {membrane.t0, membrane.t_max}.
+    /// Coefficient of friction implied by a tension pair {membrane.t0, membrane.t_max}, under
+    /// the capstan, membrane displacement or Kikuchi–Oden thick-body model.
     #[command(
-        after_help = "Example:\n  capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75"
+        after_help = "Examples:\n  capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75\n  capstan infer-mu --model kikuchi-oden --set membrane.t_max=2.75 --set grid.n2=41 --set grid.n3=9 --json"
     )]
-    InferMu(OutSceneArgs),
+    InferMu(commands::infer_mu::InferMuArgs),
     /// Thick body on a rough prism under regularised Coulomb friction (paper section 3).
     #[command(
         after_help = "Examples:\n  capstan contact --set loads.tau_max=1 --json\n  capstan contact --set grid.n2=80 --set grid.n3=17 --set solver.nonlinear=full-newton --out out/contact"
@@ -128,7 +129,7 @@ pub struct SweepArgs {
     pub shard: Option<crate::scale::ShardSpec>,
 }
 
-/// A scene and an output directory (`capstan geometry`, `tension`, `infer-mu`, `threshold`).
+/// A scene and an output directory (`capstan geometry`, `tension`, `threshold`).
 #[derive(Debug, Args, Clone, Default)]
 pub struct OutSceneArgs {
     /// The scene.
@@ -228,10 +229,10 @@ fn tension(out: &OutSceneArgs) -> Result<String, CliError> {
     }
 }
 
-fn infer_mu(out: &OutSceneArgs) -> Result<String, CliError> {
+fn infer_mu(out: &commands::infer_mu::InferMuArgs) -> Result<String, CliError> {
     let args = &out.scene;
     let scene = args.load()?;
-    let report = commands::infer_mu::report(&scene)?;
+    let report = commands::infer_mu::report_for(&scene, out.model)?;
     if let Some(dir) = &out.out {
         crate::figures::reports::write_json_report(dir, "infer-mu", &report)?;
     }

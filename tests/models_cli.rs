@@ -1,0 +1,99 @@
+//! `capstan infer-mu --model ...` and `capstan compare`: the three models' implied
+//! coefficients through the binary, on a coarse thick-body grid.
+
+use std::process::Command;
+
+use serde_json::Value;
+
+/// Runs the binary; returns its JSON on stdout.
+fn capstan_json(args: &[&str]) -> Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
+        .args(args)
+        .arg("--json")
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn infer_mu(model: &str) -> Value {
+    capstan_json(&[
+        "infer-mu",
+        "--model",
+        model,
+        "--set",
+        "membrane.t_max=2.75",
+        "--set",
+        "grid.n2=41",
+        "--set",
+        "grid.n3=9",
+    ])
+}
+
+#[test]
+fn kikuchi_oden_implies_a_larger_mu_and_membrane_matches_capstan() {
+    let [capstan, membrane, thick] = ["capstan", "membrane", "kikuchi-oden"].map(infer_mu);
+    for (v, name) in [
+        (&capstan, "capstan"),
+        (&membrane, "membrane"),
+        (&thick, "kikuchi-oden"),
+    ] {
+        assert_eq!(v["model"], name);
+        assert_eq!(v["tension_ratio"].as_f64().unwrap(), 2.75);
+    }
+    let mu = |v: &Value| v["mu"].as_f64().unwrap();
+    // Capstan on [-pi/2, pi/2] of the circle: ln(2.75) / pi, closed form.
+    assert!((mu(&capstan) - 2.75f64.ln() / std::f64::consts::PI).abs() < 1e-15);
+    assert_eq!(capstan["method"], "closed-form");
+    // Membrane at full slip is the capstan equation up to its grid error (801 nodes).
+    assert!(
+        (mu(&membrane) / mu(&capstan) - 1.0).abs() < 1e-5,
+        "{membrane} vs {capstan}"
+    );
+    // The paper's finding mu_capstan <= nu_F; 41 x 9 gives 0.417 against 0.322.
+    assert!(mu(&thick) > mu(&capstan) * 1.1, "{thick} vs {capstan}");
+    assert_eq!(thick["grid"], serde_json::json!([41, 9]));
+}
+
+#[test]
+fn kikuchi_oden_mu_reproduces_the_threshold_ratio() {
+    // threshold at mu = 1/2 gives r_K; inverting r_K must give mu = 1/2 back (bisection
+    // tolerances: 1e-6 on the ratio and on mu, amplified by d mu / d r ~ 0.3).
+    let t = capstan_json(&["threshold", "--set", "grid.n2=41", "--set", "grid.n3=9"]);
+    let r = t["threshold_ratio"].as_f64().unwrap();
+    let set = format!("membrane.t_max={r}");
+    let v = capstan_json(&[
+        "infer-mu",
+        "--model",
+        "kikuchi-oden",
+        "--set",
+        &set,
+        "--set",
+        "grid.n2=41",
+        "--set",
+        "grid.n3=9",
+    ]);
+    let mu = v["mu"].as_f64().unwrap();
+    assert!((mu - 0.5).abs() < 1e-4, "mu {mu} for r_K {r}");
+}
+
+#[test]
+fn membrane_model_refuses_a_cone() {
+    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
+        .args([
+            "infer-mu",
+            "--model",
+            "membrane",
+            "--set",
+            "obstacle.shape=circular-cone",
+            "--set",
+            "membrane.t_max=2",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
