@@ -67,6 +67,12 @@ pub enum Command {
         after_help = "Example:\n  capstan threshold --set grid.n2=80 --set grid.n3=17 --json"
     )]
     Threshold(OutSceneArgs),
+    /// Implied coefficients of friction of the capstan, membrane and Kikuchi–Oden models
+    /// against b/a, h and nu, with the thick body's threshold as h -> 0 (CSV, SVG/PNG plots).
+    #[command(
+        after_help = "Examples:\n  capstan compare --quick\n  capstan compare --json --out out/models"
+    )]
+    Compare(commands::compare::CompareArgs),
     /// Numerical stability under stress: each parameter toward its hard limit (contact and
     /// capstan models), with iterations, residuals, condition estimates, refinement changes.
     #[command(
@@ -194,6 +200,7 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
         Some(Command::Contact(args)) => contact(&args),
         Some(Command::Sweep(args)) => sweep(&args),
         Some(Command::Threshold(args)) => threshold(&args),
+        Some(Command::Compare(args)) => compare(&args),
         Some(Command::Stress(args)) => stress(&args),
         Some(Command::Figure(args)) => figure(&args, cli.quiet),
         Some(Command::Merge(args)) => commands::merge::run(&args),
@@ -369,6 +376,18 @@ fn figure(args: &commands::figure::FigureArgs, quiet: bool) -> Result<String, Cl
         Ok(crate::output::to_json_string(&index)?)
     } else {
         Ok(commands::figure::table(&index))
+    }
+}
+
+fn compare(args: &commands::compare::CompareArgs) -> Result<String, CliError> {
+    let report = commands::compare::report(args.quick)?;
+    if let Some(dir) = &args.out {
+        commands::compare::write_out(dir, &report)?;
+    }
+    if args.json {
+        Ok(crate::output::to_json_string(&report)?)
+    } else {
+        Ok(commands::compare::table(&report))
     }
 }
 

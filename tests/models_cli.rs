@@ -97,3 +97,44 @@ fn membrane_model_refuses_a_cone() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn compare_quick_writes_the_table_and_plots() {
+    let dir = std::env::temp_dir().join(format!("capstan-compare-{}", std::process::id()));
+    let d = dir.to_str().unwrap();
+    let v = capstan_json(&["compare", "--quick", "--out", d]);
+    let rows = v["b_over_a"].as_array().unwrap();
+    assert_eq!(rows.len(), 3);
+    for r in rows.iter().chain(v["poisson"].as_array().unwrap()) {
+        let (capstan, membrane) = (
+            r["mu_capstan"].as_f64().unwrap(),
+            r["mu_membrane"].as_f64().unwrap(),
+        );
+        assert!(capstan < r["nu_kikuchi_oden"].as_f64().unwrap(), "{r}");
+        assert!((membrane / capstan - 1.0).abs() < 1e-5, "{r}");
+    }
+    // h -> 0: r_K rises towards exp(nu_F pi) (41 x 9: 3.32245, 3.89516, 4.29178).
+    let r: Vec<f64> = v["thickness"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["threshold_ratio"].as_f64().unwrap())
+        .collect();
+    assert!(r.windows(2).all(|w| w[0] < w[1]) && r[2] < v["capstan_ratio"].as_f64().unwrap());
+    assert!((r[0] - 3.32245).abs() < 1e-4, "{r:?}"); // bisection tolerance 1e-5 relative
+    for f in [
+        "compare.json",
+        "implied_mu.csv",
+        "thickness.csv",
+        "implied_mu_vs_b_over_a.svg",
+        "implied_mu_vs_poisson.png",
+        "implied_mu_vs_thickness.svg",
+    ] {
+        assert!(dir.join(f).is_file(), "{f}");
+    }
+    let csv = std::fs::read_to_string(dir.join("implied_mu.csv")).unwrap();
+    assert!(csv.starts_with(
+        "b_over_a,thickness,poisson,n2,n3,threshold_ratio,nu_kikuchi_oden,mu_capstan,mu_membrane\n"
+    ));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
