@@ -9,8 +9,8 @@ pub mod commands;
 pub mod error;
 pub mod figures;
 pub mod output;
-pub mod scale;
 pub mod progress;
+pub mod scale;
 pub mod scene;
 
 pub use capstan_geometry as geometry;
