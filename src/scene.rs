@@ -11,7 +11,7 @@ use std::path::Path;
 
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::solvers::LinearBackend;
-use capstan_friction::FrictionLawKind;
+use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
 use capstan_geometry::expression::Expression;
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
@@ -133,14 +133,42 @@ pub struct FrictionSpec {
     pub mu: f64,
     /// Regularisation width `eps` (physical slip length).
     pub eps: f64,
+    /// The Tresca bound `g` (`friction.law = "tresca"`).
+    pub bound: f64,
+    /// Howell's exponent `n` in `|t| = mu |p|^n` (`friction.law = "howell"`).
+    pub exponent: f64,
+    /// `mu_2` along the second orthotropy axis (`friction.law = "orthotropic-coulomb"`).
+    pub mu2: f64,
+    /// First orthotropy axis from the slip frame's first axis, radians
+    /// (`friction.law = "orthotropic-coulomb"`).
+    pub axis_angle: f64,
 }
 
 impl Default for FrictionSpec {
     fn default() -> Self {
+        let d = FrictionSettings::default();
         Self {
             law: "coulomb".into(),
             mu: 0.5,
             eps: 1e-5,
+            bound: d.bound,
+            exponent: d.exponent,
+            mu2: d.mu2,
+            axis_angle: d.axis_angle,
+        }
+    }
+}
+
+impl FrictionSpec {
+    /// The settings every friction law draws its parameters from.
+    pub fn settings(&self) -> FrictionSettings {
+        FrictionSettings {
+            mu: self.mu,
+            eps: self.eps,
+            mu2: self.mu2,
+            axis_angle: self.axis_angle,
+            bound: self.bound,
+            exponent: self.exponent,
         }
     }
 }
@@ -625,6 +653,22 @@ impl Scene {
         }
         real("friction.mu", f.mu, "[0, inf)", f.mu >= 0.0)?;
         real("friction.eps", f.eps, "(0, inf)", f.eps > 0.0)?;
+        real("friction.bound", f.bound, "[0, inf)", f.bound >= 0.0)?;
+        real(
+            "friction.exponent",
+            f.exponent,
+            "(0, 2]",
+            f.exponent > 0.0 && f.exponent <= 2.0,
+        )?;
+        real("friction.mu2", f.mu2, "[0, inf)", f.mu2 >= 0.0)?;
+        real("friction.axis_angle", f.axis_angle, "finite values", true)?;
+        if let Some(kind) = FrictionLawKind::parse(&f.law) {
+            // The law's own checks (e.g. orthotropic: not both coefficients zero).
+            AnyFrictionParams::<f64>::new(kind, &f.settings()).map_err(|e| CliError::Scene {
+                origin: at.locate("friction.law"),
+                message: e.to_string(),
+            })?;
+        }
         real("membrane.t0", m.t0, "(0, inf)", m.t0 > 0.0)?;
         if !(2..=MAX_SAMPLES).contains(&m.samples) {
             return Err(bad("membrane.samples", m.samples.to_string(), "[2, 10^7]"));

@@ -138,3 +138,73 @@ fn compare_quick_writes_the_table_and_plots() {
     ));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+fn exit_code(args: &[&str]) -> Option<i32> {
+    Command::new(env!("CARGO_BIN_EXE_capstan"))
+        .args(args)
+        .output()
+        .unwrap()
+        .status
+        .code()
+}
+
+#[test]
+fn friction_law_selects_the_contact_law() {
+    let traction = |law: &str| {
+        let set = format!("friction.law={law}");
+        capstan_json(&[
+            "contact",
+            "--set",
+            "grid.n2=41",
+            "--set",
+            "grid.n3=9",
+            "--set",
+            &set,
+            "--set",
+            "loads.tau_max=1.5",
+        ])["contact"]["friction_traction"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect::<Vec<f64>>()
+    };
+    // Howell with n = 1 and orthotropic Coulomb with mu2 = mu are Coulomb: same tractions
+    // up to Newton's tolerance.
+    let coulomb = traction("coulomb");
+    for law in ["howell", "orthotropic-coulomb"] {
+        let other = traction(law);
+        let scale = coulomb.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        assert!(
+            coulomb
+                .iter()
+                .zip(&other)
+                .all(|(a, b)| (a - b).abs() <= 1e-8 * scale),
+            "{law}"
+        );
+    }
+}
+
+#[test]
+fn new_friction_keys_are_validated() {
+    assert_eq!(
+        exit_code(&["contact", "--set", "friction.exponent=3"]),
+        Some(2)
+    );
+    assert_eq!(
+        exit_code(&["contact", "--set", "friction.bound=-1"]),
+        Some(2)
+    );
+    assert_eq!(
+        exit_code(&[
+            "contact",
+            "--set",
+            "friction.law=orthotropic-coulomb",
+            "--set",
+            "friction.mu=0",
+            "--set",
+            "friction.mu2=0",
+        ]),
+        Some(2)
+    );
+}

@@ -1,5 +1,5 @@
-//! `capstan contact`: the thick body on a rough prism under regularised Coulomb friction
-//! (paper section 3).
+//! `capstan contact`: the thick body on a rough prism under the scene's friction law
+//! (`friction.law` through `AnyFrictionLaw`; regularised Coulomb by default, paper section 3).
 
 use std::time::Instant;
 
@@ -8,10 +8,7 @@ use capstan_elasticity::contact::{
     BoundarySolver, ContactError, ContactModel, ContactSettings, ContactSolution, EndLoads,
     FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
 };
-use capstan_elasticity::friction::{
-    ContactState, FrictionLaw, Frictionless, RegularisedCoulomb, RegularisedCoulombParams,
-    TractionDerivatives,
-};
+use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 use serde::Serialize;
 
@@ -19,44 +16,8 @@ use crate::error::CliError;
 use crate::output::{OutputDir, Table};
 use crate::scene::Scene;
 
-/// The friction laws a scene can name (`friction.law`): `coulomb` (regularised Coulomb with
-/// `friction.mu`, `friction.eps`) or `frictionless`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SceneLaw {
-    /// Regularised Coulomb.
-    Coulomb,
-    /// No friction.
-    Frictionless,
-}
-
-/// Parameters of [`SceneLaw`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SceneLawParams {
-    coulomb: RegularisedCoulombParams<f64>,
-}
-
-impl FrictionLaw<f64> for SceneLaw {
-    type Params = SceneLawParams;
-    fn traction(&self, c: &ContactState<f64>, p: &SceneLawParams) -> [f64; 2] {
-        match self {
-            Self::Coulomb => RegularisedCoulomb.traction(c, &p.coulomb),
-            Self::Frictionless => Frictionless.traction(c, &()),
-        }
-    }
-    fn traction_derivatives(
-        &self,
-        c: &ContactState<f64>,
-        p: &SceneLawParams,
-    ) -> TractionDerivatives<f64> {
-        match self {
-            Self::Coulomb => RegularisedCoulomb.traction_derivatives(c, &p.coulomb),
-            Self::Frictionless => Frictionless.traction_derivatives(c, &()),
-        }
-    }
-}
-
 /// The contact model a scene describes.
-pub type SceneModel = ContactModel<ThickBodyOperator, SceneLaw>;
+pub type SceneModel = ContactModel<ThickBodyOperator, AnyFrictionLaw>;
 
 /// The solver a scene selects (`solver.nonlinear`, `solver.linear`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -143,21 +104,18 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
 /// # Errors
 /// See [`thick_body`]; bad friction values; assembly errors.
 pub fn model(scene: &Scene) -> Result<SceneModel, CliError> {
-    let law = match scene.friction.law.as_str() {
-        "coulomb" => SceneLaw::Coulomb,
-        "frictionless" => SceneLaw::Frictionless,
-        other => {
-            return Err(CliError::Scene {
-                origin: "friction.law".into(),
-                message: format!(
-                    "unknown friction law `{other}`; expected `coulomb` or `frictionless`"
-                ),
-            });
-        }
-    };
-    let coulomb = RegularisedCoulombParams::new(scene.friction.mu, scene.friction.eps)?;
+    let f = &scene.friction;
+    let kind = FrictionLawKind::parse(&f.law).ok_or_else(|| CliError::Scene {
+        origin: "friction.law".into(),
+        message: format!(
+            "unknown friction law `{}`; expected one of {}",
+            f.law,
+            FrictionLawKind::NAMES
+        ),
+    })?;
+    let params = AnyFrictionParams::new(kind, &f.settings())?;
     let body = thick_body(scene)?;
-    Ok(body.model(law, SceneLawParams { coulomb }, scene.friction.eps)?)
+    Ok(body.model(AnyFrictionLaw, params, f.eps)?)
 }
 
 /// The scene's loads.
