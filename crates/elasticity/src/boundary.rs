@@ -252,4 +252,56 @@ impl BoundaryConditions {
     pub fn is_periodic(&self) -> bool {
         self.x2.is_periodic()
     }
+
+    /// The displacement prescribed at a grid node and component, if any: pinned dofs first,
+    /// then the `x3` sides, then the `x2` sides (the corner rule of every discretisation).
+    ///
+    /// # Errors
+    /// [`crate::ElasticityError::NonFinite`] if the prescribed function is not finite there.
+    pub fn dirichlet_value(
+        &self,
+        grid: &crate::grid::Grid,
+        node: [usize; 2],
+        c: Component,
+    ) -> Result<Option<f64>, crate::error::ElasticityError> {
+        if let Some(p) = self
+            .pinned
+            .iter()
+            .find(|p| p.node == node && p.component == c)
+        {
+            return Ok(Some(p.value));
+        }
+        let [x2, x3] = grid.coordinates(node);
+        let (n2, n3) = (grid.n2(), grid.n3());
+        let mut sides = Vec::with_capacity(2);
+        if node[1] == 0 {
+            sides.push((Side::X3Min, x2));
+        }
+        if node[1] == n3 - 1 {
+            sides.push((Side::X3Max, x2));
+        }
+        if !grid.is_periodic() {
+            if node[0] == 0 {
+                sides.push((Side::X2Min, x3));
+            }
+            if node[0] == n2 - 1 {
+                sides.push((Side::X2Max, x3));
+            }
+        }
+        for (side, s) in sides {
+            if let Some(ComponentCondition::Displacement(f)) =
+                self.side(side).map(|sc| sc.component(c))
+            {
+                let value = f.eval(s);
+                if !value.is_finite() {
+                    return Err(crate::error::ElasticityError::NonFinite {
+                        what: "boundary displacement",
+                        at: [x2, x3],
+                    });
+                }
+                return Ok(Some(value));
+            }
+        }
+        Ok(None)
+    }
 }

@@ -251,53 +251,13 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         &self.chart
     }
 
-    /// The value prescribed at a node and component, if any (pins first, then the `x3` sides,
-    /// then the `x2` sides).
+    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
     fn dirichlet_value(
         &self,
         node: [usize; 2],
         c: Component,
     ) -> Result<Option<f64>, ElasticityError> {
-        if let Some(p) = self
-            .boundary
-            .pinned
-            .iter()
-            .find(|p| p.node == node && p.component == c)
-        {
-            return Ok(Some(p.value));
-        }
-        let [x2, x3] = self.grid.coordinates(node);
-        let (n2, n3) = (self.grid.n2(), self.grid.n3());
-        let mut sides = Vec::with_capacity(2);
-        if node[1] == 0 {
-            sides.push((Side::X3Min, x2));
-        }
-        if node[1] == n3 - 1 {
-            sides.push((Side::X3Max, x2));
-        }
-        if !self.grid.is_periodic() {
-            if node[0] == 0 {
-                sides.push((Side::X2Min, x3));
-            }
-            if node[0] == n2 - 1 {
-                sides.push((Side::X2Max, x3));
-            }
-        }
-        for (side, s) in sides {
-            if let Some(ComponentCondition::Displacement(f)) =
-                self.boundary.side(side).map(|sc| sc.component(c))
-            {
-                let value = f.eval(s);
-                if !value.is_finite() {
-                    return Err(ElasticityError::NonFinite {
-                        what: "boundary displacement",
-                        at: [x2, x3],
-                    });
-                }
-                return Ok(Some(value));
-            }
-        }
-        Ok(None)
+        self.boundary.dirichlet_value(&self.grid, node, c)
     }
 
     /// Nodal difference `d_2` at `(i, .)`: `(i2, weight)` triples (central, or second-order

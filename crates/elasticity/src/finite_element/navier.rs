@@ -566,53 +566,13 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         Ok(())
     }
 
-    /// The value prescribed at a node and component, if any (pins first, then the `x3` sides,
-    /// then the `x2` sides), as in the finite differences.
+    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
     fn dirichlet_value(
         &self,
         node: [usize; 2],
         c: Component,
     ) -> Result<Option<f64>, ElasticityError> {
-        if let Some(p) = self
-            .boundary
-            .pinned
-            .iter()
-            .find(|p| p.node == node && p.component == c)
-        {
-            return Ok(Some(p.value));
-        }
-        let [x2, x3] = self.grid.coordinates(node);
-        let (n2, n3) = (self.grid.n2(), self.grid.n3());
-        let mut sides = Vec::with_capacity(2);
-        if node[1] == 0 {
-            sides.push((Side::X3Min, x2));
-        }
-        if node[1] == n3 - 1 {
-            sides.push((Side::X3Max, x2));
-        }
-        if !self.grid.is_periodic() {
-            if node[0] == 0 {
-                sides.push((Side::X2Min, x3));
-            }
-            if node[0] == n2 - 1 {
-                sides.push((Side::X2Max, x3));
-            }
-        }
-        for (side, s) in sides {
-            if let Some(ComponentCondition::Displacement(f)) =
-                self.boundary.side(side).map(|sc| sc.component(c))
-            {
-                let value = f.eval(s);
-                if !value.is_finite() {
-                    return Err(ElasticityError::NonFinite {
-                        what: "boundary displacement",
-                        at: [x2, x3],
-                    });
-                }
-                return Ok(Some(value));
-            }
-        }
-        Ok(None)
+        self.boundary.dirichlet_value(&self.grid, node, c)
     }
 
     /// Elements containing grid index `i` along one direction.
