@@ -7,7 +7,9 @@ use capstan_elasticity::contact::{
     BoundarySolver, ContactError, ContactSettings, EndLoads, FullSystemProblem, FullSystemSettings,
     FullSystemSolver, ThickBody, ThresholdSettings, threshold_ratio,
 };
-use capstan_elasticity::friction::{Frictionless, RegularisedCoulomb, RegularisedCoulombParams};
+use capstan_elasticity::friction::{
+    Frictionless, RegularisedCoulomb, RegularisedCoulombParams, Tresca, TrescaParams,
+};
 use capstan_elasticity::solvers::{Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu};
 use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Material};
 use capstan_geometry::{EllipticalPrism, Obstacle};
@@ -305,6 +307,75 @@ fn circle_past_the_limiting_ratio_has_no_equilibrium() {
             .sliding()
             .is_none()
     );
+}
+
+#[test]
+fn tresca_limit_on_the_circle_is_the_exact_moment_balance() {
+    // Rigid sliding of the annulus a <= r <= a + h over the half circle: the end tractions
+    // (T^2_2 = sigma_thetatheta) have the moment tau ((a + h)^2 - a^2) / 2 about the axis, the
+    // saturated Tresca friction g a pi a. Limiting equilibrium:
+    //   (tau_max - tau0) ((a + h)^2 - a^2) / 2 = +- g pi a^2
+    // a linear balance the discrete moment balance reproduces up to the grid's quadrature of
+    // the end faces; the limits depend on tau0 (Tresca is not homogeneous in sigma_n).
+    let (a, h, g) = (2.0, 1.0, 0.1);
+    let jump = g * std::f64::consts::PI * a * a / (((a + h) * (a + h) - a * a) / 2.0);
+    let mut errors = Vec::new();
+    for (n2, n3) in [(20, 5), (40, 9), (80, 17)] {
+        let model = ThickBody::paper(n2, n3)
+            .unwrap()
+            .model(Tresca, TrescaParams::new(g, EPS).unwrap(), EPS)
+            .unwrap();
+        let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let mut err = 0.0f64;
+        for tau0 in [1.0, 2.0] {
+            let mode = solver.sliding_at(tau0).unwrap().expect("sliding mode");
+            assert_eq!(mode.tau0, tau0);
+            err = err
+                .max((mode.upper_ratio - (1.0 + jump / tau0)).abs())
+                .max((mode.lower_ratio - (1.0 - jump / tau0)).abs());
+            // beyond the limit: no equilibrium, typed; inside: a solution
+            let beyond = EndLoads::new(tau0, tau0 * mode.upper_ratio * 1.01);
+            assert!(matches!(
+                solver.solve(beyond),
+                Err(ContactError::NoEquilibrium { .. })
+            ));
+            let inside = EndLoads::new(tau0, tau0 * (1.0 + 0.5 * jump / tau0));
+            assert!(solver.solve(inside).unwrap().slip_fraction < 1.0);
+        }
+        errors.push(err);
+    }
+    assert!(errors[2] < 1e-6, "{errors:?}");
+    assert!(
+        errors.windows(2).all(|w| w[1] <= w[0] + 1e-12),
+        "{errors:?}"
+    );
+}
+
+#[test]
+fn coulomb_limits_are_found_on_every_grid_despite_the_corner_nodes() {
+    // The full-slip normal stress at the one or two nodes next to each loaded corner is a
+    // resolution artefact of either sign; the limits must not depend on it (they did: a sign
+    // check on every inner node lost them on 500 x 81). Grid convergence of the upper limit:
+    // its changes shrink under refinement.
+    let mut limits = Vec::new();
+    for (n2, n3) in [(20, 5), (40, 9), (80, 17), (160, 33)] {
+        let model = ThickBody::paper(n2, n3)
+            .unwrap()
+            .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+            .unwrap();
+        let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let mode = solver.sliding().expect("sliding mode");
+        assert!(
+            mode.upper_ratio.is_finite() && mode.lower_ratio.is_finite(),
+            "{mode:?}"
+        );
+        assert!((mode.lower_ratio * mode.upper_ratio - 1.0).abs() < 1e-8);
+        // homogeneous law: the same limits for any tau0
+        assert_eq!(solver.sliding_at(3.0).unwrap(), Some(mode));
+        limits.push(mode.upper_ratio);
+    }
+    let d: Vec<f64> = limits.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
+    assert!(d[2] < d[1] && d[1] < d[0], "{limits:?}");
 }
 
 #[test]

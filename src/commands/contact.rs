@@ -197,8 +197,9 @@ pub struct ContactReport {
     pub residual: f64,
     /// Inner Jacobi iterations (Jacobi–Newton only).
     pub linear_iterations: usize,
-    /// `[lower, upper]` tension ratios friction can hold, when the body can slide rigidly (circle).
-    pub limiting_ratios: Option<[f64; 2]>,
+    /// `[lower, upper]` tension ratios friction can hold, when the body can slide rigidly (circle);
+    /// an entry is `null` when friction holds every ratio in that direction (no finite limit).
+    pub limiting_ratios: Option<[Option<f64>; 2]>,
     /// Contact nodes under tension (`sigma_n > 0`).
     pub tensile_contact_nodes: usize,
     /// `[n2, n3]`.
@@ -253,7 +254,7 @@ impl ContactReport {
             continuation_steps: sol.stats.continuation_steps,
             residual: sol.stats.residual,
             linear_iterations: sol.stats.linear_iterations,
-            limiting_ratios: limiting,
+            limiting_ratios: limiting.map(|r| r.map(|x| Some(x).filter(|x| x.is_finite()))),
             tensile_contact_nodes: sol.tensile_contact_nodes,
             grid,
             setup_seconds: times[0],
@@ -338,7 +339,9 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             let sol = solver.solve(loads)?;
-            let limiting = solver.sliding().map(|m| [m.lower_ratio, m.upper_ratio]);
+            let limiting = solver
+                .sliding_at(sol.loads.tau0)?
+                .map(|m| [m.lower_ratio, m.upper_ratio]);
             let report =
                 ContactReport::new(&sol, limiting, grid, [setup, t1.elapsed().as_secs_f64()]);
             Ok((report, solved(scene, &model, sol)?))
@@ -392,7 +395,13 @@ pub fn table(r: &ContactReport) -> String {
         s += &format!("  slip {:+} [{:.6}, {:.6}]\n", i.state, i.from, i.to);
     }
     if let Some([lo, hi]) = r.limiting_ratios {
-        s += &format!("  limiting tension ratios (rigid sliding): [{lo:.6}, {hi:.6}]\n");
+        let f =
+            |x: Option<f64>, unbounded: &str| x.map_or(unbounded.to_owned(), |x| format!("{x:.6}"));
+        s += &format!(
+            "  limiting tension ratios (rigid sliding): [{}, {}]\n",
+            f(lo, "-inf (none)"),
+            f(hi, "inf (none)")
+        );
     }
     s
 }

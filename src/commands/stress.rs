@@ -211,8 +211,15 @@ fn run_model<D: Discretisation>(
     };
     let mut quantities = BTreeMap::new();
     if let Some(mode) = solver.sliding() {
-        quantities.insert("limiting_ratio_upper".into(), mode.upper_ratio);
-        quantities.insert("limiting_ratio_lower".into(), mode.lower_ratio);
+        // an unbounded direction (friction holds every ratio) has no finite limit to report
+        for (key, r) in [
+            ("limiting_ratio_upper", mode.upper_ratio),
+            ("limiting_ratio_lower", mode.lower_ratio),
+        ] {
+            if r.is_finite() {
+                quantities.insert(key.into(), r);
+            }
+        }
     }
     let sol = solver.solve(loads)?;
     quantities.insert("slip_fraction".into(), sol.slip_fraction);
