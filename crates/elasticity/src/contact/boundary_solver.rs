@@ -117,6 +117,16 @@ const SLIDING_MODE_THRESHOLD: f64 = 1e-8;
 /// (measured: below `1e-3` of the total on 125 x 21 to 500 x 81 of the default circle).
 const WRONG_WAY_SHARE_LIMIT: f64 = 1e-2;
 
+/// A residual within this factor of the rounding floor of its evaluation counts as converged.
+const ROUNDOFF_FACTOR: f64 = 100.0;
+
+/// The largest relative residual the rounding floor may excuse (see [`ROUNDOFF_FACTOR`]).
+const MAX_ROUNDOFF_RESIDUAL: f64 = 1e-6;
+
+/// Largest relative residual of the full system accepted for a converged contact solution
+/// (a safety net behind the condensed Newton's own test).
+const MAX_FULL_RESIDUAL: f64 = 1e-6;
+
 /// Newton iterations of the full-slip limit (one suffices for laws affine in `sigma_n`).
 const FULL_SLIP_ITERATIONS: usize = 50;
 
@@ -437,7 +447,8 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 wrong += w;
             }
         }
-        let resists = total > 0.0 && wrong <= WRONG_WAY_SHARE_LIMIT * total;
+        // no friction at all (mu = 0): the frictionless balance itself is the limit
+        let resists = wrong <= WRONG_WAY_SHARE_LIMIT * total;
         if r.is_finite() && r > 0.0 && resists {
             r
         } else {
@@ -500,7 +511,46 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         (dx, dn)
     }
 
+    /// The rounding-error bound of evaluating `G(s)` in floating point (max over the nodes):
+    /// ```text
+    /// floor_i = u (|s_i| + |t_2,i| + |c_i x_i| + |dG_i/dx_i| (|x0_i| + sum_j |PZ_ij s_j|)
+    ///                                           + |dG_i/dsigma_i| (|n0_i| + sum_j |NZ_ij s_j|))
+    /// ```
+    /// (`u` the machine epsilon): the sums `x = x0 + P Z s`, `sigma = n0 + N Z s` carry a relative
+    /// error `u`, amplified by the law's stiffness `mu sigma_n / eps` in the stick zone. No
+    /// Newton step can reduce the residual below it.
+    fn roundoff_floor(&self, beta: f64, x0: &[f64], n0: &[f64], s: &[f64]) -> f64 {
+        let m = s.len();
+        let mut g = vec![0.0; m];
+        let (dx, dn) = self.eval(beta, x0, n0, s, &mut g, None);
+        (0..m)
+            .map(|i| {
+                let (mut ax, mut an, mut x, mut sig) = (x0[i].abs(), n0[i].abs(), x0[i], n0[i]);
+                for (j, sj) in s.iter().enumerate() {
+                    ax += (self.pz[(i, j)] * sj).abs();
+                    an += (self.nz[(i, j)] * sj).abs();
+                    x += self.pz[(i, j)] * sj;
+                    sig += self.nz[(i, j)] * sj;
+                }
+                let node = self.model.active_node(i);
+                let t2 = self
+                    .model
+                    .traction_at(node, beta * node.sqrt_g22 * x, sig)
+                    .t2;
+                f64::EPSILON
+                    * (s[i].abs()
+                        + t2.abs()
+                        + (self.spring[i] * x).abs()
+                        + dx[i].abs() * ax
+                        + dn[i].abs() * an)
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// Damped Newton on `G(s) = 0` from `s`; `Ok(iterations)` or `Err((iterations, residual))`.
+    /// Converged when `max |G| <= tolerance * scale`, or, once no step decreases `|G|` (or the
+    /// iterations run out), when `max |G|` is within [`ROUNDOFF_FACTOR`] of the rounding floor
+    /// of its own evaluation ([`BoundarySolver::roundoff_floor`]).
     fn newton(&self, beta: f64, loads: EndLoads, s: &mut [f64]) -> Result<usize, (usize, f64)> {
         self.newton_with(&self.settings, beta, loads, s)
     }
@@ -523,6 +573,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         let mut trial = vec![0.0; m];
         let mut gt = vec![0.0; m];
         let mut jac = Mat::<f64>::zeros(m, m);
+        // the rounding floor may excuse a residual up to 1e-6 relative, never more (a state
+        // drifting along a sliding mode has a huge floor and is no solution)
+        let accept_floor =
+            |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
         let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
         let max_norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         for it in 0..settings.max_iterations {
@@ -552,14 +606,19 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 }
                 alpha *= 0.5;
                 if alpha < 1e-8 {
-                    return Err((it + 1, r / scale));
+                    // no descent left: accept if the residual is at its rounding floor
+                    return if r <= accept_floor(self.roundoff_floor(beta, &x0, &n0, s)) {
+                        Ok(it)
+                    } else {
+                        Err((it + 1, r / scale))
+                    };
                 }
             }
             s.copy_from_slice(&trial);
         }
         self.eval(beta, &x0, &n0, s, &mut g, None);
         let r = max_norm(&g);
-        if r <= tol {
+        if r <= tol.max(accept_floor(self.roundoff_floor(beta, &x0, &n0, s))) {
             Ok(settings.max_iterations)
         } else {
             Err((settings.max_iterations, r / scale))
@@ -657,12 +716,25 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         self.finish(loads, &s, iterations, steps)
     }
 
-    /// Continuation in the slip scale `beta` (the law sees `beta u`): from `1e-3` (for
-    /// regularised Coulomb `eps / beta`: smooth, nearly all stick) to 1, from the stuck state.
+    /// Continuation in the slip scale `beta` (the law sees `beta u`; for regularised Coulomb
+    /// this is `eps / beta`) from the stuck state: `beta_0 = min(1e-3, eps / (10 U))`, where `U`
+    /// is the largest physical tangential displacement of the spring-held linear solution
+    /// (`s = 0`), so that every contact point starts on the smooth branch of the law
+    /// (`|beta u| < eps`: all stick) however small `eps` is; then decade steps (halved on
+    /// failure) up to `beta = 1`, each from the previous solution.
     /// `Ok((iterations, steps, s))` or `Err(iterations)`.
     fn slip_homotopy(&self, loads: EndLoads) -> Result<(usize, usize, Vec<f64>), usize> {
         let mut s = self.stuck_unknowns(loads);
-        let mut log_beta = -3.0f64;
+        let (x0, _) = self.loaded_base(loads);
+        let scale = x0.iter().enumerate().fold(0.0f64, |a, (k, x)| {
+            a.max((self.model.active_node(k).sqrt_g22 * x).abs())
+        });
+        let start = if scale > 0.0 {
+            (0.1 * self.model.slip_threshold() / scale).min(1e-3)
+        } else {
+            1e-3
+        };
+        let mut log_beta = start.log10();
         let mut step = 1.0f64;
         let mut iterations = 0;
         let mut steps = 0;
@@ -779,6 +851,13 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 factorisations: 0,
             },
         );
+        if sol.stats.residual.is_nan() || sol.stats.residual > MAX_FULL_RESIDUAL {
+            return Err(ContactError::NotConverged {
+                iterations,
+                residual: sol.stats.residual,
+                load_factor: 1.0,
+            });
+        }
         sol.unknowns = s.to_vec();
         Ok(sol)
     }
