@@ -385,6 +385,34 @@ fn coulomb_limits_are_found_on_every_grid_despite_the_corner_nodes() {
 }
 
 #[test]
+fn regularisation_to_zero_converges_to_the_coulomb_limit() {
+    // eps -> 0 down to 1e-10 (far below the displacements, ~1e-3): Newton needs the slip
+    // homotopy (from a state where every point sticks), and the contact slip converges as eps
+    // does: the change per decade of eps shrinks about tenfold (first order in eps).
+    let model = |eps: f64| {
+        ThickBody::paper(41, 9)
+            .unwrap()
+            .model(RegularisedCoulomb, coulomb(0.5, eps), eps)
+            .unwrap()
+    };
+    let mut slips = Vec::new();
+    for eps in [1e-6, 1e-7, 1e-8, 1e-9, 1e-10] {
+        let model = model(eps);
+        let sol = BoundarySolver::new(&model, ContactSettings::default())
+            .unwrap()
+            .solve(EndLoads::ratio(2.0))
+            .unwrap();
+        assert!(sol.stats.residual < 1e-10, "eps {eps}: {:?}", sol.stats);
+        slips.push(sol.contact.slip.clone());
+    }
+    let changes: Vec<f64> = slips.windows(2).map(|w| max_diff(&w[0], &w[1])).collect();
+    for w in changes.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!(ratio > 5.0 && ratio < 20.0, "{changes:?}");
+    }
+}
+
+#[test]
 fn threshold_on_the_circle_is_the_limiting_ratio() {
     let body = ThickBody::paper(40, 9).unwrap();
     let model = body
