@@ -127,6 +127,9 @@ const MAX_ROUNDOFF_RESIDUAL: f64 = 1e-6;
 /// (a safety net behind the condensed Newton's own test).
 const MAX_FULL_RESIDUAL: f64 = 1e-6;
 
+/// Workspace (doubles) of one block of condensation solves: 2^24 (128 MiB).
+const CONDENSATION_BLOCK_ENTRIES: usize = 1 << 24;
+
 /// Newton iterations of the full-slip limit (one suffices for laws affine in `sigma_n`).
 const FULL_SLIP_ITERATIONS: usize = 50;
 
@@ -218,16 +221,26 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         lu.factor(&values)?;
         let mut pz = Mat::<f64>::zeros(m, m);
         let mut nz = Mat::<f64>::zeros(m, m);
-        let mut col = vec![0.0; n];
-        for k in 0..m {
-            let node = model.active_node(k);
-            col.iter_mut().for_each(|x| *x = 0.0);
-            col[node.tangential_row.expect("active")] = node.traction_weight;
-            lu.solve_in_place(&mut col)?;
-            for j in 0..m {
-                let nj = model.active_node(j);
-                pz[(j, k)] = col[nj.tangential_dof];
-                nz[(j, k)] = nj.normal_stress.dot(&col);
+        // Z = A~^-1 W in blocks of columns (one multi-right-hand-side solve per block, at most
+        // CONDENSATION_BLOCK_ENTRIES doubles of workspace)
+        let block = (CONDENSATION_BLOCK_ENTRIES / n.max(1)).clamp(1, m.max(1));
+        let mut cols = vec![0.0; n * block];
+        for first in (0..m).step_by(block) {
+            let width = block.min(m - first);
+            let cols = &mut cols[..n * width];
+            cols.iter_mut().for_each(|x| *x = 0.0);
+            for c in 0..width {
+                let node = model.active_node(first + c);
+                cols[c * n + node.tangential_row.expect("active")] = node.traction_weight;
+            }
+            lu.solve_many_in_place(cols, width)?;
+            for c in 0..width {
+                let col = &cols[c * n..(c + 1) * n];
+                for j in 0..m {
+                    let nj = model.active_node(j);
+                    pz[(j, first + c)] = col[nj.tangential_dof];
+                    nz[(j, first + c)] = nj.normal_stress.dot(col);
+                }
             }
         }
         let base = [0, 1].map(|i| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
