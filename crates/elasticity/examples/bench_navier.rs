@@ -13,13 +13,14 @@
 //! geometry+operator, pattern, fill, LU analyse, factor, solve, the static fill bound of the
 //! ordering (`2 nnz(R) - n`, `R^T R = A^T A` permuted), the values stored by the multifrontal
 //! kernel, relative residual, VmHWM in MiB; with `--iterative` also damped Jacobi (relaxation
-//! 1/2) and Gauss-Seidel to a relative residual of 1e-8.
+//! 1/2) and Gauss-Seidel to a relative residual of 1e-8; with `--compare` the largest difference
+//! to the other LU kernel's solution (default ordering), relative to the largest unknown.
 //!
 //! `--lu-kind auto` (default: multifrontal), `multifrontal` or `supernodal` (faer's, on the
 //! structure of `A^T A`). `--ordering auto` (default: AMD on `A + A^T` for the multifrontal
 //! kernel, COLAMD for the supernodal one), `colamd` (supernodal only), `nd` (nested dissection
-//! of the grid, with separators `--separator-width W` lines wide, default 2) or `amd` (AMD on
-//! `A + A^T`).
+//! of the grid, with separators `--separator-width W` lines wide, default 1 for the multifrontal
+//! kernel and 2 for the supernodal one) or `amd` (AMD on `A + A^T`).
 
 use std::time::Instant;
 
@@ -76,6 +77,7 @@ fn main() {
     let n2 = args.first().and_then(|a| a.parse().ok()).unwrap_or(250);
     let n3 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(41);
     let with_iterative = args.iter().any(|a| a == "--iterative");
+    let with_compare = args.iter().any(|a| a == "--compare");
     let option = |name: &str| {
         args.iter()
             .position(|a| a == name)
@@ -89,8 +91,10 @@ fn main() {
         "supernodal" => LuKind::Supernodal,
         other => panic!("unknown LU kind `{other}`: expected auto, multifrontal or supernodal"),
     };
+    // the supernodal structure (A^T A) reaches twice as far as A + A^T
+    let default_width = if lu_kind == LuKind::Supernodal { 2 } else { 1 };
     let separator_width: usize =
-        option("--separator-width").map_or(2, |w| w.parse().expect("width"));
+        option("--separator-width").map_or(default_width, |w| w.parse().expect("width"));
     // dof = 2 (i2 n3 + i3) + c, the numbering GridShape describes
     let grid = GridShape {
         n2,
@@ -157,8 +161,32 @@ fn main() {
         .fold(0.0, f64::max);
 
     let mut extra = String::new();
-    if with_iterative {
+    if with_compare {
+        // the other kernel with its default ordering, as an independent reference
+        let other = if lu.last_kind() == Some(LuKind::Supernodal) {
+            LuKind::Multifrontal
+        } else {
+            LuKind::Supernodal
+        };
+        let mut reference = SparseLu::new(DirectParams {
+            lu_kind: other,
+            ..Default::default()
+        })
+        .expect("valid parameters");
+        let w = system.solve(&mut reference).expect("reference solve");
+        let scale = w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let diff = v
+            .iter()
+            .zip(&w)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         extra = format!(
+            ",\"compare\":{{\"lu_kind\":\"{}\",\"max_relative_diff\":{:.2e}}}",
+            format!("{other:?}").to_lowercase(),
+            diff / scale
+        );
+    }
+    if with_iterative {
+        extra += &format!(
             ",\"iterative\":[{},{}]",
             iterative(&system, LinearBackend::Jacobi, 0.5, &v),
             iterative(&system, LinearBackend::GaussSeidel, 1.0, &v)

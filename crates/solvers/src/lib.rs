@@ -38,11 +38,12 @@
 //!   factorises numerically singular matrices without complaint; very ill-conditioned
 //!   matrices (condition number above about `1e7` with the default) are reported as singular.
 //! - Parallelism of the faer backends follows `faer::get_global_parallelism()`.
-//! - [`SparseLu`] takes its static structure from `A^T A` (faer's partial-pivoting LU), so its
-//!   fronts are about twice as wide as those of a factorisation of `A` itself: on the
-//!   2000 x 321 Navier grid (1.28 M unknowns) the nested dissection brings the peak to about
-//!   7.7 GiB (COLAMD: about 9.8 GiB). A symmetric-structure LU (`A + A^T`, pivoting kept
-//!   inside supernodes) would be needed for much less; faer 0.24 has none.
+//! - [`SparseLu`]'s default multifrontal kernel ([`LuKind`]) reserves the structure of
+//!   `A + A^T` and pivots only inside each front's diagonal block (threshold 0.01); a matrix
+//!   that needs pivots from outside a front is refactorised with faer's supernodal kernel,
+//!   whose structure (`A^T A`) takes about twice the memory: on the 2000 x 321 Navier grid
+//!   (1.28 M unknowns) 3.3 GiB against 7.7 GiB. The multifrontal kernel runs its dense
+//!   updates through faer (parallel), but its fronts one after another.
 //!
 //! # Example
 //! ```
