@@ -206,11 +206,17 @@ impl FrontalStructure {
         for s in 0..n_super {
             super_of[begin[s]..begin[s + 1]].fill(s as u32);
         }
-        // assembly tree: the parent of s owns the first row of R_s
+        // assembly tree: the parent of s owns the first (smallest) row of R_s
+        let parent = |s: usize| {
+            rows[row_ptr[s]..row_ptr[s + 1]]
+                .iter()
+                .min()
+                .map(|&i| super_of[i as usize] as usize)
+        };
         let mut child_count = vec![0usize; n_super + 1];
         for s in 0..n_super {
-            if row_ptr[s + 1] > row_ptr[s] {
-                child_count[super_of[rows[row_ptr[s]] as usize] as usize + 1] += 1;
+            if let Some(p) = parent(s) {
+                child_count[p + 1] += 1;
             }
         }
         for s in 0..n_super {
@@ -220,8 +226,7 @@ impl FrontalStructure {
         let mut next = child_ptr.clone();
         let mut children = vec![0u32; child_ptr[n_super]];
         for s in 0..n_super {
-            if row_ptr[s + 1] > row_ptr[s] {
-                let p = super_of[rows[row_ptr[s]] as usize] as usize;
+            if let Some(p) = parent(s) {
                 children[next[p]] = s as u32;
                 next[p] += 1;
             }
