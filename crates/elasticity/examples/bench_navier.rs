@@ -6,22 +6,28 @@
 //! ```text
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 2000 321
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 2000 321 --ordering nd
+//! cargo run --release -p capstan-elasticity --example bench_navier -- 1000 161 --lu-kind supernodal
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 250 41 --iterative
 //! ```
-//! Prints one JSON line: grid, unknowns, nonzeros, LU column ordering, seconds for
-//! geometry+operator, pattern, fill, LU analyse, factor, solve, the static fill bound of the LU
-//! (`2 nnz(R) - n`, `R^T R = A^T A` permuted), relative residual, VmHWM in MiB; with
-//! `--iterative` also damped Jacobi (relaxation 1/2) and Gauss-Seidel to a relative residual
-//! of 1e-8.
+//! Prints one JSON line: grid, unknowns, nonzeros, LU kernel and ordering, seconds for
+//! geometry+operator, pattern, fill, LU analyse, factor, solve, the static fill bound of the
+//! ordering (`2 nnz(R) - n`, `R^T R = A^T A` permuted), the values stored by the multifrontal
+//! kernel, relative residual, VmHWM in MiB; with `--iterative` also damped Jacobi (relaxation
+//! 1/2) and Gauss-Seidel to a relative residual of 1e-8; with `--compare` the largest difference
+//! to the other LU kernel's solution (default ordering), relative to the largest unknown.
 //!
-//! `--ordering colamd` (default, faer's choice), `nd` (nested dissection of the grid, with
-//! separators `--separator-width W` lines wide, default 2) or `amd` (AMD on `A + A^T`).
+//! `--lu-kind auto` (default: multifrontal), `multifrontal` or `supernodal` (faer's, on the
+//! structure of `A^T A`). `--ordering auto` (default: AMD on `A + A^T` for the multifrontal
+//! kernel, COLAMD for the supernodal one), `colamd` (supernodal only), `nd` (nested dissection
+//! of the grid, with separators `--separator-width W` lines wide, default 1 for the multifrontal
+//! kernel and 2 for the supernodal one) or `amd` (AMD on `A + A^T`).
 
 use std::time::Instant;
 
 use capstan_elasticity::samples::PaperEllipse;
 use capstan_elasticity::solvers::{
-    ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver, SparseLu,
+    ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver, LuKind,
+    SparseLu,
 };
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, LinearSystem};
@@ -71,15 +77,24 @@ fn main() {
     let n2 = args.first().and_then(|a| a.parse().ok()).unwrap_or(250);
     let n3 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(41);
     let with_iterative = args.iter().any(|a| a == "--iterative");
+    let with_compare = args.iter().any(|a| a == "--compare");
     let option = |name: &str| {
         args.iter()
             .position(|a| a == name)
             .and_then(|k| args.get(k + 1))
             .map(String::as_str)
     };
-    let ordering_name = option("--ordering").unwrap_or("colamd");
+    let ordering_name = option("--ordering").unwrap_or("auto");
+    let lu_kind = match option("--lu-kind").unwrap_or("auto") {
+        "auto" => LuKind::Auto,
+        "multifrontal" => LuKind::Multifrontal,
+        "supernodal" => LuKind::Supernodal,
+        other => panic!("unknown LU kind `{other}`: expected auto, multifrontal or supernodal"),
+    };
+    // the supernodal structure (A^T A) reaches twice as far as A + A^T
+    let default_width = if lu_kind == LuKind::Supernodal { 2 } else { 1 };
     let separator_width: usize =
-        option("--separator-width").map_or(2, |w| w.parse().expect("width"));
+        option("--separator-width").map_or(default_width, |w| w.parse().expect("width"));
     // dof = 2 (i2 n3 + i3) + c, the numbering GridShape describes
     let grid = GridShape {
         n2,
@@ -88,13 +103,16 @@ fn main() {
         periodic: false,
     };
     let ordering = match ordering_name {
-        "colamd" => ColumnOrdering::Auto,
+        "auto" => ColumnOrdering::Auto,
+        "colamd" if lu_kind == LuKind::Supernodal => ColumnOrdering::Auto,
         "amd" => ColumnOrdering::Amd,
         "nd" => ColumnOrdering::NestedDissection {
             grid,
             separator_width,
         },
-        other => panic!("unknown ordering `{other}`: expected colamd, nd or amd"),
+        other => {
+            panic!("unknown ordering `{other}`: expected auto, colamd (supernodal only), nd or amd")
+        }
     };
     let problem = PaperEllipse::default();
 
@@ -117,6 +135,7 @@ fn main() {
 
     let mut lu = SparseLu::new(DirectParams {
         ordering,
+        lu_kind,
         ..Default::default()
     })
     .expect("valid parameters");
@@ -127,6 +146,10 @@ fn main() {
     let t = Instant::now();
     lu.factor(&system.values).expect("factor");
     let t_factor = t.elapsed().as_secs_f64();
+    let kind_used = lu
+        .last_kind()
+        .map_or("none".into(), |k| format!("{k:?}").to_lowercase());
+    let factor_entries = lu.multifrontal_factor_entries().unwrap_or(0);
     let mut v = system.rhs.clone();
     let t = Instant::now();
     lu.solve_in_place(&mut v).expect("solve");
@@ -138,15 +161,39 @@ fn main() {
         .fold(0.0, f64::max);
 
     let mut extra = String::new();
-    if with_iterative {
+    if with_compare {
+        // the other kernel with its default ordering, as an independent reference
+        let other = if lu.last_kind() == Some(LuKind::Supernodal) {
+            LuKind::Multifrontal
+        } else {
+            LuKind::Supernodal
+        };
+        let mut reference = SparseLu::new(DirectParams {
+            lu_kind: other,
+            ..Default::default()
+        })
+        .expect("valid parameters");
+        let w = system.solve(&mut reference).expect("reference solve");
+        let scale = w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let diff = v
+            .iter()
+            .zip(&w)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         extra = format!(
+            ",\"compare\":{{\"lu_kind\":\"{}\",\"max_relative_diff\":{:.2e}}}",
+            format!("{other:?}").to_lowercase(),
+            diff / scale
+        );
+    }
+    if with_iterative {
+        extra += &format!(
             ",\"iterative\":[{},{}]",
             iterative(&system, LinearBackend::Jacobi, 0.5, &v),
             iterative(&system, LinearBackend::GaussSeidel, 1.0, &v)
         );
     }
     println!(
-        "{{\"n2\":{n2},\"n3\":{n3},\"unknowns\":{},\"nnz\":{},\"ordering\":\"{ordering_name}\",\"separator_width\":{separator_width},\"operator_s\":{t_operator:.3},\"pattern_s\":{t_pattern:.3},\"fill_s\":{t_fill:.3},\"lu_analyse_s\":{t_analyse:.3},\"lu_factor_s\":{t_factor:.3},\"lu_solve_s\":{t_solve:.3},\"lu_total_s\":{:.3},\"lu_fill_bound\":{fill_bound},\"relative_residual\":{residual:.2e},\"max_outer_v2\":{max_v2:.4e},\"vm_hwm_mib\":{hwm:.1}{extra}}}",
+        "{{\"n2\":{n2},\"n3\":{n3},\"unknowns\":{},\"nnz\":{},\"lu_kind\":\"{kind_used}\",\"ordering\":\"{ordering_name}\",\"separator_width\":{separator_width},\"operator_s\":{t_operator:.3},\"pattern_s\":{t_pattern:.3},\"fill_s\":{t_fill:.3},\"lu_analyse_s\":{t_analyse:.3},\"lu_factor_s\":{t_factor:.3},\"lu_solve_s\":{t_solve:.3},\"lu_total_s\":{:.3},\"lu_fill_bound\":{fill_bound},\"multifrontal_factor_entries\":{factor_entries},\"relative_residual\":{residual:.2e},\"max_outer_v2\":{max_v2:.4e},\"vm_hwm_mib\":{hwm:.1}{extra}}}",
         op.dof_count(),
         system.pattern.nnz(),
         t_operator + t_pattern + t_fill + t_analyse + t_factor + t_solve,

@@ -1,6 +1,7 @@
 //! Settings shared by the direct (factorising) backends, and their solution check.
 
 use crate::error::SolverError;
+use crate::lu_kind::LuKind;
 use crate::ordering::ColumnOrdering;
 use crate::sparsity_pattern::SparsityPattern;
 
@@ -29,9 +30,11 @@ pub struct DirectParams {
     pub refinement_steps: usize,
     /// Cholesky only: largest accepted `|a_ij - a_ji| / max |a|` (in `[0, 1)`).
     pub symmetry_tolerance: f64,
-    /// Fill-reducing ordering computed by `analyse` (default: the backend's own, COLAMD for LU
-    /// and AMD for Cholesky).
+    /// Fill-reducing ordering computed by `analyse` (default: the backend's own: AMD on
+    /// `A + A^T` for the multifrontal LU, COLAMD for the supernodal LU, AMD for Cholesky).
     pub ordering: ColumnOrdering,
+    /// LU only: the factorisation kernel (default [`LuKind::Auto`], the multifrontal kernel).
+    pub lu_kind: LuKind,
 }
 
 impl Default for DirectParams {
@@ -41,6 +44,7 @@ impl Default for DirectParams {
             refinement_steps: 2,
             symmetry_tolerance: 1e-10,
             ordering: ColumnOrdering::Auto,
+            lu_kind: LuKind::Auto,
         }
     }
 }

@@ -38,11 +38,12 @@
 //!   factorises numerically singular matrices without complaint; very ill-conditioned
 //!   matrices (condition number above about `1e7` with the default) are reported as singular.
 //! - Parallelism of the faer backends follows `faer::get_global_parallelism()`.
-//! - [`SparseLu`] takes its static structure from `A^T A` (faer's partial-pivoting LU), so its
-//!   fronts are about twice as wide as those of a factorisation of `A` itself: on the
-//!   2000 x 321 Navier grid (1.28 M unknowns) the nested dissection brings the peak to about
-//!   7.7 GiB (COLAMD: about 9.8 GiB). A symmetric-structure LU (`A + A^T`, pivoting kept
-//!   inside supernodes) would be needed for much less; faer 0.24 has none.
+//! - [`SparseLu`]'s default multifrontal kernel ([`LuKind`]) reserves the structure of
+//!   `A + A^T` and pivots only inside each front's diagonal block (threshold 0.01); a matrix
+//!   that needs pivots from outside a front is refactorised with faer's supernodal kernel,
+//!   whose structure (`A^T A`) takes about twice the memory: on the 2000 x 321 Navier grid
+//!   (1.28 M unknowns) 3.3 GiB against 7.7 GiB. The multifrontal kernel runs its dense
+//!   updates through faer (parallel), but its fronts one after another.
 //!
 //! # Example
 //! ```
@@ -71,6 +72,8 @@ mod jacobi;
 mod jacobi_newton;
 mod linear_backend;
 mod linear_solver;
+mod lu_kind;
+mod multifrontal_lu;
 mod newton;
 mod nonlinear_method;
 mod nonlinear_solver;
@@ -92,6 +95,7 @@ pub use jacobi::Jacobi;
 pub use jacobi_newton::JacobiNewton;
 pub use linear_backend::LinearBackend;
 pub use linear_solver::LinearSolver;
+pub use lu_kind::LuKind;
 pub use newton::{LineSearch, Newton, NewtonParams};
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};

@@ -36,14 +36,17 @@ impl GridShape {
 
 /// How a direct backend orders the columns before factorising.
 ///
-/// [`crate::SparseLu`] builds its static structure from `A^T A` (valid for any row pivoting),
-/// so a nested dissection for LU must cut the couplings of `A^T A`: twice the stencil reach of
-/// `A`. [`crate::SparseCholesky`] factorises `A` itself and needs only the reach of `A`.
+/// The supernodal kernel of [`crate::SparseLu`] ([`crate::LuKind::Supernodal`]) builds its
+/// static structure from `A^T A` (valid for any row pivoting), so a nested dissection for it
+/// must cut the couplings of `A^T A`: twice the stencil reach of `A`. The multifrontal kernel
+/// (the default) and [`crate::SparseCholesky`] use the structure of `A + A^T` (of `A`) and need
+/// only the reach of `A`: on the Navier operator 1-line separators give it 12.1e6 stored values
+/// at 500 x 81 against 17.4e6 with 2-line ones and 13.2e6 with AMD (`Auto`).
 ///
-/// Which ordering wins depends on the stencil. Measured with LU (bench `bench_navier` of the
-/// elasticity crate: 2 unknowns per node, 9-point stencil with reach-2 one-sided boundary
-/// rows; 2 shared cores, timings within about 30%), nested dissection with 2-line separators
-/// against COLAMD:
+/// Which ordering wins depends on the stencil. Measured with the supernodal LU (bench
+/// `bench_navier` of the elasticity crate: 2 unknowns per node, 9-point stencil with reach-2
+/// one-sided boundary rows; 2 shared cores, timings within about 30%), nested dissection with
+/// 2-line separators against COLAMD:
 /// ```text
 /// grid        unknowns   fill bound (1e6)   analyse s     factor s      VmHWM MiB
 ///                        colamd    nd       colamd  nd    colamd  nd    colamd   nd
@@ -55,8 +58,8 @@ impl GridShape {
 /// (fill bound: [`crate::SparseLu::structural_fill_bound`]; separators 3 and 4 lines wide
 /// were worse, 1 line far worse: it leaves the halves coupled in `A^T A`). On the 5-point
 /// Laplacian (1 unknown per node) COLAMD has the smaller bound, by about 25%. [`Amd`] on
-/// `A + A^T` is poor for LU (250 x 41 Navier: bound 6.8x COLAMD's, factor 45x slower): it
-/// ignores the `A^T A` structure.
+/// `A + A^T` is poor for the supernodal LU (250 x 41 Navier: bound 6.8x COLAMD's, factor 45x
+/// slower): it ignores the `A^T A` structure.
 ///
 /// [`Amd`]: ColumnOrdering::Amd
 ///
@@ -82,7 +85,8 @@ impl GridShape {
 )]
 #[serde(rename_all = "kebab-case")]
 pub enum ColumnOrdering {
-    /// The backend's own choice: COLAMD for LU, AMD for Cholesky.
+    /// The backend's own choice: AMD on `A + A^T` for the multifrontal LU, COLAMD for the
+    /// supernodal LU, AMD for Cholesky.
     #[default]
     Auto,
     /// Approximate minimum degree on the pattern of `A + A^T` ([`amd_symmetrised`]).
@@ -98,8 +102,9 @@ pub enum ColumnOrdering {
 }
 
 impl ColumnOrdering {
-    /// Nested dissection for LU of an operator whose stencil reaches `reach` grid lines: the
-    /// separators are `2 * reach` lines wide, enough to cut every coupling of `A^T A`.
+    /// Nested dissection for the supernodal LU of an operator whose stencil reaches `reach`
+    /// grid lines: the separators are `2 * reach` lines wide, enough to cut every coupling of
+    /// `A^T A` (the multifrontal kernel needs only `reach`).
     pub fn nested_dissection_for_lu(grid: GridShape, reach: usize) -> Self {
         Self::NestedDissection {
             grid,

@@ -18,15 +18,21 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use crate::direct_params::{DirectParams, check_and_refine, empty_line, scratch};
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_many_len, check_rhs, check_square, check_values};
+use crate::lu_kind::LuKind;
+use crate::multifrontal_lu::{FrontFailure, FrontalFactors, FrontalStructure};
 use crate::ordering::is_permutation;
 use crate::sparsity_pattern::SparsityPattern;
 
-/// Sparse LU with partial pivoting (faer): for general (unsymmetric) systems.
+/// Sparse LU with row pivoting: for general (unsymmetric) systems.
 ///
-/// `analyse` computes the column ordering ([`DirectParams::ordering`]: COLAMD by default, AMD
-/// on `A + A^T`, a nested dissection of a structured grid, or a permutation given with
-/// [`SparseLu::with_column_permutation`]) and faer's supernodal symbolic structure once; every
-/// `factor` reuses it and the numeric storage. Parallelism follows
+/// Two kernels ([`DirectParams::lu_kind`], see [`LuKind`]): a multifrontal LU on the
+/// structure of `A + A^T` with threshold pivoting inside each front (the default), and faer's
+/// supernodal LU with partial pivoting on the structure of `A^T A`. `analyse` computes the
+/// ordering ([`DirectParams::ordering`]: by default AMD on `A + A^T` for the multifrontal
+/// kernel and COLAMD for the supernodal one; a nested dissection of a structured grid; or a
+/// permutation given with [`SparseLu::with_column_permutation`]) and the symbolic structure
+/// once; every `factor` reuses it. When a front has no acceptable pivot, `factor` refactorises
+/// with the supernodal kernel (its structure is analysed then, once). Parallelism follows
 /// `faer::get_global_parallelism()` (set it to `Par::Seq` inside parallel sweeps).
 ///
 /// # Math
@@ -34,14 +40,18 @@ use crate::sparsity_pattern::SparsityPattern;
 /// P A Q = L U     Q: fill-reducing column order (symbolic, once)
 ///                 P: row pivoting (numeric, per factor)
 /// x = Q U^-1 L^-1 P b
-/// struct(L), struct(U^T) within struct(R),  R^T R = Q^T A^T A Q  (any P)
+/// supernodal:    struct(L), struct(U^T) within struct(R),  R^T R = Q^T A^T A Q  (any P)
+/// multifrontal:  struct(L), struct(U^T) within struct(C),  C^T C = Q^T (A + A^T) Q,
+///                rows of Q (the symmetric order) permuted by P only inside a front's block,
+///                |pivot| >= 0.01 max |entry of its column|
 /// ```
 /// Every solution is checked as described in [`DirectParams`].
 ///
 /// # Errors
 /// [`SolverError::Singular`] for an empty row or column (checked before faer sees the values),
-/// a structurally singular pattern, or a solution that is non-finite or fails the residual
-/// check; [`SolverError::InvalidParameter`] or [`SolverError::DimensionMismatch`] for an
+/// a structurally singular pattern, a pivot column that vanishes exactly (multifrontal
+/// kernel), or a solution that is non-finite or fails the residual check;
+/// [`SolverError::InvalidParameter`] or [`SolverError::DimensionMismatch`] for an
 /// ordering that does not fit the pattern; the common errors of [`LinearSolver`].
 ///
 /// # Example
@@ -54,22 +64,29 @@ use crate::sparsity_pattern::SparsityPattern;
 /// let mut x = vec![4.0, 3.0];
 /// lu.solve_in_place(&mut x).unwrap();
 /// assert_eq!(x, vec![3.0, 2.0]);
-/// // a singular matrix is an error, never NaN
-/// lu.factor(&[1.0, 1.0, 1.0, 1.0]).unwrap();
+/// // a singular matrix is an error (from `factor` or from the checked solve), never NaN
 /// let mut x = vec![1.0, 2.0];
-/// assert!(matches!(lu.solve_in_place(&mut x), Err(SolverError::Singular { .. })));
+/// let result = lu.factor(&[1.0, 1.0, 1.0, 1.0]).and_then(|()| lu.solve_in_place(&mut x));
+/// assert!(matches!(result, Err(SolverError::Singular { .. })));
 /// ```
 #[derive(Debug, Default)]
 pub struct SparseLu {
     params: DirectParams,
     column_permutation: Option<Vec<usize>>,
     pattern: Option<SparsityPattern>,
+    /// The supernodal structure: analysed for [`LuKind::Supernodal`], or at the first fallback.
     symbolic: Option<Symbolic>,
     numeric: SupernodalLu<usize, f64>,
     row_perm_fwd: Vec<usize>,
     row_perm_inv: Vec<usize>,
+    /// The multifrontal structure, for [`LuKind::Multifrontal`].
+    frontal: Option<FrontalStructure>,
+    frontal_factors: FrontalFactors,
+    /// `A^T A` fill bound of the analysed order.
+    fill_bound: Option<usize>,
     values: Vec<f64>,
-    factored: bool,
+    /// The kernel that made the current factors (`None`: not factored).
+    factored: Option<LuKind>,
     factorisations: usize,
 }
 
@@ -123,9 +140,25 @@ impl SparseLu {
     pub fn with_column_permutation(mut self, perm: Vec<usize>) -> Self {
         self.column_permutation = Some(perm);
         self.symbolic = None;
+        self.frontal = None;
+        self.fill_bound = None;
         self.pattern = None;
-        self.factored = false;
+        self.factored = None;
         self
+    }
+
+    /// The kernel that produced the current factors (`None` before a successful `factor`):
+    /// [`LuKind::Multifrontal`], or [`LuKind::Supernodal`] when configured or after a
+    /// fallback.
+    pub fn last_kind(&self) -> Option<LuKind> {
+        self.factored
+    }
+
+    /// Values stored in the factors by the multifrontal kernel (`L` and `U`, the diagonal
+    /// once), if its structure is analysed: the exact size of its factor storage, to compare
+    /// with [`SparseLu::structural_fill_bound`].
+    pub fn multifrontal_factor_entries(&self) -> Option<usize> {
+        self.frontal.as_ref().map(FrontalStructure::factor_entries)
     }
 
     /// Numeric factorisations done since construction.
@@ -139,16 +172,23 @@ impl SparseLu {
     }
 
     /// The column order of the analysis (`perm[k]` = column eliminated `k`-th), if analysed.
+    ///
+    /// The multifrontal kernel orders rows and columns alike, so this is also its row order
+    /// before pivoting.
     pub fn column_permutation(&self) -> Option<&[usize]> {
-        self.symbolic.as_ref().map(|s| s.col_perm_fwd.as_slice())
+        match (&self.frontal, &self.symbolic) {
+            (Some(frontal), _) => Some(frontal.permutation()),
+            (None, Some(s)) => Some(s.col_perm_fwd.as_slice()),
+            (None, None) => None,
+        }
     }
 
-    /// The static bound on the fill, if analysed: `2 nnz(R) - n`, where `R` is the Cholesky
-    /// factor of `Q^T A^T A Q`; `nnz(L) + nnz(U)` never exceeds it, whatever the pivoting.
-    /// A measure for comparing orderings (faer stores dense supernodal panels, so the memory
-    /// used is of this order).
+    /// The static bound on the fill of the analysed column order, if analysed: `2 nnz(R) - n`,
+    /// where `R` is the Cholesky factor of `Q^T A^T A Q`; `nnz(L) + nnz(U)` never exceeds it,
+    /// whatever the pivoting. A measure for comparing orderings (the supernodal kernel stores
+    /// dense panels on this structure, so the memory it uses is of this order).
     pub fn structural_fill_bound(&self) -> Option<usize> {
-        self.symbolic.as_ref().map(|s| s.structural_bound)
+        self.fill_bound
     }
 
     fn raw_solve(
@@ -176,9 +216,7 @@ impl SparseLu {
 
     /// Solve of `ncols >= 1` columns with the solution check; `rhs` is column-major.
     pub(crate) fn checked_solve(&self, rhs: &mut [f64], ncols: usize) -> Result<(), SolverError> {
-        let (Some(pattern), Some(symbolic), true) =
-            (self.pattern.as_ref(), self.symbolic.as_ref(), self.factored)
-        else {
+        let (Some(pattern), Some(kind)) = (self.pattern.as_ref(), self.factored) else {
             return Err(SolverError::CallOrder {
                 called: "solve_in_place",
                 requires: "factor",
@@ -195,6 +233,15 @@ impl SparseLu {
         if n == 0 {
             return Ok(());
         }
+        if kind == LuKind::Multifrontal {
+            return self.checked_solve_multifrontal(pattern, rhs);
+        }
+        let Some(symbolic) = self.symbolic.as_ref() else {
+            return Err(SolverError::CallOrder {
+                called: "solve_in_place",
+                requires: "factor",
+            });
+        };
         let row_perm = PermRef::new_checked(&self.row_perm_fwd, &self.row_perm_inv, n);
         let b = rhs.to_vec();
         Self::raw_solve(symbolic, &self.numeric, row_perm, rhs, n, ncols)?;
@@ -214,14 +261,40 @@ impl SparseLu {
         Ok(())
     }
 
-    /// The column order: the explicit permutation, the configured ordering, or COLAMD.
-    fn column_order(&self, pattern: &SparsityPattern) -> Result<Vec<usize>, SolverError> {
+    /// Multifrontal solve of the columns of `rhs`, each checked and refined.
+    fn checked_solve_multifrontal(
+        &self,
+        pattern: &SparsityPattern,
+        rhs: &mut [f64],
+    ) -> Result<(), SolverError> {
+        let Some(frontal) = self.frontal.as_ref() else {
+            return Err(SolverError::CallOrder {
+                called: "solve_in_place",
+                requires: "factor",
+            });
+        };
+        let n = pattern.nrows();
+        let mut y = vec![0.0; n];
+        let mut work = vec![0.0; n];
+        for x in rhs.chunks_exact_mut(n) {
+            let b = x.to_vec();
+            frontal.solve_in_place(&self.frontal_factors, x, &mut y);
+            check_and_refine(&self.params, pattern, &self.values, &b, x, &mut work, |r| {
+                frontal.solve_in_place(&self.frontal_factors, r, &mut y)
+            })?;
+        }
+        Ok(())
+    }
+
+    /// The explicit order: the permutation given, or the configured ordering's (`None` for
+    /// [`crate::ColumnOrdering::Auto`]); checked against the pattern.
+    fn explicit_order(&self, pattern: &SparsityPattern) -> Result<Option<Vec<usize>>, SolverError> {
         let n = pattern.ncols();
         let perm = match &self.column_permutation {
             Some(perm) => Some(perm.clone()),
             None => self.params.ordering.permutation(pattern)?,
         };
-        if let Some(perm) = perm {
+        if let Some(perm) = &perm {
             if perm.len() != n {
                 return Err(SolverError::DimensionMismatch {
                     quantity: "column permutation",
@@ -229,13 +302,21 @@ impl SparseLu {
                     found: perm.len(),
                 });
             }
-            if !is_permutation(&perm, n) {
+            if !is_permutation(perm, n) {
                 return Err(SolverError::InvalidParameter {
                     field: "column permutation",
                     value: n as f64,
                     allowed: "a permutation of 0..n",
                 });
             }
+        }
+        Ok(perm)
+    }
+
+    /// The column order of the supernodal kernel: the explicit order, or COLAMD.
+    fn column_order(&self, pattern: &SparsityPattern) -> Result<Vec<usize>, SolverError> {
+        let n = pattern.ncols();
+        if let Some(perm) = self.explicit_order(pattern)? {
             return Ok(perm);
         }
         // faer's own choice for LU, with its default settings
@@ -259,6 +340,27 @@ impl SparseLu {
         pattern: &SparsityPattern,
         col_perm_fwd: Vec<usize>,
     ) -> Result<Symbolic, SolverError> {
+        let (supernodal, structural_bound) = Self::ata_analysis(pattern, &col_perm_fwd, true)?;
+        let n = pattern.ncols();
+        let mut col_perm_inv = vec![0usize; n];
+        for (k, &p) in col_perm_fwd.iter().enumerate() {
+            col_perm_inv[p] = k;
+        }
+        Ok(Symbolic {
+            supernodal: supernodal.expect("supernodes requested"),
+            col_perm_fwd,
+            col_perm_inv,
+            structural_bound,
+        })
+    }
+
+    /// Column elimination tree and column counts of `A^T A` under `col_perm_fwd`: the fill
+    /// bound `2 nnz(R) - n`, and faer's supernodal LU structure if `with_supernodes`.
+    fn ata_analysis(
+        pattern: &SparsityPattern,
+        col_perm_fwd: &[usize],
+        with_supernodes: bool,
+    ) -> Result<(Option<SymbolicSupernodalLu<usize>>, usize), SolverError> {
         let n = pattern.ncols();
         let mut col_perm_inv = vec![0usize; n];
         for (k, &p) in col_perm_fwd.iter().enumerate() {
@@ -267,7 +369,7 @@ impl SparseLu {
         let a = pattern.as_faer_symbolic();
         let (at_col_ptr, at_row_idx, _) = pattern.row_layout();
         let at = SymbolicSparseColMatRef::new_checked(n, n, &at_col_ptr, None, &at_row_idx);
-        let col_perm = PermRef::new_checked(&col_perm_fwd, &col_perm_inv, n);
+        let col_perm = PermRef::new_checked(col_perm_fwd, &col_perm_inv, n);
         let mut mem = scratch(StackReq::any_of(&[
             col_etree_scratch::<usize>(n, n),
             postorder_scratch::<usize>(n),
@@ -291,6 +393,9 @@ impl SparseLu {
             stack,
         );
         let structural_bound = (2 * col_counts.iter().sum::<usize>()).saturating_sub(n);
+        if !with_supernodes {
+            return Ok((None, structural_bound));
+        }
         let supernodal = factorize_supernodal_symbolic_lu(
             a,
             Some(col_perm),
@@ -300,34 +405,11 @@ impl SparseLu {
             stack,
             Default::default(),
         )?;
-        Ok(Symbolic {
-            supernodal,
-            col_perm_fwd,
-            col_perm_inv,
-            structural_bound,
-        })
-    }
-}
-
-impl LinearSolver<f64> for SparseLu {
-    fn analyse(&mut self, pattern: &SparsityPattern) -> Result<(), SolverError> {
-        check_square(pattern)?;
-        self.factored = false;
-        self.pattern = None;
-        self.symbolic = None;
-        // Always the supernodal kernel: on 5-point patterns faer's automatic choice picks the
-        // simplicial kernel up to ~4000 unknowns, where it measured 2-3x slower (n = 4096:
-        // 27 ms vs 8.6 ms per numeric factorisation, one core), and below ~100 unknowns the
-        // difference is under a microsecond. It also keeps clear of the simplicial kernel's
-        // zero-pivot panic (faer issue 232).
-        let order = self.column_order(pattern)?;
-        self.symbolic = Some(Self::symbolic(pattern, order)?);
-        self.pattern = Some(pattern.clone());
-        self.values = vec![0.0; pattern.nnz()];
-        Ok(())
+        Ok((Some(supernodal), structural_bound))
     }
 
-    fn factor(&mut self, values: &[f64]) -> Result<(), SolverError> {
+    /// Supernodal numeric factorisation of `self.values`.
+    fn factor_supernodal(&mut self) -> Result<(), SolverError> {
         let (Some(pattern), Some(symbolic)) = (self.pattern.as_ref(), self.symbolic.as_ref())
         else {
             return Err(SolverError::CallOrder {
@@ -335,60 +417,128 @@ impl LinearSolver<f64> for SparseLu {
                 requires: "analyse",
             });
         };
-        self.factored = false;
+        let n = pattern.nrows();
+        let par = faer::get_global_parallelism();
+        let nnz = pattern.nnz();
+        // the transpose lives only during the factorisation, as in faer's own LU
+        let mut at_values = vec![0.0f64; nnz];
+        let mut at_col_ptr = vec![0usize; n + 1];
+        let mut at_row_idx = vec![0usize; nnz];
+        let mut mem = scratch(StackReq::any_of(&[
+            faer::sparse::utils::transpose_scratch::<usize>(n, n),
+            factorize_supernodal_numeric_lu_scratch::<usize, f64>(
+                &symbolic.supernodal,
+                Default::default(),
+            ),
+        ]))?;
+        let stack = MemStack::new(&mut mem);
+        let a = pattern.as_faer(&self.values);
+        let at = faer::sparse::utils::transpose(
+            &mut at_values,
+            &mut at_col_ptr,
+            &mut at_row_idx,
+            a,
+            stack,
+        );
+        let at = SparseColMatRef::new(at.symbolic(), at.val());
+        self.row_perm_fwd.resize(n, 0);
+        self.row_perm_inv.resize(n, 0);
+        factorize_supernodal_numeric_lu(
+            &mut self.row_perm_fwd,
+            &mut self.row_perm_inv,
+            &mut self.numeric,
+            a,
+            at,
+            symbolic.col_perm(),
+            &symbolic.supernodal,
+            par,
+            stack,
+            Default::default(),
+        )
+        .map_err(|e| match e {
+            LuError::SymbolicSingular { index } => SolverError::Singular {
+                // `index` is a step of the column-permuted elimination
+                pivot: Some(symbolic.col_perm_fwd[index]),
+            },
+            LuError::Generic(e) => SolverError::Backend(e),
+        })
+    }
+}
+
+impl LinearSolver<f64> for SparseLu {
+    fn analyse(&mut self, pattern: &SparsityPattern) -> Result<(), SolverError> {
+        check_square(pattern)?;
+        self.factored = None;
+        self.pattern = None;
+        self.symbolic = None;
+        self.frontal = None;
+        self.fill_bound = None;
+        self.frontal_factors = FrontalFactors::default();
+        if self.params.lu_kind.resolved() == LuKind::Multifrontal {
+            // AMD on A + A^T unless an order is given (the structure is that of A + A^T)
+            let order = self.explicit_order(pattern)?;
+            if let Some(frontal) = FrontalStructure::analyse(pattern, order.as_deref())? {
+                let (_, bound) = Self::ata_analysis(pattern, frontal.permutation(), false)?;
+                self.fill_bound = Some(bound);
+                self.frontal = Some(frontal);
+            }
+        }
+        if self.frontal.is_none() {
+            // Always the supernodal kernel here: on 5-point patterns faer's automatic choice
+            // picks the simplicial kernel up to ~4000 unknowns, where it measured 2-3x slower
+            // (n = 4096: 27 ms vs 8.6 ms per numeric factorisation, one core), and below ~100
+            // unknowns the difference is under a microsecond. It also keeps clear of the
+            // simplicial kernel's zero-pivot panic (faer issue 232).
+            let order = self.column_order(pattern)?;
+            let symbolic = Self::symbolic(pattern, order)?;
+            self.fill_bound = Some(symbolic.structural_bound);
+            self.symbolic = Some(symbolic);
+        }
+        self.pattern = Some(pattern.clone());
+        self.values = vec![0.0; pattern.nnz()];
+        Ok(())
+    }
+
+    fn factor(&mut self, values: &[f64]) -> Result<(), SolverError> {
+        let Some(pattern) = self.pattern.as_ref() else {
+            return Err(SolverError::CallOrder {
+                called: "factor",
+                requires: "analyse",
+            });
+        };
+        self.factored = None;
         check_values(pattern, values)?;
         if let Some(line) = empty_line(pattern, values) {
             return Err(SolverError::Singular { pivot: Some(line) });
         }
         self.values.copy_from_slice(values);
         let n = pattern.nrows();
-        if n > 0 {
+        let mut kind = LuKind::Supernodal;
+        if let Some(frontal) = self.frontal.as_ref() {
             let par = faer::get_global_parallelism();
-            let nnz = pattern.nnz();
-            // the transpose lives only during the factorisation, as in faer's own LU
-            let mut at_values = vec![0.0f64; nnz];
-            let mut at_col_ptr = vec![0usize; n + 1];
-            let mut at_row_idx = vec![0usize; nnz];
-            let mut mem = scratch(StackReq::any_of(&[
-                faer::sparse::utils::transpose_scratch::<usize>(n, n),
-                factorize_supernodal_numeric_lu_scratch::<usize, f64>(
-                    &symbolic.supernodal,
-                    Default::default(),
-                ),
-            ]))?;
-            let stack = MemStack::new(&mut mem);
-            let a = pattern.as_faer(&self.values);
-            let at = faer::sparse::utils::transpose(
-                &mut at_values,
-                &mut at_col_ptr,
-                &mut at_row_idx,
-                a,
-                stack,
-            );
-            let at = SparseColMatRef::new(at.symbolic(), at.val());
-            self.row_perm_fwd.resize(n, 0);
-            self.row_perm_inv.resize(n, 0);
-            factorize_supernodal_numeric_lu(
-                &mut self.row_perm_fwd,
-                &mut self.row_perm_inv,
-                &mut self.numeric,
-                a,
-                at,
-                symbolic.col_perm(),
-                &symbolic.supernodal,
-                par,
-                stack,
-                Default::default(),
-            )
-            .map_err(|e| match e {
-                LuError::SymbolicSingular { index } => SolverError::Singular {
-                    // `index` is a step of the column-permuted elimination
-                    pivot: Some(symbolic.col_perm_fwd[index]),
-                },
-                LuError::Generic(e) => SolverError::Backend(e),
-            })?;
+            match frontal.factor(pattern, &self.values, &mut self.frontal_factors, par) {
+                Ok(()) => kind = LuKind::Multifrontal,
+                Err(FrontFailure::Singular(column)) => {
+                    return Err(SolverError::Singular {
+                        pivot: Some(column),
+                    });
+                }
+                Err(FrontFailure::NonFinite) => return Err(SolverError::Singular { pivot: None }),
+                Err(FrontFailure::NeedsPivoting) => {
+                    // a pivot from outside a front is needed: the supernodal kernel pivots
+                    // over all rows; its structure is analysed once, at the first fallback
+                    self.frontal_factors = FrontalFactors::default();
+                    if self.symbolic.is_none() {
+                        let order = self.column_order(pattern)?;
+                        self.symbolic = Some(Self::symbolic(pattern, order)?);
+                    }
+                }
+            }
         }
-        self.factored = true;
+        if kind == LuKind::Supernodal && n > 0 {
+            self.factor_supernodal()?;
+        }
+        self.factored = Some(kind);
         self.factorisations += 1;
         Ok(())
     }
