@@ -239,7 +239,8 @@ fn grids_that_do_not_fit_in_memory_are_refused_with_the_estimate() {
         640,
         capstan_elasticity::finite_element::DiscretisationMethod::Fd,
     );
-    assert!(need > 30e9 && need < 80e9, "{need}"); // ~43 GiB: extrapolated from 2000x321's 10 GB
+    // ~16.7 GiB: extrapolated from 2000x321's measured 3.3 GiB by N log2 N
+    assert!(need > 14e9 && need < 25e9, "{need}");
 }
 
 #[test]
