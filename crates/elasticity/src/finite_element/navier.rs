@@ -680,7 +680,6 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let g = self.grid;
         let n2 = g.n2();
         let ndof = self.dof_count();
-        let mut nodes = [0; 9];
         let nen = self.nodes_per_element();
         // contact extras: the columns of T^3_j in each free tangential row on x3 = 0
         let mut extras: Vec<Vec<usize>> = vec![vec![]; n2];
@@ -749,24 +748,43 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let ne = self.elements[0] * self.elements[1];
         let l = 2 * nen;
         let mut local_slots = vec![NO_SLOT; ne * l * l];
-        for e in 0..ne {
-            self.element_nodes(e, &mut nodes);
-            for a in 0..l {
-                let r = 2 * nodes[a / 2] + a % 2;
-                for b in 0..l {
-                    let c = 2 * nodes[b / 2] + b % 2;
-                    let keep = if self.dirichlet[r].is_some() {
-                        r == c
-                    } else {
-                        self.dirichlet[c].is_none()
-                    };
-                    if keep {
-                        local_slots[(e * l + a) * l + b] =
-                            slot(r, c).expect("element entry in the pattern") as u32;
+        // in parallel over elements; one search per (row, element node): the node's two
+        // columns are neighbours in the sorted row (one of them absent if prescribed)
+        let (row_ptr_ref, columns_ref, dirichlet) = (&row_ptr, &columns, &self.dirichlet);
+        local_slots
+            .par_chunks_mut(l * l)
+            .enumerate()
+            .for_each(|(e, out)| {
+                let mut nodes = [0; 9];
+                self.element_nodes(e, &mut nodes);
+                for a in 0..l {
+                    let r = 2 * nodes[a / 2] + a % 2;
+                    let base = row_ptr_ref[r];
+                    let row = &columns_ref[base..row_ptr_ref[r + 1]];
+                    let out = &mut out[a * l..(a + 1) * l];
+                    for (bn, &m) in nodes[..nen].iter().enumerate() {
+                        let first = 2 * m;
+                        let pos = row.partition_point(|&c| c < first);
+                        for d in 0..2 {
+                            let c = first + d;
+                            let keep = if dirichlet[r].is_some() {
+                                r == c
+                            } else {
+                                dirichlet[c].is_none()
+                            };
+                            if keep {
+                                let p = if row.get(pos) == Some(&c) {
+                                    pos
+                                } else {
+                                    pos + 1
+                                };
+                                assert!(row.get(p) == Some(&c), "element entry in the pattern");
+                                out[2 * bn + d] = (base + p) as u32;
+                            }
+                        }
                     }
                 }
-            }
-        }
+            });
         self.diagonal_slots = (0..ndof)
             .map(|d| slot(d, d).expect("diagonal in the pattern"))
             .collect();
