@@ -44,6 +44,6 @@ pub use obstacle::Obstacle;
 pub use prism::GeneralPrism;
 pub use profile::ProfileCurve;
 pub use scalar::{Real, Scalar, real};
-pub use shell::{ShellChart, ShellPoint, normal_derivatives};
+pub use shell::{ShellChart, ShellFrame, ShellPoint, normal_derivatives};
 pub use simple_surfaces::{Plane, RightCircularCone, Sphere};
 pub use surface::{Surface, SurfaceGeometry};

@@ -97,16 +97,84 @@ pub fn normal_derivatives<F: Real>(jet: &SurfaceJet<F>) -> ([F; 3], [[F; 3]; 2],
 impl<F: Real> ShellPoint<F> {
     /// The shell geometry at height `x3` above the surface point whose jet is given.
     ///
+    /// Equal, bit for bit, to [`ShellFrame::point`] on the frame of the same jet.
+    ///
     /// # Errors
     /// [`GeometryError::NonFinite`] for a non-finite jet; [`GeometryError::Degenerate`] when the
     /// normal is undefined or `sqrt(g) <= 0` (`x3` at or past the focal surface, e.g.
     /// `x3 <= -R` under a cylinder of radius `R`).
-    #[allow(clippy::needless_range_loop)] // index loops mirror g_ij and Gamma^k_ij
     pub fn from_jet(jet: &SurfaceJet<F>, x: [F; 3]) -> Result<Self, GeometryError> {
-        let at = point3([x[0], x[1]], x[2]);
-        crate::surface::check_regular(jet, at)?;
-        let x3 = x[2];
+        crate::surface::check_regular(jet, point3([x[0], x[1]], x[2]))?;
+        ShellFrame::unchecked(jet, [x[0], x[1]]).point(x[2])
+    }
+}
+
+/// The part of the shell geometry that depends on the surface point `(x1, x2)` only: the jet
+/// of `sigma` and the derivatives of the unit normal. Built once per surface point and reused
+/// for every height `x3` above it (the chart is affine in `x3`), e.g. for all quadrature
+/// points of a column of elements.
+///
+/// # Math
+/// ```text
+/// frame(x1, x2):  sigma, d_a sigma, d_a d_b sigma, N, d_a N, d_a d_b N     (once)
+/// point(x3):      g_a = a_a + x3 d_a N,  d_b g_a = d_a d_b sigma + x3 d_a d_b N, ...
+/// ```
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{EllipticalPrism, ShellChart};
+/// let chart = ShellChart::new(EllipticalPrism::new(2.0_f64, 1.0).unwrap());
+/// let frame = chart.frame([0.0, 0.4]).unwrap();
+/// for x3 in [0.0, 0.25, 0.5] {
+///     assert_eq!(frame.point(x3).unwrap(), chart.point([0.0, 0.4, x3]).unwrap());
+/// }
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShellFrame<F> {
+    jet: SurfaceJet<F>,
+    at: [F; 2],
+    normal: [F; 3],
+    dn: [[F; 3]; 2],
+    ddn: [[[F; 3]; 2]; 2],
+}
+
+impl<F: Real> ShellFrame<F> {
+    /// The frame of the surface point `x = (x1, x2)` whose jet is given.
+    ///
+    /// # Errors
+    /// [`GeometryError::NonFinite`] for a non-finite jet; [`GeometryError::Degenerate`] when the
+    /// normal is undefined.
+    pub fn new(jet: &SurfaceJet<F>, x: [F; 2]) -> Result<Self, GeometryError> {
+        crate::surface::check_regular(jet, point3(x, F::zero()))?;
+        Ok(Self::unchecked(jet, x))
+    }
+
+    /// The frame of a jet that passed `check_regular`.
+    fn unchecked(jet: &SurfaceJet<F>, x: [F; 2]) -> Self {
         let (normal, dn, ddn) = normal_derivatives(jet);
+        Self {
+            jet: *jet,
+            at: x,
+            normal,
+            dn,
+            ddn,
+        }
+    }
+
+    /// The jet of `sigma` at the frame's surface point.
+    pub fn jet(&self) -> &SurfaceJet<F> {
+        &self.jet
+    }
+
+    /// The shell geometry at height `x3` above the frame's surface point.
+    ///
+    /// # Errors
+    /// [`GeometryError::NonFinite`] for non-finite geometry; [`GeometryError::Degenerate`] when
+    /// `sqrt(g) <= 0` (`x3` at or past the focal surface).
+    #[allow(clippy::needless_range_loop)] // index loops mirror g_ij and Gamma^k_ij
+    pub fn point(&self, x3: F) -> Result<ShellPoint<F>, GeometryError> {
+        let at = point3(self.at, x3);
+        let (jet, normal, dn, ddn) = (&self.jet, self.normal, &self.dn, &self.ddn);
         let g = [
             axpy(&jet.d1[0], x3, &dn[0]),
             axpy(&jet.d1[1], x3, &dn[1]),
@@ -160,7 +228,7 @@ impl<F: Real> ShellPoint<F> {
             }
         }
         let position = axpy(&jet.point, x3, &normal);
-        let point = Self {
+        let point = ShellPoint {
             position,
             covariant_basis: g,
             contravariant_basis: contra,
@@ -221,5 +289,75 @@ impl<S> ShellChart<S> {
         S: Surface<F>,
     {
         ShellPoint::from_jet(&self.surface.jet([x[0], x[1]]), x)
+    }
+
+    /// The frame of the surface point `x = (x1, x2)`: everything [`ShellChart::point`] needs
+    /// that does not depend on `x3`, so that many heights above one surface point cost one
+    /// jet of `sigma` ([`ShellFrame::point`] equals [`ShellChart::point`] bit for bit).
+    ///
+    /// # Errors
+    /// See [`ShellFrame::new`].
+    pub fn frame<F: Real>(&self, x: [F; 2]) -> Result<ShellFrame<F>, GeometryError>
+    where
+        S: Surface<F>,
+    {
+        ShellFrame::new(&self.surface.jet(x), x)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism};
+
+    /// `frame(x1, x2).point(x3)` is the same computation as `point([x1, x2, x3])`: equal bit
+    /// for bit, errors included.
+    fn frame_equals_point<S: Surface<f64>>(chart: &ShellChart<S>, heights: &[f64]) {
+        for x2 in [-1.2, -0.3, 0.0, 0.45, 1.1, 2.9] {
+            let frame = chart.frame([0.7, x2]).unwrap();
+            for &x3 in heights {
+                let direct = chart.point([0.7, x2, x3]);
+                let framed = frame.point(x3);
+                match (direct, framed) {
+                    (Ok(a), Ok(b)) => assert_eq!(a, b, "x2 {x2} x3 {x3}"),
+                    (Err(a), Err(b)) => assert_eq!(a, b, "x2 {x2} x3 {x3}"),
+                    (a, b) => panic!("x2 {x2} x3 {x3}: {a:?} against {b:?}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn frame_points_equal_chart_points_on_ellipse_and_expression_prism() {
+        let heights = [0.0, 0.1, 0.37, 1.0, 2.5];
+        frame_equals_point(
+            &ShellChart::new(EllipticalPrism::new(2.0, 0.5).unwrap()),
+            &heights,
+        );
+        let profile =
+            ExpressionProfile::parse("2 * sin(t) + 0.3 * sin(2 * t)", "cos(t) + 0.1 * t^2")
+                .unwrap();
+        frame_equals_point(&ShellChart::new(GeneralPrism::new(profile)), &heights);
+        // past the focal surface of a unit cylinder: the same error both ways
+        frame_equals_point(
+            &ShellChart::new(CircularCylinder::new(1.0).unwrap()),
+            &[-0.5, -1.0, -1.5],
+        );
+    }
+
+    #[test]
+    fn frame_rejects_a_degenerate_surface_point() {
+        // (x1, 0, 0): a_2 = 0, no normal
+        let chart = ShellChart::new(GeneralPrism::new(
+            ExpressionProfile::parse("0 * t", "0 * t").unwrap(),
+        ));
+        assert!(matches!(
+            chart.frame([0.0, 0.3]),
+            Err(GeometryError::Degenerate { .. })
+        ));
+        assert!(matches!(
+            chart.point([0.0, 0.3, 0.1]),
+            Err(GeometryError::Degenerate { .. })
+        ));
     }
 }

@@ -101,7 +101,8 @@ pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{Observer, SilentObserver};
 pub use ordering::{
-    ColumnOrdering, GridShape, amd_symmetrised, is_permutation, nested_dissection_grid,
+    ColumnOrdering, GridShape, amd_compressed, amd_symmetrised, is_permutation,
+    nested_dissection_grid,
 };
 pub use problem::{Jacobian, Residual};
 pub use scalar::SolverScalar;

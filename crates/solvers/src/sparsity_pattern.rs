@@ -91,6 +91,58 @@ impl SparsityPattern {
         ))
     }
 
+    /// The pattern with the given compressed-column arrays: `col_ptr` of length `ncols + 1`
+    /// from 0, non-decreasing, and in each column strictly increasing rows below `nrows` (the
+    /// slot order of [`SparsityPattern::from_entries`], without its sort). Cost `O(nnz)`.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] (field `col_ptr` or `row_idx`) for arrays that break
+    /// these rules.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_solvers::SparsityPattern;
+    /// let p = SparsityPattern::from_compressed_columns(2, 2, vec![0, 2, 3], vec![0, 1, 1]).unwrap();
+    /// assert_eq!(p.slot(1, 0), Some(1));
+    /// assert!(SparsityPattern::from_compressed_columns(2, 2, vec![0, 2, 3], vec![1, 0, 1]).is_err());
+    /// ```
+    pub fn from_compressed_columns(
+        nrows: usize,
+        ncols: usize,
+        col_ptr: Vec<usize>,
+        row_idx: Vec<usize>,
+    ) -> Result<Self, SolverError> {
+        let bad = |field: &'static str, value: usize, allowed: &'static str| {
+            Err(SolverError::InvalidParameter {
+                field,
+                value: value as f64,
+                allowed,
+            })
+        };
+        if col_ptr.len() != ncols + 1 || col_ptr[0] != 0 || col_ptr[ncols] != row_idx.len() {
+            return bad("col_ptr", col_ptr.len(), "ncols + 1 pointers from 0 to nnz");
+        }
+        for j in 0..ncols {
+            if col_ptr[j] > col_ptr[j + 1] {
+                return bad("col_ptr", j, "non-decreasing");
+            }
+            let rows = &row_idx[col_ptr[j]..col_ptr[j + 1]];
+            if rows.windows(2).any(|w| w[0] >= w[1]) || rows.last().is_some_and(|&r| r >= nrows) {
+                return bad(
+                    "row_idx",
+                    j,
+                    "strictly increasing rows below nrows in each column",
+                );
+            }
+        }
+        Ok(Self {
+            nrows,
+            ncols,
+            col_ptr,
+            row_idx,
+        })
+    }
+
     /// Pattern and summed values of an `sprs` matrix (CSC or CSR, duplicates allowed).
     ///
     /// # Errors
