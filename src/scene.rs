@@ -758,7 +758,7 @@ impl Scene {
             return Err(CliError::Scene {
                 origin: at.locate("grid.n2"),
                 message: format!(
-                    "grid {} x {} ({method}) needs about {} for the sparse LU factors (estimate: 10.5 bytes x 38 N log2 N fill entries, N = {} unknowns), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
+                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: 150 bytes x N log2 N, N = {} unknowns: multifrontal LU measured up to 2000 x 321), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
                     g.n2,
                     g.n3,
                     human_bytes(need),
