@@ -8,13 +8,18 @@
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 2000 321 --ordering nd
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 1000 161 --lu-kind supernodal
 //! cargo run --release -p capstan-elasticity --example bench_navier -- 250 41 --iterative
+//! cargo run --release -p capstan-elasticity --example bench_navier -- 250 41 --rhs 252
 //! ```
 //! Prints one JSON line: grid, unknowns, nonzeros, LU kernel and ordering, seconds for
 //! geometry+operator, pattern, fill, LU analyse, factor, solve, the static fill bound of the
 //! ordering (`2 nnz(R) - n`, `R^T R = A^T A` permuted), the values stored by the multifrontal
 //! kernel, relative residual, VmHWM in MiB; with `--iterative` also damped Jacobi (relaxation
 //! 1/2) and Gauss-Seidel to a relative residual of 1e-8; with `--compare` the largest difference
-//! to the other LU kernel's solution (default ordering), relative to the largest unknown.
+//! to the other LU kernel's solution (default ordering), relative to the largest unknown; with
+//! `--rhs K` the seconds for `K` right-hand sides (unit vectors `e_i`, `i = 7919 c mod n`, as
+//! in the contact condensation) solved one `solve_in_place` at a time against one blocked
+//! `solve_many_in_place`, their ratio, and the largest difference of the two, relative to the
+//! largest entry.
 //!
 //! `--lu-kind auto` (default: multifrontal), `multifrontal` or `supernodal` (faer's, on the
 //! structure of `A^T A`). `--ordering auto` (default: AMD on `A + A^T` for the multifrontal
@@ -182,6 +187,34 @@ fn main() {
         extra = format!(
             ",\"compare\":{{\"lu_kind\":\"{}\",\"max_relative_diff\":{:.2e}}}",
             format!("{other:?}").to_lowercase(),
+            diff / scale
+        );
+    }
+    if let Some(k) = option("--rhs") {
+        let k: usize = k.parse().expect("number of right-hand sides");
+        let n = op.dof_count();
+        let mut block = vec![0.0; n * k];
+        for (c, col) in block.chunks_exact_mut(n).enumerate() {
+            col[(7919 * c) % n] = 1.0;
+        }
+        let mut looped = block.clone();
+        let t = Instant::now();
+        for col in looped.chunks_exact_mut(n) {
+            lu.solve_in_place(col).expect("single solve");
+        }
+        let t_loop = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        lu.solve_many_in_place(&mut block, k)
+            .expect("blocked solve");
+        let t_blocked = t.elapsed().as_secs_f64();
+        let scale = looped.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let diff = block
+            .iter()
+            .zip(&looped)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        extra += &format!(
+            ",\"rhs\":{{\"k\":{k},\"loop_s\":{t_loop:.3},\"blocked_s\":{t_blocked:.3},\"speedup\":{:.1},\"max_relative_diff\":{:.2e}}}",
+            t_loop / t_blocked,
             diff / scale
         );
     }

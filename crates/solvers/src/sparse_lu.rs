@@ -15,11 +15,16 @@ use faer::sparse::linalg::qr::{
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
-use crate::direct_params::{DirectParams, check_and_refine, empty_line, scratch};
+use crate::direct_params::{
+    DirectParams, RefineWork, check_and_refine, check_and_refine_block, empty_line, scratch,
+    to_column_major, to_row_major,
+};
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_many_len, check_rhs, check_square, check_values};
 use crate::lu_kind::LuKind;
-use crate::multifrontal_lu::{FrontFailure, FrontalFactors, FrontalStructure};
+use crate::multifrontal_lu::{
+    BlockWork, FrontFailure, FrontalFactors, FrontalStructure, SOLVE_BLOCK_WIDTH,
+};
 use crate::ordering::is_permutation;
 use crate::sparsity_pattern::SparsityPattern;
 
@@ -234,7 +239,7 @@ impl SparseLu {
             return Ok(());
         }
         if kind == LuKind::Multifrontal {
-            return self.checked_solve_multifrontal(pattern, rhs);
+            return self.checked_solve_multifrontal(pattern, rhs, ncols);
         }
         let Some(symbolic) = self.symbolic.as_ref() else {
             return Err(SolverError::CallOrder {
@@ -261,11 +266,18 @@ impl SparseLu {
         Ok(())
     }
 
-    /// Multifrontal solve of the columns of `rhs`, each checked and refined.
+    /// Multifrontal solve of the columns of `rhs` (column-major), each checked and refined.
+    ///
+    /// One column goes through the scalar solve. More are solved in blocks of
+    /// [`SOLVE_BLOCK_WIDTH`] columns by the blocked kernel
+    /// ([`FrontalStructure::solve_rows_in_place`]: dense triangular solves and GEMMs per
+    /// front); each block is checked as a whole, and its failing columns are refined together
+    /// ([`check_and_refine_block`]).
     fn checked_solve_multifrontal(
         &self,
         pattern: &SparsityPattern,
         rhs: &mut [f64],
+        ncols: usize,
     ) -> Result<(), SolverError> {
         let Some(frontal) = self.frontal.as_ref() else {
             return Err(SolverError::CallOrder {
@@ -274,14 +286,40 @@ impl SparseLu {
             });
         };
         let n = pattern.nrows();
-        let mut y = vec![0.0; n];
-        let mut work = vec![0.0; n];
-        for x in rhs.chunks_exact_mut(n) {
-            let b = x.to_vec();
-            frontal.solve_in_place(&self.frontal_factors, x, &mut y);
-            check_and_refine(&self.params, pattern, &self.values, &b, x, &mut work, |r| {
-                frontal.solve_in_place(&self.frontal_factors, r, &mut y)
-            })?;
+        if ncols == 1 {
+            let mut y = vec![0.0; n];
+            let mut work = vec![0.0; n];
+            let b = rhs.to_vec();
+            frontal.solve_in_place(&self.frontal_factors, rhs, &mut y);
+            return check_and_refine(
+                &self.params,
+                pattern,
+                &self.values,
+                &b,
+                rhs,
+                &mut work,
+                |r| frontal.solve_in_place(&self.frontal_factors, r, &mut y),
+            );
+        }
+        let mut block_work = BlockWork::default();
+        let mut refine_work = RefineWork::default();
+        let mut x = vec![0.0; n * ncols.min(SOLVE_BLOCK_WIDTH)];
+        for chunk in rhs.chunks_mut(n * SOLVE_BLOCK_WIDTH) {
+            let k = chunk.len() / n;
+            let x = &mut x[..n * k];
+            to_row_major(chunk, n, k, x);
+            frontal.solve_rows_in_place(&self.frontal_factors, x, k, &mut block_work);
+            check_and_refine_block(
+                &self.params,
+                pattern,
+                &self.values,
+                chunk,
+                x,
+                k,
+                &mut refine_work,
+                |d, kd| frontal.solve_rows_in_place(&self.frontal_factors, d, kd, &mut block_work),
+            )?;
+            to_column_major(x, n, k, chunk);
         }
         Ok(())
     }
