@@ -464,22 +464,27 @@ fn contact_cases(quick: bool) -> Result<Vec<ContactCase>, CliError> {
         ]
     };
     for &n in grids {
-        // from 1000 x 161 on, one factorisation per Newton step is cheaper than condensing
-        // m ~ n2 right-hand sides
         let full = [("solver.nonlinear", serde_json::json!("full-newton"))];
-        let sets: &[(&str, serde_json::Value)] = if n[0] >= 1000 { &full } else { &[] };
+        let sets: &[(&str, serde_json::Value)] = if n[0] >= FULL_NEWTON_FROM_N2 {
+            &full
+        } else {
+            &[]
+        };
         cases.push(contact_case("grid", n, sets, false)?);
     }
     Ok(cases)
 }
+
+/// From this `n2` on the grid axis solves by the full-system Newton: one factorisation per
+/// Newton step is cheaper than condensing `m ~ n2` right-hand sides.
+pub const FULL_NEWTON_FROM_N2: usize = 1000;
 
 /// A grid no machine of today holds (16000 x 2560: ~300 GiB estimated): the quick run's
 /// refusal point.
 pub const REFUSED_GRID: [usize; 2] = [16000, 2560];
 
 /// A point at a grid that may not fit: refused from the memory estimate when it does not fit,
-/// else solved (by the full-system Newton: one factorisation per Newton step is cheaper than
-/// condensing `m ~ n2` right-hand sides at this size).
+/// else solved (by the full-system Newton from [`FULL_NEWTON_FROM_N2`] on).
 pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
     let start = Instant::now();
     let sets = [format!("grid.n2={}", n[0]), format!("grid.n3={}", n[1])];
@@ -508,7 +513,9 @@ pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
         Err(e) => point.failure = Some(format!("refused: {e}")),
         Ok(scene) => {
             let mut scene = scene;
-            scene.solver.nonlinear = "full-newton".into();
+            if n[0] >= FULL_NEWTON_FROM_N2 {
+                scene.solver.nonlinear = "full-newton".into();
+            }
             let case = ContactCase {
                 axis: "grid",
                 scene,

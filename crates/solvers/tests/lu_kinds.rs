@@ -205,22 +205,7 @@ fn singular_matrices_are_typed_errors_never_nan() {
         &[(0, 0, 1.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 1.0)],
         vec![1.0, 2.0],
     );
-    // two equal rows in a Poisson matrix (row 37 := row 36)
-    let poisson = Poisson2d::new(10).system();
-    let mut t: Vec<(usize, usize, f64)> = poisson
-        .pattern
-        .entries()
-        .zip(&poisson.values)
-        .filter(|((i, _), _)| *i != 37)
-        .map(|((i, j), &v)| (i, j, v))
-        .collect();
-    let copied: Vec<_> = t
-        .iter()
-        .filter(|(i, _, _)| *i == 36)
-        .map(|&(_, j, v)| (37, j, v))
-        .collect();
-    t.extend(copied);
-    let equal_rows = LinearSystem::from_triplets(100, &t, vec![1.0; 100]);
+    let equal_rows = poisson_with_equal_rows();
     for system in [ones, equal_rows] {
         for kind in [LuKind::Multifrontal, LuKind::Supernodal] {
             let mut lu = lu(kind, ColumnOrdering::Auto);
@@ -361,6 +346,21 @@ fn block_check_rejects_a_column_that_fails_the_residual_test() {
 #[test]
 fn block_solve_of_an_exactly_singular_matrix_is_a_typed_error() {
     // two equal rows: the factorisation or the checked block solve reports it, never NaN
+    let system = poisson_with_equal_rows();
+    let mut lu = lu(LuKind::Multifrontal, ColumnOrdering::Auto);
+    lu.analyse(&system.pattern).unwrap();
+    let mut rhs = random_block(100, 5, 1);
+    let result = lu
+        .factor(&system.values)
+        .and_then(|()| lu.solve_many_in_place(&mut rhs, 5));
+    assert!(
+        matches!(result, Err(SolverError::Singular { .. })),
+        "{result:?}"
+    );
+}
+
+/// A 10 x 10 Poisson matrix with row 37 replaced by row 36: exactly singular.
+fn poisson_with_equal_rows() -> LinearSystem {
     let poisson = Poisson2d::new(10).system();
     let mut t: Vec<(usize, usize, f64)> = poisson
         .pattern
@@ -375,15 +375,5 @@ fn block_solve_of_an_exactly_singular_matrix_is_a_typed_error() {
         .map(|&(_, j, v)| (37, j, v))
         .collect();
     t.extend(copied);
-    let system = LinearSystem::from_triplets(100, &t, vec![1.0; 100]);
-    let mut lu = lu(LuKind::Multifrontal, ColumnOrdering::Auto);
-    lu.analyse(&system.pattern).unwrap();
-    let mut rhs = random_block(100, 5, 1);
-    let result = lu
-        .factor(&system.values)
-        .and_then(|()| lu.solve_many_in_place(&mut rhs, 5));
-    assert!(
-        matches!(result, Err(SolverError::Singular { .. })),
-        "{result:?}"
-    );
+    LinearSystem::from_triplets(100, &t, vec![1.0; 100])
 }
