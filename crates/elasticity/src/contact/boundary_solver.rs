@@ -9,7 +9,7 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 use crate::contact::error::ContactError;
-use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::model::{ContactModel, EndLoads, ExtendedPattern};
 use crate::contact::solution::{ContactSolution, SolveStats};
 use crate::discretisation::Discretisation;
 
@@ -102,9 +102,10 @@ pub struct SetupStats {
     pub contact_unknowns: usize,
     /// Bulk unknowns `n`.
     pub bulk_unknowns: usize,
-    /// Sparse LU factorisations of the bulk (1).
+    /// Sparse LU factorisations of the bulk (1; 2 when the spring was softened, see
+    /// [`BoundarySolver`]).
     pub factorisations: usize,
-    /// Sparse solves with the bulk factors (`m + 2`).
+    /// Sparse solves with the bulk factors (`m` per factorisation, `+ 2`).
     pub bulk_solves: usize,
 }
 
@@ -126,6 +127,23 @@ const MAX_ROUNDOFF_RESIDUAL: f64 = 1e-6;
 /// Largest relative residual of the full system accepted for a converged contact solution
 /// (a safety net behind the condensed Newton's own test).
 const MAX_FULL_RESIDUAL: f64 = 1e-6;
+
+/// Largest singular value of `I - C P Z` below which the spring dominates every boundary mode
+/// and is softened (see [`BoundarySolver`]).
+const SPRING_DOMINANCE: f64 = 0.1;
+
+/// Growth of the slip scale allowed per Newton step (see [`BoundarySolver::slip_step_cap`]).
+const SLIP_STEP_GROWTH: f64 = 10.0;
+
+/// Stiffness along the rigid mode added to the Newton matrix, relative to the spring (see
+/// [`BoundarySolver::eval`]).
+const RIGID_TETHER: f64 = 1e-8;
+
+/// False-position iterations of [`BoundarySolver::rebalance`].
+const REBALANCE_ITERATIONS: usize = 100;
+
+/// Power iterations of [`largest_singular_value`].
+const SINGULAR_VALUE_ITERATIONS: usize = 30;
 
 /// Workspace (doubles) of one block of condensation solves: 2^24 (128 MiB).
 const CONDENSATION_BLOCK_ENTRIES: usize = 1 << 24;
@@ -168,8 +186,14 @@ pub struct BoundarySolver<'a, D, L: FrictionLaw<f64>> {
     /// The stuck state (`v^2 = 0` at every contact node) for the unit loads: Newton's start.
     stuck: [Vec<f64>; 2],
     sliding: Option<SlidingMode>,
-    /// Right null vector of `I - C P Z` (the rigid mode in `s`), when there is one.
+    /// Right null vector `z` of `I - C P Z` (the rigid mode in `s`, unit length), when there
+    /// is one.
     rigid_mode: Vec<f64>,
+    /// `P Z z`: the tangential contact displacements of the rigid mode (empty without one).
+    rigid_shift: Vec<f64>,
+    /// Left null vector `y` of `I - C P Z` (unit length): `y . G = 0` is the balance of the
+    /// loads against friction along the rigid mode (empty without one).
+    rigid_balance: Vec<f64>,
     /// Whether the saturated law is homogeneous in `sigma_n` (limits independent of `tau0`).
     homogeneous: bool,
     setup: SetupStats,
@@ -202,46 +226,32 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         for (k, &a) in model.system().values.iter().enumerate() {
             values[ext.a_slot[k]] += a;
         }
-        let mut spring = Vec::with_capacity(m);
-        for k in 0..m {
-            let node = model.active_node(k);
-            let slot = ext.tangential_slot[k];
-            let diag = values[slot].abs();
-            let diag = if diag > 0.0 {
-                diag
-            } else {
-                row_max(&ext.pattern, &values, node.tangential_row.expect("active"))
-            };
-            let c = diag / node.traction_weight;
-            values[slot] += node.traction_weight * c;
-            spring.push(c);
-        }
+        let mut spring: Vec<f64> = (0..m)
+            .map(|k| {
+                let node = model.active_node(k);
+                let diag = values[ext.tangential_slot[k]].abs();
+                let diag = if diag > 0.0 {
+                    diag
+                } else {
+                    row_max(&ext.pattern, &values, node.tangential_row.expect("active"))
+                };
+                diag / node.traction_weight
+            })
+            .collect();
         let mut lu = SparseLu::default();
         lu.analyse(&ext.pattern)?;
-        lu.factor(&values)?;
-        let mut pz = Mat::<f64>::zeros(m, m);
-        let mut nz = Mat::<f64>::zeros(m, m);
-        // Z = A~^-1 W in blocks of columns (one multi-right-hand-side solve per block, at most
-        // CONDENSATION_BLOCK_ENTRIES doubles of workspace)
-        let block = (CONDENSATION_BLOCK_ENTRIES / n.max(1)).clamp(1, m.max(1));
-        let mut cols = vec![0.0; n * block];
-        for first in (0..m).step_by(block) {
-            let width = block.min(m - first);
-            let cols = &mut cols[..n * width];
-            cols.iter_mut().for_each(|x| *x = 0.0);
-            for c in 0..width {
-                let node = model.active_node(first + c);
-                cols[c * n + node.tangential_row.expect("active")] = node.traction_weight;
+        let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu)?;
+        let mut factorisations = 1;
+        // A spring far stiffer than every boundary mode of the body (thin bodies: the diagonal
+        // grows like 1 / dx3^2, the boundary stiffness like h) makes `s - C x` cancel to
+        // rounding noise: soften it to the body's stiffest boundary mode and condense again.
+        let top = largest_singular_value(&frictionless_operator(&spring, &pz));
+        if top.is_finite() && top > 0.0 && top < SPRING_DOMINANCE {
+            for c in &mut spring {
+                *c *= top;
             }
-            lu.solve_many_in_place(cols, width)?;
-            for c in 0..width {
-                let col = &cols[c * n..(c + 1) * n];
-                for j in 0..m {
-                    let nj = model.active_node(j);
-                    pz[(j, first + c)] = col[nj.tangential_dof];
-                    nz[(j, first + c)] = nj.normal_stress.dot(col);
-                }
-            }
+            (pz, nz) = condense(model, ext, &values, &spring, &mut lu)?;
+            factorisations += 1;
         }
         let base = [0, 1].map(|i| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
             let mut v = model.rhs_basis(i).to_vec();
@@ -270,12 +280,14 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             stuck,
             sliding: None,
             rigid_mode: Vec::new(),
+            rigid_shift: Vec::new(),
+            rigid_balance: Vec::new(),
             homogeneous: true,
             setup: SetupStats {
                 contact_unknowns: m,
                 bulk_unknowns: n,
-                factorisations: 1,
-                bulk_solves: m + 2,
+                factorisations,
+                bulk_solves: factorisations * m + 2,
             },
             settings,
         };
@@ -317,9 +329,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     /// `tau0 = 1`.
     fn sliding_mode(&mut self) -> Result<Option<SlidingMode>, ContactError> {
         let m = self.pz.nrows();
-        let h0 = Mat::<f64>::from_fn(m, m, |i, j| {
-            f64::from(u8::from(i == j)) - self.spring[i] * self.pz[(i, j)]
-        });
+        let h0 = frictionless_operator(&self.spring, &self.pz);
         let svd = h0.svd().map_err(|_| ContactError::NotConverged {
             iterations: 0,
             residual: f64::NAN,
@@ -332,6 +342,18 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         }
         let v = svd.V();
         self.rigid_mode = (0..m).map(|k| v[(k, m - 1)]).collect();
+        // oriented with y . z > 0, so that y . G increases with the rigid amplitude (friction
+        // resists the sliding)
+        let u = svd.U();
+        let orient = if (0..m).map(|k| u[(k, m - 1)] * v[(k, m - 1)]).sum::<f64>() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        self.rigid_balance = (0..m).map(|k| orient * u[(k, m - 1)]).collect();
+        self.rigid_shift = (0..m)
+            .map(|i| (0..m).map(|j| self.pz[(i, j)] * self.rigid_mode[j]).sum())
+            .collect();
         self.homogeneous = self.law_is_homogeneous();
         self.limits_at(1.0, relative).map(Some)
     }
@@ -485,7 +507,30 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         (x, s)
     }
 
-    /// `G(s)` and, optionally, `dG/ds`.
+    /// Splits `s = s_p + a z` along the rigid mode `z` (`a = 0`, `s_p = s` without one).
+    fn split_rigid(&self, s: &[f64]) -> (f64, Vec<f64>) {
+        let z = &self.rigid_mode;
+        if z.is_empty() {
+            return (0.0, s.to_vec());
+        }
+        let a: f64 = z.iter().zip(s).map(|(z, s)| z * s).sum();
+        (a, s.iter().zip(z).map(|(s, z)| s - a * z).collect())
+    }
+
+    /// `G(s)` and, optionally, `dG/ds`; returns `d t_2/d v^2` (spring included) and
+    /// `d t_2 / d sigma` per node.
+    ///
+    /// # Math
+    /// With a rigid mode `z` (`(I - C P Z) z = 0`, `N Z z = 0` exactly; `P Z z = x_r` the rigid
+    /// displacement) and `s = s_p + a z`, the rigid amplitude `a` enters only through the
+    /// displacement, never through `s - C x`, where it would cancel to rounding noise of size
+    /// `|a|` (large while the slip homotopy lets friction hold the body softly):
+    /// ```text
+    /// x = x0 + P Z s_p + a x_r,   sigma = n0 + N Z s_p
+    /// G = s_p - C P Z s_p - C x0 - t_2(sqrt(g22) beta x, sigma)
+    /// dG/ds = J0 (I - z z^T) - diag(beta dt/dv) x_r z^T,   J0 = I - diag(dt/dv + c) P Z - diag(dt/dsigma) N Z
+    /// ```
+    /// (without a rigid mode `a = 0`: `G = s - t_2 - C x`, `dG/ds = J0`).
     fn eval(
         &self,
         beta: f64,
@@ -496,21 +541,26 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         jac: Option<&mut Mat<f64>>,
     ) -> (Vec<f64>, Vec<f64>) {
         let m = s.len();
+        let (a, sp) = self.split_rigid(s);
         let mut dx = vec![0.0; m];
         let mut dn = vec![0.0; m];
-        for (i, (gi, (dxi, dni))) in g.iter_mut().zip(dx.iter_mut().zip(&mut dn)).enumerate() {
-            let mut x = x0[i];
+        let mut friction = vec![0.0; m];
+        for (i, gi) in g.iter_mut().enumerate() {
+            let mut zs = 0.0;
             let mut sig = n0[i];
-            for (j, sj) in s.iter().enumerate() {
-                x += self.pz[(i, j)] * sj;
+            for (j, sj) in sp.iter().enumerate() {
+                zs += self.pz[(i, j)] * sj;
                 sig += self.nz[(i, j)] * sj;
             }
+            let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
+            let x = x0[i] + zs + shift;
             let node = self.model.active_node(i);
             // slip homotopy: the law sees beta u (for regularised Coulomb: eps / beta)
             let nt = self.model.traction_at(node, beta * node.sqrt_g22 * x, sig);
-            *gi = s[i] - nt.t2 - self.spring[i] * x;
-            *dxi = beta * nt.d_tangential + self.spring[i];
-            *dni = nt.d_normal_stress;
+            *gi = sp[i] - self.spring[i] * (x0[i] + zs) - nt.t2;
+            friction[i] = beta * nt.d_tangential;
+            dx[i] = friction[i] + self.spring[i];
+            dn[i] = nt.d_normal_stress;
         }
         if let Some(jac) = jac {
             for j in 0..m {
@@ -520,40 +570,197 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                         - dn[i] * self.nz[(i, j)];
                 }
             }
+            let z = &self.rigid_mode;
+            if !z.is_empty() {
+                // J0 (I - z z^T) - diag(friction + tether) x_r z^T: the tether keeps the
+                // matrix regular where the friction is saturated everywhere (the rigid
+                // amplitude of the step is then replaced by `rebalance`)
+                let jz: Vec<f64> = (0..m)
+                    .map(|i| {
+                        (0..m).map(|j| jac[(i, j)] * z[j]).sum::<f64>()
+                            + (friction[i] + RIGID_TETHER * self.spring[i]) * self.rigid_shift[i]
+                    })
+                    .collect();
+                for j in 0..m {
+                    for i in 0..m {
+                        jac[(i, j)] -= jz[i] * z[j];
+                    }
+                }
+            }
         }
         (dx, dn)
     }
 
     /// The rounding-error bound of evaluating `G(s)` in floating point (max over the nodes):
     /// ```text
-    /// floor_i = u (|s_i| + |t_2,i| + |c_i x_i| + |dG_i/dx_i| (|x0_i| + sum_j |PZ_ij s_j|)
-    ///                                           + |dG_i/dsigma_i| (|n0_i| + sum_j |NZ_ij s_j|))
+    /// floor_i = u (|s_p,i| + |t_2,i| + |c_i xb_i| + c_i X_i + |dt_2/dx_i| (X_i + |a x_r,i|) + |dt_2/dsigma_i| S_i)
+    /// xb = x0 + P Z s_p,   X_i = |x0_i| + sum_j |PZ_ij s_p,j|,   S_i = |n0_i| + sum_j |NZ_ij s_p,j|
     /// ```
-    /// (`u` the machine epsilon): the sums `x = x0 + P Z s`, `sigma = n0 + N Z s` carry a relative
-    /// error `u`, amplified by the law's stiffness `mu sigma_n / eps` in the stick zone. No
-    /// Newton step can reduce the residual below it.
+    /// (`u` the machine epsilon, `s = s_p + a z` as in [`BoundarySolver::eval`]): the sums carry a
+    /// relative error `u`, amplified by the spring and by the law's stiffness `mu sigma_n / eps`
+    /// in the stick zone. No Newton step can reduce the residual below it.
     fn roundoff_floor(&self, beta: f64, x0: &[f64], n0: &[f64], s: &[f64]) -> f64 {
         let m = s.len();
         let mut g = vec![0.0; m];
         let (dx, dn) = self.eval(beta, x0, n0, s, &mut g, None);
+        let (a, sp) = self.split_rigid(s);
         (0..m)
             .map(|i| {
-                let (mut ax, mut an, mut x) = (x0[i].abs(), n0[i].abs(), x0[i]);
-                for (j, sj) in s.iter().enumerate() {
+                let shift = self.rigid_shift.get(i).map_or(0.0, |r| (a * r).abs());
+                let (mut ax, mut an, mut xb) = (x0[i].abs(), n0[i].abs(), x0[i]);
+                for (j, sj) in sp.iter().enumerate() {
                     ax += (self.pz[(i, j)] * sj).abs();
                     an += (self.nz[(i, j)] * sj).abs();
-                    x += self.pz[(i, j)] * sj;
+                    xb += self.pz[(i, j)] * sj;
                 }
-                // G_i = s_i - t_2,i - c_i x_i, so eval's residual gives the traction back
-                let t2 = s[i] - g[i] - self.spring[i] * x;
+                let c = self.spring[i];
+                // G_i = s_p,i - c_i xb_i - t_2,i, so eval's residual gives the traction back
+                let t2 = sp[i] - g[i] - c * xb;
+                let friction = dx[i] - c;
                 f64::EPSILON
-                    * (s[i].abs()
+                    * (sp[i].abs()
                         + t2.abs()
-                        + (self.spring[i] * x).abs()
-                        + dx[i].abs() * ax
+                        + (c * xb).abs()
+                        + c * ax
+                        + friction.abs() * (ax + shift)
                         + dn[i].abs() * an)
             })
             .fold(0.0, f64::max)
+    }
+
+    /// Moves `s` along the rigid mode (`s = s_p + a z`, `s_p` kept) so that the loads balance
+    /// the friction along it, `phi(a) = y . G(s_p + a z) = 0`, within a slip change of
+    /// [`SLIP_STEP_GROWTH`] times the current slip scale (as [`BoundarySolver::slip_step_cap`]).
+    ///
+    /// # Math
+    /// `y^T (I - C P Z) = 0`, so `phi(a) = -y . C x0 - sum_k y_k t_2,k(x_k(a), sigma_k)` with
+    /// `x(a) = x0 + P Z s_p + a x_r` and `sigma` independent of `a`: a scalar equation,
+    /// non-decreasing in `a` while the contact is compressive (friction resists the sliding).
+    /// Bracketed by doubling slip steps from `eps`, then solved by the Illinois false position.
+    /// Without a bracket inside the slip limit, `a` moves to the limit if that lowers `|phi|`.
+    /// Each evaluation costs `O(m)`: this keeps the rigid amplitude, which the Newton
+    /// linearisation cannot fix where the friction is saturated (no stiffness along `z`),
+    /// in balance at every iterate.
+    fn rebalance(&self, beta: f64, x0: &[f64], n0: &[f64], s: &mut [f64]) {
+        let (y, z, xr) = (&self.rigid_balance, &self.rigid_mode, &self.rigid_shift);
+        if z.is_empty() {
+            return;
+        }
+        let m = s.len();
+        let (a0, sp) = self.split_rigid(s);
+        let mut lin = vec![0.0; m];
+        let mut xb = vec![0.0; m];
+        let mut sig = vec![0.0; m];
+        for i in 0..m {
+            let (mut zs, mut ns) = (0.0, 0.0);
+            for (j, sj) in sp.iter().enumerate() {
+                zs += self.pz[(i, j)] * sj;
+                ns += self.nz[(i, j)] * sj;
+            }
+            xb[i] = x0[i] + zs;
+            lin[i] = sp[i] - self.spring[i] * xb[i];
+            sig[i] = n0[i] + ns;
+        }
+        let weight: Vec<f64> = (0..m)
+            .map(|i| beta * self.model.active_node(i).sqrt_g22)
+            .collect();
+        let phi = |a: f64| -> f64 {
+            (0..m)
+                .map(|i| {
+                    let node = self.model.active_node(i);
+                    let t = self
+                        .model
+                        .traction_at(node, weight[i] * (xb[i] + a * xr[i]), sig[i]);
+                    y[i] * (lin[i] - t.t2)
+                })
+                .sum()
+        };
+        let per_a = (0..m).fold(0.0f64, |u, i| u.max((weight[i] * xr[i]).abs()));
+        let current = (0..m).fold(0.0f64, |u, i| {
+            u.max((weight[i] * (xb[i] + a0 * xr[i])).abs())
+        });
+        let eps = self.model.slip_threshold();
+        if !(per_a > 0.0 && per_a.is_finite()) {
+            return;
+        }
+        let limit = SLIP_STEP_GROWTH * current.max(eps) / per_a;
+        let f0 = phi(a0);
+        if f0 == 0.0 || !f0.is_finite() {
+            return;
+        }
+        let direction = -f0.signum();
+        // bracket [lo, hi] with phi(lo) = f0 side and phi(hi) across zero
+        let (mut lo, mut flo) = (a0, f0);
+        let mut step = (eps / per_a).min(limit);
+        let (mut hi, mut fhi);
+        loop {
+            hi = a0 + direction * step;
+            fhi = phi(hi);
+            if !fhi.is_finite() {
+                return;
+            }
+            if fhi.signum() != f0.signum() {
+                break;
+            }
+            if step >= limit {
+                let a = if fhi.abs() < f0.abs() { hi } else { a0 };
+                set_rigid(s, &sp, z, a);
+                return;
+            }
+            (lo, flo) = (hi, fhi);
+            step = (2.0 * step).min(limit);
+        }
+        // Illinois false position on [lo, hi]
+        let mut side = 0i8;
+        for _ in 0..REBALANCE_ITERATIONS {
+            let a = (lo * fhi - hi * flo) / (fhi - flo);
+            let fa = phi(a);
+            if fa == 0.0 || (hi - lo).abs() <= 1e-15 * a.abs().max(per_a.recip() * eps) {
+                lo = a;
+                break;
+            }
+            if fa.signum() == flo.signum() {
+                (lo, flo) = (a, fa);
+                if side == -1 {
+                    fhi *= 0.5;
+                }
+                side = -1;
+            } else {
+                (hi, fhi) = (a, fa);
+                if side == 1 {
+                    flo *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        let a = if flo.abs() <= fhi.abs() { lo } else { hi };
+        set_rigid(s, &sp, z, a);
+    }
+
+    /// The largest step fraction `alpha <= 1` whose change of the physical slip stays within
+    /// [`SLIP_STEP_GROWTH`] times the current slip scale:
+    /// ```text
+    /// alpha max_k |beta sqrt(g22_k) (P Z ds)_k| <= SLIP_STEP_GROWTH max(eps, max_k |beta sqrt(g22_k) x_k|)
+    /// ```
+    /// (`eps` the law's slip threshold). The regularised law changes over a slip of `eps`, so a
+    /// Newton step far beyond the current slip scale is an extrapolation; along a rigid
+    /// sliding mode held only by friction, it sends the body sliding away, where the saturated
+    /// friction leaves a smaller but spurious residual.
+    fn slip_step_cap(&self, beta: f64, x0: &[f64], s: &[f64], ds: &Mat<f64>) -> f64 {
+        let m = s.len();
+        let (mut current, mut step) = (0.0f64, 0.0f64);
+        for (i, x0) in x0.iter().enumerate().take(m) {
+            let (mut x, mut dx) = (*x0, 0.0);
+            for j in 0..m {
+                x += self.pz[(i, j)] * s[j];
+                dx += self.pz[(i, j)] * ds[(j, 0)];
+            }
+            let w = beta * self.model.active_node(i).sqrt_g22;
+            current = current.max((w * x).abs());
+            step = step.max((w * dx).abs());
+        }
+        let bound = SLIP_STEP_GROWTH * current.max(self.model.slip_threshold());
+        if step > bound { bound / step } else { 1.0 }
     }
 
     /// Damped Newton on `G(s) = 0` from `s`; `Ok(iterations)` or `Err((iterations, residual))`.
@@ -588,6 +795,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
         let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
         let max_norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        self.rebalance(beta, &x0, &n0, s);
         for it in 0..settings.max_iterations {
             self.eval(beta, &x0, &n0, s, &mut g, Some(&mut jac));
             let r = max_norm(&g);
@@ -603,18 +811,20 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 return Err((it, r / scale));
             }
             let phi0 = norm2(&g);
-            let mut alpha = 1.0;
+            let alpha0 = self.slip_step_cap(beta, &x0, s, &ds);
+            let mut alpha = alpha0;
             loop {
                 for i in 0..m {
                     trial[i] = s[i] + alpha * ds[(i, 0)];
                 }
+                self.rebalance(beta, &x0, &n0, &mut trial);
                 self.eval(beta, &x0, &n0, &trial, &mut gt, None);
                 let phi = norm2(&gt);
                 if phi.is_finite() && phi <= (1.0 - 1e-4 * alpha) * phi0 {
                     break;
                 }
                 alpha *= 0.5;
-                if alpha < 1e-8 {
+                if alpha < 1e-8 * alpha0 {
                     // no descent left: accept if the residual is at its rounding floor
                     return if r <= accept_floor(self.roundoff_floor(beta, &x0, &n0, s)) {
                         Ok(it)
@@ -870,6 +1080,92 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         sol.unknowns = s.to_vec();
         Ok(sol)
     }
+}
+
+/// `s = s_p + a z`.
+fn set_rigid(s: &mut [f64], sp: &[f64], z: &[f64], a: f64) {
+    for ((s, p), z) in s.iter_mut().zip(sp).zip(z) {
+        *s = p + a * z;
+    }
+}
+
+/// Factorises the stabilised bulk `A + sum_k w_k c_k e_row_k e_tdof_k^T` (`values` holds `A` on
+/// the extended pattern) and returns `(P Z, N Z)`, `Z = A~^-1 W`, by blocked multi-right-hand-side
+/// solves (at most [`CONDENSATION_BLOCK_ENTRIES`] doubles of workspace per block).
+fn condense<D: Discretisation, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+    ext: &ExtendedPattern,
+    values: &[f64],
+    spring: &[f64],
+    lu: &mut SparseLu,
+) -> Result<(Mat<f64>, Mat<f64>), ContactError> {
+    let m = spring.len();
+    let n = model.dof_count();
+    let mut values = values.to_vec();
+    for (k, c) in spring.iter().enumerate() {
+        values[ext.tangential_slot[k]] += model.active_node(k).traction_weight * c;
+    }
+    lu.factor(&values)?;
+    let mut pz = Mat::<f64>::zeros(m, m);
+    let mut nz = Mat::<f64>::zeros(m, m);
+    let block = (CONDENSATION_BLOCK_ENTRIES / n.max(1)).clamp(1, m.max(1));
+    let mut cols = vec![0.0; n * block];
+    for first in (0..m).step_by(block) {
+        let width = block.min(m - first);
+        let cols = &mut cols[..n * width];
+        cols.iter_mut().for_each(|x| *x = 0.0);
+        for c in 0..width {
+            let node = model.active_node(first + c);
+            cols[c * n + node.tangential_row.expect("active")] = node.traction_weight;
+        }
+        lu.solve_many_in_place(cols, width)?;
+        for c in 0..width {
+            let col = &cols[c * n..(c + 1) * n];
+            for j in 0..m {
+                let nj = model.active_node(j);
+                pz[(j, first + c)] = col[nj.tangential_dof];
+                nz[(j, first + c)] = nj.normal_stress.dot(col);
+            }
+        }
+    }
+    Ok((pz, nz))
+}
+
+/// The frictionless condensed operator `H0 = I - C P Z`.
+fn frictionless_operator(spring: &[f64], pz: &Mat<f64>) -> Mat<f64> {
+    let m = pz.nrows();
+    Mat::<f64>::from_fn(m, m, |i, j| {
+        f64::from(u8::from(i == j)) - spring[i] * pz[(i, j)]
+    })
+}
+
+/// An estimate (power iteration on `H^T H`, within a few percent) of the largest singular
+/// value of `h`.
+fn largest_singular_value(h: &Mat<f64>) -> f64 {
+    let m = h.nrows();
+    if m == 0 {
+        return 0.0;
+    }
+    // a start vector with no special symmetry
+    let mut v: Vec<f64> = (0..m)
+        .map(|i| 1.0 + (i as f64 * 0.618_034).fract())
+        .collect();
+    let mut sigma = 0.0;
+    for _ in 0..SINGULAR_VALUE_ITERATIONS {
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return sigma;
+        }
+        v.iter_mut().for_each(|x| *x /= norm);
+        let hv: Vec<f64> = (0..m)
+            .map(|i| (0..m).map(|j| h[(i, j)] * v[j]).sum())
+            .collect();
+        sigma = hv.iter().map(|x| x * x).sum::<f64>().sqrt();
+        v = (0..m)
+            .map(|j| (0..m).map(|i| h[(i, j)] * hv[i]).sum())
+            .collect();
+    }
+    sigma
 }
 
 /// `(P v, N v)`: `v^2` and `T^3_3` at the active contact nodes.
