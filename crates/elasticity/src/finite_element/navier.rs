@@ -350,7 +350,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// use capstan_elasticity::finite_element::{
     ///     ElementOrder, FiniteElementNavier, VolumetricIntegration, lame_parts,
     /// };
-    /// use capstan_elasticity::samples::LameCylinder;
+    /// use capstan_elasticity::samples::{LameCylinder, ManufacturedField};
     /// use capstan_elasticity::verification::GridLevel;
     /// use capstan_elasticity::{Discretisation, Material};
     /// use capstan_solvers::SparseCholesky;
