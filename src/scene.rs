@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
-use capstan_elasticity::finite_element::DiscretisationMethod;
+use capstan_elasticity::finite_element::{DiscretisationMethod, VolumetricIntegration};
 use capstan_elasticity::solvers::LinearBackend;
 use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
 use capstan_geometry::expression::Expression;
@@ -300,6 +300,11 @@ pub struct DiscretisationSpec {
     /// `fd` (finite differences, the default) | `fem-q1` | `fem-q2` (finite elements on the
     /// same grid; Q2 needs odd `grid.n2`, `grid.n3`).
     pub method: DiscretisationMethod,
+    /// `full` (default) | `reduced`: how the finite elements integrate the volumetric part
+    /// `lambda (div v)(div w) sqrt(g)` of the stiffness; `reduced` is selective reduced
+    /// integration (Q1: 1 point, Q2: 2 x 2; the shear part keeps the full rule), the remedy
+    /// for volumetric locking as `body.poisson -> 1/2`. `fd` accepts only `full`.
+    pub volumetric: VolumetricIntegration,
 }
 
 impl Scene {
@@ -570,7 +575,8 @@ impl Scene {
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
     /// `samples` in `[2, 10^7]`, `t_max > 0` when given; `loads.gravity, density >= 0`,
     /// `loads.width, thickness > 0`; `body.thickness > 0`, `body.young > 0`, `body.poisson`
-    /// in `(-1, 1/2)`; `grid.n2, n3 >= 3` (odd for `fem-q2`), at most [`MAX_N2`], [`MAX_N3`],
+    /// in `(-1, 1/2)`; `discretisation.volumetric = "reduced"` only with `fem-q1`, `fem-q2`;
+    /// `grid.n2, n3 >= 3` (odd for `fem-q2`), at most [`MAX_N2`], [`MAX_N3`],
     /// and a thick-body solve that fits in the available memory ([`memory_estimate`]); known
     /// solver names. Every number must be finite (TOML allows `nan` and `inf`).
     ///
@@ -701,6 +707,15 @@ impl Scene {
             b.poisson > -1.0 && b.poisson < 0.5,
         )?;
         self.validate_grid(at)?;
+        if self.discretisation.method == DiscretisationMethod::Fd
+            && self.discretisation.volumetric != VolumetricIntegration::Full
+        {
+            return Err(bad(
+                "discretisation.volumetric",
+                format!("{:?}", self.discretisation.volumetric.name()),
+                "{\"full\"} for discretisation.method = \"fd\" (finite differences have no quadrature rule to reduce; \"reduced\" needs \"fem-q1\" or \"fem-q2\")",
+            ));
+        }
         if self.solver.linear.parse::<LinearBackend>().is_err() {
             return Err(bad(
                 "solver.linear",
@@ -819,6 +834,39 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("fem-q3"), "{e}");
+    }
+
+    #[test]
+    fn discretisation_volumetric_defaults_to_full_and_is_refused_for_fd() {
+        assert_eq!(
+            Scene::default().discretisation.volumetric,
+            VolumetricIntegration::Full
+        );
+        assert!(known_keys().contains(&"discretisation.volumetric".to_string()));
+        let s = Scene::load(
+            None,
+            &[
+                "discretisation.method=fem-q1".into(),
+                "discretisation.volumetric=reduced".into(),
+            ],
+        )
+        .unwrap();
+        assert_eq!(s.discretisation.volumetric, VolumetricIntegration::Reduced);
+        let e = Scene::load(None, &["discretisation.volumetric=reduced".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`discretisation.volumetric` = \"reduced\" is outside")
+                && e.contains("fem-q1"),
+            "{e}"
+        );
+        let e = Scene::load(None, &["discretisation.volumetric=selective".into()])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("selective") && e.contains("`full`") && e.contains("`reduced`"),
+            "{e}"
+        );
     }
 
     #[test]

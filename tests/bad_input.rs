@@ -205,6 +205,18 @@ fn expressions_must_parse_and_stay_finite_on_the_interval() {
 }
 
 #[test]
+fn reduced_volumetric_integration_is_refused_for_finite_differences() {
+    refused(
+        &["geometry", "--set", "discretisation.volumetric=reduced"],
+        &["discretisation.volumetric", "reduced", "fem-q1"],
+    );
+    refused(
+        &["geometry", "--set", "discretisation.volumetric=half"],
+        &["discretisation.volumetric", "half", "`full`", "`reduced`"],
+    );
+}
+
+#[test]
 fn q2_needs_odd_grids() {
     refused(
         &[

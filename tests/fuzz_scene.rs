@@ -65,6 +65,7 @@ const KEYS: &[&str] = &[
     "linear",
     "nonlinear",
     "method",
+    "volumetric",
     "x",
 ];
 const VALUES: &[&str] = &[
@@ -97,6 +98,7 @@ const VALUES: &[&str] = &[
     "\"1/0\"",
     "\"t^t^t^t\"",
     "\"fem-q2\"",
+    "\"reduced\"",
     "\"lu\"",
     "true",
     "[1, 2]",

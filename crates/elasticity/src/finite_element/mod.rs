@@ -13,7 +13,10 @@
 //! # Status
 //! Verified by the manufactured solutions and the Lamé cylinder of the finite-difference
 //! studies ([`fem_studies`], run by `capstan verify`): order 2 (Q1) and 3 (Q2) in L2.
-//! [`DiscretisationMethod`] selects `fd | fem-q1 | fem-q2` (scene key `discretisation.method`).
+//! [`DiscretisationMethod`] selects `fd | fem-q1 | fem-q2` (scene key `discretisation.method`);
+//! [`VolumetricIntegration`] selects `full | reduced` integration of the volumetric part
+//! (scene key `discretisation.volumetric`: selective reduced integration against volumetric
+//! locking as `nu -> 1/2`).
 //!
 //! # Limitations
 //! Uniform structured grids on the rectangle (the nodes of [`crate::Grid`]); Q2 needs odd
@@ -24,6 +27,7 @@ mod element;
 mod method;
 mod navier;
 mod problems;
+mod volumetric;
 
 pub use element::{ElementOrder, gauss_rule};
 pub use method::DiscretisationMethod;
@@ -31,3 +35,4 @@ pub use navier::{DisplacementErrors, FiniteElementNavier};
 pub use problems::{
     FemProblem, FemStudy, ProblemParts, fem_studies, lame_parts, mms_parts, paper_parts,
 };
+pub use volumetric::VolumetricIntegration;

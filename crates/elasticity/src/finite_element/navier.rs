@@ -5,6 +5,7 @@ use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::element::{ElementOrder, gauss_rule};
+use super::volumetric::VolumetricIntegration;
 use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
 use crate::discretisation::{ContactNode, Discretisation, SparseRow};
 use crate::error::ElasticityError;
@@ -121,8 +122,15 @@ pub struct FiniteElementNavier<G> {
     elements: [usize; 2],
     /// `[N_a, d_2 N_a, d_3 N_a]` at reference quadrature point `q`, index `q nen + a`.
     shape: Vec<[f64; 3]>,
-    /// Packed `K_q` times weight and `det J`, index `e nq + q`.
+    /// Packed `K_q` times weight and `det J`, index `e nq + q` (the shear part only when the
+    /// volumetric part is integrated separately).
     stiffness: Vec<[f64; 21]>,
+    /// How the volumetric part is integrated.
+    volumetric: VolumetricIntegration,
+    /// Reduced rule: `[N_a, d_2 N_a, d_3 N_a]` at reduced point `r`, index `r nen + a`.
+    reduced_shape: Vec<[f64; 3]>,
+    /// Reduced rule: `[lambda sqrt(g) w det J, tr M_0, ..., tr M_5]`, index `e nr + r`.
+    reduced_divergence: Vec<[f64; 7]>,
     /// Prescribed value of each dof.
     dirichlet: Vec<Option<f64>>,
     /// Right-hand side from the body force and the natural boundary data.
@@ -201,8 +209,43 @@ fn check_plane_strain(p: &ShellPoint<f64>, at: [f64; 3]) -> Result<(), Elasticit
 /// ```
 /// symmetric by construction; equal to the contraction with the mixed stress coefficients of
 /// [`mixed_stress_coefficients`] to round-off (tested), at a fifth of the cost.
-#[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
 fn point_stiffness(p: &ShellPoint<f64>, material: &Material, scale: f64) -> [f64; 21] {
+    point_energy(p, material.lambda(), material.mu(), scale)
+}
+
+/// [`point_stiffness`] with given Lamé constants: `lambda = 0` leaves the shear part
+/// `2 mu sqrt(g) tr(M_k M_l)` of selective reduced integration.
+#[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+fn point_energy(p: &ShellPoint<f64>, lambda: f64, mu: f64, scale: f64) -> [f64; 21] {
+    let mixed = mixed_strains(p);
+    let trace = mixed.map(|m| m[0][0] + m[1][1] + m[2][2]);
+    let two_mu = 2.0 * mu;
+    let w = p.sqrt_g * scale;
+    let mut packed = [0.0; 21];
+    for a in 0..6 {
+        for b in a..6 {
+            let mut s = 0.0;
+            for i in 0..3 {
+                for l in 0..3 {
+                    s += mixed[a][i][l] * mixed[b][l][i];
+                }
+            }
+            packed[PACK[a][b]] = (lambda * trace[a] * trace[b] + two_mu * s) * w;
+        }
+    }
+    packed
+}
+
+/// The traces `tr M_k = nabla_i v^i` of the mixed strains of the six unit inputs: the
+/// divergence is `sum_k u_k tr M_k` (`tr M_k = Gamma^i_im` for the value `v^m`, `delta_pc`
+/// for `d_p v^c`).
+fn divergence_coefficients(p: &ShellPoint<f64>) -> [f64; 6] {
+    mixed_strains(p).map(|m| m[0][0] + m[1][1] + m[2][2])
+}
+
+/// The mixed strains `M_k = g^-1 E_k` of the six unit inputs (see [`point_stiffness`]).
+#[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+fn mixed_strains(p: &ShellPoint<f64>) -> [[[f64; 3]; 3]; 6] {
     let (g, gi, gamma) = (&p.metric, &p.inverse_metric, &p.christoffel);
     let mut mixed = [[[0.0f64; 3]; 3]; 6];
     for (k, mk) in mixed.iter_mut().enumerate() {
@@ -233,22 +276,7 @@ fn point_stiffness(p: &ShellPoint<f64>, material: &Material, scale: f64) -> [f64
             }
         }
     }
-    let trace = mixed.map(|m| m[0][0] + m[1][1] + m[2][2]);
-    let (lambda, two_mu) = (material.lambda(), 2.0 * material.mu());
-    let w = p.sqrt_g * scale;
-    let mut packed = [0.0; 21];
-    for a in 0..6 {
-        for b in a..6 {
-            let mut s = 0.0;
-            for i in 0..3 {
-                for l in 0..3 {
-                    s += mixed[a][i][l] * mixed[b][l][i];
-                }
-            }
-            packed[PACK[a][b]] = (lambda * trace[a] * trace[b] + two_mu * s) * w;
-        }
-    }
-    packed
+    mixed
 }
 
 /// Second-order nodal difference weights `(index, weight)` along a grid direction.
@@ -299,6 +327,58 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         body_force: Option<BodyForce>,
         order: ElementOrder,
     ) -> Result<Self, ElasticityError> {
+        Self::with_volumetric(
+            chart,
+            material,
+            grid,
+            boundary,
+            body_force,
+            order,
+            VolumetricIntegration::Full,
+        )
+    }
+
+    /// As [`FiniteElementNavier::new`], with the volumetric part of the stiffness integrated
+    /// as `volumetric` says ([`VolumetricIntegration::Reduced`]: selective reduced
+    /// integration, the remedy for volumetric locking as `nu -> 1/2`).
+    ///
+    /// # Errors
+    /// See [`FiniteElementNavier::new`].
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_elasticity::finite_element::{
+    ///     ElementOrder, FiniteElementNavier, VolumetricIntegration, lame_parts,
+    /// };
+    /// use capstan_elasticity::samples::{LameCylinder, ManufacturedField};
+    /// use capstan_elasticity::verification::GridLevel;
+    /// use capstan_elasticity::{Discretisation, Material};
+    /// use capstan_solvers::SparseCholesky;
+    /// // the Lamé cylinder at nu = 0.4999: Q1 locks, Q1 with SRI does not
+    /// let lame = LameCylinder { material: Material::new(10.0, 0.4999).unwrap(), ..Default::default() };
+    /// let exact = lame.field();
+    /// let error = |volumetric| {
+    ///     let p = lame_parts(&lame, GridLevel { n2: 32, n3: 9 }).unwrap();
+    ///     let op = FiniteElementNavier::with_volumetric(
+    ///         p.chart, p.material, p.grid, p.boundary, p.body_force, ElementOrder::Q1, volumetric,
+    ///     )
+    ///     .unwrap();
+    ///     let v = op.solve(&mut SparseCholesky::default()).unwrap();
+    ///     let e = op.displacement_errors(&v, &|x| exact.displacement(x).value).unwrap();
+    ///     e.l2 / e.l2_exact
+    /// };
+    /// let (full, reduced) = (error(VolumetricIntegration::Full), error(VolumetricIntegration::Reduced));
+    /// assert!(reduced < 1e-2 && full > 10.0 * reduced, "full {full}, reduced {reduced}");
+    /// ```
+    pub fn with_volumetric(
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+        order: ElementOrder,
+        volumetric: VolumetricIntegration,
+    ) -> Result<Self, ElasticityError> {
         if grid.is_periodic() != boundary.is_periodic() {
             return Err(ElasticityError::InconsistentBoundary {
                 what: "the grid and the x2 conditions must both be periodic or both not",
@@ -333,6 +413,9 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             elements,
             shape: vec![],
             stiffness: vec![],
+            volumetric,
+            reduced_shape: vec![],
+            reduced_divergence: vec![],
             dirichlet: vec![],
             load: vec![],
             row_ptr: vec![],
@@ -347,6 +430,9 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             .collect::<Result<_, _>>()?;
         op.shape = op.reference_shape();
         op.cache_geometry(body_force.as_ref())?;
+        if volumetric == VolumetricIntegration::Reduced {
+            op.cache_reduced_divergence()?;
+        }
         op.add_boundary_loads()?;
         op.contact = (0..grid.n2())
             .map(|i| {
@@ -371,6 +457,11 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// The element order.
     pub fn order(&self) -> ElementOrder {
         self.order
+    }
+
+    /// How the volumetric part of the stiffness is integrated.
+    pub fn volumetric(&self) -> VolumetricIntegration {
+        self.volumetric
     }
 
     /// The material.
@@ -435,12 +526,16 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     }
 
     fn reference_shape(&self) -> Vec<[f64; 3]> {
-        let (gp, _) = self.order.gauss_1d();
+        self.shape_table(&self.order.gauss_1d().0)
+    }
+
+    /// `[N_a, d_2 N_a, d_3 N_a]` at the tensor points `gp x gp`, index `q nen + a`.
+    fn shape_table(&self, gp: &[f64]) -> Vec<[f64; 3]> {
         let [l2, l3] = self.element_size();
         let np = self.order.nodes_per_direction();
-        let mut out = Vec::with_capacity(self.quadrature_points() * self.nodes_per_element());
-        for &xi in &gp {
-            for &eta in &gp {
+        let mut out = Vec::with_capacity(gp.len() * gp.len() * self.nodes_per_element());
+        for &xi in gp {
+            for &eta in gp {
                 let (n2, d2) = self.order.shape_1d(xi);
                 let (n3, d3) = self.order.shape_1d(eta);
                 for a2 in 0..np {
@@ -501,7 +596,13 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                     check_plane_strain(p, [0.0, x2, x3])?;
                     let q = i * nqd + j;
                     let w = gw[i] * gw[j] * det;
-                    kq[e3 * nq + q] = point_stiffness(p, &this.material, w);
+                    kq[e3 * nq + q] = match this.volumetric {
+                        VolumetricIntegration::Full => point_stiffness(p, &this.material, w),
+                        // the shear part only: the volumetric part is at the reduced points
+                        VolumetricIntegration::Reduced => {
+                            point_energy(p, 0.0, this.material.mu(), w)
+                        }
+                    };
                     if let (Some(f), Some(load)) = (body_force, load.as_deref_mut()) {
                         let x = [x2, x3];
                         let fx = f(x);
@@ -547,6 +648,50 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// The volumetric part at the reduced `k x k` Gauss points of every element (selective
+    /// reduced integration): shape functions, `lambda sqrt(g) w det J` and the divergence
+    /// coefficients `tr M_k`, one column of points per `x2` abscissa as in
+    /// [`Self::cache_geometry`].
+    fn cache_reduced_divergence(&mut self) -> Result<(), ElasticityError> {
+        let (gp, gw) = gauss_rule(self.order.degree());
+        self.reduced_shape = self.shape_table(&gp);
+        let [l2, l3] = self.element_size();
+        let det = 0.25 * l2 * l3;
+        let [ne2, ne3] = self.elements;
+        let (k, nqd) = (self.order.degree(), gp.len());
+        let nr = nqd * nqd;
+        let heights: Vec<f64> = (0..ne3)
+            .flat_map(|e3| {
+                let y0 = self.grid.x3(k * e3);
+                gp.iter().map(move |&eta| y0 + 0.5 * (eta + 1.0) * l3)
+            })
+            .collect();
+        let lambda = self.material.lambda();
+        let mut out = vec![[0.0; 7]; ne2 * ne3 * nr];
+        let this = &*self;
+        out.par_chunks_mut(ne3 * nr).enumerate().try_for_each(
+            |(e2, column)| -> Result<(), ElasticityError> {
+                let x0 = this.grid.x2(k * e2);
+                let mut points = Vec::with_capacity(heights.len());
+                for (i, &xi) in gp.iter().enumerate() {
+                    let x2 = x0 + 0.5 * (xi + 1.0) * l2;
+                    points.clear();
+                    this.chart.shell_column([0.0, x2], &heights, &mut points)?;
+                    for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
+                        let (e3, j) = (idx / nqd, idx % nqd);
+                        check_plane_strain(p, [0.0, x2, x3])?;
+                        let t = divergence_coefficients(p);
+                        let c = lambda * p.sqrt_g * gw[i] * gw[j] * det;
+                        column[e3 * nr + i * nqd + j] = [c, t[0], t[1], t[2], t[3], t[4], t[5]];
+                    }
+                }
+                Ok(())
+            },
+        )?;
+        self.reduced_divergence = out;
         Ok(())
     }
 
@@ -840,6 +985,27 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                             row[2 * b + d] +=
                                 f[0] * kbb[c][d] + f[1] * kbb[2 + c][d] + f[2] * kbb[4 + c][d];
                         }
+                    }
+                }
+            }
+        }
+        if self.volumetric == VolumetricIntegration::Reduced {
+            // lambda (div v)(div w) sqrt(g) at the reduced points: a rank-one update per point
+            // with the discrete divergence d_(a c) = t_c N_a + t_(2+c) d_2 N_a + t_(4+c) d_3 N_a
+            let nr = self.order.degree().pow(2);
+            let mut d = [0.0f64; 18];
+            for r in 0..nr {
+                let [c, t @ ..] = self.reduced_divergence[e * nr + r];
+                let phi = &self.reduced_shape[r * nen..(r + 1) * nen];
+                for (a, f) in phi.iter().enumerate() {
+                    for comp in 0..2 {
+                        d[2 * a + comp] = t[comp] * f[0] + t[2 + comp] * f[1] + t[4 + comp] * f[2];
+                    }
+                }
+                for i in 0..l {
+                    let ci = c * d[i];
+                    for (x, dj) in out[i * l..(i + 1) * l].iter_mut().zip(&d[..l]) {
+                        *x += ci * dj;
                     }
                 }
             }
@@ -1167,6 +1333,29 @@ mod tests {
                     assert!((a - b).abs() <= 1e-13 * size, "x2 {x2} x3 {x3}: {a} vs {b}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn point_stiffness_splits_into_shear_and_divergence_parts() {
+        // the split of selective reduced integration: K = K(lambda = 0) + lambda sqrt(g) t t^T
+        let chart = ShellChart::new(EllipticalPrism::new(1.0, 2.0).unwrap());
+        let material = Material::new(7.0, 0.3).unwrap();
+        let p = chart.shell_point([0.0, 0.4, 0.3]).unwrap();
+        let full = point_stiffness(&p, &material, 0.37);
+        let shear = point_energy(&p, 0.0, material.mu(), 0.37);
+        let t = divergence_coefficients(&p);
+        let size = full.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for a in 0..6 {
+            for b in a..6 {
+                let vol = material.lambda() * p.sqrt_g * 0.37 * t[a] * t[b];
+                let k = PACK[a][b];
+                assert!((full[k] - shear[k] - vol).abs() <= 1e-14 * size); // round-off
+            }
+        }
+        // d_2 v^2 and d_3 v^3 enter the divergence with weight 1, d_3 v^2 and d_2 v^3 not
+        for (x, want) in [t[2], t[3], t[4], t[5]].iter().zip([1.0, 0.0, 0.0, 1.0]) {
+            assert!((x - want).abs() < 1e-14, "{t:?}"); // g^22 g_22 = 1 to round-off
         }
     }
 

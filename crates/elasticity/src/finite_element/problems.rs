@@ -6,7 +6,8 @@ use std::sync::Arc;
 use capstan_geometry::{CircularCylinder, EllipticalPrism, Obstacle, ShellChart};
 
 use super::element::ElementOrder;
-use super::navier::FiniteElementNavier;
+use super::navier::{DisplacementErrors, FiniteElementNavier};
+use super::volumetric::VolumetricIntegration;
 use crate::boundary::{
     BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
     SideCondition, X2Ends,
@@ -76,6 +77,27 @@ impl ProblemParts {
             self.boundary,
             self.body_force,
             order,
+        )
+    }
+
+    /// The finite-element discretisation of `order` with the volumetric part integrated as
+    /// `volumetric` says.
+    ///
+    /// # Errors
+    /// See [`FiniteElementNavier::new`].
+    pub fn finite_element_with(
+        self,
+        order: ElementOrder,
+        volumetric: VolumetricIntegration,
+    ) -> Result<FiniteElementNavier<SampleChart>, ElasticityError> {
+        FiniteElementNavier::with_volumetric(
+            self.chart,
+            self.material,
+            self.grid,
+            self.boundary,
+            self.body_force,
+            order,
+            volumetric,
         )
     }
 }
@@ -246,12 +268,51 @@ pub struct FemStudy {
     pub problem: FemProblem,
     /// The element.
     pub order: ElementOrder,
+    /// How the volumetric part of the stiffness is integrated (default `full`).
+    pub volumetric: VolumetricIntegration,
 }
 
 impl FemStudy {
-    /// The study of `problem` with `order`.
+    /// The study of `problem` with `order` (full integration).
     pub fn new(problem: FemProblem, order: ElementOrder) -> Self {
-        Self { problem, order }
+        Self {
+            problem,
+            order,
+            volumetric: VolumetricIntegration::Full,
+        }
+    }
+
+    /// The same study with the volumetric part integrated as `volumetric` says.
+    pub fn with_volumetric(self, volumetric: VolumetricIntegration) -> Self {
+        Self { volumetric, ..self }
+    }
+
+    /// Solves on one grid (sparse Cholesky) and returns `dx3` and every error norm of
+    /// [`FiniteElementNavier::displacement_errors`] (the relative L2 error is
+    /// `l2 / l2_exact`).
+    ///
+    /// # Errors
+    /// Any error of building or solving the problem.
+    pub fn errors(&self, level: GridLevel) -> Result<(f64, DisplacementErrors), ElasticityError> {
+        let (op, errors) = match &self.problem {
+            FemProblem::Mms(m) => {
+                let (parts, exact) = mms_parts(m, level)?;
+                let op = parts.finite_element_with(self.order, self.volumetric)?;
+                let v = solve_backward_stable(&op)?;
+                let f = |x: [f64; 2]| exact.field.displacement(x).value;
+                let e = op.displacement_errors(&v, &f)?;
+                (op, e)
+            }
+            FemProblem::Lame(l) => {
+                let op = lame_parts(l, level)?.finite_element_with(self.order, self.volumetric)?;
+                let v = solve_backward_stable(&op)?;
+                let field = l.field();
+                let f = |x: [f64; 2]| field.displacement(x).value;
+                let e = op.displacement_errors(&v, &f)?;
+                (op, e)
+            }
+        };
+        Ok((op.grid().dx3(), errors))
     }
 
     fn inner(&self) -> &dyn Study {
@@ -270,38 +331,64 @@ impl Study for FemStudy {
         self.inner().geometry()
     }
     fn discretisation(&self) -> &'static str {
-        self.order.method_name()
+        match (self.order, self.volumetric) {
+            (order, VolumetricIntegration::Full) => order.method_name(),
+            (ElementOrder::Q1, VolumetricIntegration::Reduced) => "fem-q1-sri",
+            (ElementOrder::Q2, VolumetricIntegration::Reduced) => "fem-q2-sri",
+        }
     }
     fn levels(&self) -> Vec<GridLevel> {
         self.inner().levels()
     }
     fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
-        let mut solver = capstan_solvers::SparseCholesky::default();
-        let (op, errors) = match &self.problem {
-            FemProblem::Mms(m) => {
-                let (parts, exact) = mms_parts(m, level)?;
-                let op = parts.finite_element(self.order)?;
-                let v = op.solve(&mut solver)?;
-                let f = |x: [f64; 2]| exact.field.displacement(x).value;
-                let e = op.displacement_errors(&v, &f)?;
-                (op, e)
-            }
-            FemProblem::Lame(l) => {
-                let op = lame_parts(l, level)?.finite_element(self.order)?;
-                let v = op.solve(&mut solver)?;
-                let field = l.field();
-                let f = |x: [f64; 2]| field.displacement(x).value;
-                let e = op.displacement_errors(&v, &f)?;
-                (op, e)
-            }
-        };
+        let (h, errors) = self.errors(level)?;
         Ok(StudyPoint {
             level,
-            h: op.grid().dx3(),
+            h,
             max_error: errors.max,
             l2_error: errors.rms,
         })
     }
+}
+
+/// Largest accepted normwise backward error of a study's solve (see
+/// [`solve_backward_stable`]).
+const BACKWARD_ERROR_TOLERANCE: f64 = 1e-12;
+
+/// Solves by sparse Cholesky and accepts the solution by its normwise backward error
+/// `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf) <= 1e-12`.
+///
+/// The direct backends' default check, `|b - A x|_inf <= 1e-8 |b|_inf`, assumes
+/// `|A| |x| ~ |b|`. As `nu -> 1/2` the solution is nearly divergence-free, so `|A x| = |b|` is
+/// smaller than `|A| |x|` by about `lambda / mu`, and the rounding of the residual itself
+/// (`~ eps |A| |x|`) exceeds `1e-8 |b|` at `nu = 0.4999999` (`lambda / mu = 5e6`) although the
+/// factorisation is backward stable. The backward error measures what a direct solve can
+/// guarantee at any `lambda`.
+fn solve_backward_stable<D: Discretisation>(op: &D) -> Result<Vec<f64>, ElasticityError> {
+    let system = op.system()?;
+    let mut solver = capstan_solvers::SparseCholesky::new(capstan_solvers::DirectParams {
+        residual_tolerance: 0.5, // checked below, by the backward error
+        refinement_steps: 1,
+        ..Default::default()
+    })?;
+    let x = system.solve(&mut solver)?;
+    let n = x.len();
+    let (mut ax, mut row_abs) = (vec![0.0; n], vec![0.0; n]);
+    for ((r, c), a) in system.pattern.entries().zip(&system.values) {
+        ax[r] += a * x[c];
+        row_abs[r] += a.abs();
+    }
+    let inf = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let residual = ax
+        .iter()
+        .zip(&system.rhs)
+        .fold(0.0f64, |m, (a, b)| m.max((b - a).abs()));
+    let scale = inf(&row_abs) * inf(&x) + inf(&system.rhs);
+    // a NaN residual fails too
+    if residual.is_nan() || residual > BACKWARD_ERROR_TOLERANCE * scale {
+        return Err(capstan_solvers::SolverError::Singular { pivot: None }.into());
+    }
+    Ok(x)
 }
 
 /// The finite-element studies of the registry: every finite-difference study with Q1 and Q2.
