@@ -245,3 +245,41 @@ fn errors_map_to_exit_codes() {
     ]);
     assert_eq!(code, 3, "{err}");
 }
+
+#[test]
+fn contact_follows_the_scene_discretisation() {
+    // `discretisation.method` selects the bulk operator of `capstan contact`; the three agree on
+    // the default case within their discretisation errors (the largest v^2 to 1%, Slip exactly
+    // on this grid), and the report names the method.
+    let mut max_v2 = Vec::new();
+    for method in ["fd", "fem-q1", "fem-q2"] {
+        let set = format!("discretisation.method={method}");
+        let v = json(&[
+            "contact",
+            "--set",
+            &set,
+            "--set",
+            "grid.n2=61",
+            "--set",
+            "grid.n3=11",
+        ]);
+        assert_eq!(v["discretisation"], method);
+        assert_eq!(v["converged"], true);
+        max_v2.push(v["max_azimuthal_displacement"]["value"].as_f64().unwrap());
+    }
+    for v in &max_v2[1..] {
+        assert!((v / max_v2[0] - 1.0).abs() < 1e-2, "{max_v2:?}");
+    }
+    let v = json(&[
+        "contact",
+        "--set",
+        "discretisation.method=fem-q1",
+        "--set",
+        "discretisation.volumetric=reduced",
+        "--set",
+        "grid.n2=40",
+        "--set",
+        "grid.n3=9",
+    ]);
+    assert_eq!(v["discretisation"], "fem-q1");
+}

@@ -74,8 +74,9 @@ impl SceneSolver {
     }
 }
 
-/// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`, and the
-/// contact interval `membrane.theta0`, `membrane.theta_max` (default `[-pi/2, pi/2]`).
+/// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`,
+/// `discretisation.*`, and the contact interval `membrane.theta0`, `membrane.theta_max`
+/// (default `[-pi/2, pi/2]`).
 ///
 /// # Errors
 /// Bad obstacle (a cone), geometry or material values.
@@ -96,6 +97,8 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
         material: Material::new(scene.body.young, scene.body.poisson)?,
         n2: scene.grid.n2,
         n3: scene.grid.n3,
+        method: scene.discretisation.method,
+        volumetric: scene.discretisation.volumetric,
     })
 }
 
@@ -208,6 +211,8 @@ pub struct ContactReport {
     pub setup_seconds: f64,
     /// Wall time of the nonlinear solve, seconds.
     pub solve_seconds: f64,
+    /// The bulk discretisation (`discretisation.method`): `fd`, `fem-q1` or `fem-q2`.
+    pub discretisation: &'static str,
 }
 
 impl ContactReport {
@@ -259,6 +264,7 @@ impl ContactReport {
             grid,
             setup_seconds: times[0],
             solve_seconds: times[1],
+            discretisation: "fd",
         }
     }
 }
@@ -342,8 +348,10 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let limiting = solver
                 .sliding_at(sol.loads.tau0)?
                 .map(|m| [m.lower_ratio, m.upper_ratio]);
-            let report =
-                ContactReport::new(&sol, limiting, grid, [setup, t1.elapsed().as_secs_f64()]);
+            let report = ContactReport {
+                discretisation: capstan_elasticity::Discretisation::method(model.discretisation()),
+                ..ContactReport::new(&sol, limiting, grid, [setup, t1.elapsed().as_secs_f64()])
+            };
             Ok((report, solved(scene, &model, sol)?))
         }
         full => {
@@ -352,8 +360,12 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let t1 = Instant::now();
             match solver.solve(loads) {
                 Ok(sol) => {
-                    let report =
-                        ContactReport::new(&sol, None, grid, [setup, t1.elapsed().as_secs_f64()]);
+                    let report = ContactReport {
+                        discretisation: capstan_elasticity::Discretisation::method(
+                            model.discretisation(),
+                        ),
+                        ..ContactReport::new(&sol, None, grid, [setup, t1.elapsed().as_secs_f64()])
+                    };
                     Ok((report, solved(scene, &model, sol)?))
                 }
                 Err(e @ ContactError::NotConverged { .. }) => {

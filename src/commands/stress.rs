@@ -17,15 +17,14 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::PathBuf;
 use std::time::Instant;
 
+use capstan_elasticity::Discretisation;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactSettings, FullSystemSettings, FullSystemSolver, ThickBody,
+    BoundarySolver, ContactModel, ContactSettings, FullSystemSettings, FullSystemSolver,
 };
-use capstan_elasticity::finite_element::{DiscretisationMethod, FiniteElementNavier};
+use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solvers::{LinearSolver, SparseLu};
-use capstan_elasticity::{Discretisation, FiniteDifferenceNavier, Grid, Material};
 use capstan_friction::membrane::{self, closed_form};
-use capstan_geometry::{Obstacle, ShellChart};
 use clap::Args;
 use serde::Serialize;
 
@@ -146,60 +145,17 @@ fn typed(e: &CliError) -> String {
     format!("{kind}: {e}")
 }
 
-fn body(scene: &Scene) -> Result<(Obstacle, Material, [f64; 2]), CliError> {
-    let obstacle = scene.obstacle.build()?;
-    let material = Material::new(scene.body.young, scene.body.poisson)?;
-    Ok((
-        obstacle,
-        material,
-        [scene.membrane.theta0, scene.membrane.theta_max],
-    ))
-}
-
 fn solve_contact(scene: &Scene, condition: bool) -> Result<ContactOutcome, CliError> {
-    let (obstacle, material, theta) = body(scene)?;
+    let body = crate::commands::contact::thick_body(scene)?;
     let params = RegularisedCoulombParams::new(scene.friction.mu, scene.friction.eps)?;
-    let (n2, n3, h) = (scene.grid.n2, scene.grid.n3, scene.body.thickness);
-    let loads = capstan_elasticity::contact::EndLoads::new(scene.loads.tau0, scene.loads.tau_max);
-    let full = scene.solver.nonlinear == "full-newton";
-    match scene.discretisation.method.element_order() {
-        None => {
-            let model = ContactModel::new(
-                |t0, tm| {
-                    FiniteDifferenceNavier::new(
-                        ShellChart::new(obstacle.clone()),
-                        material,
-                        Grid::new(theta, h, n2, n3, false)?,
-                        ThickBody::boundary(t0, tm),
-                        None,
-                    )
-                },
-                RegularisedCoulomb,
-                params,
-                scene.friction.eps,
-            )?;
-            run_model(&model, loads, condition, full)
-        }
-        Some(order) => {
-            let model = ContactModel::new(
-                |t0, tm| {
-                    FiniteElementNavier::with_volumetric(
-                        ShellChart::new(obstacle.clone()),
-                        material,
-                        Grid::new(theta, h, n2, n3, false)?,
-                        ThickBody::boundary(t0, tm),
-                        None,
-                        order,
-                        scene.discretisation.volumetric,
-                    )
-                },
-                RegularisedCoulomb,
-                params,
-                scene.friction.eps,
-            )?;
-            run_model(&model, loads, condition, full)
-        }
-    }
+    let model = body.model(RegularisedCoulomb, params, scene.friction.eps)?;
+    let loads = crate::commands::contact::loads(scene);
+    run_model(
+        &model,
+        loads,
+        condition,
+        scene.solver.nonlinear == "full-newton",
+    )
 }
 
 /// Solves with the boundary-only solver, or with the full-system Newton when `full`

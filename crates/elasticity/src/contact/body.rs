@@ -1,14 +1,18 @@
-//! The paper's thick body on a prism, discretised by finite differences: the convenience
-//! builder of contact models.
+//! The paper's thick body on a prism, discretised by finite differences or finite elements
+//! (`discretisation.method`): the convenience builder of contact models.
 
 use capstan_friction::FrictionLaw;
 use capstan_geometry::{Obstacle, ShellChart};
 
+use crate::Component;
 use crate::boundary::{BoundaryConditions, BoundaryFunction, SideCondition, X2Ends};
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
+use crate::fields::NodalFields;
 use crate::finite_difference::FiniteDifferenceNavier;
+use crate::finite_element::{DiscretisationMethod, FiniteElementNavier, VolumetricIntegration};
 use crate::grid::Grid;
 use crate::material::Material;
 
@@ -38,10 +42,78 @@ pub struct ThickBody {
     pub n2: usize,
     /// Nodes through the thickness.
     pub n3: usize,
+    /// The discretisation (`fd` by default; `fem-q2` needs odd `n2`, `n3`).
+    pub method: DiscretisationMethod,
+    /// How the finite elements integrate the volumetric part (`Full` for `fd`).
+    pub volumetric: VolumetricIntegration,
 }
 
-/// The discretisation [`ThickBody`] builds.
-pub type ThickBodyOperator = FiniteDifferenceNavier<ShellChart<Obstacle>>;
+/// The discretisation [`ThickBody`] builds: finite differences or finite elements of the same
+/// operator on the same nodes, behind [`Discretisation`].
+#[derive(Debug)]
+pub enum ThickBodyOperator {
+    /// `discretisation.method = fd`.
+    FiniteDifference(FiniteDifferenceNavier<ShellChart<Obstacle>>),
+    /// `discretisation.method = fem-q1 | fem-q2`.
+    FiniteElement(FiniteElementNavier<ShellChart<Obstacle>>),
+}
+
+/// Forwards a [`Discretisation`] call to the operator inside.
+macro_rules! forward {
+    ($self:ident, $op:ident => $call:expr) => {
+        match $self {
+            ThickBodyOperator::FiniteDifference($op) => $call,
+            ThickBodyOperator::FiniteElement($op) => $call,
+        }
+    };
+}
+
+impl Discretisation for ThickBodyOperator {
+    fn method(&self) -> &'static str {
+        forward!(self, op => op.method())
+    }
+
+    fn grid(&self) -> &Grid {
+        forward!(self, op => op.grid())
+    }
+
+    fn dof_count(&self) -> usize {
+        forward!(self, op => op.dof_count())
+    }
+
+    #[track_caller]
+    fn dof(&self, node: [usize; 2], component: Component) -> usize {
+        forward!(self, op => op.dof(node, component))
+    }
+
+    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
+        forward!(self, op => op.entries())
+    }
+
+    fn fill(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        forward!(self, op => op.fill(add, rhs))
+    }
+
+    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        forward!(self, op => op.contact_nodes())
+    }
+
+    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
+        forward!(self, op => op.fields(v))
+    }
+
+    fn system(&self) -> Result<LinearSystem, ElasticityError> {
+        forward!(self, op => op.system())
+    }
+
+    fn refill(&self, system: &mut LinearSystem) -> Result<(), ElasticityError> {
+        forward!(self, op => op.refill(system))
+    }
+}
 
 impl ThickBody {
     /// The paper's body: ellipse `a = b = 2` (a circle), `h = 1`, `E = 1e3`, `nu = 1/4`,
@@ -58,6 +130,8 @@ impl ThickBody {
             material: Material::new(1e3, 0.25)?,
             n2,
             n3,
+            method: DiscretisationMethod::Fd,
+            volumetric: VolumetricIntegration::Full,
         })
     }
 
@@ -74,23 +148,44 @@ impl ThickBody {
         }
     }
 
-    /// The finite-difference operator with end loads `tau0`, `tau_max`.
+    /// The operator of [`ThickBody::method`] with end loads `tau0`, `tau_max`.
     ///
     /// # Errors
-    /// Grid, geometry or boundary errors.
+    /// Grid, geometry or boundary errors; [`ElasticityError::InvalidParameter`] for a reduced
+    /// volumetric integration with finite differences.
     pub fn discretisation(
         &self,
         tau0: f64,
         tau_max: f64,
     ) -> Result<ThickBodyOperator, ElasticityError> {
         let grid = Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?;
-        FiniteDifferenceNavier::new(
-            ShellChart::new(self.obstacle.clone()),
-            self.material,
-            grid,
-            Self::boundary(tau0, tau_max),
-            None,
-        )
+        let chart = ShellChart::new(self.obstacle.clone());
+        let boundary = Self::boundary(tau0, tau_max);
+        Ok(match self.method.element_order() {
+            None if self.volumetric != VolumetricIntegration::Full => {
+                return Err(ElasticityError::InvalidParameter {
+                    field: "discretisation.volumetric",
+                    value: f64::NAN,
+                    allowed: "full with finite differences (reduced needs fem-q1 or fem-q2)",
+                });
+            }
+            None => ThickBodyOperator::FiniteDifference(FiniteDifferenceNavier::new(
+                chart,
+                self.material,
+                grid,
+                boundary,
+                None,
+            )?),
+            Some(order) => ThickBodyOperator::FiniteElement(FiniteElementNavier::with_volumetric(
+                chart,
+                self.material,
+                grid,
+                boundary,
+                None,
+                order,
+                self.volumetric,
+            )?),
+        })
     }
 
     /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`).
