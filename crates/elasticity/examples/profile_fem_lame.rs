@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p capstan-elasticity --example profile_fem_lame -- 64 [--q1] [--reps 10]
-//!     [--ordering amd|nd|grid] [--seq]
+//!     [--ordering amd|nd|end] [--seq]
 //! ```
 //! Prints, per stage, the fastest of `--reps` repetitions (wall clock, ms): setup (the
 //! discretisation: geometry at the quadrature points, loads, pattern), assembly (`system()`),
@@ -11,8 +11,8 @@
 //! stored values of `L`. `--seq` makes faer sequential (`Par::Seq`; the element loops keep
 //! rayon's pool, `RAYON_NUM_THREADS=1` for a sequential process); `--ordering` picks the
 //! Cholesky ordering: `amd` (the default: AMD on the node quotient graph), `nd` (nested
-//! dissection with separators `degree` lines wide), `grid` (the discretisation's own choice,
-//! if it has one).
+//! dissection with separators `degree` lines wide), `end` (nested dissection along element
+//! boundaries, 1-line separators).
 
 use std::time::Instant;
 
@@ -67,6 +67,10 @@ fn main() -> Result<(), ElasticityError> {
                 "nd" => ColumnOrdering::NestedDissection {
                     grid,
                     separator_width: order.degree(),
+                },
+                "end" => ColumnOrdering::ElementNestedDissection {
+                    grid,
+                    degree: order.degree(),
                 },
                 _ => ColumnOrdering::Auto,
             },

@@ -176,7 +176,8 @@ impl LinearSolver<f64> for SparseCholesky {
                 Some(crate::ordering::amd_compressed(pattern)?)
             }
             ColumnOrdering::Auto | ColumnOrdering::Amd => None,
-            ordering @ ColumnOrdering::NestedDissection { .. } => ordering.permutation(pattern)?,
+            ordering @ (ColumnOrdering::NestedDissection { .. }
+            | ColumnOrdering::ElementNestedDissection { .. }) => ordering.permutation(pattern)?,
         };
         let inverse = perm.as_ref().map(|p| {
             let mut inv = vec![0usize; n];
