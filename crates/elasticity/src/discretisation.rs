@@ -91,7 +91,8 @@ pub struct LinearSystem {
     pub values: Vec<f64>,
     /// The right-hand side `b`.
     pub rhs: Vec<f64>,
-    slots: Vec<u32>,
+    /// Slot of each structural entry; `None`: entry `k` is slot `k` (no duplicates).
+    slots: Option<Vec<u32>>,
 }
 
 impl LinearSystem {
@@ -109,12 +110,55 @@ impl LinearSystem {
                 allowed: "[0, 2^32)",
             });
         }
-        let slots = slots.into_iter().map(|s| s as u32).collect();
+        let slots = Some(slots.into_iter().map(|s| s as u32).collect());
         Ok(Self {
             values: vec![0.0; pattern.nnz()],
             rhs: vec![0.0; n],
             pattern,
             slots,
+        })
+    }
+
+    /// The system with an assembled square `pattern`, its `values` (in slot order) and `rhs`:
+    /// the structural entries are the slots of `pattern` in order (`entries()` =
+    /// `pattern.entries()`, entry `k` is slot `k`), as [`LinearSystem::from_entries`] builds
+    /// for distinct entries listed column by column. No sort: `O(1)`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] if `pattern` is not `n x n` with
+    /// `n = rhs.len()`, or `values` does not have `pattern.nnz()` entries;
+    /// `InvalidParameter` if the pattern has more than `u32::MAX` nonzeros.
+    pub fn from_parts(
+        pattern: SparsityPattern,
+        values: Vec<f64>,
+        rhs: Vec<f64>,
+    ) -> Result<Self, ElasticityError> {
+        let n = rhs.len();
+        for (quantity, expected, found) in [
+            ("pattern rows", n, pattern.nrows()),
+            ("pattern columns", n, pattern.ncols()),
+            ("values", pattern.nnz(), values.len()),
+        ] {
+            if expected != found {
+                return Err(ElasticityError::DimensionMismatch {
+                    quantity,
+                    expected,
+                    found,
+                });
+            }
+        }
+        if pattern.nnz() > u32::MAX as usize {
+            return Err(ElasticityError::InvalidParameter {
+                field: "pattern nonzeros",
+                value: pattern.nnz() as f64,
+                allowed: "[0, 2^32)",
+            });
+        }
+        Ok(Self {
+            pattern,
+            values,
+            rhs,
+            slots: None,
         })
     }
 
@@ -127,7 +171,8 @@ impl LinearSystem {
     /// Adds `value` to the slot of structural entry number `k` (in `entries` order).
     #[track_caller]
     pub fn add_entry(&mut self, k: usize, value: f64) {
-        self.values[self.slots[k] as usize] += value;
+        let slot = self.slots.as_ref().map_or(k, |s| s[k] as usize);
+        self.values[slot] += value;
     }
 
     /// Dimension `n`.

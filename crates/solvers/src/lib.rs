@@ -102,7 +102,7 @@ pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{Observer, SilentObserver};
 pub use ordering::{
     ColumnOrdering, GridShape, amd_compressed, amd_symmetrised, is_permutation,
-    nested_dissection_grid,
+    nested_dissection_elements, nested_dissection_grid,
 };
 pub use problem::{Jacobian, Residual};
 pub use scalar::SolverScalar;

@@ -99,6 +99,15 @@ pub enum ColumnOrdering {
         /// (`A^T A` for LU, `A` for Cholesky).
         separator_width: usize,
     },
+    /// Nested dissection of a structured grid of finite elements, cut along element
+    /// boundaries by single node lines ([`nested_dissection_elements`]): for the symmetric
+    /// structure of `A` (Cholesky, the multifrontal LU), not for `A^T A`.
+    ElementNestedDissection {
+        /// How the unknowns are numbered.
+        grid: GridShape,
+        /// Grid intervals per element and direction (the Lagrange degree: 1 for Q1, 2 for Q2).
+        degree: usize,
+    },
 }
 
 impl ColumnOrdering {
@@ -145,6 +154,23 @@ impl ColumnOrdering {
                     });
                 }
                 Ok(Some(nested_dissection_grid(grid, separator_width)))
+            }
+            Self::ElementNestedDissection { grid, degree } => {
+                if grid.dof_count() != pattern.ncols() {
+                    return Err(SolverError::DimensionMismatch {
+                        quantity: "grid unknowns",
+                        expected: pattern.ncols(),
+                        found: grid.dof_count(),
+                    });
+                }
+                if degree == 0 {
+                    return Err(SolverError::InvalidParameter {
+                        field: "degree",
+                        value: 0.0,
+                        allowed: ">= 1",
+                    });
+                }
+                Ok(Some(nested_dissection_elements(grid, degree)))
             }
         }
     }
@@ -229,6 +255,109 @@ fn dissect(
         dissect(grid, w, r2, (r3.0, m), perm);
         dissect(grid, w, r2, (m + w, r3.1), perm);
         push_block(grid, r2, (m, m + w), perm);
+    }
+}
+
+/// Nested dissection of a structured grid of elements `degree` grid intervals wide in each
+/// direction (Lagrange `Q_degree` on the grid nodes), cut along element boundaries: `perm[k]`
+/// is the unknown eliminated `k`-th.
+///
+/// The nodes of one element are coupled only within it, so a single node line on an element
+/// boundary (index a multiple of `degree`) separates the two sides, whatever the degree. The
+/// region is cut across its longer side by the element-boundary line nearest its middle (the
+/// other side if the longer one has no interior boundary line); the two halves are ordered
+/// recursively, then the line. A periodic first direction is first cut by the lines `0` and
+/// (about) `n2 / 2`. Regions of at most 16 nodes (or without an interior boundary line) are
+/// numbered naturally, the longer side outermost. A node's unknowns stay consecutive.
+///
+/// # Math
+/// ```text
+/// element e covers node lines [degree e, degree (e + 1)] in each direction
+/// region R = [a2, b2) x [a3, b3), cut line m: a < m < b - 1, m = 0 mod degree, nearest (a + b) / 2
+/// order(R) = order(R ∩ {i < m}), order(R ∩ {i > m}), line m
+/// ```
+/// On a 2-D grid this gives `O(n log n)` fill and `O(n^1.5)` factor work. With `degree = 1`
+/// it is [`nested_dissection_grid`] with 1-line separators up to where the cuts fall.
+///
+/// # Panics
+/// If `degree` is zero.
+///
+/// # Example
+/// ```
+/// use capstan_solvers::{GridShape, is_permutation, nested_dissection_elements};
+/// // Q2 on 4 x 2 elements: 9 x 5 nodes
+/// let grid = GridShape { n2: 9, n3: 5, dofs_per_node: 2, periodic: false };
+/// let perm = nested_dissection_elements(grid, 2);
+/// assert!(is_permutation(&perm, 90));
+/// // the first cut is the element boundary x2 line 4, numbered last
+/// assert!(perm[80..].iter().all(|&p| p / 2 / 5 == 4));
+/// ```
+#[track_caller]
+pub fn nested_dissection_elements(grid: GridShape, degree: usize) -> Vec<usize> {
+    assert!(degree > 0, "degree must be positive");
+    let mut perm = Vec::with_capacity(grid.dof_count());
+    // on the ring, line 0 comes again after line n2 - 1: the second cut is half way round
+    let half = aligned_cut(0, grid.n2 + 1, degree).filter(|&h| h > 1 && h + 1 < grid.n2);
+    match half {
+        Some(half) if grid.periodic => {
+            // lines 0 and `half` split the ring into two open pieces
+            dissect_elements(grid, degree, (1, half), (0, grid.n3), &mut perm);
+            dissect_elements(grid, degree, (half + 1, grid.n2), (0, grid.n3), &mut perm);
+            push_block(grid, (0, 1), (0, grid.n3), &mut perm);
+            push_block(grid, (half, half + 1), (0, grid.n3), &mut perm);
+        }
+        _ => dissect_elements(grid, degree, (0, grid.n2), (0, grid.n3), &mut perm),
+    }
+    debug_assert_eq!(perm.len(), grid.dof_count());
+    perm
+}
+
+/// The element-boundary line (a multiple of `degree`) strictly inside `[a, b)` with a line on
+/// each side (`a < m < b - 1`), nearest the middle `(a + b - 1) / 2`.
+fn aligned_cut(a: usize, b: usize, degree: usize) -> Option<usize> {
+    if b < a + 3 {
+        return None;
+    }
+    let mid = (a + b - 1) / 2;
+    let below = mid - mid % degree;
+    let above = below + degree;
+    let ok = |m: usize| a < m && m + 1 < b;
+    match (ok(below), ok(above)) {
+        (true, true) if above - mid < mid - below => Some(above),
+        (true, _) => Some(below),
+        (false, true) => Some(above),
+        (false, false) => None,
+    }
+}
+
+/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`, cutting along
+/// element boundaries.
+fn dissect_elements(
+    grid: GridShape,
+    degree: usize,
+    r2: (usize, usize),
+    r3: (usize, usize),
+    perm: &mut Vec<usize>,
+) {
+    let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
+    if l2 * l3 <= LEAF_NODES {
+        push_block(grid, r2, r3, perm);
+        return;
+    }
+    let cut2 = aligned_cut(r2.0, r2.1, degree);
+    let cut3 = aligned_cut(r3.0, r3.1, degree);
+    match (cut2, cut3) {
+        (Some(m), _) if l2 >= l3 || cut3.is_none() => {
+            dissect_elements(grid, degree, (r2.0, m), r3, perm);
+            dissect_elements(grid, degree, (m + 1, r2.1), r3, perm);
+            push_block(grid, (m, m + 1), r3, perm);
+        }
+        (_, Some(m)) => {
+            dissect_elements(grid, degree, r2, (r3.0, m), perm);
+            dissect_elements(grid, degree, r2, (m + 1, r3.1), perm);
+            push_block(grid, r2, (m, m + 1), perm);
+        }
+        _ => push_block(grid, r2, r3, perm),
     }
 }
 
@@ -518,6 +647,74 @@ mod tests {
         assert!(is_permutation(&amd_compressed(&pattern).unwrap(), 36));
         let (empty, _) = SparsityPattern::from_entries(0, 0, &[]).unwrap();
         assert!(amd_compressed(&empty).unwrap().is_empty());
+    }
+
+    /// The symmetric pattern of `Q_degree` elements on a grid (every node coupled to every
+    /// node of the elements it belongs to), `b` unknowns per node.
+    fn element_pattern(grid: GridShape, degree: usize) -> SparsityPattern {
+        let (n2, n3, b) = (grid.n2, grid.n3, grid.dofs_per_node);
+        let e2 = if grid.periodic {
+            n2 / degree
+        } else {
+            (n2 - 1) / degree
+        };
+        let e3 = (n3 - 1) / degree;
+        let mut entries = vec![];
+        for i in 0..e2 {
+            for j in 0..e3 {
+                let nodes: Vec<usize> = (0..=degree)
+                    .flat_map(|a| {
+                        (0..=degree).map(move |c| ((degree * i + a) % n2) * n3 + degree * j + c)
+                    })
+                    .collect();
+                for &p in &nodes {
+                    for &q in &nodes {
+                        for c in 0..b {
+                            for d in 0..b {
+                                entries.push((b * p + c, b * q + d));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        SparsityPattern::from_entries(grid.dof_count(), grid.dof_count(), &entries)
+            .unwrap()
+            .0
+    }
+
+    #[test]
+    fn element_dissection_cuts_on_element_boundaries_and_fills_less_than_natural() {
+        for (periodic, n2) in [(false, 17), (true, 16)] {
+            let grid = GridShape {
+                n2,
+                n3: 9,
+                dofs_per_node: 2,
+                periodic,
+            };
+            let perm = nested_dissection_elements(grid, 2);
+            assert!(is_permutation(&perm, grid.dof_count()));
+            // the last line eliminated is a single element-boundary line
+            let last: Vec<usize> = perm[perm.len() - 18..].iter().map(|&p| p / 18).collect();
+            assert!(
+                last.iter().all(|&i2| i2 == last[0] && i2 % 2 == 0),
+                "{last:?}"
+            );
+            let pattern = element_pattern(grid, 2);
+            let nd = cholesky_fill(&pattern, &perm);
+            let natural = cholesky_fill(&pattern, &(0..grid.dof_count()).collect::<Vec<_>>());
+            assert!(nd < natural, "{nd} vs natural {natural}");
+        }
+    }
+
+    #[test]
+    fn aligned_cut_is_on_a_boundary_with_lines_on_both_sides() {
+        assert_eq!(aligned_cut(0, 9, 2), Some(4));
+        assert_eq!(aligned_cut(1, 8, 2), Some(4));
+        assert_eq!(aligned_cut(0, 3, 2), None); // only lines 0, 1, 2: no interior boundary
+        assert_eq!(aligned_cut(0, 5, 2), Some(2));
+        assert_eq!(aligned_cut(5, 9, 1), Some(6));
+        assert_eq!(aligned_cut(3, 6, 2), Some(4));
     }
 
     #[test]

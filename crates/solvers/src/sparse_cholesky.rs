@@ -83,6 +83,12 @@ impl SparseCholesky {
         self.factorisations
     }
 
+    /// Values stored for the factor `L` by the last `analyse` (the fill of the ordering,
+    /// supernodal padding included), 0 before it.
+    pub fn factor_values(&self) -> usize {
+        self.l_values.len()
+    }
+
     fn check_symmetry(&self, pattern: &SparsityPattern, values: &[f64]) -> Result<(), SolverError> {
         let bound = self.params.symmetry_tolerance * inf_norm(values);
         let col_ptr = pattern.col_ptr();
@@ -170,7 +176,8 @@ impl LinearSolver<f64> for SparseCholesky {
                 Some(crate::ordering::amd_compressed(pattern)?)
             }
             ColumnOrdering::Auto | ColumnOrdering::Amd => None,
-            ordering @ ColumnOrdering::NestedDissection { .. } => ordering.permutation(pattern)?,
+            ordering @ (ColumnOrdering::NestedDissection { .. }
+            | ColumnOrdering::ElementNestedDissection { .. }) => ordering.permutation(pattern)?,
         };
         let inverse = perm.as_ref().map(|p| {
             let mut inv = vec![0usize; n];

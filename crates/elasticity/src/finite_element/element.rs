@@ -38,6 +38,42 @@ impl ElementOrder {
         }
     }
 
+    /// The fill-reducing ordering for a sparse Cholesky of these elements on `grid` (2
+    /// unknowns per node, numbered as [`crate::Discretisation::dof`]): nested dissection along
+    /// element boundaries, one node line per separator
+    /// ([`capstan_solvers::nested_dissection_elements`]).
+    ///
+    /// # Math
+    /// ```text
+    /// element boundaries: node lines i = 0 mod k;  one such line separates the two sides
+    /// ```
+    /// Measured on the Lamé cylinder (Q2, `examples/profile_fem_lame.rs`): against AMD on the
+    /// node quotient graph, 3% less fill at 33,280 unknowns (2.83e6 against 2.92e6 values of
+    /// `L`) and about half the analyse time (no minimum-degree search), the factor time equal
+    /// or lower; at 8,448 unknowns the same fill to 0.4%.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_elasticity::Grid;
+    /// use capstan_elasticity::finite_element::ElementOrder;
+    /// use capstan_elasticity::solvers::{ColumnOrdering, GridShape};
+    /// let grid = Grid::new([0.0, 1.0], 1.0, 9, 5, false).unwrap();
+    /// let ordering = ElementOrder::Q2.cholesky_ordering(&grid);
+    /// let shape = GridShape { n2: 9, n3: 5, dofs_per_node: 2, periodic: false };
+    /// assert_eq!(ordering, ColumnOrdering::ElementNestedDissection { grid: shape, degree: 2 });
+    /// ```
+    pub fn cholesky_ordering(self, grid: &crate::grid::Grid) -> capstan_solvers::ColumnOrdering {
+        capstan_solvers::ColumnOrdering::ElementNestedDissection {
+            grid: capstan_solvers::GridShape {
+                n2: grid.n2(),
+                n3: grid.n3(),
+                dofs_per_node: 2,
+                periodic: grid.is_periodic(),
+            },
+            degree: self.degree(),
+        }
+    }
+
     /// Nodes per direction, `k + 1`.
     pub fn nodes_per_direction(self) -> usize {
         self.degree() + 1

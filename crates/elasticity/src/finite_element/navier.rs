@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use super::element::{ElementOrder, gauss_rule};
 use super::volumetric::VolumetricIntegration;
 use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
-use crate::discretisation::{ContactNode, Discretisation, SparseRow};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_difference::BodyForce;
@@ -17,6 +17,7 @@ use crate::kinematics::{
 };
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
+use capstan_solvers::SparsityPattern;
 
 /// Relative tolerance of the plane-strain check on the chart (as the finite differences).
 const PLANE_STRAIN_TOLERANCE: f64 = 1e-10;
@@ -135,14 +136,11 @@ pub struct FiniteElementNavier<G> {
     dirichlet: Vec<Option<f64>>,
     /// Right-hand side from the body force and the natural boundary data.
     load: Vec<f64>,
-    /// The pattern, row by row (`entries()` order).
-    row_ptr: Vec<usize>,
-    columns: Vec<usize>,
-    /// Slot of each local entry `(I, J)` of each element, `NO_SLOT` if none.
+    /// The compressed-column pattern of the system (`entries()` is its slots in order).
+    pattern: SparsityPattern,
+    /// Slot in `pattern` of each local entry `(I, J)` of each element, `NO_SLOT` if none.
     local_slots: Vec<u32>,
-    /// Index in `entries()` (column-major) of each row-wise slot.
-    entry_of_slot: Vec<u32>,
-    /// Slot of the diagonal of each dof.
+    /// Slot in `pattern` of the diagonal of each dof.
     diagonal_slots: Vec<usize>,
     /// `[T^3_2, T^3_3]` coefficients and `[sqrt(g), sqrt(g^33), sqrt(g_22)]` on `x3 = 0`.
     contact: Vec<(Coefficients, [f64; 3])>,
@@ -418,10 +416,9 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             reduced_divergence: vec![],
             dirichlet: vec![],
             load: vec![],
-            row_ptr: vec![],
-            columns: vec![],
+            pattern: SparsityPattern::from_compressed_columns(0, 0, vec![0], vec![])
+                .expect("the empty pattern"),
             local_slots: vec![],
-            entry_of_slot: vec![],
             diagonal_slots: vec![],
             contact: vec![],
         };
@@ -930,29 +927,36 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                     }
                 }
             });
-        self.diagonal_slots = (0..ndof)
-            .map(|d| slot(d, d).expect("diagonal in the pattern"))
-            .collect();
-        // entries() lists the pattern column by column (rows increasing), the order in which
-        // `SparsityPattern::from_entries` sorts: its sort then only has to confirm the order.
-        let mut next = vec![0usize; ndof + 1];
+        // the compressed columns: the row-wise pattern transposed by a counting pass (rows come
+        // out increasing in each column), and every row-wise slot mapped to its column slot
+        let mut col_ptr = vec![0usize; ndof + 1];
         for &c in &columns {
-            next[c + 1] += 1;
+            col_ptr[c + 1] += 1;
         }
         for c in 0..ndof {
-            next[c + 1] += next[c];
+            col_ptr[c + 1] += col_ptr[c];
         }
-        let mut entry_of_slot = vec![0u32; columns.len()];
+        let mut next = col_ptr[..ndof].to_vec();
+        let mut row_idx = vec![0usize; columns.len()];
+        let mut column_slot = vec![0u32; columns.len()];
         for r in 0..ndof {
             for k in row_ptr[r]..row_ptr[r + 1] {
                 let c = columns[k];
-                entry_of_slot[k] = next[c] as u32;
+                row_idx[next[c]] = r;
+                column_slot[k] = next[c] as u32;
                 next[c] += 1;
             }
         }
-        self.entry_of_slot = entry_of_slot;
-        self.row_ptr = row_ptr;
-        self.columns = columns;
+        local_slots.par_iter_mut().for_each(|s| {
+            if *s != NO_SLOT {
+                *s = column_slot[*s as usize];
+            }
+        });
+        self.diagonal_slots = (0..ndof)
+            .map(|d| column_slot[slot(d, d).expect("diagonal in the pattern")] as usize)
+            .collect();
+        self.pattern = SparsityPattern::from_compressed_columns(ndof, ndof, col_ptr, row_idx)
+            .expect("rows increase in each column by construction");
         self.local_slots = local_slots;
     }
 
@@ -1019,12 +1023,12 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         }
     }
 
-    /// The assembled values (in `entries()` order) and right-hand side.
+    /// The assembled values (in `pattern` order, that of `entries()`) and right-hand side.
     fn assemble(&self, rhs: &mut [f64]) -> Vec<f64> {
         let nen = self.nodes_per_element();
         let l = 2 * nen;
         let ne = self.elements[0] * self.elements[1];
-        let mut values = vec![0.0; self.columns.len()];
+        let mut values = vec![0.0; self.pattern.nnz()];
         rhs.copy_from_slice(&self.load);
         let mut buffer = vec![0.0; BATCH.min(ne) * l * l];
         let mut nodes = [0; 9];
@@ -1183,13 +1187,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
     }
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
-        let mut entries = vec![(0, 0); self.columns.len()];
-        for r in 0..self.dof_count() {
-            for k in self.row_ptr[r]..self.row_ptr[r + 1] {
-                entries[self.entry_of_slot[k] as usize] = (r, self.columns[k]);
-            }
-        }
-        Ok(entries)
+        Ok(self.pattern.entries().collect())
     }
 
     fn fill(
@@ -1204,15 +1202,18 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
                 found: rhs.len(),
             });
         }
-        let values = self.assemble(rhs);
-        let mut ordered = vec![0.0; values.len()];
-        for (x, &e) in values.iter().zip(&self.entry_of_slot) {
-            ordered[e as usize] = *x;
-        }
-        for (k, x) in ordered.into_iter().enumerate() {
+        for (k, x) in self.assemble(rhs).into_iter().enumerate() {
             add(k, x);
         }
         Ok(())
+    }
+
+    /// The pattern built with the discretisation (no `entries()` and sort), the values
+    /// assembled straight into its slots; equal to the default (tested).
+    fn system(&self) -> Result<LinearSystem, ElasticityError> {
+        let mut rhs = vec![0.0; self.dof_count()];
+        let values = self.assemble(&mut rhs);
+        LinearSystem::from_parts(self.pattern.clone(), values, rhs)
     }
 
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
@@ -1332,6 +1333,102 @@ mod tests {
                     // the same sums in another order: round-off only
                     assert!((a - b).abs() <= 1e-13 * size, "x2 {x2} x3 {x3}: {a} vs {b}");
                 }
+            }
+        }
+    }
+
+    /// The pattern by brute force: every pair of nodes of an element (a prescribed row keeps
+    /// its diagonal only, a prescribed column is dropped) and the contact columns of every free
+    /// tangential row on `x3 = 0`, through `SparsityPattern::from_entries` (the sort).
+    fn pattern_by_definition<G: ShellGeometry + Sync>(
+        op: &FiniteElementNavier<G>,
+    ) -> SparsityPattern {
+        let nen = op.nodes_per_element();
+        let mut entries = vec![];
+        let mut nodes = [0; 9];
+        for e in 0..op.elements[0] * op.elements[1] {
+            op.element_nodes(e, &mut nodes);
+            for &a in &nodes[..nen] {
+                for &b in &nodes[..nen] {
+                    for (r, c) in (0..4).map(|k| (2 * a + k / 2, 2 * b + k % 2)) {
+                        let keep = match op.dirichlet[r] {
+                            Some(_) => r == c,
+                            None => op.dirichlet[c].is_none(),
+                        };
+                        if keep {
+                            entries.push((r, c));
+                        }
+                    }
+                }
+            }
+        }
+        for i in 0..op.grid.n2() {
+            let d = op.dof([i, 0], Component::X2);
+            if op.dirichlet[d].is_none() {
+                for row in op.contact_rows(i) {
+                    entries.extend(row.columns.iter().map(|&c| (d, c)));
+                }
+            }
+        }
+        let n = op.dof_count();
+        SparsityPattern::from_entries(n, n, &entries).unwrap().0
+    }
+
+    #[test]
+    fn direct_pattern_and_system_equal_the_entries_path() {
+        use crate::finite_element::{lame_parts, paper_parts};
+        use crate::samples::{LameCylinder, PaperEllipse};
+        use crate::verification::GridLevel;
+        for order in [ElementOrder::Q1, ElementOrder::Q2] {
+            let parts = [
+                lame_parts(&LameCylinder::default(), GridLevel { n2: 16, n3: 5 }).unwrap(),
+                paper_parts(&PaperEllipse::default(), GridLevel { n2: 17, n3: 5 }).unwrap(),
+            ];
+            for parts in parts {
+                let op = parts.finite_element(order).unwrap();
+                assert_eq!(op.pattern, pattern_by_definition(&op), "{order:?}");
+                // the default `system()`: entries, sort, fill through the slots
+                let entries = op.entries().unwrap();
+                let mut reference = LinearSystem::from_entries(op.dof_count(), &entries).unwrap();
+                op.refill(&mut reference).unwrap();
+                let direct = op.system().unwrap();
+                assert_eq!(direct.pattern, reference.pattern);
+                // the same sums in the same order: bitwise equal
+                assert_eq!(direct.values, reference.values);
+                assert_eq!(direct.rhs, reference.rhs);
+            }
+        }
+    }
+
+    #[test]
+    fn element_nested_dissection_solution_equals_amd() {
+        use crate::finite_element::lame_parts;
+        use crate::samples::LameCylinder;
+        use crate::verification::GridLevel;
+        use capstan_solvers::{ColumnOrdering, DirectParams, SparseCholesky};
+        for order in [ElementOrder::Q1, ElementOrder::Q2] {
+            let level = GridLevel { n2: 48, n3: 13 };
+            let op = lame_parts(&LameCylinder::default(), level)
+                .unwrap()
+                .finite_element(order)
+                .unwrap();
+            let system = op.system().unwrap();
+            let solve = |ordering| {
+                let mut chol = SparseCholesky::new(DirectParams {
+                    ordering,
+                    ..Default::default()
+                })
+                .unwrap();
+                let v = system.solve(&mut chol).unwrap();
+                (v, chol.factor_values())
+            };
+            let (amd, _) = solve(ColumnOrdering::Amd);
+            let (nd, fill) = solve(order.cholesky_ordering(op.grid()));
+            assert!(fill > 0);
+            let scale = amd.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (a, b) in amd.iter().zip(&nd) {
+                // two backward-stable factorisations of a well-conditioned system
+                assert!((a - b).abs() <= 1e-12 * scale, "{order:?}: {a} vs {b}");
             }
         }
     }
