@@ -39,6 +39,10 @@ use core::fmt;
 /// Ciarlet's criterion asks of a quadrature to keep the H1 order `k` and (Aubin–Nitsche) the L2
 /// order `k + 1`; tested on the manufactured solutions and the Lamé cylinder.
 ///
+/// Stresses: the contact rows and the nodal output take `lambda div v` from the reduced points
+/// (extrapolated to the nodes), not from the pointwise divergence, which SRI leaves
+/// unpenalised; see the contact rows of [`crate::finite_element::FiniteElementNavier`].
+///
 /// # References
 /// T. J. R. Hughes, *The Finite Element Method*, §4.4 (selective reduced integration,
 /// equivalence theorem of Malkus and Hughes, 1978).
