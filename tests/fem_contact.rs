@@ -3,54 +3,35 @@
 //! the finite elements implement the `Discretisation` contract (contact rows, lumped weights)
 //! faithfully enough that all three converge to the same answer.
 
+use capstan_elasticity::Component;
 use capstan_elasticity::Discretisation;
-use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactSettings, EndLoads, ThickBody,
-};
-use capstan_elasticity::finite_element::{ElementOrder, FiniteElementNavier};
+use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
+use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-use capstan_elasticity::{Component, Grid};
-use capstan_geometry::ShellChart;
 
 const EPS: f64 = 1e-5;
 
 /// `(max |v^2| on the outer surface, slip fraction)` of the default case on `(4m+1) x (m+1)`.
 fn solve(m: usize, order: Option<ElementOrder>) -> (f64, f64) {
-    let body = ThickBody::paper(4 * m + 1, m + 1).unwrap();
-    let params = RegularisedCoulombParams::new(0.5, EPS).unwrap();
-    let loads = EndLoads::ratio(2.0);
-    let outer = |op: &dyn Discretisation, v: &[f64]| {
-        (0..op.grid().n2())
-            .map(|i| v[op.dof([i, m], Component::X2)].abs())
-            .fold(0.0f64, f64::max)
+    let method = match order {
+        None => DiscretisationMethod::Fd,
+        Some(ElementOrder::Q1) => DiscretisationMethod::FemQ1,
+        Some(ElementOrder::Q2) => DiscretisationMethod::FemQ2,
     };
-    match order {
-        None => {
-            let model = body.model(RegularisedCoulomb, params, EPS).unwrap();
-            let s = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
-            let sol = s.solve(loads).unwrap();
-            let op = body.discretisation(1.0, 2.0).unwrap();
-            (outer(&op, &sol.displacement), sol.slip_fraction)
-        }
-        Some(order) => {
-            let build = |t0: f64, tm: f64| {
-                let grid = Grid::new(body.theta, body.thickness, body.n2, body.n3, false)?;
-                FiniteElementNavier::new(
-                    ShellChart::new(body.obstacle.clone()),
-                    body.material,
-                    grid,
-                    ThickBody::boundary(t0, tm),
-                    None,
-                    order,
-                )
-            };
-            let model = ContactModel::new(build, RegularisedCoulomb, params, EPS).unwrap();
-            let s = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
-            let sol = s.solve(loads).unwrap();
-            let op = build(1.0, 2.0).unwrap();
-            (outer(&op, &sol.displacement), sol.slip_fraction)
-        }
-    }
+    let body = ThickBody {
+        method,
+        ..ThickBody::paper(4 * m + 1, m + 1).unwrap()
+    };
+    let params = RegularisedCoulombParams::new(0.5, EPS).unwrap();
+    let model = body.model(RegularisedCoulomb, params, EPS).unwrap();
+    let s = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let sol = s.solve(EndLoads::ratio(2.0)).unwrap();
+    let op = model.discretisation();
+    assert_eq!(op.method(), method.name());
+    let outer = (0..op.grid().n2())
+        .map(|i| sol.displacement[op.dof([i, m], Component::X2)].abs())
+        .fold(0.0f64, f64::max);
+    (outer, sol.slip_fraction)
 }
 
 #[test]

@@ -596,6 +596,52 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         out
     }
 
+    /// `x3` of every Gauss point `gp` (reference abscissae) of a column of elements, element
+    /// by element: index `e3 nqd + j`.
+    fn column_heights(&self, gp: &[f64]) -> Vec<f64> {
+        let [_, l3] = self.element_size();
+        let k = self.order.degree();
+        (0..self.elements[1])
+            .flat_map(|e3| {
+                let y0 = self.grid.x3(k * e3);
+                gp.iter().map(move |&eta| y0 + 0.5 * (eta + 1.0) * l3)
+            })
+            .collect()
+    }
+
+    /// Walks the tensor Gauss points `gp x gp` of the column of elements `e2`, one chart column
+    /// ([`ShellGeometry::shell_column`]) per `x2` abscissa: `visit(i, e3, j, point, [x2, x3])`
+    /// with `i`, `j` the point's indices along `x2`, `x3` inside element `(e2, e3)`; the point
+    /// is checked for the plane-strain reduction first.
+    fn walk_column(
+        &self,
+        e2: usize,
+        gp: &[f64],
+        heights: &[f64],
+        mut visit: impl FnMut(
+            usize,
+            usize,
+            usize,
+            &ShellPoint<f64>,
+            [f64; 2],
+        ) -> Result<(), ElasticityError>,
+    ) -> Result<(), ElasticityError> {
+        let [l2, _] = self.element_size();
+        let x0 = self.grid.x2(self.order.degree() * e2);
+        let nqd = gp.len();
+        let mut points = Vec::with_capacity(heights.len());
+        for (i, &xi) in gp.iter().enumerate() {
+            let x2 = x0 + 0.5 * (xi + 1.0) * l2;
+            points.clear();
+            self.chart.shell_column([0.0, x2], heights, &mut points)?;
+            for (idx, (p, &x3)) in points.iter().zip(heights).enumerate() {
+                check_plane_strain(p, [0.0, x2, x3])?;
+                visit(i, idx / nqd, idx % nqd, p, [x2, x3])?;
+            }
+        }
+        Ok(())
+    }
+
     /// Evaluates the geometry at every quadrature point and adds the body force: one column
     /// of points ([`ShellGeometry::shell_column`], one surface jet) per `x2` abscissa of each
     /// column of elements, the columns in parallel.
@@ -605,15 +651,8 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let det = 0.25 * l2 * l3;
         let (nq, nen) = (self.quadrature_points(), self.nodes_per_element());
         let [ne2, ne3] = self.elements;
-        let k = self.order.degree();
         let nqd = gp.len();
-        // x3 of every quadrature point of a column of elements, element by element
-        let heights: Vec<f64> = (0..ne3)
-            .flat_map(|e3| {
-                let y0 = self.grid.x3(k * e3);
-                gp.iter().map(move |&eta| y0 + 0.5 * (eta + 1.0) * l3)
-            })
-            .collect();
+        let heights = self.column_heights(&gp);
         let mut stiffness = vec![[0.0; 21]; ne2 * ne3 * nq];
         let mut local_loads = vec![
             0.0;
@@ -629,43 +668,32 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                        kq: &mut [[f64; 21]],
                        mut load: Option<&mut [f64]>|
          -> Result<(), ElasticityError> {
-            let x0 = this.grid.x2(k * e2);
-            let mut points = Vec::with_capacity(heights.len());
-            for (i, &xi) in gp.iter().enumerate() {
-                let x2 = x0 + 0.5 * (xi + 1.0) * l2;
-                points.clear();
-                this.chart.shell_column([0.0, x2], &heights, &mut points)?;
-                for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
-                    let (e3, j) = (idx / nqd, idx % nqd);
-                    check_plane_strain(p, [0.0, x2, x3])?;
-                    let q = i * nqd + j;
-                    let w = gw[i] * gw[j] * det;
-                    kq[e3 * nq + q] = match this.volumetric {
-                        VolumetricIntegration::Full => point_stiffness(p, &this.material, w),
-                        // the shear part only: the volumetric part is at the reduced points
-                        VolumetricIntegration::Reduced => {
-                            point_energy(p, 0.0, this.material.mu(), w)
-                        }
-                    };
-                    if let (Some(f), Some(load)) = (body_force, load.as_deref_mut()) {
-                        let x = [x2, x3];
-                        let fx = f(x);
-                        if !(fx[0].is_finite() && fx[1].is_finite()) {
-                            return Err(ElasticityError::NonFinite {
-                                what: "body force",
-                                at: x,
-                            });
-                        }
-                        let load = &mut load[e3 * 2 * nen..(e3 + 1) * 2 * nen];
-                        for a in 0..nen {
-                            let n = this.shape[q * nen + a][0] * p.sqrt_g * w;
-                            load[2 * a] += n * fx[0];
-                            load[2 * a + 1] += n * fx[1];
-                        }
+            this.walk_column(e2, &gp, &heights, |i, e3, j, p, [x2, x3]| {
+                let q = i * nqd + j;
+                let w = gw[i] * gw[j] * det;
+                kq[e3 * nq + q] = match this.volumetric {
+                    VolumetricIntegration::Full => point_stiffness(p, &this.material, w),
+                    // the shear part only: the volumetric part is at the reduced points
+                    VolumetricIntegration::Reduced => point_energy(p, 0.0, this.material.mu(), w),
+                };
+                if let (Some(f), Some(load)) = (body_force, load.as_deref_mut()) {
+                    let x = [x2, x3];
+                    let fx = f(x);
+                    if !(fx[0].is_finite() && fx[1].is_finite()) {
+                        return Err(ElasticityError::NonFinite {
+                            what: "body force",
+                            at: x,
+                        });
+                    }
+                    let load = &mut load[e3 * 2 * nen..(e3 + 1) * 2 * nen];
+                    for a in 0..nen {
+                        let n = this.shape[q * nen + a][0] * p.sqrt_g * w;
+                        load[2 * a] += n * fx[0];
+                        load[2 * a + 1] += n * fx[1];
                     }
                 }
-            }
-            Ok(())
+                Ok(())
+            })
         };
         if body_force.is_some() {
             stiffness
@@ -705,36 +733,22 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let [l2, l3] = self.element_size();
         let det = 0.25 * l2 * l3;
         let [ne2, ne3] = self.elements;
-        let (k, nqd) = (self.order.degree(), gp.len());
+        let nqd = gp.len();
         let nr = nqd * nqd;
-        let heights: Vec<f64> = (0..ne3)
-            .flat_map(|e3| {
-                let y0 = self.grid.x3(k * e3);
-                gp.iter().map(move |&eta| y0 + 0.5 * (eta + 1.0) * l3)
-            })
-            .collect();
+        let heights = self.column_heights(&gp);
         let lambda = self.material.lambda();
         let mut out = vec![[0.0; 7]; ne2 * ne3 * nr];
         let this = &*self;
-        out.par_chunks_mut(ne3 * nr).enumerate().try_for_each(
-            |(e2, column)| -> Result<(), ElasticityError> {
-                let x0 = this.grid.x2(k * e2);
-                let mut points = Vec::with_capacity(heights.len());
-                for (i, &xi) in gp.iter().enumerate() {
-                    let x2 = x0 + 0.5 * (xi + 1.0) * l2;
-                    points.clear();
-                    this.chart.shell_column([0.0, x2], &heights, &mut points)?;
-                    for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
-                        let (e3, j) = (idx / nqd, idx % nqd);
-                        check_plane_strain(p, [0.0, x2, x3])?;
-                        let t = divergence_coefficients(p);
-                        let c = lambda * p.sqrt_g * gw[i] * gw[j] * det;
-                        column[e3 * nr + i * nqd + j] = [c, t[0], t[1], t[2], t[3], t[4], t[5]];
-                    }
-                }
-                Ok(())
-            },
-        )?;
+        out.par_chunks_mut(ne3 * nr)
+            .enumerate()
+            .try_for_each(|(e2, column)| {
+                this.walk_column(e2, &gp, &heights, |i, e3, j, p, _| {
+                    let t = divergence_coefficients(p);
+                    let c = lambda * p.sqrt_g * gw[i] * gw[j] * det;
+                    column[e3 * nr + i * nqd + j] = [c, t[0], t[1], t[2], t[3], t[4], t[5]];
+                    Ok(())
+                })
+            })?;
         self.reduced_divergence = out;
         Ok(())
     }
