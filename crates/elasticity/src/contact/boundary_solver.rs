@@ -175,6 +175,15 @@ const FULL_SLIP_ITERATIONS: usize = 50;
 /// slip, `mu` sign for Coulomb) are singular too, and their left null vectors `y` give the
 /// solvability conditions `y . q(tau) = 0`, i.e. the limiting ratios (a discrete moment
 /// balance). Loads outside are [`ContactError::NoEquilibrium`].
+///
+/// The spring starts at `c_k = A_kk / w_k`. If it dominates every boundary mode of the body
+/// (largest singular value of `I - C P Z` below 0.1: thin bodies, whose
+/// diagonal grows like `1 / dx3^2` while their boundary stiffness falls like `h`), `s - C x`
+/// would cancel to rounding; the spring is then scaled by that singular value (down to the
+/// stiffest boundary mode) and the bulk condensed again. With a rigid mode `z` (`s = s_p + a z`),
+/// Newton keeps the amplitude `a` out of `s - C x` (it cancels there exactly) and, at every
+/// iterate, solves the scalar friction balance `y . G = 0` along the mode for `a` (`y` the left
+/// null vector of `I - C P Z`), where saturated friction leaves the Newton matrix no stiffness.
 pub struct BoundarySolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     lu: Mutex<SparseLu>,
