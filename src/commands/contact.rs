@@ -383,8 +383,8 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
 /// A plain-text summary.
 pub fn table(r: &ContactReport) -> String {
     let mut s = format!(
-        "contact: tau0 = {}, tau_max = {} (ratio {:.6}), grid {} x {}, {}\n",
-        r.tau0, r.tau_max, r.tension_ratio, r.grid[0], r.grid[1], r.method
+        "contact: tau0 = {}, tau_max = {} (ratio {:.6}), grid {} x {} ({}), {}\n",
+        r.tau0, r.tau_max, r.tension_ratio, r.grid[0], r.grid[1], r.discretisation, r.method
     );
     s += &format!(
         "  status {}: {} Newton iterations ({} continuation steps), residual {:.2e}, setup {:.3} s, solve {:.3} s\n",
