@@ -70,14 +70,7 @@ impl ProblemParts {
         self,
         order: ElementOrder,
     ) -> Result<FiniteElementNavier<SampleChart>, ElasticityError> {
-        FiniteElementNavier::new(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-            order,
-        )
+        self.finite_element_with(order, VolumetricIntegration::Full)
     }
 
     /// The finite-element discretisation of `order` with the volumetric part integrated as
