@@ -66,6 +66,68 @@ fn condensed_solver_agrees_with_full_system_newton() {
 }
 
 #[test]
+fn a_factorised_bulk_serves_other_friction_parameters_and_laws() {
+    // The circle (a sliding mode whose limits depend on mu) and an ellipse (none).
+    for body in [ThickBody::paper(41, 9).unwrap(), ellipse(2.0, 1.2, 41, 9)] {
+        let model = body
+            .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+            .unwrap();
+        let base = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let other = model.with_params(coulomb(0.3, EPS));
+        let tresca = body
+            .model(Tresca, TrescaParams::new(0.2, EPS).unwrap(), EPS)
+            .unwrap();
+        let reused = base.with_model(&other).unwrap();
+        let fresh = BoundarySolver::new(&other, ContactSettings::default()).unwrap();
+        let reused_tresca = base.with_model(&tresca).unwrap();
+        let fresh_tresca = BoundarySolver::new(&tresca, ContactSettings::default()).unwrap();
+        assert_eq!(reused.setup().factorisations, 0);
+        assert_eq!(reused.setup().bulk_solves, 0);
+        assert_eq!(reused.sliding(), fresh.sliding());
+        assert_eq!(reused_tresca.sliding(), fresh_tresca.sliding());
+        if let Some(mode) = fresh.sliding() {
+            // mu = 0.3 holds less than mu = 0.5
+            assert!(mode.upper_ratio < base.sliding().unwrap().upper_ratio);
+        }
+        for ratio in [1.0, 1.5] {
+            let loads = EndLoads::ratio(ratio);
+            for (a, b) in [
+                (reused.solve(loads).unwrap(), fresh.solve(loads).unwrap()),
+                (
+                    reused_tresca.solve(loads).unwrap(),
+                    fresh_tresca.solve(loads).unwrap(),
+                ),
+            ] {
+                // the same factorisation and condensed matrices: the same arithmetic
+                assert!(
+                    max_diff(&a.displacement, &b.displacement) <= 1e-13 * max_abs(&b.displacement),
+                    "ratio {ratio}"
+                );
+                assert_eq!(a.contact.state, b.contact.state);
+            }
+        }
+    }
+    // Another body is refused.
+    let circle = ThickBody::paper(41, 9).unwrap();
+    let model = circle
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let stiffer = ThickBody {
+        material: Material::new(2e3, 0.25).unwrap(),
+        ..circle
+    }
+    .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+    .unwrap();
+    assert!(matches!(
+        solver.with_model(&stiffer),
+        Err(ContactError::DifferentBody {
+            what: "bulk operators"
+        })
+    ));
+}
+
+#[test]
 fn jacobi_newton_agrees_with_lu_newton_on_a_small_grid() {
     let body = ThickBody::paper(16, 5).unwrap();
     let model = body

@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 
+use capstan_elasticity::Discretisation;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactError, ContactSettings, EndLoads, ThickBody,
 };
@@ -352,6 +353,14 @@ pub fn thick_body_slides(
         eps,
     )?;
     let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+    solver_slides(&solver, ratio)
+}
+
+/// [`thick_body_slides`] for a built solver.
+fn solver_slides<D: Discretisation, L: capstan_friction::FrictionLaw<f64>>(
+    solver: &BoundarySolver<'_, D, L>,
+    ratio: f64,
+) -> Result<bool, CliError> {
     match solver.solve(EndLoads::ratio(ratio)) {
         Ok(sol) => Ok(sol.fully_slipping()),
         Err(ContactError::NoEquilibrium { .. }) => Ok(true),
@@ -383,12 +392,17 @@ pub fn kikuchi_oden_mu(
     if ratio.is_nan() || ratio < 1.0 {
         return Err(FrictionError::TensionRatioBelowOne { ratio }.into());
     }
-    let solves = std::cell::Cell::new(0);
-    let slides = |mu: f64| {
-        solves.set(solves.get() + 1);
-        thick_body_slides(body, mu, ratio, eps)
-    };
     let guess = if guess > 0.0 { guess } else { 0.1 };
+    // The bulk does not depend on `mu`: factorise and condense it once, at the guess.
+    let law = |mu: f64| RegularisedCoulombParams::new(mu, eps);
+    let base_model = body.model(RegularisedCoulomb, law(guess)?, eps)?;
+    let base = BoundarySolver::new(&base_model, ContactSettings::default())?;
+    let solves = std::cell::Cell::new(0);
+    let slides = |mu: f64| -> Result<bool, CliError> {
+        solves.set(solves.get() + 1);
+        let model = base_model.with_params(law(mu)?);
+        solver_slides(&base.with_model(&model)?, ratio)
+    };
     let (mut lo, mut hi) = if slides(guess)? {
         let mut hi = 2.0 * guess;
         while slides(hi)? {

@@ -1,7 +1,7 @@
 //! The boundary-only (condensed) contact solver: factor the bulk once, Newton on the contact
 //! tractions only.
 
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{LinearSolver, SparseLu};
@@ -103,7 +103,7 @@ pub struct SetupStats {
     /// Bulk unknowns `n`.
     pub bulk_unknowns: usize,
     /// Sparse LU factorisations of the bulk (1; 2 when the spring was softened, see
-    /// [`BoundarySolver`]).
+    /// [`BoundarySolver`]; 0 for a solver from [`BoundarySolver::with_model`]).
     pub factorisations: usize,
     /// Sparse solves with the bulk factors (`m` per factorisation, `+ 2`).
     pub bulk_solves: usize,
@@ -186,10 +186,11 @@ const FULL_SLIP_ITERATIONS: usize = 50;
 /// null vector of `I - C P Z`), where saturated friction leaves the Newton matrix no stiffness.
 pub struct BoundarySolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
-    lu: Mutex<SparseLu>,
+    /// The factorised stabilised bulk, shared by the solvers of [`BoundarySolver::with_model`].
+    lu: Arc<Mutex<SparseLu>>,
     spring: Vec<f64>,
-    pz: Mat<f64>,
-    nz: Mat<f64>,
+    pz: Arc<Mat<f64>>,
+    nz: Arc<Mat<f64>>,
     /// `(P v_i, N v_i)` for unit `tau0` (`i = 0`) and unit `tau_max` (`i = 1`).
     base: [(Vec<f64>, Vec<f64>); 2],
     /// The stuck state (`v^2 = 0` at every contact node) for the unit loads: Newton's start.
@@ -281,10 +282,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         }
         let mut solver = Self {
             model,
-            lu: Mutex::new(lu),
+            lu: Arc::new(Mutex::new(lu)),
             spring,
-            pz,
-            nz,
+            pz: Arc::new(pz),
+            nz: Arc::new(nz),
             base: [b0, b1],
             stuck,
             sliding: None,
@@ -299,6 +300,63 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 bulk_solves: factorisations * m + 2,
             },
             settings,
+        };
+        solver.sliding = solver.sliding_mode()?;
+        Ok(solver)
+    }
+
+    /// A solver for `model`, the same body and contact surface with another friction law or
+    /// other friction parameters (`mu`, `eps`), that reuses this solver's factorisation and
+    /// condensed matrices: no sparse work, only the `m x m` sliding-mode analysis.
+    ///
+    /// # Math
+    /// `A~`, `P Z`, `N Z` and the unit-load states depend on the bulk operator, the contact
+    /// rows and the spring only, never on the law: with `A` and `b_0`, `b_1` equal, the
+    /// condensed equations `G(s) = s - t_2(sqrt(g22) x, sigma) - C x` of the new law are
+    /// exact. Only the limiting ratios (which depend on the law) are computed again.
+    ///
+    /// # Errors
+    /// [`ContactError::DifferentBody`] unless `model` has the same bulk operator, the same
+    /// unit-load right-hand sides and the same contact nodes (compared exactly); failures of
+    /// the sliding-mode analysis.
+    pub fn with_model<'b, L2: FrictionLaw<f64>>(
+        &self,
+        model: &'b ContactModel<D, L2>,
+    ) -> Result<BoundarySolver<'b, D, L2>, ContactError> {
+        let (old, new) = (self.model, model);
+        let differs = if old.system().pattern != new.system().pattern {
+            Some("sparsity patterns")
+        } else if old.system().values != new.system().values {
+            Some("bulk operators")
+        } else if (0..2).any(|i| old.rhs_basis(i) != new.rhs_basis(i)) {
+            Some("unit-load right-hand sides")
+        } else if old.contact_nodes() != new.contact_nodes() || old.active() != new.active() {
+            Some("contact nodes")
+        } else {
+            None
+        };
+        if let Some(what) = differs {
+            return Err(ContactError::DifferentBody { what });
+        }
+        let mut solver = BoundarySolver {
+            model,
+            lu: Arc::clone(&self.lu),
+            spring: self.spring.clone(),
+            pz: Arc::clone(&self.pz),
+            nz: Arc::clone(&self.nz),
+            base: self.base.clone(),
+            stuck: self.stuck.clone(),
+            sliding: None,
+            rigid_mode: Vec::new(),
+            rigid_shift: Vec::new(),
+            rigid_balance: Vec::new(),
+            homogeneous: true,
+            setup: SetupStats {
+                factorisations: 0,
+                bulk_solves: 0,
+                ..self.setup
+            },
+            settings: self.settings,
         };
         solver.sliding = solver.sliding_mode()?;
         Ok(solver)

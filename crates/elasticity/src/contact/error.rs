@@ -27,6 +27,13 @@ pub enum ContactError {
         /// What differs.
         what: &'static str,
     },
+    /// A factorised bulk was offered to a model of another body
+    /// ([`crate::contact::BoundarySolver::with_model`]).
+    #[error("the model is not the body this solver factorised ({what} differ); build a new solver")]
+    DifferentBody {
+        /// What differs.
+        what: &'static str,
+    },
     /// No contact node has a free tangential row (nothing for friction to act on).
     #[error("the contact surface has no node with a free tangential displacement")]
     NoContactNodes,

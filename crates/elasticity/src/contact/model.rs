@@ -104,7 +104,8 @@ pub(crate) struct ExtendedPattern {
 /// condensed solver ([`crate::contact::BoundarySolver`]) handle every tension ratio with two
 /// bulk solves.
 pub struct ContactModel<D, L: FrictionLaw<f64>> {
-    disc: D,
+    /// Shared by the models of [`ContactModel::with_params`].
+    disc: std::sync::Arc<D>,
     law: L,
     params: L::Params,
     slip_threshold: f64,
@@ -184,7 +185,7 @@ impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         let ext = extended_pattern(&system.pattern, &nodes, &active)?;
         Ok(Self {
-            disc,
+            disc: std::sync::Arc::new(disc),
             law,
             params,
             slip_threshold,
@@ -198,6 +199,27 @@ impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
 }
 
 impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
+    /// The same body and contact surface with other parameters of the law (`mu`, `eps`; the
+    /// stick/slip threshold is kept): nothing is assembled again (the discretisation is shared, the assembled operator
+    /// copied). Its [`crate::contact::BoundarySolver`] can reuse this model's factorisation
+    /// ([`crate::contact::BoundarySolver::with_model`]).
+    pub fn with_params(&self, params: L::Params) -> Self
+    where
+        L: Clone,
+    {
+        Self {
+            disc: std::sync::Arc::clone(&self.disc),
+            law: self.law.clone(),
+            params,
+            slip_threshold: self.slip_threshold,
+            system: self.system.clone(),
+            rhs_basis: self.rhs_basis.clone(),
+            nodes: self.nodes.clone(),
+            active: self.active.clone(),
+            ext: self.ext.clone(),
+        }
+    }
+
     /// The discretisation (built with unit load `tau0 = 1`, `tau_max = 0`; only its operator,
     /// numbering, contact rows and field evaluation are used).
     pub fn discretisation(&self) -> &D {
