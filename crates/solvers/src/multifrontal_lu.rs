@@ -344,12 +344,12 @@ impl FrontalStructure {
                     }
                 }
             }
-            factor_panel(&mut front, m, ns, &mut factors.swaps[b..e], b).map_err(|failure| {
-                match failure {
+            factor_panel(&mut front, m, ns, &mut factors.swaps[b..e], b, par).map_err(
+                |failure| match failure {
                     FrontFailure::Singular(k) => FrontFailure::Singular(self.perm_fwd[b + k]),
                     other => other,
-                }
-            })?;
+                },
+            )?;
             if nr > 0 {
                 let par = if nr * nr * ns >= PARALLEL_FLOPS {
                     par
@@ -620,17 +620,88 @@ impl FrontalStructure {
     }
 }
 
+/// Columns per block of [`factor_panel`]: within a block the LU is right-looking by rank-1
+/// updates; the rest of the panel is updated per block by a triangular solve and a matrix
+/// product (most of the work of wide supernodes, at matrix-product speed).
+const PANEL_BLOCK: usize = 32;
+
 /// Right-looking LU of the first `ns` columns of the `m x m` column-major `front`, pivots from
 /// rows `0..ns` only; the trailing columns get only the row swaps. `swaps[k]` receives
 /// `offset + ` the row swapped with `k`.
+///
+/// # Math
+/// Blocked by [`PANEL_BLOCK`] columns `[kb, ke)`: factor them (rows `kb..m`) by rank-1
+/// updates, then `U[kb..ke, ke..ns] = L[kb..ke, kb..ke]^-1 F[kb..ke, ke..ns]` and
+/// `F[ke..m, ke..ns] -= L[ke..m, kb..ke] U[kb..ke, ke..ns]`. Every column sees the same
+/// updates as in the unblocked order before its pivot is chosen, so the pivots agree.
 fn factor_panel(
     front: &mut [f64],
     m: usize,
     ns: usize,
     swaps: &mut [u32],
     offset: usize,
+    par: Par,
 ) -> Result<(), FrontFailure> {
-    for k in 0..ns {
+    factor_panel_blocked(front, m, ns, swaps, offset, PANEL_BLOCK, par)
+}
+
+/// [`factor_panel`] with blocks of `nb` columns (`nb >= ns`: unblocked).
+fn factor_panel_blocked(
+    front: &mut [f64],
+    m: usize,
+    ns: usize,
+    swaps: &mut [u32],
+    offset: usize,
+    nb: usize,
+    par: Par,
+) -> Result<(), FrontFailure> {
+    let nb = nb.max(1);
+    for kb in (0..ns).step_by(nb) {
+        let ke = (kb + nb).min(ns);
+        factor_columns(front, m, ns, kb..ke, swaps, offset)?;
+        if ke == ns {
+            break;
+        }
+        let par = if (m - ke) * (ns - ke) * (ke - kb) >= PARALLEL_FLOPS {
+            par
+        } else {
+            Par::Seq
+        };
+        let f = MatMut::from_column_major_slice_mut(front, m, m);
+        let (left, right) = f.split_at_col_mut(ke);
+        let block = left.rb().subcols(kb, ke - kb);
+        let right = right.subcols_mut(0, ns - ke);
+        let (top, bottom) = right.split_at_row_mut(ke);
+        let mut u = top.subrows_mut(kb, ke - kb);
+        faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
+            block.subrows(kb, ke - kb),
+            u.rb_mut(),
+            par,
+        );
+        faer::linalg::matmul::matmul(
+            bottom,
+            Accum::Add,
+            block.subrows(ke, m - ke),
+            u.rb(),
+            -1.0,
+            par,
+        );
+    }
+    Ok(())
+}
+
+/// The unblocked step of [`factor_panel_blocked`]: columns `cols` (within `0..ns`), whose
+/// updates from the columns before them are done; rank-1 updates reach only `cols`.
+fn factor_columns(
+    front: &mut [f64],
+    m: usize,
+    ns: usize,
+    cols: core::ops::Range<usize>,
+    swaps: &mut [u32],
+    offset: usize,
+) -> Result<(), FrontFailure> {
+    let end = cols.end;
+    for k in cols {
         let col = &front[m * k..m * (k + 1)];
         if col[k..].iter().any(|v| !v.is_finite()) {
             return Err(FrontFailure::NonFinite);
@@ -661,7 +732,7 @@ fn factor_panel(
         for v in &mut col[k + 1..] {
             *v *= inverse;
         }
-        for c in 0..ns - k - 1 {
+        for c in 0..end - k - 1 {
             let target = &mut right[m * c..m * (c + 1)];
             let u = target[k];
             if u == 0.0 {
@@ -754,6 +825,62 @@ mod tests {
     /// The widths of the tests: one column, a few, one internal block, and widths that are
     /// no multiple of it (nor of the dense-solve threshold).
     const WIDTHS: [usize; 5] = [1, 3, 64, 67, 131];
+
+    /// A random `m x m` front whose diagonal is `diagonal` times the other entries.
+    fn random_front(m: usize, diagonal: f64, seed: u64) -> Vec<f64> {
+        let mut rng = SplitMix64(seed);
+        let mut f: Vec<f64> = (0..m * m).map(|_| 2.0 * rng.uniform() - 1.0).collect();
+        for k in 0..m {
+            f[k + m * k] *= diagonal;
+        }
+        f
+    }
+
+    #[test]
+    fn blocked_panel_equals_the_unblocked_panel() {
+        let mut swapped = 0;
+        for (seed, (m, ns)) in [(150, 100), (97, 97), (200, 41), (64, 33), (300, 260)]
+            .into_iter()
+            .enumerate()
+        {
+            let front = random_front(m, 0.5, 40 + seed as u64);
+            let run = |nb: usize| {
+                let mut f = front.clone();
+                let mut swaps = vec![0u32; ns];
+                factor_panel_blocked(&mut f, m, ns, &mut swaps, 7, nb, Par::Seq).unwrap();
+                (f, swaps)
+            };
+            let (reference, ref_swaps) = run(ns);
+            swapped += ref_swaps
+                .iter()
+                .enumerate()
+                .filter(|&(k, &p)| p as usize != k + 7)
+                .count();
+            for nb in [1, 5, PANEL_BLOCK] {
+                let (f, swaps) = run(nb);
+                assert_eq!(swaps, ref_swaps, "m {m}, ns {ns}, nb {nb}");
+                let diff = relative_difference(&f, &reference);
+                // the same updates summed in another order
+                assert!(diff < 1e-12, "m {m}, ns {ns}, nb {nb}: {diff:e}");
+            }
+        }
+        assert!(swapped > 100, "only {swapped} row swaps");
+        // A block whose rows cannot pass the threshold is refused by both.
+        let (m, ns) = (120, 80);
+        let mut front = random_front(m, 1.0, 3);
+        for c in 0..m {
+            for i in ns..m {
+                front[i + m * c] *= 1e4;
+            }
+        }
+        for nb in [ns, PANEL_BLOCK] {
+            let mut f = front.clone();
+            assert_eq!(
+                factor_panel_blocked(&mut f, m, ns, &mut [0; 80], 0, nb, Par::Seq),
+                Err(FrontFailure::NeedsPivoting)
+            );
+        }
+    }
 
     #[test]
     fn blocked_solve_equals_scalar_solves_on_samples() {
