@@ -283,3 +283,26 @@ fn contact_follows_the_scene_discretisation() {
     ]);
     assert_eq!(v["discretisation"], "fem-q1");
 }
+
+#[test]
+fn full_newton_reports_its_grid_sequence_and_agrees_with_the_condensed_solver() {
+    // Below 20,000 nodes one level: the scene's grid, solved directly.
+    let grid = ["--set", "grid.n2=61", "--set", "grid.n3=11"];
+    let full = json(
+        &[
+            &["contact", "--set", "solver.nonlinear=full-newton"][..],
+            &grid[..],
+        ]
+        .concat(),
+    );
+    let condensed = json(&[&["contact"][..], &grid[..]].concat());
+    let iterations = full["newton_iterations"].as_u64().unwrap();
+    assert_eq!(
+        full["grid_sequence"],
+        serde_json::json!([[61, 11, iterations]])
+    );
+    assert_eq!(condensed["grid_sequence"], serde_json::Value::Null);
+    let v2 = |v: &serde_json::Value| v["max_azimuthal_displacement"]["value"].as_f64().unwrap();
+    assert!((v2(&full) / v2(&condensed) - 1.0).abs() < 1e-7);
+    assert_eq!(full["slip_fraction"], condensed["slip_fraction"]);
+}

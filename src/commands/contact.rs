@@ -6,7 +6,7 @@ use std::time::Instant;
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactError, ContactModel, ContactSettings, ContactSolution, EndLoads,
-    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
+    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
@@ -107,6 +107,16 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
 /// # Errors
 /// See [`thick_body`]; bad friction values; assembly errors.
 pub fn model(scene: &Scene) -> Result<SceneModel, CliError> {
+    let (law, params, eps) = scene_law(scene)?;
+    let body = thick_body(scene)?;
+    Ok(body.model(law, params, eps)?)
+}
+
+/// The scene's friction law, its parameters and the stick/slip threshold `friction.eps`.
+///
+/// # Errors
+/// An unknown `friction.law`; bad friction values.
+pub fn scene_law(scene: &Scene) -> Result<(AnyFrictionLaw, AnyFrictionParams<f64>, f64), CliError> {
     let f = &scene.friction;
     let kind = FrictionLawKind::parse(&f.law).ok_or_else(|| CliError::Scene {
         origin: "friction.law".into(),
@@ -117,8 +127,7 @@ pub fn model(scene: &Scene) -> Result<SceneModel, CliError> {
         ),
     })?;
     let params = AnyFrictionParams::new(kind, &f.settings())?;
-    let body = thick_body(scene)?;
-    Ok(body.model(AnyFrictionLaw, params, f.eps)?)
+    Ok((AnyFrictionLaw, params, f.eps))
 }
 
 /// The scene's loads.
@@ -170,7 +179,8 @@ pub struct ContactReport {
     pub status: &'static str,
     /// `true`.
     pub converged: bool,
-    /// Newton iterations in total.
+    /// Newton iterations in total (`full-newton`: on the scene's grid; `grid_sequence` has
+    /// the coarser levels).
     pub newton_iterations: usize,
     /// The paper's Slip (mean of the node states).
     pub slip_fraction: f64,
@@ -213,6 +223,10 @@ pub struct ContactReport {
     pub solve_seconds: f64,
     /// The bulk discretisation (`discretisation.method`): `fd`, `fem-q1` or `fem-q2`.
     pub discretisation: &'static str,
+    /// `full-newton` only: `[n2, n3, newton_iterations]` of each grid-sequencing level,
+    /// coarsest first (the coarsest solved boundary-only, each finer level by Newton from the
+    /// coarser solution interpolated; the last is the scene's grid). `null` otherwise.
+    pub grid_sequence: Option<Vec<[usize; 3]>>,
 }
 
 impl ContactReport {
@@ -265,6 +279,7 @@ impl ContactReport {
             setup_seconds: times[0],
             solve_seconds: times[1],
             discretisation: "fd",
+            grid_sequence: None,
         }
     }
 }
@@ -337,10 +352,10 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
     let method = SceneSolver::from_scene(scene)?;
     let loads = loads(scene);
     let t0 = Instant::now();
-    let model = model(scene)?;
     let grid = [scene.grid.n2, scene.grid.n3];
     match method {
         SceneSolver::Condensed => {
+            let model = model(scene)?;
             let solver = BoundarySolver::new(&model, ContactSettings::default())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
@@ -354,8 +369,36 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             };
             Ok((report, solved(scene, &model, sol)?))
         }
-        full => {
-            let solver = FullSystemSolver::new(&model, full.full_settings())?;
+        SceneSolver::FullNewton(_) => {
+            // Grid sequencing: the model is assembled level by level inside.
+            let (law, params, eps) = scene_law(scene)?;
+            let body = thick_body(scene)?;
+            let setup = t0.elapsed().as_secs_f64();
+            let t1 = Instant::now();
+            match solve_sequenced(&body, law, params, eps, loads, method.full_settings()) {
+                Ok(seq) => {
+                    let report = ContactReport {
+                        discretisation: capstan_elasticity::Discretisation::method(
+                            seq.model.discretisation(),
+                        ),
+                        grid_sequence: Some(
+                            seq.levels.iter().map(|&(a, b, c)| [a, b, c]).collect(),
+                        ),
+                        ..ContactReport::new(
+                            &seq.solution,
+                            None,
+                            grid,
+                            [setup, t1.elapsed().as_secs_f64()],
+                        )
+                    };
+                    Ok((report, solved(scene, &seq.model, seq.solution)?))
+                }
+                Err(e) => Err(explain_failure(scene, loads, e)),
+            }
+        }
+        SceneSolver::JacobiNewton => {
+            let model = model(scene)?;
+            let solver = FullSystemSolver::new(&model, method.full_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             match solver.solve(loads) {
@@ -368,15 +411,28 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
                     };
                     Ok((report, solved(scene, &model, sol)?))
                 }
-                Err(e @ ContactError::NotConverged { .. }) => {
-                    // Tell a missing equilibrium from a solver failure.
-                    let check = BoundarySolver::new(&model, ContactSettings::default())?;
-                    check.check_equilibrium(loads)?;
-                    Err(e.into())
-                }
-                Err(e) => Err(e.into()),
+                Err(e) => Err(explain_failure(scene, loads, e)),
             }
         }
+    }
+}
+
+/// A full-system failure, told apart: no equilibrium (checked by the boundary-only solver's
+/// limiting ratios) rather than non-convergence.
+fn explain_failure(scene: &Scene, loads: EndLoads, e: ContactError) -> CliError {
+    if !matches!(e, ContactError::NotConverged { .. }) {
+        return e.into();
+    }
+    let check = || -> Result<(), CliError> {
+        let model = model(scene)?;
+        BoundarySolver::new(&model, ContactSettings::default())?.check_equilibrium(loads)?;
+        Ok(())
+    };
+    match check() {
+        Err(no_equilibrium @ CliError::Contact(ContactError::NoEquilibrium { .. })) => {
+            no_equilibrium
+        }
+        _ => e.into(),
     }
 }
 

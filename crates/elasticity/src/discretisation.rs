@@ -296,3 +296,54 @@ pub trait Discretisation {
         self.system()?.solve(solver)
     }
 }
+
+/// The nodal field `v` of `from` interpolated onto the nodes of `to` (both on grids of the same
+/// parameter rectangle): bilinear in `(x2, x3)` on `from`'s grid, each component apart.
+///
+/// # Math
+/// ```text
+/// t2 = (x2 - theta0) / dx2,  i = floor(t2) (clamped to the last cell),  a = t2 - i
+/// t3 = x3 / dx3,             j = floor(t3) (likewise),                  b = t3 - j
+/// v(x2, x3) = (1-a)(1-b) v_ij + a(1-b) v_i+1,j + (1-a) b v_i,j+1 + a b v_i+1,j+1
+/// ```
+/// (`i + 1` wraps on a periodic grid). Exact for fields bilinear in `(x2, x3)`; the error of a
+/// smooth field is `O(dx^2)`: a starting guess on a finer grid ([`crate::contact::solve_sequenced`]).
+///
+/// # Panics
+/// If `v.len() != from.dof_count()`.
+pub fn interpolate_nodal<A, B>(from: &A, v: &[f64], to: &B) -> Vec<f64>
+where
+    A: Discretisation + ?Sized,
+    B: Discretisation + ?Sized,
+{
+    assert_eq!(v.len(), from.dof_count(), "one value per unknown of `from`");
+    let (src, dst) = (from.grid(), to.grid());
+    let [theta0, _] = src.theta();
+    let (n2, n3) = (src.n2(), src.n3());
+    let (dx2, dx3) = (src.dx2(), src.dx3());
+    let cell = |t: f64, n: usize, periodic: bool| -> (usize, usize, f64) {
+        if periodic {
+            let k = t.floor();
+            let i = (k.rem_euclid(n as f64)) as usize % n;
+            (i, (i + 1) % n, t - k)
+        } else {
+            let i = (t.floor().max(0.0) as usize).min(n - 2);
+            (i, i + 1, t - i as f64)
+        }
+    };
+    let mut out = vec![0.0; to.dof_count()];
+    for k in 0..dst.node_count() {
+        let node = dst.node(k);
+        let [x2, x3] = dst.coordinates(node);
+        let (i0, i1, a) = cell((x2 - theta0) / dx2, n2, src.is_periodic());
+        let (j0, j1, b) = cell(x3 / dx3, n3, false);
+        for c in Component::ALL {
+            let at = |i: usize, j: usize| v[from.dof([i, j], c)];
+            out[to.dof(node, c)] = (1.0 - a) * (1.0 - b) * at(i0, j0)
+                + a * (1.0 - b) * at(i1, j0)
+                + (1.0 - a) * b * at(i0, j1)
+                + a * b * at(i1, j1);
+        }
+    }
+    out
+}

@@ -48,7 +48,7 @@ pub use boundary::{
     BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
     SideCondition, X2Ends,
 };
-pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
+pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, interpolate_nodal};
 pub use error::ElasticityError;
 pub use fields::NodalFields;
 pub use finite_difference::{BodyForce, FiniteDifferenceNavier};

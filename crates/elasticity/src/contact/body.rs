@@ -188,6 +188,23 @@ impl ThickBody {
         })
     }
 
+    /// The body on the next coarser grid of grid sequencing: `n -> (n + 1) / 2` nodes per
+    /// direction (every other node of an odd `n`), kept odd for `fem-q2`; `None` when a
+    /// direction would fall below 5 nodes (9 for `fem-q2`).
+    pub fn coarser(&self) -> Option<ThickBody> {
+        let q2 = self.method == DiscretisationMethod::FemQ2;
+        let halve = |n: usize| {
+            let c = n.div_ceil(2);
+            let c = if q2 && c.is_multiple_of(2) { c + 1 } else { c };
+            (c >= if q2 { 9 } else { 5 } && c < n).then_some(c)
+        };
+        Some(ThickBody {
+            n2: halve(self.n2)?,
+            n3: halve(self.n3)?,
+            ..self.clone()
+        })
+    }
+
     /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`).
     ///
     /// # Errors

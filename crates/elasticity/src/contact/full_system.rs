@@ -8,11 +8,12 @@ use capstan_solvers::{
     SilentObserver, SolverError, SparseLu, SparsityPattern,
 };
 
-use crate::contact::boundary_solver::ContactSettings;
+use crate::contact::body::{ThickBody, ThickBodyOperator};
+use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
 use crate::contact::error::ContactError;
 use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::solution::{ContactSolution, SolveStats};
-use crate::discretisation::Discretisation;
+use crate::discretisation::{Discretisation, interpolate_nodal};
 
 /// Settings of [`FullSystemSolver`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -24,6 +25,9 @@ pub struct FullSystemSettings {
     pub newton: NewtonParams,
     /// Continuation settings (shared with the boundary-only solver).
     pub continuation: ContactSettings,
+    /// [`solve_sequenced`] solves grids of at most this many nodes directly (its coarsest
+    /// level); default [`SEQUENCING_COARSEST_NODES`].
+    pub coarsest_nodes: usize,
 }
 
 impl Default for FullSystemSettings {
@@ -32,6 +36,7 @@ impl Default for FullSystemSettings {
             method: NonlinearMethod::Newton,
             newton: NewtonParams::default(),
             continuation: ContactSettings::default(),
+            coarsest_nodes: SEQUENCING_COARSEST_NODES,
         }
     }
 }
@@ -86,12 +91,13 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
 /// Newton or Jacobi–Newton on the full residual, with load continuation.
 ///
 /// The start is the stuck solution (a stiff spring on `v^2` at the contact: the body held by
-/// friction everywhere), scaled with the load factor.
+/// friction everywhere), scaled with the load factor; or a given start
+/// ([`FullSystemSolver::solve_from`], e.g. a coarser grid's solution: [`solve_sequenced`]).
 pub struct FullSystemSolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     settings: FullSystemSettings,
-    /// The stuck solution for unit `tau0` and unit `tau_max`.
-    stuck: [Vec<f64>; 2],
+    /// The stuck solution for unit `tau0` and unit `tau_max` (one sparse LU, on first use).
+    stuck: std::sync::OnceLock<[Vec<f64>; 2]>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
@@ -103,16 +109,30 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
 }
 
 impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
-    /// Prepares the starting guesses (one sparse LU of the stuck operator).
+    /// Checks the settings (the stuck starting guesses are factorised on first use).
     ///
     /// # Errors
-    /// Invalid settings; solver failures.
+    /// Invalid settings.
     pub fn new(
         model: &'a ContactModel<D, L>,
         settings: FullSystemSettings,
     ) -> Result<Self, ContactError> {
         settings.continuation.validate()?;
         settings.newton.validate()?;
+        Ok(Self {
+            model,
+            settings,
+            stuck: std::sync::OnceLock::new(),
+        })
+    }
+
+    /// The stuck solutions for unit loads: one sparse LU of `A` with a stiff spring on the
+    /// tangential contact rows.
+    fn stuck_basis(&self) -> Result<&[Vec<f64>; 2], ContactError> {
+        if let Some(s) = self.stuck.get() {
+            return Ok(s);
+        }
+        let model = self.model;
         let ext = model.extended();
         let mut values = vec![0.0; ext.pattern.nnz()];
         for (k, &a) in model.system().values.iter().enumerate() {
@@ -124,24 +144,21 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut lu = SparseLu::default();
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
-        let stuck = [0, 1].map(|i| {
+        let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
             let mut v = model.rhs_basis(i).to_vec();
-            lu.solve_in_place(&mut v).map(|()| v)
-        });
-        let [a, b] = stuck;
-        Ok(Self {
-            model,
-            settings,
-            stuck: [a?, b?],
-        })
+            lu.solve_in_place(&mut v)?;
+            Ok(v)
+        };
+        let basis = [unit(0)?, unit(1)?];
+        Ok(self.stuck.get_or_init(|| basis))
     }
 
-    fn stuck(&self, loads: EndLoads) -> Vec<f64> {
-        self.stuck[0]
-            .iter()
-            .zip(&self.stuck[1])
+    fn stuck(&self, loads: EndLoads) -> Result<Vec<f64>, ContactError> {
+        let [a, b] = self.stuck_basis()?;
+        Ok(a.iter()
+            .zip(b)
             .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
-            .collect()
+            .collect())
     }
 
     fn newton(
@@ -179,25 +196,68 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         }
     }
 
+    /// Solves for the loads by Newton from `start` (one value per unknown, e.g. a coarser
+    /// grid's solution interpolated: [`crate::interpolate_nodal`]); if that fails, by
+    /// [`FullSystemSolver::solve`] (stuck start and load continuation), the iterations of the
+    /// failed attempt counted in the statistics.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for a start of the wrong length; see
+    /// [`FullSystemSolver::solve`].
+    pub fn solve_from(
+        &self,
+        loads: EndLoads,
+        start: &[f64],
+    ) -> Result<ContactSolution, ContactError> {
+        loads.check()?;
+        if start.len() != self.model.dof_count() {
+            return Err(ContactError::InvalidParameter {
+                field: "start",
+                value: start.len() as f64,
+                allowed: "one value per unknown",
+            });
+        }
+        let mut stats = SolveStats {
+            method: self.method_name(),
+            newton_iterations: 0,
+            continuation_steps: 1,
+            residual: 0.0,
+            linear_iterations: 0,
+            factorisations: 0,
+        };
+        let mut v = start.to_vec();
+        if start.iter().all(|x| x.is_finite()) && self.newton(loads, &mut v, &mut stats).is_ok() {
+            return Ok(ContactSolution::new(self.model, loads, v, stats));
+        }
+        let mut sol = self.solve(loads)?;
+        sol.stats.newton_iterations += stats.newton_iterations;
+        sol.stats.factorisations += stats.factorisations;
+        sol.stats.linear_iterations += stats.linear_iterations;
+        Ok(sol)
+    }
+
+    fn method_name(&self) -> &'static str {
+        match self.settings.method {
+            NonlinearMethod::JacobiNewton => "full-jacobi-newton",
+            _ => "full-newton",
+        }
+    }
+
     /// Solves for the loads.
     ///
     /// # Errors
     /// [`ContactError::NotConverged`] when the continuation fails; invalid loads.
     pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
         loads.check()?;
-        let method = match self.settings.method {
-            NonlinearMethod::JacobiNewton => "full-jacobi-newton",
-            _ => "full-newton",
-        };
         let mut stats = SolveStats {
-            method,
+            method: self.method_name(),
             newton_iterations: 0,
             continuation_steps: 1,
             residual: 0.0,
             linear_iterations: 0,
             factorisations: 1,
         };
-        let mut v = self.stuck(loads);
+        let mut v = self.stuck(loads)?;
         if self.newton(loads, &mut v, &mut stats).is_err() {
             let c = self.settings.continuation;
             let mut lambda = 0.0;
@@ -211,7 +271,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                 let mut trial: Vec<f64> = if lambda > 0.0 {
                     current.iter().map(|x| x * next / lambda).collect()
                 } else {
-                    self.stuck(loads.scaled(next))
+                    self.stuck(loads.scaled(next))?
                 };
                 match self.newton(loads.scaled(next), &mut trial, &mut stats) {
                     Ok(()) => {
@@ -244,4 +304,95 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         }
         Ok(ContactSolution::new(self.model, loads, v, stats))
     }
+}
+
+/// The default of [`FullSystemSettings::coarsest_nodes`]: grids with at most this many nodes
+/// are solved directly, by the boundary-only solver, as the coarsest level of
+/// [`solve_sequenced`] (the paper's 250 x 41 grid is one level).
+pub const SEQUENCING_COARSEST_NODES: usize = 20_000;
+
+/// The result of [`solve_sequenced`]: the finest level's model and solution, and the grids.
+pub struct Sequenced<L: FrictionLaw<f64>> {
+    /// The contact model on the body's own grid.
+    pub model: ContactModel<ThickBodyOperator, L>,
+    /// Its solution (statistics of the finest level; see `levels` for the others).
+    pub solution: ContactSolution,
+    /// `(n2, n3, newton iterations)` of every level, coarsest first.
+    pub levels: Vec<(usize, usize, usize)>,
+}
+
+/// The full-system Newton on `body` with grid sequencing (nested iteration): the body on
+/// ever coarser grids ([`ThickBody::coarser`]) down to [`FullSystemSettings::coarsest_nodes`],
+/// the coarsest solved by the boundary-only solver, each finer level by Newton from the
+/// coarser solution interpolated ([`crate::interpolate_nodal`]).
+///
+/// # Math
+/// The interpolated start is within `O(dx^2)` of the fine solution, inside Newton's region of
+/// quadratic convergence for all but the nodes whose stick/slip state changes, so each fine
+/// level needs a few factorisations instead of the dozens a stuck start and load continuation
+/// take on the large grids where a factorisation is the whole cost. A level whose Newton fails
+/// from its start falls back to [`FullSystemSolver::solve`]; every level's answer is the
+/// fine problem's (the sequence only chooses the start).
+///
+/// # Errors
+/// Model and solver errors of any level; [`ContactError::NoEquilibrium`] from the coarsest.
+pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
+    body: &ThickBody,
+    law: L,
+    params: L::Params,
+    slip_threshold: f64,
+    loads: EndLoads,
+    settings: FullSystemSettings,
+) -> Result<Sequenced<L>, ContactError> {
+    let mut bodies = vec![body.clone()];
+    while let Some(last) = bodies.last()
+        && last.n2 * last.n3 > settings.coarsest_nodes
+        && let Some(c) = last.coarser()
+    {
+        bodies.push(c);
+    }
+    bodies.reverse();
+    let mut levels = Vec::with_capacity(bodies.len());
+    let coarsest = &bodies[0];
+    let model = coarsest.model(law.clone(), params.clone(), slip_threshold)?;
+    let coarse = if bodies.len() == 1 {
+        FullSystemSolver::new(&model, settings)?.solve(loads)
+    } else {
+        BoundarySolver::new(&model, settings.continuation).and_then(|s| s.solve(loads))
+    };
+    let mut solution = match coarse {
+        Ok(solution) => solution,
+        Err(e) if bodies.len() == 1 || matches!(e, ContactError::NoEquilibrium { .. }) => {
+            return Err(e);
+        }
+        Err(_) => {
+            // no sequence without its coarsest level: the body's own grid directly
+            let model = body.model(law, params, slip_threshold)?;
+            let solution = FullSystemSolver::new(&model, settings)?.solve(loads)?;
+            let levels = vec![(body.n2, body.n3, solution.stats.newton_iterations)];
+            return Ok(Sequenced {
+                model,
+                solution,
+                levels,
+            });
+        }
+    };
+    levels.push((coarsest.n2, coarsest.n3, solution.stats.newton_iterations));
+    let mut model = model;
+    for fine in &bodies[1..] {
+        let fine_model = fine.model(law.clone(), params.clone(), slip_threshold)?;
+        let start = interpolate_nodal(
+            model.discretisation(),
+            &solution.displacement,
+            fine_model.discretisation(),
+        );
+        solution = FullSystemSolver::new(&fine_model, settings)?.solve_from(loads, &start)?;
+        levels.push((fine.n2, fine.n3, solution.stats.newton_iterations));
+        model = fine_model;
+    }
+    Ok(Sequenced {
+        model,
+        solution,
+        levels,
+    })
 }

@@ -42,7 +42,10 @@ mod threshold;
 pub use body::{ThickBody, ThickBodyOperator};
 pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
 pub use error::{ContactError, ContactErrorKind};
-pub use full_system::{FullSystemProblem, FullSystemSettings, FullSystemSolver};
+pub use full_system::{
+    FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
+    solve_sequenced,
+};
 pub use model::{ContactModel, EndLoads, NodeTraction};
 pub use solution::{
     ContactProfile, ContactSolution, Extremum, SolveStats, StateInterval, classify, state_intervals,
