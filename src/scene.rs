@@ -525,12 +525,16 @@ const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 /// # Math
 /// ```text
 /// N     = 2 n2 n3                          unknowns (plane strain)
-/// bytes = 150 N log2(N)  (x2 for fem-q2)   sparse system + multifrontal LU factors: fits the
-///                                          measured VmHWM of `bench_navier` from above
-///                                          (181 MiB at 500x81, 778 MiB at 1000x161,
-///                                          3378 MiB at 2000x321: 136-144 bytes per N log2 N)
+/// bytes = 220 N log2(N)  (x2 for fem-q2)   sparse system, Jacobian and multifrontal LU
+///                                          factors: fits the measured VmHWM of
+///                                          `capstan contact` (fd, default scene) from above:
+///                                          condensed 521 MiB / 1.70 GB / 5.78 GB and
+///                                          full-newton 279 MiB / 1.23 GB / 5.57 GB at
+///                                          500x81 / 1000x161 / 2000x321 (202-215 bytes per
+///                                          N log2 N on the two large grids)
 ///       + 32 n2^2                          four dense m x m condensed matrices, m ~ n2
-///       + 2^28                             the condensation's block of right-hand sides
+///       + 2^29                             the condensation's blocks of right-hand sides,
+///                                          residuals and corrections
 /// ```
 /// Not covered: a matrix whose pivots leave the multifrontal fronts falls back to faer's
 /// supernodal LU, which needs up to ~2.3x more (see `capstan_solvers::LuKind`).
@@ -542,8 +546,13 @@ pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod) -> f6
     } else {
         1.0
     };
-    150.0 * width * unknowns * unknowns.log2().max(1.0) + 32.0 * n2 * n2 + 268_435_456.0
+    MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0)
+        + 32.0 * n2 * n2
+        + 536_870_912.0
 }
+
+/// The constant of [`memory_estimate`]: bytes per `N log2 N`.
+pub const MEMORY_BYTES_PER_N_LOG_N: f64 = 220.0;
 
 /// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where there is no such file.
 pub fn available_memory() -> Option<f64> {
@@ -773,7 +782,7 @@ impl Scene {
             return Err(CliError::Scene {
                 origin: at.locate("grid.n2"),
                 message: format!(
-                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: 150 bytes x N log2 N, N = {} unknowns: multifrontal LU measured up to 2000 x 321), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
+                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 2000 x 321), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
                     g.n2,
                     g.n3,
                     human_bytes(need),
@@ -893,12 +902,14 @@ mod tests {
 
     #[test]
     fn memory_estimate_brackets_the_measured_peaks() {
-        // Measured VmHWM (multifrontal LU, nested dissection): 181 MiB at 500x81,
-        // 3378 MiB at 2000x321; the estimate is above, by less than 2x at the large grid.
+        // Measured VmHWM: 521 MiB at 500x81, 1.70 GB at 1000x161,
+        // 5.78 GB at 2000x321 (the larger of condensed and full-newton, `capstan contact`);
+        // the estimate is above, by less than 1.3x on the two large grids.
         let fd = DiscretisationMethod::Fd;
-        let mib = |b: f64| b / 1048576.0;
-        assert!((181.0..600.0).contains(&mib(memory_estimate(500, 81, fd))));
-        assert!((3378.0..5000.0).contains(&mib(memory_estimate(2000, 321, fd))));
+        let gb = |b: f64| b / 1e9;
+        assert!((0.53..1.5).contains(&gb(memory_estimate(500, 81, fd))));
+        assert!((1.70..2.2).contains(&gb(memory_estimate(1000, 161, fd))));
+        assert!((5.78..7.5).contains(&gb(memory_estimate(2000, 321, fd))));
         assert_eq!(human_bytes(1536.0), "1.5 KiB");
     }
 

@@ -437,7 +437,7 @@ fn contact_cases(quick: bool) -> Result<Vec<ContactCase>, CliError> {
 /// `m ~ n2` right-hand sides (1000 x 161: 16.8 s against 36 s).
 pub const FULL_NEWTON_FROM_N2: usize = 1000;
 
-/// A grid no machine of today holds (16000 x 2560: ~300 GiB estimated): the quick run's
+/// A grid no machine of today holds (16000 x 2560: ~450 GiB estimated): the quick run's
 /// refusal point.
 pub const REFUSED_GRID: [usize; 2] = [16000, 2560];
 
@@ -662,7 +662,7 @@ pub fn report(quick: bool) -> Result<StressReport, CliError> {
         .map(run_contact_case)
         .collect();
     // Refused from the memory estimate before anything is allocated (instant) in the quick
-    // run; the full run attempts 4000 x 640 (~17 GiB estimated), solved where it fits.
+    // run; the full run attempts 4000 x 640 (~24 GiB estimated), solved where it fits.
     points.push(grid_refusal(if quick { REFUSED_GRID } else { [4000, 640] }));
     points.extend(capstan_points(quick));
     Ok(StressReport { quick, points })
