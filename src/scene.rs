@@ -520,25 +520,26 @@ pub const MAX_SAMPLES: usize = 10_000_000;
 /// Sample points at which obstacle expressions are checked finite on the contact interval.
 const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 
-/// A conservative estimate of the peak memory of a thick-body contact solve.
+/// A conservative estimate of the peak memory of a thick-body contact solve, by the
+/// boundary-only solver (`condensed`, `solver.nonlinear = newton`) or the full-system solvers.
 ///
 /// # Math
 /// ```text
 /// N     = 2 n2 n3                          unknowns (plane strain)
-/// bytes = 220 N log2(N)  (x2 for fem-q2)   sparse system, Jacobian and multifrontal LU
-///                                          factors: fits the measured VmHWM of
-///                                          `capstan contact` (fd, default scene) from above:
-///                                          condensed 521 MiB / 1.70 GB / 5.78 GB and
-///                                          full-newton 279 MiB / 1.23 GB / 5.57 GB at
-///                                          500x81 / 1000x161 / 2000x321 (202-215 bytes per
-///                                          N log2 N on the two large grids)
+/// bytes = 190 N log2(N)  (x2 for fem-q2)   sparse system, Jacobian and multifrontal LU
+///       + 2^27                             factors (nested dissection): fits the measured
+///                                          VmHWM of `capstan contact` (fd, default scene)
+///                                          from above: full-newton 1.09 GB / 4.59 GB,
+///                                          condensed 1.62 GB at 1000x161 / 2000x321
+///                                          (173-175 bytes per N log2 N)
+///   condensed only:
 ///       + 32 n2^2                          four dense m x m condensed matrices, m ~ n2
 ///       + 2^29                             the condensation's blocks of right-hand sides,
 ///                                          residuals and corrections
 /// ```
 /// Not covered: a matrix whose pivots leave the multifrontal fronts falls back to faer's
 /// supernodal LU, which needs up to ~2.3x more (see `capstan_solvers::LuKind`).
-pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod) -> f64 {
+pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod, condensed: bool) -> f64 {
     let (n2, n3) = (n2 as f64, n3 as f64);
     let unknowns = 2.0 * n2 * n3;
     let width = if method == DiscretisationMethod::FemQ2 {
@@ -546,13 +547,17 @@ pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod) -> f6
     } else {
         1.0
     };
-    MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0)
-        + 32.0 * n2 * n2
-        + 536_870_912.0
+    let system =
+        MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0) + 134_217_728.0;
+    if condensed {
+        system + 32.0 * n2 * n2 + 536_870_912.0
+    } else {
+        system
+    }
 }
 
 /// The constant of [`memory_estimate`]: bytes per `N log2 N`.
-pub const MEMORY_BYTES_PER_N_LOG_N: f64 = 220.0;
+pub const MEMORY_BYTES_PER_N_LOG_N: f64 = 190.0;
 
 /// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where there is no such file.
 pub fn available_memory() -> Option<f64> {
@@ -775,7 +780,7 @@ impl Scene {
                 });
             }
         }
-        let need = memory_estimate(g.n2, g.n3, method);
+        let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
         if let Some(have) = available_memory()
             && need > have
         {
@@ -902,14 +907,14 @@ mod tests {
 
     #[test]
     fn memory_estimate_brackets_the_measured_peaks() {
-        // Measured VmHWM: 521 MiB at 500x81, 1.70 GB at 1000x161,
-        // 5.78 GB at 2000x321 (the larger of condensed and full-newton, `capstan contact`);
-        // the estimate is above, by less than 1.3x on the two large grids.
+        // Measured VmHWM of `capstan contact` (nested dissection): full-newton 1.09 GB at
+        // 1000x161 and 4.59 GB at 2000x321, condensed 1.62 GB at 1000x161; the estimate is
+        // above, by less than 1.25x.
         let fd = DiscretisationMethod::Fd;
         let gb = |b: f64| b / 1e9;
-        assert!((0.53..1.5).contains(&gb(memory_estimate(500, 81, fd))));
-        assert!((1.70..2.2).contains(&gb(memory_estimate(1000, 161, fd))));
-        assert!((5.78..7.5).contains(&gb(memory_estimate(2000, 321, fd))));
+        assert!((1.09..1.36).contains(&gb(memory_estimate(1000, 161, fd, false))));
+        assert!((4.59..5.7).contains(&gb(memory_estimate(2000, 321, fd, false))));
+        assert!((1.62..2.0).contains(&gb(memory_estimate(1000, 161, fd, true))));
         assert_eq!(human_bytes(1536.0), "1.5 KiB");
     }
 

@@ -220,7 +220,10 @@ fn outcome(
 }
 
 /// See the module docs: inverse iteration on the stabilised bulk, 1-norm.
-fn condition_estimate<D, L: capstan_elasticity::friction::FrictionLaw<f64>>(
+fn condition_estimate<
+    D: capstan_elasticity::Discretisation,
+    L: capstan_elasticity::friction::FrictionLaw<f64>,
+>(
     model: &ContactModel<D, L>,
 ) -> Option<f64> {
     let system = model.system();
@@ -237,7 +240,11 @@ fn condition_estimate<D, L: capstan_elasticity::friction::FrictionLaw<f64>>(
         col_sums[c] += v.abs();
     }
     let norm_a = col_sums.iter().fold(0.0f64, |m, &x| m.max(x));
-    let mut lu = SparseLu::default();
+    let mut lu = SparseLu::new(capstan_elasticity::solvers::DirectParams {
+        ordering: model.discretisation().lu_ordering(),
+        ..Default::default()
+    })
+    .ok()?;
     lu.analyse(&system.pattern).ok()?;
     lu.factor(&values).ok()?;
     let mut x: Vec<f64> = (0..n)
@@ -445,7 +452,10 @@ pub const REFUSED_GRID: [usize; 2] = [16000, 2560];
 /// else solved (by the full-system Newton from [`FULL_NEWTON_FROM_N2`] on).
 pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
     let start = Instant::now();
-    let sets = [format!("grid.n2={}", n[0]), format!("grid.n3={}", n[1])];
+    let mut sets = vec![format!("grid.n2={}", n[0]), format!("grid.n3={}", n[1])];
+    if n[0] >= FULL_NEWTON_FROM_N2 {
+        sets.push("solver.nonlinear=full-newton".into());
+    }
     let mut point = StressPoint {
         axis: "grid",
         model: "contact",
@@ -458,7 +468,12 @@ pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
         refinement_change: None,
         quantities: BTreeMap::from([(
             "memory_estimate_bytes".to_string(),
-            memory_estimate(n[0], n[1], DiscretisationMethod::Fd),
+            memory_estimate(
+                n[0],
+                n[1],
+                DiscretisationMethod::Fd,
+                n[0] < FULL_NEWTON_FROM_N2,
+            ),
         )]),
         seconds: 0.0,
     };
@@ -470,17 +485,22 @@ pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
     match Scene::load(None, &sets) {
         Err(e) => point.failure = Some(format!("refused: {e}")),
         Ok(scene) => {
-            let mut scene = scene;
-            if n[0] >= FULL_NEWTON_FROM_N2 {
-                scene.solver.nonlinear = "full-newton".into();
+            let mut parameters = point.parameters.clone();
+            if scene.solver.nonlinear != "newton" {
+                parameters.insert(
+                    "solver.nonlinear".into(),
+                    serde_json::json!(scene.solver.nonlinear),
+                );
             }
             let case = ContactCase {
                 axis: "grid",
                 scene,
-                parameters: point.parameters.clone(),
+                parameters,
                 refine: false,
             };
+            let memory = std::mem::take(&mut point.quantities);
             point = run_contact_case(case);
+            point.quantities.extend(memory);
         }
     }
     point.seconds = start.elapsed().as_secs_f64();

@@ -230,6 +230,14 @@ pub trait Discretisation {
     /// Number of unknowns.
     fn dof_count(&self) -> usize;
 
+    /// The fill-reducing ordering for a sparse LU (multifrontal kernel, structure of
+    /// `A + A^T`) of this operator and of the contact Jacobians on its pattern: the
+    /// operators on structured grids give a nested dissection. Default: the backend's own
+    /// ([`capstan_solvers::ColumnOrdering::Auto`], AMD).
+    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
+        capstan_solvers::ColumnOrdering::Auto
+    }
+
     /// The unknown of `component` at node `(i2, i3)`.
     ///
     /// # Panics

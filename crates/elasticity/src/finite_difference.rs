@@ -498,6 +498,21 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         "fd"
     }
 
+    /// Nested dissection with one-node-line separators (the 9-point stencil's reach): at
+    /// 2000 x 321 (the contact scene) 2.67e8 stored factor values against 3.52e8 with AMD,
+    /// factor 1.53 s against 2.14 s at 1000 x 161.
+    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
+        capstan_solvers::ColumnOrdering::NestedDissection {
+            grid: capstan_solvers::GridShape {
+                n2: self.grid.n2(),
+                n3: self.grid.n3(),
+                dofs_per_node: 2,
+                periodic: self.grid.is_periodic(),
+            },
+            separator_width: 1,
+        }
+    }
+
     fn grid(&self) -> &Grid {
         &self.grid
     }

@@ -2,6 +2,7 @@
 
 use core::fmt;
 
+use crate::direct_params::DirectParams;
 use crate::error::SolverError;
 use crate::iterative_params::IterativeParams;
 use crate::linear_backend::LinearBackend;
@@ -66,6 +67,8 @@ pub struct NewtonParams {
     pub linear: LinearBackend,
     /// Settings of the iterative linear backends (inner tolerance for Jacobi–Newton).
     pub iterative: IterativeParams,
+    /// Settings of the direct linear backends (fill-reducing ordering, solution check).
+    pub direct: DirectParams,
     /// Residual growth factor (> 1) that counts as divergence.
     pub divergence_limit: f64,
 }
@@ -79,6 +82,7 @@ impl Default for NewtonParams {
             line_search: LineSearch::default(),
             linear: LinearBackend::Lu,
             iterative: IterativeParams::default(),
+            direct: DirectParams::default(),
             divergence_limit: 1e8,
         }
     }
@@ -178,7 +182,9 @@ impl Newton {
     /// [`SolverError::InvalidParameter`] if a setting is out of range.
     pub fn new(params: NewtonParams) -> Result<Self, SolverError> {
         params.validate()?;
-        let linear = params.linear.build(&params.iterative)?;
+        let linear = params
+            .linear
+            .build_with(&params.iterative, &params.direct)?;
         Ok(Self {
             params,
             linear,

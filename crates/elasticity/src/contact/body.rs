@@ -81,6 +81,10 @@ impl Discretisation for ThickBodyOperator {
         forward!(self, op => op.dof_count())
     }
 
+    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
+        forward!(self, op => op.lu_ordering())
+    }
+
     #[track_caller]
     fn dof(&self, node: [usize; 2], component: Component) -> usize {
         forward!(self, op => op.dof(node, component))

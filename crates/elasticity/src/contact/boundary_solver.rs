@@ -248,7 +248,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 diag / node.traction_weight
             })
             .collect();
-        let mut lu = SparseLu::default();
+        let mut lu = SparseLu::new(capstan_solvers::DirectParams {
+            ordering: model.discretisation().lu_ordering(),
+            ..Default::default()
+        })?;
         lu.analyse(&ext.pattern)?;
         let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu)?;
         let mut factorisations = 1;

@@ -4,8 +4,8 @@
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    Jacobian, LinearSolver, NewtonParams, NonlinearMethod, NonlinearSolver, Residual,
-    SilentObserver, SolverError, SparseLu, SparsityPattern,
+    ColumnOrdering, DirectParams, Jacobian, LinearSolver, NewtonParams, NonlinearMethod,
+    NonlinearSolver, Residual, SilentObserver, SolverError, SparseLu, SparsityPattern,
 };
 
 use crate::contact::body::{ThickBody, ThickBodyOperator};
@@ -126,6 +126,16 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         })
     }
 
+    /// The direct solver settings: `settings.newton.direct`, with the discretisation's
+    /// ordering ([`Discretisation::lu_ordering`]) unless one is set.
+    fn direct_params(&self) -> DirectParams {
+        let mut direct = self.settings.newton.direct;
+        if direct.ordering == ColumnOrdering::Auto {
+            direct.ordering = self.model.discretisation().lu_ordering();
+        }
+        direct
+    }
+
     /// The stuck solutions for unit loads: one sparse LU of `A` with a stiff spring on the
     /// tangential contact rows.
     fn stuck_basis(&self) -> Result<&[Vec<f64>; 2], ContactError> {
@@ -141,7 +151,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         for &slot in &ext.tangential_slot {
             values[slot] += 1e4 * values[slot].abs().max(1.0);
         }
-        let mut lu = SparseLu::default();
+        let mut lu = SparseLu::new(self.direct_params())?;
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
         let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
@@ -173,6 +183,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
             relative_tolerance: 0.0,
             max_iterations: self.settings.continuation.max_iterations,
+            direct: self.direct_params(),
             ..self.settings.newton
         };
         let mut solver = self.settings.method.build(params)?;

@@ -1315,6 +1315,11 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         self.order.method_name()
     }
 
+    /// Nested dissection along element boundaries ([`ElementOrder::cholesky_ordering`]).
+    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
+        self.order.cholesky_ordering(&self.grid)
+    }
+
     fn grid(&self) -> &Grid {
         &self.grid
     }
