@@ -36,6 +36,18 @@ fn answer_is_invariant_in_young_after_scaling() {
 }
 
 #[test]
+fn refinement_change_compares_magnitudes_under_symmetric_loads() {
+    // Equal end tractions: the largest |v^2| is attained at both ends with opposite signs, and
+    // which one wins flips with rounding (60 x 11: -1.3476e-3 at theta0; 119 x 21: +1.3435e-3 at
+    // theta1); the change must not read 2.
+    let p = run_contact_case(
+        contact_case("ratio", [60, 11], &[("loads.tau_max", json!(1.0))], true).unwrap(),
+    );
+    assert!(p.converged, "{p:?}");
+    assert!(p.refinement_change.unwrap() < 0.1, "{p:?}");
+}
+
+#[test]
 fn beyond_limiting_equilibrium_and_without_friction_are_typed_failures() {
     for sets in [
         vec![("loads.tau_max", json!(5.0))],
