@@ -228,14 +228,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                 allowed: "one value per unknown",
             });
         }
-        let mut stats = SolveStats {
-            method: self.method_name(),
-            newton_iterations: 0,
-            continuation_steps: 1,
-            residual: 0.0,
-            linear_iterations: 0,
-            factorisations: 0,
-        };
+        let mut stats = self.fresh_stats(0);
         let mut v = start.to_vec();
         if start.iter().all(|x| x.is_finite()) && self.newton(loads, &mut v, &mut stats).is_ok() {
             return Ok(ContactSolution::new(self.model, loads, v, stats));
@@ -247,10 +240,18 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         Ok(sol)
     }
 
-    fn method_name(&self) -> &'static str {
-        match self.settings.method {
-            NonlinearMethod::JacobiNewton => "full-jacobi-newton",
-            _ => "full-newton",
+    /// Statistics before any iteration (`factorisations` already done).
+    fn fresh_stats(&self, factorisations: usize) -> SolveStats {
+        SolveStats {
+            method: match self.settings.method {
+                NonlinearMethod::JacobiNewton => "full-jacobi-newton",
+                _ => "full-newton",
+            },
+            newton_iterations: 0,
+            continuation_steps: 1,
+            residual: 0.0,
+            linear_iterations: 0,
+            factorisations,
         }
     }
 
@@ -260,14 +261,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// [`ContactError::NotConverged`] when the continuation fails; invalid loads.
     pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
         loads.check()?;
-        let mut stats = SolveStats {
-            method: self.method_name(),
-            newton_iterations: 0,
-            continuation_steps: 1,
-            residual: 0.0,
-            linear_iterations: 0,
-            factorisations: 1,
-        };
+        let mut stats = self.fresh_stats(1);
         let mut v = self.stuck(loads)?;
         if self.newton(loads, &mut v, &mut stats).is_err() {
             let c = self.settings.continuation;
