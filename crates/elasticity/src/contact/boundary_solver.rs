@@ -615,13 +615,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         let mut dx = vec![0.0; m];
         let mut dn = vec![0.0; m];
         let mut friction = vec![0.0; m];
+        let (pzs, nzs) = self.condensed_products(&sp);
         for (i, gi) in g.iter_mut().enumerate() {
-            let mut zs = 0.0;
-            let mut sig = n0[i];
-            for (j, sj) in sp.iter().enumerate() {
-                zs += self.pz[(i, j)] * sj;
-                sig += self.nz[(i, j)] * sj;
-            }
+            let zs = pzs[i];
+            let sig = n0[i] + nzs[i];
             let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
             let x = x0[i] + zs + shift;
             let node = self.model.active_node(i);
@@ -645,10 +642,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 // J0 (I - z z^T) - diag(friction + tether) x_r z^T: the tether keeps the
                 // matrix regular where the friction is saturated everywhere (the rigid
                 // amplitude of the step is then replaced by `rebalance`)
+                let jz0 = jac.as_ref() * faer::ColRef::from_slice(z);
                 let jz: Vec<f64> = (0..m)
                     .map(|i| {
-                        (0..m).map(|j| jac[(i, j)] * z[j]).sum::<f64>()
-                            + (friction[i] + RIGID_TETHER * self.spring[i]) * self.rigid_shift[i]
+                        jz0[i] + (friction[i] + RIGID_TETHER * self.spring[i]) * self.rigid_shift[i]
                     })
                     .collect();
                 for j in 0..m {
@@ -659,6 +656,13 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             }
         }
         (dx, dn)
+    }
+
+    /// `(P Z s, N Z s)`: the tangential displacements and normal stresses that the condensed
+    /// unknowns `s` add at the contact nodes (two dense matrix-vector products).
+    fn condensed_products(&self, s: &[f64]) -> (faer::Col<f64>, faer::Col<f64>) {
+        let s = faer::ColRef::from_slice(s);
+        (self.pz.as_ref().as_ref() * s, self.nz.as_ref().as_ref() * s)
     }
 
     /// The rounding-error bound of evaluating `G(s)` in floating point (max over the nodes):
@@ -721,15 +725,11 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         let mut lin = vec![0.0; m];
         let mut xb = vec![0.0; m];
         let mut sig = vec![0.0; m];
+        let (pzs, nzs) = self.condensed_products(&sp);
         for i in 0..m {
-            let (mut zs, mut ns) = (0.0, 0.0);
-            for (j, sj) in sp.iter().enumerate() {
-                zs += self.pz[(i, j)] * sj;
-                ns += self.nz[(i, j)] * sj;
-            }
-            xb[i] = x0[i] + zs;
+            xb[i] = x0[i] + pzs[i];
             lin[i] = sp[i] - self.spring[i] * xb[i];
-            sig[i] = n0[i] + ns;
+            sig[i] = n0[i] + nzs[i];
         }
         let weight: Vec<f64> = (0..m)
             .map(|i| beta * self.model.active_node(i).sqrt_g22)
