@@ -787,7 +787,7 @@ impl Scene {
             return Err(CliError::Scene {
                 origin: at.locate("grid.n2"),
                 message: format!(
-                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 2000 x 321), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
+                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 4000 x 640), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
                     g.n2,
                     g.n3,
                     human_bytes(need),
