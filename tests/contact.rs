@@ -239,6 +239,35 @@ fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
             b.stats.newton_iterations
         );
     }
+    // Finite elements (Q2: the coarser grids stay odd) sequence through the same interpolation.
+    let q2 = ThickBody {
+        method: DiscretisationMethod::FemQ2,
+        ..ThickBody::paper(81, 17).unwrap()
+    };
+    let settings = FullSystemSettings {
+        coarsest_nodes: 400,
+        ..Default::default()
+    };
+    let loads = EndLoads::ratio(2.0);
+    let seq = solve_sequenced(
+        &q2,
+        RegularisedCoulomb,
+        coulomb(0.5, EPS),
+        EPS,
+        loads,
+        settings,
+    )
+    .unwrap();
+    assert_eq!((seq.levels[0].0, seq.levels[0].1), (41, 9));
+    let model = q2
+        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
+        .unwrap();
+    let direct = BoundarySolver::new(&model, ContactSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    let scale = max_abs(&direct.displacement);
+    assert!(max_diff(&seq.solution.displacement, &direct.displacement) < 1e-7 * scale);
     // Past the limiting ratio on the circle the coarsest level reports it.
     let e = solve_sequenced(
         &ThickBody::paper(81, 17).unwrap(),
