@@ -190,37 +190,44 @@ fn coarser_grids_halve_the_spacing_and_keep_q2_odd() {
 
 #[test]
 fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
-    // The circle (a rigid sliding mode) and an ellipse; 161 x 33 from an 81 x 17 coarsest level
-    // (from 41 x 9, still pre-asymptotic, Newton on 81 x 17 needs as many steps as from the
-    // stuck start: 12 at ratio 2 on the circle).
-    for body in [
-        ThickBody::paper(161, 33).unwrap(),
-        ellipse(2.0, 1.2, 161, 33),
-    ] {
+    let sequenced = |body: &ThickBody, coarsest_nodes: usize, ratio: f64| {
         let settings = FullSystemSettings {
-            coarsest_nodes: 2000,
+            coarsest_nodes,
             ..Default::default()
         };
-        let loads = EndLoads::ratio(2.0);
-        let seq = solve_sequenced(
-            &body,
+        solve_sequenced(
+            body,
             RegularisedCoulomb,
             coulomb(0.5, EPS),
             EPS,
-            loads,
+            EndLoads::ratio(ratio),
             settings,
         )
-        .unwrap();
+    };
+    // The circle (a rigid sliding mode) and an ellipse, 161 x 33 from an 81 x 17 coarsest level
+    // (from 41 x 9, still pre-asymptotic, Newton on 81 x 17 needs as many steps as from the
+    // stuck start: 12 at ratio 2 on the circle); Q2 elements, whose coarser grids stay odd, on
+    // 81 x 17 from 41 x 9 (agreement only).
+    let q2 = ThickBody {
+        method: DiscretisationMethod::FemQ2,
+        ..ThickBody::paper(81, 17).unwrap()
+    };
+    for (body, coarsest_nodes, coarsest, fewer_steps) in [
+        (ThickBody::paper(161, 33).unwrap(), 2000, (81, 17), true),
+        (ellipse(2.0, 1.2, 161, 33), 2000, (81, 17), true),
+        (q2, 400, (41, 9), false),
+    ] {
+        let seq = sequenced(&body, coarsest_nodes, 2.0).unwrap();
         assert_eq!(
             seq.levels.iter().map(|l| (l.0, l.1)).collect::<Vec<_>>(),
-            [(81, 17), (161, 33)]
+            [coarsest, (body.n2, body.n3)]
         );
         let model = body
             .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
             .unwrap();
-        let direct = FullSystemSolver::new(&model, settings)
+        let direct = FullSystemSolver::new(&model, FullSystemSettings::default())
             .unwrap()
-            .solve(loads)
+            .solve(EndLoads::ratio(2.0))
             .unwrap();
         let (a, b) = (&seq.solution, &direct);
         let scale = max_abs(&b.displacement);
@@ -232,54 +239,18 @@ fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
         );
         assert_eq!(a.contact.state, b.contact.state);
         assert!(a.stats.residual < 1e-10);
-        assert!(
-            a.stats.newton_iterations < b.stats.newton_iterations && a.stats.newton_iterations <= 5,
-            "{} vs {}",
-            a.stats.newton_iterations,
-            b.stats.newton_iterations
-        );
+        if fewer_steps {
+            assert!(
+                a.stats.newton_iterations < b.stats.newton_iterations
+                    && a.stats.newton_iterations <= 5,
+                "{} vs {}",
+                a.stats.newton_iterations,
+                b.stats.newton_iterations
+            );
+        }
     }
-    // Finite elements (Q2: the coarser grids stay odd) sequence through the same interpolation.
-    let q2 = ThickBody {
-        method: DiscretisationMethod::FemQ2,
-        ..ThickBody::paper(81, 17).unwrap()
-    };
-    let settings = FullSystemSettings {
-        coarsest_nodes: 400,
-        ..Default::default()
-    };
-    let loads = EndLoads::ratio(2.0);
-    let seq = solve_sequenced(
-        &q2,
-        RegularisedCoulomb,
-        coulomb(0.5, EPS),
-        EPS,
-        loads,
-        settings,
-    )
-    .unwrap();
-    assert_eq!((seq.levels[0].0, seq.levels[0].1), (41, 9));
-    let model = q2
-        .model(RegularisedCoulomb, coulomb(0.5, EPS), EPS)
-        .unwrap();
-    let direct = BoundarySolver::new(&model, ContactSettings::default())
-        .unwrap()
-        .solve(loads)
-        .unwrap();
-    let scale = max_abs(&direct.displacement);
-    assert!(max_diff(&seq.solution.displacement, &direct.displacement) < 1e-7 * scale);
     // Past the limiting ratio on the circle the coarsest level reports it.
-    let e = solve_sequenced(
-        &ThickBody::paper(81, 17).unwrap(),
-        RegularisedCoulomb,
-        coulomb(0.5, EPS),
-        EPS,
-        EndLoads::ratio(5.0),
-        FullSystemSettings {
-            coarsest_nodes: 400,
-            ..Default::default()
-        },
-    );
+    let e = sequenced(&ThickBody::paper(81, 17).unwrap(), 400, 5.0);
     assert!(matches!(e, Err(ContactError::NoEquilibrium { .. })));
 }
 

@@ -151,6 +151,20 @@ const CONDENSATION_BLOCK_ENTRIES: usize = 1 << 24;
 /// Newton iterations of the full-slip limit (one suffices for laws affine in `sigma_n`).
 const FULL_SLIP_ITERATIONS: usize = 50;
 
+/// The law-independent part of [`BoundarySolver`]: the factorised stabilised bulk and the
+/// condensed matrices (cheap to clone: the large parts are shared).
+#[derive(Clone)]
+struct Condensation {
+    lu: Arc<Mutex<SparseLu>>,
+    spring: Vec<f64>,
+    pz: Arc<Mat<f64>>,
+    nz: Arc<Mat<f64>>,
+    /// `(P v_i, N v_i)` for unit `tau0` (`i = 0`) and unit `tau_max` (`i = 1`).
+    base: [(Vec<f64>, Vec<f64>); 2],
+    /// The stuck state (`v^2 = 0` at every contact node) for the unit loads: Newton's start.
+    stuck: [Vec<f64>; 2],
+}
+
 /// The boundary-only contact solver.
 ///
 /// # Math
@@ -186,15 +200,9 @@ const FULL_SLIP_ITERATIONS: usize = 50;
 /// null vector of `I - C P Z`), where saturated friction leaves the Newton matrix no stiffness.
 pub struct BoundarySolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
-    /// The factorised stabilised bulk, shared by the solvers of [`BoundarySolver::with_model`].
-    lu: Arc<Mutex<SparseLu>>,
-    spring: Vec<f64>,
-    pz: Arc<Mat<f64>>,
-    nz: Arc<Mat<f64>>,
-    /// `(P v_i, N v_i)` for unit `tau0` (`i = 0`) and unit `tau_max` (`i = 1`).
-    base: [(Vec<f64>, Vec<f64>); 2],
-    /// The stuck state (`v^2 = 0` at every contact node) for the unit loads: Newton's start.
-    stuck: [Vec<f64>; 2],
+    /// The condensed bulk (law-independent), shared by the solvers of
+    /// [`BoundarySolver::with_model`].
+    bulk: Condensation,
     sliding: Option<SlidingMode>,
     /// Right null vector `z` of `I - C P Z` (the rigid mode in `s`, unit length), when there
     /// is one.
@@ -283,25 +291,39 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         if stuck.iter().flatten().any(|x| !x.is_finite()) {
             return Err(capstan_solvers::SolverError::Singular { pivot: None }.into());
         }
-        let mut solver = Self {
-            model,
+        let bulk = Condensation {
             lu: Arc::new(Mutex::new(lu)),
             spring,
             pz: Arc::new(pz),
             nz: Arc::new(nz),
             base: [b0, b1],
             stuck,
+        };
+        let setup = SetupStats {
+            contact_unknowns: m,
+            bulk_unknowns: n,
+            factorisations,
+            bulk_solves: factorisations * m + 2,
+        };
+        Self::with_condensation(model, bulk, setup, settings)
+    }
+
+    /// The solver of `model` on a condensed bulk, with the sliding-mode analysis of its law.
+    fn with_condensation(
+        model: &'a ContactModel<D, L>,
+        bulk: Condensation,
+        setup: SetupStats,
+        settings: ContactSettings,
+    ) -> Result<Self, ContactError> {
+        let mut solver = Self {
+            model,
+            bulk,
             sliding: None,
             rigid_mode: Vec::new(),
             rigid_shift: Vec::new(),
             rigid_balance: Vec::new(),
             homogeneous: true,
-            setup: SetupStats {
-                contact_unknowns: m,
-                bulk_unknowns: n,
-                factorisations,
-                bulk_solves: factorisations * m + 2,
-            },
+            setup,
             settings,
         };
         solver.sliding = solver.sliding_mode()?;
@@ -341,28 +363,16 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         if let Some(what) = differs {
             return Err(ContactError::DifferentBody { what });
         }
-        let mut solver = BoundarySolver {
+        BoundarySolver::with_condensation(
             model,
-            lu: Arc::clone(&self.lu),
-            spring: self.spring.clone(),
-            pz: Arc::clone(&self.pz),
-            nz: Arc::clone(&self.nz),
-            base: self.base.clone(),
-            stuck: self.stuck.clone(),
-            sliding: None,
-            rigid_mode: Vec::new(),
-            rigid_shift: Vec::new(),
-            rigid_balance: Vec::new(),
-            homogeneous: true,
-            setup: SetupStats {
+            self.bulk.clone(),
+            SetupStats {
                 factorisations: 0,
                 bulk_solves: 0,
                 ..self.setup
             },
-            settings: self.settings,
-        };
-        solver.sliding = solver.sliding_mode()?;
-        Ok(solver)
+            self.settings,
+        )
     }
 
     /// The work done at construction.
@@ -398,8 +408,8 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     /// value below [`SLIDING_MODE_THRESHOLD`]), the rigid sliding mode and its limits at
     /// `tau0 = 1`.
     fn sliding_mode(&mut self) -> Result<Option<SlidingMode>, ContactError> {
-        let m = self.pz.nrows();
-        let h0 = frictionless_operator(&self.spring, &self.pz);
+        let m = self.bulk.pz.nrows();
+        let h0 = frictionless_operator(&self.bulk.spring, &self.bulk.pz);
         let svd = h0.svd().map_err(|_| ContactError::NotConverged {
             iterations: 0,
             residual: f64::NAN,
@@ -422,7 +432,11 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         };
         self.rigid_balance = (0..m).map(|k| orient * u[(k, m - 1)]).collect();
         self.rigid_shift = (0..m)
-            .map(|i| (0..m).map(|j| self.pz[(i, j)] * self.rigid_mode[j]).sum())
+            .map(|i| {
+                (0..m)
+                    .map(|j| self.bulk.pz[(i, j)] * self.rigid_mode[j])
+                    .sum()
+            })
             .collect();
         self.homogeneous = self.law_is_homogeneous();
         self.limits_at(1.0, relative).map(Some)
@@ -471,10 +485,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     /// is in tension, so a full-slip state whose wrong-way friction carries more than
     /// [`WRONG_WAY_SHARE_LIMIT`] of `sum_k w_k |t_k|` is no bound (`direction * inf`).
     fn full_slip_limit(&self, direction: f64, tau0: f64) -> Result<f64, ContactError> {
-        let m = self.pz.nrows();
+        let m = self.bulk.pz.nrows();
         let u = direction * 1e6 * self.model.slip_threshold();
         let z = &self.rigid_mode;
-        let [(xa, na), (xb, nb)] = &self.base;
+        let [(xa, na), (xb, nb)] = &self.bulk.base;
         let mut s = vec![0.0; m];
         let mut r = 1.0;
         let mut g = vec![0.0; m + 1];
@@ -488,14 +502,14 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 let mut x = tau0 * (xa[i] + r * xb[i]);
                 let mut sig = tau0 * (na[i] + r * nb[i]);
                 for (j, sj) in s.iter().enumerate() {
-                    x += self.pz[(i, j)] * sj;
-                    sig += self.nz[(i, j)] * sj;
+                    x += self.bulk.pz[(i, j)] * sj;
+                    sig += self.bulk.nz[(i, j)] * sj;
                 }
                 let nt = self.model.traction_at(self.model.active_node(i), u, sig);
                 t[i] = nt.t2;
                 dn[i] = nt.d_normal_stress;
-                g[i] = s[i] - nt.t2 - self.spring[i] * x;
-                size = size.max(s[i].abs() + nt.t2.abs() + (self.spring[i] * x).abs());
+                g[i] = s[i] - nt.t2 - self.bulk.spring[i] * x;
+                size = size.max(s[i].abs() + nt.t2.abs() + (self.bulk.spring[i] * x).abs());
             }
             g[m] = z.iter().zip(&s).map(|(a, b)| a * b).sum();
             residual = g[..m].iter().fold(0.0f64, |a, x| a.max(x.abs())) / size.max(1e-300);
@@ -508,10 +522,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             for i in 0..m {
                 for j in 0..m {
                     jac[(i, j)] = f64::from(u8::from(i == j))
-                        - dn[i] * self.nz[(i, j)]
-                        - self.spring[i] * self.pz[(i, j)];
+                        - dn[i] * self.bulk.nz[(i, j)]
+                        - self.bulk.spring[i] * self.bulk.pz[(i, j)];
                 }
-                jac[(i, m)] = -tau0 * (dn[i] * nb[i] + self.spring[i] * xb[i]);
+                jac[(i, m)] = -tau0 * (dn[i] * nb[i] + self.bulk.spring[i] * xb[i]);
                 jac[(m, i)] = z[i];
             }
             jac[(m, m)] = 0.0;
@@ -563,7 +577,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
 
     /// `(x0, n0)` for the loads.
     fn loaded_base(&self, loads: EndLoads) -> (Vec<f64>, Vec<f64>) {
-        let [(xa, na), (xb, nb)] = &self.base;
+        let [(xa, na), (xb, nb)] = &self.bulk.base;
         let x = xa
             .iter()
             .zip(xb)
@@ -624,17 +638,17 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             let node = self.model.active_node(i);
             // slip homotopy: the law sees beta u (for regularised Coulomb: eps / beta)
             let nt = self.model.traction_at(node, beta * node.sqrt_g22 * x, sig);
-            *gi = sp[i] - self.spring[i] * (x0[i] + zs) - nt.t2;
+            *gi = sp[i] - self.bulk.spring[i] * (x0[i] + zs) - nt.t2;
             friction[i] = beta * nt.d_tangential;
-            dx[i] = friction[i] + self.spring[i];
+            dx[i] = friction[i] + self.bulk.spring[i];
             dn[i] = nt.d_normal_stress;
         }
         if let Some(jac) = jac {
             for j in 0..m {
                 for i in 0..m {
                     jac[(i, j)] = f64::from(u8::from(i == j))
-                        - dx[i] * self.pz[(i, j)]
-                        - dn[i] * self.nz[(i, j)];
+                        - dx[i] * self.bulk.pz[(i, j)]
+                        - dn[i] * self.bulk.nz[(i, j)];
                 }
             }
             let z = &self.rigid_mode;
@@ -645,7 +659,9 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 let jz0 = jac.as_ref() * faer::ColRef::from_slice(z);
                 let jz: Vec<f64> = (0..m)
                     .map(|i| {
-                        jz0[i] + (friction[i] + RIGID_TETHER * self.spring[i]) * self.rigid_shift[i]
+                        jz0[i]
+                            + (friction[i] + RIGID_TETHER * self.bulk.spring[i])
+                                * self.rigid_shift[i]
                     })
                     .collect();
                 for j in 0..m {
@@ -662,7 +678,10 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     /// unknowns `s` add at the contact nodes (two dense matrix-vector products).
     fn condensed_products(&self, s: &[f64]) -> (faer::Col<f64>, faer::Col<f64>) {
         let s = faer::ColRef::from_slice(s);
-        (self.pz.as_ref().as_ref() * s, self.nz.as_ref().as_ref() * s)
+        (
+            self.bulk.pz.as_ref().as_ref() * s,
+            self.bulk.nz.as_ref().as_ref() * s,
+        )
     }
 
     /// The rounding-error bound of evaluating `G(s)` in floating point (max over the nodes):
@@ -683,11 +702,11 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 let shift = self.rigid_shift.get(i).map_or(0.0, |r| (a * r).abs());
                 let (mut ax, mut an, mut xb) = (x0[i].abs(), n0[i].abs(), x0[i]);
                 for (j, sj) in sp.iter().enumerate() {
-                    ax += (self.pz[(i, j)] * sj).abs();
-                    an += (self.nz[(i, j)] * sj).abs();
-                    xb += self.pz[(i, j)] * sj;
+                    ax += (self.bulk.pz[(i, j)] * sj).abs();
+                    an += (self.bulk.nz[(i, j)] * sj).abs();
+                    xb += self.bulk.pz[(i, j)] * sj;
                 }
-                let c = self.spring[i];
+                let c = self.bulk.spring[i];
                 // G_i = s_p,i - c_i xb_i - t_2,i, so eval's residual gives the traction back
                 let t2 = sp[i] - g[i] - c * xb;
                 let friction = dx[i] - c;
@@ -728,7 +747,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         let (pzs, nzs) = self.condensed_products(&sp);
         for i in 0..m {
             xb[i] = x0[i] + pzs[i];
-            lin[i] = sp[i] - self.spring[i] * xb[i];
+            lin[i] = sp[i] - self.bulk.spring[i] * xb[i];
             sig[i] = n0[i] + nzs[i];
         }
         let weight: Vec<f64> = (0..m)
@@ -822,8 +841,8 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         for (i, x0) in x0.iter().enumerate().take(m) {
             let (mut x, mut dx) = (*x0, 0.0);
             for j in 0..m {
-                x += self.pz[(i, j)] * s[j];
-                dx += self.pz[(i, j)] * ds[(j, 0)];
+                x += self.bulk.pz[(i, j)] * s[j];
+                dx += self.bulk.pz[(i, j)] * ds[(j, 0)];
             }
             let w = beta * self.model.active_node(i).sqrt_g22;
             current = current.max((w * x).abs());
@@ -939,9 +958,9 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
 
     /// The stuck contact unknowns for the loads (every contact node held in place).
     pub fn stuck_unknowns(&self, loads: EndLoads) -> Vec<f64> {
-        self.stuck[0]
+        self.bulk.stuck[0]
             .iter()
-            .zip(&self.stuck[1])
+            .zip(&self.bulk.stuck[1])
             .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
             .collect()
     }
@@ -967,7 +986,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     ) -> Result<ContactSolution, ContactError> {
         loads.check()?;
         self.check_equilibrium(loads)?;
-        let m = self.pz.nrows();
+        let m = self.bulk.pz.nrows();
         let mut s = guess.map_or_else(|| self.stuck_unknowns(loads), <[f64]>::to_vec);
         if s.len() != m {
             return Err(crate::ElasticityError::DimensionMismatch {
@@ -1123,7 +1142,8 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             let node = self.model.active_node(k);
             v[node.tangential_row.expect("active")] += node.traction_weight * sk;
         }
-        self.lu
+        self.bulk
+            .lu
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner)
             .solve_in_place(&mut v)?;
