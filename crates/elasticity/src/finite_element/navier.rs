@@ -910,8 +910,12 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// ```text
     /// div_h(node) = (1 / #E(node)) sum_(e in E(node)) div_e(xi_node, eta_node)
     /// ```
-    /// Q1: `l_0 = 1`, the element-centre value, averaged over the (one or two, four inside)
-    /// elements of the node. Q2: `l_0(s) = (1 - sqrt(3) s) / 2`, `l_1(s) = (1 + sqrt(3) s) / 2`
+    /// Q1: `l_0 = 1`, the element-centre value, averaged over the two elements on either side
+    /// of the node in each direction; at a boundary node (one element that way) the centre
+    /// values of the two nearest element rows extrapolated linearly, `1.5 c_near - 0.5 c_far`
+    /// (centres at `dx/2` and `3 dx/2`): second order where the divergence varies normal to the
+    /// boundary, as on the contact surface (ellipse manufactured solution: order 1.78, errors
+    /// 15.7x smaller than the first-row centre value at `dx3 = 1/64`). Q2: `l_0(s) = (1 - sqrt(3) s) / 2`, `l_1(s) = (1 + sqrt(3) s) / 2`
     /// through `-+1/sqrt(3)`, so on the bottom edge `eta = -1` the weights are
     /// `(1 +- sqrt(3)) / 2` and at the node abscissa `xi in {-1, 0, 1}` they are
     /// `((1 +- sqrt(3)) / 2, (1 -+ sqrt(3)) / 2)`, `(1/2, 1/2)`. Both reproduce a divergence of
@@ -931,23 +935,42 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let (k, nen) = (self.order.degree(), self.nodes_per_element());
         let (gp, _) = gauss_rule(k);
         let nr = k * k;
-        let along2 = self.elements_along(i2, self.elements[0], g.is_periodic());
-        let along3 = self.elements_along(i3, self.elements[1], false);
-        let share = 1.0 / (along2.len() * along3.len()) as f64;
         let local = |a: usize| -1.0 + 2.0 * a as f64 / k as f64;
+        // per direction: (element, weights of its reduced points along that direction)
+        let direction = |i: usize, n: usize, count: usize, periodic: bool| {
+            let along = self.elements_along(i, count, periodic);
+            if k == 1 && !periodic && along.len() == 1 && count >= 2 {
+                // Q1 at a boundary node: the centre values of the two nearest element rows,
+                // extrapolated linearly (centres at dx/2 and 3 dx/2 from the node)
+                let (near, far) = if i == 0 {
+                    (0, 1)
+                } else {
+                    (count - 1, count - 2)
+                };
+                return vec![(near, vec![1.5]), (far, vec![-0.5])];
+            }
+            let share = 1.0 / along.len() as f64;
+            along
+                .into_iter()
+                .map(|e| {
+                    // local node number (k in the last element of a periodic grid at i = 0)
+                    let l = lagrange_weights(&gp, local((i + n - k * e) % n));
+                    (e, l.into_iter().map(|w| share * w).collect::<Vec<f64>>())
+                })
+                .collect::<Vec<_>>()
+        };
+        let along2 = direction(i2, g.n2(), self.elements[0], g.is_periodic());
+        let along3 = direction(i3, g.n3(), self.elements[1], false);
         let mut terms = Vec::with_capacity(along2.len() * along3.len() * nr * 2 * nen);
         let mut nodes = [0; 9];
-        for &e2 in &along2 {
-            // local node number along x2 (k in the last element of a periodic grid at i2 = 0)
-            let l2 = lagrange_weights(&gp, local((i2 + g.n2() - k * e2) % g.n2()));
-            for &e3 in &along3 {
-                let l3 = lagrange_weights(&gp, local(i3 - k * e3));
+        for (e2, l2) in &along2 {
+            for (e3, l3) in &along3 {
                 let e = e2 * self.elements[1] + e3;
                 self.element_nodes(e, &mut nodes);
                 for (ri, w2) in l2.iter().enumerate() {
                     for (rj, w3) in l3.iter().enumerate() {
                         let r = ri * k + rj; // the order of `shape_table`
-                        let w = share * w2 * w3;
+                        let w = w2 * w3;
                         let [_, t @ ..] = self.reduced_divergence[e * nr + r];
                         let phi = &self.reduced_shape[r * nen..(r + 1) * nen];
                         for (a, f) in phi.iter().enumerate() {
