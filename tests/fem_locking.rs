@@ -277,7 +277,7 @@ fn lame_contact_stress_errors(
     count: usize,
 ) -> Vec<StressErrors> {
     use capstan_elasticity::Discretisation;
-    use capstan_elasticity::finite_element::{FiniteElementNavier, lame_parts};
+    use capstan_elasticity::finite_element::lame_parts;
     use capstan_elasticity::solvers::SparseCholesky;
     let lame = LameCylinder {
         material: Material::new(10.0, nu).unwrap(),
@@ -286,17 +286,10 @@ fn lame_contact_stress_errors(
     let mut levels = FemStudy::new(FemProblem::Lame(lame), order).levels();
     levels.truncate(count);
     let build = |l: GridLevel, v: VolumetricIntegration| {
-        let p = lame_parts(&lame, l).unwrap();
-        FiniteElementNavier::with_volumetric(
-            p.chart,
-            p.material,
-            p.grid,
-            p.boundary,
-            p.body_force,
-            order,
-            v,
-        )
-        .unwrap()
+        lame_parts(&lame, l)
+            .unwrap()
+            .finite_element_with(order, v)
+            .unwrap()
     };
     levels
         .into_iter()
@@ -389,7 +382,7 @@ fn mms_contact_normal_stress_with_sri_is_second_order() {
     // Q2-SRI 1.73e-2, 5.21e-3, 1.45e-3 (1.79); Q1-SRI 2.02e-2, 6.18e-3, 1.72e-3 (1.78), where the
     // element-centre value of the first element row gave 9.63e-2, 5.21e-2, 2.70e-2 (0.92).
     use capstan_elasticity::Discretisation;
-    use capstan_elasticity::finite_element::{FiniteElementNavier, mms_parts};
+    use capstan_elasticity::finite_element::mms_parts;
     use capstan_elasticity::solvers::SparseLu;
     let mms = PrismMms::ellipse(0.5, MmsBoundaries::TractionContact);
     let errors = |order: ElementOrder, volumetric: VolumetricIntegration| -> Vec<(f64, f64)> {
@@ -397,16 +390,7 @@ fn mms_contact_normal_stress_with_sri_is_second_order() {
             .into_iter()
             .map(|(n2, n3)| {
                 let (p, exact) = mms_parts(&mms, GridLevel { n2, n3 }).unwrap();
-                let op = FiniteElementNavier::with_volumetric(
-                    p.chart,
-                    p.material,
-                    p.grid,
-                    p.boundary,
-                    p.body_force,
-                    order,
-                    volumetric,
-                )
-                .unwrap();
+                let op = p.finite_element_with(order, volumetric).unwrap();
                 let v = op.solve(&mut SparseLu::default()).unwrap();
                 let nodes = op.contact_nodes().unwrap();
                 let e = nodes[1..nodes.len() - 1].iter().fold(0.0f64, |e, n| {

@@ -449,7 +449,7 @@ fn contact_cases(quick: bool) -> Result<Vec<ContactCase>, CliError> {
 /// `m ~ n2` right-hand sides (1000 x 161: 12.8 s against 32.6 s).
 pub const FULL_NEWTON_FROM_N2: usize = 1000;
 
-/// A grid no machine of today holds (16000 x 2560: ~450 GiB estimated): the quick run's
+/// A grid no machine of today holds (16000 x 2560: ~380 GiB estimated): the quick run's
 /// refusal point.
 pub const REFUSED_GRID: [usize; 2] = [16000, 2560];
 
@@ -687,7 +687,7 @@ pub fn report(quick: bool) -> Result<StressReport, CliError> {
         .map(run_contact_case)
         .collect();
     // Refused from the memory estimate before anything is allocated (instant) in the quick
-    // run; the full run attempts 4000 x 640 (~24 GiB estimated), solved where it fits.
+    // run; the full run attempts 4000 x 640 (~20 GiB estimated), solved where it fits.
     points.push(grid_refusal(if quick { REFUSED_GRID } else { [4000, 640] }));
     points.extend(capstan_points(quick));
     Ok(StressReport { quick, points })

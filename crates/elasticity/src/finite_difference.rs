@@ -498,9 +498,10 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         "fd"
     }
 
-    /// Nested dissection with one-node-line separators (the 9-point stencil's reach): at
-    /// 2000 x 321 (the contact scene) 2.67e8 stored factor values against 3.52e8 with AMD,
-    /// factor 1.53 s against 2.14 s at 1000 x 161.
+    /// Nested dissection with one-node-line separators (the 9-point stencil's reach).
+    /// `bench_navier 2000 321 --ordering nd` against `--ordering auto` (AMD): 2.67e8 stored
+    /// factor values against 3.48e8, factor 9.7 s against 17.2 s, VmHWM 3378 against 4237 MiB
+    /// (1000 x 161: 5.74e7 against 6.41e7, 2.22 s against 2.44 s).
     fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
         capstan_solvers::ColumnOrdering::NestedDissection {
             grid: capstan_solvers::GridShape {

@@ -261,7 +261,8 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// [`ContactError::NotConverged`] when the continuation fails; invalid loads.
     pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
         loads.check()?;
-        let mut stats = self.fresh_stats(1);
+        // the stuck start's sparse LU, unless an earlier solve made it
+        let mut stats = self.fresh_stats(usize::from(self.stuck.get().is_none()));
         let mut v = self.stuck(loads)?;
         if self.newton(loads, &mut v, &mut stats).is_err() {
             let c = self.settings.continuation;
