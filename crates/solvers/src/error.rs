@@ -54,6 +54,12 @@ pub enum SolverError {
         /// Residual at the last iterate (relative for linear, absolute for nonlinear solvers).
         residual: f64,
     },
+    /// The observer asked the solve to stop ([`crate::Observer::interrupted`]).
+    #[error("interrupted after iteration {iteration}")]
+    Interrupted {
+        /// Iterations completed before the stop.
+        iteration: usize,
+    },
     /// The matrix is (numerically) singular.
     #[error("matrix is singular{}", pivot_note(.pivot))]
     Singular {

@@ -4,7 +4,7 @@ use crate::error::SolverError;
 use crate::jacobi::Jacobi;
 use crate::newton::{Newton, NewtonParams};
 use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
-use crate::observer::Observer;
+use crate::observer::{Observer, SolveStage};
 use crate::problem::Jacobian;
 
 /// Newton's outer iteration with Jacobi inner iterations for each linear system: the
@@ -48,9 +48,9 @@ impl JacobiNewton {
     /// [`SolverError::InvalidParameter`] if a setting is out of range.
     pub fn new(params: NewtonParams) -> Result<Self, SolverError> {
         let inner = Jacobi::<f64>::new(params.iterative)?;
-        Ok(Self {
-            newton: Newton::with_linear_solver(params, Box::new(inner))?,
-        })
+        let mut newton = Newton::with_linear_solver(params, Box::new(inner))?;
+        newton.stage = SolveStage::JacobiNewton;
+        Ok(Self { newton })
     }
 
     /// The settings in use.

@@ -8,7 +8,7 @@ use crate::iterative_params::IterativeParams;
 use crate::linear_backend::LinearBackend;
 use crate::linear_solver::LinearSolver;
 use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
-use crate::observer::Observer;
+use crate::observer::{Observer, Progress, SolveStage};
 use crate::problem::Jacobian;
 use crate::scalar::{first_non_finite, norm2};
 use crate::sparsity_pattern::SparsityPattern;
@@ -164,6 +164,8 @@ pub struct Newton {
     params: NewtonParams,
     linear: Box<dyn LinearSolver<f64> + Send>,
     analysed: Option<SparsityPattern>,
+    /// The stage its [`Progress`] events carry.
+    pub(crate) stage: SolveStage,
 }
 
 impl fmt::Debug for Newton {
@@ -189,6 +191,7 @@ impl Newton {
             params,
             linear,
             analysed: None,
+            stage: SolveStage::Newton,
         })
     }
 
@@ -206,6 +209,7 @@ impl Newton {
             params,
             linear,
             analysed: None,
+            stage: SolveStage::Newton,
         })
     }
 
@@ -272,7 +276,7 @@ impl NonlinearSolver<f64> for Newton {
             .max(params.relative_tolerance * r0);
         let divergence = params.divergence_limit * r0.max(params.absolute_tolerance);
         let mut report = SolveReport::new(0, vec![rn], 0, 0);
-        observer.iteration(0, rn, 0.0);
+        observer.iteration(&Progress::new(self.stage, 0, rn, 0.0));
 
         let mut values = vec![0.0; pattern.nnz()];
         let mut du = vec![0.0; n];
@@ -349,7 +353,10 @@ impl NonlinearSolver<f64> for Newton {
             rn = rn_trial;
             report.iterations = k + 1;
             report.residuals.push(rn);
-            observer.iteration(k + 1, rn, alpha);
+            observer.iteration(&Progress::new(self.stage, k + 1, rn, alpha));
+            if observer.interrupted() {
+                return Err(SolverError::Interrupted { iteration: k + 1 });
+            }
             if rn > divergence {
                 return Err(SolverError::Diverged {
                     iteration: k + 1,

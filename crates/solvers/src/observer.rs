@@ -1,26 +1,125 @@
-//! Progress reporting of the nonlinear solvers.
+//! Progress reporting of every iterative solve; the solvers never print.
+//!
+//! One [`Observer`] receives a [`Progress`] event per accepted iteration from every loop that
+//! iterates: Newton on a sparse system, Jacobi–Newton, Newton on the condensed contact
+//! boundary, continuation steps, grid-sequencing levels, the membrane models. The event names
+//! its [`SolveStage`], so one observer can print, draw a progress bar, record residual
+//! histories or forward them to Python. An observer can also stop a solve: solvers poll
+//! [`Observer::interrupted`] after each iteration and return a typed `Interrupted` error.
 
 use crate::scalar::SolverScalar;
 
-/// Receives the progress of a nonlinear solve; the solvers never print.
+/// Which iterative loop a [`Progress`] event comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum SolveStage {
+    /// Newton's method on a sparse system (the full contact system, a sample problem).
+    Newton,
+    /// The paper's Jacobi–Newton iteration.
+    JacobiNewton,
+    /// Newton on the condensed contact boundary (`2m` or `m` unknowns for `m` contact nodes).
+    CondensedNewton,
+    /// A continuation (homotopy) step in a parameter; `iteration` counts the steps taken and
+    /// `step_length` is the parameter step.
+    Continuation,
+    /// A grid-sequencing level has been solved; `iteration` is the level (0 the coarsest).
+    GridLevel,
+    /// Newton of a membrane model (tension or implied friction coefficient).
+    Membrane,
+}
+
+impl SolveStage {
+    /// Lower-case name used in logs and in the Python package (`"condensed-newton"`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Newton => "newton",
+            Self::JacobiNewton => "jacobi-newton",
+            Self::CondensedNewton => "condensed-newton",
+            Self::Continuation => "continuation",
+            Self::GridLevel => "grid-level",
+            Self::Membrane => "membrane",
+        }
+    }
+}
+
+impl core::fmt::Display for SolveStage {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Sizes of the contact active set after an iteration: nodes that stick and nodes that slip.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct ActiveSet {
+    /// Contact nodes whose slip is below the law's regularisation width.
+    pub stick: usize,
+    /// Contact nodes that slip.
+    pub slip: usize,
+}
+
+/// One accepted iteration of an iterative solve.
 ///
-/// `iteration` is called once with `iteration = 0`, the initial residual norm and step length
-/// `0`, then after every accepted step with the new residual norm `|r(u_k)|_2` and the step
-/// length `alpha` taken along the Newton direction (1 for a full step).
+/// `iteration = 0` carries the initial residual norm and `step_length = 0`; every later event
+/// the residual norm `|r(u_k)|_2` after step `k` and the step length `alpha` taken along the
+/// search direction (1 for a full Newton step; the parameter step for
+/// [`SolveStage::Continuation`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Progress<F> {
+    /// The loop the event comes from.
+    pub stage: SolveStage,
+    /// Iteration (or step, or level) counter of that loop.
+    pub iteration: usize,
+    /// Residual norm after the iteration.
+    pub residual_norm: F,
+    /// Step length of the iteration.
+    pub step_length: F,
+    /// Stick/slip counts, where the solve has a contact boundary.
+    pub active: Option<ActiveSet>,
+}
+
+impl<F> Progress<F> {
+    /// An event without active-set counts.
+    pub fn new(stage: SolveStage, iteration: usize, residual_norm: F, step_length: F) -> Self {
+        Self {
+            stage,
+            iteration,
+            residual_norm,
+            step_length,
+            active: None,
+        }
+    }
+
+    /// The same event with the contact active-set counts.
+    #[must_use]
+    pub fn with_active(mut self, stick: usize, slip: usize) -> Self {
+        self.active = Some(ActiveSet { stick, slip });
+        self
+    }
+}
+
+/// Receives the progress of iterative solves.
 ///
-/// Closures `FnMut(usize, F, F)` are observers.
+/// Closures `FnMut(&Progress<F>)` are observers (they never interrupt).
 ///
 /// # Example
 /// ```
-/// use capstan_solvers::Observer;
+/// use capstan_solvers::{Observer, Progress, SolveStage};
 /// let mut seen = Vec::new();
-/// let mut obs = |k: usize, r: f64, _alpha: f64| seen.push((k, r));
-/// obs.iteration(0, 1.0, 0.0);
+/// let mut obs = |p: &Progress<f64>| seen.push((p.iteration, p.residual_norm));
+/// obs.iteration(&Progress::new(SolveStage::Newton, 0, 1.0, 0.0));
+/// assert!(!obs.interrupted());
 /// assert_eq!(seen, vec![(0, 1.0)]);
 /// ```
 pub trait Observer<F: SolverScalar> {
-    /// One nonlinear iteration has been accepted.
-    fn iteration(&mut self, iteration: usize, residual_norm: F, step_length: F);
+    /// One iteration has been accepted.
+    fn iteration(&mut self, progress: &Progress<F>);
+
+    /// Polled after every iteration: `true` stops the solve, which returns its crate's
+    /// `Interrupted` error (e.g. Ctrl-C in an embedding interpreter, a wall-clock limit).
+    fn interrupted(&mut self) -> bool {
+        false
+    }
 }
 
 /// An observer that ignores everything.
@@ -28,11 +127,11 @@ pub trait Observer<F: SolverScalar> {
 pub struct SilentObserver;
 
 impl<F: SolverScalar> Observer<F> for SilentObserver {
-    fn iteration(&mut self, _iteration: usize, _residual_norm: F, _step_length: F) {}
+    fn iteration(&mut self, _progress: &Progress<F>) {}
 }
 
-impl<F: SolverScalar, C: FnMut(usize, F, F)> Observer<F> for C {
-    fn iteration(&mut self, iteration: usize, residual_norm: F, step_length: F) {
-        self(iteration, residual_norm, step_length)
+impl<F: SolverScalar, C: FnMut(&Progress<F>)> Observer<F> for C {
+    fn iteration(&mut self, progress: &Progress<F>) {
+        self(progress)
     }
 }

@@ -5,8 +5,8 @@ use core::convert::Infallible;
 use capstan_solvers::samples::{Arctangent, CubeRoot, CubicReaction};
 use capstan_solvers::{
     CondensedSolver, IterativeParams, JacobiNewton, Jacobian, LineSearch, LinearBackend, Newton,
-    NewtonParams, NonlinearMethod, NonlinearSolver, Residual, SilentObserver, SolverError,
-    SparsityPattern,
+    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
+    SolveStage, SolverError, SparsityPattern,
 };
 
 fn max_error(u: &[f64], exact: &[f64]) -> f64 {
@@ -127,7 +127,7 @@ fn line_search_rescues_newton_on_arctangent() {
     let start = [10.0, -3.0, 0.5]; // full steps overshoot from |u| > 1.39
     let mut u = start.to_vec();
     let mut lengths = Vec::new();
-    let mut observer = |_k: usize, _r: f64, alpha: f64| lengths.push(alpha);
+    let mut observer = |p: &Progress<f64>| lengths.push(p.step_length);
     let report = Newton::new(Default::default())
         .unwrap()
         .solve(&problem, &mut u, &mut observer)
@@ -349,7 +349,10 @@ fn observer_sees_every_iteration() {
     let problem = CubicReaction::new(10);
     let mut u = vec![0.0; 10];
     let mut seen = Vec::new();
-    let mut observer = |k: usize, r: f64, alpha: f64| seen.push((k, r, alpha));
+    let mut observer = |p: &Progress<f64>| {
+        assert_eq!(p.stage, SolveStage::Newton);
+        seen.push((p.iteration, p.residual_norm, p.step_length))
+    };
     let report = Newton::new(Default::default())
         .unwrap()
         .solve(&problem, &mut u, &mut observer)
@@ -360,6 +363,40 @@ fn observer_sees_every_iteration() {
         assert_eq!(*i, k);
         assert_eq!(*r, report.residuals[k]);
     }
+}
+
+/// Stops after a fixed number of iterations, as Ctrl-C in an embedding interpreter would.
+struct StopAfter(usize, Vec<usize>);
+
+impl Observer<f64> for StopAfter {
+    fn iteration(&mut self, p: &Progress<f64>) {
+        self.1.push(p.iteration);
+    }
+    fn interrupted(&mut self) -> bool {
+        self.1.len() > self.0
+    }
+}
+
+#[test]
+fn an_interrupting_observer_stops_newton_and_jacobi_newton_with_a_typed_error() {
+    let problem = CubicReaction::new(10);
+    let mut newton = Newton::new(Default::default()).unwrap();
+    let mut stop = StopAfter(1, Vec::new());
+    let err = newton
+        .solve(&problem, &mut vec![0.0; 10], &mut stop)
+        .unwrap_err();
+    assert!(
+        matches!(err, SolverError::Interrupted { iteration: 1 }),
+        "{err:?}"
+    );
+    assert_eq!(stop.1, vec![0, 1]);
+    let mut stages = Vec::new();
+    let mut record = |p: &Progress<f64>| stages.push(p.stage);
+    JacobiNewton::new(Default::default())
+        .unwrap()
+        .solve(&problem, &mut vec![0.0; 10], &mut record)
+        .unwrap();
+    assert!(stages.iter().all(|s| *s == SolveStage::JacobiNewton) && stages.len() > 1);
 }
 
 #[test]
