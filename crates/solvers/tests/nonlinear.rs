@@ -383,7 +383,7 @@ fn an_interrupting_observer_stops_newton_and_jacobi_newton_with_a_typed_error() 
     let mut newton = Newton::new(Default::default()).unwrap();
     let mut stop = StopAfter(1, Vec::new());
     let err = newton
-        .solve(&problem, &mut vec![0.0; 10], &mut stop)
+        .solve(&problem, &mut [0.0; 10], &mut stop)
         .unwrap_err();
     assert!(
         matches!(err, SolverError::Interrupted { iteration: 1 }),
@@ -394,7 +394,7 @@ fn an_interrupting_observer_stops_newton_and_jacobi_newton_with_a_typed_error() 
     let mut record = |p: &Progress<f64>| stages.push(p.stage);
     JacobiNewton::new(Default::default())
         .unwrap()
-        .solve(&problem, &mut vec![0.0; 10], &mut record)
+        .solve(&problem, &mut [0.0; 10], &mut record)
         .unwrap();
     assert!(stages.iter().all(|s| *s == SolveStage::JacobiNewton) && stages.len() > 1);
 }
