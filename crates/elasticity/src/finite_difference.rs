@@ -6,14 +6,15 @@ use std::sync::Arc;
 use capstan_geometry::ShellPoint;
 
 use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::continuum::check_plane_strain;
+use crate::continuum::kinematics::{
+    LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
+    strain,
+};
 use crate::discretisation::{ContactNode, Discretisation, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::grid::Grid;
-use crate::kinematics::{
-    LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
-    strain,
-};
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
 
@@ -26,9 +27,6 @@ type Coefficients = [[f64; 6]; 2];
 
 /// Stencil weights `[value, d_2, d_3]` of one node in a local reconstruction.
 type Stencil = Vec<([usize; 2], [f64; 3])>;
-
-/// Relative tolerance of the plane-strain check on the chart.
-const PLANE_STRAIN_TOLERANCE: f64 = 1e-10;
 
 /// The plane-strain curvilinear Navier operator by second-order finite differences on an
 /// `n2 x n3` grid, with the geometry cached once.
@@ -102,41 +100,6 @@ impl<G> core::fmt::Debug for FiniteDifferenceNavier<G> {
             .field("boundary", &self.boundary)
             .finish_non_exhaustive()
     }
-}
-
-fn check_plane_strain(p: &ShellPoint<f64>, at: [f64; 3]) -> Result<(), ElasticityError> {
-    let gscale = 1.0
-        + p.metric
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-    if p.metric[0][1].abs() > PLANE_STRAIN_TOLERANCE * gscale
-        || p.metric[0][2].abs() > PLANE_STRAIN_TOLERANCE * gscale
-    {
-        return Err(ElasticityError::NotPlaneStrain {
-            what: "g_12 or g_13 is not zero",
-            at,
-        });
-    }
-    let cscale = 1.0
-        + p.christoffel
-            .iter()
-            .flatten()
-            .flatten()
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-    let index_one = (0..3).any(|i| {
-        (0..3).any(|j| {
-            p.christoffel[0][i][j].abs() > PLANE_STRAIN_TOLERANCE * cscale
-                || p.christoffel[i][0][j].abs() > PLANE_STRAIN_TOLERANCE * cscale
-        })
-    });
-    if index_one {
-        return Err(ElasticityError::NotPlaneStrain {
-            what: "a Christoffel symbol with index 1 is not zero",
-            at,
-        });
-    }
-    Ok(())
 }
 
 impl<G: ShellGeometry> FiniteDifferenceNavier<G> {

@@ -32,13 +32,13 @@
 
 mod boundary;
 pub mod contact;
+pub mod continuum;
 mod discretisation;
 mod error;
 mod fields;
 mod finite_difference;
 pub mod finite_element;
 mod grid;
-pub mod kinematics;
 mod material;
 pub mod samples;
 mod shell_geometry;
@@ -48,6 +48,7 @@ pub use boundary::{
     BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
     SideCondition, X2Ends,
 };
+pub use continuum::kinematics;
 pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, interpolate_nodal};
 pub use error::ElasticityError;
 pub use fields::NodalFields;

@@ -12,11 +12,11 @@ use crate::boundary::{
     BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
     SideCondition, X2Ends,
 };
+use crate::continuum::kinematics::{LocalDisplacement, christoffel_contraction, mixed_stress};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
 use crate::grid::Grid;
-use crate::kinematics::{LocalDisplacement, christoffel_contraction, mixed_stress};
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
 use crate::verification::{GridLevel, Study, StudyPoint};

@@ -188,6 +188,23 @@ pub fn gauss_rule(n: usize) -> (Vec<f64>, Vec<f64>) {
     (p.to_vec(), w.to_vec())
 }
 
+/// The Lagrange basis `l_r(s) = prod_(q != r) (s - x_q) / (x_r - x_q)` through `points`, at
+/// `s` (one point: the constant `1`).
+pub(crate) fn lagrange_weights(points: &[f64], s: f64) -> Vec<f64> {
+    points
+        .iter()
+        .enumerate()
+        .map(|(r, &xr)| {
+            points
+                .iter()
+                .enumerate()
+                .filter(|&(q, _)| q != r)
+                .map(|(_, &xq)| (s - xq) / (xr - xq))
+                .product()
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,80 @@
+//! Natural boundary terms (tractions and stresses on the sides) and Dirichlet data.
+
+use super::FiniteElementNavier;
+use crate::boundary::{Component, ComponentCondition, Side};
+use crate::error::ElasticityError;
+use crate::shell_geometry::ShellGeometry;
+
+impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
+    /// Adds `int phi_j N_a ds` over every side with a natural condition (Gauss rule of the
+    /// element along each boundary edge).
+    pub(super) fn add_boundary_loads(&mut self) -> Result<(), ElasticityError> {
+        let (gp, gw) = self.order.gauss_1d();
+        let (k, np) = (self.order.degree(), self.order.nodes_per_direction());
+        let [l2, l3] = self.element_size();
+        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        for side in Side::ALL {
+            let Some(cond) = self.boundary.side(side).cloned() else {
+                continue; // periodic x2
+            };
+            let along_x2 = side.normal_index() == 2;
+            let (count, length) = if along_x2 {
+                (self.elements[0], l2)
+            } else {
+                (self.elements[1], l3)
+            };
+            for e in 0..count {
+                for (&xi, &w) in gp.iter().zip(&gw) {
+                    let (shape, _) = self.order.shape_1d(xi);
+                    let (x, nodes): ([f64; 2], Vec<[usize; 2]>) = if along_x2 {
+                        let i3 = if side == Side::X3Min { 0 } else { n3 - 1 };
+                        let x2 = self.grid.x2(k * e) + 0.5 * (xi + 1.0) * length;
+                        (
+                            [x2, self.grid.x3(i3)],
+                            (0..np).map(|a| [(k * e + a) % n2, i3]).collect(),
+                        )
+                    } else {
+                        let i2 = if side == Side::X2Min { 0 } else { n2 - 1 };
+                        let x3 = self.grid.x3(k * e) + 0.5 * (xi + 1.0) * length;
+                        (
+                            [self.grid.x2(i2), x3],
+                            (0..np).map(|a| [i2, k * e + a]).collect(),
+                        )
+                    };
+                    let s = if along_x2 { x[0] } else { x[1] };
+                    let p = self.point(x[0], x[1])?;
+                    let a = side.normal_index();
+                    for c in Component::ALL {
+                        let flux = match cond.component(c) {
+                            ComponentCondition::Displacement(_) => continue,
+                            ComponentCondition::Traction(f) => {
+                                p.sqrt_g * p.inverse_metric[a][a].sqrt() * f.eval(s)
+                            }
+                            ComponentCondition::Stress(f) => side.sign() * p.sqrt_g * f.eval(s),
+                        };
+                        if !flux.is_finite() {
+                            return Err(ElasticityError::NonFinite {
+                                what: "boundary traction",
+                                at: x,
+                            });
+                        }
+                        for (node, n) in nodes.iter().zip(shape) {
+                            let d = 2 * self.grid.node_index(*node) + c.index();
+                            self.load[d] += n * flux * w * 0.5 * length;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
+    pub(super) fn dirichlet_value(
+        &self,
+        node: [usize; 2],
+        c: Component,
+    ) -> Result<Option<f64>, ElasticityError> {
+        self.boundary.dirichlet_value(&self.grid, node, c)
+    }
+}
