@@ -69,6 +69,8 @@ impl CliError {
                 capstan_elasticity::contact::ContactErrorKind::InvalidInput => 2,
                 capstan_elasticity::contact::ContactErrorKind::NoEquilibrium => 3,
                 capstan_elasticity::contact::ContactErrorKind::NotConverged => 4,
+                // stopped by its observer: a wall-clock limit (5, `timed out`)
+                capstan_elasticity::contact::ContactErrorKind::Interrupted => 5,
             },
             Self::Friction(e) => match e.category() {
                 ErrorCategory::InvalidInput => 2,

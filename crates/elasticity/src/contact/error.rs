@@ -62,6 +62,12 @@ pub enum ContactError {
         /// The last load factor in `[0, 1]` that converged.
         load_factor: f64,
     },
+    /// The observer asked the solve to stop ([`capstan_solvers::Observer::interrupted`]).
+    #[error("interrupted after {iterations} contact Newton iterations")]
+    Interrupted {
+        /// Newton iterations spent before the stop.
+        iterations: usize,
+    },
     /// The elasticity layer failed (assembly, geometry).
     #[error(transparent)]
     Elasticity(#[from] ElasticityError),
@@ -83,6 +89,8 @@ pub enum ContactErrorKind {
     NoEquilibrium,
     /// The solver did not converge (exit code 4, status `not-converged`).
     NotConverged,
+    /// The solve was stopped by its observer (status `interrupted`).
+    Interrupted,
 }
 
 impl ContactError {
@@ -91,6 +99,9 @@ impl ContactError {
         match self {
             Self::NoEquilibrium { .. } => ContactErrorKind::NoEquilibrium,
             Self::NotConverged { .. } => ContactErrorKind::NotConverged,
+            Self::Interrupted { .. } | Self::Solver(SolverError::Interrupted { .. }) => {
+                ContactErrorKind::Interrupted
+            }
             Self::Solver(
                 SolverError::Diverged { .. }
                 | SolverError::Stagnated { .. }
@@ -101,12 +112,14 @@ impl ContactError {
         }
     }
 
-    /// The status string of a failed run: `no-equilibrium`, `not-converged` or `invalid-input`.
+    /// The status string of a failed run: `no-equilibrium`, `not-converged`, `interrupted` or
+    /// `invalid-input`.
     pub fn status(&self) -> &'static str {
         match self.kind() {
             ContactErrorKind::InvalidInput => "invalid-input",
             ContactErrorKind::NoEquilibrium => "no-equilibrium",
             ContactErrorKind::NotConverged => "not-converged",
+            ContactErrorKind::Interrupted => "interrupted",
         }
     }
 }

@@ -5,12 +5,13 @@
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
     ColumnOrdering, DirectParams, Jacobian, LinearSolver, NewtonParams, NonlinearMethod,
-    NonlinearSolver, Residual, SilentObserver, SolverError, SparseLu, SparsityPattern,
+    NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage, SolverError,
+    SparseLu, SparsityPattern,
 };
 
 use crate::contact::body::{ThickBody, ThickBodyOperator};
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
-use crate::contact::error::ContactError;
+use crate::contact::error::{ContactError, ContactErrorKind};
 use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::solution::{ContactSolution, SolveStats};
 use crate::discretisation::{Discretisation, interpolate_nodal};
@@ -176,6 +177,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         loads: EndLoads,
         v: &mut [f64],
         stats: &mut SolveStats,
+        observer: &mut dyn Observer<f64>,
     ) -> Result<(), SolverError> {
         let problem = FullSystemProblem::new(self.model, loads);
         let b = problem.rhs().iter().map(|x| x * x).sum::<f64>().sqrt();
@@ -187,7 +189,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             ..self.settings.newton
         };
         let mut solver = self.settings.method.build(params)?;
-        let result = solver.solve(&problem, v, &mut SilentObserver);
+        let result = solver.solve(&problem, v, observer);
         match result {
             Ok(report) => {
                 stats.newton_iterations += report.iterations;
@@ -220,6 +222,20 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         loads: EndLoads,
         start: &[f64],
     ) -> Result<ContactSolution, ContactError> {
+        self.solve_from_observed(loads, start, &mut SilentObserver)
+    }
+
+    /// [`FullSystemSolver::solve_from`] with an observer (see
+    /// [`FullSystemSolver::solve_observed`]).
+    ///
+    /// # Errors
+    /// See [`FullSystemSolver::solve_from`]; an interrupted solve.
+    pub fn solve_from_observed(
+        &self,
+        loads: EndLoads,
+        start: &[f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
         loads.check()?;
         if start.len() != self.model.dof_count() {
             return Err(ContactError::InvalidParameter {
@@ -230,10 +246,14 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         }
         let mut stats = self.fresh_stats(0);
         let mut v = start.to_vec();
-        if start.iter().all(|x| x.is_finite()) && self.newton(loads, &mut v, &mut stats).is_ok() {
-            return Ok(ContactSolution::new(self.model, loads, v, stats));
+        if start.iter().all(|x| x.is_finite()) {
+            match self.newton(loads, &mut v, &mut stats, observer) {
+                Ok(()) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
+                Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
+                Err(_) => {}
+            }
         }
-        let mut sol = self.solve(loads)?;
+        let mut sol = self.solve_observed(loads, observer)?;
         sol.stats.newton_iterations += stats.newton_iterations;
         sol.stats.factorisations += stats.factorisations;
         sol.stats.linear_iterations += stats.linear_iterations;
@@ -260,11 +280,31 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// # Errors
     /// [`ContactError::NotConverged`] when the continuation fails; invalid loads.
     pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
+        self.solve_observed(loads, &mut SilentObserver)
+    }
+
+    /// [`FullSystemSolver::solve`] reporting every Newton iterate
+    /// ([`SolveStage::Newton`] or [`SolveStage::JacobiNewton`]: the residual norm of the full
+    /// system, no stick/slip counts) and every converged load step
+    /// ([`SolveStage::Continuation`]) to `observer`, which may stop the solve
+    /// ([`SolverError::Interrupted`] inside [`ContactError::Solver`]).
+    ///
+    /// # Errors
+    /// See [`FullSystemSolver::solve`].
+    pub fn solve_observed(
+        &self,
+        loads: EndLoads,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
         loads.check()?;
         // the stuck start's sparse LU, unless an earlier solve made it
         let mut stats = self.fresh_stats(usize::from(self.stuck.get().is_none()));
         let mut v = self.stuck(loads)?;
-        if self.newton(loads, &mut v, &mut stats).is_err() {
+        let first = self.newton(loads, &mut v, &mut stats, observer);
+        if let Err(e @ SolverError::Interrupted { .. }) = first {
+            return Err(e.into());
+        }
+        if first.is_err() {
             let c = self.settings.continuation;
             let mut lambda = 0.0;
             let mut current = vec![0.0; v.len()];
@@ -279,12 +319,19 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                 } else {
                     self.stuck(loads.scaled(next))?
                 };
-                match self.newton(loads.scaled(next), &mut trial, &mut stats) {
+                match self.newton(loads.scaled(next), &mut trial, &mut stats, observer) {
                     Ok(()) => {
+                        observer.iteration(&Progress::new(
+                            SolveStage::Continuation,
+                            stats.continuation_steps,
+                            0.0,
+                            next - lambda,
+                        ));
                         lambda = next;
                         current = trial;
                         step = (step * 1.5).min(1.0);
                     }
+                    Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
                     Err(e) => {
                         last = match e {
                             SolverError::Stagnated { residual, .. }
@@ -350,6 +397,40 @@ pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
     loads: EndLoads,
     settings: FullSystemSettings,
 ) -> Result<Sequenced<L>, ContactError> {
+    solve_sequenced_observed(
+        body,
+        law,
+        params,
+        slip_threshold,
+        loads,
+        settings,
+        &mut SilentObserver,
+    )
+}
+
+/// [`solve_sequenced`] reporting to `observer`: the iterations of every level's solver, and
+/// one [`SolveStage::GridLevel`] event per solved level (`iteration` the level, coarsest 0;
+/// `residual_norm` the level's full-system residual; `step_length` its number of nodes).
+///
+/// # Errors
+/// See [`solve_sequenced`]; an interrupted solve.
+pub fn solve_sequenced_observed<L: FrictionLaw<f64> + Clone>(
+    body: &ThickBody,
+    law: L,
+    params: L::Params,
+    slip_threshold: f64,
+    loads: EndLoads,
+    settings: FullSystemSettings,
+    observer: &mut dyn Observer<f64>,
+) -> Result<Sequenced<L>, ContactError> {
+    let level_done = |level: usize, n2: usize, n3: usize, solution: &ContactSolution| {
+        Progress::new(
+            SolveStage::GridLevel,
+            level,
+            solution.stats.residual,
+            (n2 * n3) as f64,
+        )
+    };
     let mut bodies = vec![body.clone()];
     while let Some(last) = bodies.last()
         && last.n2 * last.n3 > settings.coarsest_nodes
@@ -362,19 +443,28 @@ pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
     let coarsest = &bodies[0];
     let model = coarsest.model(law.clone(), params.clone(), slip_threshold)?;
     let coarse = if bodies.len() == 1 {
-        FullSystemSolver::new(&model, settings)?.solve(loads)
+        FullSystemSolver::new(&model, settings)?.solve_observed(loads, observer)
     } else {
-        BoundarySolver::new(&model, settings.continuation).and_then(|s| s.solve(loads))
+        BoundarySolver::new(&model, settings.continuation)
+            .and_then(|s| s.solve_observed(loads, observer))
     };
     let mut solution = match coarse {
         Ok(solution) => solution,
-        Err(e) if bodies.len() == 1 || matches!(e, ContactError::NoEquilibrium { .. }) => {
+        Err(e)
+            if bodies.len() == 1
+                || matches!(
+                    e.kind(),
+                    ContactErrorKind::NoEquilibrium | ContactErrorKind::Interrupted
+                ) =>
+        {
             return Err(e);
         }
         Err(_) => {
             // no sequence without its coarsest level: the body's own grid directly
             let model = body.model(law, params, slip_threshold)?;
-            let solution = FullSystemSolver::new(&model, settings)?.solve(loads)?;
+            let solution =
+                FullSystemSolver::new(&model, settings)?.solve_observed(loads, observer)?;
+            observer.iteration(&level_done(0, body.n2, body.n3, &solution));
             let levels = vec![(body.n2, body.n3, solution.stats.newton_iterations)];
             return Ok(Sequenced {
                 model,
@@ -383,6 +473,7 @@ pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
             });
         }
     };
+    observer.iteration(&level_done(0, coarsest.n2, coarsest.n3, &solution));
     levels.push((coarsest.n2, coarsest.n3, solution.stats.newton_iterations));
     let mut model = model;
     for fine in &bodies[1..] {
@@ -392,7 +483,9 @@ pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
             &solution.displacement,
             fine_model.discretisation(),
         );
-        solution = FullSystemSolver::new(&fine_model, settings)?.solve_from(loads, &start)?;
+        solution = FullSystemSolver::new(&fine_model, settings)?
+            .solve_from_observed(loads, &start, observer)?;
+        observer.iteration(&level_done(levels.len(), fine.n2, fine.n3, &solution));
         levels.push((fine.n2, fine.n3, solution.stats.newton_iterations));
         model = fine_model;
     }

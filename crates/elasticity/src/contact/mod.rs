@@ -44,7 +44,7 @@ pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMo
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
-    solve_sequenced,
+    solve_sequenced, solve_sequenced_observed,
 };
 pub use model::{ContactModel, EndLoads, NodeTraction};
 pub use solution::{

@@ -1,0 +1,196 @@
+//! Limiting equilibrium: the rigid sliding mode of the frictionless condensed operator and
+//! the tension ratios at which the whole contact slides.
+
+use capstan_friction::FrictionLaw;
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+
+use super::condensation::frictionless_operator;
+use super::{BoundarySolver, SlidingMode};
+use crate::contact::error::ContactError;
+use crate::discretisation::Discretisation;
+
+/// Relative singular value below which the frictionless bulk counts as having a sliding mode.
+pub(super) const SLIDING_MODE_THRESHOLD: f64 = 1e-8;
+
+/// Largest share of `sum_k w_k |t_k|` that the full-slip friction may carry *along* the slip
+/// (contact in tension under a pressure-proportional law) for its ratio to count as a limit.
+/// The corner nodes next to the loaded ends carry a resolution artefact of this kind
+/// (measured: below `1e-3` of the total on 125 x 21 to 500 x 81 of the default circle).
+pub(super) const WRONG_WAY_SHARE_LIMIT: f64 = 1e-2;
+
+/// Newton iterations of the full-slip limit (one suffices for laws affine in `sigma_n`).
+pub(super) const FULL_SLIP_ITERATIONS: usize = 50;
+
+impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+    /// The frictionless condensed operator `I - C P Z`: if it is singular (relative singular
+    /// value below [`SLIDING_MODE_THRESHOLD`]), the rigid sliding mode and its limits at
+    /// `tau0 = 1`.
+    pub(super) fn sliding_mode(&mut self) -> Result<Option<SlidingMode>, ContactError> {
+        let m = self.bulk.pz.nrows();
+        let h0 = frictionless_operator(&self.bulk.spring, &self.bulk.pz);
+        let svd = h0.svd().map_err(|_| ContactError::NotConverged {
+            iterations: 0,
+            residual: f64::NAN,
+            load_factor: 0.0,
+        })?;
+        let sv = svd.S().column_vector();
+        let relative = sv[m - 1] / sv[0];
+        if relative.is_nan() || relative >= SLIDING_MODE_THRESHOLD {
+            return Ok(None);
+        }
+        let v = svd.V();
+        self.rigid_mode = (0..m).map(|k| v[(k, m - 1)]).collect();
+        // oriented with y . z > 0, so that y . G increases with the rigid amplitude (friction
+        // resists the sliding)
+        let u = svd.U();
+        let orient = if (0..m).map(|k| u[(k, m - 1)] * v[(k, m - 1)]).sum::<f64>() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        self.rigid_balance = (0..m).map(|k| orient * u[(k, m - 1)]).collect();
+        self.rigid_shift = (0..m)
+            .map(|i| {
+                (0..m)
+                    .map(|j| self.bulk.pz[(i, j)] * self.rigid_mode[j])
+                    .sum()
+            })
+            .collect();
+        self.homogeneous = self.law_is_homogeneous();
+        self.limits_at(1.0, relative).map(Some)
+    }
+
+    /// Whether the law's saturated traction is homogeneous of degree 1 in the normal stress
+    /// (`t(2 sigma) = 2 t(sigma)`, `t(0) = 0`: Coulomb-type laws). Then the limiting ratios do
+    /// not depend on `tau0`; otherwise (Tresca, power laws) they are recomputed per `tau0`.
+    pub(super) fn law_is_homogeneous(&self) -> bool {
+        let node = self.model.active_node(0);
+        let u = 1e6 * self.model.slip_threshold();
+        let t = |sigma: f64| self.model.traction_at(node, u, sigma).t2;
+        let (t0, t1, t2) = (t(0.0), t(-1.0), t(-2.0));
+        (t2 - 2.0 * t1).abs() <= 1e-12 * t2.abs() && t0.abs() <= 1e-14 * t1.abs().max(1e-300)
+    }
+
+    /// The limiting ratios `tau_max / tau0` of rigid sliding for the given `tau0`.
+    pub(super) fn limits_at(&self, tau0: f64, relative: f64) -> Result<SlidingMode, ContactError> {
+        let mut ratios = [0.0; 2];
+        for (r, direction) in ratios.iter_mut().zip([-1.0, 1.0]) {
+            *r = self.full_slip_limit(direction, tau0)?;
+        }
+        Ok(SlidingMode {
+            relative_singular_value: relative,
+            lower_ratio: ratios[0].min(ratios[1]),
+            upper_ratio: ratios[0].max(ratios[1]),
+            tau0,
+        })
+    }
+
+    /// The tension ratio at which the whole contact slides in `direction` (the limiting
+    /// equilibrium), or `direction * inf` if friction holds every ratio that way.
+    ///
+    /// # Math
+    /// At full slip the law's traction is saturated, `t_k = t(u_sat, sigma_k)`, independent of
+    /// the slip. The condensed equations are then singular along the rigid mode `z` of
+    /// `I - C P Z`, and equilibrium fixes the ratio `r`: Newton on the `m + 1` unknowns `(s, r)`
+    /// ```text
+    /// G_k(s, r) = s_k - t(u_sat, sigma_k) - c_k x_k = 0,    z . s = 0
+    /// x = tau0 (x_a + r x_b) + P Z s,   sigma = tau0 (n_a + r n_b) + N Z s
+    /// dG/ds = I - diag(dt/dsigma) N Z - C P Z,   dG/dr = -tau0 (diag(dt/dsigma) n_b + C x_b)
+    /// ```
+    /// (one step for laws affine in `sigma`: Coulomb, Tresca). The ratio bounds the loads only if
+    /// the full-slip friction resists the sliding at (nearly) every node: with the paper's
+    /// regularised Coulomb law, `t = mu sigma_n u / |u|` pushes *along* the slip where the contact
+    /// is in tension, so a full-slip state whose wrong-way friction carries more than
+    /// [`WRONG_WAY_SHARE_LIMIT`] of `sum_k w_k |t_k|` is no bound (`direction * inf`).
+    pub(super) fn full_slip_limit(&self, direction: f64, tau0: f64) -> Result<f64, ContactError> {
+        let m = self.bulk.pz.nrows();
+        let u = direction * 1e6 * self.model.slip_threshold();
+        let z = &self.rigid_mode;
+        let [(xa, na), (xb, nb)] = &self.bulk.base;
+        let mut s = vec![0.0; m];
+        let mut r = 1.0;
+        let mut g = vec![0.0; m + 1];
+        let mut t = vec![0.0; m];
+        let mut dn = vec![0.0; m];
+        let mut jac = Mat::<f64>::zeros(m + 1, m + 1);
+        let mut residual = f64::INFINITY;
+        for it in 0..=FULL_SLIP_ITERATIONS {
+            let mut size = 0.0f64;
+            for i in 0..m {
+                let mut x = tau0 * (xa[i] + r * xb[i]);
+                let mut sig = tau0 * (na[i] + r * nb[i]);
+                for (j, sj) in s.iter().enumerate() {
+                    x += self.bulk.pz[(i, j)] * sj;
+                    sig += self.bulk.nz[(i, j)] * sj;
+                }
+                let nt = self.model.traction_at(self.model.active_node(i), u, sig);
+                t[i] = nt.t2;
+                dn[i] = nt.d_normal_stress;
+                g[i] = s[i] - nt.t2 - self.bulk.spring[i] * x;
+                size = size.max(s[i].abs() + nt.t2.abs() + (self.bulk.spring[i] * x).abs());
+            }
+            g[m] = z.iter().zip(&s).map(|(a, b)| a * b).sum();
+            residual = g[..m].iter().fold(0.0f64, |a, x| a.max(x.abs())) / size.max(1e-300);
+            if it > 0 && residual <= 1e-11 {
+                return Ok(self.bound_or_unbounded(direction, r, &t));
+            }
+            if it == FULL_SLIP_ITERATIONS {
+                break;
+            }
+            for i in 0..m {
+                for j in 0..m {
+                    jac[(i, j)] = f64::from(u8::from(i == j))
+                        - dn[i] * self.bulk.nz[(i, j)]
+                        - self.bulk.spring[i] * self.bulk.pz[(i, j)];
+                }
+                jac[(i, m)] = -tau0 * (dn[i] * nb[i] + self.bulk.spring[i] * xb[i]);
+                jac[(m, i)] = z[i];
+            }
+            jac[(m, m)] = 0.0;
+            // Row equilibration keeps the solve accurate when dt/dsigma is large.
+            let scale: Vec<f64> = (0..=m)
+                .map(|i| {
+                    let a = (0..=m).fold(0.0f64, |a, j| a.max(jac[(i, j)].abs()));
+                    if a > 0.0 { 1.0 / a } else { 1.0 }
+                })
+                .collect();
+            let a = Mat::<f64>::from_fn(m + 1, m + 1, |i, j| scale[i] * jac[(i, j)]);
+            let rhs = Mat::<f64>::from_fn(m + 1, 1, |i, _| -scale[i] * g[i]);
+            let d = a.full_piv_lu().solve(&rhs);
+            if (0..=m).any(|i| !d[(i, 0)].is_finite()) {
+                break;
+            }
+            for i in 0..m {
+                s[i] += d[(i, 0)];
+            }
+            r += d[(m, 0)];
+        }
+        Err(ContactError::NotConverged {
+            iterations: FULL_SLIP_ITERATIONS,
+            residual,
+            load_factor: 0.0,
+        })
+    }
+
+    /// `r` if it is a positive ratio and the friction of the full-slip state `t` resists the
+    /// sliding in `direction` (wrong-way share at most [`WRONG_WAY_SHARE_LIMIT`]), else
+    /// `direction * inf`.
+    pub(super) fn bound_or_unbounded(&self, direction: f64, r: f64, t: &[f64]) -> f64 {
+        let (mut wrong, mut total) = (0.0, 0.0);
+        for (k, tk) in t.iter().enumerate() {
+            let w = self.model.active_node(k).traction_weight * tk.abs();
+            total += w;
+            if tk * direction > 0.0 {
+                wrong += w;
+            }
+        }
+        // no friction at all (mu = 0): the frictionless balance itself is the limit
+        let resists = wrong <= WRONG_WAY_SHARE_LIMIT * total;
+        if r.is_finite() && r > 0.0 && resists {
+            r
+        } else {
+            direction * f64::INFINITY
+        }
+    }
+}

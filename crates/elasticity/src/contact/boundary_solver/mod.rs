@@ -1,0 +1,438 @@
+//! The boundary-only (condensed) contact solver: factor the bulk once, Newton on the contact
+//! tractions only. Submodules: the condensation, the Newton iteration, the rigid mode, the
+//! limiting ratios, the continuations, and the settings.
+
+mod condensation;
+mod continuation;
+mod limits;
+mod newton;
+mod rigid;
+mod settings;
+
+pub use settings::{ContactSettings, SetupStats, SlidingMode};
+
+use std::sync::{Arc, Mutex};
+
+use capstan_friction::FrictionLaw;
+use capstan_solvers::{LinearSolver, Observer, SilentObserver, SparseLu};
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+
+use crate::contact::error::ContactError;
+use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::solution::{ContactSolution, SolveStats};
+use crate::discretisation::Discretisation;
+use condensation::{
+    Condensation, condense, frictionless_operator, largest_singular_value, project, row_max,
+};
+use newton::Failure;
+
+/// Largest relative residual of the full system accepted for a converged contact solution
+/// (a safety net behind the condensed Newton's own test).
+const MAX_FULL_RESIDUAL: f64 = 1e-6;
+
+/// Largest singular value of `I - C P Z` below which the spring dominates every boundary mode
+/// and is softened (see [`BoundarySolver`]).
+const SPRING_DOMINANCE: f64 = 0.1;
+
+/// The boundary-only contact solver.
+///
+/// # Math
+/// The friction traction acts only on the `m` tangential contact rows. With a stabilising
+/// spring `c_k` on those rows (so the bulk stays invertible even when the body can slide
+/// rigidly, as on a circle) and the unknowns `s_k = t_2,k + c_k v^2_k`:
+/// ```text
+/// A~ = A + sum_k w_k c_k e_row_k e_tdof_k^T         factorised once (sparse LU)
+/// v(s) = v_a tau0 + v_b tau_max + Z s,   Z = A~^-1 W  (m solves; only P Z, N Z are kept)
+/// x = P v = x0 + (P Z) s        (v^2 at the contact nodes)
+/// sigma = N v = n0 + (N Z) s    (T^3_3 at the contact nodes)
+/// G(s) = s - t_2(sqrt(g22) x, sigma) - C x = 0      m equations, dense Newton
+/// dG/ds = I - diag(dt_2/dv^2 + c) P Z - diag(dt_2/dsigma) N Z
+/// ```
+/// The spring cancels exactly: `G = 0` is `A v - b - W t_2 = 0`. Because `b` is linear in the
+/// loads, every tension ratio reuses the same factorisation and the same `m x m` matrices; a
+/// point of a ratio sweep costs only dense `m x m` work and one sparse solve for the field.
+///
+/// If the frictionless condensed operator `I - C P Z` is singular (the bulk admits a rigid
+/// sliding along the contact: the circle), equilibrium needs friction to balance the loads:
+/// the full-slip operators `I - diag(g kappa+-) N Z - C P Z` (`kappa` = `dt/dsigma` at large
+/// slip, `mu` sign for Coulomb) are singular too, and their left null vectors `y` give the
+/// solvability conditions `y . q(tau) = 0`, i.e. the limiting ratios (a discrete moment
+/// balance). Loads outside are [`ContactError::NoEquilibrium`].
+///
+/// The spring starts at `c_k = A_kk / w_k`. If it dominates every boundary mode of the body
+/// (largest singular value of `I - C P Z` below 0.1: thin bodies, whose
+/// diagonal grows like `1 / dx3^2` while their boundary stiffness falls like `h`), `s - C x`
+/// would cancel to rounding; the spring is then scaled by that singular value (down to the
+/// stiffest boundary mode) and the bulk condensed again. With a rigid mode `z` (`s = s_p + a z`),
+/// Newton keeps the amplitude `a` out of `s - C x` (it cancels there exactly) and, at every
+/// iterate, solves the scalar friction balance `y . G = 0` along the mode for `a` (`y` the left
+/// null vector of `I - C P Z`), where saturated friction leaves the Newton matrix no stiffness.
+pub struct BoundarySolver<'a, D, L: FrictionLaw<f64>> {
+    model: &'a ContactModel<D, L>,
+    /// The condensed bulk (law-independent), shared by the solvers of
+    /// [`BoundarySolver::with_model`].
+    bulk: Condensation,
+    sliding: Option<SlidingMode>,
+    /// Right null vector `z` of `I - C P Z` (the rigid mode in `s`, unit length), when there
+    /// is one.
+    rigid_mode: Vec<f64>,
+    /// `P Z z`: the tangential contact displacements of the rigid mode (empty without one).
+    rigid_shift: Vec<f64>,
+    /// Left null vector `y` of `I - C P Z` (unit length): `y . G = 0` is the balance of the
+    /// loads against friction along the rigid mode (empty without one).
+    rigid_balance: Vec<f64>,
+    /// Whether the saturated law is homogeneous in `sigma_n` (limits independent of `tau0`).
+    homogeneous: bool,
+    setup: SetupStats,
+    settings: ContactSettings,
+}
+
+impl<D, L: FrictionLaw<f64>> core::fmt::Debug for BoundarySolver<'_, D, L> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("BoundarySolver")
+            .field("setup", &self.setup)
+            .field("sliding", &self.sliding)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
+    /// Factorises the stabilised bulk and forms the condensed matrices.
+    ///
+    /// # Errors
+    /// Solver failures (a singular stabilised bulk); invalid settings.
+    pub fn new(
+        model: &'a ContactModel<D, L>,
+        settings: ContactSettings,
+    ) -> Result<Self, ContactError> {
+        settings.validate()?;
+        let ext = model.extended();
+        let m = model.active().len();
+        let n = model.dof_count();
+        let mut values = vec![0.0; ext.pattern.nnz()];
+        for (k, &a) in model.system().values.iter().enumerate() {
+            values[ext.a_slot[k]] += a;
+        }
+        let mut spring: Vec<f64> = (0..m)
+            .map(|k| {
+                let node = model.active_node(k);
+                let diag = values[ext.tangential_slot[k]].abs();
+                let diag = if diag > 0.0 {
+                    diag
+                } else {
+                    row_max(&ext.pattern, &values, node.tangential_row.expect("active"))
+                };
+                diag / node.traction_weight
+            })
+            .collect();
+        let mut lu = SparseLu::new(capstan_solvers::DirectParams {
+            ordering: model.discretisation().lu_ordering(),
+            ..Default::default()
+        })?;
+        lu.analyse(&ext.pattern)?;
+        let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu)?;
+        let mut factorisations = 1;
+        // A spring far stiffer than every boundary mode of the body (thin bodies: the diagonal
+        // grows like 1 / dx3^2, the boundary stiffness like h) makes `s - C x` cancel to
+        // rounding noise: soften it to the body's stiffest boundary mode and condense again.
+        let top = largest_singular_value(&frictionless_operator(&spring, &pz));
+        if top.is_finite() && top > 0.0 && top < SPRING_DOMINANCE {
+            for c in &mut spring {
+                *c *= top;
+            }
+            (pz, nz) = condense(model, ext, &values, &spring, &mut lu)?;
+            factorisations += 1;
+        }
+        let base = [0, 1].map(|i| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
+            let mut v = model.rhs_basis(i).to_vec();
+            lu.solve_in_place(&mut v)?;
+            Ok(project(model, &v))
+        });
+        let [b0, b1] = base;
+        let (b0, b1) = (b0?, b1?);
+        // P Z s = -x_i: the contact tractions that hold every contact node in place.
+        let lu_pz = pz.partial_piv_lu();
+        let stuck = [&b0.0, &b1.0].map(|x| {
+            let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -x[i]);
+            let s = lu_pz.solve(&rhs);
+            (0..m).map(|i| s[(i, 0)]).collect::<Vec<f64>>()
+        });
+        if stuck.iter().flatten().any(|x| !x.is_finite()) {
+            return Err(capstan_solvers::SolverError::Singular { pivot: None }.into());
+        }
+        let bulk = Condensation {
+            lu: Arc::new(Mutex::new(lu)),
+            spring,
+            pz: Arc::new(pz),
+            nz: Arc::new(nz),
+            base: [b0, b1],
+            stuck,
+        };
+        let setup = SetupStats {
+            contact_unknowns: m,
+            bulk_unknowns: n,
+            factorisations,
+            bulk_solves: factorisations * m + 2,
+        };
+        Self::with_condensation(model, bulk, setup, settings)
+    }
+
+    /// The solver of `model` on a condensed bulk, with the sliding-mode analysis of its law.
+    fn with_condensation(
+        model: &'a ContactModel<D, L>,
+        bulk: Condensation,
+        setup: SetupStats,
+        settings: ContactSettings,
+    ) -> Result<Self, ContactError> {
+        let mut solver = Self {
+            model,
+            bulk,
+            sliding: None,
+            rigid_mode: Vec::new(),
+            rigid_shift: Vec::new(),
+            rigid_balance: Vec::new(),
+            homogeneous: true,
+            setup,
+            settings,
+        };
+        solver.sliding = solver.sliding_mode()?;
+        Ok(solver)
+    }
+
+    /// A solver for `model`, the same body and contact surface with another friction law or
+    /// other friction parameters (`mu`, `eps`), that reuses this solver's factorisation and
+    /// condensed matrices: no sparse work, only the `m x m` sliding-mode analysis.
+    ///
+    /// # Math
+    /// `A~`, `P Z`, `N Z` and the unit-load states depend on the bulk operator, the contact
+    /// rows and the spring only, never on the law: with `A` and `b_0`, `b_1` equal, the
+    /// condensed equations `G(s) = s - t_2(sqrt(g22) x, sigma) - C x` of the new law are
+    /// exact. Only the limiting ratios (which depend on the law) are computed again.
+    ///
+    /// # Errors
+    /// [`ContactError::DifferentBody`] unless `model` has the same bulk operator, the same
+    /// unit-load right-hand sides and the same contact nodes (compared exactly); failures of
+    /// the sliding-mode analysis.
+    pub fn with_model<'b, L2: FrictionLaw<f64>>(
+        &self,
+        model: &'b ContactModel<D, L2>,
+    ) -> Result<BoundarySolver<'b, D, L2>, ContactError> {
+        let (old, new) = (self.model, model);
+        let differs = if old.system().pattern != new.system().pattern {
+            Some("sparsity patterns")
+        } else if old.system().values != new.system().values {
+            Some("bulk operators")
+        } else if (0..2).any(|i| old.rhs_basis(i) != new.rhs_basis(i)) {
+            Some("unit-load right-hand sides")
+        } else if old.contact_nodes() != new.contact_nodes() || old.active() != new.active() {
+            Some("contact nodes")
+        } else {
+            None
+        };
+        if let Some(what) = differs {
+            return Err(ContactError::DifferentBody { what });
+        }
+        BoundarySolver::with_condensation(
+            model,
+            self.bulk.clone(),
+            SetupStats {
+                factorisations: 0,
+                bulk_solves: 0,
+                ..self.setup
+            },
+            self.settings,
+        )
+    }
+
+    /// The work done at construction.
+    pub fn setup(&self) -> SetupStats {
+        self.setup
+    }
+
+    /// The rigid sliding mode and the limiting tension ratios at `tau0 = 1`, if the bulk has one.
+    pub fn sliding(&self) -> Option<SlidingMode> {
+        self.sliding
+    }
+
+    /// The rigid sliding mode with its limiting ratios for the given `tau0` (the same as
+    /// [`BoundarySolver::sliding`] for laws homogeneous in the normal stress).
+    ///
+    /// # Errors
+    /// [`ContactError::NotConverged`] if the full-slip Newton iteration fails.
+    pub fn sliding_at(&self, tau0: f64) -> Result<Option<SlidingMode>, ContactError> {
+        match self.sliding {
+            Some(mode) if !self.homogeneous && tau0 != mode.tau0 => {
+                self.limits_at(tau0, mode.relative_singular_value).map(Some)
+            }
+            other => Ok(other),
+        }
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &ContactSettings {
+        &self.settings
+    }
+
+    /// Checks the loads against the limiting ratios of a sliding mode.
+    ///
+    /// # Errors
+    /// [`ContactError::NoEquilibrium`] outside the range.
+    pub fn check_equilibrium(&self, loads: EndLoads) -> Result<(), ContactError> {
+        if loads.tau0 <= 0.0 {
+            return Ok(());
+        }
+        let Some(mode) = self.sliding_at(loads.tau0)? else {
+            return Ok(());
+        };
+        let r = loads.tension_ratio();
+        let tol = 1e-9 * r.abs().max(1.0);
+        if r > mode.upper_ratio + tol || r < mode.lower_ratio - tol {
+            return Err(ContactError::NoEquilibrium {
+                ratio: r,
+                lower: mode.lower_ratio,
+                upper: mode.upper_ratio,
+            });
+        }
+        Ok(())
+    }
+
+    /// The stuck contact unknowns for the loads (every contact node held in place).
+    pub fn stuck_unknowns(&self, loads: EndLoads) -> Vec<f64> {
+        self.bulk.stuck[0]
+            .iter()
+            .zip(&self.bulk.stuck[1])
+            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .collect()
+    }
+
+    /// Solves for the loads: plain Newton from the stuck state, then load continuation if
+    /// that fails.
+    ///
+    /// # Errors
+    /// [`ContactError::NoEquilibrium`] beyond limiting equilibrium; [`ContactError::NotConverged`].
+    pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
+        self.solve_from_observed(loads, None, &mut SilentObserver)
+    }
+
+    /// As [`BoundarySolver::solve`], reporting every Newton iterate and continuation step to
+    /// `observer` (stages [`capstan_solvers::SolveStage::CondensedNewton`] with stick/slip counts and
+    /// [`capstan_solvers::SolveStage::Continuation`]); [`ContactError::Interrupted`] when it asks to stop.
+    ///
+    /// # Errors
+    /// See [`BoundarySolver::solve`].
+    pub fn solve_observed(
+        &self,
+        loads: EndLoads,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
+        self.solve_from_observed(loads, None, observer)
+    }
+
+    /// As [`BoundarySolver::solve`], starting Newton from the contact unknowns `s` of a nearby
+    /// solution ([`ContactSolution::unknowns`]).
+    ///
+    /// # Errors
+    /// See [`BoundarySolver::solve`].
+    pub fn solve_from(
+        &self,
+        loads: EndLoads,
+        guess: Option<&[f64]>,
+    ) -> Result<ContactSolution, ContactError> {
+        self.solve_from_observed(loads, guess, &mut SilentObserver)
+    }
+
+    /// [`BoundarySolver::solve_from`] with an observer (see [`BoundarySolver::solve_observed`]).
+    ///
+    /// # Errors
+    /// See [`BoundarySolver::solve`]; [`ContactError::Interrupted`].
+    pub fn solve_from_observed(
+        &self,
+        loads: EndLoads,
+        guess: Option<&[f64]>,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
+        loads.check()?;
+        self.check_equilibrium(loads)?;
+        let m = self.bulk.pz.nrows();
+        let mut s = guess.map_or_else(|| self.stuck_unknowns(loads), <[f64]>::to_vec);
+        if s.len() != m {
+            return Err(crate::ElasticityError::DimensionMismatch {
+                quantity: "contact unknowns",
+                expected: m,
+                found: s.len(),
+            }
+            .into());
+        }
+        let interrupted = |iterations| ContactError::Interrupted { iterations };
+        let mut iterations = 0;
+        let mut steps = 1;
+        let plain = ContactSettings {
+            max_iterations: self.settings.max_iterations.min(25),
+            ..self.settings
+        };
+        match self.newton_with(&plain, 1.0, loads, &mut s, observer) {
+            Ok((it, _)) => iterations += it,
+            Err(Failure::Interrupted(it)) => return Err(interrupted(it)),
+            Err(Failure::NotConverged(it, _)) => {
+                iterations += it;
+                match self.slip_homotopy(loads, observer) {
+                    Ok((it, st, sh)) => {
+                        iterations += it;
+                        steps = st;
+                        s = sh;
+                    }
+                    Err(Failure::Interrupted(it)) => return Err(interrupted(iterations + it)),
+                    Err(failure) => {
+                        iterations += failure.iterations();
+                        let (it, st) = self.continuation(loads, &mut s, observer)?;
+                        iterations += it;
+                        steps = st;
+                    }
+                }
+            }
+        }
+        self.finish(loads, &s, iterations, steps)
+    }
+
+    fn finish(
+        &self,
+        loads: EndLoads,
+        s: &[f64],
+        iterations: usize,
+        steps: usize,
+    ) -> Result<ContactSolution, ContactError> {
+        let mut v = self.model.rhs(loads);
+        for (k, sk) in s.iter().enumerate() {
+            let node = self.model.active_node(k);
+            v[node.tangential_row.expect("active")] += node.traction_weight * sk;
+        }
+        self.bulk
+            .lu
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .solve_in_place(&mut v)?;
+        let mut sol = ContactSolution::new(
+            self.model,
+            loads,
+            v,
+            SolveStats {
+                method: "condensed",
+                newton_iterations: iterations,
+                continuation_steps: steps,
+                residual: 0.0,
+                linear_iterations: 0,
+                factorisations: 0,
+            },
+        );
+        if sol.stats.residual.is_nan() || sol.stats.residual > MAX_FULL_RESIDUAL {
+            return Err(ContactError::NotConverged {
+                iterations,
+                residual: sol.stats.residual,
+                load_factor: 1.0,
+            });
+        }
+        sol.unknowns = s.to_vec();
+        Ok(sol)
+    }
+}

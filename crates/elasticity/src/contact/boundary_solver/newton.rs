@@ -1,0 +1,299 @@
+//! Damped Newton on the condensed contact equations `G(s) = 0`.
+
+use capstan_friction::FrictionLaw;
+use capstan_solvers::{Observer, Progress, SolveStage};
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+
+use super::{BoundarySolver, ContactSettings};
+use crate::contact::model::EndLoads;
+use crate::discretisation::Discretisation;
+
+/// A residual within this factor of the rounding floor of its evaluation counts as converged.
+pub(super) const ROUNDOFF_FACTOR: f64 = 100.0;
+
+/// The largest relative residual the rounding floor may excuse (see [`ROUNDOFF_FACTOR`]).
+pub(super) const MAX_ROUNDOFF_RESIDUAL: f64 = 1e-6;
+
+/// Growth of the slip scale allowed per Newton step (see [`BoundarySolver::slip_step_cap`]).
+pub(super) const SLIP_STEP_GROWTH: f64 = 10.0;
+
+/// Stiffness along the rigid mode added to the Newton matrix, relative to the spring (see
+/// [`BoundarySolver::eval`]).
+pub(super) const RIGID_TETHER: f64 = 1e-8;
+
+/// A converged condensed Newton run: `(iterations, relative residual)`.
+pub(super) type Converged = (usize, f64);
+
+/// Why a condensed Newton run (or a continuation of them) stopped without converging.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Failure {
+    /// `(iterations, relative residual)` when it gave up.
+    NotConverged(usize, f64),
+    /// The observer asked to stop after this many iterations.
+    Interrupted(usize),
+}
+
+impl Failure {
+    /// Iterations spent.
+    pub(super) fn iterations(self) -> usize {
+        match self {
+            Self::NotConverged(it, _) | Self::Interrupted(it) => it,
+        }
+    }
+}
+
+impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+    /// `G(s)` and, optionally, `dG/ds`; returns `d t_2/d v^2` (spring included) and
+    /// `d t_2 / d sigma` per node.
+    ///
+    /// # Math
+    /// With a rigid mode `z` (`(I - C P Z) z = 0`, `N Z z = 0` exactly; `P Z z = x_r` the rigid
+    /// displacement) and `s = s_p + a z`, the rigid amplitude `a` enters only through the
+    /// displacement, never through `s - C x`, where it would cancel to rounding noise of size
+    /// `|a|` (large while the slip homotopy lets friction hold the body softly):
+    /// ```text
+    /// x = x0 + P Z s_p + a x_r,   sigma = n0 + N Z s_p
+    /// G = s_p - C P Z s_p - C x0 - t_2(sqrt(g22) beta x, sigma)
+    /// dG/ds = J0 (I - z z^T) - diag(beta dt/dv) x_r z^T,   J0 = I - diag(dt/dv + c) P Z - diag(dt/dsigma) N Z
+    /// ```
+    /// (without a rigid mode `a = 0`: `G = s - t_2 - C x`, `dG/ds = J0`).
+    pub(super) fn eval(
+        &self,
+        beta: f64,
+        x0: &[f64],
+        n0: &[f64],
+        s: &[f64],
+        g: &mut [f64],
+        jac: Option<&mut Mat<f64>>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let m = s.len();
+        let (a, sp) = self.split_rigid(s);
+        let mut dx = vec![0.0; m];
+        let mut dn = vec![0.0; m];
+        let mut friction = vec![0.0; m];
+        let (pzs, nzs) = self.condensed_products(&sp);
+        for (i, gi) in g.iter_mut().enumerate() {
+            let zs = pzs[i];
+            let sig = n0[i] + nzs[i];
+            let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
+            let x = x0[i] + zs + shift;
+            let node = self.model.active_node(i);
+            // slip homotopy: the law sees beta u (for regularised Coulomb: eps / beta)
+            let nt = self.model.traction_at(node, beta * node.sqrt_g22 * x, sig);
+            *gi = sp[i] - self.bulk.spring[i] * (x0[i] + zs) - nt.t2;
+            friction[i] = beta * nt.d_tangential;
+            dx[i] = friction[i] + self.bulk.spring[i];
+            dn[i] = nt.d_normal_stress;
+        }
+        if let Some(jac) = jac {
+            for j in 0..m {
+                for i in 0..m {
+                    jac[(i, j)] = f64::from(u8::from(i == j))
+                        - dx[i] * self.bulk.pz[(i, j)]
+                        - dn[i] * self.bulk.nz[(i, j)];
+                }
+            }
+            let z = &self.rigid_mode;
+            if !z.is_empty() {
+                // J0 (I - z z^T) - diag(friction + tether) x_r z^T: the tether keeps the
+                // matrix regular where the friction is saturated everywhere (the rigid
+                // amplitude of the step is then replaced by `rebalance`)
+                let jz0 = jac.as_ref() * faer::ColRef::from_slice(z);
+                let jz: Vec<f64> = (0..m)
+                    .map(|i| {
+                        jz0[i]
+                            + (friction[i] + RIGID_TETHER * self.bulk.spring[i])
+                                * self.rigid_shift[i]
+                    })
+                    .collect();
+                for j in 0..m {
+                    for i in 0..m {
+                        jac[(i, j)] -= jz[i] * z[j];
+                    }
+                }
+            }
+        }
+        (dx, dn)
+    }
+
+    /// The rounding-error bound of evaluating `G(s)` in floating point (max over the nodes):
+    /// ```text
+    /// floor_i = u (|s_p,i| + |t_2,i| + |c_i xb_i| + c_i X_i + |dt_2/dx_i| (X_i + |a x_r,i|) + |dt_2/dsigma_i| S_i)
+    /// xb = x0 + P Z s_p,   X_i = |x0_i| + sum_j |PZ_ij s_p,j|,   S_i = |n0_i| + sum_j |NZ_ij s_p,j|
+    /// ```
+    /// (`u` the machine epsilon, `s = s_p + a z` as in [`BoundarySolver::eval`]): the sums carry a
+    /// relative error `u`, amplified by the spring and by the law's stiffness `mu sigma_n / eps`
+    /// in the stick zone. No Newton step can reduce the residual below it.
+    pub(super) fn roundoff_floor(&self, beta: f64, x0: &[f64], n0: &[f64], s: &[f64]) -> f64 {
+        let m = s.len();
+        let mut g = vec![0.0; m];
+        let (dx, dn) = self.eval(beta, x0, n0, s, &mut g, None);
+        let (a, sp) = self.split_rigid(s);
+        (0..m)
+            .map(|i| {
+                let shift = self.rigid_shift.get(i).map_or(0.0, |r| (a * r).abs());
+                let (mut ax, mut an, mut xb) = (x0[i].abs(), n0[i].abs(), x0[i]);
+                for (j, sj) in sp.iter().enumerate() {
+                    ax += (self.bulk.pz[(i, j)] * sj).abs();
+                    an += (self.bulk.nz[(i, j)] * sj).abs();
+                    xb += self.bulk.pz[(i, j)] * sj;
+                }
+                let c = self.bulk.spring[i];
+                // G_i = s_p,i - c_i xb_i - t_2,i, so eval's residual gives the traction back
+                let t2 = sp[i] - g[i] - c * xb;
+                let friction = dx[i] - c;
+                f64::EPSILON
+                    * (sp[i].abs()
+                        + t2.abs()
+                        + (c * xb).abs()
+                        + c * ax
+                        + friction.abs() * (ax + shift)
+                        + dn[i].abs() * an)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// The largest step fraction `alpha <= 1` whose change of the physical slip stays within
+    /// [`SLIP_STEP_GROWTH`] times the current slip scale:
+    /// ```text
+    /// alpha max_k |beta sqrt(g22_k) (P Z ds)_k| <= SLIP_STEP_GROWTH max(eps, max_k |beta sqrt(g22_k) x_k|)
+    /// ```
+    /// (`eps` the law's slip threshold). The regularised law changes over a slip of `eps`, so a
+    /// Newton step far beyond the current slip scale is an extrapolation; along a rigid
+    /// sliding mode held only by friction, it sends the body sliding away, where the saturated
+    /// friction leaves a smaller but spurious residual.
+    pub(super) fn slip_step_cap(&self, beta: f64, x0: &[f64], s: &[f64], ds: &Mat<f64>) -> f64 {
+        let m = s.len();
+        let (mut current, mut step) = (0.0f64, 0.0f64);
+        for (i, x0) in x0.iter().enumerate().take(m) {
+            let (mut x, mut dx) = (*x0, 0.0);
+            for j in 0..m {
+                x += self.bulk.pz[(i, j)] * s[j];
+                dx += self.bulk.pz[(i, j)] * ds[(j, 0)];
+            }
+            let w = beta * self.model.active_node(i).sqrt_g22;
+            current = current.max((w * x).abs());
+            step = step.max((w * dx).abs());
+        }
+        let bound = SLIP_STEP_GROWTH * current.max(self.model.slip_threshold());
+        if step > bound { bound / step } else { 1.0 }
+    }
+
+    /// [`BoundarySolver::newton_with`] with the solver's settings.
+    pub(super) fn newton(
+        &self,
+        beta: f64,
+        loads: EndLoads,
+        s: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<Converged, Failure> {
+        self.newton_with(&self.settings, beta, loads, s, observer)
+    }
+
+    /// Damped Newton on `G(s) = 0` from `s`. Converged when `max |G| <= tolerance * scale`,
+    /// or, once no step decreases `|G|` (or the iterations run out), when `max |G|` is within
+    /// [`ROUNDOFF_FACTOR`] of the rounding floor of its own evaluation
+    /// ([`BoundarySolver::roundoff_floor`]). Every iterate is reported to `observer`
+    /// ([`SolveStage::CondensedNewton`]: the relative residual `max |G| / scale`, the step
+    /// length and the stick/slip counts the law sees), which may stop the iteration.
+    pub(super) fn newton_with(
+        &self,
+        settings: &ContactSettings,
+        beta: f64,
+        loads: EndLoads,
+        s: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<Converged, Failure> {
+        let (x0, n0) = self.loaded_base(loads);
+        let m = s.len();
+        let gmax = (0..m)
+            .map(|k| self.model.active_node(k).sqrt_g22)
+            .fold(0.0f64, f64::max);
+        let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
+        let tol = settings.tolerance * scale;
+        let mut g = vec![0.0; m];
+        let mut trial = vec![0.0; m];
+        let mut gt = vec![0.0; m];
+        let mut jac = Mat::<f64>::zeros(m, m);
+        // the rounding floor may excuse a residual up to 1e-6 relative, never more (a state
+        // drifting along a sliding mode has a huge floor and is no solution)
+        let accept_floor =
+            |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
+        let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
+        let max_norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        self.rebalance(beta, &x0, &n0, s);
+        let mut step = 0.0;
+        for it in 0..settings.max_iterations {
+            self.eval(beta, &x0, &n0, s, &mut g, Some(&mut jac));
+            let r = max_norm(&g);
+            let (stick, slip) = self.active_counts(beta, &x0, s);
+            observer.iteration(
+                &Progress::new(SolveStage::CondensedNewton, it, r / scale, step)
+                    .with_active(stick, slip),
+            );
+            if observer.interrupted() {
+                return Err(Failure::Interrupted(it));
+            }
+            if !r.is_finite() {
+                return Err(Failure::NotConverged(it, f64::INFINITY));
+            }
+            if r <= tol {
+                return Ok((it, r / scale));
+            }
+            let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -g[i]);
+            let ds = jac.partial_piv_lu().solve(&rhs);
+            if (0..m).any(|i| !ds[(i, 0)].is_finite()) {
+                return Err(Failure::NotConverged(it, r / scale));
+            }
+            let phi0 = norm2(&g);
+            let alpha0 = self.slip_step_cap(beta, &x0, s, &ds);
+            let mut alpha = alpha0;
+            loop {
+                for i in 0..m {
+                    trial[i] = s[i] + alpha * ds[(i, 0)];
+                }
+                self.rebalance(beta, &x0, &n0, &mut trial);
+                self.eval(beta, &x0, &n0, &trial, &mut gt, None);
+                let phi = norm2(&gt);
+                if phi.is_finite() && phi <= (1.0 - 1e-4 * alpha) * phi0 {
+                    break;
+                }
+                alpha *= 0.5;
+                if alpha < 1e-8 * alpha0 {
+                    // no descent left: accept if the residual is at its rounding floor
+                    return if r <= accept_floor(self.roundoff_floor(beta, &x0, &n0, s)) {
+                        Ok((it, r / scale))
+                    } else {
+                        Err(Failure::NotConverged(it + 1, r / scale))
+                    };
+                }
+            }
+            s.copy_from_slice(&trial);
+            step = alpha;
+        }
+        self.eval(beta, &x0, &n0, s, &mut g, None);
+        let r = max_norm(&g);
+        if r <= tol.max(accept_floor(self.roundoff_floor(beta, &x0, &n0, s))) {
+            Ok((settings.max_iterations, r / scale))
+        } else {
+            Err(Failure::NotConverged(settings.max_iterations, r / scale))
+        }
+    }
+
+    /// `(stick, slip)`: contact nodes whose slip as the law sees it, `|beta sqrt(g22) x|`,
+    /// is below the law's slip threshold, and the others (`x = x0 + P Z s_p + a x_r`).
+    fn active_counts(&self, beta: f64, x0: &[f64], s: &[f64]) -> (usize, usize) {
+        let (a, sp) = self.split_rigid(s);
+        let (pzs, _) = self.condensed_products(&sp);
+        let eps = self.model.slip_threshold();
+        let stick = (0..s.len())
+            .filter(|&i| {
+                let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
+                let u = beta * self.model.active_node(i).sqrt_g22 * (x0[i] + pzs[i] + shift);
+                u.abs() < eps
+            })
+            .count();
+        (stick, s.len() - stick)
+    }
+}
