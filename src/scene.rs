@@ -124,8 +124,12 @@ impl ObstacleSpec {
 }
 
 /// `[friction]`.
+///
+/// Unknown keys are refused by the scene's key check ([`known_keys`]: the fields below and the
+/// parameters of every registered law, [`capstan_friction::registry`]), so `extra` holds only
+/// parameters of laws registered outside the friction crate.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct FrictionSpec {
     /// The friction law (`coulomb`: regularised Coulomb of Kikuchi–Oden).
     pub law: String,
@@ -142,6 +146,9 @@ pub struct FrictionSpec {
     /// First orthotropy axis from the slip frame's first axis, radians
     /// (`friction.law = "orthotropic-coulomb"`).
     pub axis_angle: f64,
+    /// Parameters of other registered laws, by key.
+    #[serde(flatten)]
+    pub extra: std::collections::BTreeMap<String, f64>,
 }
 
 impl Default for FrictionSpec {
@@ -155,6 +162,7 @@ impl Default for FrictionSpec {
             exponent: d.exponent,
             mu2: d.mu2,
             axis_angle: d.axis_angle,
+            extra: d.extra,
         }
     }
 }
@@ -169,6 +177,7 @@ impl FrictionSpec {
             axis_angle: self.axis_angle,
             bound: self.bound,
             exponent: self.exponent,
+            extra: self.extra.clone(),
         }
     }
 }
@@ -387,12 +396,16 @@ impl Scene {
 pub fn known_keys() -> Vec<String> {
     let table = toml::Table::try_from(Scene::default()).expect("the default scene serialises");
     let mut keys = vec!["membrane.t_max".to_string()];
+    for law in capstan_friction::registry::registry() {
+        keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
+    }
     for (section, value) in &table {
         if let toml::Value::Table(t) = value {
             keys.extend(t.keys().map(|k| format!("{section}.{k}")));
         }
     }
     keys.sort();
+    keys.dedup();
     keys
 }
 
@@ -670,7 +683,7 @@ impl Scene {
             return Err(bad(
                 "friction.law",
                 format!("{:?}", f.law),
-                FrictionLawKind::NAMES,
+                &FrictionLawKind::names(),
             ));
         }
         real("friction.mu", f.mu, "[0, inf)", f.mu >= 0.0)?;
@@ -686,7 +699,7 @@ impl Scene {
         real("friction.axis_angle", f.axis_angle, "finite values", true)?;
         if let Some(kind) = FrictionLawKind::parse(&f.law) {
             // The law's own checks (e.g. orthotropic: not both coefficients zero).
-            AnyFrictionParams::<f64>::new(kind, &f.settings()).map_err(|e| CliError::Scene {
+            AnyFrictionParams::of_kind(kind, &f.settings()).map_err(|e| CliError::Scene {
                 origin: at.locate("friction.law"),
                 message: e.to_string(),
             })?;

@@ -116,17 +116,17 @@ pub fn model(scene: &Scene) -> Result<SceneModel, CliError> {
 ///
 /// # Errors
 /// An unknown `friction.law`; bad friction values.
-pub fn scene_law(scene: &Scene) -> Result<(AnyFrictionLaw, AnyFrictionParams<f64>, f64), CliError> {
+pub fn scene_law(scene: &Scene) -> Result<(AnyFrictionLaw, AnyFrictionParams, f64), CliError> {
     let f = &scene.friction;
     let kind = FrictionLawKind::parse(&f.law).ok_or_else(|| CliError::Scene {
         origin: "friction.law".into(),
         message: format!(
             "unknown friction law `{}`; expected one of {}",
             f.law,
-            FrictionLawKind::NAMES
+            FrictionLawKind::names()
         ),
     })?;
-    let params = AnyFrictionParams::new(kind, &f.settings())?;
+    let params = AnyFrictionParams::of_kind(kind, &f.settings())?;
     Ok((AnyFrictionLaw, params, f.eps))
 }
 

@@ -1,161 +1,102 @@
-//! One friction-law type for every law: enum dispatch, so a contact problem that is generic
-//! over [`FrictionLaw`] can take the law from a scene file (`friction.law`).
+//! One friction-law type for every registered law: a contact problem that is generic over
+//! [`FrictionLaw`] takes the law a scene names (`friction.law`) from the [`crate::registry`].
 
-use capstan_geometry::Real;
+use std::sync::Arc;
 
-use crate::Frictionless;
 use crate::error::FrictionError;
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::howell::{Howell, HowellParams};
-use crate::orthotropic_coulomb::{OrthotropicCoulomb, OrthotropicCoulombParams};
-use crate::regularised_coulomb::{RegularisedCoulomb, RegularisedCoulombParams};
-use crate::smooth_coulomb::{SmoothCoulomb, SmoothCoulombParams};
-use crate::tresca::{Tresca, TrescaParams};
+use crate::registry::{self, DynFrictionLaw, FrictionSettings, RegisteredLaw};
 
-/// The friction laws by name (the values of the scene key `friction.law`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum FrictionLawKind {
-    /// `coulomb`: [`RegularisedCoulomb`] (Kikuchi–Oden).
-    Coulomb,
-    /// `smooth-coulomb`: [`SmoothCoulomb`].
-    SmoothCoulomb,
-    /// `tresca`: [`Tresca`].
-    Tresca,
-    /// `howell`: [`Howell`].
-    Howell,
-    /// `orthotropic-coulomb`: [`OrthotropicCoulomb`].
-    OrthotropicCoulomb,
-    /// `frictionless`: [`Frictionless`].
-    Frictionless,
+/// A registered friction law, by name (the values of the scene key `friction.law`).
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionLawKind(&'static RegisteredLaw);
+
+impl PartialEq for FrictionLawKind {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.name == other.0.name
+    }
 }
+
+impl Eq for FrictionLawKind {}
 
 impl FrictionLawKind {
-    /// Every kind, in the order of [`FrictionLawKind::NAMES`].
-    pub const ALL: [Self; 6] = [
-        Self::Coulomb,
-        Self::SmoothCoulomb,
-        Self::Tresca,
-        Self::Howell,
-        Self::OrthotropicCoulomb,
-        Self::Frictionless,
-    ];
-    /// The accepted names, for error messages.
-    pub const NAMES: &'static str =
-        "coulomb, smooth-coulomb, tresca, howell, orthotropic-coulomb, frictionless";
-
-    /// The kind called `name` (one of [`FrictionLawKind::NAMES`]), or `None`.
+    /// The law called `name`, if registered ([`registry::find`]).
     pub fn parse(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|k| k.name() == name)
+        registry::find(name).map(Self)
     }
+
+    /// Every registered law, built-ins first.
+    pub fn all() -> Vec<Self> {
+        registry::registry().into_iter().map(Self).collect()
+    }
+
+    /// The registered names, comma-separated (for error messages).
+    pub fn names() -> String {
+        registry::names()
+    }
+
     /// The scene name.
     pub fn name(&self) -> &'static str {
-        match self {
-            Self::Coulomb => "coulomb",
-            Self::SmoothCoulomb => "smooth-coulomb",
-            Self::Tresca => "tresca",
-            Self::Howell => "howell",
-            Self::OrthotropicCoulomb => "orthotropic-coulomb",
-            Self::Frictionless => "frictionless",
-        }
+        self.0.name
+    }
+
+    /// The registration: summary, parameters, builder.
+    pub fn registration(&self) -> &'static RegisteredLaw {
+        self.0
     }
 }
 
-/// The scalar settings every law draws its parameters from (scene table `[friction]`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FrictionSettings {
-    /// `friction.mu`: `mu` (Coulomb laws), `mu'` (Howell), `mu_1` (orthotropic).
-    pub mu: f64,
-    /// `friction.eps`: regularisation width (physical slip length).
-    pub eps: f64,
-    /// `friction.mu2`: `mu_2` of the orthotropic law.
-    pub mu2: f64,
-    /// `friction.axis_angle`: first orthotropy axis from the slip frame's first axis (radians).
-    pub axis_angle: f64,
-    /// `friction.bound`: the Tresca bound `g`.
-    pub bound: f64,
-    /// `friction.exponent`: Howell's `n`.
-    pub exponent: f64,
+/// The parameters of any registered law: the law it names, built from a scene's settings.
+#[derive(Debug, Clone)]
+pub struct AnyFrictionParams {
+    kind: FrictionLawKind,
+    law: Arc<dyn DynFrictionLaw>,
 }
 
-impl Default for FrictionSettings {
-    fn default() -> Self {
-        Self {
-            mu: 0.5,
-            eps: 1e-5,
-            mu2: 0.5,
-            axis_angle: 0.0,
-            bound: 0.5,
-            exponent: 1.0,
-        }
-    }
-}
-
-/// The parameters of any law; the variant selects the law [`AnyFrictionLaw`] applies.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
-pub enum AnyFrictionParams<F> {
-    /// [`RegularisedCoulomb`].
-    Coulomb(RegularisedCoulombParams<F>),
-    /// [`SmoothCoulomb`].
-    SmoothCoulomb(SmoothCoulombParams<F>),
-    /// [`Tresca`].
-    Tresca(TrescaParams<F>),
-    /// [`Howell`].
-    Howell(HowellParams<F>),
-    /// [`OrthotropicCoulomb`].
-    OrthotropicCoulomb(OrthotropicCoulombParams<F>),
-    /// [`Frictionless`].
-    Frictionless,
-}
-
-impl<F: Real> AnyFrictionParams<F> {
-    /// The parameters of law `kind` drawn from `settings`.
+impl AnyFrictionParams {
+    /// The law called `name` with its parameters drawn from `settings`.
     ///
     /// # Errors
+    /// [`FrictionError::UnknownLaw`] if no law of that name is registered;
     /// [`FrictionError::InvalidParameter`] naming the scene key of the first bad value the law
     /// uses (values it does not use are not checked).
-    pub fn new(kind: FrictionLawKind, settings: &FrictionSettings) -> Result<Self, FrictionError> {
-        let f = |x: f64| capstan_geometry::real::<F>(x);
-        let s = settings;
-        Ok(match kind {
-            FrictionLawKind::Coulomb => {
-                Self::Coulomb(RegularisedCoulombParams::new(f(s.mu), f(s.eps))?)
-            }
-            FrictionLawKind::SmoothCoulomb => {
-                Self::SmoothCoulomb(SmoothCoulombParams::new(f(s.mu), f(s.eps))?)
-            }
-            FrictionLawKind::Tresca => Self::Tresca(TrescaParams::new(f(s.bound), f(s.eps))?),
-            FrictionLawKind::Howell => {
-                Self::Howell(HowellParams::new(f(s.mu), f(s.exponent), f(s.eps))?)
-            }
-            FrictionLawKind::OrthotropicCoulomb => Self::OrthotropicCoulomb(
-                OrthotropicCoulombParams::new([f(s.mu), f(s.mu2)], f(s.axis_angle), f(s.eps))?,
-            ),
-            FrictionLawKind::Frictionless => Self::Frictionless,
+    pub fn new(name: &str, settings: &FrictionSettings) -> Result<Self, FrictionError> {
+        let kind = FrictionLawKind::parse(name).ok_or_else(|| FrictionError::UnknownLaw {
+            name: name.to_string(),
+            allowed: registry::names(),
+        })?;
+        Self::of_kind(kind, settings)
+    }
+
+    /// The law `kind` with its parameters drawn from `settings`.
+    ///
+    /// # Errors
+    /// See [`AnyFrictionParams::new`].
+    pub fn of_kind(
+        kind: FrictionLawKind,
+        settings: &FrictionSettings,
+    ) -> Result<Self, FrictionError> {
+        Ok(Self {
+            kind,
+            law: (kind.0.build)(settings)?,
         })
     }
+
     /// Which law these parameters select.
     pub fn kind(&self) -> FrictionLawKind {
-        match self {
-            Self::Coulomb(_) => FrictionLawKind::Coulomb,
-            Self::SmoothCoulomb(_) => FrictionLawKind::SmoothCoulomb,
-            Self::Tresca(_) => FrictionLawKind::Tresca,
-            Self::Howell(_) => FrictionLawKind::Howell,
-            Self::OrthotropicCoulomb(_) => FrictionLawKind::OrthotropicCoulomb,
-            Self::Frictionless => FrictionLawKind::Frictionless,
-        }
+        self.kind
     }
 }
 
-/// Every friction law behind one type: the law applied is the one the parameters' variant
-/// names, so `ContactModel<D, AnyFrictionLaw>` takes its law from a scene at run time.
+/// Every registered friction law behind one type: the law applied is the one the parameters
+/// name, so `ContactModel<D, AnyFrictionLaw>` takes its law from a scene at run time.
 ///
 /// # Example
 /// ```
 /// use capstan_friction::{AnyFrictionLaw, AnyFrictionParams, ContactState, FrictionLaw,
-///     FrictionLawKind, FrictionSettings, Tresca, TrescaParams};
+///     FrictionSettings, Tresca, TrescaParams};
 /// let settings = FrictionSettings { bound: 0.3, ..Default::default() };
-/// let any = AnyFrictionParams::new(FrictionLawKind::parse("tresca").unwrap(), &settings).unwrap();
+/// let any = AnyFrictionParams::new("tresca", &settings).unwrap();
 /// let c = ContactState::new([0.1, 0.0], -2.0);
 /// let direct = Tresca.traction(&c, &TrescaParams::new(0.3, 1e-5).unwrap());
 /// assert_eq!(AnyFrictionLaw.traction(&c, &any), direct);
@@ -163,36 +104,18 @@ impl<F: Real> AnyFrictionParams<F> {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct AnyFrictionLaw;
 
-impl<F: Real> FrictionLaw<F> for AnyFrictionLaw {
-    type Params = AnyFrictionParams<F>;
+impl FrictionLaw<f64> for AnyFrictionLaw {
+    type Params = AnyFrictionParams;
 
-    fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
-        match p {
-            AnyFrictionParams::Coulomb(q) => RegularisedCoulomb.traction(c, q),
-            AnyFrictionParams::SmoothCoulomb(q) => SmoothCoulomb.traction(c, q),
-            AnyFrictionParams::Tresca(q) => Tresca.traction(c, q),
-            AnyFrictionParams::Howell(q) => Howell.traction(c, q),
-            AnyFrictionParams::OrthotropicCoulomb(q) => OrthotropicCoulomb.traction(c, q),
-            AnyFrictionParams::Frictionless => FrictionLaw::<F>::traction(&Frictionless, c, &()),
-        }
+    fn traction(&self, c: &ContactState<f64>, p: &Self::Params) -> [f64; 2] {
+        p.law.traction(c)
     }
 
     fn traction_derivatives(
         &self,
-        c: &ContactState<F>,
+        c: &ContactState<f64>,
         p: &Self::Params,
-    ) -> TractionDerivatives<F> {
-        match p {
-            AnyFrictionParams::Coulomb(q) => RegularisedCoulomb.traction_derivatives(c, q),
-            AnyFrictionParams::SmoothCoulomb(q) => SmoothCoulomb.traction_derivatives(c, q),
-            AnyFrictionParams::Tresca(q) => Tresca.traction_derivatives(c, q),
-            AnyFrictionParams::Howell(q) => Howell.traction_derivatives(c, q),
-            AnyFrictionParams::OrthotropicCoulomb(q) => {
-                OrthotropicCoulomb.traction_derivatives(c, q)
-            }
-            AnyFrictionParams::Frictionless => {
-                FrictionLaw::<F>::traction_derivatives(&Frictionless, c, &())
-            }
-        }
+    ) -> TractionDerivatives<f64> {
+        p.law.traction_derivatives(c)
     }
 }

@@ -19,6 +19,21 @@ pub enum FrictionError {
         /// The allowed range in words (e.g. `[0, inf)`).
         allowed: &'static str,
     },
+    /// A friction law of this name is registered already
+    /// ([`crate::registry::register`]).
+    #[error("a friction law named `{name}` is registered already")]
+    DuplicateLaw {
+        /// The name.
+        name: &'static str,
+    },
+    /// `friction.law` names no registered law.
+    #[error("`friction.law` = \"{name}\" is not a registered law: expected one of {allowed}")]
+    UnknownLaw {
+        /// The name asked for.
+        name: String,
+        /// The registered names.
+        allowed: String,
+    },
     /// A parameter the computation needs was not given.
     #[error("`{field}` is required: {why}")]
     MissingParameter {
@@ -163,9 +178,11 @@ impl FrictionError {
     /// Which kind of failure this is.
     pub fn category(&self) -> ErrorCategory {
         match self {
-            Self::InvalidParameter { .. } | Self::MissingParameter { .. } | Self::Geometry(_) => {
-                ErrorCategory::InvalidInput
-            }
+            Self::InvalidParameter { .. }
+            | Self::MissingParameter { .. }
+            | Self::DuplicateLaw { .. }
+            | Self::UnknownLaw { .. }
+            | Self::Geometry(_) => ErrorCategory::InvalidInput,
             Self::NonPositiveCurvature { .. }
             | Self::LiftOff { .. }
             | Self::NonPositiveTension { .. }
@@ -182,8 +199,12 @@ impl FrictionError {
     }
 }
 
-/// Checks that `value` is finite and in the range described by `ok`.
-pub(crate) fn check(
+/// Checks that `value` is finite and in the range described by `ok`: the validation of a
+/// scene parameter (`field` is its scene key, `allowed` the range in words).
+///
+/// # Errors
+/// [`FrictionError::InvalidParameter`] naming `field`, the value and `allowed`.
+pub fn check(
     field: &'static str,
     value: f64,
     allowed: &'static str,

@@ -3,6 +3,7 @@
 use capstan_geometry::Real;
 
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+use crate::registry::{RegisteredLaw, bind};
 
 /// A perfectly smooth contact: `t(u, p) = 0` for every slip and pressure.
 ///
@@ -30,3 +31,11 @@ impl<F: Real> FrictionLaw<F> for Frictionless {
         TractionDerivatives::new([[F::zero(); 2]; 2], [F::zero(); 2])
     }
 }
+
+/// `friction.law = "frictionless"`: [`Frictionless`] (reads no parameter).
+pub(crate) const REGISTRATION: RegisteredLaw = RegisteredLaw {
+    name: "frictionless",
+    summary: "no tangential traction",
+    parameters: &[],
+    build: |_| Ok(bind(Frictionless, ())),
+};

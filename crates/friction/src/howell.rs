@@ -4,6 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+use crate::registry::{RegisteredLaw, bind};
 use crate::smooth_coulomb::{direction_kernel, to_f64};
 
 /// Howell's power law (fibres and yarns): the friction force grows like a power `n` of the
@@ -98,3 +99,12 @@ impl<F: Real> FrictionLaw<F> for Howell {
         TractionDerivatives::new(d, [ds_dp * u1 * inv, ds_dp * u2 * inv])
     }
 }
+
+/// `friction.law = "howell"`: [`Howell`] from `friction.mu`, `friction.exponent`,
+/// `friction.eps`.
+pub(crate) const REGISTRATION: RegisteredLaw = RegisteredLaw {
+    name: "howell",
+    summary: "Howell's power law |t| = mu |p|^n",
+    parameters: &["mu", "exponent", "eps"],
+    build: |s| Ok(bind(Howell, HowellParams::new(s.mu, s.exponent, s.eps)?)),
+};

@@ -5,7 +5,7 @@
 //! - [`FrictionLaw`] with [`RegularisedCoulomb`] (Kikuchi–Oden), [`SmoothCoulomb`],
 //!   [`Tresca`], [`Howell`]'s power law, [`OrthotropicCoulomb`] and [`Frictionless`], with
 //!   consistent Newton tangents; [`AnyFrictionLaw`] selects among them at run time
-//!   (`friction.law`).
+//!   (`friction.law`) through the [`registry`], where a new law registers once.
 //! - [`membrane_displacement`]: the membrane as a 1-D displacement problem with a pointwise
 //!   friction law and bilateral contact, solved by Newton; its full-slip limit is the capstan
 //!   profile.
@@ -32,18 +32,20 @@ pub mod membrane_displacement;
 pub mod ode;
 mod orthotropic_coulomb;
 pub mod quadrature;
+pub mod registry;
 mod regularised_coulomb;
 pub mod root;
 pub mod samples;
 mod smooth_coulomb;
 mod tresca;
 
-pub use any_friction_law::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind, FrictionSettings};
+pub use any_friction_law::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 pub use error::{ErrorCategory, FrictionError};
 pub use friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 pub use frictionless::Frictionless;
 pub use howell::{Howell, HowellParams};
 pub use orthotropic_coulomb::{OrthotropicCoulomb, OrthotropicCoulombParams};
+pub use registry::FrictionSettings;
 pub use regularised_coulomb::{RegularisedCoulomb, RegularisedCoulombParams};
 pub use smooth_coulomb::{SmoothCoulomb, SmoothCoulombParams};
 pub use tresca::{Tresca, TrescaParams};

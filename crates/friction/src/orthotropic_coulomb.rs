@@ -4,6 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+use crate::registry::{RegisteredLaw, bind};
 use crate::smooth_coulomb::to_f64;
 
 /// Orthotropic Coulomb friction with an elliptic limit surface and the associated slip rule
@@ -152,3 +153,15 @@ impl<F: Real> FrictionLaw<F> for OrthotropicCoulomb {
         TractionDerivatives::new(out, dp)
     }
 }
+
+/// `friction.law = "orthotropic-coulomb"`: [`OrthotropicCoulomb`] from `friction.mu`,
+/// `friction.mu2`, `friction.axis_angle`, `friction.eps`.
+pub(crate) const REGISTRATION: RegisteredLaw = RegisteredLaw {
+    name: "orthotropic-coulomb",
+    summary: "orthotropic Coulomb friction: mu_1, mu_2 along axes at axis_angle",
+    parameters: &["mu", "mu2", "axis_angle", "eps"],
+    build: |s| {
+        let p = OrthotropicCoulombParams::new([s.mu, s.mu2], s.axis_angle, s.eps)?;
+        Ok(bind(OrthotropicCoulomb, p))
+    },
+};

@@ -4,6 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+use crate::registry::{RegisteredLaw, bind};
 
 /// Regularised Coulomb friction (Kikuchi–Oden): Coulomb above a slip `eps`, linear below.
 ///
@@ -93,6 +94,19 @@ impl<F: Real> FrictionLaw<F> for RegularisedCoulomb {
         }
     }
 }
+
+/// `friction.law = "coulomb"`: [`RegularisedCoulomb`] from `friction.mu`, `friction.eps`.
+pub(crate) const REGISTRATION: RegisteredLaw = RegisteredLaw {
+    name: "coulomb",
+    summary: "regularised Coulomb friction (Kikuchi-Oden): mu |p| u / max(|u|, eps)",
+    parameters: &["mu", "eps"],
+    build: |s| {
+        Ok(bind(
+            RegularisedCoulomb,
+            RegularisedCoulombParams::new(s.mu, s.eps)?,
+        ))
+    },
+};
 
 #[cfg(test)]
 mod tests {

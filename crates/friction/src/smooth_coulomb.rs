@@ -4,6 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+use crate::registry::{RegisteredLaw, bind};
 
 /// Coulomb friction with a smooth (`C^infinity`) regularisation: no kink for Newton.
 ///
@@ -113,3 +114,11 @@ pub(crate) fn direction_kernel<F: Real>(u: [F; 2], s: F, eps: F) -> ([F; 2], [[F
         )
     }
 }
+
+/// `friction.law = "smooth-coulomb"`: [`SmoothCoulomb`] from `friction.mu`, `friction.eps`.
+pub(crate) const REGISTRATION: RegisteredLaw = RegisteredLaw {
+    name: "smooth-coulomb",
+    summary: "Coulomb friction with a smooth regularisation of width eps",
+    parameters: &["mu", "eps"],
+    build: |s| Ok(bind(SmoothCoulomb, SmoothCoulombParams::new(s.mu, s.eps)?)),
+};

@@ -4,6 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
+use crate::registry::{RegisteredLaw, bind};
 use crate::smooth_coulomb::{direction_kernel, to_f64};
 
 /// Tresca friction: the traction bound `g` does not depend on the normal stress.
@@ -71,3 +72,11 @@ impl<F: Real> FrictionLaw<F> for Tresca {
         TractionDerivatives::new(d, [F::zero(); 2])
     }
 }
+
+/// `friction.law = "tresca"`: [`Tresca`] from `friction.bound`, `friction.eps`.
+pub(crate) const REGISTRATION: RegisteredLaw = RegisteredLaw {
+    name: "tresca",
+    summary: "Tresca friction: a traction bound g independent of the pressure",
+    parameters: &["bound", "eps"],
+    build: |s| Ok(bind(Tresca, TrescaParams::new(s.bound, s.eps)?)),
+};
