@@ -598,7 +598,7 @@ impl Scene {
     /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
     /// shape's expressions parse and are finite with finite first and second derivatives on
     /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is one of
-    /// [`FrictionLawKind::NAMES`],
+    /// [`FrictionLawKind::names`],
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
     /// `samples` in `[2, 10^7]`, `t_max > 0` when given; `loads.gravity, density >= 0`,
     /// `loads.width, thickness > 0`; `body.thickness > 0`, `body.young > 0`, `body.poisson`

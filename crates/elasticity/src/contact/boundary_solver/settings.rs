@@ -80,11 +80,11 @@ pub struct SlidingMode {
     /// `tau_max / tau0` at which the whole contact slides in the positive direction.
     pub upper_ratio: f64,
     /// The `tau0` of these ratios (they depend on it unless the law is homogeneous in the
-    /// normal stress, as Coulomb's is; [`BoundarySolver::sliding`] reports `tau0 = 1`).
+    /// normal stress, as Coulomb's is; [`BoundarySolver::sliding`](super::BoundarySolver::sliding) reports `tau0 = 1`).
     pub tau0: f64,
 }
 
-/// Work done once by [`BoundarySolver::new`].
+/// Work done once by [`BoundarySolver::new`](super::BoundarySolver::new).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SetupStats {
     /// Contact unknowns `m`.
@@ -92,7 +92,7 @@ pub struct SetupStats {
     /// Bulk unknowns `n`.
     pub bulk_unknowns: usize,
     /// Sparse LU factorisations of the bulk (1; 2 when the spring was softened, see
-    /// [`BoundarySolver`]; 0 for a solver from [`BoundarySolver::with_model`]).
+    /// [`BoundarySolver`](super::BoundarySolver); 0 for a solver from [`BoundarySolver::with_model`](super::BoundarySolver::with_model)).
     pub factorisations: usize,
     /// Sparse solves with the bulk factors (`m` per factorisation, `+ 2`).
     pub bulk_solves: usize,
