@@ -1,6 +1,7 @@
 //! `capstan verify`: the convergence studies of the elasticity discretisations.
 
-use capstan_elasticity::verification::{StudyReport, studies};
+use capstan_elasticity::studies;
+use capstan_elasticity::verification::StudyReport;
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -14,7 +15,7 @@ pub struct VerifyReport {
     pub studies: Vec<StudyReport>,
 }
 
-/// Runs the studies of [`capstan_elasticity::verification::studies`].
+/// Runs the studies of [`capstan_elasticity::studies`].
 ///
 /// # Errors
 /// Any elasticity error of a study (a failure here is a bug: the studies are fixed problems).

@@ -3,6 +3,8 @@
 use std::fmt;
 use std::sync::Arc;
 
+use crate::grid::Grid;
+
 /// A side of the rectangle `[theta0, theta1] x [0, h]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -20,6 +22,17 @@ pub enum Side {
 impl Side {
     /// All sides.
     pub const ALL: [Self; 4] = [Self::X2Min, Self::X2Max, Self::X3Min, Self::X3Max];
+
+    /// The point `(x2, x3)` of `grid`'s rectangle at parameter `s` along the side (`s` is
+    /// `x3` on an `x2` side, `x2` on an `x3` side).
+    pub fn point(self, grid: &Grid, s: f64) -> [f64; 2] {
+        match self {
+            Self::X2Min => [grid.theta()[0], s],
+            Self::X2Max => [grid.theta()[1], s],
+            Self::X3Min => [s, 0.0],
+            Self::X3Max => [s, grid.thickness()],
+        }
+    }
 
     /// The coordinate normal to the side as an array index (1 for `x2`, 2 for `x3`).
     pub fn normal_index(self) -> usize {
@@ -260,7 +273,7 @@ impl BoundaryConditions {
     /// [`crate::ElasticityError::NonFinite`] if the prescribed function is not finite there.
     pub fn dirichlet_value(
         &self,
-        grid: &crate::grid::Grid,
+        grid: &Grid,
         node: [usize; 2],
         c: Component,
     ) -> Result<Option<f64>, crate::error::ElasticityError> {

@@ -82,6 +82,36 @@ pub struct ContactNode {
     pub shear_stress: SparseRow,
 }
 
+impl ContactNode {
+    /// The contact node `(i, 0)` of a plane-strain discretisation `d` (the grid's `x2`, the
+    /// dofs of `d`); `dirichlet` holds the prescribed value of every dof (its tangential row is
+    /// free where it has none); `rows` are `[shear_stress, normal_stress]`.
+    pub(crate) fn at<D: Discretisation + ?Sized>(
+        d: &D,
+        i: usize,
+        dirichlet: &[Option<f64>],
+        traction_weight: f64,
+        sqrt_g22: f64,
+        [shear_stress, normal_stress]: [SparseRow; 2],
+    ) -> Self {
+        let node = [i, 0];
+        let tangential_dof = d.dof(node, Component::X2);
+        Self {
+            node,
+            x2: d.grid().x2(i),
+            tangential_row: dirichlet[tangential_dof]
+                .is_none()
+                .then_some(tangential_dof),
+            tangential_dof,
+            normal_dof: d.dof(node, Component::X3),
+            traction_weight,
+            sqrt_g22,
+            normal_stress,
+            shear_stress,
+        }
+    }
+}
+
 /// An assembled linear system `A v = b` on a sparsity pattern built once.
 #[derive(Debug, Clone)]
 pub struct LinearSystem {

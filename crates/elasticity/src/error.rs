@@ -59,3 +59,21 @@ pub enum ElasticityError {
     #[error(transparent)]
     Solver(#[from] SolverError),
 }
+
+impl ElasticityError {
+    /// `Ok` if `found == expected`, else [`ElasticityError::DimensionMismatch`] for `quantity`.
+    ///
+    /// # Errors
+    /// The mismatch.
+    pub fn check_length(quantity: &'static str, expected: usize, found: usize) -> Result<(), Self> {
+        if expected == found {
+            Ok(())
+        } else {
+            Err(Self::DimensionMismatch {
+                quantity,
+                expected,
+                found,
+            })
+        }
+    }
+}

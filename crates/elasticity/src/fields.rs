@@ -1,6 +1,11 @@
 //! Output fields at the nodes: displacement, strain, stress, physical and Cartesian components.
 
+use capstan_geometry::ShellPoint;
+
+use crate::continuum::kinematics::{LocalDisplacement, strain};
+use crate::error::ElasticityError;
 use crate::grid::Grid;
+use crate::shell_geometry::ShellGeometry;
 
 /// Fields at the nodes of a grid (node number `i2 n3 + i3`, see [`Grid::node_index`]).
 ///
@@ -46,5 +51,44 @@ impl NodalFields {
     pub fn physical_strain(&self, k: usize) -> [[f64; 3]; 3] {
         let (e, s) = (&self.strain[k], self.scale[k]);
         core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+    }
+
+    /// The fields of a plane-strain discretisation: at every node of `grid`, `local` gives the
+    /// recovered displacement and its contravariant stress `T^ij` from the chart point;
+    /// strain, scales and the Cartesian displacement follow from the chart.
+    ///
+    /// # Errors
+    /// Geometry failures of the chart; whatever `local` returns.
+    pub(crate) fn from_nodes<G: ShellGeometry>(
+        grid: Grid,
+        chart: &G,
+        mut local: impl FnMut(
+            [usize; 2],
+            &ShellPoint<f64>,
+        ) -> Result<(LocalDisplacement, [[f64; 3]; 3]), ElasticityError>,
+    ) -> Result<Self, ElasticityError> {
+        let n = grid.node_count();
+        let mut out = Self {
+            grid,
+            displacement: Vec::with_capacity(n),
+            strain: Vec::with_capacity(n),
+            stress: Vec::with_capacity(n),
+            scale: Vec::with_capacity(n),
+            cartesian_displacement: Vec::with_capacity(n),
+        };
+        for k in 0..n {
+            let node = grid.node(k);
+            let [x2, x3] = grid.coordinates(node);
+            let p = chart.shell_point([0.0, x2, x3])?;
+            let (u, stress) = local(node, &p)?;
+            out.displacement.push(u.value);
+            out.strain.push(strain(&p, &u));
+            out.stress.push(stress);
+            out.scale.push([0, 1, 2].map(|i| p.metric[i][i].sqrt()));
+            let g = &p.covariant_basis;
+            out.cartesian_displacement
+                .push([0, 1, 2].map(|a| u.value[0] * g[1][a] + u.value[1] * g[2][a]));
+        }
+        Ok(out)
     }
 }

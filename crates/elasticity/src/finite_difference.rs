@@ -9,7 +9,6 @@ use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
 use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
-    strain,
 };
 use crate::discretisation::{ContactNode, Discretisation, SparseRow};
 use crate::error::ElasticityError;
@@ -505,13 +504,7 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        if rhs.len() != self.dof_count() {
-            return Err(ElasticityError::DimensionMismatch {
-                quantity: "rhs",
-                expected: self.dof_count(),
-                found: rhs.len(),
-            });
-        }
+        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         let mut k = 0;
         self.visit(|d, terms, b| {
             for t in terms {
@@ -532,60 +525,28 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
                 let (coef, sqrt_g22) = &self.contact[i];
                 let [sqrt_g, _, s33] = self.node_scale[k];
                 self.node_stencil(node, &mut st);
-                let mut rows = [0, 1].map(|e| {
+                let rows = [0, 1].map(|e| {
                     let mut terms = Vec::with_capacity(16);
                     self.add_terms(&mut terms, 1.0, coef, e, &st);
                     SparseRow::from_terms(&mut terms)
                 });
-                let tangential_dof = self.dof(node, Component::X2);
-                Ok(ContactNode {
-                    node,
-                    x2: self.grid.x2(i),
-                    tangential_row: self.dirichlet[tangential_dof]
-                        .is_none()
-                        .then_some(tangential_dof),
-                    tangential_dof,
-                    normal_dof: self.dof(node, Component::X3),
-                    traction_weight: sqrt_g * s33 / h3,
-                    sqrt_g22: *sqrt_g22,
-                    normal_stress: core::mem::take(&mut rows[1]),
-                    shear_stress: core::mem::take(&mut rows[0]),
-                })
+                Ok(ContactNode::at(
+                    self,
+                    i,
+                    &self.dirichlet,
+                    sqrt_g * s33 / h3,
+                    *sqrt_g22,
+                    rows,
+                ))
             })
             .collect()
     }
 
     fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
-        if v.len() != self.dof_count() {
-            return Err(ElasticityError::DimensionMismatch {
-                quantity: "displacement",
-                expected: self.dof_count(),
-                found: v.len(),
-            });
-        }
-        let n = self.grid.node_count();
-        let mut out = NodalFields {
-            grid: self.grid,
-            displacement: Vec::with_capacity(n),
-            strain: Vec::with_capacity(n),
-            stress: Vec::with_capacity(n),
-            scale: Vec::with_capacity(n),
-            cartesian_displacement: Vec::with_capacity(n),
-        };
-        for k in 0..n {
-            let node = self.grid.node(k);
-            let [x2, x3] = self.grid.coordinates(node);
-            let p = self.chart.shell_point([0.0, x2, x3])?;
+        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
+        NodalFields::from_nodes(self.grid, &self.chart, |node, p| {
             let u = self.local(node, v);
-            out.displacement.push(u.value);
-            out.strain.push(strain(&p, &u));
-            out.stress
-                .push(contravariant_stress(&p, &self.material, &u));
-            out.scale.push([0, 1, 2].map(|i| p.metric[i][i].sqrt()));
-            let g = &p.covariant_basis;
-            out.cartesian_displacement
-                .push([0, 1, 2].map(|a| u.value[0] * g[1][a] + u.value[1] * g[2][a]));
-        }
-        Ok(out)
+            Ok((u, contravariant_stress(p, &self.material, &u)))
+        })
     }
 }

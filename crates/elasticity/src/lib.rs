@@ -42,6 +42,7 @@ mod grid;
 mod material;
 pub mod samples;
 mod shell_geometry;
+mod studies;
 pub mod verification;
 
 pub use boundary::{
@@ -56,6 +57,7 @@ pub use finite_difference::{BodyForce, FiniteDifferenceNavier};
 pub use grid::Grid;
 pub use material::Material;
 pub use shell_geometry::ShellGeometry;
+pub use studies::studies;
 
 /// The friction crate, re-exported for users of [`contact`].
 pub use capstan_friction as friction;

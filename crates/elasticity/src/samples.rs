@@ -16,13 +16,14 @@ use crate::continuum::kinematics::{LocalDisplacement, christoffel_contraction, m
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
+use crate::finite_element::ProblemParts;
 use crate::grid::Grid;
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
 use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// The chart type of the samples.
-pub type SampleChart = ShellChart<Obstacle>;
+pub use crate::finite_element::SampleChart;
 
 /// A smooth displacement field with its exact first derivatives.
 pub trait ManufacturedField: Send + Sync {
@@ -245,45 +246,35 @@ impl PrismMms {
         })
     }
 
-    /// The operator on an `n2 x n3` grid, with its exact solution.
+    /// The problem's parts on an `n2 x n3` grid (any discretisation builds from them), with
+    /// its exact solution.
     ///
     /// # Errors
     /// Grid or geometry errors.
-    pub fn operator(
+    pub fn parts(
         &self,
         level: GridLevel,
-    ) -> Result<(FiniteDifferenceNavier<SampleChart>, Arc<TrigonometricExact>), ElasticityError>
-    {
+    ) -> Result<(ProblemParts, Arc<TrigonometricExact>), ElasticityError> {
         let exact = self.exact();
         let grid = Grid::new(self.theta, self.thickness, level.n2, level.n3, false)?;
         let traction = |side: Side, c: Component| {
             let ex = exact.clone();
             ComponentCondition::Traction(BoundaryFunction::new(move |s| {
-                let x = if side.normal_index() == 1 {
-                    [ex_side_x2(side, &grid), s]
-                } else {
-                    [s, ex_side_x3(side, &grid)]
-                };
-                ex.traction(side, x).map_or(f64::NAN, |t| t[c.index()])
+                ex.traction(side, side.point(&grid, s))
+                    .map_or(f64::NAN, |t| t[c.index()])
             }))
         };
         let stress = |side: Side, c: Component| {
             let ex = exact.clone();
             ComponentCondition::Stress(BoundaryFunction::new(move |s| {
-                let x = [ex_side_x2(side, &grid), s];
-                ex.mixed_stress(x)
+                ex.mixed_stress(side.point(&grid, s))
                     .map_or(f64::NAN, |t| t[side.normal_index()][c.index() + 1])
             }))
         };
         let dirichlet = |side: Side, c: Component| {
             let ex = exact.clone();
             ComponentCondition::Displacement(BoundaryFunction::new(move |s| {
-                let x = if side.normal_index() == 1 {
-                    [ex_side_x2(side, &grid), s]
-                } else {
-                    [s, ex_side_x3(side, &grid)]
-                };
-                ex.field.displacement(x).value[c.index()]
+                ex.field.displacement(side.point(&grid, s)).value[c.index()]
             }))
         };
         let both = |f: &dyn Fn(Side, Component) -> ComponentCondition, side| {
@@ -314,30 +305,27 @@ impl PrismMms {
         };
         let ex = exact.clone();
         let force: BodyForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 2]));
-        let op = FiniteDifferenceNavier::new(
-            ShellChart::new(self.obstacle.clone()),
-            self.material,
+        let parts = ProblemParts {
+            chart: ShellChart::new(self.obstacle.clone()),
+            material: self.material,
             grid,
             boundary,
-            Some(force),
-        )?;
-        Ok((op, exact))
+            body_force: Some(force),
+        };
+        Ok((parts, exact))
     }
-}
 
-fn ex_side_x2(side: Side, grid: &Grid) -> f64 {
-    if side == Side::X2Min {
-        grid.theta()[0]
-    } else {
-        grid.theta()[1]
-    }
-}
-
-fn ex_side_x3(side: Side, grid: &Grid) -> f64 {
-    if side == Side::X3Min {
-        0.0
-    } else {
-        grid.thickness()
+    /// The finite-difference operator on an `n2 x n3` grid, with its exact solution.
+    ///
+    /// # Errors
+    /// Grid or geometry errors.
+    pub fn operator(
+        &self,
+        level: GridLevel,
+    ) -> Result<(FiniteDifferenceNavier<SampleChart>, Arc<TrigonometricExact>), ElasticityError>
+    {
+        let (parts, exact) = self.parts(level)?;
+        Ok((parts.finite_difference()?, exact))
     }
 }
 
@@ -446,14 +434,17 @@ impl LameCylinder {
         }
     }
 
-    /// The operator on an `n2 x n3` periodic grid.
+    /// The cylinder's parts on an `n2 x n3` periodic grid, `v^2 = 0` pinned on `x3 = 0` at the
+    /// nodes `pins` along `x2` (exact: the solution has `v^2 = 0` everywhere; one pin stops the
+    /// rotation, more stop the rigid translations too).
     ///
     /// # Errors
     /// Grid or geometry errors.
-    pub fn operator(
+    pub fn parts_pinned(
         &self,
         level: GridLevel,
-    ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
+        pins: &[usize],
+    ) -> Result<ProblemParts, ElasticityError> {
         let grid = Grid::new(
             [0.0, 2.0 * core::f64::consts::PI],
             self.thickness,
@@ -468,14 +459,34 @@ impl LameCylinder {
                 ComponentCondition::Traction(BoundaryFunction::constant(self.pressure)),
             ]),
             x3_max: SideCondition::free(),
-            pinned: vec![PinnedDof {
-                node: [0, 0],
-                component: Component::X2,
-                value: 0.0,
-            }],
+            pinned: pins
+                .iter()
+                .map(|&i2| PinnedDof {
+                    node: [i2, 0],
+                    component: Component::X2,
+                    value: 0.0,
+                })
+                .collect(),
         };
-        let chart = ShellChart::new(Obstacle::Cylinder(CircularCylinder::new(self.radius)?));
-        FiniteDifferenceNavier::new(chart, self.material, grid, boundary, None)
+        Ok(ProblemParts {
+            chart: ShellChart::new(Obstacle::Cylinder(CircularCylinder::new(self.radius)?)),
+            material: self.material,
+            grid,
+            boundary,
+            body_force: None,
+        })
+    }
+
+    /// The finite-difference operator on an `n2 x n3` periodic grid (the rotation pinned at
+    /// `x2 = 0`).
+    ///
+    /// # Errors
+    /// Grid or geometry errors.
+    pub fn operator(
+        &self,
+        level: GridLevel,
+    ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
+        self.parts_pinned(level, &[0])?.finite_difference()
     }
 }
 
@@ -546,7 +557,22 @@ impl Default for PaperEllipse {
 }
 
 impl PaperEllipse {
-    /// The operator on an `n2 x n3` grid.
+    /// The problem's parts on an `n2 x n3` grid.
+    ///
+    /// # Errors
+    /// Grid or geometry errors.
+    pub fn parts(&self, level: GridLevel) -> Result<ProblemParts, ElasticityError> {
+        let half = core::f64::consts::FRAC_PI_2;
+        Ok(ProblemParts {
+            chart: ShellChart::new(Obstacle::Ellipse(EllipticalPrism::new(self.a, self.b)?)),
+            material: self.material,
+            grid: Grid::new([-half, half], self.thickness, level.n2, level.n3, false)?,
+            boundary: BoundaryConditions::paper_clamped(self.tau0, self.tau_max),
+            body_force: None,
+        })
+    }
+
+    /// The finite-difference operator on an `n2 x n3` grid.
     ///
     /// # Errors
     /// Grid or geometry errors.
@@ -554,10 +580,6 @@ impl PaperEllipse {
         &self,
         level: GridLevel,
     ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
-        let half = core::f64::consts::FRAC_PI_2;
-        let grid = Grid::new([-half, half], self.thickness, level.n2, level.n3, false)?;
-        let chart = ShellChart::new(Obstacle::Ellipse(EllipticalPrism::new(self.a, self.b)?));
-        let boundary = BoundaryConditions::paper_clamped(self.tau0, self.tau_max);
-        FiniteDifferenceNavier::new(chart, self.material, grid, boundary, None)
+        self.parts(level)?.finite_difference()
     }
 }

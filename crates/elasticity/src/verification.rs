@@ -122,18 +122,3 @@ pub fn observed_order(points: &[(f64, f64)]) -> f64 {
     let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
     sxy / sxx
 }
-
-/// The registered studies, in report order. Later discretisations append theirs.
-pub fn studies() -> Vec<Box<dyn Study>> {
-    use crate::samples::{LameCylinder, MmsBoundaries, PrismMms};
-    let mut studies: Vec<Box<dyn Study>> = vec![
-        Box::new(PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)),
-        Box::new(PrismMms::ellipse(2.0, MmsBoundaries::BilateralContact)),
-        Box::new(PrismMms::expression_prism(MmsBoundaries::TractionContact)),
-        Box::new(PrismMms::expression_prism(MmsBoundaries::BilateralContact)),
-        Box::new(LameCylinder::default()),
-    ];
-    // the same problems with Q1 and Q2 finite elements
-    studies.extend(crate::finite_element::fem_studies());
-    studies
-}

@@ -26,13 +26,13 @@
 mod element;
 mod method;
 mod navier;
+mod problem_parts;
 mod problems;
 mod volumetric;
 
 pub use element::{ElementOrder, gauss_rule};
 pub use method::DiscretisationMethod;
 pub use navier::{DisplacementErrors, FiniteElementNavier};
-pub use problems::{
-    FemProblem, FemStudy, ProblemParts, fem_studies, lame_parts, mms_parts, paper_parts,
-};
+pub use problem_parts::{ProblemParts, SampleChart};
+pub use problems::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use volumetric::VolumetricIntegration;

@@ -3,106 +3,16 @@
 
 use std::sync::Arc;
 
-use capstan_geometry::{CircularCylinder, EllipticalPrism, Obstacle, ShellChart};
-
 use super::element::ElementOrder;
-use super::navier::{DisplacementErrors, FiniteElementNavier};
+use super::navier::DisplacementErrors;
+use super::problem_parts::ProblemParts;
 use super::volumetric::VolumetricIntegration;
-use crate::boundary::{
-    BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
-    SideCondition, X2Ends,
-};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
-use crate::grid::Grid;
-use crate::material::Material;
 use crate::samples::{
-    ExactSolution, LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms,
-    SampleChart, TrigonometricExact, TrigonometricField,
+    LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms, TrigonometricExact,
 };
 use crate::verification::{GridLevel, Study, StudyPoint};
-
-/// Everything a discretisation constructor takes, for one reference problem on one grid.
-#[derive(Clone)]
-pub struct ProblemParts {
-    /// The chart.
-    pub chart: SampleChart,
-    /// The material.
-    pub material: Material,
-    /// The grid.
-    pub grid: Grid,
-    /// The boundary conditions.
-    pub boundary: BoundaryConditions,
-    /// The body force.
-    pub body_force: Option<BodyForce>,
-}
-
-impl core::fmt::Debug for ProblemParts {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("ProblemParts")
-            .field("grid", &self.grid)
-            .field("boundary", &self.boundary)
-            .finish_non_exhaustive()
-    }
-}
-
-impl ProblemParts {
-    /// The finite-difference discretisation.
-    ///
-    /// # Errors
-    /// See [`FiniteDifferenceNavier::new`].
-    pub fn finite_difference(self) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
-        FiniteDifferenceNavier::new(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-        )
-    }
-
-    /// The finite-element discretisation of `order`.
-    ///
-    /// # Errors
-    /// See [`FiniteElementNavier::new`].
-    pub fn finite_element(
-        self,
-        order: ElementOrder,
-    ) -> Result<FiniteElementNavier<SampleChart>, ElasticityError> {
-        self.finite_element_with(order, VolumetricIntegration::Full)
-    }
-
-    /// The finite-element discretisation of `order` with the volumetric part integrated as
-    /// `volumetric` says.
-    ///
-    /// # Errors
-    /// See [`FiniteElementNavier::new`].
-    pub fn finite_element_with(
-        self,
-        order: ElementOrder,
-        volumetric: VolumetricIntegration,
-    ) -> Result<FiniteElementNavier<SampleChart>, ElasticityError> {
-        FiniteElementNavier::with_volumetric(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-            order,
-            volumetric,
-        )
-    }
-}
-
-fn side_point(side: Side, grid: &Grid, s: f64) -> [f64; 2] {
-    match side {
-        Side::X2Min => [grid.theta()[0], s],
-        Side::X2Max => [grid.theta()[1], s],
-        Side::X3Min => [s, 0.0],
-        Side::X3Max => [s, grid.thickness()],
-    }
-}
 
 /// The manufactured-solution problem of [`PrismMms`] (same field, forcing and boundary sets
 /// as [`PrismMms::operator`]) on an `n2 x n3` grid, with its exact solution.
@@ -113,68 +23,7 @@ pub fn mms_parts(
     mms: &PrismMms,
     level: GridLevel,
 ) -> Result<(ProblemParts, Arc<TrigonometricExact>), ElasticityError> {
-    let exact = Arc::new(ExactSolution {
-        chart: ShellChart::new(mms.obstacle.clone()),
-        material: mms.material,
-        field: TrigonometricField,
-    });
-    let grid = Grid::new(mms.theta, mms.thickness, level.n2, level.n3, false)?;
-    let traction = |side: Side, c: Component| {
-        let ex = exact.clone();
-        ComponentCondition::Traction(BoundaryFunction::new(move |s| {
-            ex.traction(side, side_point(side, &grid, s))
-                .map_or(f64::NAN, |t| t[c.index()])
-        }))
-    };
-    let stress = |side: Side, c: Component| {
-        let ex = exact.clone();
-        ComponentCondition::Stress(BoundaryFunction::new(move |s| {
-            ex.mixed_stress(side_point(side, &grid, s))
-                .map_or(f64::NAN, |t| t[side.normal_index()][c.index() + 1])
-        }))
-    };
-    let dirichlet = |side: Side, c: Component| {
-        let ex = exact.clone();
-        ComponentCondition::Displacement(BoundaryFunction::new(move |s| {
-            ex.field.displacement(side_point(side, &grid, s)).value[c.index()]
-        }))
-    };
-    let both = |f: &dyn Fn(Side, Component) -> ComponentCondition, side| {
-        SideCondition([f(side, Component::X2), f(side, Component::X3)])
-    };
-    let boundary = match mms.boundaries {
-        MmsBoundaries::TractionContact => BoundaryConditions {
-            x2: X2Ends::Sides {
-                min: both(&dirichlet, Side::X2Min),
-                max: both(&dirichlet, Side::X2Max),
-            },
-            x3_min: both(&traction, Side::X3Min),
-            x3_max: both(&traction, Side::X3Max),
-            pinned: vec![],
-        },
-        MmsBoundaries::BilateralContact => BoundaryConditions {
-            x2: X2Ends::Sides {
-                min: both(&stress, Side::X2Min),
-                max: both(&dirichlet, Side::X2Max),
-            },
-            x3_min: SideCondition([
-                traction(Side::X3Min, Component::X2),
-                ComponentCondition::fixed(),
-            ]),
-            x3_max: both(&traction, Side::X3Max),
-            pinned: vec![],
-        },
-    };
-    let ex = exact.clone();
-    let force: BodyForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 2]));
-    let parts = ProblemParts {
-        chart: ShellChart::new(mms.obstacle.clone()),
-        material: mms.material,
-        grid,
-        boundary,
-        body_force: Some(force),
-    };
-    Ok((parts, exact))
+    mms.parts(level)
 }
 
 /// The Lamé cylinder of [`LameCylinder`] on a periodic `n2 x n3` grid, with `v^2 = 0` pinned
@@ -193,34 +42,7 @@ pub fn lame_parts(lame: &LameCylinder, level: GridLevel) -> Result<ProblemParts,
             allowed: "multiples of 4 (pins at x2 = 0, pi/2, pi)",
         });
     }
-    let grid = Grid::new(
-        [0.0, 2.0 * core::f64::consts::PI],
-        lame.thickness,
-        level.n2,
-        level.n3,
-        true,
-    )?;
-    let pin = |i2: usize| PinnedDof {
-        node: [i2, 0],
-        component: Component::X2,
-        value: 0.0,
-    };
-    let boundary = BoundaryConditions {
-        x2: X2Ends::Periodic,
-        x3_min: SideCondition([
-            ComponentCondition::free(),
-            ComponentCondition::Traction(BoundaryFunction::constant(lame.pressure)),
-        ]),
-        x3_max: SideCondition::free(),
-        pinned: vec![pin(0), pin(level.n2 / 4), pin(level.n2 / 2)],
-    };
-    Ok(ProblemParts {
-        chart: ShellChart::new(Obstacle::Cylinder(CircularCylinder::new(lame.radius)?)),
-        material: lame.material,
-        grid,
-        boundary,
-        body_force: None,
-    })
+    lame.parts_pinned(level, &[0, level.n2 / 4, level.n2 / 2])
 }
 
 /// The paper's linear stand-in of [`PaperEllipse`] (same conditions as
@@ -232,14 +54,7 @@ pub fn paper_parts(
     paper: &PaperEllipse,
     level: GridLevel,
 ) -> Result<ProblemParts, ElasticityError> {
-    let half = core::f64::consts::FRAC_PI_2;
-    Ok(ProblemParts {
-        chart: ShellChart::new(Obstacle::Ellipse(EllipticalPrism::new(paper.a, paper.b)?)),
-        material: paper.material,
-        grid: Grid::new([-half, half], paper.thickness, level.n2, level.n3, false)?,
-        boundary: BoundaryConditions::paper_clamped(paper.tau0, paper.tau_max),
-        body_force: None,
-    })
+    paper.parts(level)
 }
 
 /// A reference problem with a known solution for the finite-element studies.

@@ -16,7 +16,7 @@ use capstan_geometry::ShellPoint;
 use super::element::ElementOrder;
 use super::volumetric::VolumetricIntegration;
 use crate::boundary::{BoundaryConditions, Component};
-use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficients, strain};
+use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficients};
 use crate::continuum::{
     PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix, mixed_strains,
 };
@@ -509,13 +509,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        if rhs.len() != self.dof_count() {
-            return Err(ElasticityError::DimensionMismatch {
-                quantity: "rhs",
-                expected: self.dof_count(),
-                found: rhs.len(),
-            });
-        }
+        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         for (k, x) in self.assemble(rhs).into_iter().enumerate() {
             add(k, x);
         }
@@ -535,7 +529,6 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         let (n2, k) = (g.n2(), self.order.degree());
         (0..n2)
             .map(|i| {
-                let node = [i, 0];
                 let (_, [sqrt_g, s33, sqrt_g22]) = self.contact[i];
                 // int N_i dx2 on x3 = 0: row sums of the 1-D boundary mass matrix
                 let interior = match (k, i % 2) {
@@ -545,54 +538,27 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
                 };
                 let end = !g.is_periodic() && (i == 0 || i == n2 - 1);
                 let length = if end { 0.5 * interior } else { interior };
-                let [shear, normal] = self.contact_rows(i);
-                let tangential_dof = self.dof(node, Component::X2);
-                Ok(ContactNode {
-                    node,
-                    x2: g.x2(i),
-                    tangential_row: self.dirichlet[tangential_dof]
-                        .is_none()
-                        .then_some(tangential_dof),
-                    tangential_dof,
-                    normal_dof: self.dof(node, Component::X3),
-                    traction_weight: sqrt_g * s33 * length,
+                Ok(ContactNode::at(
+                    self,
+                    i,
+                    &self.dirichlet,
+                    sqrt_g * s33 * length,
                     sqrt_g22,
-                    normal_stress: normal,
-                    shear_stress: shear,
-                })
+                    self.contact_rows(i),
+                ))
             })
             .collect()
     }
 
     fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
-        if v.len() != self.dof_count() {
-            return Err(ElasticityError::DimensionMismatch {
-                quantity: "displacement",
-                expected: self.dof_count(),
-                found: v.len(),
-            });
-        }
-        let n = self.grid.node_count();
-        let mut out = NodalFields {
-            grid: self.grid,
-            displacement: Vec::with_capacity(n),
-            strain: Vec::with_capacity(n),
-            stress: Vec::with_capacity(n),
-            scale: Vec::with_capacity(n),
-            cartesian_displacement: Vec::with_capacity(n),
-        };
-        for k in 0..n {
-            let node = self.grid.node(k);
-            let [x2, x3] = self.grid.coordinates(node);
-            let p = self.chart.shell_point([0.0, x2, x3])?;
+        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
+        NodalFields::from_nodes(self.grid, &self.chart, |node, p| {
             let u = self.local(node, v);
-            out.displacement.push(u.value);
-            out.strain.push(strain(&p, &u));
-            let mut stress = contravariant_stress(&p, &self.material, &u);
+            let mut stress = contravariant_stress(p, &self.material, &u);
             if self.volumetric == VolumetricIntegration::Reduced {
                 // T^ij = lambda g^ij div v + 2 mu E^ij: the divergence from the reduced points
                 let inputs = u.to_inputs();
-                let t = divergence_coefficients(&p, &PLANE_STRAIN);
+                let t = divergence_coefficients(p, &PLANE_STRAIN);
                 let pointwise: f64 = (0..6).map(|q| t[q] * inputs[q]).sum();
                 let reduced: f64 = self
                     .reduced_divergence_terms(node)
@@ -606,13 +572,8 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
                     }
                 }
             }
-            out.stress.push(stress);
-            out.scale.push([0, 1, 2].map(|i| p.metric[i][i].sqrt()));
-            let g = &p.covariant_basis;
-            out.cartesian_displacement
-                .push([0, 1, 2].map(|a| u.value[0] * g[1][a] + u.value[1] * g[2][a]));
-        }
-        Ok(out)
+            Ok((u, stress))
+        })
     }
 }
 

@@ -35,13 +35,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         v: &[f64],
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
-        if v.len() != self.dof_count() {
-            return Err(ElasticityError::DimensionMismatch {
-                quantity: "displacement",
-                expected: self.dof_count(),
-                found: v.len(),
-            });
-        }
+        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
             let g = &p.metric;
             g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]

@@ -1,0 +1,19 @@
+//! The registry of convergence studies that `capstan verify` runs.
+
+use crate::finite_element::fem_studies;
+use crate::samples::{LameCylinder, MmsBoundaries, PrismMms};
+use crate::verification::Study;
+
+/// The registered studies, in report order: the finite-difference studies, then the same
+/// problems with finite elements. New discretisations append theirs.
+pub fn studies() -> Vec<Box<dyn Study>> {
+    let mut studies: Vec<Box<dyn Study>> = vec![
+        Box::new(PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)),
+        Box::new(PrismMms::ellipse(2.0, MmsBoundaries::BilateralContact)),
+        Box::new(PrismMms::expression_prism(MmsBoundaries::TractionContact)),
+        Box::new(PrismMms::expression_prism(MmsBoundaries::BilateralContact)),
+        Box::new(LameCylinder::default()),
+    ];
+    studies.extend(fem_studies());
+    studies
+}
