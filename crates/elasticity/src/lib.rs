@@ -42,6 +42,7 @@ mod grid;
 mod material;
 pub mod samples;
 mod shell_geometry;
+pub mod solid;
 mod studies;
 pub mod verification;
 

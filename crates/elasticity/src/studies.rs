@@ -1,11 +1,13 @@
 //! The registry of convergence studies that `capstan verify` runs.
 
+use crate::finite_element::ElementOrder;
 use crate::finite_element::fem_studies;
 use crate::samples::{LameCylinder, MmsBoundaries, PrismMms};
+use crate::solid::samples::{SolidMms, SolidStudy};
 use crate::verification::Study;
 
 /// The registered studies, in report order: the finite-difference studies, then the same
-/// problems with finite elements. New discretisations append theirs.
+/// problems with finite elements, then the 3-D body. New discretisations append theirs.
 pub fn studies() -> Vec<Box<dyn Study>> {
     let mut studies: Vec<Box<dyn Study>> = vec![
         Box::new(PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)),
@@ -15,5 +17,18 @@ pub fn studies() -> Vec<Box<dyn Study>> {
         Box::new(LameCylinder::default()),
     ];
     studies.extend(fem_studies());
+    // the 3-D body: cones (one with g_12 != 0) and a prism of finite width
+    for mms in [
+        SolidMms::circular_cone(),
+        SolidMms::elliptical_cone(),
+        SolidMms::expression_prism(),
+    ] {
+        for order in [ElementOrder::Q1, ElementOrder::Q2] {
+            studies.push(Box::new(SolidStudy {
+                mms: mms.clone(),
+                order,
+            }));
+        }
+    }
     studies
 }

@@ -28,5 +28,5 @@ pub mod stiffness;
 pub use plane_strain::check_plane_strain;
 pub use stiffness::{
     Input, InputLayout, PLANE_STRAIN, SOLID, divergence_coefficients, energy_matrix, mixed_strains,
-    stiffness_matrix,
+    mixed_stress_of, stiffness_matrix,
 };

@@ -164,6 +164,39 @@ pub fn divergence_coefficients<const N: usize>(
     mixed_strains(p, layout).map(|m| m[0][0] + m[1][1] + m[2][2])
 }
 
+/// The mixed stress `T^i_j` of a displacement whose inputs (values of the unit inputs of
+/// `layout`) are `u`.
+///
+/// # Math
+/// ```text
+/// M = sum_k u_k M_k          mixed strain E^i_j
+/// T^i_j = lambda delta^i_j tr M + 2 mu M^i_j
+/// ```
+pub fn mixed_stress_of<const N: usize>(
+    p: &ShellPoint<f64>,
+    layout: &InputLayout<N>,
+    material: &Material,
+    u: &[f64; N],
+) -> [[f64; 3]; 3] {
+    let strains = mixed_strains(p, layout);
+    let mut m = [[0.0; 3]; 3];
+    for (mk, uk) in strains.iter().zip(u) {
+        for (row, rk) in m.iter_mut().zip(mk) {
+            for (x, y) in row.iter_mut().zip(rk) {
+                *x += uk * y;
+            }
+        }
+    }
+    let trace = m[0][0] + m[1][1] + m[2][2];
+    let (lambda, two_mu) = (material.lambda(), 2.0 * material.mu());
+    core::array::from_fn(|i| {
+        core::array::from_fn(|j| {
+            let delta = if i == j { lambda * trace } else { 0.0 };
+            delta + two_mu * m[i][j]
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -212,6 +245,23 @@ mod tests {
         for a in 0..6 {
             for b in 0..6 {
                 assert_eq!(k2[a][b], k3[map[a]][map[b]]); // same arithmetic
+            }
+        }
+        // the stress of plane-strain inputs is the plane-strain stress
+        let m = Material::new(3.0, 0.3).unwrap();
+        let u = LocalDisplacement {
+            value: [0.3, -0.2],
+            gradient: [[0.7, 0.1], [-0.4, 0.25]],
+        };
+        let mut inputs = [0.0; 12];
+        for (k, x) in map.iter().zip(u.to_inputs()) {
+            inputs[*k] = x;
+        }
+        let t3 = mixed_stress_of(&p, &SOLID, &m, &inputs);
+        let t2 = crate::continuum::kinematics::mixed_stress(&p, &m, &u);
+        for i in 0..3 {
+            for j in 0..3 {
+                assert!((t3[i][j] - t2[i][j]).abs() < 1e-13, "T^{i}_{j}"); // round-off
             }
         }
         let d3 = divergence_coefficients(&p, &SOLID);

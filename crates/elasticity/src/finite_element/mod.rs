@@ -23,6 +23,7 @@
 //! `n2`, `n3` (even `n2` when periodic). Output fields and contact stresses use a
 //! second-order nodal gradient recovery (also for Q2).
 
+pub(crate) mod assembly;
 mod element;
 mod method;
 mod navier;
