@@ -23,7 +23,7 @@
 //! `n2`, `n3` (even `n2` when periodic). Output fields and contact stresses use a
 //! second-order nodal gradient recovery (also for Q2).
 
-pub(crate) mod assembly;
+mod assembly;
 mod element;
 mod method;
 mod navier;
@@ -31,6 +31,7 @@ mod problem_parts;
 mod problems;
 mod volumetric;
 
+pub use assembly::ElementAssembly;
 pub use element::{ElementOrder, gauss_rule};
 pub use method::DiscretisationMethod;
 pub use navier::{DisplacementErrors, FiniteElementNavier};

@@ -11,7 +11,7 @@ use super::grid::BoxGrid;
 use crate::continuum::{SOLID, divergence_coefficients, energy_matrix};
 use crate::discretisation::LinearSystem;
 use crate::error::ElasticityError;
-use crate::finite_element::assembly::ElementAssembly;
+use crate::finite_element::ElementAssembly;
 use crate::finite_element::{ElementOrder, VolumetricIntegration, gauss_rule};
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
