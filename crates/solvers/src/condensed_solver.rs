@@ -6,7 +6,8 @@ use faer::linalg::lu::partial_pivoting::{
     factor::lu_in_place_scratch, solve::solve_in_place_scratch,
 };
 
-use crate::direct_params::{DirectParams, check_and_refine, scratch};
+use crate::direct_params::DirectParams;
+use crate::direct_solve::{check_and_refine, scratch};
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_rhs, check_square, check_values};
 use crate::sparse_lu::SparseLu;

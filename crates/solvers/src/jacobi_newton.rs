@@ -1,11 +1,11 @@
 //! Jacobi–Newton: the paper's baseline nonlinear solver.
 
 use crate::error::SolverError;
-use crate::jacobi::Jacobi;
 use crate::newton::{Newton, NewtonParams};
 use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
 use crate::observer::{Observer, SolveStage};
 use crate::problem::Jacobian;
+use crate::relaxation::Jacobi;
 
 /// Newton's outer iteration with Jacobi inner iterations for each linear system: the
 /// "iterative-Jacobi finite-difference method with Newton's method" of the paper (§ 3).

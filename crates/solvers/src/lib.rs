@@ -65,10 +65,9 @@
 
 mod condensed_solver;
 mod direct_params;
+mod direct_solve;
 mod error;
-mod gauss_seidel;
 mod iterative_params;
-mod jacobi;
 mod jacobi_newton;
 mod linear_backend;
 mod linear_solver;
@@ -80,6 +79,7 @@ mod nonlinear_solver;
 mod observer;
 mod ordering;
 mod problem;
+mod relaxation;
 pub mod samples;
 mod scalar;
 mod sparse_cholesky;
@@ -89,9 +89,7 @@ mod sparsity_pattern;
 pub use condensed_solver::CondensedSolver;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
-pub use gauss_seidel::GaussSeidel;
 pub use iterative_params::IterativeParams;
-pub use jacobi::Jacobi;
 pub use jacobi_newton::JacobiNewton;
 pub use linear_backend::LinearBackend;
 pub use linear_solver::LinearSolver;
@@ -105,6 +103,7 @@ pub use ordering::{
     nested_dissection_elements, nested_dissection_grid,
 };
 pub use problem::{Jacobian, Residual};
+pub use relaxation::{GaussSeidel, Jacobi, Relaxation};
 pub use scalar::SolverScalar;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_lu::SparseLu;

@@ -5,10 +5,10 @@ use core::str::FromStr;
 
 use crate::direct_params::DirectParams;
 use crate::error::SolverError;
-use crate::gauss_seidel::GaussSeidel;
 use crate::iterative_params::IterativeParams;
-use crate::jacobi::Jacobi;
 use crate::linear_solver::LinearSolver;
+use crate::relaxation::GaussSeidel;
+use crate::relaxation::Jacobi;
 use crate::sparse_cholesky::SparseCholesky;
 use crate::sparse_lu::SparseLu;
 

@@ -397,9 +397,10 @@ pub fn amd_symmetrised(pattern: &SparsityPattern) -> Result<Vec<usize>, SolverEr
     if n == 0 {
         return Ok(fwd);
     }
-    let mut mem = crate::direct_params::scratch(
-        faer::sparse::linalg::amd::order_scratch::<usize>(n, pattern.nnz()),
-    )?;
+    let mut mem = crate::direct_solve::scratch(faer::sparse::linalg::amd::order_scratch::<usize>(
+        n,
+        pattern.nnz(),
+    ))?;
     let stack = faer::dyn_stack::MemStack::new(&mut mem);
     faer::sparse::linalg::amd::order(
         &mut fwd,
@@ -481,9 +482,10 @@ pub fn amd_compressed(pattern: &SparsityPattern) -> Result<Vec<usize>, SolverErr
     );
     let mut fwd = vec![0usize; runs];
     let mut inv = vec![0usize; runs];
-    let mut mem = crate::direct_params::scratch(
-        faer::sparse::linalg::amd::order_scratch::<usize>(runs, q_row_idx.len()),
-    )?;
+    let mut mem = crate::direct_solve::scratch(faer::sparse::linalg::amd::order_scratch::<usize>(
+        runs,
+        q_row_idx.len(),
+    ))?;
     let stack = faer::dyn_stack::MemStack::new(&mut mem);
     faer::sparse::linalg::amd::order(&mut fwd, &mut inv, quotient, Default::default(), stack)?;
     let mut perm = Vec::with_capacity(n);

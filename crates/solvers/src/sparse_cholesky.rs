@@ -6,9 +6,12 @@ use faer::sparse::linalg::cholesky::{
     LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
 };
 
-use crate::direct_params::{DirectParams, check_and_refine, empty_line, inf_norm, scratch};
+use crate::direct_params::DirectParams;
+use crate::direct_solve::{
+    checked_solve, empty_line, finite_rhs, inf_norm, scratch, solve_many, solve_one,
+};
 use crate::error::SolverError;
-use crate::linear_solver::{LinearSolver, check_many_len, check_rhs, check_square, check_values};
+use crate::linear_solver::{LinearSolver, check_square, check_values};
 use crate::ordering::ColumnOrdering;
 use crate::sparsity_pattern::SparsityPattern;
 
@@ -130,32 +133,12 @@ impl SparseCholesky {
             });
         };
         let n = pattern.nrows();
-        if let Some(index) = crate::scalar::first_non_finite(rhs) {
-            return Err(SolverError::NonFinite {
-                quantity: "right-hand side",
-                index: index % n.max(1),
-                iteration: None,
-            });
-        }
-        if n == 0 {
+        if !finite_rhs(rhs, n)? {
             return Ok(());
         }
-        let b = rhs.to_vec();
-        Self::raw_solve(symbolic, &self.l_values, rhs, n, ncols)?;
-        let mut work = vec![0.0; n];
-        for (x, b) in rhs.chunks_exact_mut(n).zip(b.chunks_exact(n)) {
-            let l_values = &self.l_values;
-            let mut failure = None;
-            check_and_refine(&self.params, pattern, &self.values, b, x, &mut work, |r| {
-                if let Err(e) = Self::raw_solve(symbolic, l_values, r, n, 1) {
-                    failure = Some(e);
-                }
-            })?;
-            if let Some(e) = failure {
-                return Err(e);
-            }
-        }
-        Ok(())
+        checked_solve(&self.params, pattern, &self.values, rhs, ncols, |r, k| {
+            Self::raw_solve(symbolic, &self.l_values, r, n, k)
+        })
     }
 }
 
@@ -262,8 +245,7 @@ impl LinearSolver<f64> for SparseCholesky {
 
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
         let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        check_rhs(rhs, n)?;
-        self.checked_solve(rhs, 1)
+        solve_one(n, rhs, |r, k| self.checked_solve(r, k))
     }
 
     fn last_iterations(&self) -> Option<usize> {
@@ -272,18 +254,7 @@ impl LinearSolver<f64> for SparseCholesky {
 
     fn solve_many_in_place(&mut self, rhs: &mut [f64], ncols: usize) -> Result<(), SolverError> {
         let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        let rows = check_many_len(rhs.len(), ncols)?;
-        if ncols == 0 {
-            return Ok(());
-        }
-        if rows != n {
-            return Err(SolverError::DimensionMismatch {
-                quantity: "rhs",
-                expected: n * ncols,
-                found: rhs.len(),
-            });
-        }
-        self.checked_solve(rhs, ncols)
+        solve_many(n, rhs, ncols, |r, k| self.checked_solve(r, k))
     }
 }
 

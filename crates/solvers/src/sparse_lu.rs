@@ -15,12 +15,13 @@ use faer::sparse::linalg::qr::{
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
-use crate::direct_params::{
-    DirectParams, RefineWork, check_and_refine, check_and_refine_block, empty_line, scratch,
-    to_column_major, to_row_major,
+use crate::direct_params::DirectParams;
+use crate::direct_solve::{
+    RefineWork, check_and_refine, check_and_refine_block, checked_solve, empty_line, finite_rhs,
+    scratch, solve_many, solve_one, to_column_major, to_row_major,
 };
 use crate::error::SolverError;
-use crate::linear_solver::{LinearSolver, check_many_len, check_rhs, check_square, check_values};
+use crate::linear_solver::{LinearSolver, check_square, check_values};
 use crate::lu_kind::LuKind;
 use crate::multifrontal_lu::{
     BlockWork, FrontFailure, FrontalFactors, FrontalStructure, SOLVE_BLOCK_WIDTH,
@@ -228,14 +229,7 @@ impl SparseLu {
             });
         };
         let n = pattern.nrows();
-        if let Some(index) = crate::scalar::first_non_finite(rhs) {
-            return Err(SolverError::NonFinite {
-                quantity: "right-hand side",
-                index: index % n.max(1),
-                iteration: None,
-            });
-        }
-        if n == 0 {
+        if !finite_rhs(rhs, n)? {
             return Ok(());
         }
         if kind == LuKind::Multifrontal {
@@ -248,22 +242,9 @@ impl SparseLu {
             });
         };
         let row_perm = PermRef::new_checked(&self.row_perm_fwd, &self.row_perm_inv, n);
-        let b = rhs.to_vec();
-        Self::raw_solve(symbolic, &self.numeric, row_perm, rhs, n, ncols)?;
-        let mut work = vec![0.0; n];
-        for (x, b) in rhs.chunks_exact_mut(n).zip(b.chunks_exact(n)) {
-            let numeric = &self.numeric;
-            let mut failure = None;
-            check_and_refine(&self.params, pattern, &self.values, b, x, &mut work, |r| {
-                if let Err(e) = Self::raw_solve(symbolic, numeric, row_perm, r, n, 1) {
-                    failure = Some(e);
-                }
-            })?;
-            if let Some(e) = failure {
-                return Err(e);
-            }
-        }
-        Ok(())
+        checked_solve(&self.params, pattern, &self.values, rhs, ncols, |r, k| {
+            Self::raw_solve(symbolic, &self.numeric, row_perm, r, n, k)
+        })
     }
 
     /// Multifrontal solve of the columns of `rhs` (column-major), each checked and refined.
@@ -583,8 +564,7 @@ impl LinearSolver<f64> for SparseLu {
 
     fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
         let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        check_rhs(rhs, n)?;
-        self.checked_solve(rhs, 1)
+        solve_one(n, rhs, |r, k| self.checked_solve(r, k))
     }
 
     fn last_iterations(&self) -> Option<usize> {
@@ -593,18 +573,7 @@ impl LinearSolver<f64> for SparseLu {
 
     fn solve_many_in_place(&mut self, rhs: &mut [f64], ncols: usize) -> Result<(), SolverError> {
         let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        let rows = check_many_len(rhs.len(), ncols)?;
-        if ncols == 0 {
-            return Ok(());
-        }
-        if rows != n {
-            return Err(SolverError::DimensionMismatch {
-                quantity: "rhs",
-                expected: n * ncols,
-                found: rhs.len(),
-            });
-        }
-        self.checked_solve(rhs, ncols)
+        solve_many(n, rhs, ncols, |r, k| self.checked_solve(r, k))
     }
 }
 

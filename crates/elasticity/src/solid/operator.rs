@@ -289,11 +289,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
 
     /// The chart at the tensor points `gp^3` of element `e`, one chart column per `(x1, x2)`
     /// abscissa pair: index `(q1 np + q2) np + q3`.
-    fn element_points(
-        &self,
-        e: usize,
-        gp: &[f64],
-    ) -> Result<Vec<PointAt>, ElasticityError> {
+    fn element_points(&self, e: usize, gp: &[f64]) -> Result<Vec<PointAt>, ElasticityError> {
         let o = self.element_origin(e);
         let len = self.element_size();
         let at = |i: usize, xi: f64| o[i] + 0.5 * (xi + 1.0) * len[i];
