@@ -8,12 +8,12 @@ use super::FUNCTION_NAMES;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum ExpressionError {
-    /// The source text is longer than [`MAX_LENGTH`].
+    /// The source text is longer than [`MAX_LENGTH`](super::MAX_LENGTH).
     #[error("expression is {length} bytes long; the limit is {limit} bytes")]
     TooLong {
         /// Length of the source text in bytes.
         length: usize,
-        /// The limit, [`MAX_LENGTH`].
+        /// The limit, [`MAX_LENGTH`](super::MAX_LENGTH).
         limit: usize,
     },
     /// The source text is empty or only whitespace.
