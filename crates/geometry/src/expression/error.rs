@@ -122,12 +122,12 @@ pub enum ExpressionError {
         /// Its value.
         value: f64,
     },
-    /// Nesting deeper than [`MAX_DEPTH`].
+    /// Nesting deeper than [`MAX_DEPTH`](super::MAX_DEPTH).
     #[error("expression nests deeper than {limit} levels at byte {position}")]
     TooDeep {
         /// Byte offset of the token that opens the level past the limit.
         position: usize,
-        /// The limit, [`MAX_DEPTH`].
+        /// The limit, [`MAX_DEPTH`](super::MAX_DEPTH).
         limit: usize,
     },
     /// The value or a derivative is not finite at a sample point
