@@ -131,7 +131,7 @@ pub enum ExpressionError {
         limit: usize,
     },
     /// The value or a derivative is not finite at a sample point
-    /// (from [`Expression::check_finite_on`]).
+    /// (from [`Expression::check_finite_on`](super::Expression::check_finite_on)).
     #[error("{} of the expression is not finite at t = {t}: {value}", derivative_name(*derivative))]
     NotFinite {
         /// The sample point.
