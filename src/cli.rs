@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use crate::commands;
+pub use crate::commands::SceneArgs;
 use crate::error::CliError;
 use crate::scene::Scene;
 
@@ -159,29 +160,6 @@ pub struct VerifyArgs {
     /// Also write `verify.json` into this directory.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-}
-
-/// Arguments shared by commands that read a scene.
-#[derive(Debug, Args, Clone, Default)]
-pub struct SceneArgs {
-    /// Scene file (TOML); built-in defaults when omitted.
-    pub scene: Option<PathBuf>,
-    /// Override a scene key, e.g. `--set obstacle.b=1.5` (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    pub sets: Vec<String>,
-    /// Print one JSON object instead of a table.
-    #[arg(long)]
-    pub json: bool,
-}
-
-impl SceneArgs {
-    /// Loads the scene these arguments describe.
-    ///
-    /// # Errors
-    /// See [`Scene::load`].
-    pub fn load(&self) -> Result<Scene, CliError> {
-        Scene::load(self.scene.as_deref(), &self.sets)
-    }
 }
 
 /// Runs the command line; returns what to print on stdout.

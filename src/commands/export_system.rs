@@ -20,7 +20,7 @@ use capstan_elasticity::{Component, Discretisation};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 
-use crate::cli::SceneArgs;
+use crate::commands::SceneArgs;
 use crate::commands::contact;
 use crate::error::CliError;
 use crate::output::OutputDir;

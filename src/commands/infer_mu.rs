@@ -21,7 +21,7 @@ use capstan_geometry::{
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 
-use crate::cli::SceneArgs;
+use crate::commands::SceneArgs;
 use crate::commands::tension::membrane_problem;
 use crate::error::CliError;
 use crate::scene::Scene;

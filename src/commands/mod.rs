@@ -8,8 +8,11 @@ pub mod figure;
 pub mod geometry;
 pub mod infer_mu;
 pub mod merge;
+mod scene_args;
 pub mod stress;
 pub mod sweep;
 pub mod tension;
 pub mod threshold;
 pub mod verify;
+
+pub use scene_args::SceneArgs;

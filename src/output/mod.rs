@@ -15,12 +15,14 @@ mod atomic;
 mod csv;
 mod error;
 mod json;
+mod out_dir;
 mod vtu;
 
-pub use atomic::{OutputDir, write_atomic};
+pub use atomic::write_atomic;
 pub use csv::{Column, ColumnData, Table, format_f64};
 pub use error::OutputError;
 pub use json::{check_finite_json, to_json_string, write_json};
+pub use out_dir::OutputDir;
 pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_QUAD, Vtu};
 mod plot;
 

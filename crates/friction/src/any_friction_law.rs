@@ -5,7 +5,8 @@ use std::sync::Arc;
 
 use crate::error::FrictionError;
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::registry::{self, DynFrictionLaw, FrictionSettings, RegisteredLaw};
+use crate::registration::{DynFrictionLaw, FrictionSettings, RegisteredLaw};
+use crate::registry;
 
 /// A registered friction law, by name (the values of the scene key `friction.law`).
 #[derive(Debug, Clone, Copy)]

@@ -3,7 +3,7 @@
 use capstan_geometry::Real;
 
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::registry::{RegisteredLaw, bind};
+use crate::registration::{RegisteredLaw, bind};
 
 /// A perfectly smooth contact: `t(u, p) = 0` for every slip and pressure.
 ///

@@ -4,7 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::registry::{RegisteredLaw, bind};
+use crate::registration::{RegisteredLaw, bind};
 use crate::smooth_coulomb::{direction_kernel, to_f64};
 
 /// Howell's power law (fibres and yarns): the friction force grows like a power `n` of the

@@ -4,7 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::registry::{RegisteredLaw, bind};
+use crate::registration::{RegisteredLaw, bind};
 use crate::smooth_coulomb::to_f64;
 
 /// Orthotropic Coulomb friction with an elliptic limit surface and the associated slip rule

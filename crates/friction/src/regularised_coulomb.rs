@@ -4,7 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::registry::{RegisteredLaw, bind};
+use crate::registration::{RegisteredLaw, bind};
 
 /// Regularised Coulomb friction (Kikuchi–Oden): Coulomb above a slip `eps`, linear below.
 ///

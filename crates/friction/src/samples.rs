@@ -47,7 +47,7 @@ impl RatioVersusAspect {
     ///
     /// # Errors
     /// Forward-model errors (none for valid settings).
-    pub fn run(&self) -> Result<Vec<RatioRow>, crate::FrictionError> {
+    pub fn run(&self) -> Result<Vec<RatioRow>, crate::error::FrictionError> {
         let n = self.points.max(2);
         (0..n)
             .map(|i| {

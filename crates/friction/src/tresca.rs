@@ -4,7 +4,7 @@ use capstan_geometry::Real;
 
 use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
-use crate::registry::{RegisteredLaw, bind};
+use crate::registration::{RegisteredLaw, bind};
 use crate::smooth_coulomb::{direction_kernel, to_f64};
 
 /// Tresca friction: the traction bound `g` does not depend on the normal stress.

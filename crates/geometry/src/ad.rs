@@ -14,7 +14,7 @@
 
 use num_dual::{Dual3, HyperHyperDual};
 
-use crate::Real;
+use crate::scalar::Real;
 
 /// A scalar type carrying third-order mixed derivatives, used to differentiate charts.
 pub type Jet3<F> = HyperHyperDual<F>;

@@ -2,7 +2,8 @@
 
 use crate::ad::SurfaceJet;
 use crate::profile::ProfileCurve;
-use crate::{Real, Scalar, Surface};
+use crate::scalar::{Real, Scalar};
+use crate::surface::Surface;
 
 /// A general cone with apex at the origin and axis `x1`:
 /// `sigma(x1, x2) = x1 w(x2)`, `w = (1, ubar(x2), vbar(x2))`, for `x1 > 0`.

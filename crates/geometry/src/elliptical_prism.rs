@@ -4,7 +4,8 @@ use crate::ad::SurfaceJet;
 use crate::error::{GeometryError, positive};
 use crate::prism::prism_jet;
 use crate::profile::ProfileCurve;
-use crate::{Real, Scalar, Surface};
+use crate::scalar::{Real, Scalar};
+use crate::surface::Surface;
 
 /// Closed-form profile jet of `(a sin t, b cos t)`.
 fn ellipse_profile_jet<F: Real>(a: F, b: F, t: F) -> [[F; 4]; 2] {

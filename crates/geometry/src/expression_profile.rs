@@ -3,7 +3,7 @@
 use crate::error::GeometryError;
 use crate::expression::Expression;
 use crate::profile::ProfileCurve;
-use crate::{Real, Scalar};
+use crate::scalar::{Real, Scalar};
 
 /// A profile `(u(t), v(t))` given by two expressions in `t`, with exact derivatives.
 ///

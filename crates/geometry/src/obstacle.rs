@@ -1,10 +1,14 @@
 //! A run-time choice among the provided obstacles (for scene files).
 
 use crate::ad::SurfaceJet;
-use crate::{
-    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Plane,
-    ProfileCurve, RightCircularCone, Scalar, Surface,
-};
+use crate::cone::GeneralCone;
+use crate::elliptical_prism::{CircularCylinder, EllipticalPrism};
+use crate::expression_profile::ExpressionProfile;
+use crate::prism::GeneralPrism;
+use crate::profile::ProfileCurve;
+use crate::scalar::Scalar;
+use crate::simple_surfaces::{Plane, RightCircularCone};
+use crate::surface::Surface;
 
 /// One of the provided obstacles, chosen at run time; dispatches to each one's fast path.
 #[derive(Debug, Clone, PartialEq)]

@@ -2,7 +2,8 @@
 
 use crate::ad::SurfaceJet;
 use crate::profile::ProfileCurve;
-use crate::{Real, Scalar, Surface};
+use crate::scalar::{Real, Scalar};
+use crate::surface::Surface;
 
 /// A general prism over a profile curve: `sigma(x1, x2) = (x1, u(x2), v(x2))`.
 ///

@@ -1,7 +1,7 @@
 //! Plane profile curves `t -> (u(t), v(t))`, the cross-sections of prisms and cones.
 
 use crate::ad::curve_jet;
-use crate::{Real, Scalar};
+use crate::scalar::{Real, Scalar};
 
 /// A plane curve `t -> (u(t), v(t))`, written once generically over the scalar.
 ///

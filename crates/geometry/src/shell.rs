@@ -2,9 +2,10 @@
 
 use crate::ad::SurfaceJet;
 use crate::error::GeometryError;
+use crate::scalar::Real;
+use crate::surface::Surface;
 use crate::surface::point3;
 use crate::vector::{add, axpy, cross, dot, is_finite, norm, scale};
-use crate::{Real, Surface};
 
 /// The 3-D geometry of a shell chart at one point `(x1, x2, x3)`.
 ///
@@ -308,7 +309,9 @@ impl<S> ShellChart<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism};
+    use crate::elliptical_prism::{CircularCylinder, EllipticalPrism};
+    use crate::expression_profile::ExpressionProfile;
+    use crate::prism::GeneralPrism;
 
     /// `frame(x1, x2).point(x3)` is the same computation as `point([x1, x2, x3])`: equal bit
     /// for bit, errors included.

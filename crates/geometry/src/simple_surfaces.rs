@@ -3,7 +3,8 @@
 use crate::cone::cone_jet;
 use crate::error::{GeometryError, positive};
 use crate::profile::ProfileCurve;
-use crate::{Real, Scalar, Surface};
+use crate::scalar::{Real, Scalar};
+use crate::surface::Surface;
 
 /// The plane `sigma(x1, x2) = (x1, x2, 0)` with normal `(0, 0, 1)`: zero curvature everywhere.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

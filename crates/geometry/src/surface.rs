@@ -2,8 +2,8 @@
 
 use crate::ad::{self, Jet3, SurfaceJet};
 use crate::error::GeometryError;
+use crate::scalar::{Real, Scalar};
 use crate::vector::{cross, dot, inverse2, is_finite, norm, scale};
-use crate::{Real, Scalar};
 
 /// Relative size of `|a_1 x a_2|` against `|a_1| |a_2|` below which the normal is undefined.
 const DEGENERACY_TOLERANCE: f64 = 1e-12;
@@ -77,7 +77,7 @@ impl<F: Real> SurfaceGeometry<F> {
                     + first_form_inverse[a][1] * second_form[1][b];
             }
         }
-        let half = crate::real::<F>(0.5);
+        let half = crate::scalar::real::<F>(0.5);
         let mean_curvature = -half * (mixed[0][0] + mixed[1][1]);
         let gaussian_curvature = mixed[0][0] * mixed[1][1] - mixed[0][1] * mixed[1][0];
         // Contravariant tangents a^c = a^cd a_d, then Gamma^c_ab = a^c . d_a d_b sigma.
@@ -139,7 +139,7 @@ pub(crate) fn check_regular<F: Real>(
             at,
         });
     }
-    if ln <= crate::real::<F>(DEGENERACY_TOLERANCE) * l0 * l1 {
+    if ln <= crate::scalar::real::<F>(DEGENERACY_TOLERANCE) * l0 * l1 {
         return Err(GeometryError::Degenerate {
             what: "parallel tangents: normal undefined",
             at,

@@ -1,6 +1,6 @@
 //! Small fixed-size vector kernels used by the geometry formulas.
 
-use crate::Real;
+use crate::scalar::Real;
 
 pub(crate) type Vec3<F> = [F; 3];
 

@@ -23,9 +23,8 @@ use crate::direct_solve::{
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_square, check_values};
 use crate::lu_kind::LuKind;
-use crate::multifrontal_lu::{
-    BlockWork, FrontFailure, FrontalFactors, FrontalStructure, SOLVE_BLOCK_WIDTH,
-};
+use crate::multifrontal_lu::solve::{BlockWork, SOLVE_BLOCK_WIDTH};
+use crate::multifrontal_lu::{FrontFailure, FrontalFactors, FrontalStructure};
 use crate::ordering::is_permutation;
 use crate::sparsity_pattern::SparsityPattern;
 

@@ -3,7 +3,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{Plot, extent, font, tick_label};
+use super::style::{Plot, extent, font, tick_label};
 use crate::output::error::{OutputError, check_all_finite};
 use crate::output::vtu::QuadGrid;
 

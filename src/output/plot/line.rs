@@ -6,7 +6,7 @@ use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
 
-use super::{PALETTE, Plot, extent, font, tick_label};
+use super::style::{PALETTE, Plot, extent, font, tick_label};
 use crate::output::error::{OutputError, check_all_finite};
 
 /// An axis scale.

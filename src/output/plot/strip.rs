@@ -4,7 +4,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::{Plot, extent, font, tick_label};
+use super::style::{Plot, extent, font, tick_label};
 use crate::output::error::{OutputError, check_all_finite};
 
 /// Band colours of the states -1, 0, +1 (blue, grey, vermillion).

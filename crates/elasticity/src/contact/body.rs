@@ -4,7 +4,7 @@
 use capstan_friction::FrictionLaw;
 use capstan_geometry::{Obstacle, ShellChart};
 
-use crate::Component;
+use crate::boundary::Component;
 use crate::boundary::{BoundaryConditions, BoundaryFunction, SideCondition, X2Ends};
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;

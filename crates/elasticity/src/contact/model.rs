@@ -139,7 +139,7 @@ impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// differ; [`ContactError::NoContactNodes`]; [`ContactError::InvalidParameter`] for a
     /// non-positive `slip_threshold`.
     pub fn new(
-        build: impl Fn(f64, f64) -> Result<D, crate::ElasticityError>,
+        build: impl Fn(f64, f64) -> Result<D, crate::error::ElasticityError>,
         law: L,
         params: L::Params,
         slip_threshold: f64,

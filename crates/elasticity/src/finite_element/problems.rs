@@ -4,7 +4,7 @@
 use std::sync::Arc;
 
 use super::element::ElementOrder;
-use super::navier::DisplacementErrors;
+use super::navier::norms::DisplacementErrors;
 use super::problem_parts::ProblemParts;
 use super::volumetric::VolumetricIntegration;
 use crate::discretisation::Discretisation;

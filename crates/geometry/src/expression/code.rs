@@ -1,7 +1,12 @@
 //! The compiled program: stack-machine operations, functions and binary operators.
 
-use super::MAX_POWI;
 use crate::scalar::{Real, Scalar};
+
+/// Largest `|n|` evaluated with `powi`; larger integer exponents use `powf`.
+///
+/// num-dual's `powi` forms `n (n - 1) (n - 2)` in `i32` for third derivatives, which must not
+/// overflow; and `|x|^1024` already overflows `f64` for every `|x| >= 2`.
+const MAX_POWI: f64 = 1024.0;
 
 /// One instruction of the stack machine. `c` is a constant operand, `x` the top of the stack
 /// and `a` the value below it.

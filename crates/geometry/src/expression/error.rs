@@ -1,6 +1,7 @@
 //! Errors of parsing and checking an expression.
 
-use super::FUNCTION_NAMES;
+/// The functions callable from an expression, in the order listed in error messages.
+const FUNCTION_NAMES: &str = "sin, cos, tan, exp, ln, sqrt, abs, sinh, cosh, tanh, atan";
 
 /// An error from parsing an expression or from checking it on an interval.
 ///

@@ -68,20 +68,8 @@ use crate::scalar::{Real, Scalar, real};
 /// Longest accepted source text, in bytes.
 pub const MAX_LENGTH: usize = 4096;
 
-/// Deepest accepted nesting of parentheses, function calls, unary signs and exponents.
-pub const MAX_DEPTH: usize = 64;
-
-/// Largest `|n|` evaluated with `powi`; larger integer exponents use `powf`.
-///
-/// num-dual's `powi` forms `n (n - 1) (n - 2)` in `i32` for third derivatives, which must not
-/// overflow; and `|x|^1024` already overflows `f64` for every `|x| >= 2`.
-const MAX_POWI: f64 = 1024.0;
-
 /// Operand-stack slots kept on the machine stack; longer programs use a heap buffer.
 const INLINE_STACK: usize = 8;
-
-/// The functions callable from an expression, in the order listed in error messages.
-const FUNCTION_NAMES: &str = "sin, cos, tan, exp, ln, sqrt, abs, sinh, cosh, tanh, atan";
 
 mod code;
 mod error;
@@ -91,6 +79,7 @@ mod tests;
 
 use code::{Op, max_stack};
 pub use error::ExpressionError;
+pub use parser::MAX_DEPTH;
 use parser::{Operand, Parser};
 
 /// A parsed math expression in one variable `t`, ready to evaluate on any [`Scalar`].

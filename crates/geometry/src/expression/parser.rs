@@ -1,6 +1,5 @@
 //! The recursive-descent parser that compiles the source text into [`Op`]s.
 
-use super::MAX_DEPTH;
 use super::code::{Binary, Function, Op, power_by_constant};
 use super::error::ExpressionError;
 
@@ -11,6 +10,9 @@ pub(super) enum Operand {
     Constant(f64),
     Code,
 }
+
+/// Deepest accepted nesting of parentheses, function calls, unary signs and exponents.
+pub const MAX_DEPTH: usize = 64;
 
 /// Recursive-descent parser emitting postfix code as it goes, one function per grammar rule.
 pub(super) struct Parser<'a> {

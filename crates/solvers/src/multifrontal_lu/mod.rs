@@ -33,24 +33,6 @@ use faer::{Accum, MatMut, Par};
 use crate::error::SolverError;
 use crate::sparsity_pattern::SparsityPattern;
 
-/// Smallest accepted `|pivot| / max |entry of its column in the front|`.
-pub(crate) const PIVOT_THRESHOLD: f64 = 0.01;
-
-/// Fronts with fewer multiply-adds than this in their Schur update run sequentially.
-const PARALLEL_FLOPS: usize = 1 << 20;
-
-/// Why a multifrontal factorisation stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum FrontFailure {
-    /// A column of the remaining Schur complement is entirely zero: `A` is singular. Carries
-    /// the column in the caller's numbering.
-    Singular(usize),
-    /// A non-finite value reached a pivot column.
-    NonFinite,
-    /// No pivot in a front's block passes the threshold: rows outside it would be needed.
-    NeedsPivoting,
-}
-
 /// The symbolic part, built once per pattern: order, supernodes, assembly lists.
 #[derive(Debug)]
 pub(crate) struct FrontalStructure {
@@ -387,9 +369,9 @@ impl FrontalStructure {
 }
 
 mod panel;
-mod solve;
+pub(crate) mod solve;
 #[cfg(test)]
 mod tests;
 
-use panel::factor_panel;
-pub(crate) use solve::{BlockWork, SOLVE_BLOCK_WIDTH};
+pub(crate) use panel::FrontFailure;
+use panel::{PARALLEL_FLOPS, factor_panel};

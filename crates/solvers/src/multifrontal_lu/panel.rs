@@ -3,7 +3,23 @@
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, MatMut, Par};
 
-use super::{FrontFailure, PARALLEL_FLOPS, PIVOT_THRESHOLD};
+/// Smallest accepted `|pivot| / max |entry of its column in the front|`.
+pub(crate) const PIVOT_THRESHOLD: f64 = 0.01;
+
+/// Fronts with fewer multiply-adds than this in their Schur update run sequentially.
+pub(super) const PARALLEL_FLOPS: usize = 1 << 20;
+
+/// Why a multifrontal factorisation stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FrontFailure {
+    /// A column of the remaining Schur complement is entirely zero: `A` is singular. Carries
+    /// the column in the caller's numbering.
+    Singular(usize),
+    /// A non-finite value reached a pivot column.
+    NonFinite,
+    /// No pivot in a front's block passes the threshold: rows outside it would be needed.
+    NeedsPivoting,
+}
 
 /// Columns per block of [`factor_panel`]: within a block the LU is right-looking by rank-1
 /// updates; the rest of the panel is updated per block by a triangular solve and a matrix

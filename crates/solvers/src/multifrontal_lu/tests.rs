@@ -1,7 +1,7 @@
 //! Unit tests of the multifrontal kernels.
 
 use super::panel::{PANEL_BLOCK, factor_panel_blocked};
-use super::solve::DENSE_SOLVE_COLUMNS;
+use super::solve::{BlockWork, DENSE_SOLVE_COLUMNS};
 use super::*;
 use crate::samples::{
     ConvectionDiffusion2d, LinearSystem, Poisson2d, RandomDiagonallyDominant, SplitMix64,

@@ -7,9 +7,8 @@ use capstan_friction::FrictionLaw;
 use capstan_solvers::{LinearSolver, SparseLu};
 use faer::Mat;
 
-use super::BoundarySolver;
 use crate::contact::error::ContactError;
-use crate::contact::model::{ContactModel, EndLoads, ExtendedPattern};
+use crate::contact::model::{ContactModel, ExtendedPattern};
 use crate::discretisation::Discretisation;
 
 /// Power iterations of [`largest_singular_value`].
@@ -135,32 +134,4 @@ pub(super) fn row_max(
         .filter(|((r, _), _)| *r == row)
         .fold(0.0f64, |m, (_, v)| m.max(v.abs()))
         .max(1.0)
-}
-
-impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
-    /// `(x0, n0)` for the loads.
-    pub(super) fn loaded_base(&self, loads: EndLoads) -> (Vec<f64>, Vec<f64>) {
-        let [(xa, na), (xb, nb)] = &self.bulk.base;
-        let x = xa
-            .iter()
-            .zip(xb)
-            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
-            .collect();
-        let s = na
-            .iter()
-            .zip(nb)
-            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
-            .collect();
-        (x, s)
-    }
-
-    /// `(P Z s, N Z s)`: the tangential displacements and normal stresses that the condensed
-    /// unknowns `s` add at the contact nodes (two dense matrix-vector products).
-    pub(super) fn condensed_products(&self, s: &[f64]) -> (faer::Col<f64>, faer::Col<f64>) {
-        let s = faer::ColRef::from_slice(s);
-        (
-            self.bulk.pz.as_ref().as_ref() * s,
-            self.bulk.nz.as_ref().as_ref() * s,
-        )
-    }
 }

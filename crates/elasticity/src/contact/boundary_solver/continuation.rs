@@ -3,8 +3,7 @@
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{Observer, Progress, SolveStage};
 
-use super::BoundarySolver;
-use super::newton::Failure;
+use super::{BoundarySolver, Failure};
 use crate::contact::error::ContactError;
 use crate::contact::model::EndLoads;
 use crate::discretisation::Discretisation;

@@ -25,7 +25,27 @@ use crate::discretisation::Discretisation;
 use condensation::{
     Condensation, condense, frictionless_operator, largest_singular_value, project, row_max,
 };
-use newton::Failure;
+
+/// A converged condensed Newton run: `(iterations, relative residual)`.
+pub(super) type Converged = (usize, f64);
+
+/// Why a condensed Newton run (or a continuation of them) stopped without converging.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Failure {
+    /// `(iterations, relative residual)` when it gave up.
+    NotConverged(usize, f64),
+    /// The observer asked to stop after this many iterations.
+    Interrupted(usize),
+}
+
+impl Failure {
+    /// Iterations spent.
+    pub(super) fn iterations(self) -> usize {
+        match self {
+            Self::NotConverged(it, _) | Self::Interrupted(it) => it,
+        }
+    }
+}
 
 /// Largest relative residual of the full system accepted for a converged contact solution
 /// (a safety net behind the condensed Newton's own test).

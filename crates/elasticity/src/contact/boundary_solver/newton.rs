@@ -5,7 +5,7 @@ use capstan_solvers::{Observer, Progress, SolveStage};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
-use super::{BoundarySolver, ContactSettings};
+use super::{BoundarySolver, ContactSettings, Converged, Failure};
 use crate::contact::model::EndLoads;
 use crate::discretisation::Discretisation;
 
@@ -21,27 +21,6 @@ pub(super) const SLIP_STEP_GROWTH: f64 = 10.0;
 /// Stiffness along the rigid mode added to the Newton matrix, relative to the spring (see
 /// [`BoundarySolver::eval`]).
 pub(super) const RIGID_TETHER: f64 = 1e-8;
-
-/// A converged condensed Newton run: `(iterations, relative residual)`.
-pub(super) type Converged = (usize, f64);
-
-/// Why a condensed Newton run (or a continuation of them) stopped without converging.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Failure {
-    /// `(iterations, relative residual)` when it gave up.
-    NotConverged(usize, f64),
-    /// The observer asked to stop after this many iterations.
-    Interrupted(usize),
-}
-
-impl Failure {
-    /// Iterations spent.
-    pub(super) fn iterations(self) -> usize {
-        match self {
-            Self::NotConverged(it, _) | Self::Interrupted(it) => it,
-        }
-    }
-}
 
 impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// `G(s)` and, optionally, `dG/ds`; returns `d t_2/d v^2` (spring included) and
@@ -295,5 +274,31 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             })
             .count();
         (stick, s.len() - stick)
+    }
+
+    /// `(x0, n0)` for the loads.
+    pub(super) fn loaded_base(&self, loads: EndLoads) -> (Vec<f64>, Vec<f64>) {
+        let [(xa, na), (xb, nb)] = &self.bulk.base;
+        let x = xa
+            .iter()
+            .zip(xb)
+            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .collect();
+        let s = na
+            .iter()
+            .zip(nb)
+            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .collect();
+        (x, s)
+    }
+
+    /// `(P Z s, N Z s)`: the tangential displacements and normal stresses that the condensed
+    /// unknowns `s` add at the contact nodes (two dense matrix-vector products).
+    pub(super) fn condensed_products(&self, s: &[f64]) -> (faer::Col<f64>, faer::Col<f64>) {
+        let s = faer::ColRef::from_slice(s);
+        (
+            self.bulk.pz.as_ref().as_ref() * s,
+            self.bulk.nz.as_ref().as_ref() * s,
+        )
     }
 }

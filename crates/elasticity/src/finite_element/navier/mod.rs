@@ -6,10 +6,8 @@
 mod assembly;
 mod boundary_terms;
 mod geometry_cache;
-mod norms;
+pub(super) mod norms;
 mod recovery;
-
-pub use norms::DisplacementErrors;
 
 use capstan_geometry::ShellPoint;
 

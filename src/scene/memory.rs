@@ -1,0 +1,71 @@
+//! Size limits of a scene and the memory estimate of a thick-body solve.
+
+use super::*;
+
+/// Largest `grid.n2` accepted before any memory estimate.
+pub const MAX_N2: usize = 10_000_000;
+/// Largest `grid.n3` accepted before any memory estimate.
+pub const MAX_N3: usize = 1_000_000;
+/// Largest `membrane.samples` (as in the membrane models).
+pub const MAX_SAMPLES: usize = 10_000_000;
+/// Sample points at which obstacle expressions are checked finite on the contact interval.
+pub(super) const EXPRESSION_CHECK_SAMPLES: usize = 1025;
+
+/// A conservative estimate of the peak memory of a thick-body contact solve, by the
+/// boundary-only solver (`condensed`, `solver.nonlinear = newton`) or the full-system solvers.
+///
+/// # Math
+/// ```text
+/// N     = 2 n2 n3                          unknowns (plane strain)
+/// bytes = 190 N log2(N)  (x2 for fem-q2)   sparse system, Jacobian and multifrontal LU
+///       + 2^27                             factors (nested dissection): fits the measured
+///                                          VmHWM of `capstan contact` (fd, default scene)
+///                                          from above: full-newton 1.12 GB / 4.70 GB /
+///                                          19.9 GB at 1000x161 / 2000x321 / 4000x640,
+///                                          condensed 1.65 GB at 1000x161 (8-12% margin)
+///   condensed only:
+///       + 32 n2^2                          four dense m x m condensed matrices, m ~ n2
+///       + 2^29                             the condensation's blocks of right-hand sides,
+///                                          residuals and corrections
+/// ```
+/// Not covered: a matrix whose pivots leave the multifrontal fronts falls back to faer's
+/// supernodal LU, which needs up to ~2.3x more (see `capstan_solvers::LuKind`).
+pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod, condensed: bool) -> f64 {
+    let (n2, n3) = (n2 as f64, n3 as f64);
+    let unknowns = 2.0 * n2 * n3;
+    let width = if method == DiscretisationMethod::FemQ2 {
+        2.0
+    } else {
+        1.0
+    };
+    let system =
+        MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0) + 134_217_728.0;
+    if condensed {
+        system + 32.0 * n2 * n2 + 536_870_912.0
+    } else {
+        system
+    }
+}
+
+/// The constant of [`memory_estimate`]: bytes per `N log2 N`.
+pub const MEMORY_BYTES_PER_N_LOG_N: f64 = 190.0;
+
+/// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where there is no such file.
+pub fn available_memory() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024.0)
+}
+
+/// Bytes in human units (`1.2 GiB`).
+pub fn human_bytes(bytes: f64) -> String {
+    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut b = bytes;
+    let mut unit = 0;
+    while b >= 1024.0 && unit + 1 < UNITS.len() {
+        b /= 1024.0;
+        unit += 1;
+    }
+    format!("{b:.1} {}", UNITS[unit])
+}

@@ -1,0 +1,330 @@
+//! Scene files: a complete, validated description of a run (TOML + `--set KEY=VALUE`).
+//!
+//! Every key has a default, so an empty scene is the paper's default setting (section 3:
+//! semi-elliptical prism `a = b = 2`, `nu_F = 1/2`, `tau0 = 1`, `tau_max = 2`, `h = 1`,
+//! `E = 1e3`, `nu = 1/4`, `eps = 1e-5`, grid 250 x 41). Keys are a public contract: they are
+//! only ever added, never renamed.
+
+use std::collections::{HashMap, HashSet};
+use std::f64::consts::FRAC_PI_2;
+use std::path::Path;
+
+use capstan_elasticity::finite_element::{DiscretisationMethod, VolumetricIntegration};
+use capstan_elasticity::solvers::LinearBackend;
+use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
+use capstan_geometry::expression::Expression;
+use capstan_geometry::{
+    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
+    RightCircularCone,
+};
+use serde::{Deserialize, Serialize};
+
+use crate::error::CliError;
+
+/// A whole run: obstacle, friction, membrane, loads, body, grid and solver settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scene {
+    /// `[obstacle]`: the rigid obstacle.
+    pub obstacle: ObstacleSpec,
+    /// `[friction]`: the friction law and its parameters.
+    pub friction: FrictionSpec,
+    /// `[membrane]`: the membrane (capstan) problem.
+    pub membrane: MembraneSpec,
+    /// `[loads]`: external loads and end tractions.
+    pub loads: LoadsSpec,
+    /// `[body]`: the thick elastic body.
+    pub body: BodySpec,
+    /// `[grid]`: the discretisation grid of the thick body.
+    pub grid: GridSpec,
+    /// `[solver]`: linear and nonlinear solver backends.
+    pub solver: SolverSpec,
+    /// `[discretisation]`: how the thick body's Navier operator is discretised.
+    pub discretisation: DiscretisationSpec,
+}
+
+/// The obstacle's shape (`obstacle.shape`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Shape {
+    /// Circular cylinder of `obstacle.radius`.
+    Cylinder,
+    /// Elliptical prism `(x1, a sin x2, b cos x2)` with `obstacle.a`, `obstacle.b`.
+    Ellipse,
+    /// General prism `(x1, u(x2), v(x2))` from expressions `obstacle.u`, `obstacle.v`.
+    Prism,
+    /// Right circular cone of half-aperture `obstacle.half_angle`.
+    CircularCone,
+    /// General cone `x1 (1, ubar(x2), vbar(x2))` from `obstacle.ubar`, `obstacle.vbar`.
+    Cone,
+}
+
+/// `[obstacle]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ObstacleSpec {
+    /// `cylinder | ellipse | prism | circular-cone | cone`.
+    pub shape: Shape,
+    /// Cylinder radius.
+    pub radius: f64,
+    /// Ellipse horizontal semi-axis.
+    pub a: f64,
+    /// Ellipse vertical semi-axis.
+    pub b: f64,
+    /// Right circular cone half-aperture (radians).
+    pub half_angle: f64,
+    /// Prism profile `u(t)`.
+    pub u: String,
+    /// Prism profile `v(t)`.
+    pub v: String,
+    /// Cone profile `ubar(t)`.
+    pub ubar: String,
+    /// Cone profile `vbar(t)`.
+    pub vbar: String,
+}
+
+impl Default for ObstacleSpec {
+    fn default() -> Self {
+        Self {
+            shape: Shape::Ellipse,
+            radius: 2.0,
+            a: 2.0,
+            b: 2.0,
+            half_angle: std::f64::consts::FRAC_PI_6,
+            u: "2*sin(t)".into(),
+            v: "2*cos(t)".into(),
+            ubar: "0.5*sin(t)".into(),
+            vbar: "0.5*cos(t)".into(),
+        }
+    }
+}
+
+impl ObstacleSpec {
+    /// Builds the obstacle, validating its parameters.
+    ///
+    /// # Errors
+    /// [`CliError::Geometry`] naming the bad field.
+    pub fn build(&self) -> Result<Obstacle, CliError> {
+        Ok(match self.shape {
+            Shape::Cylinder => Obstacle::Cylinder(CircularCylinder::new(self.radius)?),
+            Shape::Ellipse => Obstacle::Ellipse(EllipticalPrism::new(self.a, self.b)?),
+            Shape::Prism => Obstacle::Prism(GeneralPrism::new(ExpressionProfile::parse_named(
+                &self.u,
+                &self.v,
+                ["obstacle.u", "obstacle.v"],
+            )?)),
+            Shape::CircularCone => Obstacle::CircularCone(RightCircularCone::new(self.half_angle)?),
+            Shape::Cone => Obstacle::Cone(GeneralCone::new(ExpressionProfile::parse_named(
+                &self.ubar,
+                &self.vbar,
+                ["obstacle.ubar", "obstacle.vbar"],
+            )?)),
+        })
+    }
+}
+
+/// `[friction]`.
+///
+/// Unknown keys are refused by the scene's key check ([`known_keys`]: the fields below and the
+/// parameters of every registered law, [`capstan_friction::registry`]), so `extra` holds only
+/// parameters of laws registered outside the friction crate.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct FrictionSpec {
+    /// The friction law (`coulomb`: regularised Coulomb of Kikuchi–Oden).
+    pub law: String,
+    /// Coefficient of friction `mu` (the paper's `mu_F`, `nu_F`).
+    pub mu: f64,
+    /// Regularisation width `eps` (physical slip length).
+    pub eps: f64,
+    /// The Tresca bound `g` (`friction.law = "tresca"`).
+    pub bound: f64,
+    /// Howell's exponent `n` in `|t| = mu |p|^n` (`friction.law = "howell"`).
+    pub exponent: f64,
+    /// `mu_2` along the second orthotropy axis (`friction.law = "orthotropic-coulomb"`).
+    pub mu2: f64,
+    /// First orthotropy axis from the slip frame's first axis, radians
+    /// (`friction.law = "orthotropic-coulomb"`).
+    pub axis_angle: f64,
+    /// Parameters of other registered laws, by key.
+    #[serde(flatten)]
+    pub extra: std::collections::BTreeMap<String, f64>,
+}
+
+impl Default for FrictionSpec {
+    fn default() -> Self {
+        let d = FrictionSettings::default();
+        Self {
+            law: "coulomb".into(),
+            mu: 0.5,
+            eps: 1e-5,
+            bound: d.bound,
+            exponent: d.exponent,
+            mu2: d.mu2,
+            axis_angle: d.axis_angle,
+            extra: d.extra,
+        }
+    }
+}
+
+impl FrictionSpec {
+    /// The settings every friction law draws its parameters from.
+    pub fn settings(&self) -> FrictionSettings {
+        FrictionSettings {
+            mu: self.mu,
+            eps: self.eps,
+            mu2: self.mu2,
+            axis_angle: self.axis_angle,
+            bound: self.bound,
+            exponent: self.exponent,
+            extra: self.extra.clone(),
+        }
+    }
+}
+
+/// `[membrane]`: the capstan problem.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MembraneSpec {
+    /// Tension `T0` at `theta0`.
+    pub t0: f64,
+    /// Start of the contact interval (radians, profile parameter).
+    pub theta0: f64,
+    /// End of the contact interval.
+    pub theta_max: f64,
+    /// Number of evenly spaced output samples on `[theta0, theta_max]`, both ends included.
+    pub samples: usize,
+    /// Measured tension at `theta_max` (for `infer-mu`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_max: Option<f64>,
+}
+
+impl Default for MembraneSpec {
+    fn default() -> Self {
+        Self {
+            t0: 1.0,
+            theta0: -FRAC_PI_2,
+            theta_max: FRAC_PI_2,
+            samples: 101,
+            t_max: None,
+        }
+    }
+}
+
+/// `[loads]`: body forces on the membrane and end tractions on the thick body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LoadsSpec {
+    /// Gravitational acceleration `g`; gravity is `(0, 0, -g)` in Euclidean coordinates.
+    pub gravity: f64,
+    /// Mass per unit volume of the membrane.
+    pub density: f64,
+    /// Membrane width `l`.
+    pub width: f64,
+    /// Membrane thickness `h`.
+    pub thickness: f64,
+    /// Steady belt speed `V` (Euclidean).
+    pub speed: f64,
+    /// End traction at `x2 = theta0` of the thick body.
+    pub tau0: f64,
+    /// End traction at `x2 = theta_max` of the thick body.
+    pub tau_max: f64,
+}
+
+impl Default for LoadsSpec {
+    fn default() -> Self {
+        Self {
+            gravity: 0.0,
+            density: 0.0,
+            width: 1.0,
+            thickness: 1.0,
+            speed: 0.0,
+            tau0: 1.0,
+            tau_max: 2.0,
+        }
+    }
+}
+
+/// `[body]`: the thick elastic body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct BodySpec {
+    /// Thickness `h`.
+    pub thickness: f64,
+    /// Young's modulus `E`.
+    pub young: f64,
+    /// Poisson's ratio `nu`.
+    pub poisson: f64,
+}
+
+impl Default for BodySpec {
+    fn default() -> Self {
+        Self {
+            thickness: 1.0,
+            young: 1e3,
+            poisson: 0.25,
+        }
+    }
+}
+
+/// `[grid]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GridSpec {
+    /// Points along `x2`.
+    pub n2: usize,
+    /// Points along `x3` (through the thickness).
+    pub n3: usize,
+}
+
+impl Default for GridSpec {
+    fn default() -> Self {
+        Self { n2: 250, n3: 41 }
+    }
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// `lu | cholesky | jacobi | gauss-seidel`.
+    pub linear: String,
+    /// `newton | jacobi-newton`.
+    pub nonlinear: String,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        Self {
+            linear: "lu".into(),
+            nonlinear: "newton".into(),
+        }
+    }
+}
+
+/// `[discretisation]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct DiscretisationSpec {
+    /// `fd` (finite differences, the default) | `fem-q1` | `fem-q2` (finite elements on the
+    /// same grid; Q2 needs odd `grid.n2`, `grid.n3`).
+    pub method: DiscretisationMethod,
+    /// `full` (default) | `reduced`: how the finite elements integrate the volumetric part
+    /// `lambda (div v)(div w) sqrt(g)` of the stiffness; `reduced` is selective reduced
+    /// integration (Q1: 1 point, Q2: 2 x 2; the shear part keeps the full rule), the remedy
+    /// for volumetric locking as `body.poisson -> 1/2`. `fd` accepts only `full`.
+    pub volumetric: VolumetricIntegration,
+}
+
+mod load;
+mod memory;
+#[cfg(test)]
+mod tests;
+mod validate;
+
+pub use load::{Origins, known_keys};
+use memory::EXPRESSION_CHECK_SAMPLES;
+pub use memory::{
+    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, available_memory, human_bytes,
+    memory_estimate,
+};

@@ -1,0 +1,224 @@
+//! Validation of every scene value against its allowed range, naming the key.
+
+use super::*;
+
+impl Scene {
+    /// Checks every field against its allowed range (see [`Scene::load`], which calls it).
+    ///
+    /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
+    /// shape's expressions parse and are finite with finite first and second derivatives on
+    /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is one of
+    /// [`FrictionLawKind::names`],
+    /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
+    /// `samples` in `[2, 10^7]`, `t_max > 0` when given; `loads.gravity, density >= 0`,
+    /// `loads.width, thickness > 0`; `body.thickness > 0`, `body.young > 0`, `body.poisson`
+    /// in `(-1, 1/2)`; `discretisation.volumetric = "reduced"` only with `fem-q1`, `fem-q2`;
+    /// `grid.n2, n3 >= 3` (odd for `fem-q2`), at most [`MAX_N2`], [`MAX_N3`],
+    /// and a thick-body solve that fits in the available memory ([`memory_estimate`]); known
+    /// solver names. Every number must be finite (TOML allows `nan` and `inf`).
+    ///
+    /// Whether the interval is convex is checked by the models that need it (the membrane
+    /// models report [`capstan_friction::FrictionError::NonPositiveCurvature`], exit code 3).
+    ///
+    /// # Errors
+    /// [`CliError::Scene`] naming the key, the value and the allowed range.
+    pub fn validate(&self) -> Result<(), CliError> {
+        self.validate_with(&Origins::default())
+    }
+
+    pub(super) fn validate_with(&self, at: &Origins) -> Result<(), CliError> {
+        let bad = |key: &str, value: String, allowed: &str| CliError::Scene {
+            origin: at.locate(key),
+            message: format!("`{key}` = {value} is outside {allowed}"),
+        };
+        let real = |key: &str, v: f64, allowed: &str, ok: bool| {
+            if v.is_finite() && ok {
+                Ok(())
+            } else {
+                Err(bad(key, format!("{v}"), allowed))
+            }
+        };
+        let o = &self.obstacle;
+        let m = &self.membrane;
+        real("membrane.theta0", m.theta0, "finite values", true)?;
+        real(
+            "membrane.theta_max",
+            m.theta_max,
+            "(membrane.theta0, inf)",
+            m.theta_max > m.theta0,
+        )?;
+        match o.shape {
+            Shape::Cylinder => real("obstacle.radius", o.radius, "(0, inf)", o.radius > 0.0)?,
+            Shape::Ellipse => {
+                real("obstacle.a", o.a, "(0, inf)", o.a > 0.0)?;
+                real("obstacle.b", o.b, "(0, inf)", o.b > 0.0)?;
+            }
+            Shape::CircularCone => real(
+                "obstacle.half_angle",
+                o.half_angle,
+                "(0, pi/2)",
+                o.half_angle > 0.0 && o.half_angle < FRAC_PI_2,
+            )?,
+            Shape::Prism | Shape::Cone => {}
+        }
+        for (key, src) in [
+            ("obstacle.u", &o.u),
+            ("obstacle.v", &o.v),
+            ("obstacle.ubar", &o.ubar),
+            ("obstacle.vbar", &o.vbar),
+        ] {
+            let used = matches!(
+                (o.shape, key),
+                (Shape::Prism, "obstacle.u" | "obstacle.v")
+                    | (Shape::Cone, "obstacle.ubar" | "obstacle.vbar")
+            );
+            let expression = Expression::parse(src).map_err(|e| CliError::Scene {
+                origin: at.locate(key),
+                message: format!("`{key}` = {src:?}: {e}"),
+            })?;
+            if used {
+                expression
+                    .check_finite_on(m.theta0, m.theta_max, EXPRESSION_CHECK_SAMPLES)
+                    .map_err(|e| CliError::Scene {
+                        origin: at.locate(key),
+                        message: format!(
+                            "`{key}` = {src:?} must be finite with finite first and second derivatives on [membrane.theta0, membrane.theta_max] = [{}, {}]: {e}",
+                            m.theta0, m.theta_max
+                        ),
+                    })?;
+            }
+        }
+        let f = &self.friction;
+        if FrictionLawKind::parse(&f.law).is_none() {
+            return Err(bad(
+                "friction.law",
+                format!("{:?}", f.law),
+                &FrictionLawKind::names(),
+            ));
+        }
+        real("friction.mu", f.mu, "[0, inf)", f.mu >= 0.0)?;
+        real("friction.eps", f.eps, "(0, inf)", f.eps > 0.0)?;
+        real("friction.bound", f.bound, "[0, inf)", f.bound >= 0.0)?;
+        real(
+            "friction.exponent",
+            f.exponent,
+            "(0, 2]",
+            f.exponent > 0.0 && f.exponent <= 2.0,
+        )?;
+        real("friction.mu2", f.mu2, "[0, inf)", f.mu2 >= 0.0)?;
+        real("friction.axis_angle", f.axis_angle, "finite values", true)?;
+        if let Some(kind) = FrictionLawKind::parse(&f.law) {
+            // The law's own checks (e.g. orthotropic: not both coefficients zero).
+            AnyFrictionParams::of_kind(kind, &f.settings()).map_err(|e| CliError::Scene {
+                origin: at.locate("friction.law"),
+                message: e.to_string(),
+            })?;
+        }
+        real("membrane.t0", m.t0, "(0, inf)", m.t0 > 0.0)?;
+        if !(2..=MAX_SAMPLES).contains(&m.samples) {
+            return Err(bad("membrane.samples", m.samples.to_string(), "[2, 10^7]"));
+        }
+        if let Some(t_max) = m.t_max {
+            real("membrane.t_max", t_max, "(0, inf)", t_max > 0.0)?;
+        }
+        let l = &self.loads;
+        real("loads.gravity", l.gravity, "[0, inf)", l.gravity >= 0.0)?;
+        real("loads.density", l.density, "[0, inf)", l.density >= 0.0)?;
+        real("loads.width", l.width, "(0, inf)", l.width > 0.0)?;
+        real(
+            "loads.thickness",
+            l.thickness,
+            "(0, inf)",
+            l.thickness > 0.0,
+        )?;
+        real("loads.speed", l.speed, "finite values", true)?;
+        real("loads.tau0", l.tau0, "finite values", true)?;
+        real("loads.tau_max", l.tau_max, "finite values", true)?;
+        let b = &self.body;
+        real("body.thickness", b.thickness, "(0, inf)", b.thickness > 0.0)?;
+        real("body.young", b.young, "(0, inf)", b.young > 0.0)?;
+        real(
+            "body.poisson",
+            b.poisson,
+            "(-1, 1/2)",
+            b.poisson > -1.0 && b.poisson < 0.5,
+        )?;
+        self.validate_grid(at)?;
+        if self.discretisation.method == DiscretisationMethod::Fd
+            && self.discretisation.volumetric != VolumetricIntegration::Full
+        {
+            return Err(bad(
+                "discretisation.volumetric",
+                format!("{:?}", self.discretisation.volumetric.name()),
+                "{\"full\"} for discretisation.method = \"fd\" (finite differences have no quadrature rule to reduce; \"reduced\" needs \"fem-q1\" or \"fem-q2\")",
+            ));
+        }
+        if self.solver.linear.parse::<LinearBackend>().is_err() {
+            return Err(bad(
+                "solver.linear",
+                format!("{:?}", self.solver.linear),
+                LinearBackend::NAMES,
+            ));
+        }
+        if !matches!(
+            self.solver.nonlinear.as_str(),
+            "newton" | "full-newton" | "jacobi-newton"
+        ) {
+            return Err(bad(
+                "solver.nonlinear",
+                format!("{:?}", self.solver.nonlinear),
+                "{\"newton\", \"full-newton\", \"jacobi-newton\"}",
+            ));
+        }
+        Ok(())
+    }
+
+    fn validate_grid(&self, at: &Origins) -> Result<(), CliError> {
+        let g = &self.grid;
+        let method = self.discretisation.method;
+        let q2 = method == DiscretisationMethod::FemQ2;
+        for (key, n, max, allowed, allowed_q2) in [
+            (
+                "grid.n2",
+                g.n2,
+                MAX_N2,
+                "[3, 10^7]",
+                "odd values in [3, 10^7] (fem-q2)",
+            ),
+            (
+                "grid.n3",
+                g.n3,
+                MAX_N3,
+                "[3, 10^6]",
+                "odd values in [3, 10^6] (fem-q2)",
+            ),
+        ] {
+            if !(3..=max).contains(&n) || (q2 && n % 2 == 0) {
+                return Err(CliError::Scene {
+                    origin: at.locate(key),
+                    message: format!(
+                        "`{key}` = {n} is outside {}",
+                        if q2 { allowed_q2 } else { allowed }
+                    ),
+                });
+            }
+        }
+        let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
+        if let Some(have) = available_memory()
+            && need > have
+        {
+            return Err(CliError::Scene {
+                origin: at.locate("grid.n2"),
+                message: format!(
+                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 4000 x 640), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
+                    g.n2,
+                    g.n3,
+                    human_bytes(need),
+                    2 * g.n2 * g.n3,
+                    human_bytes(have)
+                ),
+            });
+        }
+        Ok(())
+    }
+}
