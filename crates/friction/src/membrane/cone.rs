@@ -9,6 +9,13 @@ use super::validity::{first_failure, grid, merged};
 use crate::error::FrictionError;
 use crate::quadrature::{GaussKronrod, gauss_kronrod_15};
 
+/// Relative accuracy of a panel of the cone's nested quadrature (against `int|f|` over the
+/// panel): nine times the rounding floor `50 eps` of the Gauss–Kronrod error estimate.
+const RELATIVE_TOLERANCE: f64 = 1e-13;
+
+/// Work budget of the cone's nested quadrature: panels over all of `[theta0, theta_max]`.
+pub const MAX_CONE_PANELS: usize = 1 << 20;
+
 /// Local quantities of a cone `x1 w(t)`, `w = (1, ubar, vbar)`, from the profile jet.
 ///
 /// # Math
@@ -100,6 +107,14 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
     }
 
     /// Integrates `(exponent, phi)` over `[a, b]` from `phi(a)`, adaptively and depth first.
+    ///
+    /// A panel is accepted when each error estimate is below
+    /// `max(tol_per_length (b - a), RELATIVE_TOLERANCE int_a^b |f|)`: the Gauss–Kronrod
+    /// estimate never falls below its rounding floor `50 eps int|f|`, so an absolute tolerance
+    /// alone is out of reach for large integrands (a needle cone of half-aperture `alpha` has
+    /// `|w| D / |w' x w|^2 ~ cot(alpha)`: `1e3` at `alpha = 1e-3`, and bisection then ran to
+    /// depth 40 on every branch). `panels` counts the panels against [`MAX_CONE_PANELS`].
+    #[allow(clippy::too_many_arguments)] // the recursion's state, private
     fn segment(
         &self,
         a: f64,
@@ -108,7 +123,9 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
         tol_per_length: f64,
         depth: usize,
         bad: &mut Option<f64>,
+        panels: &mut usize,
     ) -> Result<(f64, f64), FrictionError> {
+        *panels += 1;
         let mut phi_rate = |s: f64| Ok(self.point(s)?.phi_rate);
         let phi_panel = gauss_kronrod_15(&mut phi_rate, a, b)?;
         let exponent = gauss_kronrod_15(
@@ -125,8 +142,21 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
             b,
         )?;
         let tol = tol_per_length * (b - a).abs();
-        if (exponent.error <= tol && phi_panel.error <= tol) || depth >= 40 {
-            if depth >= 40 && exponent.error > 1e3 * tol {
+        let accepted = |p: &crate::quadrature::Panel<f64>| {
+            p.error <= tol.max(RELATIVE_TOLERANCE * p.abs_integral)
+        };
+        if *panels > MAX_CONE_PANELS {
+            return Err(FrictionError::QuadratureNotConverged {
+                a,
+                b,
+                error: exponent.error,
+                panels: *panels,
+            });
+        }
+        if (accepted(&exponent) && accepted(&phi_panel)) || depth >= 40 {
+            if depth >= 40
+                && exponent.error > 1e3 * tol.max(RELATIVE_TOLERANCE * exponent.abs_integral)
+            {
                 return Err(FrictionError::QuadratureNotConverged {
                     a,
                     b,
@@ -137,8 +167,8 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
             return Ok((exponent.integral, phi_a + phi_panel.integral));
         }
         let m = 0.5 * (a + b);
-        let (e1, phi_m) = self.segment(a, m, phi_a, tol_per_length, depth + 1, bad)?;
-        let (e2, phi_b) = self.segment(m, b, phi_m, tol_per_length, depth + 1, bad)?;
+        let (e1, phi_m) = self.segment(a, m, phi_a, tol_per_length, depth + 1, bad, panels)?;
+        let (e2, phi_b) = self.segment(m, b, phi_m, tol_per_length, depth + 1, bad, panels)?;
         Ok((e1 + e2, phi_b))
     }
 
@@ -152,13 +182,15 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
         let end = thetas.last().copied().unwrap_or(theta0).max(theta0);
         let tol_per_length = self.tolerance / (end - theta0).abs().max(1.0);
         let mut bad = None;
+        let mut panels = 0;
         let mut phi = self.phi(theta0)?;
         let mut phis = Vec::with_capacity(thetas.len());
         let mut out = Vec::with_capacity(thetas.len());
         let (mut at, mut sum) = (theta0, 0.0);
         for &t in thetas {
             if t > at {
-                let (e, phi_t) = self.segment(at, t, phi, tol_per_length, 0, &mut bad)?;
+                let (e, phi_t) =
+                    self.segment(at, t, phi, tol_per_length, 0, &mut bad, &mut panels)?;
                 sum += e;
                 phi = phi_t;
                 at = t;
