@@ -3,6 +3,7 @@
 use std::fmt;
 use std::sync::Arc;
 
+use crate::error::ElasticityError;
 use crate::grid::Grid;
 
 /// A side of the rectangle `[theta0, theta1] x [0, h]`.
@@ -248,6 +249,29 @@ impl BoundaryConditions {
             x3_max: SideCondition::free(),
             pinned: vec![],
         }
+    }
+
+    /// Checks the conditions fit `grid`: both periodic in `x2` or both not, every pinned
+    /// node inside.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InconsistentBoundary`] saying which.
+    pub fn check_grid(&self, grid: &Grid) -> Result<(), ElasticityError> {
+        if grid.is_periodic() != self.is_periodic() {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "the grid and the x2 conditions must both be periodic or both not",
+            });
+        }
+        if self
+            .pinned
+            .iter()
+            .any(|p| p.node[0] >= grid.n2() || p.node[1] >= grid.n3())
+        {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "a pinned node is outside the grid",
+            });
+        }
+        Ok(())
     }
 
     /// The condition on a side, `None` for the `x2` sides of a periodic problem.

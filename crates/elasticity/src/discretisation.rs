@@ -82,6 +82,24 @@ pub struct ContactNode {
     pub shear_stress: SparseRow,
 }
 
+/// The dof of `component` at `node` in the plane-strain numbering `2 node + c` of every
+/// [`Discretisation`] on a [`crate::Grid`].
+///
+/// # Panics
+/// If `node` is outside the grid.
+#[track_caller]
+pub(crate) fn plane_strain_dof(
+    grid: &crate::grid::Grid,
+    node: [usize; 2],
+    component: Component,
+) -> usize {
+    assert!(
+        node[0] < grid.n2() && node[1] < grid.n3(),
+        "node {node:?} outside the grid"
+    );
+    2 * grid.node_index(node) + component.index()
+}
+
 impl ContactNode {
     /// The contact node `(i, 0)` of a plane-strain discretisation `d` (the grid's `x2`, the
     /// dofs of `d`); `dirichlet` holds the prescribed value of every dof (its tangential row is

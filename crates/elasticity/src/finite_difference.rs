@@ -10,7 +10,7 @@ use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
 };
-use crate::discretisation::{ContactNode, Discretisation, SparseRow};
+use crate::discretisation::{ContactNode, Discretisation, SparseRow, plane_strain_dof};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::grid::Grid;
@@ -117,20 +117,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         boundary: BoundaryConditions,
         body_force: Option<BodyForce>,
     ) -> Result<Self, ElasticityError> {
-        if grid.is_periodic() != boundary.is_periodic() {
-            return Err(ElasticityError::InconsistentBoundary {
-                what: "the grid and the x2 conditions must both be periodic or both not",
-            });
-        }
-        if boundary
-            .pinned
-            .iter()
-            .any(|p| p.node[0] >= grid.n2() || p.node[1] >= grid.n3())
-        {
-            return Err(ElasticityError::InconsistentBoundary {
-                what: "a pinned node is outside the grid",
-            });
-        }
+        boundary.check_grid(&grid)?;
         let (n2, n3) = (grid.n2(), grid.n3());
         let (dx2, dx3) = (grid.dx2(), grid.dx3());
         let point = |x2: f64, x3: f64| -> Result<ShellPoint<f64>, ElasticityError> {
@@ -439,19 +426,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
         let mut st = Vec::with_capacity(8);
         self.node_stencil(node, &mut st);
-        let mut u = [0.0; 6];
-        for (n, w) in &st {
-            for c in 0..2 {
-                let x = v[self.dof(*n, Component::ALL[c])];
-                u[c] += w[0] * x;
-                u[2 + c] += w[1] * x;
-                u[4 + c] += w[2] * x;
-            }
-        }
-        LocalDisplacement {
-            value: [u[0], u[1]],
-            gradient: [[u[2], u[3]], [u[4], u[5]]],
-        }
+        LocalDisplacement::from_stencil(&st, |n, c| v[self.dof(n, Component::ALL[c])])
     }
 }
 
@@ -486,11 +461,7 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
 
     #[track_caller]
     fn dof(&self, node: [usize; 2], component: Component) -> usize {
-        assert!(
-            node[0] < self.grid.n2() && node[1] < self.grid.n3(),
-            "node {node:?} outside the grid"
-        );
-        2 * self.grid.node_index(node) + component.index()
+        plane_strain_dof(&self.grid, node, component)
     }
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {

@@ -28,6 +28,32 @@ impl LocalDisplacement {
         [v[0], v[1], a, b, c, d]
     }
 
+    /// The local displacement recovered by a nodal stencil: `stencil` gives, per node, the
+    /// weights `[value, d_2, d_3]`, `value(node, c)` the nodal value of `v^(c+2)`.
+    ///
+    /// # Math
+    /// ```text
+    /// v^c = sum_n w0_n v^c_n,   d_2 v^c = sum_n w2_n v^c_n,   d_3 v^c = sum_n w3_n v^c_n
+    /// ```
+    pub fn from_stencil<'a>(
+        stencil: impl IntoIterator<Item = &'a ([usize; 2], [f64; 3])>,
+        value: impl Fn([usize; 2], usize) -> f64,
+    ) -> Self {
+        let mut u = [0.0; 6];
+        for (n, w) in stencil {
+            for c in 0..2 {
+                let x = value(*n, c);
+                u[c] += w[0] * x;
+                u[2 + c] += w[1] * x;
+                u[4 + c] += w[2] * x;
+            }
+        }
+        Self {
+            value: [u[0], u[1]],
+            gradient: [[u[2], u[3]], [u[4], u[5]]],
+        }
+    }
+
     /// The unit displacement whose input number `k` is one and all others zero.
     pub fn unit(k: usize) -> Self {
         let mut u = [0.0; 6];

@@ -18,7 +18,7 @@ use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficien
 use crate::continuum::{
     PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix, mixed_strains,
 };
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem, plane_strain_dof};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_difference::BodyForce;
@@ -269,20 +269,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         order: ElementOrder,
         volumetric: VolumetricIntegration,
     ) -> Result<Self, ElasticityError> {
-        if grid.is_periodic() != boundary.is_periodic() {
-            return Err(ElasticityError::InconsistentBoundary {
-                what: "the grid and the x2 conditions must both be periodic or both not",
-            });
-        }
-        if boundary
-            .pinned
-            .iter()
-            .any(|p| p.node[0] >= grid.n2() || p.node[1] >= grid.n3())
-        {
-            return Err(ElasticityError::InconsistentBoundary {
-                what: "a pinned node is outside the grid",
-            });
-        }
+        boundary.check_grid(&grid)?;
         order.check_nodes("grid.n2", grid.n2(), grid.is_periodic())?;
         order.check_nodes("grid.n3", grid.n3(), false)?;
         let k = order.degree();
@@ -491,11 +478,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
 
     #[track_caller]
     fn dof(&self, node: [usize; 2], component: Component) -> usize {
-        assert!(
-            node[0] < self.grid.n2() && node[1] < self.grid.n3(),
-            "node {node:?} outside the grid"
-        );
-        2 * self.grid.node_index(node) + component.index()
+        plane_strain_dof(&self.grid, node, component)
     }
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {

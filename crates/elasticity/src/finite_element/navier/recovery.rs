@@ -164,18 +164,8 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
 
     /// The local displacement at a node by the recovery stencil.
     pub(super) fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
-        let mut u = [0.0; 6];
-        for (n, w) in self.node_stencil(node) {
-            for c in 0..2 {
-                let x = v[self.dof(n, Component::ALL[c])];
-                u[c] += w[0] * x;
-                u[2 + c] += w[1] * x;
-                u[4 + c] += w[2] * x;
-            }
-        }
-        LocalDisplacement {
-            value: [u[0], u[1]],
-            gradient: [[u[2], u[3]], [u[4], u[5]]],
-        }
+        LocalDisplacement::from_stencil(&self.node_stencil(node), |n, c| {
+            v[self.dof(n, Component::ALL[c])]
+        })
     }
 }
