@@ -3,7 +3,9 @@
 
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+use std::time::{Duration, Instant};
 
+use capstan_elasticity::solvers::{Observer, Progress};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 static QUIET: AtomicBool = AtomicBool::new(false);
@@ -46,4 +48,80 @@ pub fn bar(len: usize, what: &str, quiet: bool) -> ProgressBar {
     .unwrap_or_else(|_| ProgressStyle::default_bar());
     bar.set_style(style);
     bar
+}
+
+/// After this long a solve shows a progress spinner (on a terminal, without `--quiet`).
+const SPINNER_AFTER: Duration = Duration::from_secs(2);
+
+/// One line of an iterative solve's progress, as `-v` prints it:
+/// `condensed-newton   3  residual 1.234e-07  step 1  stick 12  slip 229`.
+pub fn progress_line(p: &Progress<f64>) -> String {
+    let mut line = format!(
+        "{:<16} {:>4}  residual {:.3e}  step {:.3}",
+        p.stage.name(),
+        p.iteration,
+        p.residual_norm,
+        p.step_length
+    );
+    if let Some(a) = p.active {
+        line += &format!("  stick {}  slip {}", a.stick, a.slip);
+    }
+    line
+}
+
+/// The command line's observer of iterative solves: with `-v` one [`progress_line`] per
+/// iteration on stderr; otherwise, on a terminal and without `--quiet`, a spinner with the
+/// latest iteration once the solve has run for [`SPINNER_AFTER`]; nothing with `--quiet`.
+#[derive(Debug)]
+pub struct CliObserver {
+    start: Instant,
+    spinner: Option<ProgressBar>,
+    lines: bool,
+    spin: bool,
+}
+
+impl CliObserver {
+    /// An observer for a solve starting now, following the global flags.
+    pub fn new() -> Self {
+        let lines = verbosity() >= 1 && !quiet();
+        Self {
+            start: Instant::now(),
+            spinner: None,
+            lines,
+            spin: !lines && !quiet() && std::io::stderr().is_terminal(),
+        }
+    }
+}
+
+impl Default for CliObserver {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Observer<f64> for CliObserver {
+    fn iteration(&mut self, p: &Progress<f64>) {
+        if self.lines {
+            eprintln!("{}", progress_line(p));
+        } else if self.spin && self.start.elapsed() >= SPINNER_AFTER {
+            let spinner = self.spinner.get_or_insert_with(|| {
+                let s = ProgressBar::new_spinner();
+                s.set_style(
+                    ProgressStyle::with_template("{spinner} [{elapsed_precise}] {msg}")
+                        .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+                );
+                s.enable_steady_tick(Duration::from_millis(200));
+                s
+            });
+            spinner.set_message(progress_line(p));
+        }
+    }
+}
+
+impl Drop for CliObserver {
+    fn drop(&mut self) {
+        if let Some(s) = self.spinner.take() {
+            s.finish_and_clear();
+        }
+    }
 }

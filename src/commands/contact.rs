@@ -6,7 +6,7 @@ use std::time::Instant;
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactError, ContactModel, ContactSettings, ContactSolution, EndLoads,
-    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced,
+    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced_observed,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
@@ -14,6 +14,7 @@ use serde::Serialize;
 
 use crate::error::CliError;
 use crate::output::{OutputDir, Table};
+use crate::progress::CliObserver;
 use crate::scene::Scene;
 
 /// The contact model a scene describes.
@@ -360,7 +361,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let solver = BoundarySolver::new(&model, ContactSettings::default())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            let sol = solver.solve(loads)?;
+            let sol = solver.solve_observed(loads, &mut CliObserver::new())?;
             let limiting = solver
                 .sliding_at(sol.loads.tau0)?
                 .map(|m| [m.lower_ratio, m.upper_ratio]);
@@ -376,7 +377,10 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let body = thick_body(scene)?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            match solve_sequenced(&body, law, params, eps, loads, method.full_settings()) {
+            let mut observer = CliObserver::new();
+            let settings = method.full_settings();
+            match solve_sequenced_observed(&body, law, params, eps, loads, settings, &mut observer)
+            {
                 Ok(seq) => {
                     let report = ContactReport {
                         discretisation: capstan_elasticity::Discretisation::method(
@@ -405,7 +409,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let solver = FullSystemSolver::new(&model, method.full_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            match solver.solve(loads) {
+            match solver.solve_observed(loads, &mut CliObserver::new()) {
                 Ok(sol) => {
                     let report = ContactReport {
                         discretisation: capstan_elasticity::Discretisation::method(

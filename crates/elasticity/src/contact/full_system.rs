@@ -178,7 +178,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         v: &mut [f64],
         stats: &mut SolveStats,
         observer: &mut dyn Observer<f64>,
-    ) -> Result<(), SolverError> {
+    ) -> Result<f64, SolverError> {
         let problem = FullSystemProblem::new(self.model, loads);
         let b = problem.rhs().iter().map(|x| x * x).sum::<f64>().sqrt();
         let params = NewtonParams {
@@ -195,7 +195,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                 stats.newton_iterations += report.iterations;
                 stats.factorisations += report.factorisations;
                 stats.linear_iterations += report.linear_iterations;
-                Ok(())
+                Ok(report.residuals.last().copied().unwrap_or(0.0))
             }
             Err(e) => {
                 // (an inner Jacobi failure also reports `NotConverged`: not counted)
@@ -248,7 +248,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut v = start.to_vec();
         if start.iter().all(|x| x.is_finite()) {
             match self.newton(loads, &mut v, &mut stats, observer) {
-                Ok(()) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
+                Ok(_) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
                 Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
                 Err(_) => {}
             }
@@ -320,11 +320,11 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                     self.stuck(loads.scaled(next))?
                 };
                 match self.newton(loads.scaled(next), &mut trial, &mut stats, observer) {
-                    Ok(()) => {
+                    Ok(residual) => {
                         observer.iteration(&Progress::new(
                             SolveStage::Continuation,
                             stats.continuation_steps,
-                            0.0,
+                            residual,
                             next - lambda,
                         ));
                         lambda = next;
