@@ -191,10 +191,12 @@ fn geometry(out: &OutSceneArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::geometry::report(&scene)?;
     if let Some(dir) = &out.out {
-        crate::figures::reports::write_geometry(dir, &report)?;
+        crate::figures::reports::write_geometry(dir, &report, &scene)?;
     }
     if args.json {
-        Ok(crate::output::to_json_string(&report)?)
+        Ok(crate::output::to_json_string(
+            &crate::provenance::Stamped::new(&report, Some(&scene)),
+        )?)
     } else {
         Ok(commands::geometry::table(&report, &scene.obstacle.build()?))
     }
@@ -205,10 +207,12 @@ fn tension(out: &OutSceneArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::tension::report(&scene)?;
     if let Some(dir) = &out.out {
-        crate::figures::reports::write_tension(dir, &report)?;
+        crate::figures::reports::write_tension(dir, &report, &scene)?;
     }
     if args.json {
-        Ok(crate::output::to_json_string(&report)?)
+        Ok(crate::output::to_json_string(
+            &crate::provenance::Stamped::new(&report, Some(&scene)),
+        )?)
     } else {
         Ok(commands::tension::table(&report, &scene))
     }
@@ -219,10 +223,12 @@ fn infer_mu(out: &commands::infer_mu::InferMuArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::infer_mu::report_for(&scene, out.model)?;
     if let Some(dir) = &out.out {
-        crate::figures::reports::write_json_report(dir, "infer-mu", &report)?;
+        crate::figures::reports::write_json_report(dir, "infer-mu", &report, Some(&scene))?;
     }
     if args.json {
-        Ok(crate::output::to_json_string(&report)?)
+        Ok(crate::output::to_json_string(
+            &crate::provenance::Stamped::new(&report, Some(&scene)),
+        )?)
     } else {
         Ok(commands::infer_mu::table(&report, &scene))
     }
@@ -232,10 +238,12 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
     let (report, solved) = commands::contact::solve(&scene)?;
     if let Some(dir) = &args.out {
-        commands::contact::write_out(dir, &report, &solved)?;
+        commands::contact::write_out(dir, &report, &solved, &scene)?;
     }
     if args.scene.json {
-        Ok(crate::output::to_json_string(&report)?)
+        Ok(crate::output::to_json_string(
+            &crate::provenance::Stamped::new(&report, Some(&scene)),
+        )?)
     } else {
         Ok(commands::contact::table(&report))
     }
@@ -339,10 +347,12 @@ fn threshold(out: &OutSceneArgs) -> Result<String, CliError> {
     let scene = args.load()?;
     let report = commands::threshold::report(&scene)?;
     if let Some(dir) = &out.out {
-        crate::figures::reports::write_json_report(dir, "threshold", &report)?;
+        crate::figures::reports::write_json_report(dir, "threshold", &report, Some(&scene))?;
     }
     if args.json {
-        Ok(crate::output::to_json_string(&report)?)
+        Ok(crate::output::to_json_string(
+            &crate::provenance::Stamped::new(&report, Some(&scene)),
+        )?)
     } else {
         Ok(commands::threshold::table(&report))
     }
@@ -384,7 +394,7 @@ fn stress(args: &commands::stress::StressArgs) -> Result<String, CliError> {
 fn verify(args: &VerifyArgs) -> Result<String, CliError> {
     let report = commands::verify::report(args.quick)?;
     if let Some(dir) = &args.out {
-        crate::figures::reports::write_json_report(dir, "verify", &report)?;
+        crate::figures::reports::write_json_report(dir, "verify", &report, None)?;
     }
     if args.json {
         Ok(crate::output::to_json_string(&report)?)

@@ -10,6 +10,7 @@ pub mod error;
 pub mod figures;
 pub mod output;
 pub mod progress;
+pub mod provenance;
 pub mod scale;
 pub mod scene;
 

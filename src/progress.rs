@@ -71,7 +71,7 @@ pub fn progress_line(p: &Progress<f64>) -> String {
 
 /// The command line's observer of iterative solves: with `-v` one [`progress_line`] per
 /// iteration on stderr; otherwise, on a terminal and without `--quiet`, a spinner with the
-/// latest iteration once the solve has run for [`SPINNER_AFTER`]; nothing with `--quiet`.
+/// latest iteration once the solve has run for two seconds; nothing with `--quiet`.
 #[derive(Debug)]
 pub struct CliObserver {
     start: Instant,

@@ -15,6 +15,7 @@ use serde::Serialize;
 use crate::error::CliError;
 use crate::output::{OutputDir, Table};
 use crate::progress::CliObserver;
+use crate::provenance::{Stamped, write_scene};
 use crate::scene::Scene;
 
 /// The contact model a scene describes.
@@ -489,9 +490,11 @@ pub fn write_out(
     dir: &std::path::Path,
     report: &ContactReport,
     sol: &Solved,
+    scene: &Scene,
 ) -> Result<(), CliError> {
     let out = OutputDir::create(dir)?;
-    out.write_json("contact.json", report)?;
+    out.write_json("contact.json", &Stamped::new(report, Some(scene)))?;
+    write_scene(&out, scene)?;
     let c = &report.contact;
     let table = Table::new()
         .f64("x2", c.x2.clone())

@@ -9,24 +9,37 @@ use crate::commands::geometry::GeometryReport;
 use crate::commands::tension::TensionReport;
 use crate::error::CliError;
 use crate::output::{LinePlot, OutputDir, Series, Table};
+use crate::provenance::{Stamped, write_scene};
+use crate::scene::Scene;
 
-/// Writes `NAME.json`.
+/// Writes `NAME.json` with its provenance ([`Stamped`]) and, for a report of a scene,
+/// `scene.toml`.
 ///
 /// # Errors
 /// Output errors (a non-finite number refuses the file).
-pub fn write_json_report<T: Serialize>(dir: &Path, name: &str, report: &T) -> Result<(), CliError> {
-    OutputDir::create(dir)?.write_json(&format!("{name}.json"), report)?;
+pub fn write_json_report<T: Serialize>(
+    dir: &Path,
+    name: &str,
+    report: &T,
+    scene: Option<&Scene>,
+) -> Result<(), CliError> {
+    let out = OutputDir::create(dir)?;
+    out.write_json(&format!("{name}.json"), &Stamped::new(report, scene))?;
+    if let Some(scene) = scene {
+        write_scene(&out, scene)?;
+    }
     Ok(())
 }
 
-/// Writes `tension.json`, `tension.csv` (`theta`, `tension`) and the profile plot
+/// Writes `tension.json` (stamped), `scene.toml`, `tension.csv` (`theta`, `tension`) and the profile plot
 /// `tension.{svg,png}`.
 ///
 /// # Errors
 /// Output errors.
-pub fn write_tension(dir: &Path, r: &TensionReport) -> Result<(), CliError> {
+pub fn write_tension(dir: &Path, r: &TensionReport, scene: &Scene) -> Result<(), CliError> {
     let out = OutputDir::create(dir)?;
-    out.write_json("tension.json", r)?;
+    out.write_json("tension.json", &Stamped::new(r, Some(scene)))?;
+    write_scene(&out, scene)?;
     let table = Table::new()
         .f64("theta", r.theta.clone())
         .f64("tension", r.tension.clone());
@@ -42,14 +55,15 @@ pub fn write_tension(dir: &Path, r: &TensionReport) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Writes `geometry.json`, `geometry.csv` (one column per sampled quantity) and a plot of the
+/// Writes `geometry.json` (stamped), `scene.toml`, `geometry.csv` (one column per sampled quantity) and a plot of the
 /// mean curvature `geometry.{svg,png}`.
 ///
 /// # Errors
 /// Output errors.
-pub fn write_geometry(dir: &Path, r: &GeometryReport) -> Result<(), CliError> {
+pub fn write_geometry(dir: &Path, r: &GeometryReport, scene: &Scene) -> Result<(), CliError> {
     let out = OutputDir::create(dir)?;
-    out.write_json("geometry.json", r)?;
+    out.write_json("geometry.json", &Stamped::new(r, Some(scene)))?;
+    write_scene(&out, scene)?;
     let table = Table::new()
         .f64("x2", r.x2.clone())
         .f64("mean_curvature", r.mean_curvature.clone())
