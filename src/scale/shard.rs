@@ -85,6 +85,8 @@ pub struct StoredPoint {
 #[allow(missing_docs)] // mirrors `Extremum`
 pub struct StoredExtremum {
     pub value: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub x1: Option<f64>,
     pub x2: f64,
     pub x3: f64,
 }
@@ -95,6 +97,7 @@ impl From<Extremum> for StoredExtremum {
     fn from(e: Extremum) -> Self {
         Self {
             value: e.value,
+            x1: e.x1,
             x2: e.x2,
             x3: e.x3,
         }
@@ -105,6 +108,7 @@ impl From<StoredExtremum> for Extremum {
     fn from(e: StoredExtremum) -> Self {
         Self {
             value: e.value,
+            x1: e.x1,
             x2: e.x2,
             x3: e.x3,
         }
@@ -440,6 +444,7 @@ mod tests {
             stick_interval: Some([-0.5, 0.5]),
             max_azimuthal_displacement: Some(Extremum {
                 value: 1e-3,
+                x1: None,
                 x2: 0.1,
                 x3: 0.0,
             }),

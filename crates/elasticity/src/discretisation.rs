@@ -60,12 +60,35 @@ impl SparseRow {
 /// `normal_stress . v = T^3_3` and `shear_stress . v = T^3_2` at the node (the pressure is
 /// `p = -T^3_3`); their columns are in the sparsity pattern of `tangential_row`, so a friction
 /// Jacobian `d t_2/d v^2 e_{v^2} + d t_2/d T^3_3 normal_stress` fits the pattern.
+///
+/// # Several tangential directions (a 3-D body)
+/// A contact node of a 3-D body carries two tangential unknowns `v^1`, `v^2`: it is listed
+/// as two `ContactNode` entries (one per tangential balance row) with the same
+/// [`ContactNode::site`]. The friction law sees the physical slip of the site,
+/// ```text
+/// u = sum_(entries e of the site) frame_e v[tangential_dof_e]      (2 components: e_1, e_2)
+/// t_e = frame_e . t(u, sigma_n)                                   (covariant traction)
+/// ```
+/// with `frame_e = [e_1 . a_alpha, e_2 . a_alpha]` for the entry's direction `alpha`, in an
+/// orthonormal frame `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|` of the tangent plane (so that
+/// `e_2 . a_1 = 0`); the plane-strain entry has `frame = [0, sqrt(g_22)]`.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ContactNode {
     /// `(i2, 0)`.
     pub node: [usize; 2],
+    /// `i1` of the node of a 3-D body (0 in plane strain).
+    pub i1: usize,
+    /// The contact point this entry belongs to: entries with the same site share one slip
+    /// vector and one normal stress (plane strain: one entry per site, `site = i2`).
+    pub site: usize,
+    /// `x1` of the node of a 3-D body (0 in plane strain).
+    pub x1: f64,
     /// `x2` of the node.
     pub x2: f64,
+    /// The displacement component of [`ContactNode::tangential_dof`]: 1 for `v^1`, 2 for `v^2`.
+    pub component: usize,
+    /// Physical slip components `[e_1, e_2]` per unit of the entry's `v^alpha` (see above).
+    pub frame: [f64; 2],
     /// Row of the `j = 2` balance equation; `None` if `v^2` is prescribed at this node.
     pub tangential_row: Option<usize>,
     /// Dof of `v^2` at the node.
@@ -74,11 +97,12 @@ pub struct ContactNode {
     pub normal_dof: usize,
     /// Coefficient of the traction `t_2` in the right-hand side of `tangential_row`.
     pub traction_weight: f64,
-    /// `sqrt(g_22)` at the node: physical tangential displacement `= sqrt_g22 v^2`.
+    /// `sqrt(g_aa)` at the node for the entry's direction `a` (plane strain: `sqrt(g_22)`,
+    /// physical tangential displacement `= sqrt_g22 v^2`).
     pub sqrt_g22: f64,
     /// `v -> T^3_3` at the node (second-order one-sided in `x3`).
     pub normal_stress: SparseRow,
-    /// `v -> T^3_2` at the node.
+    /// `v -> T^3_a` at the node (`a` the entry's component: `T^3_2` in plane strain).
     pub shear_stress: SparseRow,
 }
 
@@ -116,7 +140,12 @@ impl ContactNode {
         let tangential_dof = d.dof(node, Component::X2);
         Self {
             node,
+            i1: 0,
+            site: i,
+            x1: 0.0,
             x2: d.grid().x2(i),
+            component: 2,
+            frame: [0.0, sqrt_g22],
             tangential_row: dirichlet[tangential_dof]
                 .is_none()
                 .then_some(tangential_dof),

@@ -13,8 +13,9 @@ use crate::contact::body::{ThickBody, ThickBodyOperator};
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
 use crate::contact::error::{ContactError, ContactErrorKind};
 use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
-use crate::discretisation::{Discretisation, interpolate_nodal};
+use crate::discretisation::interpolate_nodal;
 
 /// Settings of [`FullSystemSolver`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -109,7 +110,7 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
     }
 }
 
-impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
+impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// Checks the settings (the stuck starting guesses are factorised on first use).
     ///
     /// # Errors
@@ -128,7 +129,7 @@ impl<'a, D: Discretisation, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     }
 
     /// The direct solver settings: `settings.newton.direct`, with the discretisation's
-    /// ordering ([`Discretisation::lu_ordering`]) unless one is set.
+    /// ordering ([`ContactOperator::lu_ordering`]) unless one is set.
     fn direct_params(&self) -> DirectParams {
         let mut direct = self.settings.newton.direct;
         if direct.ordering == ColumnOrdering::Auto {

@@ -36,6 +36,7 @@ mod boundary_solver;
 mod error;
 mod full_system;
 mod model;
+mod operator;
 mod solution;
 mod threshold;
 
@@ -46,9 +47,12 @@ pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
     solve_sequenced, solve_sequenced_observed,
 };
-pub use model::{ContactModel, EndLoads, NodeTraction};
+pub use model::{ContactModel, EndLoads, SiteTraction};
+pub(crate) use operator::extremum;
+pub use operator::{ContactOperator, Extremum};
 pub use solution::{
-    ContactProfile, ContactSolution, Extremum, SolveStats, StateInterval, classify, state_intervals,
+    ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,
+    state_intervals,
 };
 pub use threshold::{ThresholdResult, ThresholdSettings, threshold_ratio};
 

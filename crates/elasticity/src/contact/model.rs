@@ -5,7 +5,8 @@ use capstan_friction::{ContactState, FrictionLaw};
 use capstan_solvers::SparsityPattern;
 
 use crate::contact::error::ContactError;
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
+use crate::contact::operator::ContactOperator;
+use crate::discretisation::{ContactNode, LinearSystem};
 
 /// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -56,20 +57,80 @@ impl EndLoads {
     }
 }
 
-/// The friction law's traction on one contact node and its derivatives, in the covariant
-/// component `t_2` that enters the discrete balance rows.
+/// The friction law at one contact site (a contact node; one or two tangential entries, see
+/// [`ContactNode`]): the physical slip and traction, and for each entry of the site the
+/// covariant traction and its derivatives, which enter the discrete balance rows.
+///
+/// # Math
+/// With `F` the `2 x b` matrix of the entries' frames (columns `frame_e`), `x` the entries'
+/// `v^alpha` and `beta` a slip scale (1 but in the slip homotopy):
+/// ```text
+/// u = beta F x,   tau = t(u, sigma_n)         (physical, from the law)
+/// t_e = frame_e . tau                          (covariant)
+/// d t_e / d x_f = frame_e^T (d tau / d u) frame_f       (times beta for the scaled slip)
+/// d t_e / d sigma_n = frame_e . d tau / d p
+/// ```
+/// Plane strain (`b = 1`, `frame = [0, sqrt(g22)]`): `t_2 = sqrt(g22) t`,
+/// `d t_2 / d v^2 = g22 d t / d u`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct NodeTraction {
-    /// Physical tangential slip `u = sqrt(g_22) v^2`.
-    pub slip: f64,
+pub struct SiteTraction {
+    /// Physical slip `u = beta F x` in the frame `[e_1, e_2]`.
+    pub slip: [f64; 2],
     /// `sigma_n = T^3_3` (negative in compression).
     pub normal_stress: f64,
-    /// Covariant traction `t_2 = sqrt(g_22) t_phys`.
-    pub t2: f64,
-    /// `d t_2 / d v^2`.
-    pub d_tangential: f64,
-    /// `d t_2 / d sigma_n`.
-    pub d_normal_stress: f64,
+    /// Physical traction on the body `t(u, sigma_n)` in the frame `[e_1, e_2]`.
+    pub traction: [f64; 2],
+    /// Covariant traction `t_e` of each entry of the site (in the site's entry order).
+    pub covariant: [f64; 2],
+    /// `d t_e / d x_f` per unit physical slip scale (multiply by `beta`).
+    pub d_tangential: [[f64; 2]; 2],
+    /// `d t_e / d sigma_n`.
+    pub d_normal_stress: [f64; 2],
+}
+
+/// `u += (beta frame) x`, skipping zero frame components (plane strain: `u = [0, beta sqrt(g22) x]`
+/// exactly).
+pub(crate) fn add_slip(u: &mut [f64; 2], beta: f64, frame: [f64; 2], x: f64) {
+    for c in 0..2 {
+        if frame[c] != 0.0 {
+            u[c] += beta * frame[c] * x;
+        }
+    }
+}
+
+/// The entries of the contact sites: for each site with a free tangential row, its active
+/// entries (indices into [`ContactModel::active`]); for each active entry, its site and its
+/// place in the site.
+#[derive(Debug, Clone)]
+pub(crate) struct Sites {
+    pub members: Vec<Vec<usize>>,
+    /// `(site, position in the site)` per active entry.
+    pub of_active: Vec<(usize, usize)>,
+}
+
+impl Sites {
+    /// Groups the active entries by [`ContactNode::site`] (first appearance order).
+    fn new(nodes: &[ContactNode], active: &[usize]) -> Result<Self, ContactError> {
+        let mut index = std::collections::HashMap::new();
+        let mut members: Vec<Vec<usize>> = Vec::new();
+        let mut of_active = Vec::with_capacity(active.len());
+        for (k, &a) in active.iter().enumerate() {
+            let site = *index.entry(nodes[a].site).or_insert_with(|| {
+                members.push(Vec::new());
+                members.len() - 1
+            });
+            if members[site].len() == 2 {
+                return Err(ContactError::InvalidParameter {
+                    field: "contact entries per site",
+                    value: 3.0,
+                    allowed: "1 or 2 (one per tangential direction)",
+                });
+            }
+            of_active.push((site, members[site].len()));
+            members[site].push(k);
+        }
+        Ok(Self { members, of_active })
+    }
 }
 
 /// The extended sparsity pattern: `A` plus every friction entry of the contact rows.
@@ -82,6 +143,9 @@ pub(crate) struct ExtendedPattern {
     pub tangential_slot: Vec<usize>,
     /// Slots of `(tangential_row, normal_stress.columns[..])` per active node.
     pub normal_slots: Vec<Vec<usize>>,
+    /// Slot of `(tangential_row, tangential_dof of the other entry of the site)` per active
+    /// entry (`None` on a site with one entry).
+    pub partner_slot: Vec<Option<usize>>,
 }
 
 /// A frictional contact problem on a discretised thick body.
@@ -113,6 +177,7 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     rhs_basis: [Vec<f64>; 2],
     nodes: Vec<ContactNode>,
     active: Vec<usize>,
+    sites: Sites,
     ext: ExtendedPattern,
 }
 
@@ -127,7 +192,7 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
     }
 }
 
-impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
+impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// Builds the model from `build(tau0, tau_max)`, which returns the discretisation of the
     /// body with those end loads and zero tangential traction on `x3 = 0`.
     ///
@@ -153,8 +218,8 @@ impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         let disc = build(1.0, 0.0)?;
         let other = build(0.0, 1.0)?;
-        let system = disc.system()?;
-        let system1 = other.system()?;
+        let system = disc.contact_system()?;
+        let system1 = other.contact_system()?;
         if system1.pattern != system.pattern || system1.values.len() != system.values.len() {
             return Err(ContactError::InconsistentLoads {
                 what: "sparsity pattern",
@@ -176,14 +241,15 @@ impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
             });
         }
         let rhs_basis = [system.rhs.clone(), system1.rhs];
-        let nodes = disc.contact_nodes()?;
+        let nodes = disc.contact_entries()?;
         let active: Vec<usize> = (0..nodes.len())
             .filter(|&k| nodes[k].tangential_row.is_some())
             .collect();
         if active.is_empty() {
             return Err(ContactError::NoContactNodes);
         }
-        let ext = extended_pattern(&system.pattern, &nodes, &active)?;
+        let sites = Sites::new(&nodes, &active)?;
+        let ext = extended_pattern(&system.pattern, &nodes, &active, &sites)?;
         Ok(Self {
             disc: std::sync::Arc::new(disc),
             law,
@@ -193,6 +259,7 @@ impl<D: Discretisation, L: FrictionLaw<f64>> ContactModel<D, L> {
             rhs_basis,
             nodes,
             active,
+            sites,
             ext,
         })
     }
@@ -216,6 +283,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             rhs_basis: self.rhs_basis.clone(),
             nodes: self.nodes.clone(),
             active: self.active.clone(),
+            sites: self.sites.clone(),
             ext: self.ext.clone(),
         }
     }
@@ -287,29 +355,112 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         &self.rhs_basis[i]
     }
 
-    /// The friction traction at a contact node given its slip and normal stress.
-    pub fn traction_at(&self, node: &ContactNode, slip: f64, normal_stress: f64) -> NodeTraction {
-        let state = ContactState::new([0.0, slip], normal_stress);
-        let t = self.law.traction(&state, &self.params)[1];
-        let d = self.law.traction_derivatives(&state, &self.params);
-        let g = node.sqrt_g22;
-        NodeTraction {
-            slip,
-            normal_stress,
-            t2: g * t,
-            d_tangential: g * g * d.d_slip[1][1],
-            d_normal_stress: g * d.d_pressure[1],
+    pub(crate) fn sites(&self) -> &Sites {
+        &self.sites
+    }
+
+    /// Number of contact sites with friction (contact nodes with a free tangential row).
+    pub fn site_count(&self) -> usize {
+        self.sites.members.len()
+    }
+
+    /// The active entries (indices into [`ContactModel::active`]) of site `j`.
+    #[track_caller]
+    pub fn site_members(&self, j: usize) -> &[usize] {
+        &self.sites.members[j]
+    }
+
+    /// The law at site `j` for the physical slip `slip` and normal stress `normal_stress`
+    /// (see [`SiteTraction`]; `slip` is taken as given).
+    #[track_caller]
+    pub fn site_traction_at_slip(
+        &self,
+        j: usize,
+        slip: [f64; 2],
+        normal_stress: f64,
+    ) -> SiteTraction {
+        let members = &self.sites.members[j];
+        match members[..] {
+            [a] => self.entries_traction(&[self.active_node(a)], slip, normal_stress),
+            [a, b] => self.entries_traction(
+                &[self.active_node(a), self.active_node(b)],
+                slip,
+                normal_stress,
+            ),
+            _ => unreachable!("a site has one or two entries"),
         }
     }
 
-    /// The friction traction at a contact node for the displacement `v`.
-    #[track_caller]
-    pub fn node_traction(&self, node: &ContactNode, v: &[f64]) -> NodeTraction {
-        let slip = node.sqrt_g22 * v[node.tangential_dof];
-        self.traction_at(node, slip, node.normal_stress.dot(v))
+    /// The law for the contact `entries` of one site (one or two) at the physical slip
+    /// `slip` and normal stress `normal_stress`.
+    #[allow(clippy::needless_range_loop)] // mirrors frame_e^T (d tau / d u) frame_f
+    pub(crate) fn entries_traction(
+        &self,
+        entries: &[&ContactNode],
+        slip: [f64; 2],
+        normal_stress: f64,
+    ) -> SiteTraction {
+        let state = ContactState::new(slip, normal_stress);
+        let traction = self.law.traction(&state, &self.params);
+        let d = self.law.traction_derivatives(&state, &self.params);
+        let mut out = SiteTraction {
+            slip,
+            normal_stress,
+            traction,
+            covariant: [0.0; 2],
+            d_tangential: [[0.0; 2]; 2],
+            d_normal_stress: [0.0; 2],
+        };
+        // zero frame components are skipped: plane strain reduces exactly to
+        // t_2 = sqrt(g22) t, d t_2/d v^2 = (sqrt(g22) sqrt(g22)) dt/du, d t_2/d sigma = sqrt(g22) dt/dp
+        for (e, entry) in entries.iter().enumerate() {
+            let fe = entry.frame;
+            let mut t = 0.0;
+            let mut dn = 0.0;
+            for c in 0..2 {
+                if fe[c] != 0.0 {
+                    t += fe[c] * traction[c];
+                    dn += fe[c] * d.d_pressure[c];
+                }
+            }
+            out.covariant[e] = t;
+            out.d_normal_stress[e] = dn;
+            for (f, other) in entries.iter().enumerate() {
+                let ff = other.frame;
+                let mut dt = 0.0;
+                for c in 0..2 {
+                    for cc in 0..2 {
+                        if fe[c] != 0.0 && ff[cc] != 0.0 {
+                            dt += fe[c] * ff[cc] * d.d_slip[c][cc];
+                        }
+                    }
+                }
+                out.d_tangential[e][f] = dt;
+            }
+        }
+        out
     }
 
-    /// The full residual `R(v) = A v - b(tau) - sum_k w_k e_row t_2,k(v)`.
+    /// The physical slip `u = sum_e (beta frame_e) x_e` of site `j` for the entries' values
+    /// `x(k)` (`k` an active index).
+    #[track_caller]
+    pub fn site_slip(&self, j: usize, beta: f64, x: impl Fn(usize) -> f64) -> [f64; 2] {
+        let mut u = [0.0; 2];
+        for &k in &self.sites.members[j] {
+            add_slip(&mut u, beta, self.active_node(k).frame, x(k));
+        }
+        u
+    }
+
+    /// The law at site `j` for the displacement `v`.
+    #[track_caller]
+    pub fn site_traction(&self, j: usize, v: &[f64]) -> SiteTraction {
+        let first = self.active_node(self.sites.members[j][0]);
+        let slip = self.site_slip(j, 1.0, |k| v[self.active_node(k).tangential_dof]);
+        self.site_traction_at_slip(j, slip, first.normal_stress.dot(v))
+    }
+
+    /// The full residual `R(v) = A v - b(tau) - sum_k w_k e_row t_k(v)`.
     ///
     /// # Panics
     /// If `v`, `rhs` or `r` have the wrong length.
@@ -319,10 +470,13 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         for (ri, bi) in r.iter_mut().zip(rhs) {
             *ri -= bi;
         }
-        for &a in &self.active {
-            let node = &self.nodes[a];
-            let row = node.tangential_row.expect("active nodes have a row");
-            r[row] -= node.traction_weight * self.node_traction(node, v).t2;
+        for (j, members) in self.sites.members.iter().enumerate() {
+            let st = self.site_traction(j, v);
+            for (e, &k) in members.iter().enumerate() {
+                let node = self.active_node(k);
+                let row = node.tangential_row.expect("active nodes have a row");
+                r[row] -= node.traction_weight * st.covariant[e];
+            }
         }
     }
 
@@ -345,18 +499,23 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         for (k, &a) in self.system.values.iter().enumerate() {
             values[self.ext.a_slot[k]] += a;
         }
-        for (k, &a) in self.active.iter().enumerate() {
-            let node = &self.nodes[a];
-            let nt = self.node_traction(node, v);
-            let w = node.traction_weight;
-            values[self.ext.tangential_slot[k]] -= w * nt.d_tangential;
-            for (c, &slot) in node
-                .normal_stress
-                .values
-                .iter()
-                .zip(&self.ext.normal_slots[k])
-            {
-                values[slot] -= w * nt.d_normal_stress * c;
+        for (j, members) in self.sites.members.iter().enumerate() {
+            let st = self.site_traction(j, v);
+            for (e, &k) in members.iter().enumerate() {
+                let node = self.active_node(k);
+                let w = node.traction_weight;
+                values[self.ext.tangential_slot[k]] -= w * st.d_tangential[e][e];
+                if let Some(slot) = self.ext.partner_slot[k] {
+                    values[slot] -= w * st.d_tangential[e][1 - e];
+                }
+                for (c, &slot) in node
+                    .normal_stress
+                    .values
+                    .iter()
+                    .zip(&self.ext.normal_slots[k])
+                {
+                    values[slot] -= w * st.d_normal_stress[e] * c;
+                }
             }
         }
     }
@@ -366,6 +525,7 @@ fn extended_pattern(
     a: &SparsityPattern,
     nodes: &[ContactNode],
     active: &[usize],
+    sites: &Sites,
 ) -> Result<ExtendedPattern, ContactError> {
     let mut entries: Vec<(usize, usize)> = a.entries().collect();
     let na = entries.len();
@@ -377,6 +537,17 @@ fn extended_pattern(
         entries.push((row, node.tangential_dof));
         entries.extend(node.normal_stress.columns.iter().map(|&c| (row, c)));
     }
+    let mut partner_marks = Vec::with_capacity(active.len());
+    for (k, &(site, e)) in sites.of_active.iter().enumerate() {
+        let members = &sites.members[site];
+        if members.len() == 2 {
+            let row = nodes[active[k]].tangential_row.expect("active");
+            partner_marks.push(Some(entries.len()));
+            entries.push((row, nodes[active[members[1 - e]]].tangential_dof));
+        } else {
+            partner_marks.push(None);
+        }
+    }
     let n = a.nrows();
     let (pattern, slots) =
         SparsityPattern::from_entries(n, n, &entries).map_err(crate::ElasticityError::from)?;
@@ -387,10 +558,15 @@ fn extended_pattern(
         .zip(&marks)
         .map(|(&k, &m)| slots[m + 1..m + 1 + nodes[k].normal_stress.columns.len()].to_vec())
         .collect();
+    let partner_slot = partner_marks
+        .into_iter()
+        .map(|m| m.map(|m| slots[m]))
+        .collect();
     Ok(ExtendedPattern {
         pattern,
         a_slot,
         tangential_slot,
         normal_slots,
+        partner_slot,
     })
 }

@@ -2,20 +2,9 @@
 
 use capstan_friction::FrictionLaw;
 
-use crate::boundary::Component;
-use crate::contact::model::{ContactModel, EndLoads};
-use crate::discretisation::Discretisation;
-
-/// A signed extreme value and where it occurs.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct Extremum {
-    /// The value of largest magnitude (signed).
-    pub value: f64,
-    /// `x2` of the node.
-    pub x2: f64,
-    /// `x3` of the node.
-    pub x3: f64,
-}
+use crate::contact::model::{ContactModel, EndLoads, add_slip};
+use crate::contact::operator::{ContactOperator, Extremum};
+use crate::discretisation::ContactNode;
 
 /// A maximal run of contact nodes in one state, with interpolated ends.
 ///
@@ -54,8 +43,30 @@ pub struct ContactProfile {
     pub slip: Vec<f64>,
     /// Physical friction traction on the body, `t_2 / sqrt(g_22)`, from the law.
     pub friction_traction: Vec<f64>,
-    /// `+1` where `u >= eps`, `-1` where `u <= -eps`, `0` otherwise.
+    /// `+1` where `u >= eps`, `-1` where `u <= -eps`, `0` otherwise (a 3-D body: `0` where
+    /// `|u| < eps`, else the sign of the `e_2` component of the slip, `+1` when it is zero).
     pub state: Vec<i8>,
+    /// The `x1` components of a 3-D body (`None` in plane strain).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid: Option<SolidContactProfile>,
+}
+
+/// The fields of a 3-D body's contact surface that plane strain does not have, one entry per
+/// contact node (the order of [`ContactProfile`]). In a 3-D body [`ContactProfile::slip`] and
+/// [`ContactProfile::friction_traction`] are the `e_2` components in the orthonormal frame
+/// `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|` of the tangent plane.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SolidContactProfile {
+    /// `x1` of the nodes.
+    pub x1: Vec<f64>,
+    /// `v^1`.
+    pub v1: Vec<f64>,
+    /// `T^3_1`.
+    pub shear_stress_1: Vec<f64>,
+    /// Physical slip along `e_1`.
+    pub slip_1: Vec<f64>,
+    /// Physical friction traction on the body along `e_1`.
+    pub friction_traction_1: Vec<f64>,
 }
 
 /// How a solution was computed.
@@ -108,7 +119,7 @@ pub struct ContactSolution {
 
 impl ContactSolution {
     /// Assembles the solution report from the displacement `v`.
-    pub fn new<D: Discretisation, L: FrictionLaw<f64>>(
+    pub fn new<D: ContactOperator, L: FrictionLaw<f64>>(
         model: &ContactModel<D, L>,
         loads: EndLoads,
         v: Vec<f64>,
@@ -117,7 +128,16 @@ impl ContactSolution {
         let disc = model.discretisation();
         let eps = model.slip_threshold();
         let nodes = model.contact_nodes();
-        let n = nodes.len();
+        // the sites in order: runs of entries with the same site
+        let mut sites: Vec<Vec<&ContactNode>> = Vec::new();
+        for node in nodes {
+            match sites.last_mut() {
+                Some(last) if last[0].site == node.site => last.push(node),
+                _ => sites.push(vec![node]),
+            }
+        }
+        let n = sites.len();
+        let solid = sites.iter().any(|s| s.len() == 2);
         let mut p = ContactProfile {
             x2: Vec::with_capacity(n),
             v2: Vec::with_capacity(n),
@@ -127,48 +147,74 @@ impl ContactSolution {
             slip: Vec::with_capacity(n),
             friction_traction: Vec::with_capacity(n),
             state: Vec::with_capacity(n),
+            solid: solid.then(|| SolidContactProfile {
+                x1: Vec::with_capacity(n),
+                v1: Vec::with_capacity(n),
+                shear_stress_1: Vec::with_capacity(n),
+                slip_1: Vec::with_capacity(n),
+                friction_traction_1: Vec::with_capacity(n),
+            }),
         };
-        for node in nodes {
-            let nt = model.node_traction(node, &v);
-            p.x2.push(node.x2);
-            p.v2.push(v[node.tangential_dof]);
-            p.v3.push(v[node.normal_dof]);
-            p.normal_stress.push(nt.normal_stress);
-            p.shear_stress.push(node.shear_stress.dot(&v));
-            p.slip.push(nt.slip);
-            p.friction_traction.push(nt.t2 / node.sqrt_g22);
-            p.state.push(classify(nt.slip, eps));
+        for entries in &sites {
+            let mut u = [0.0; 2];
+            for e in entries {
+                add_slip(&mut u, 1.0, e.frame, v[e.tangential_dof]);
+            }
+            let first = entries[0];
+            let st = model.entries_traction(entries, u, first.normal_stress.dot(&v));
+            let along = entries.iter().position(|e| e.component == 2).unwrap_or(0);
+            let x2_entry = entries[along];
+            p.x2.push(first.x2);
+            p.v2.push(v[x2_entry.tangential_dof]);
+            p.v3.push(v[first.normal_dof]);
+            p.normal_stress.push(st.normal_stress);
+            p.shear_stress.push(x2_entry.shear_stress.dot(&v));
+            if let [entry] = entries[..] {
+                // plane strain: u = sqrt(g22) v^2, t = t_2 / sqrt(g22)
+                p.slip.push(st.slip[1]);
+                p.friction_traction.push(st.covariant[0] / entry.sqrt_g22);
+                p.state.push(classify(st.slip[1], eps));
+            } else {
+                p.slip.push(st.slip[1]);
+                p.friction_traction.push(st.traction[1]);
+                let size = (u[0] * u[0] + u[1] * u[1]).sqrt();
+                p.state.push(if size < eps {
+                    0
+                } else if u[1] >= 0.0 {
+                    1
+                } else {
+                    -1
+                });
+            }
+            if let Some(sp) = p.solid.as_mut() {
+                let x1_entry = entries.iter().find(|e| e.component == 1);
+                sp.x1.push(first.x1);
+                sp.v1.push(x1_entry.map_or(0.0, |e| v[e.tangential_dof]));
+                sp.shear_stress_1
+                    .push(x1_entry.map_or(0.0, |e| e.shear_stress.dot(&v)));
+                sp.slip_1.push(st.slip[0]);
+                sp.friction_traction_1.push(st.traction[0]);
+            }
         }
         let slip_fraction = p.state.iter().map(|&s| f64::from(s)).sum::<f64>() / n as f64;
-        let intervals = state_intervals(&p.x2, &p.slip, &p.state, eps);
+        // a 3-D body: the runs along the middle x1 line of the contact face
+        let line: Vec<usize> = if solid {
+            let mut rows: Vec<usize> = sites.iter().map(|s| s[0].i1).collect();
+            rows.dedup();
+            let middle = rows[rows.len() / 2];
+            (0..n).filter(|&k| sites[k][0].i1 == middle).collect()
+        } else {
+            (0..n).collect()
+        };
+        let pick = |f: &[f64]| line.iter().map(|&k| f[k]).collect::<Vec<f64>>();
+        let states: Vec<i8> = line.iter().map(|&k| p.state[k]).collect();
+        let intervals = state_intervals(&pick(&p.x2), &pick(&p.slip), &states, eps);
         let stick_interval = intervals
             .iter()
             .filter(|i| i.state == 0)
             .max_by_key(|i| i.count)
             .copied();
-        let grid = disc.grid();
-        let extreme = |c: Component| {
-            let mut best = Extremum {
-                value: 0.0,
-                x2: grid.x2(0),
-                x3: grid.x3(0),
-            };
-            for i in 0..grid.n2() {
-                for j in 0..grid.n3() {
-                    let x = v[disc.dof([i, j], c)];
-                    if x.abs() > best.value.abs() {
-                        best = Extremum {
-                            value: x,
-                            x2: grid.x2(i),
-                            x3: grid.x3(j),
-                        };
-                    }
-                }
-            }
-            best
-        };
-        let max_azimuthal_displacement = extreme(Component::X2);
-        let max_radial_displacement = extreme(Component::X3);
+        let [max_azimuthal_displacement, max_radial_displacement] = disc.extremes(&v);
         stats.residual = model.relative_residual(loads, &v);
         let tensile_contact_nodes = p.normal_stress.iter().filter(|&&s| s > 0.0).count();
         Self {

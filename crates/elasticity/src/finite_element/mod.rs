@@ -33,6 +33,7 @@ mod volumetric;
 
 pub use assembly::ElementAssembly;
 pub use element::{ElementOrder, gauss_rule};
+pub(crate) use element::{difference_stencil, lumped_weight};
 pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;

@@ -21,11 +21,14 @@
 //! The frictional contact face, scenes (`body.dimension = 3`) and VTU output of the 3-D body
 //! are not wired yet; uniform grids; the direct (Cholesky) solver only.
 
+mod body;
 mod boundary;
+mod contact;
 mod grid;
 mod operator;
 pub mod samples;
 
+pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 pub use grid::BoxGrid;
 pub use operator::{SolidForce, SolidNavier};

@@ -57,13 +57,13 @@ const COMPONENTS: usize = 3;
 /// # Errors
 /// See [`SolidNavier::new`].
 pub struct SolidNavier<G> {
-    chart: G,
-    material: Material,
-    grid: BoxGrid,
-    order: ElementOrder,
+    pub(super) chart: G,
+    pub(super) material: Material,
+    pub(super) grid: BoxGrid,
+    pub(super) order: ElementOrder,
     volumetric: VolumetricIntegration,
     elements: [usize; 3],
-    dirichlet: Vec<Option<f64>>,
+    pub(super) dirichlet: Vec<Option<f64>>,
     assembly: ElementAssembly,
     system: LinearSystem,
 }

@@ -9,7 +9,7 @@ use faer::Mat;
 
 use crate::contact::error::ContactError;
 use crate::contact::model::{ContactModel, ExtendedPattern};
-use crate::discretisation::Discretisation;
+use crate::contact::operator::ContactOperator;
 
 /// Power iterations of [`largest_singular_value`].
 pub(super) const SINGULAR_VALUE_ITERATIONS: usize = 30;
@@ -34,7 +34,7 @@ pub(super) struct Condensation {
 /// Factorises the stabilised bulk `A + sum_k w_k c_k e_row_k e_tdof_k^T` (`values` holds `A` on
 /// the extended pattern) and returns `(P Z, N Z)`, `Z = A~^-1 W`, by blocked multi-right-hand-side
 /// solves (at most [`CONDENSATION_BLOCK_ENTRIES`] doubles of workspace per block).
-pub(super) fn condense<D: Discretisation, L: FrictionLaw<f64>>(
+pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     model: &ContactModel<D, L>,
     ext: &ExtendedPattern,
     values: &[f64],
@@ -111,7 +111,7 @@ pub(super) fn largest_singular_value(h: &Mat<f64>) -> f64 {
 }
 
 /// `(P v, N v)`: `v^2` and `T^3_3` at the active contact nodes.
-pub(super) fn project<D: Discretisation, L: FrictionLaw<f64>>(
+pub(super) fn project<D: ContactOperator, L: FrictionLaw<f64>>(
     model: &ContactModel<D, L>,
     v: &[f64],
 ) -> (Vec<f64>, Vec<f64>) {

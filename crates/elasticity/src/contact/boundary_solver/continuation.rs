@@ -6,9 +6,9 @@ use capstan_solvers::{Observer, Progress, SolveStage};
 use super::{BoundarySolver, Failure};
 use crate::contact::error::ContactError;
 use crate::contact::model::EndLoads;
-use crate::discretisation::Discretisation;
+use crate::contact::operator::ContactOperator;
 
-impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// Continuation in the slip scale `beta` (the law sees `beta u`; for regularised Coulomb
     /// this is `eps / beta`) from the stuck state: `beta_0 = min(1e-3, eps / (10 U))`, where `U`
     /// is the largest physical tangential displacement of the spring-held linear solution

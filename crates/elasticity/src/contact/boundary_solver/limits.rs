@@ -8,7 +8,7 @@ use faer::linalg::solvers::Solve;
 use super::condensation::frictionless_operator;
 use super::{BoundarySolver, SlidingMode};
 use crate::contact::error::ContactError;
-use crate::discretisation::Discretisation;
+use crate::contact::operator::ContactOperator;
 
 /// Relative singular value below which the frictionless bulk counts as having a sliding mode.
 pub(super) const SLIDING_MODE_THRESHOLD: f64 = 1e-8;
@@ -22,7 +22,11 @@ pub(super) const WRONG_WAY_SHARE_LIMIT: f64 = 1e-2;
 /// Newton iterations of the full-slip limit (one suffices for laws affine in `sigma_n`).
 pub(super) const FULL_SLIP_ITERATIONS: usize = 50;
 
-impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+/// Relative size of the load term of the frictionless balance along a rigid mode below which
+/// the loads do not drive the mode (see [`BoundarySolver::mode_is_driven`]).
+pub(super) const UNDRIVEN_MODE: f64 = 1e-8;
+
+impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// The frictionless condensed operator `I - C P Z`: if it is singular (relative singular
     /// value below [`SLIDING_MODE_THRESHOLD`]), the rigid sliding mode and its limits at
     /// `tau0 = 1`.
@@ -65,18 +69,60 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// (`t(2 sigma) = 2 t(sigma)`, `t(0) = 0`: Coulomb-type laws). Then the limiting ratios do
     /// not depend on `tau0`; otherwise (Tresca, power laws) they are recomputed per `tau0`.
     pub(super) fn law_is_homogeneous(&self) -> bool {
-        let node = self.model.active_node(0);
         let u = 1e6 * self.model.slip_threshold();
-        let t = |sigma: f64| self.model.traction_at(node, u, sigma).t2;
+        let t = |sigma: f64| {
+            self.model
+                .site_traction_at_slip(0, [0.0, u], sigma)
+                .traction[1]
+        };
         let (t0, t1, t2) = (t(0.0), t(-1.0), t(-2.0));
         (t2 - 2.0 * t1).abs() <= 1e-12 * t2.abs() && t0.abs() <= 1e-14 * t1.abs().max(1e-300)
     }
 
+    /// Whether the end loads drive the rigid mode at all: the frictionless balance along it,
+    /// `y . C x0(tau)` with `x0 = tau0 x_a + tau_max x_b`, changes with the loads by more than
+    /// [`UNDRIVEN_MODE`] of its terms. A mode the loads do not drive (the `x1` translation of
+    /// a prism body of finite width under `x2` end loads) has no limiting ratio: friction
+    /// holds every ratio along it.
+    pub(super) fn mode_is_driven(&self) -> bool {
+        let y = &self.rigid_balance;
+        let [(xa, _), (xb, _)] = &self.bulk.base;
+        [xa, xb].iter().any(|x| {
+            let (mut sum, mut size) = (0.0f64, 0.0f64);
+            for ((yi, ci), xi) in y.iter().zip(&self.bulk.spring).zip(x.iter()) {
+                sum += yi * ci * xi;
+                size += (yi * ci * xi).abs();
+            }
+            size > 0.0 && sum.abs() > UNDRIVEN_MODE * size
+        })
+    }
+
+    /// The physical slip of site `j` at full slip in `direction`, of size `size`: along the
+    /// rigid mode's slip at the site, `F x_r / |F x_r|` (plane strain: `[0, direction size]`).
+    fn full_slip(&self, j: usize, direction: f64, size: f64) -> [f64; 2] {
+        let members = self.model.site_members(j);
+        if members.len() == 1 && self.model.active_node(members[0]).frame[0] == 0.0 {
+            return [0.0, direction * size];
+        }
+        let w = self.model.site_slip(j, 1.0, |k| self.rigid_shift[k]);
+        let norm = (w[0] * w[0] + w[1] * w[1]).sqrt();
+        if norm > 0.0 && norm.is_finite() {
+            [
+                direction * size * w[0] / norm,
+                direction * size * w[1] / norm,
+            ]
+        } else {
+            [0.0, direction * size]
+        }
+    }
+
     /// The limiting ratios `tau_max / tau0` of rigid sliding for the given `tau0`.
     pub(super) fn limits_at(&self, tau0: f64, relative: f64) -> Result<SlidingMode, ContactError> {
-        let mut ratios = [0.0; 2];
-        for (r, direction) in ratios.iter_mut().zip([-1.0, 1.0]) {
-            *r = self.full_slip_limit(direction, tau0)?;
+        let mut ratios = [f64::NEG_INFINITY, f64::INFINITY];
+        if self.mode_is_driven() {
+            for (r, direction) in ratios.iter_mut().zip([-1.0, 1.0]) {
+                *r = self.full_slip_limit(direction, tau0)?;
+            }
         }
         Ok(SlidingMode {
             relative_singular_value: relative,
@@ -105,35 +151,51 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// [`WRONG_WAY_SHARE_LIMIT`] of `sum_k w_k |t_k|` is no bound (`direction * inf`).
     pub(super) fn full_slip_limit(&self, direction: f64, tau0: f64) -> Result<f64, ContactError> {
         let m = self.bulk.pz.nrows();
-        let u = direction * 1e6 * self.model.slip_threshold();
+        let u = 1e6 * self.model.slip_threshold();
         let z = &self.rigid_mode;
         let [(xa, na), (xb, nb)] = &self.bulk.base;
+        let sites = self.model.sites();
+        let slips: Vec<[f64; 2]> = (0..sites.members.len())
+            .map(|j| self.full_slip(j, direction, u))
+            .collect();
         let mut s = vec![0.0; m];
         let mut r = 1.0;
         let mut g = vec![0.0; m + 1];
         let mut t = vec![0.0; m];
         let mut dn = vec![0.0; m];
+        let mut along = vec![false; m];
+        let mut x = vec![0.0; m];
+        let mut sig = vec![0.0; m];
         let mut jac = Mat::<f64>::zeros(m + 1, m + 1);
         let mut residual = f64::INFINITY;
         for it in 0..=FULL_SLIP_ITERATIONS {
             let mut size = 0.0f64;
             for i in 0..m {
-                let mut x = tau0 * (xa[i] + r * xb[i]);
-                let mut sig = tau0 * (na[i] + r * nb[i]);
+                x[i] = tau0 * (xa[i] + r * xb[i]);
+                sig[i] = tau0 * (na[i] + r * nb[i]);
                 for (j, sj) in s.iter().enumerate() {
-                    x += self.bulk.pz[(i, j)] * sj;
-                    sig += self.bulk.nz[(i, j)] * sj;
+                    x[i] += self.bulk.pz[(i, j)] * sj;
+                    sig[i] += self.bulk.nz[(i, j)] * sj;
                 }
-                let nt = self.model.traction_at(self.model.active_node(i), u, sig);
-                t[i] = nt.t2;
-                dn[i] = nt.d_normal_stress;
-                g[i] = s[i] - nt.t2 - self.bulk.spring[i] * x;
-                size = size.max(s[i].abs() + nt.t2.abs() + (self.bulk.spring[i] * x).abs());
+            }
+            for (j, members) in sites.members.iter().enumerate() {
+                let st = self
+                    .model
+                    .site_traction_at_slip(j, slips[j], sig[members[0]]);
+                // friction pushing along the slip (contact in tension)
+                let pushes = st.traction[0] * slips[j][0] + st.traction[1] * slips[j][1] > 0.0;
+                for (e, &i) in members.iter().enumerate() {
+                    t[i] = st.covariant[e];
+                    dn[i] = st.d_normal_stress[e];
+                    along[i] = pushes;
+                    g[i] = s[i] - t[i] - self.bulk.spring[i] * x[i];
+                    size = size.max(s[i].abs() + t[i].abs() + (self.bulk.spring[i] * x[i]).abs());
+                }
             }
             g[m] = z.iter().zip(&s).map(|(a, b)| a * b).sum();
             residual = g[..m].iter().fold(0.0f64, |a, x| a.max(x.abs())) / size.max(1e-300);
             if it > 0 && residual <= 1e-11 {
-                return Ok(self.bound_or_unbounded(direction, r, &t));
+                return Ok(self.bound_or_unbounded(direction, r, &t, &along));
             }
             if it == FULL_SLIP_ITERATIONS {
                 break;
@@ -174,14 +236,20 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     }
 
     /// `r` if it is a positive ratio and the friction of the full-slip state `t` resists the
-    /// sliding in `direction` (wrong-way share at most [`WRONG_WAY_SHARE_LIMIT`]), else
-    /// `direction * inf`.
-    pub(super) fn bound_or_unbounded(&self, direction: f64, r: f64, t: &[f64]) -> f64 {
+    /// sliding in `direction` (wrong-way share, the entries whose site's friction pushes
+    /// `along` the slip, at most [`WRONG_WAY_SHARE_LIMIT`]), else `direction * inf`.
+    pub(super) fn bound_or_unbounded(
+        &self,
+        direction: f64,
+        r: f64,
+        t: &[f64],
+        along: &[bool],
+    ) -> f64 {
         let (mut wrong, mut total) = (0.0, 0.0);
-        for (k, tk) in t.iter().enumerate() {
+        for (k, (tk, pushes)) in t.iter().zip(along).enumerate() {
             let w = self.model.active_node(k).traction_weight * tk.abs();
             total += w;
-            if tk * direction > 0.0 {
+            if *pushes {
                 wrong += w;
             }
         }

@@ -20,8 +20,8 @@ use faer::linalg::solvers::Solve;
 
 use crate::contact::error::ContactError;
 use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
-use crate::discretisation::Discretisation;
 use condensation::{
     Condensation, condense, frictionless_operator, largest_singular_value, project, row_max,
 };
@@ -117,7 +117,7 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for BoundarySolver<'_, D, L> {
     }
 }
 
-impl<'a, D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
+impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     /// Factorises the stabilised bulk and forms the condensed matrices.
     ///
     /// # Errors

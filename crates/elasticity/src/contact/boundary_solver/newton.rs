@@ -7,7 +7,7 @@ use faer::linalg::solvers::Solve;
 
 use super::{BoundarySolver, ContactSettings, Converged, Failure};
 use crate::contact::model::EndLoads;
-use crate::discretisation::Discretisation;
+use crate::contact::operator::ContactOperator;
 
 /// A residual within this factor of the rounding floor of its evaluation counts as converged.
 pub(super) const ROUNDOFF_FACTOR: f64 = 100.0;
@@ -22,7 +22,7 @@ pub(super) const SLIP_STEP_GROWTH: f64 = 10.0;
 /// [`BoundarySolver::eval`]).
 pub(super) const RIGID_TETHER: f64 = 1e-8;
 
-impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// `G(s)` and, optionally, `dG/ds`; returns `d t_2/d v^2` (spring included) and
     /// `d t_2 / d sigma` per node.
     ///
@@ -51,19 +51,30 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         let mut dx = vec![0.0; m];
         let mut dn = vec![0.0; m];
         let mut friction = vec![0.0; m];
+        // beta d t_i / d x_partner(i) on sites with two entries (a 3-D body)
+        let mut cross = vec![0.0; m];
         let (pzs, nzs) = self.condensed_products(&sp);
-        for (i, gi) in g.iter_mut().enumerate() {
-            let zs = pzs[i];
-            let sig = n0[i] + nzs[i];
-            let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
-            let x = x0[i] + zs + shift;
-            let node = self.model.active_node(i);
+        let x: Vec<f64> = (0..m)
+            .map(|i| {
+                let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
+                x0[i] + pzs[i] + shift
+            })
+            .collect();
+        let sites = self.model.sites();
+        for (j, members) in sites.members.iter().enumerate() {
+            let sig = n0[members[0]] + nzs[members[0]];
             // slip homotopy: the law sees beta u (for regularised Coulomb: eps / beta)
-            let nt = self.model.traction_at(node, beta * node.sqrt_g22 * x, sig);
-            *gi = sp[i] - self.bulk.spring[i] * (x0[i] + zs) - nt.t2;
-            friction[i] = beta * nt.d_tangential;
-            dx[i] = friction[i] + self.bulk.spring[i];
-            dn[i] = nt.d_normal_stress;
+            let slip = self.model.site_slip(j, beta, |k| x[k]);
+            let st = self.model.site_traction_at_slip(j, slip, sig);
+            for (e, &i) in members.iter().enumerate() {
+                g[i] = sp[i] - self.bulk.spring[i] * (x0[i] + pzs[i]) - st.covariant[e];
+                friction[i] = beta * st.d_tangential[e][e];
+                dx[i] = friction[i] + self.bulk.spring[i];
+                dn[i] = st.d_normal_stress[e];
+                if members.len() == 2 {
+                    cross[i] = beta * st.d_tangential[e][1 - e];
+                }
+            }
         }
         if let Some(jac) = jac {
             for j in 0..m {
@@ -71,6 +82,14 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
                     jac[(i, j)] = f64::from(u8::from(i == j))
                         - dx[i] * self.bulk.pz[(i, j)]
                         - dn[i] * self.bulk.nz[(i, j)];
+                }
+            }
+            for (i, &(site, e)) in sites.of_active.iter().enumerate() {
+                if sites.members[site].len() == 2 {
+                    let p = sites.members[site][1 - e];
+                    for j in 0..m {
+                        jac[(i, j)] -= cross[i] * self.bulk.pz[(p, j)];
+                    }
                 }
             }
             let z = &self.rigid_mode;
@@ -81,9 +100,16 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
                 let jz0 = jac.as_ref() * faer::ColRef::from_slice(z);
                 let jz: Vec<f64> = (0..m)
                     .map(|i| {
+                        let (site, e) = sites.of_active[i];
+                        let partner = if sites.members[site].len() == 2 {
+                            cross[i] * self.rigid_shift[sites.members[site][1 - e]]
+                        } else {
+                            0.0
+                        };
                         jz0[i]
                             + (friction[i] + RIGID_TETHER * self.bulk.spring[i])
                                 * self.rigid_shift[i]
+                            + partner
                     })
                     .collect();
                 for j in 0..m {
@@ -260,20 +286,21 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         }
     }
 
-    /// `(stick, slip)`: contact nodes whose slip as the law sees it, `|beta sqrt(g22) x|`,
-    /// is below the law's slip threshold, and the others (`x = x0 + P Z s_p + a x_r`).
+    /// `(stick, slip)`: contact sites whose slip as the law sees it, `|beta F x|`, is below
+    /// the law's slip threshold, and the others (`x = x0 + P Z s_p + a x_r`).
     fn active_counts(&self, beta: f64, x0: &[f64], s: &[f64]) -> (usize, usize) {
         let (a, sp) = self.split_rigid(s);
         let (pzs, _) = self.condensed_products(&sp);
         let eps = self.model.slip_threshold();
-        let stick = (0..s.len())
-            .filter(|&i| {
-                let shift = self.rigid_shift.get(i).map_or(0.0, |r| a * r);
-                let u = beta * self.model.active_node(i).sqrt_g22 * (x0[i] + pzs[i] + shift);
-                u.abs() < eps
+        let x = |i: usize| x0[i] + pzs[i] + self.rigid_shift.get(i).map_or(0.0, |r| a * r);
+        let sites = self.model.site_count();
+        let stick = (0..sites)
+            .filter(|&j| {
+                let u = self.model.site_slip(j, beta, x);
+                (u[0] * u[0] + u[1] * u[1]).sqrt() < eps
             })
             .count();
-        (stick, s.len() - stick)
+        (stick, sites - stick)
     }
 
     /// `(x0, n0)` for the loads.

@@ -5,7 +5,7 @@ use capstan_friction::FrictionLaw;
 
 use super::BoundarySolver;
 use super::newton::SLIP_STEP_GROWTH;
-use crate::discretisation::Discretisation;
+use crate::contact::operator::ContactOperator;
 
 /// False-position iterations of [`BoundarySolver::rebalance`].
 pub(super) const REBALANCE_ITERATIONS: usize = 100;
@@ -17,7 +17,7 @@ pub(super) fn set_rigid(s: &mut [f64], sp: &[f64], z: &[f64], a: f64) {
     }
 }
 
-impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// Splits `s = s_p + a z` along the rigid mode `z` (`a = 0`, `s_p = s` without one).
     pub(super) fn split_rigid(&self, s: &[f64]) -> (f64, Vec<f64>) {
         let z = &self.rigid_mode;
@@ -60,14 +60,20 @@ impl<D: Discretisation, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         let weight: Vec<f64> = (0..m)
             .map(|i| beta * self.model.active_node(i).sqrt_g22)
             .collect();
+        let sites = self.model.sites();
         let phi = |a: f64| -> f64 {
-            (0..m)
-                .map(|i| {
-                    let node = self.model.active_node(i);
-                    let t = self
-                        .model
-                        .traction_at(node, weight[i] * (xb[i] + a * xr[i]), sig[i]);
-                    y[i] * (lin[i] - t.t2)
+            sites
+                .members
+                .iter()
+                .enumerate()
+                .map(|(j, members)| {
+                    let slip = self.model.site_slip(j, beta, |k| xb[k] + a * xr[k]);
+                    let t = self.model.site_traction_at_slip(j, slip, sig[members[0]]);
+                    members
+                        .iter()
+                        .enumerate()
+                        .map(|(e, &i)| y[i] * (lin[i] - t.covariant[e]))
+                        .sum::<f64>()
                 })
                 .sum()
         };

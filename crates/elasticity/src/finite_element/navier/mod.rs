@@ -11,7 +11,7 @@ mod recovery;
 
 use capstan_geometry::ShellPoint;
 
-use super::element::ElementOrder;
+use super::element::{ElementOrder, lumped_weight};
 use super::volumetric::VolumetricIntegration;
 use crate::boundary::{BoundaryConditions, Component};
 use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficients};
@@ -507,18 +507,12 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
 
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
         let g = &self.grid;
-        let (n2, k) = (g.n2(), self.order.degree());
+        let n2 = g.n2();
         (0..n2)
             .map(|i| {
                 let (_, [sqrt_g, s33, sqrt_g22]) = self.contact[i];
                 // int N_i dx2 on x3 = 0: row sums of the 1-D boundary mass matrix
-                let interior = match (k, i % 2) {
-                    (1, _) => g.dx2(),
-                    (_, 0) => 2.0 * g.dx2() / 3.0,
-                    _ => 4.0 * g.dx2() / 3.0,
-                };
-                let end = !g.is_periodic() && (i == 0 || i == n2 - 1);
-                let length = if end { 0.5 * interior } else { interior };
+                let length = lumped_weight(self.order, i, n2, g.dx2(), g.is_periodic());
                 Ok(ContactNode::at(
                     self,
                     i,

@@ -5,23 +5,9 @@ use super::FiniteElementNavier;
 use crate::boundary::Component;
 use crate::continuum::kinematics::LocalDisplacement;
 use crate::discretisation::{Discretisation, SparseRow};
-use crate::finite_element::element::{gauss_rule, lagrange_weights};
+use crate::finite_element::element::{difference_stencil, gauss_rule, lagrange_weights};
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::shell_geometry::ShellGeometry;
-
-/// Second-order nodal difference weights `(index, weight)` along a grid direction.
-pub(super) fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
-    let w = 0.5 / h;
-    if periodic {
-        [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
-    } else if i == 0 {
-        [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
-    } else if i == n - 1 {
-        [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
-    } else {
-        [(i - 1, -w), (i + 1, w), (i, 0.0)]
-    }
-}
 
 impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// The gradient-recovery stencil at a node: `(node, [value, d_2, d_3])` weights.

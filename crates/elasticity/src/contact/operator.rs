@@ -1,0 +1,123 @@
+//! What the contact model needs of a discretised body: the assembled bulk operator, the
+//! contact rows and the largest displacements. Every plane-strain [`Discretisation`] provides
+//! it; a 3-D body ([`crate::solid::SolidNavier`]) implements it directly.
+
+use capstan_solvers::ColumnOrdering;
+
+use crate::boundary::Component;
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
+use crate::error::ElasticityError;
+
+/// A signed extreme value and where it occurs.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Extremum {
+    /// The value of largest magnitude (signed).
+    pub value: f64,
+    /// `x1` of the node (a 3-D body only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x1: Option<f64>,
+    /// `x2` of the node.
+    pub x2: f64,
+    /// `x3` of the node.
+    pub x3: f64,
+}
+
+/// A discretised body the frictional contact solvers work on (2-D or 3-D).
+///
+/// # Math
+/// The assembled system `A v = b` with zero tangential traction on the contact face, and the
+/// contact entries ([`ContactNode`]: one per tangential balance row, grouped in sites) through
+/// which a friction law adds `- w_k t_k(v)` to the rows.
+pub trait ContactOperator {
+    /// Short name of the method (`"fd"`, `"fem-q2"`, `"solid-q1"`).
+    fn method(&self) -> &'static str;
+
+    /// Number of unknowns.
+    fn dof_count(&self) -> usize;
+
+    /// The fill-reducing ordering for a sparse LU of the operator and of the contact
+    /// Jacobians on its pattern (default: the backend's own).
+    fn lu_ordering(&self) -> ColumnOrdering {
+        ColumnOrdering::Auto
+    }
+
+    /// The assembled system `A v = b`.
+    ///
+    /// # Errors
+    /// Assembly failures.
+    fn contact_system(&self) -> Result<LinearSystem, ElasticityError>;
+
+    /// The contact entries, sites in increasing `(x1, x2)`.
+    ///
+    /// # Errors
+    /// Geometry failures.
+    fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError>;
+
+    /// The largest `|v^2|` and `|v^3|` over the body, where they are.
+    ///
+    /// # Panics
+    /// If `v` has the wrong length.
+    fn extremes(&self, v: &[f64]) -> [Extremum; 2];
+}
+
+/// The signed value of largest magnitude of `value(node)` over the nodes, with the node's
+/// coordinates `at(node)` (`[x1, x2, x3]`, `x1 = None` in plane strain).
+pub(crate) fn extremum(
+    nodes: usize,
+    value: impl Fn(usize) -> f64,
+    at: impl Fn(usize) -> (Option<f64>, f64, f64),
+) -> Extremum {
+    let (x1, x2, x3) = at(0);
+    let mut best = Extremum {
+        value: 0.0,
+        x1,
+        x2,
+        x3,
+    };
+    let mut best_node = None;
+    for k in 0..nodes {
+        let x = value(k);
+        if x.abs() > best.value.abs() {
+            best.value = x;
+            best_node = Some(k);
+        }
+    }
+    if let Some(k) = best_node {
+        (best.x1, best.x2, best.x3) = at(k);
+    }
+    best
+}
+
+impl<D: Discretisation + ?Sized> ContactOperator for D {
+    fn method(&self) -> &'static str {
+        Discretisation::method(self)
+    }
+
+    fn dof_count(&self) -> usize {
+        Discretisation::dof_count(self)
+    }
+
+    fn lu_ordering(&self) -> ColumnOrdering {
+        Discretisation::lu_ordering(self)
+    }
+
+    fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
+        self.system()
+    }
+
+    fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        self.contact_nodes()
+    }
+
+    fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
+        let grid = self.grid();
+        let n3 = grid.n3();
+        [Component::X2, Component::X3].map(|c| {
+            extremum(
+                grid.n2() * n3,
+                |k| v[self.dof([k / n3, k % n3], c)],
+                |k| (None, grid.x2(k / n3), grid.x3(k % n3)),
+            )
+        })
+    }
+}

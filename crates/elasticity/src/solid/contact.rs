@@ -1,0 +1,151 @@
+//! The frictional contact face `x3 = 0` of a 3-D body: two tangential entries per contact
+//! node, the recovered `T^3_j` rows, and the body as a [`ContactOperator`].
+
+use capstan_solvers::ColumnOrdering;
+
+use super::operator::SolidNavier;
+use crate::contact::{ContactOperator, Extremum, extremum};
+use crate::continuum::{SOLID, mixed_strains};
+use crate::discretisation::{ContactNode, LinearSystem, SparseRow};
+use crate::error::ElasticityError;
+use crate::finite_element::{difference_stencil, lumped_weight};
+use crate::shell_geometry::ShellGeometry;
+
+impl<G: ShellGeometry + Sync> SolidNavier<G> {
+    /// The gradient-recovery stencil at a node: `(node, [value, d_1, d_2, d_3])` weights
+    /// (second-order differences of the nodal values, one-sided at the faces).
+    fn node_stencil(&self, [i1, i2, i3]: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
+        let [n1, n2, n3] = self.grid.counts();
+        let [d1, d2, d3] = self.grid.spacing();
+        let mut out = Vec::with_capacity(10);
+        out.push(([i1, i2, i3], [1.0, 0.0, 0.0, 0.0]));
+        for (i, w) in difference_stencil(i1, n1, d1, false) {
+            out.push(([i, i2, i3], [0.0, w, 0.0, 0.0]));
+        }
+        for (i, w) in difference_stencil(i2, n2, d2, self.grid.is_periodic()) {
+            out.push(([i1, i, i3], [0.0, 0.0, w, 0.0]));
+        }
+        for (i, w) in difference_stencil(i3, n3, d3, false) {
+            out.push(([i1, i2, i], [0.0, 0.0, 0.0, w]));
+        }
+        out
+    }
+
+    /// The contact entries of node `(i1, i2, 0)`: `v^1` and `v^2`.
+    ///
+    /// # Math
+    /// At `x3 = 0` (`g_ab = a_ab`, `g^33 = 1`, unit normal `n = -g^3`):
+    /// ```text
+    /// T^3_j = sum_k u_k (lambda delta_3j tr M_k + 2 mu M_k[3][j])   (inputs u of the SOLID layout)
+    /// w = sqrt(g) sqrt(g^33) W1(i1) W2(i2)          lumped int N dx1 dx2 (boundary flux weight)
+    /// frame_1 = [sqrt(a_11), 0],  frame_2 = [a_12 / sqrt(a_11), 1 / sqrt(a^22)]
+    /// ```
+    /// in the frame `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`: `|F v|^2 = a_ab v^a v^b`.
+    fn contact_pair(&self, i1: usize, i2: usize) -> Result<[ContactNode; 2], ElasticityError> {
+        let [n1, n2, _] = self.grid.counts();
+        let [d1, d2, _] = self.grid.spacing();
+        let node = [i1, i2, 0];
+        let x = self.grid.coordinates(node);
+        let p = self.chart.shell_point(x)?;
+        let g = &p.metric;
+        let gi = &p.inverse_metric;
+        let strains = mixed_strains(&p, &SOLID);
+        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
+        let stencil = self.node_stencil(node);
+        let row = |j: usize| -> SparseRow {
+            let mut terms = Vec::with_capacity(3 * stencil.len());
+            for (at, w) in &stencil {
+                for c in 0..3 {
+                    // inputs: v^c (index c), d_q v^c (index 3 + 3 q + c)
+                    let mut a = 0.0;
+                    for (q, wq) in w.iter().enumerate() {
+                        if *wq == 0.0 {
+                            continue;
+                        }
+                        let k = if q == 0 { c } else { 3 + 3 * (q - 1) + c };
+                        let m = &strains[k];
+                        let trace = m[0][0] + m[1][1] + m[2][2];
+                        let t = if j == 2 { lambda * trace } else { 0.0 } + two_mu * m[2][j];
+                        a += t * wq;
+                    }
+                    terms.push((self.dof(*at, c), a));
+                }
+            }
+            SparseRow::from_terms(&mut terms)
+        };
+        let normal = row(2);
+        let weight = p.sqrt_g
+            * gi[2][2].sqrt()
+            * lumped_weight(self.order, i1, n1, d1, false)
+            * lumped_weight(self.order, i2, n2, d2, self.grid.is_periodic());
+        let site = i1 * n2 + i2;
+        let sqrt_a11 = g[0][0].sqrt();
+        let frames = [[sqrt_a11, 0.0], [g[0][1] / sqrt_a11, 1.0 / gi[1][1].sqrt()]];
+        let entry = |c: usize| -> ContactNode {
+            let dof = self.dof(node, c);
+            ContactNode {
+                node: [i2, 0],
+                i1,
+                site,
+                x1: x[0],
+                x2: x[1],
+                component: c + 1,
+                frame: frames[c],
+                tangential_row: self.dirichlet[dof].is_none().then_some(dof),
+                tangential_dof: dof,
+                normal_dof: self.dof(node, 2),
+                traction_weight: weight,
+                sqrt_g22: g[c][c].sqrt(),
+                normal_stress: normal.clone(),
+                shear_stress: row(c),
+            }
+        };
+        Ok([entry(0), entry(1)])
+    }
+}
+
+impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
+    fn method(&self) -> &'static str {
+        match self.order.degree() {
+            1 => "solid-q1",
+            _ => "solid-q2",
+        }
+    }
+
+    fn dof_count(&self) -> usize {
+        SolidNavier::dof_count(self)
+    }
+
+    fn lu_ordering(&self) -> ColumnOrdering {
+        ColumnOrdering::Auto
+    }
+
+    fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
+        Ok(self.system().clone())
+    }
+
+    fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        let [n1, n2, _] = self.grid.counts();
+        let mut out = Vec::with_capacity(2 * n1 * n2);
+        for i1 in 0..n1 {
+            for i2 in 0..n2 {
+                out.extend(self.contact_pair(i1, i2)?);
+            }
+        }
+        Ok(out)
+    }
+
+    fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
+        let nodes = self.grid.node_count();
+        [1, 2].map(|c| {
+            extremum(
+                nodes,
+                |m| v[3 * m + c],
+                |m| {
+                    let x = self.grid.coordinates(self.grid.node(m));
+                    (Some(x[0]), x[1], x[2])
+                },
+            )
+        })
+    }
+}
