@@ -6,9 +6,11 @@ use capstan_elasticity::contact::{
     BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver, ThickBody,
 };
 use capstan_elasticity::finite_element::DiscretisationMethod;
-use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
+use capstan_elasticity::friction::{
+    OrthotropicCoulomb, OrthotropicCoulombParams, RegularisedCoulomb, RegularisedCoulombParams,
+};
 use capstan_elasticity::solid::{SideFaces, SolidBody};
-use capstan_geometry::{EllipticalPrism, Obstacle};
+use capstan_geometry::{EllipticalPrism, ExpressionProfile, GeneralCone, Obstacle};
 
 const EPS: f64 = 1e-5;
 
@@ -102,4 +104,102 @@ fn finite_width_ellipse_condensed_solver_agrees_with_full_system_newton() {
             assert!((left + right).abs() < 1e-8 * scale, "{left} {right}");
         }
     }
+}
+
+/// A band `x1 in [1, 1.4]` of thickness 0.1 on the cone `x1 (1, ubar, vbar)` with the profile
+/// `(a sin t, b cos t)` (a right circular cone for `a = b`).
+fn cone_band(a: f64, b: f64, nodes: [usize; 3]) -> SolidBody<Obstacle> {
+    let profile =
+        ExpressionProfile::parse(&format!("{a} * sin(t)"), &format!("{b} * cos(t)")).unwrap();
+    SolidBody {
+        thickness: 0.1,
+        ..SolidBody::new(Obstacle::Cone(GeneralCone::new(profile)), [1.0, 1.4], nodes)
+    }
+}
+
+#[test]
+fn cones_condensed_solver_agrees_with_full_system_newton() {
+    // circular (half-aperture atan 0.25 < atan mu: the band does not slide to the apex): a
+    // rigid rotation about the axis; elliptical: g_12 != 0, no rigid mode
+    for (a, b) in [(0.25, 0.25), (0.3, 0.2)] {
+        let body = cone_band(a, b, [3, 17, 3]);
+        let model = body.model(RegularisedCoulomb, coulomb(0.5), EPS).unwrap();
+        let condensed = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let full = FullSystemSolver::new(&model, FullSystemSettings::default()).unwrap();
+        let mode = condensed.sliding();
+        assert_eq!(mode.is_some(), a == b, "a = {a}, b = {b}: {mode:?}");
+        for ratio in [1.3, 1.8] {
+            let loads = EndLoads::ratio(ratio);
+            let x = condensed.solve(loads).unwrap();
+            let y = full.solve(loads).unwrap();
+            let scale = max_abs(&x.displacement);
+            let d = max_diff(&x.displacement, &y.displacement);
+            assert!(
+                d < 1e-7 * scale,
+                "a = {a}, b = {b}, ratio {ratio}: {:e}",
+                d / scale
+            );
+            assert!(x.stats.residual < 1e-9);
+            // compressive contact (the band is pressed on the cone)
+            assert!(x.contact.normal_stress.iter().filter(|s| **s < 0.0).count() > 40);
+        }
+    }
+}
+
+#[test]
+fn orthotropic_coulomb_slips_off_the_traction_direction_on_the_three_dimensional_body() {
+    // orthotropy axes at 45 degrees to the slip frame: sliding along x2 meets a traction
+    // with an x1 component, so slip and traction are not parallel
+    let (mu, angle) = ([0.2, 0.8], core::f64::consts::FRAC_PI_4);
+    let params = OrthotropicCoulombParams::new(mu, angle, EPS).unwrap();
+    let obstacle = Obstacle::Ellipse(EllipticalPrism::new(2.0, 1.5).unwrap());
+    let body = SolidBody::new(obstacle, [-0.5, 0.5], [5, 17, 5]);
+    let model = body.model(OrthotropicCoulomb, params, EPS).unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let sol = solver.solve(EndLoads::ratio(1.4)).unwrap();
+    assert!(sol.stats.residual < 1e-9);
+    let c = &sol.contact;
+    let s = c.solid.as_ref().unwrap();
+    let (cos, sin) = (angle.cos(), angle.sin());
+    let mut slipping = 0;
+    let mut off_axis = 0;
+    for k in 0..c.x2.len() {
+        let u = [s.slip_1[k], c.slip[k]];
+        let t = [s.friction_traction_1[k], c.friction_traction[k]];
+        let p = c.normal_stress[k];
+        // orthotropy axes: u' = R(-phi) u, t' = R(-phi) t
+        let up = [cos * u[0] + sin * u[1], -sin * u[0] + cos * u[1]];
+        let tp = [cos * t[0] + sin * t[1], -sin * t[0] + cos * t[1]];
+        let m = (mu[0] * mu[0] * up[0] * up[0] + mu[1] * mu[1] * up[1] * up[1]).sqrt();
+        if m < 2.0 * mu[1] * EPS || p >= 0.0 {
+            continue; // regularised zone or tension
+        }
+        slipping += 1;
+        // limit surface (t'_1/mu_1)^2 + (t'_2/mu_2)^2 = p^2
+        let f = (tp[0] / mu[0]).powi(2) + (tp[1] / mu[1]).powi(2);
+        assert!(
+            (f.sqrt() - p.abs()).abs() < 1e-10 * p.abs(),
+            "site {k}: {f} vs {p}"
+        );
+        // slip rule: u' parallel to (t'_1/mu_1^2, t'_2/mu_2^2), opposed (compression)
+        let r = [tp[0] / (mu[0] * mu[0]), tp[1] / (mu[1] * mu[1])];
+        let cross = r[0] * up[1] - r[1] * up[0];
+        let size = (r[0].hypot(r[1])) * up[0].hypot(up[1]);
+        assert!(cross.abs() < 1e-9 * size, "site {k}: {cross:e}");
+        assert!(
+            r[0] * up[0] + r[1] * up[1] < 0.0,
+            "friction opposes the slip"
+        );
+        // slip and traction not parallel
+        let sine = (t[0] * u[1] - t[1] * u[0]) / (t[0].hypot(t[1]) * u[0].hypot(u[1]));
+        if sine.abs() > 0.1 {
+            off_axis += 1;
+        }
+    }
+    assert!(slipping >= 10, "{slipping} slipping sites");
+    // (a site that slides along an orthotropy axis meets a parallel traction)
+    assert!(
+        10 * off_axis >= 9 * slipping,
+        "{off_axis} of {slipping} slipping sites slide off their traction"
+    );
 }

@@ -26,10 +26,21 @@
 //! computes the limiting tension ratios from the solvability of the full-slip system, and
 //! reports loads beyond them as [`ContactError::NoEquilibrium`] instead of iterating.
 //!
+//! # Bodies
+//! Any [`ContactOperator`]: the plane-strain body of every [`crate::Discretisation`]
+//! ([`ThickBody`]) and the 3-D body ([`crate::solid::SolidBody`]), whose contact nodes carry
+//! two tangential entries (`v^1`, `v^2`) that the law sees as one 2-component physical slip in
+//! the tangent plane (the condensed system is `2m x 2m` for `m` contact nodes).
+//!
 //! # Limitations
-//! Plane strain, one friction law with one parameter set for the whole contact surface;
-//! tensile normal stress on the bilateral contact is not excluded (counted in
-//! [`ContactSolution::tensile_contact_nodes`]).
+//! One friction law with one parameter set for the whole contact surface; tensile normal
+//! stress on the bilateral contact is not excluded (counted in
+//! [`ContactSolution::tensile_contact_nodes`]). The limiting ratios assume that at full slip
+//! every contact point slides along the rigid mode (true in plane strain); on a 3-D body whose
+//! full slip is not rigid (a band on a cone also slides towards the apex) the full-slip
+//! balance has no positive ratio and the limits are reported unbounded. One rigid mode is
+//! handled: a circular cylinder of finite width with free sides (rotation and axial
+//! translation) is not supported yet.
 
 mod body;
 mod boundary_solver;

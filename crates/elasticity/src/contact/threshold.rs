@@ -5,7 +5,7 @@ use capstan_friction::FrictionLaw;
 use crate::contact::boundary_solver::BoundarySolver;
 use crate::contact::error::ContactError;
 use crate::contact::model::EndLoads;
-use crate::discretisation::Discretisation;
+use crate::contact::operator::ContactOperator;
 
 /// Settings of [`threshold_ratio`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -51,7 +51,7 @@ pub struct ThresholdResult {
 /// # Errors
 /// [`ContactError::NotConverged`] if a solve fails for another reason or no bracket is found
 /// below `settings.max_ratio`.
-pub fn threshold_ratio<D: Discretisation, L: FrictionLaw<f64>>(
+pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
     solver: &BoundarySolver<'_, D, L>,
     settings: ThresholdSettings,
 ) -> Result<ThresholdResult, ContactError> {

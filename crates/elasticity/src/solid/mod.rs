@@ -17,9 +17,15 @@
 //!   prism ([`samples`]: L2 orders 2 and 3), and against the 2-D plane-strain operator on
 //!   prisms (the extruded problem reproduces it to round-off).
 //!
+//! - The frictional contact face `x3 = 0` ([`SolidBody`]: end tensions, free or plane-strain
+//!   sides): every contact solver of [`crate::contact`] works on it, with two tangential
+//!   entries per contact node (`v^1`, `v^2`) and the physical slip in the orthonormal frame
+//!   `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`; the plane-strain extrusion reproduces the 2-D
+//!   contact solution.
+//!
 //! # Limitations
-//! The frictional contact face, scenes (`body.dimension = 3`) and VTU output of the 3-D body
-//! are not wired yet; uniform grids; the direct (Cholesky) solver only.
+//! Uniform grids; direct solvers only; the contact rows recover `T^3_j` pointwise (no
+//! reduced-point pressure with selective reduced integration, unlike the 2-D elements).
 
 mod body;
 mod boundary;
