@@ -1,7 +1,7 @@
 //! The frictional contact face `x3 = 0` of a 3-D body: two tangential entries per contact
 //! node, the recovered `T^3_j` rows, and the body as a [`ContactOperator`].
 
-use capstan_solvers::ColumnOrdering;
+use capstan_solvers::{ColumnOrdering, GridShape};
 
 use super::operator::SolidNavier;
 use crate::contact::{ContactOperator, Extremum, extremum};
@@ -116,8 +116,24 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
         SolidNavier::dof_count(self)
     }
 
+    /// Nested dissection of the `(x1, x2)` plane along element boundaries, each column of
+    /// `3 n3` unknowns above a surface node one block (the numbering `3 ((i1 n2 + i2) n3 + i3)
+    /// + c` makes a column consecutive): the separators cut through the whole thickness. AMD
+    /// for a periodic `x2`.
     fn lu_ordering(&self) -> ColumnOrdering {
-        ColumnOrdering::Auto
+        let [n1, n2, n3] = self.grid.counts();
+        if self.grid.is_periodic() {
+            return ColumnOrdering::Auto;
+        }
+        ColumnOrdering::ElementNestedDissection {
+            grid: GridShape {
+                n2: n1,
+                n3: n2,
+                dofs_per_node: 3 * n3,
+                periodic: false,
+            },
+            degree: self.order.degree(),
+        }
     }
 
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
