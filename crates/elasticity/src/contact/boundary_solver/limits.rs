@@ -62,7 +62,17 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             })
             .collect();
         self.homogeneous = self.law_is_homogeneous();
-        self.limits_at(1.0, relative).map(Some)
+        let limits = self.limits_at(1.0, relative);
+        if self.model.sites().members.iter().any(|m| m.len() == 2) {
+            // A 3-D body: the full slip is not along the rigid mode (the mode's slip crosses
+            // the loads' direction), so the amplitude is left to Newton, not split off and
+            // rebalanced by the scalar friction balance along the mode (measured: a belt on
+            // a cone converges at ratio 3 only without the split).
+            self.rigid_mode.clear();
+            self.rigid_shift.clear();
+            self.rigid_balance.clear();
+        }
+        limits.map(Some)
     }
 
     /// Whether the law's saturated traction is homogeneous of degree 1 in the normal stress
