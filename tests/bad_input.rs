@@ -2,19 +2,17 @@
 //! the value, the allowed range and (for scene files) the line; no equilibrium is 3,
 //! non-convergence 4.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 /// Runs the binary; returns (exit code, stdout, stderr).
 fn capstan(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
+    let (code, stdout, stderr) = common::capstan_status(args);
     (
-        out.status.code().expect("exited, not killed by a signal"),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
+        code.expect("exited, not killed by a signal"),
+        stdout,
+        stderr,
     )
 }
 

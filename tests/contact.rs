@@ -11,7 +11,9 @@ use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::friction::{
     Frictionless, RegularisedCoulomb, RegularisedCoulombParams, Tresca, TrescaParams,
 };
-use capstan_elasticity::solvers::{Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu};
+use capstan_elasticity::solvers::{
+    Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu, max_abs, max_abs_difference,
+};
 use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Material};
 use capstan_geometry::{EllipticalPrism, Obstacle};
 
@@ -26,16 +28,6 @@ fn ellipse(a: f64, b: f64, n2: usize, n3: usize) -> ThickBody {
         obstacle: Obstacle::Ellipse(EllipticalPrism::new(a, b).unwrap()),
         ..ThickBody::paper(n2, n3).unwrap()
     }
-}
-
-fn max_abs(v: &[f64]) -> f64 {
-    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
-}
-
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
 #[test]
@@ -55,9 +47,9 @@ fn condensed_solver_agrees_with_full_system_newton() {
             let scale = max_abs(&a.displacement);
             // both converge to 1e-10 relative residual; the difference is solver tolerance
             assert!(
-                max_diff(&a.displacement, &b.displacement) < 1e-7 * scale,
+                max_abs_difference(&a.displacement, &b.displacement) < 1e-7 * scale,
                 "ratio {ratio}: {:e}",
-                max_diff(&a.displacement, &b.displacement) / scale
+                max_abs_difference(&a.displacement, &b.displacement) / scale
             );
             assert_eq!(a.contact.state, b.contact.state);
             assert!(a.contact.state.contains(&0));
@@ -101,7 +93,8 @@ fn a_factorised_bulk_serves_other_friction_parameters_and_laws() {
             ] {
                 // the same factorisation and condensed matrices: the same arithmetic
                 assert!(
-                    max_diff(&a.displacement, &b.displacement) <= 1e-13 * max_abs(&b.displacement),
+                    max_abs_difference(&a.displacement, &b.displacement)
+                        <= 1e-13 * max_abs(&b.displacement),
                     "ratio {ratio}"
                 );
                 assert_eq!(a.contact.state, b.contact.state);
@@ -151,7 +144,7 @@ fn nodal_interpolation_is_exact_for_bilinear_fields_and_second_order() {
         let (op, v) = sample(coarse, f);
         let got = capstan_elasticity::interpolate_nodal(&op, &v, &fine);
         let (_, exact) = sample(&ThickBody::paper(161, 33).unwrap(), f);
-        max_diff(&got, &exact)
+        max_abs_difference(&got, &exact)
     };
     let bilinear = |x2: f64, x3: f64, c: Component| match c {
         Component::X2 => 1.0 + 2.0 * x2 - x3 + 0.5 * x2 * x3,
@@ -233,9 +226,9 @@ fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
         let scale = max_abs(&b.displacement);
         // both converge to 1e-10 relative residual
         assert!(
-            max_diff(&a.displacement, &b.displacement) < 1e-7 * scale,
+            max_abs_difference(&a.displacement, &b.displacement) < 1e-7 * scale,
             "{:e}",
-            max_diff(&a.displacement, &b.displacement) / scale
+            max_abs_difference(&a.displacement, &b.displacement) / scale
         );
         assert_eq!(a.contact.state, b.contact.state);
         assert!(a.stats.residual < 1e-10);
@@ -279,7 +272,7 @@ fn jacobi_newton_agrees_with_lu_newton_on_a_small_grid() {
         .solve(loads)
         .unwrap();
     let scale = max_abs(&lu.displacement);
-    assert!(max_diff(&lu.displacement, &jacobi.displacement) < 1e-5 * scale);
+    assert!(max_abs_difference(&lu.displacement, &jacobi.displacement) < 1e-5 * scale);
     assert!(
         jacobi.stats.linear_iterations > 100 * jacobi.stats.newton_iterations.max(1),
         "{:?}",
@@ -351,7 +344,7 @@ fn frictionless_limit_is_the_linear_solve_with_zero_tangential_traction() {
         .unwrap()
         .solve(&mut SparseLu::default())
         .unwrap();
-    assert!(max_diff(&sol.displacement, &linear) < 1e-10 * max_abs(&linear));
+    assert!(max_abs_difference(&sol.displacement, &linear) < 1e-10 * max_abs(&linear));
     // and Coulomb with mu = 0 is the same
     let model0 = body
         .model(RegularisedCoulomb, coulomb(0.0, EPS), EPS)
@@ -360,7 +353,7 @@ fn frictionless_limit_is_the_linear_solve_with_zero_tangential_traction() {
         .unwrap()
         .solve(loads)
         .unwrap();
-    assert!(max_diff(&sol0.displacement, &linear) < 1e-10 * max_abs(&linear));
+    assert!(max_abs_difference(&sol0.displacement, &linear) < 1e-10 * max_abs(&linear));
 }
 
 #[test]
@@ -409,7 +402,7 @@ fn huge_friction_approaches_the_stuck_linear_solution() {
     };
     // stick stiffness mu |sigma| / eps ~ 1e8 in the interior (measured 2.4e-4: the end nodes,
     // where sigma_n -> 0, still slide a little)
-    let d = max_diff(&sol.displacement, &clamped) / max_abs(&clamped);
+    let d = max_abs_difference(&sol.displacement, &clamped) / max_abs(&clamped);
     assert!(d < 1e-3, "{d:e}");
 }
 
@@ -434,9 +427,9 @@ fn young_modulus_scales_displacements_when_eps_scales_with_it() {
     let scaled: Vec<f64> = b.displacement.iter().map(|x| 2.5 * x).collect();
     // the problem is exactly invariant under (E, eps, v) -> (k E, eps / k, v / k)
     assert!(
-        max_diff(&a.displacement, &scaled) < 1e-8 * max_abs(&a.displacement),
+        max_abs_difference(&a.displacement, &scaled) < 1e-8 * max_abs(&a.displacement),
         "{:e} {:?} {:?}",
-        max_diff(&a.displacement, &scaled) / max_abs(&a.displacement),
+        max_abs_difference(&a.displacement, &scaled) / max_abs(&a.displacement),
         a.stats,
         b.stats
     );
@@ -594,7 +587,10 @@ fn regularisation_to_zero_converges_to_the_coulomb_limit() {
         assert!(sol.stats.residual < 1e-9, "eps {eps}: {:?}", sol.stats);
         slips.push(sol.contact.slip.clone());
     }
-    let changes: Vec<f64> = slips.windows(2).map(|w| max_diff(&w[0], &w[1])).collect();
+    let changes: Vec<f64> = slips
+        .windows(2)
+        .map(|w| max_abs_difference(&w[0], &w[1]))
+        .collect();
     for w in changes.windows(2) {
         let ratio = w[0] / w[1];
         assert!(ratio > 5.0 && ratio < 20.0, "{changes:?}");

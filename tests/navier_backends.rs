@@ -1,17 +1,13 @@
 //! The assembled Navier system through every linear backend, and the contact-row API.
 
 use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PaperEllipse, PrismMms};
-use capstan_elasticity::solvers::{IterativeParams, LinearBackend, LinearSolver, SparseLu};
+use capstan_elasticity::solvers::{
+    IterativeParams, LinearBackend, LinearSolver, SparseLu, max_abs_difference,
+};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{
     BoundaryFunction, Component, ComponentCondition, Discretisation, FiniteDifferenceNavier,
 };
-
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-}
 
 #[test]
 fn lu_jacobi_and_gauss_seidel_agree_on_the_paper_ellipse() {
@@ -39,9 +35,9 @@ fn lu_jacobi_and_gauss_seidel_agree_on_the_paper_ellipse() {
         let scale = lu.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         // relative residual 1e-10 and a condition number ~1e3 on this grid
         assert!(
-            max_diff(&v, &lu) < 1e-6 * scale,
+            max_abs_difference(&v, &lu) < 1e-6 * scale,
             "{backend}: {}",
-            max_diff(&v, &lu)
+            max_abs_difference(&v, &lu)
         );
     }
     let params = IterativeParams {
@@ -110,7 +106,7 @@ fn contact_rows_carry_the_traction_exactly() {
         }
     }
     let v = system.solve(&mut SparseLu::default()).unwrap();
-    assert!(max_diff(&v, &reference) < 1e-12);
+    assert!(max_abs_difference(&v, &reference) < 1e-12);
 }
 
 #[test]

@@ -4,26 +4,15 @@
 //! prints why and passes, so a plain `cargo test` works on a machine without Python packages;
 //! under `CI=true` a missing meshio fails the test instead.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::PathBuf;
+
+use capstan::commands::geometry::linspace;
 use capstan::geometry::{CircularCylinder, EllipticalPrism, ShellChart};
 use capstan::output::{Encoding, OutputDir, Pvd, QuadGrid, Vtu};
+use common::scratch_dir as scratch;
 use serde::Serialize;
-
-/// A fresh directory under the target dir for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-        .collect()
-}
 
 /// What the check script compares the file against.
 #[derive(Serialize)]
@@ -122,22 +111,6 @@ fn ring_case(out: &OutputDir) -> Case {
     }
 }
 
-/// The venv's Python if it has meshio, else why not.
-fn meshio_python() -> Result<PathBuf, String> {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
-    if !python.exists() {
-        return Err(format!("{} not found", python.display()));
-    }
-    let ok = Command::new(&python)
-        .args(["-c", "import meshio"])
-        .output()
-        .map_err(|e| e.to_string())?;
-    if !ok.status.success() {
-        return Err(format!("{} cannot import meshio", python.display()));
-    }
-    Ok(python)
-}
-
 #[test]
 fn vtu_files_read_back_by_meshio() {
     let dir = scratch("output_vtu_meshio");
@@ -148,30 +121,10 @@ fn vtu_files_read_back_by_meshio() {
         ring_case(&out),
     ];
     let expected = out.write_json("expected.json", &cases).unwrap();
-    let python = match meshio_python() {
-        Ok(p) => p,
-        Err(why) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("CI=true but meshio is unavailable ({why}): .ci/run installs it into .venv")
-        }
-        Err(why) => {
-            eprintln!(
-                "SKIPPED vtu_files_read_back_by_meshio: {why}; run `python3 -m venv .venv && .venv/bin/pip install meshio` (.ci/run does)"
-            );
-            return;
-        }
+    let Some(report) = common::check_vtu_with_meshio("vtu_files_read_back_by_meshio", &expected)
+    else {
+        return;
     };
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_vtu.py");
-    let run = Command::new(python)
-        .arg(script)
-        .arg(&expected)
-        .output()
-        .unwrap();
-    let report = format!(
-        "{}{}",
-        String::from_utf8_lossy(&run.stdout),
-        String::from_utf8_lossy(&run.stderr)
-    );
-    assert!(run.status.success(), "meshio check failed:\n{report}");
     assert!(report.contains("3 files read back"), "{report}");
 }
 

@@ -4,6 +4,7 @@
 use crate::direct_params::DirectParams;
 use crate::error::SolverError;
 use crate::linear_solver::{check_many_len, check_rhs};
+use crate::scalar::max_abs;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// The checks every direct `solve_in_place` starts with: a finite right-hand side (`ncols`
@@ -99,10 +100,6 @@ pub(crate) fn checked_solve(
     Ok(())
 }
 
-pub(crate) fn inf_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
-}
-
 /// Checks (and refines) a solution `x` of `A x = b` produced by `solve`, which overwrites its
 /// argument `r` with `A^-1 r`. `work` has length `n`.
 pub(crate) fn check_and_refine(
@@ -114,13 +111,13 @@ pub(crate) fn check_and_refine(
     work: &mut [f64],
     mut solve: impl FnMut(&mut [f64]),
 ) -> Result<(), SolverError> {
-    let bn = inf_norm(b);
+    let bn = max_abs(b);
     for step in 0..=params.refinement_steps {
         if crate::scalar::first_non_finite(x).is_some() {
             return Err(SolverError::Singular { pivot: None });
         }
         pattern.residual_into(values, x, b, work);
-        let rn = inf_norm(work);
+        let rn = max_abs(work);
         if rn <= params.residual_tolerance * bn {
             return Ok(());
         }
@@ -240,7 +237,7 @@ pub(crate) fn check_and_refine_block(
     if k == 0 || n == 0 {
         return Ok(());
     }
-    let b_norm: Vec<f64> = b.chunks_exact(n).map(inf_norm).collect();
+    let b_norm: Vec<f64> = b.chunks_exact(n).map(max_abs).collect();
     if work.rows.0.is_empty() {
         work.rows = pattern.row_layout();
     }

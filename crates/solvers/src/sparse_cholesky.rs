@@ -7,12 +7,11 @@ use faer::sparse::linalg::cholesky::{
 };
 
 use crate::direct_params::DirectParams;
-use crate::direct_solve::{
-    checked_solve, empty_line, finite_rhs, inf_norm, scratch, solve_many, solve_one,
-};
+use crate::direct_solve::{checked_solve, empty_line, finite_rhs, scratch, solve_many, solve_one};
 use crate::error::SolverError;
 use crate::linear_solver::{LinearSolver, check_square, check_values};
 use crate::ordering::ColumnOrdering;
+use crate::scalar::max_abs;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// Sparse Cholesky factorisation (faer) for symmetric positive definite (SPD) matrices.
@@ -93,7 +92,7 @@ impl SparseCholesky {
     }
 
     fn check_symmetry(&self, pattern: &SparsityPattern, values: &[f64]) -> Result<(), SolverError> {
-        let bound = self.params.symmetry_tolerance * inf_norm(values);
+        let bound = self.params.symmetry_tolerance * max_abs(values);
         let col_ptr = pattern.col_ptr();
         let row_idx = pattern.row_idx();
         for j in 0..pattern.ncols() {

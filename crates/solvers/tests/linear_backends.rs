@@ -4,7 +4,7 @@
 use capstan_solvers::samples::{ConvectionDiffusion2d, LinearSystem, Poisson2d};
 use capstan_solvers::{
     GaussSeidel, IterativeParams, Jacobi, LinearBackend, LinearSolver, SolverError, SparseCholesky,
-    SparseLu, SparsityPattern,
+    SparseLu, SparsityPattern, max_abs, max_abs_difference,
 };
 
 /// Solves `system` with `backend`; returns the solution and the iterations reported.
@@ -15,14 +15,6 @@ fn solve(system: &LinearSystem, backend: LinearBackend) -> (Vec<f64>, Option<usi
     let mut x = system.rhs.clone();
     solver.solve_in_place(&mut x).unwrap();
     (x, solver.last_iterations())
-}
-
-fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
-}
-
-fn max_abs(a: &[f64]) -> f64 {
-    a.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
 fn norm(a: &[f64]) -> f64 {

@@ -7,7 +7,7 @@ use capstan_solvers::samples::{
 };
 use capstan_solvers::{
     ColumnOrdering, DirectParams, GridShape, LinearSolver, SolverError, SparseCholesky, SparseLu,
-    SparsityPattern, is_permutation, nested_dissection_grid,
+    SparsityPattern, is_permutation, max_abs_difference, nested_dissection_grid,
 };
 use proptest::prelude::*;
 
@@ -29,10 +29,6 @@ fn solve(solver: &mut impl LinearSolver<f64>, system: &LinearSystem) -> Vec<f64>
 
 fn norm(a: &[f64]) -> f64 {
     a.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
 }
 
 /// The unknown `k = i + n j` of the samples' `n x n` grids: `n2 = n` (j), `n3 = n` (i).
