@@ -3,7 +3,7 @@
 
 use crate::direct_params::DirectParams;
 use crate::error::SolverError;
-use crate::linear_solver::{check_many_len, check_rhs};
+use crate::linear_solver::{check_many_len, check_rhs, check_values};
 use crate::scalar::max_abs;
 use crate::sparsity_pattern::SparsityPattern;
 
@@ -21,6 +21,60 @@ pub(crate) fn finite_rhs(rhs: &[f64], n: usize) -> Result<bool, SolverError> {
         });
     }
     Ok(n > 0)
+}
+
+/// The `solve_in_place`, `last_iterations` and `solve_many_in_place` of a direct backend
+/// whose analysed pattern is `self.pattern` and whose solve with the solution check is
+/// `self.checked_solve(rhs, ncols)`: the same three methods for every such backend.
+macro_rules! direct_solves {
+    () => {
+        fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
+            let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
+            $crate::direct_solve::solve_one(n, rhs, |r, k| self.checked_solve(r, k))
+        }
+
+        fn last_iterations(&self) -> Option<usize> {
+            None
+        }
+
+        fn solve_many_in_place(
+            &mut self,
+            rhs: &mut [f64],
+            ncols: usize,
+        ) -> Result<(), SolverError> {
+            let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
+            $crate::direct_solve::solve_many(n, rhs, ncols, |r, k| self.checked_solve(r, k))
+        }
+    };
+}
+pub(crate) use direct_solves;
+
+/// The checks that open a direct backend's `factor`: `analyse` has run (its pattern is
+/// `pattern`), and `values` fit it and are finite.
+///
+/// # Errors
+/// [`SolverError::CallOrder`], [`SolverError::DimensionMismatch`], [`SolverError::NonFinite`].
+pub(crate) fn analysed_values<'p>(
+    pattern: Option<&'p SparsityPattern>,
+    values: &[f64],
+) -> Result<&'p SparsityPattern, SolverError> {
+    let pattern = pattern.ok_or(SolverError::call_order("factor", "analyse"))?;
+    check_values(pattern, values)?;
+    Ok(pattern)
+}
+
+/// [`SolverError::Singular`] at the first row or column of `values` with no nonzero.
+///
+/// # Errors
+/// As said.
+pub(crate) fn check_no_empty_line(
+    pattern: &SparsityPattern,
+    values: &[f64],
+) -> Result<(), SolverError> {
+    match empty_line(pattern, values) {
+        Some(line) => Err(SolverError::Singular { pivot: Some(line) }),
+        None => Ok(()),
+    }
 }
 
 /// `solve_in_place` of a direct backend of order `n`: the length check, then `solve`.

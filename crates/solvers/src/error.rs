@@ -170,6 +170,11 @@ impl SolverError {
             source: Box::new(e),
         }
     }
+
+    /// [`SolverError::CallOrder`]: `called` needs `requires` first.
+    pub(crate) fn call_order(called: &'static str, requires: &'static str) -> Self {
+        Self::CallOrder { called, requires }
+    }
 }
 
 #[cfg(test)]

@@ -122,10 +122,7 @@ impl<F: SolverScalar> RowMatrix<F> {
     /// Copies `values` (CSC order) into row order and inverts the diagonal.
     pub(crate) fn factor(&mut self, values: &[F]) -> Result<(), SolverError> {
         if !self.analysed {
-            return Err(SolverError::CallOrder {
-                called: "factor",
-                requires: "analyse",
-            });
+            return Err(SolverError::call_order("factor", "analyse"));
         }
         self.factored = false;
         if values.len() != self.row_slot.len() {
@@ -178,13 +175,7 @@ impl<F: SolverScalar> RowMatrix<F> {
         mut sweep: impl FnMut(&Self, &mut [F], &[F], &[F]),
     ) -> Result<usize, (usize, SolverError)> {
         if !self.factored {
-            return Err((
-                0,
-                SolverError::CallOrder {
-                    called: "solve_in_place",
-                    requires: "factor",
-                },
-            ));
+            return Err((0, SolverError::call_order("solve_in_place", "factor")));
         }
         check_rhs(rhs, self.n).map_err(|e| (0, e))?;
         let b = rhs.to_vec();
