@@ -300,49 +300,50 @@ impl Checker {
     }
 }
 
-impl ser::SerializeSeq for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
+/// The serde compound traits whose elements are checked in order ([`Compound::element`]).
+macro_rules! checked_elements {
+    ($($serialize:ident::$method:ident),* $(,)?) => {$(
+        impl ser::$serialize for Compound<'_> {
+            type Ok = ();
+            type Error = CheckError;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+                self.element(value)
+            }
+            fn end(self) -> Result<(), CheckError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
+checked_elements!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field,
+    SerializeTupleVariant::serialize_field,
+);
+
+/// The serde compound traits whose fields are checked under their names.
+macro_rules! checked_fields {
+    ($($serialize:ident),* $(,)?) => {$(
+        impl ser::$serialize for Compound<'_> {
+            type Ok = ();
+            type Error = CheckError;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                key: &'static str,
+                value: &T,
+            ) -> Result<(), CheckError> {
+                self.checker.field(key, value)
+            }
+            fn end(self) -> Result<(), CheckError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTupleStruct for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleVariant for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
+checked_fields!(SerializeStruct, SerializeStructVariant);
 
 impl ser::SerializeMap for Compound<'_> {
     type Ok = ();
@@ -353,36 +354,6 @@ impl ser::SerializeMap for Compound<'_> {
     fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
         let key = std::mem::take(&mut self.key);
         self.checker.field(&key, value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeStruct for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        value: &T,
-    ) -> Result<(), CheckError> {
-        self.checker.field(key, value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeStructVariant for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        value: &T,
-    ) -> Result<(), CheckError> {
-        self.checker.field(key, value)
     }
     fn end(self) -> Result<(), CheckError> {
         Ok(())

@@ -18,12 +18,13 @@ use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficien
 use crate::continuum::{
     PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix, mixed_strains,
 };
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem, plane_strain_dof};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_difference::BodyForce;
 use crate::grid::Grid;
 use crate::material::Material;
+use crate::plane_strain_numbering::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::SparsityPattern;
 
@@ -468,18 +469,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         self.order.cholesky_ordering(&self.grid)
     }
 
-    fn grid(&self) -> &Grid {
-        &self.grid
-    }
-
-    fn dof_count(&self) -> usize {
-        2 * self.grid.node_count()
-    }
-
-    #[track_caller]
-    fn dof(&self, node: [usize; 2], component: Component) -> usize {
-        plane_strain_dof(&self.grid, node, component)
-    }
+    plane_strain_numbering!();
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
         Ok(self.pattern.entries().collect())

@@ -9,32 +9,11 @@ use crate::finite_element::element::{gauss_rule, lagrange_weights};
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::shell_geometry::ShellGeometry;
 
-/// Second-order nodal difference weights `(index, weight)` along a grid direction.
-pub(super) fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
-    let w = 0.5 / h;
-    if periodic {
-        [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
-    } else if i == 0 {
-        [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
-    } else if i == n - 1 {
-        [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
-    } else {
-        [(i - 1, -w), (i + 1, w), (i, 0.0)]
-    }
-}
-
 impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// The gradient-recovery stencil at a node: `(node, [value, d_2, d_3])` weights.
-    pub(super) fn node_stencil(&self, [i, j]: [usize; 2]) -> Vec<([usize; 2], [f64; 3])> {
+    pub(super) fn node_stencil(&self, node: [usize; 2]) -> Vec<([usize; 2], [f64; 3])> {
         let mut out = Vec::with_capacity(7);
-        out.push(([i, j], [1.0, 0.0, 0.0]));
-        let g = &self.grid;
-        for (ii, w) in difference_stencil(i, g.n2(), g.dx2(), g.is_periodic()) {
-            out.push(([ii, j], [0.0, w, 0.0]));
-        }
-        for (jj, w) in difference_stencil(j, g.n3(), g.dx3(), false) {
-            out.push(([i, jj], [0.0, 0.0, w]));
-        }
+        self.grid.node_stencil(node, &mut out);
         out
     }
 
