@@ -109,36 +109,42 @@ fn set_overrides_the_file_and_is_named_as_set() {
 
 #[test]
 fn malformed_toml_unknown_keys_and_wrong_types_point_to_the_line() {
-    let f = scene_file("syntax.toml", b"[friction\nmu = 1\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["line 1", "syntax.toml"],
-    );
-    let f = scene_file("unknown.toml", b"[friction]\nmu = 1\nmuu = 2\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["unknown.toml:3", "friction.muu", "friction.mu"],
-    );
-    let f = scene_file("table.toml", b"[frictions]\nmu = 1\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["table.toml:2", "frictions"],
-    );
-    let f = scene_file("type.toml", b"[friction]\n\nmu = \"abc\"\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["line 3", "invalid type"],
-    );
-    let f = scene_file("negative.toml", b"[grid]\nn2 = -5\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["negative.toml", "line 2"],
-    );
-    let f = scene_file("binary.toml", &[0xff, 0xfe, 0x00, 0x81]);
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["binary.toml", "UTF-8"],
-    );
+    let cases: [(&str, &[u8], &[&str]); 6] = [
+        (
+            "syntax.toml",
+            b"[friction\nmu = 1\n",
+            &["line 1", "syntax.toml"],
+        ),
+        (
+            "unknown.toml",
+            b"[friction]\nmu = 1\nmuu = 2\n",
+            &["unknown.toml:3", "friction.muu", "friction.mu"],
+        ),
+        (
+            "table.toml",
+            b"[frictions]\nmu = 1\n",
+            &["table.toml:2", "frictions"],
+        ),
+        (
+            "type.toml",
+            b"[friction]\n\nmu = \"abc\"\n",
+            &["line 3", "invalid type"],
+        ),
+        (
+            "negative.toml",
+            b"[grid]\nn2 = -5\n",
+            &["negative.toml", "line 2"],
+        ),
+        (
+            "binary.toml",
+            &[0xff, 0xfe, 0x00, 0x81],
+            &["binary.toml", "UTF-8"],
+        ),
+    ];
+    for (name, text, needles) in cases {
+        let f = scene_file(name, text);
+        refused(&["geometry", f.to_str().unwrap()], needles);
+    }
     refused(&["geometry", "--set", "nonsense"], &["KEY=VALUE"]);
     refused(&["geometry", "--set", "friction=1"], &["table.key"]);
 }

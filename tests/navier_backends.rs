@@ -1,6 +1,8 @@
 //! The assembled Navier system through every linear backend, and the contact-row API.
 
-use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PaperEllipse, PrismMms};
+use capstan_elasticity::samples::{
+    LameCylinder, MmsBoundaries, PaperEllipse, PrismMms, SampleChart,
+};
 use capstan_elasticity::solvers::{
     IterativeParams, LinearBackend, LinearSolver, SparseLu, max_abs_difference,
 };
@@ -109,11 +111,20 @@ fn contact_rows_carry_the_traction_exactly() {
     assert!(max_abs_difference(&v, &reference) < 1e-12);
 }
 
+/// The Lamé cylinder's operator on `n2 x n3` nodes and its LU solution.
+fn lame_solution(
+    n2: usize,
+    n3: usize,
+) -> (LameCylinder, FiniteDifferenceNavier<SampleChart>, Vec<f64>) {
+    let lame = LameCylinder::default();
+    let op = lame.operator(GridLevel { n2, n3 }).unwrap();
+    let v = op.solve(&mut SparseLu::default()).unwrap();
+    (lame, op, v)
+}
+
 #[test]
 fn contact_normal_stress_row_matches_fields_and_lame_pressure() {
-    let lame = LameCylinder::default();
-    let op = lame.operator(GridLevel { n2: 32, n3: 33 }).unwrap();
-    let v = op.solve(&mut SparseLu::default()).unwrap();
+    let (lame, op, v) = lame_solution(32, 33);
     let fields = op.fields(&v).unwrap();
     for node in op.contact_nodes().unwrap() {
         let k = op.grid().node_index(node.node);
@@ -129,9 +140,7 @@ fn contact_normal_stress_row_matches_fields_and_lame_pressure() {
 
 #[test]
 fn fields_give_physical_and_cartesian_components() {
-    let lame = LameCylinder::default();
-    let op = lame.operator(GridLevel { n2: 16, n3: 9 }).unwrap();
-    let v = op.solve(&mut SparseLu::default()).unwrap();
+    let (lame, op, v) = lame_solution(16, 9);
     let f = op.fields(&v).unwrap();
     let k = op.grid().node_index([4, 8]); // x2 = pi/2, x3 = h: the point (0, 2, 0)
     let [_, ur] = f.physical_displacement(k);

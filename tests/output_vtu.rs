@@ -144,17 +144,22 @@ fn raw_and_ascii_files_hold_the_same_structure() {
     assert!(r.ends_with(b"\n  </AppendedData>\n</VTKFile>\n"));
 }
 
-#[test]
-fn nan_in_a_field_leaves_no_file() {
-    let dir = scratch("output_vtu_nan");
-    let out = OutputDir::create(&dir).unwrap();
-    let grid = QuadGrid::new(
+/// A 2 x 2 node grid of one cell.
+fn unit_square() -> QuadGrid {
+    QuadGrid::new(
         2,
         2,
         false,
         vec![[0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0; 3]],
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn nan_in_a_field_leaves_no_file() {
+    let dir = scratch("output_vtu_nan");
+    let out = OutputDir::create(&dir).unwrap();
+    let grid = unit_square();
     let vtu = Vtu::new(&grid).point_scalars("pressure", vec![0.0, f64::NAN, 1.0, 2.0]);
     let err = out.write_vtu("bad.vtu", &vtu).unwrap_err();
     assert!(err.to_string().contains("`pressure`[1]"), "{err}");
@@ -165,13 +170,7 @@ fn nan_in_a_field_leaves_no_file() {
 fn pvd_lists_the_sweep() {
     let dir = scratch("output_vtu_pvd");
     let out = OutputDir::create(&dir).unwrap();
-    let grid = QuadGrid::new(
-        2,
-        2,
-        false,
-        vec![[0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0; 3]],
-    )
-    .unwrap();
+    let grid = unit_square();
     let mut pvd = Pvd::new();
     for (i, ratio) in [0.5, 1.0, 2.0].into_iter().enumerate() {
         let name = format!("sweep/ratio_{i:03}.vtu");
