@@ -142,11 +142,11 @@ impl Table {
                 });
             }
             if c.data.len() != rows {
-                return Err(OutputError::LengthMismatch {
-                    column: c.name.clone(),
-                    expected: rows,
-                    found: c.data.len(),
-                });
+                return Err(OutputError::length_mismatch(
+                    c.name.clone(),
+                    rows,
+                    c.data.len(),
+                ));
             }
             if let ColumnData::F64(v) = &c.data {
                 check_all_finite(&c.name, v)?;

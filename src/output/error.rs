@@ -83,6 +83,28 @@ pub enum OutputError {
 }
 
 impl OutputError {
+    /// An [`OutputError::InvalidParameter`]: `field` = `value` is outside `allowed`.
+    pub(crate) fn invalid(field: &'static str, value: f64, allowed: &'static str) -> Self {
+        Self::InvalidParameter {
+            field,
+            value,
+            allowed,
+        }
+    }
+
+    /// An [`OutputError::LengthMismatch`]: `column` has `found` entries, not `expected`.
+    pub(crate) fn length_mismatch(
+        column: impl Into<String>,
+        expected: usize,
+        found: usize,
+    ) -> Self {
+        Self::LengthMismatch {
+            column: column.into(),
+            expected,
+            found,
+        }
+    }
+
     /// An [`OutputError::Io`] for `path`.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Self::Io {

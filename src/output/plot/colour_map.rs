@@ -107,11 +107,11 @@ impl ColourMap {
         node_values: &[f64],
     ) -> Result<Self, OutputError> {
         if node_values.len() != grid.node_count() {
-            return Err(OutputError::LengthMismatch {
-                column: "node values".into(),
-                expected: grid.node_count(),
-                found: node_values.len(),
-            });
+            return Err(OutputError::length_mismatch(
+                "node values",
+                grid.node_count(),
+                node_values.len(),
+            ));
         }
         check_all_finite("node values", node_values)?;
         let cells = grid.cells();
@@ -134,11 +134,11 @@ impl ColourMap {
         cell_values: &[f64],
     ) -> Result<Self, OutputError> {
         if cell_values.len() != grid.cell_count() {
-            return Err(OutputError::LengthMismatch {
-                column: "cell values".into(),
-                expected: grid.cell_count(),
-                found: cell_values.len(),
-            });
+            return Err(OutputError::length_mismatch(
+                "cell values",
+                grid.cell_count(),
+                cell_values.len(),
+            ));
         }
         Self::from_grid(title, grid, axes, grid.cells(), cell_values.to_vec())
     }
@@ -151,11 +151,7 @@ impl ColourMap {
         values: Vec<f64>,
     ) -> Result<Self, OutputError> {
         if let Some(&a) = axes.iter().find(|&&a| a > 2) {
-            return Err(OutputError::InvalidParameter {
-                field: "axes",
-                value: a as f64,
-                allowed: "{0, 1, 2}",
-            });
+            return Err(OutputError::invalid("axes", a as f64, "{0, 1, 2}"));
         }
         let points = grid
             .points()
@@ -224,37 +220,33 @@ impl Plot for ColourMap {
 
     fn validate(&self) -> Result<(), OutputError> {
         if self.cells.is_empty() {
-            return Err(OutputError::InvalidParameter {
-                field: "cells",
-                value: 0.0,
-                allowed: "at least one cell",
-            });
+            return Err(OutputError::invalid("cells", 0.0, "at least one cell"));
         }
         if self.values.len() != self.cells.len() {
-            return Err(OutputError::LengthMismatch {
-                column: "cell values".into(),
-                expected: self.cells.len(),
-                found: self.values.len(),
-            });
+            return Err(OutputError::length_mismatch(
+                "cell values",
+                self.cells.len(),
+                self.values.len(),
+            ));
         }
         check_all_finite("points", self.points.as_flattened())?;
         check_all_finite("cell values", &self.values)?;
         let n = self.points.len();
         if let Some(&k) = self.cells.iter().flatten().find(|&&k| k >= n) {
-            return Err(OutputError::InvalidParameter {
-                field: "cells (node number)",
-                value: k as f64,
-                allowed: "below the number of points",
-            });
+            return Err(OutputError::invalid(
+                "cells (node number)",
+                k as f64,
+                "below the number of points",
+            ));
         }
         if let Some((lo, hi)) = self.range
             && !(lo.is_finite() && hi.is_finite() && hi > lo)
         {
-            return Err(OutputError::InvalidParameter {
-                field: "range",
-                value: hi,
-                allowed: "finite, above the lower end",
-            });
+            return Err(OutputError::invalid(
+                "range",
+                hi,
+                "finite, above the lower end",
+            ));
         }
         Ok(())
     }

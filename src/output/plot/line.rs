@@ -405,19 +405,15 @@ impl Plot for LinePlot {
 
     fn validate(&self) -> Result<(), OutputError> {
         if self.series.is_empty() {
-            return Err(OutputError::InvalidParameter {
-                field: "series",
-                value: 0.0,
-                allowed: "at least one series",
-            });
+            return Err(OutputError::invalid("series", 0.0, "at least one series"));
         }
         for s in &self.series {
             if s.y.len() != s.x.len() {
-                return Err(OutputError::LengthMismatch {
-                    column: format!("{}.y", s.label),
-                    expected: s.x.len(),
-                    found: s.y.len(),
-                });
+                return Err(OutputError::length_mismatch(
+                    format!("{}.y", s.label),
+                    s.x.len(),
+                    s.y.len(),
+                ));
             }
             for (axis, values, scale) in [("x", &s.x, self.x_scale), ("y", &s.y, self.y_scale)] {
                 let column = format!("{}.{axis}", s.label);
@@ -425,15 +421,15 @@ impl Plot for LinePlot {
                 if scale == Scale::Log
                     && let Some(&v) = values.iter().find(|v| **v <= 0.0)
                 {
-                    return Err(OutputError::InvalidParameter {
-                        field: if axis == "x" {
+                    return Err(OutputError::invalid(
+                        if axis == "x" {
                             "x (log axis)"
                         } else {
                             "y (log axis)"
                         },
-                        value: v,
-                        allowed: "(0, inf)",
-                    });
+                        v,
+                        "(0, inf)",
+                    ));
                 }
             }
         }

@@ -103,33 +103,25 @@ impl Plot for StateStrip {
 
     fn validate(&self) -> Result<(), OutputError> {
         if self.x.is_empty() {
-            return Err(OutputError::InvalidParameter {
-                field: "x",
-                value: 0.0,
-                allowed: "at least one sample",
-            });
+            return Err(OutputError::invalid("x", 0.0, "at least one sample"));
         }
         if self.states.len() != self.x.len() {
-            return Err(OutputError::LengthMismatch {
-                column: "states".into(),
-                expected: self.x.len(),
-                found: self.states.len(),
-            });
+            return Err(OutputError::length_mismatch(
+                "states",
+                self.x.len(),
+                self.states.len(),
+            ));
         }
         check_all_finite("x", &self.x)?;
         if let Some(w) = self.x.windows(2).find(|w| w[1] <= w[0]) {
-            return Err(OutputError::InvalidParameter {
-                field: "x (must increase)",
-                value: w[1],
-                allowed: "greater than the previous sample",
-            });
+            return Err(OutputError::invalid(
+                "x (must increase)",
+                w[1],
+                "greater than the previous sample",
+            ));
         }
         if let Some(&s) = self.states.iter().find(|s| !(-1..=1).contains(*s)) {
-            return Err(OutputError::InvalidParameter {
-                field: "states",
-                value: f64::from(s),
-                allowed: "{-1, 0, 1}",
-            });
+            return Err(OutputError::invalid("states", f64::from(s), "{-1, 0, 1}"));
         }
         Ok(())
     }
