@@ -3,7 +3,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::style::{Plot, extent, font, tick_label};
+use super::style::{Plot, extent, font, label_axes};
 use crate::output::error::{OutputError, check_all_finite};
 use crate::output::vtu::QuadGrid;
 
@@ -277,15 +277,9 @@ impl Plot for ColourMap {
             .x_label_area_size(x_area)
             .y_label_area_size(y_area)
             .build_cartesian_2d(cx - hx..cx + hx, cy - hy..cy + hy)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .x_label_formatter(&tick_label)
-            .y_label_formatter(&tick_label)
-            .light_line_style(RGBColor(240, 240, 240))
+        let mut mesh = chart.configure_mesh();
+        label_axes(&mut mesh, Some(&self.x_label), Some(&self.y_label));
+        mesh.light_line_style(RGBColor(240, 240, 240))
             .bold_line_style(RGBColor(215, 215, 215))
             .draw()?;
         let t = |v: f64| (v - lo) / (hi - lo);
@@ -313,15 +307,9 @@ impl Plot for ColourMap {
             .margin_right(8)
             .right_y_label_area_size(86)
             .build_cartesian_2d(0.0..1.0, lo..hi)?;
-        bar_chart
-            .configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_desc(&self.label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .y_label_formatter(&tick_label)
-            .draw()?;
+        let mut mesh = bar_chart.configure_mesh();
+        label_axes(&mut mesh, None, Some(&self.label));
+        mesh.disable_mesh().disable_x_axis().draw()?;
         let bands = 128;
         bar_chart.draw_series((0..bands).map(|i| {
             let a = lo + (hi - lo) * i as f64 / bands as f64;

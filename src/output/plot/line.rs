@@ -6,7 +6,7 @@ use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
 
-use super::style::{PALETTE, Plot, extent, font, tick_label};
+use super::style::{PALETTE, Plot, extent, font, label_axes};
 use crate::output::error::{OutputError, check_all_finite};
 
 /// An axis scale.
@@ -259,15 +259,9 @@ impl LinePlot {
             .x_label_area_size(56)
             .y_label_area_size(84)
             .build_cartesian_2d(x, y)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .x_label_formatter(&tick_label)
-            .y_label_formatter(&tick_label)
-            .light_line_style(RGBColor(235, 235, 235))
+        let mut mesh = chart.configure_mesh();
+        label_axes(&mut mesh, Some(&self.x_label), Some(&self.y_label));
+        mesh.light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(200, 200, 200))
             .draw()?;
         let mut marked = 0;

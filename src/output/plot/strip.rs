@@ -4,7 +4,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::style::{Plot, extent, font, tick_label};
+use super::style::{Plot, extent, font, label_axes};
 use crate::output::error::{OutputError, check_all_finite};
 
 /// Band colours of the states -1, 0, +1 (blue, grey, vermillion).
@@ -141,13 +141,9 @@ impl Plot for StateStrip {
             .x_label_area_size(56)
             .y_label_area_size(84)
             .build_cartesian_2d(x0..x1, -1.6..1.6)?;
-        chart
-            .configure_mesh()
-            .disable_y_mesh()
-            .x_desc(&self.x_label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .x_label_formatter(&tick_label)
+        let mut mesh = chart.configure_mesh();
+        label_axes(&mut mesh, Some(&self.x_label), None);
+        mesh.disable_y_mesh()
             .y_labels(0) // rows are labelled below, exactly at -1, 0, +1
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(215, 215, 215))
