@@ -9,6 +9,22 @@ use capstan_solvers::{
     SolveStage, SolverError, SparsityPattern, max_abs_difference,
 };
 
+/// The failure of Newton with `params` but no line search on `problem` from `u`.
+fn newton_failure<P: Jacobian<f64>>(
+    params: NewtonParams,
+    problem: &P,
+    u: &mut [f64],
+) -> SolverError {
+    let params = NewtonParams {
+        line_search: LineSearch::None,
+        ..params
+    };
+    Newton::new(params)
+        .unwrap()
+        .solve(problem, u, &mut SilentObserver)
+        .unwrap_err()
+}
+
 #[test]
 fn newton_converges_quadratically_on_the_cubic_reaction() {
     let problem = CubicReaction::new(50);
@@ -134,13 +150,7 @@ fn line_search_rescues_newton_on_arctangent() {
     assert!(report.residuals.windows(2).all(|w| w[1] < w[0]));
 
     let mut u = start.to_vec();
-    let err = Newton::new(NewtonParams {
-        line_search: LineSearch::None,
-        ..Default::default()
-    })
-    .unwrap()
-    .solve(&problem, &mut u, &mut SilentObserver)
-    .unwrap_err();
+    let err = newton_failure(NewtonParams::default(), &problem, &mut u);
     // the iterates explode (10 -> -139 -> 3e4 -> -1.4e9 ...) until J underflows to 0
     assert!(
         matches!(
@@ -155,14 +165,11 @@ fn line_search_rescues_newton_on_arctangent() {
 fn newton_without_line_search_reports_divergence_on_cube_root() {
     let problem = CubeRoot::new(2);
     let mut u = vec![1.0, -2.0];
-    let err = Newton::new(NewtonParams {
-        line_search: LineSearch::None,
+    let params = NewtonParams {
         divergence_limit: 10.0,
         ..Default::default()
-    })
-    .unwrap()
-    .solve(&problem, &mut u, &mut SilentObserver)
-    .unwrap_err();
+    };
+    let err = newton_failure(params, &problem, &mut u);
     // |r| grows by 2^(1/3) per step: 2^(k/3) > 10 first at k = 10
     assert!(
         matches!(err, SolverError::Diverged { iteration: 10, .. }),
@@ -256,13 +263,7 @@ fn line_search_backs_off_from_a_nan_trial_point() {
     assert!((u[0] - 1.0).abs() < 1e-9);
     // without a line search the NaN is reported, not returned
     let mut u = vec![16.0];
-    let err = Newton::new(NewtonParams {
-        line_search: LineSearch::None,
-        ..Default::default()
-    })
-    .unwrap()
-    .solve(&problem, &mut u, &mut SilentObserver)
-    .unwrap_err();
+    let err = newton_failure(NewtonParams::default(), &problem, &mut u);
     assert!(
         matches!(
             err,
