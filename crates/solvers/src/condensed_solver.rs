@@ -432,11 +432,11 @@ impl LinearSolver<f64> for CondensedSolver {
         let mut local: Vec<Option<Local>> = vec![None; n];
         for (k, &g) in self.interface.iter().enumerate() {
             if g >= n || local[g].is_some() {
-                return Err(SolverError::InvalidParameter {
-                    field: "interface",
-                    value: g as f64,
-                    allowed: "distinct unknown indices below the matrix dimension",
-                });
+                return Err(SolverError::invalid(
+                    "interface",
+                    g as f64,
+                    "distinct unknown indices below the matrix dimension",
+                ));
             }
             local[g] = Some(Local::Interface(k));
         }

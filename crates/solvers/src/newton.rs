@@ -94,13 +94,7 @@ impl NewtonParams {
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
-        let invalid = |field, value, allowed| {
-            Err(SolverError::InvalidParameter {
-                field,
-                value,
-                allowed,
-            })
-        };
+        let invalid = |field, value, allowed| Err(SolverError::invalid(field, value, allowed));
         if self.max_iterations == 0 {
             return invalid("max_iterations", 0.0, "[1, inf)");
         }

@@ -52,6 +52,25 @@ pub fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
+/// [`SolverError::NonFinite`](crate::SolverError::NonFinite) naming `quantity` at the first
+/// non-finite entry of `x`, outside any iteration.
+///
+/// # Errors
+/// As said.
+pub(crate) fn check_finite<F: SolverScalar>(
+    quantity: &'static str,
+    x: &[F],
+) -> Result<(), crate::error::SolverError> {
+    match first_non_finite(x) {
+        Some(index) => Err(crate::error::SolverError::NonFinite {
+            quantity,
+            index,
+            iteration: None,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Index of the first non-finite entry, if any.
 pub(crate) fn first_non_finite<F: SolverScalar>(x: &[F]) -> Option<usize> {
     x.iter().position(|v| !v.is_finite())

@@ -312,11 +312,11 @@ impl SparseLu {
                 });
             }
             if !is_permutation(perm, n) {
-                return Err(SolverError::InvalidParameter {
-                    field: "column permutation",
-                    value: n as f64,
-                    allowed: "a permutation of 0..n",
-                });
+                return Err(SolverError::invalid(
+                    "column permutation",
+                    n as f64,
+                    "a permutation of 0..n",
+                ));
             }
         }
         Ok(perm)

@@ -57,11 +57,7 @@ fn iterative_counts_on_poisson_are_pinned() {
 
 #[test]
 fn convection_diffusion_is_solved_by_lu_jacobi_and_gauss_seidel() {
-    let system = ConvectionDiffusion2d {
-        n: 16,
-        velocity: [20.0, 10.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(16, [20.0, 10.0]).system();
     let b = norm(&system.rhs);
     let (reference, _) = solve(&system, LinearBackend::Lu);
     assert!(system.residual_norm(&reference) <= 1e-13 * b); // direct: round-off only
@@ -80,11 +76,7 @@ fn convection_diffusion_is_solved_by_lu_jacobi_and_gauss_seidel() {
 
 #[test]
 fn cholesky_rejects_the_nonsymmetric_convection_operator() {
-    let system = ConvectionDiffusion2d {
-        n: 4,
-        velocity: [20.0, 0.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(4, [20.0, 0.0]).system();
     let mut chol = SparseCholesky::default();
     chol.analyse(&system.pattern).unwrap();
     assert!(matches!(
@@ -125,11 +117,7 @@ fn refactor_with_new_values_on_the_same_pattern() {
 
 #[test]
 fn many_right_hand_sides_match_single_solves() {
-    let system = ConvectionDiffusion2d {
-        n: 10,
-        velocity: [5.0, -5.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(10, [5.0, -5.0]).system();
     let n = system.dimension();
     let ncols = 5;
     let rhs: Vec<f64> = (0..n * ncols)

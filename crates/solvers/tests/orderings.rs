@@ -58,11 +58,7 @@ fn every_ordering_solves_poisson_and_convection_diffusion_like_colamd() {
     let n = 24;
     let systems = [
         Poisson2d::new(n).system(),
-        ConvectionDiffusion2d {
-            n,
-            velocity: [30.0, -20.0],
-        }
-        .system(),
+        ConvectionDiffusion2d::new(n, [30.0, -20.0]).system(),
     ];
     for system in &systems {
         let reference = solve(&mut SparseLu::default(), system);
