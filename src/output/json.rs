@@ -179,6 +179,15 @@ macro_rules! accept {
     };
 }
 
+/// The `serialize_*` methods that open a [`Compound`] (sequences, tuples, maps, structs).
+macro_rules! open_compound {
+    ($compound:ty; $($method:ident($($arg:ident: $ty:ty),*)),* $(,)?) => {
+        $(fn $method(self, $($arg: $ty),*) -> Result<$compound, CheckError> {
+            Ok(self.compound())
+        })*
+    };
+}
+
 impl<'a> ser::Serializer for &'a mut Checker {
     type Ok = ();
     type Error = CheckError;
@@ -247,47 +256,16 @@ impl<'a> ser::Serializer for &'a mut Checker {
     ) -> Result<(), CheckError> {
         self.field(variant, value)
     }
-    fn serialize_seq(self, _len: Option<usize>) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_tuple(self, _len: usize) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_tuple_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_tuple_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_map(self, _len: Option<usize>) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_struct_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
+    open_compound!(
+        Compound<'a>;
+        serialize_seq(_len: Option<usize>),
+        serialize_tuple(_len: usize),
+        serialize_tuple_struct(_name: &'static str, _len: usize),
+        serialize_tuple_variant(_name: &'static str, _index: u32, _variant: &'static str, _len: usize),
+        serialize_map(_len: Option<usize>),
+        serialize_struct(_name: &'static str, _len: usize),
+        serialize_struct_variant(_name: &'static str, _index: u32, _variant: &'static str, _len: usize),
+    );
 }
 
 impl Checker {

@@ -15,7 +15,7 @@ use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::grid::Grid;
 use crate::material::Material;
-use crate::plane_strain_numbering::plane_strain_numbering;
+use crate::plane_strain_operator::{plane_strain_numbering, setup_accessors};
 use crate::shell_geometry::ShellGeometry;
 
 /// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
@@ -186,20 +186,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         Ok(op)
     }
 
-    /// The material.
-    pub fn material(&self) -> &Material {
-        &self.material
-    }
-
-    /// The boundary conditions.
-    pub fn boundary(&self) -> &BoundaryConditions {
-        &self.boundary
-    }
-
-    /// The chart.
-    pub fn chart(&self) -> &G {
-        &self.chart
-    }
+    setup_accessors!();
 
     /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
     fn dirichlet_value(

@@ -24,7 +24,7 @@ use crate::fields::NodalFields;
 use crate::finite_difference::BodyForce;
 use crate::grid::Grid;
 use crate::material::Material;
-use crate::plane_strain_numbering::plane_strain_numbering;
+use crate::plane_strain_operator::{plane_strain_numbering, setup_accessors};
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::SparsityPattern;
 
@@ -347,20 +347,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         self.volumetric
     }
 
-    /// The material.
-    pub fn material(&self) -> &Material {
-        &self.material
-    }
-
-    /// The boundary conditions.
-    pub fn boundary(&self) -> &BoundaryConditions {
-        &self.boundary
-    }
-
-    /// The chart.
-    pub fn chart(&self) -> &G {
-        &self.chart
-    }
+    setup_accessors!();
 
     /// Number of elements `[in x2, in x3]`.
     pub fn element_counts(&self) -> [usize; 2] {
