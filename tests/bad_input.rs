@@ -25,6 +25,17 @@ fn scene_file(name: &str, text: &[u8]) -> PathBuf {
     path
 }
 
+/// Runs `capstan ARGS` (words split at white space); asserts exit code `code` and nothing on
+/// stdout; returns stderr.
+#[track_caller]
+fn failed(code: i32, args: &str) -> String {
+    let args: Vec<&str> = args.split_whitespace().collect();
+    let (found, stdout, stderr) = capstan(&args);
+    assert_eq!(found, code, "{args:?}\nstderr: {stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    stderr
+}
+
 /// Asserts exit code 2 and that stderr contains every needle.
 #[track_caller]
 fn refused(args: &[&str], needles: &[&str]) {
@@ -282,37 +293,21 @@ fn exit_code_3_when_no_equilibrium_exists() {
 #[test]
 fn exit_code_4_when_a_solve_does_not_converge() {
     // mu = 100 over 20 rad: T = exp(2000) overflows; refused as a non-finite tension.
-    let (code, stdout, stderr) = capstan(&[
-        "tension",
-        "--set",
-        "obstacle.shape=cylinder",
-        "--set",
-        "membrane.theta0=0",
-        "--set",
-        "membrane.theta_max=20",
-        "--set",
-        "friction.mu=100",
-        "--json",
-    ]);
-    assert_eq!(code, 4, "{stderr}");
-    assert!(stdout.is_empty(), "no NaN or inf reaches stdout: {stdout}");
+    // no NaN or inf reaches stdout
+    let stderr = failed(
+        4,
+        "tension --set obstacle.shape=cylinder --set membrane.theta0=0 \
+         --set membrane.theta_max=20 --set friction.mu=100 --json",
+    );
     assert!(stderr.contains("not finite"), "{stderr}");
 }
 
 #[test]
 fn contact_beyond_limiting_equilibrium_is_exit_code_3() {
-    let (code, stdout, stderr) = capstan(&[
-        "contact",
-        "--set",
-        "grid.n2=40",
-        "--set",
-        "grid.n3=9",
-        "--set",
-        "loads.tau_max=100",
-        "--json",
-    ]);
-    assert_eq!(code, 3, "{stderr}");
-    assert!(stdout.is_empty(), "{stdout}");
+    let stderr = failed(
+        3,
+        "contact --set grid.n2=40 --set grid.n3=9 --set loads.tau_max=100 --json",
+    );
     assert!(stderr.contains("no static equilibrium"), "{stderr}");
     refused(
         &["contact", "--set", "grid.n3=2"],

@@ -40,6 +40,20 @@ fn condensed<L: FrictionLaw<f64>>(model: &Model<L>, loads: EndLoads) -> ContactS
         .unwrap()
 }
 
+/// `a` and `b` agree to solver tolerance (both converge to 1e-10 relative residual):
+/// displacements within `1e-7 max|a|`, the same stick and slip states.
+#[track_caller]
+fn assert_agree(a: &ContactSolution, b: &ContactSolution, what: &str) {
+    let scale = max_abs(&a.displacement);
+    let difference = max_abs_difference(&a.displacement, &b.displacement);
+    assert!(
+        difference < 1e-7 * scale,
+        "{what}: {:e}",
+        difference / scale
+    );
+    assert_eq!(a.contact.state, b.contact.state, "{what}");
+}
+
 fn ellipse(a: f64, b: f64, n2: usize, n3: usize) -> ThickBody {
     ThickBody {
         obstacle: Obstacle::Ellipse(EllipticalPrism::new(a, b).unwrap()),
@@ -59,14 +73,7 @@ fn condensed_solver_agrees_with_full_system_newton() {
             let loads = EndLoads::ratio(ratio);
             let a = condensed.solve(loads).unwrap();
             let b = full.solve(loads).unwrap();
-            let scale = max_abs(&a.displacement);
-            // both converge to 1e-10 relative residual; the difference is solver tolerance
-            assert!(
-                max_abs_difference(&a.displacement, &b.displacement) < 1e-7 * scale,
-                "ratio {ratio}: {:e}",
-                max_abs_difference(&a.displacement, &b.displacement) / scale
-            );
-            assert_eq!(a.contact.state, b.contact.state);
+            assert_agree(&a, &b, &format!("ratio {ratio}"));
             assert!(a.contact.state.contains(&0));
             assert!(a.stats.residual < 1e-10 && b.stats.residual < 1e-9);
         }
@@ -231,14 +238,7 @@ fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
             .solve(EndLoads::ratio(2.0))
             .unwrap();
         let (a, b) = (&seq.solution, &direct);
-        let scale = max_abs(&b.displacement);
-        // both converge to 1e-10 relative residual
-        assert!(
-            max_abs_difference(&a.displacement, &b.displacement) < 1e-7 * scale,
-            "{:e}",
-            max_abs_difference(&a.displacement, &b.displacement) / scale
-        );
-        assert_eq!(a.contact.state, b.contact.state);
+        assert_agree(a, b, "sequenced against direct");
         assert!(a.stats.residual < 1e-10);
         if fewer_steps {
             assert!(

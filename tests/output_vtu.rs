@@ -30,6 +30,30 @@ struct Case {
     ellipse: Option<serde_json::Value>,
 }
 
+impl Case {
+    /// What `grid` written to `path` holds: its points, sizes, periodicity and cells, with
+    /// `point_data` and `cell_data`; no time value and no ellipse to compare with.
+    fn new(
+        path: PathBuf,
+        grid: &QuadGrid,
+        point_data: serde_json::Map<String, serde_json::Value>,
+        cell_data: serde_json::Map<String, serde_json::Value>,
+    ) -> Self {
+        Self {
+            path,
+            points: grid.points().to_vec(),
+            n2: grid.n2(),
+            n3: grid.n3(),
+            periodic: grid.is_periodic(),
+            cells: grid.cells(),
+            point_data,
+            cell_data,
+            time: None,
+            ellipse: None,
+        }
+    }
+}
+
 fn array(components: usize, values: &[f64]) -> serde_json::Value {
     serde_json::json!({ "components": components, "values": values })
 }
@@ -70,16 +94,9 @@ fn ellipse_case(out: &OutputDir, encoding: Encoding, name: &str) -> Case {
     let mut cell_data = serde_json::Map::new();
     cell_data.insert("cell_value".into(), array(1, &cell_ids));
     Case {
-        path,
-        points: grid.points().to_vec(),
-        n2: grid.n2(),
-        n3: grid.n3(),
-        periodic: false,
-        cells: grid.cells(),
-        point_data,
-        cell_data,
         time: Some(0.25),
         ellipse: Some(serde_json::json!({ "a": 2.0, "b": 1.0, "x3": x3 })),
+        ..Case::new(path, &grid, point_data, cell_data)
     }
 }
 
@@ -97,18 +114,7 @@ fn ring_case(out: &OutputDir) -> Case {
     let path = out.write_vtu("ring.vtu", &vtu).unwrap();
     let mut point_data = serde_json::Map::new();
     point_data.insert("radius".into(), array(1, &radius));
-    Case {
-        path,
-        points: grid.points().to_vec(),
-        n2: grid.n2(),
-        n3: grid.n3(),
-        periodic: true,
-        cells: grid.cells(),
-        point_data,
-        cell_data: serde_json::Map::new(),
-        time: None,
-        ellipse: None,
-    }
+    Case::new(path, &grid, point_data, serde_json::Map::new())
 }
 
 #[test]

@@ -175,11 +175,15 @@ fn singular_matrix_with_nested_dissection_is_a_typed_error() {
 #[test]
 fn orderings_that_do_not_fit_the_pattern_are_rejected() {
     let system = Poisson2d::new(5).system();
-    let wrong_grid = lu_with(ColumnOrdering::NestedDissection {
-        grid: square_grid(4),
-        separator_width: 2,
-    })
-    .analyse(&system.pattern);
+    // nested dissection of a square grid of `n` nodes a side, separators `width` lines wide
+    let analyse = |n: usize, width: usize| {
+        lu_with(ColumnOrdering::NestedDissection {
+            grid: square_grid(n),
+            separator_width: width,
+        })
+        .analyse(&system.pattern)
+    };
+    let wrong_grid = analyse(4, 2);
     assert!(matches!(
         wrong_grid,
         Err(SolverError::DimensionMismatch {
@@ -188,11 +192,7 @@ fn orderings_that_do_not_fit_the_pattern_are_rejected() {
             ..
         })
     ));
-    let zero_width = lu_with(ColumnOrdering::NestedDissection {
-        grid: square_grid(5),
-        separator_width: 0,
-    })
-    .analyse(&system.pattern);
+    let zero_width = analyse(5, 0);
     assert!(matches!(
         zero_width,
         Err(SolverError::InvalidParameter {
