@@ -130,6 +130,29 @@ pub(crate) fn check_finite(column: &str, index: usize, value: f64) -> Result<(),
     }
 }
 
+/// [`OutputError::LengthMismatch`] unless `column` has `expected` entries (`found`).
+pub(crate) fn check_length(column: &str, expected: usize, found: usize) -> Result<(), OutputError> {
+    if found == expected {
+        Ok(())
+    } else {
+        Err(OutputError::length_mismatch(column, expected, found))
+    }
+}
+
+/// [`OutputError::InvalidParameter`] (value 0) when `field` has no entries (`len == 0`);
+/// `allowed` says how many it needs.
+pub(crate) fn check_not_empty(
+    field: &'static str,
+    len: usize,
+    allowed: &'static str,
+) -> Result<(), OutputError> {
+    if len == 0 {
+        Err(OutputError::invalid(field, 0.0, allowed))
+    } else {
+        Ok(())
+    }
+}
+
 /// Refuses the first non-finite value of a column.
 ///
 /// # Errors

@@ -4,7 +4,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::style::{Plot, extent, font, label_axes};
-use crate::output::error::{OutputError, check_all_finite};
+use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 use crate::output::vtu::QuadGrid;
 
 /// Viridis at `t = 0, 1/8, ..., 1` (perceptually uniform, colour-blind safe, prints in grey).
@@ -106,13 +106,7 @@ impl ColourMap {
         axes: [usize; 2],
         node_values: &[f64],
     ) -> Result<Self, OutputError> {
-        if node_values.len() != grid.node_count() {
-            return Err(OutputError::length_mismatch(
-                "node values",
-                grid.node_count(),
-                node_values.len(),
-            ));
-        }
+        check_length("node values", grid.node_count(), node_values.len())?;
         check_all_finite("node values", node_values)?;
         let cells = grid.cells();
         let values = cells
@@ -133,13 +127,7 @@ impl ColourMap {
         axes: [usize; 2],
         cell_values: &[f64],
     ) -> Result<Self, OutputError> {
-        if cell_values.len() != grid.cell_count() {
-            return Err(OutputError::length_mismatch(
-                "cell values",
-                grid.cell_count(),
-                cell_values.len(),
-            ));
-        }
+        check_length("cell values", grid.cell_count(), cell_values.len())?;
         Self::from_grid(title, grid, axes, grid.cells(), cell_values.to_vec())
     }
 
@@ -219,16 +207,8 @@ impl Plot for ColourMap {
     }
 
     fn validate(&self) -> Result<(), OutputError> {
-        if self.cells.is_empty() {
-            return Err(OutputError::invalid("cells", 0.0, "at least one cell"));
-        }
-        if self.values.len() != self.cells.len() {
-            return Err(OutputError::length_mismatch(
-                "cell values",
-                self.cells.len(),
-                self.values.len(),
-            ));
-        }
+        check_not_empty("cells", self.cells.len(), "at least one cell")?;
+        check_length("cell values", self.cells.len(), self.values.len())?;
         check_all_finite("points", self.points.as_flattened())?;
         check_all_finite("cell values", &self.values)?;
         let n = self.points.len();

@@ -7,7 +7,7 @@ use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
 
 use super::style::{PALETTE, Plot, extent, font, label_axes};
-use crate::output::error::{OutputError, check_all_finite};
+use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 
 /// An axis scale.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -398,17 +398,9 @@ impl Plot for LinePlot {
     }
 
     fn validate(&self) -> Result<(), OutputError> {
-        if self.series.is_empty() {
-            return Err(OutputError::invalid("series", 0.0, "at least one series"));
-        }
+        check_not_empty("series", self.series.len(), "at least one series")?;
         for s in &self.series {
-            if s.y.len() != s.x.len() {
-                return Err(OutputError::length_mismatch(
-                    format!("{}.y", s.label),
-                    s.x.len(),
-                    s.y.len(),
-                ));
-            }
+            check_length(&format!("{}.y", s.label), s.x.len(), s.y.len())?;
             for (axis, values, scale) in [("x", &s.x, self.x_scale), ("y", &s.y, self.y_scale)] {
                 let column = format!("{}.{axis}", s.label);
                 check_all_finite(&column, values)?;

@@ -5,7 +5,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::style::{Plot, extent, font, label_axes};
-use crate::output::error::{OutputError, check_all_finite};
+use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 
 /// Band colours of the states -1, 0, +1 (blue, grey, vermillion).
 const STATE_COLOURS: [RGBColor; 3] = [
@@ -102,16 +102,8 @@ impl Plot for StateStrip {
     }
 
     fn validate(&self) -> Result<(), OutputError> {
-        if self.x.is_empty() {
-            return Err(OutputError::invalid("x", 0.0, "at least one sample"));
-        }
-        if self.states.len() != self.x.len() {
-            return Err(OutputError::length_mismatch(
-                "states",
-                self.x.len(),
-                self.states.len(),
-            ));
-        }
+        check_not_empty("x", self.x.len(), "at least one sample")?;
+        check_length("states", self.x.len(), self.states.len())?;
         check_all_finite("x", &self.x)?;
         if let Some(w) = self.x.windows(2).find(|w| w[1] <= w[0]) {
             return Err(OutputError::invalid(
