@@ -14,19 +14,7 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solvers::NonlinearMethod;
-
-fn vm_hwm_mib() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|k| k.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kib| kib / 1024.0)
-}
+use capstan_elasticity::verification::peak_memory_mib;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let a: Vec<usize> = std::env::args()
@@ -92,7 +80,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         t.elapsed().as_secs_f64(),
         slips.join(" ")
     );
-    println!("peak memory (VmHWM) so far: {:.1} MiB", vm_hwm_mib());
+    println!("peak memory (VmHWM) so far: {:.1} MiB", peak_memory_mib());
 
     // Jacobi-Newton against LU Newton on a small grid (Jacobi needs ~n^2 sweeps); 0 0 skips it.
     if j2 == 0 || j3 == 0 {

@@ -2,19 +2,17 @@
 //! the value, the allowed range and (for scene files) the line; no equilibrium is 3,
 //! non-convergence 4.
 
+mod common;
+
 use std::path::PathBuf;
-use std::process::Command;
 
 /// Runs the binary; returns (exit code, stdout, stderr).
 fn capstan(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
+    let (code, stdout, stderr) = common::capstan_status(args);
     (
-        out.status.code().expect("exited, not killed by a signal"),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
+        code.expect("exited, not killed by a signal"),
+        stdout,
+        stderr,
     )
 }
 
@@ -25,6 +23,17 @@ fn scene_file(name: &str, text: &[u8]) -> PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
+}
+
+/// Runs `capstan ARGS` (words split at white space); asserts exit code `code` and nothing on
+/// stdout; returns stderr.
+#[track_caller]
+fn failed(code: i32, args: &str) -> String {
+    let args: Vec<&str> = args.split_whitespace().collect();
+    let (found, stdout, stderr) = capstan(&args);
+    assert_eq!(found, code, "{args:?}\nstderr: {stderr}");
+    assert!(stdout.is_empty(), "{stdout}");
+    stderr
 }
 
 /// Asserts exit code 2 and that stderr contains every needle.
@@ -111,36 +120,42 @@ fn set_overrides_the_file_and_is_named_as_set() {
 
 #[test]
 fn malformed_toml_unknown_keys_and_wrong_types_point_to_the_line() {
-    let f = scene_file("syntax.toml", b"[friction\nmu = 1\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["line 1", "syntax.toml"],
-    );
-    let f = scene_file("unknown.toml", b"[friction]\nmu = 1\nmuu = 2\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["unknown.toml:3", "friction.muu", "friction.mu"],
-    );
-    let f = scene_file("table.toml", b"[frictions]\nmu = 1\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["table.toml:2", "frictions"],
-    );
-    let f = scene_file("type.toml", b"[friction]\n\nmu = \"abc\"\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["line 3", "invalid type"],
-    );
-    let f = scene_file("negative.toml", b"[grid]\nn2 = -5\n");
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["negative.toml", "line 2"],
-    );
-    let f = scene_file("binary.toml", &[0xff, 0xfe, 0x00, 0x81]);
-    refused(
-        &["geometry", f.to_str().unwrap()],
-        &["binary.toml", "UTF-8"],
-    );
+    let cases: [(&str, &[u8], &[&str]); 6] = [
+        (
+            "syntax.toml",
+            b"[friction\nmu = 1\n",
+            &["line 1", "syntax.toml"],
+        ),
+        (
+            "unknown.toml",
+            b"[friction]\nmu = 1\nmuu = 2\n",
+            &["unknown.toml:3", "friction.muu", "friction.mu"],
+        ),
+        (
+            "table.toml",
+            b"[frictions]\nmu = 1\n",
+            &["table.toml:2", "frictions"],
+        ),
+        (
+            "type.toml",
+            b"[friction]\n\nmu = \"abc\"\n",
+            &["line 3", "invalid type"],
+        ),
+        (
+            "negative.toml",
+            b"[grid]\nn2 = -5\n",
+            &["negative.toml", "line 2"],
+        ),
+        (
+            "binary.toml",
+            &[0xff, 0xfe, 0x00, 0x81],
+            &["binary.toml", "UTF-8"],
+        ),
+    ];
+    for (name, text, needles) in cases {
+        let f = scene_file(name, text);
+        refused(&["geometry", f.to_str().unwrap()], needles);
+    }
     refused(&["geometry", "--set", "nonsense"], &["KEY=VALUE"]);
     refused(&["geometry", "--set", "friction=1"], &["table.key"]);
 }
@@ -278,37 +293,21 @@ fn exit_code_3_when_no_equilibrium_exists() {
 #[test]
 fn exit_code_4_when_a_solve_does_not_converge() {
     // mu = 100 over 20 rad: T = exp(2000) overflows; refused as a non-finite tension.
-    let (code, stdout, stderr) = capstan(&[
-        "tension",
-        "--set",
-        "obstacle.shape=cylinder",
-        "--set",
-        "membrane.theta0=0",
-        "--set",
-        "membrane.theta_max=20",
-        "--set",
-        "friction.mu=100",
-        "--json",
-    ]);
-    assert_eq!(code, 4, "{stderr}");
-    assert!(stdout.is_empty(), "no NaN or inf reaches stdout: {stdout}");
+    // no NaN or inf reaches stdout
+    let stderr = failed(
+        4,
+        "tension --set obstacle.shape=cylinder --set membrane.theta0=0 \
+         --set membrane.theta_max=20 --set friction.mu=100 --json",
+    );
     assert!(stderr.contains("not finite"), "{stderr}");
 }
 
 #[test]
 fn contact_beyond_limiting_equilibrium_is_exit_code_3() {
-    let (code, stdout, stderr) = capstan(&[
-        "contact",
-        "--set",
-        "grid.n2=40",
-        "--set",
-        "grid.n3=9",
-        "--set",
-        "loads.tau_max=100",
-        "--json",
-    ]);
-    assert_eq!(code, 3, "{stderr}");
-    assert!(stdout.is_empty(), "{stdout}");
+    let stderr = failed(
+        3,
+        "contact --set grid.n2=40 --set grid.n3=9 --set loads.tau_max=100 --json",
+    );
     assert!(stderr.contains("no static equilibrium"), "{stderr}");
     refused(
         &["contact", "--set", "grid.n3=2"],

@@ -1,7 +1,8 @@
 //! `capstan tension` and `capstan infer-mu`: numbers through the library and the binary.
 
+mod common;
+
 use std::f64::consts::{FRAC_PI_4, PI};
-use std::process::Command;
 
 use capstan::cli::{Cli, run};
 use clap::Parser;
@@ -54,40 +55,42 @@ fn tension_on_an_ellipse_quarter_is_exp_2_mu_atan_b_over_a() {
     assert!((v["t_max"].as_f64().unwrap() - expected).abs() < 1e-14);
 }
 
+/// `capstan tension` on the ellipse `a = 2, b = 1` written as a general prism.
+const PRISM_ELLIPSE: [&str; 7] = [
+    "tension",
+    "--set",
+    "obstacle.shape=prism",
+    "--set",
+    "obstacle.u=2*sin(t)",
+    "--set",
+    "obstacle.v=cos(t)",
+];
+
 #[test]
 fn tension_methods_follow_the_scene() {
-    let prism = json(&[
-        "tension",
-        "--set",
-        "obstacle.shape=prism",
-        "--set",
-        "obstacle.u=2*sin(t)",
-        "--set",
-        "obstacle.v=cos(t)",
-    ]);
+    let prism = json(&PRISM_ELLIPSE);
     assert_eq!(prism["method"], "quadrature");
     let ellipse = json(&["tension", "--set", "obstacle.a=2", "--set", "obstacle.b=1"]);
     assert!(
         (prism["t_max"].as_f64().unwrap() - ellipse["t_max"].as_f64().unwrap()).abs() < 1e-13,
         "expression ellipse vs closed form"
     );
-    let heavy = json(&[
-        "tension",
-        "--set",
-        "obstacle.shape=prism",
-        "--set",
-        "obstacle.u=2*sin(t)",
-        "--set",
-        "obstacle.v=cos(t)",
-        "--set",
-        "loads.gravity=9.81",
-        "--set",
-        "loads.density=0.1",
-        "--set",
-        "loads.thickness=0.1",
-        "--set",
-        "membrane.t0=5",
-    ]);
+    let heavy = json(
+        &[
+            &PRISM_ELLIPSE[..],
+            &[
+                "--set",
+                "loads.gravity=9.81",
+                "--set",
+                "loads.density=0.1",
+                "--set",
+                "loads.thickness=0.1",
+                "--set",
+                "membrane.t0=5",
+            ],
+        ]
+        .concat(),
+    );
     assert_eq!(heavy["method"], "ode");
     let cone = json(&[
         "tension",
@@ -200,14 +203,8 @@ fn human_readable_output_is_a_table() {
 }
 
 fn exit_code(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let (code, _, stderr) = common::capstan_status(args);
+    (code.unwrap_or(-1), stderr)
 }
 
 #[test]

@@ -1,25 +1,17 @@
 //! `-v` prints one line per iteration of the contact solve on stderr; `--quiet` silences it.
 
-use std::process::Command;
+mod common;
 
 fn contact(args: &[&str]) -> (String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args([
-            "contact",
-            "--set",
-            "grid.n2=41",
-            "--set",
-            "grid.n3=9",
-            "--json",
-        ])
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let grid = [
+        "contact",
+        "--set",
+        "grid.n2=41",
+        "--set",
+        "grid.n3=9",
+        "--json",
+    ];
+    let out = common::capstan(&[&grid[..], args].concat());
     (
         String::from_utf8(out.stdout).unwrap(),
         String::from_utf8(out.stderr).unwrap(),

@@ -1,18 +1,15 @@
 //! The contact solvers report every iterate to an observer, which can stop them.
 
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactError, ContactErrorKind, ContactSettings, EndLoads, FullSystemSettings,
-    FullSystemSolver, ThickBody,
+    BoundarySolver, ContactError, ContactErrorKind, ContactModel, ContactSettings, ContactSolution,
+    EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
 };
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solvers::{Observer, Progress, SolveStage};
 
-fn model(
-    eps: f64,
-) -> capstan_elasticity::contact::ContactModel<
-    capstan_elasticity::contact::ThickBodyOperator,
-    RegularisedCoulomb,
-> {
+type Model = ContactModel<ThickBodyOperator, RegularisedCoulomb>;
+
+fn model(eps: f64) -> Model {
     ThickBody::paper(41, 9)
         .unwrap()
         .model(
@@ -39,19 +36,33 @@ impl Observer<f64> for Recorder {
     }
 }
 
-#[test]
-fn condensed_newton_reports_falling_residuals_and_the_active_set() {
-    let model = model(1e-5);
-    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+/// The condensed solve at the ratio 2 with `settings`, and the events it reported at `stage`.
+fn observed_stage(
+    model: &Model,
+    settings: ContactSettings,
+    stage: SolveStage,
+) -> (ContactSolution, Vec<Progress<f64>>) {
+    let solver = BoundarySolver::new(model, settings).unwrap();
     let mut rec = Recorder::default();
     let sol = solver
         .solve_observed(EndLoads::ratio(2.0), &mut rec)
         .unwrap();
-    let newton: Vec<_> = rec
+    let events = rec
         .events
-        .iter()
-        .filter(|p| p.stage == SolveStage::CondensedNewton)
+        .into_iter()
+        .filter(|p| p.stage == stage)
         .collect();
+    (sol, events)
+}
+
+#[test]
+fn condensed_newton_reports_falling_residuals_and_the_active_set() {
+    let model = model(1e-5);
+    let (sol, newton) = observed_stage(
+        &model,
+        ContactSettings::default(),
+        SolveStage::CondensedNewton,
+    );
     // one event per iterate: the initial residual, then one per Newton step
     assert_eq!(newton.len(), sol.stats.newton_iterations + 1);
     assert_eq!(newton[0].iteration, 0);
@@ -90,16 +101,7 @@ fn a_short_newton_budget_reports_continuation_steps() {
         max_iterations: 7,
         ..Default::default()
     };
-    let solver = BoundarySolver::new(&model, settings).unwrap();
-    let mut rec = Recorder::default();
-    let sol = solver
-        .solve_observed(EndLoads::ratio(2.0), &mut rec)
-        .unwrap();
-    let steps: Vec<_> = rec
-        .events
-        .iter()
-        .filter(|p| p.stage == SolveStage::Continuation)
-        .collect();
+    let (sol, steps) = observed_stage(&model, settings, SolveStage::Continuation);
     assert_eq!(steps.len(), sol.stats.continuation_steps);
     assert!(steps.len() > 1);
     assert!(steps.iter().skip(1).all(|p| p.step_length > 0.0));

@@ -1,26 +1,18 @@
 //! `capstan export-system` writes a Matrix Market system that sprs (and scipy, when the venv
 //! has it) read back, with `A x = b` holding for our solution to round-off.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const BIN: &str = env!("CARGO_BIN_EXE_capstan");
+use common::{capstan_json, scratch_dir, succeed, venv_python_with};
 
 fn export(state: &str, sets: &[&str]) -> (PathBuf, serde_json::Value) {
-    let dir = std::env::temp_dir().join(format!("capstan-export-{state}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    let out = Command::new(BIN)
-        .args(["export-system", "--set", "grid.n2=30", "--set", "grid.n3=7"])
-        .args(sets)
-        .args(["--state", state, "--json", "--out", dir.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let report: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let dir = scratch_dir(&format!("export-{state}"));
+    let set_grid = ["export-system", "--set", "grid.n2=30", "--set", "grid.n3=7"];
+    let state_out = ["--state", state, "--out", dir.to_str().unwrap()];
+    let report = capstan_json(&[&set_grid[..], sets, &state_out].concat());
     let file: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("system.json")).unwrap()).unwrap();
     assert_eq!(report, file);
@@ -96,15 +88,9 @@ fn exported_system_at_zero_is_the_first_newton_step() {
 
 /// scipy's reader and solver on the same files, when the project's venv has scipy.
 fn python_check(dir: &Path) {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
-    let has_scipy = Command::new(&python)
-        .args(["-c", "import scipy"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !has_scipy {
-        eprintln!("skipping the scipy check: no scipy in .venv");
+    let Some(python) = venv_python_with("scipy") else {
         return;
-    }
+    };
     let code = r#"
 import sys, numpy as np, scipy.io, scipy.sparse.linalg as sl
 d = sys.argv[1]
@@ -114,15 +100,7 @@ x = scipy.io.mmread(d + "/x.mtx").ravel()
 y = sl.spsolve(A, b)
 print(np.abs(y - x).max() / max(1.0, np.abs(x).max()))
 "#;
-    let out = Command::new(&python)
-        .args(["-c", code, dir.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = succeed(Command::new(&python).args(["-c", code, dir.to_str().unwrap()]));
     let diff: f64 = String::from_utf8_lossy(&out.stdout).trim().parse().unwrap();
     assert!(diff < 1e-10, "scipy's SuperLU vs our LU: {diff}"); // two pivoted LUs: round-off
 }

@@ -2,6 +2,8 @@
 //! quick grids (ignored in CI: several seconds), and a very small smoke test of the
 //! scikit-fem peer script when `.venv/bin/python` has scikit-fem (skipped otherwise).
 
+mod common;
+
 use std::process::Command;
 
 use capstan::cli::{Cli, Command as Sub};
@@ -31,7 +33,7 @@ fn work_precision_arguments_parse() {
 #[test]
 #[ignore = "runs every method on three grids per problem: several seconds"]
 fn quick_work_precision_writes_csv_and_plots() {
-    let dir = std::env::temp_dir().join(format!("capstan-wp-{}", std::process::id()));
+    let dir = common::scratch_dir("wp");
     let r = report(&WorkPrecisionArgs {
         quick: true,
         out: Some(dir.clone()),
@@ -64,30 +66,19 @@ fn quick_work_precision_writes_csv_and_plots() {
 
 #[test]
 fn peer_script_smoke_when_scikit_fem_is_installed() {
-    let python = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
-    let has_skfem = Command::new(&python)
-        .args(["-c", "import skfem"])
-        .output()
-        .is_ok_and(|o| o.status.success());
-    if !has_skfem {
-        eprintln!("skipped: no .venv/bin/python with scikit-fem");
+    let Some(python) = common::venv_python_with("skfem") else {
         return;
-    }
-    let out = Command::new(&python)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args([
-            "bench/peers/skfem_lame.py",
-            "--order",
-            "2",
-            "--levels",
-            "2,4",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    };
+    let out = common::succeed(
+        Command::new(&python)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .args([
+                "bench/peers/skfem_lame.py",
+                "--order",
+                "2",
+                "--levels",
+                "2,4",
+            ]),
     );
     let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
         .lines()

@@ -4,31 +4,13 @@
 //! meshio lives in the repository's `.venv` (`.ci/run` creates it); without it the meshio
 //! check prints why and passes, unless `CI=true`.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
+
+use std::path::Path;
 
 use capstan::geometry::{EllipticalPrism, ShellChart};
 use capstan::output::QuadGrid;
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn capstan(args: &[&str]) -> std::process::Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(args)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "capstan {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
+use common::{capstan, scratch_dir as scratch};
 
 /// Columns of a CSV file by name.
 fn csv(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
@@ -47,21 +29,6 @@ fn csv(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
         }
     }
     names.into_iter().zip(cols).collect()
-}
-
-fn meshio_python() -> Result<PathBuf, String> {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
-    if !python.exists() {
-        return Err(format!("{} not found", python.display()));
-    }
-    let ok = Command::new(&python)
-        .args(["-c", "import meshio"])
-        .output()
-        .map_err(|e| e.to_string())?;
-    if !ok.status.success() {
-        return Err(format!("{} cannot import meshio", python.display()));
-    }
-    Ok(python)
 }
 
 #[test]
@@ -153,28 +120,7 @@ fn contact_out_writes_a_vtu_that_meshio_reads() {
             "body.vtu lacks {name}"
         );
     }
-    let python = match meshio_python() {
-        Ok(p) => p,
-        Err(why) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("CI=true but meshio is unavailable ({why}): .ci/run installs it into .venv")
-        }
-        Err(why) => {
-            eprintln!("skipping the meshio check: {why}");
-            return;
-        }
-    };
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_vtu.py");
-    let out = Command::new(python)
-        .arg(script)
-        .arg(&expected)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "check_vtu.py: {}{}",
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::check_vtu_with_meshio("contact_out_writes_a_vtu_that_meshio_reads", &expected);
 }
 
 #[test]
@@ -227,10 +173,8 @@ fn figure_all_quick_writes_every_figure_and_the_index() {
 #[test]
 fn figure_rejects_an_unknown_name() {
     let dir = scratch("figures_unknown");
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(["figure", "nope", "--out", dir.to_str().unwrap()])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("slip-ratio"));
+    let (code, _, stderr) =
+        common::capstan_status(&["figure", "nope", "--out", dir.to_str().unwrap()]);
+    assert_eq!(code, Some(2));
+    assert!(stderr.contains("slip-ratio"));
 }

@@ -1,37 +1,22 @@
 //! `capstan infer-mu --model ...` and `capstan compare`: the three models' implied
 //! coefficients through the binary, on a coarse thick-body grid.
 
-use std::process::Command;
+mod common;
 
+use common::capstan_json;
 use serde_json::Value;
 
-/// Runs the binary; returns its JSON on stdout.
-fn capstan_json(args: &[&str]) -> Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(args)
-        .arg("--json")
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
+/// The coarse thick-body grid of every run here.
+const GRID: [&str; 4] = ["--set", "grid.n2=41", "--set", "grid.n3=9"];
+
+/// `capstan infer-mu --model MODEL --set membrane.t_max=T_MAX` on [`GRID`].
+fn infer_mu_at(model: &str, t_max: f64) -> Value {
+    let set = format!("membrane.t_max={t_max}");
+    capstan_json(&[&["infer-mu", "--model", model, "--set", &set], &GRID[..]].concat())
 }
 
 fn infer_mu(model: &str) -> Value {
-    capstan_json(&[
-        "infer-mu",
-        "--model",
-        model,
-        "--set",
-        "membrane.t_max=2.75",
-        "--set",
-        "grid.n2=41",
-        "--set",
-        "grid.n3=9",
-    ])
+    infer_mu_at(model, 2.75)
 }
 
 #[test]
@@ -63,44 +48,30 @@ fn kikuchi_oden_implies_a_larger_mu_and_membrane_matches_capstan() {
 fn kikuchi_oden_mu_reproduces_the_threshold_ratio() {
     // threshold at mu = 1/2 gives r_K; inverting r_K must give mu = 1/2 back (bisection
     // tolerances: 1e-6 on the ratio and on mu, amplified by d mu / d r ~ 0.3).
-    let t = capstan_json(&["threshold", "--set", "grid.n2=41", "--set", "grid.n3=9"]);
+    let t = capstan_json(&[&["threshold"], &GRID[..]].concat());
     let r = t["threshold_ratio"].as_f64().unwrap();
-    let set = format!("membrane.t_max={r}");
-    let v = capstan_json(&[
-        "infer-mu",
-        "--model",
-        "kikuchi-oden",
-        "--set",
-        &set,
-        "--set",
-        "grid.n2=41",
-        "--set",
-        "grid.n3=9",
-    ]);
+    let v = infer_mu_at("kikuchi-oden", r);
     let mu = v["mu"].as_f64().unwrap();
     assert!((mu - 0.5).abs() < 1e-4, "mu {mu} for r_K {r}");
 }
 
 #[test]
 fn membrane_model_refuses_a_cone() {
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args([
-            "infer-mu",
-            "--model",
-            "membrane",
-            "--set",
-            "obstacle.shape=circular-cone",
-            "--set",
-            "membrane.t_max=2",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
+    let refused = exit_code(&[
+        "infer-mu",
+        "--model",
+        "membrane",
+        "--set",
+        "obstacle.shape=circular-cone",
+        "--set",
+        "membrane.t_max=2",
+    ]);
+    assert_eq!(refused, Some(2));
 }
 
 #[test]
 fn compare_quick_writes_the_table_and_plots() {
-    let dir = std::env::temp_dir().join(format!("capstan-compare-{}", std::process::id()));
+    let dir = common::scratch_dir("compare");
     let d = dir.to_str().unwrap();
     let v = capstan_json(&["compare", "--quick", "--out", d]);
     let rows = v["b_over_a"].as_array().unwrap();
@@ -140,29 +111,15 @@ fn compare_quick_writes_the_table_and_plots() {
 }
 
 fn exit_code(args: &[&str]) -> Option<i32> {
-    Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(args)
-        .output()
-        .unwrap()
-        .status
-        .code()
+    common::capstan_status(args).0
 }
 
 #[test]
 fn friction_law_selects_the_contact_law() {
     let traction = |law: &str| {
         let set = format!("friction.law={law}");
-        capstan_json(&[
-            "contact",
-            "--set",
-            "grid.n2=41",
-            "--set",
-            "grid.n3=9",
-            "--set",
-            &set,
-            "--set",
-            "loads.tau_max=1.5",
-        ])["contact"]["friction_traction"]
+        let sets = ["--set", &set, "--set", "loads.tau_max=1.5"];
+        capstan_json(&[&["contact"], &GRID[..], &sets].concat())["contact"]["friction_traction"]
             .as_array()
             .unwrap()
             .iter()

@@ -1,17 +1,15 @@
 //! The assembled Navier system through every linear backend, and the contact-row API.
 
-use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PaperEllipse, PrismMms};
-use capstan_elasticity::solvers::{IterativeParams, LinearBackend, LinearSolver, SparseLu};
+use capstan_elasticity::samples::{
+    LameCylinder, MmsBoundaries, PaperEllipse, PrismMms, SampleChart,
+};
+use capstan_elasticity::solvers::{
+    IterativeParams, LinearBackend, LinearSolver, SparseLu, max_abs_difference,
+};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{
     BoundaryFunction, Component, ComponentCondition, Discretisation, FiniteDifferenceNavier,
 };
-
-fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
-}
 
 #[test]
 fn lu_jacobi_and_gauss_seidel_agree_on_the_paper_ellipse() {
@@ -39,9 +37,9 @@ fn lu_jacobi_and_gauss_seidel_agree_on_the_paper_ellipse() {
         let scale = lu.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         // relative residual 1e-10 and a condition number ~1e3 on this grid
         assert!(
-            max_diff(&v, &lu) < 1e-6 * scale,
+            max_abs_difference(&v, &lu) < 1e-6 * scale,
             "{backend}: {}",
-            max_diff(&v, &lu)
+            max_abs_difference(&v, &lu)
         );
     }
     let params = IterativeParams {
@@ -110,14 +108,23 @@ fn contact_rows_carry_the_traction_exactly() {
         }
     }
     let v = system.solve(&mut SparseLu::default()).unwrap();
-    assert!(max_diff(&v, &reference) < 1e-12);
+    assert!(max_abs_difference(&v, &reference) < 1e-12);
+}
+
+/// The Lamé cylinder's operator on `n2 x n3` nodes and its LU solution.
+fn lame_solution(
+    n2: usize,
+    n3: usize,
+) -> (LameCylinder, FiniteDifferenceNavier<SampleChart>, Vec<f64>) {
+    let lame = LameCylinder::default();
+    let op = lame.operator(GridLevel { n2, n3 }).unwrap();
+    let v = op.solve(&mut SparseLu::default()).unwrap();
+    (lame, op, v)
 }
 
 #[test]
 fn contact_normal_stress_row_matches_fields_and_lame_pressure() {
-    let lame = LameCylinder::default();
-    let op = lame.operator(GridLevel { n2: 32, n3: 33 }).unwrap();
-    let v = op.solve(&mut SparseLu::default()).unwrap();
+    let (lame, op, v) = lame_solution(32, 33);
     let fields = op.fields(&v).unwrap();
     for node in op.contact_nodes().unwrap() {
         let k = op.grid().node_index(node.node);
@@ -133,9 +140,7 @@ fn contact_normal_stress_row_matches_fields_and_lame_pressure() {
 
 #[test]
 fn fields_give_physical_and_cartesian_components() {
-    let lame = LameCylinder::default();
-    let op = lame.operator(GridLevel { n2: 16, n3: 9 }).unwrap();
-    let v = op.solve(&mut SparseLu::default()).unwrap();
+    let (lame, op, v) = lame_solution(16, 9);
     let f = op.fields(&v).unwrap();
     let k = op.grid().node_index([4, 8]); // x2 = pi/2, x3 = h: the point (0, 2, 0)
     let [_, ur] = f.physical_displacement(k);

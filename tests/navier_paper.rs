@@ -71,8 +71,13 @@ fn laplacian_flux(x: [f64; 2], a: usize) -> [f64; 3] {
     })
 }
 
-#[test]
-fn printed_navier_equations_match_with_the_vector_laplacian() {
+/// The trigonometric field on the chart, `E = 10`, `nu = 0.3`, with its Lamé constants
+/// `(lambda, mu)`.
+fn trigonometric_solution() -> (
+    ExactSolution<ShellChart<Obstacle>, TrigonometricField>,
+    f64,
+    f64,
+) {
     let material = Material::new(10.0, 0.3).unwrap();
     let (l, m) = (material.lambda(), material.mu());
     let exact = ExactSolution {
@@ -80,6 +85,12 @@ fn printed_navier_equations_match_with_the_vector_laplacian() {
         material,
         field: TrigonometricField,
     };
+    (exact, l, m)
+}
+
+#[test]
+fn printed_navier_equations_match_with_the_vector_laplacian() {
+    let (exact, l, m) = trigonometric_solution();
     for x in [[0.3, 0.2], [-0.9, 0.1], [0.8, 0.45]] {
         let p = point(x);
         let ours = exact.forcing(x).unwrap().map(|f| -f); // nabla_i T^i_j
@@ -127,13 +138,7 @@ fn printed_navier_equations_match_with_the_vector_laplacian() {
 fn printed_end_and_contact_stresses_match() {
     // T^2_2 = (lambda+2mu)(d_2 v^2 + Gamma^2_22 v^2 + Gamma^2_23 v^3) + lambda d_3 v^3,
     // T^3_3 = lambda (...) + (lambda+2mu) d_3 v^3,  T^3_2 = mu (psi^2 d_3 v^2 + d_2 v^3).
-    let material = Material::new(10.0, 0.3).unwrap();
-    let (l, m) = (material.lambda(), material.mu());
-    let exact = ExactSolution {
-        chart: chart(),
-        material,
-        field: TrigonometricField,
-    };
+    let (exact, l, m) = trigonometric_solution();
     for x in [[0.3, 0.0], [-1.1, 0.2], [0.9, 0.5]] {
         let (p, u) = (point(x), TrigonometricField.displacement(x));
         let t = exact.mixed_stress(x).unwrap();

@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use capstan::commands::geometry::linspace;
 use capstan::geometry::{CircularCylinder, EllipticalPrism, ShellChart};
 use capstan::output::{
     ColourMap, LinePlot, OutputDir, OutputError, Plot, QuadGrid, Series, StateStrip, write_plot,
@@ -11,12 +12,6 @@ use capstan::output::{
 
 fn out_dir() -> OutputDir {
     OutputDir::create(Path::new(env!("CARGO_TARGET_TMPDIR")).join("output_plots")).unwrap()
-}
-
-fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-        .collect()
 }
 
 /// Decodes the PNG, checks its size and that it is not blank; returns the share of

@@ -4,26 +4,15 @@
 //! prints why and passes, so a plain `cargo test` works on a machine without Python packages;
 //! under `CI=true` a missing meshio fails the test instead.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::PathBuf;
+
+use capstan::commands::geometry::linspace;
 use capstan::geometry::{CircularCylinder, EllipticalPrism, ShellChart};
 use capstan::output::{Encoding, OutputDir, Pvd, QuadGrid, Vtu};
+use common::scratch_dir as scratch;
 use serde::Serialize;
-
-/// A fresh directory under the target dir for one test.
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-        .collect()
-}
 
 /// What the check script compares the file against.
 #[derive(Serialize)]
@@ -39,6 +28,30 @@ struct Case {
     time: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     ellipse: Option<serde_json::Value>,
+}
+
+impl Case {
+    /// What `grid` written to `path` holds: its points, sizes, periodicity and cells, with
+    /// `point_data` and `cell_data`; no time value and no ellipse to compare with.
+    fn new(
+        path: PathBuf,
+        grid: &QuadGrid,
+        point_data: serde_json::Map<String, serde_json::Value>,
+        cell_data: serde_json::Map<String, serde_json::Value>,
+    ) -> Self {
+        Self {
+            path,
+            points: grid.points().to_vec(),
+            n2: grid.n2(),
+            n3: grid.n3(),
+            periodic: grid.is_periodic(),
+            cells: grid.cells(),
+            point_data,
+            cell_data,
+            time: None,
+            ellipse: None,
+        }
+    }
 }
 
 fn array(components: usize, values: &[f64]) -> serde_json::Value {
@@ -81,16 +94,9 @@ fn ellipse_case(out: &OutputDir, encoding: Encoding, name: &str) -> Case {
     let mut cell_data = serde_json::Map::new();
     cell_data.insert("cell_value".into(), array(1, &cell_ids));
     Case {
-        path,
-        points: grid.points().to_vec(),
-        n2: grid.n2(),
-        n3: grid.n3(),
-        periodic: false,
-        cells: grid.cells(),
-        point_data,
-        cell_data,
         time: Some(0.25),
         ellipse: Some(serde_json::json!({ "a": 2.0, "b": 1.0, "x3": x3 })),
+        ..Case::new(path, &grid, point_data, cell_data)
     }
 }
 
@@ -108,34 +114,7 @@ fn ring_case(out: &OutputDir) -> Case {
     let path = out.write_vtu("ring.vtu", &vtu).unwrap();
     let mut point_data = serde_json::Map::new();
     point_data.insert("radius".into(), array(1, &radius));
-    Case {
-        path,
-        points: grid.points().to_vec(),
-        n2: grid.n2(),
-        n3: grid.n3(),
-        periodic: true,
-        cells: grid.cells(),
-        point_data,
-        cell_data: serde_json::Map::new(),
-        time: None,
-        ellipse: None,
-    }
-}
-
-/// The venv's Python if it has meshio, else why not.
-fn meshio_python() -> Result<PathBuf, String> {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
-    if !python.exists() {
-        return Err(format!("{} not found", python.display()));
-    }
-    let ok = Command::new(&python)
-        .args(["-c", "import meshio"])
-        .output()
-        .map_err(|e| e.to_string())?;
-    if !ok.status.success() {
-        return Err(format!("{} cannot import meshio", python.display()));
-    }
-    Ok(python)
+    Case::new(path, &grid, point_data, serde_json::Map::new())
 }
 
 #[test]
@@ -148,30 +127,10 @@ fn vtu_files_read_back_by_meshio() {
         ring_case(&out),
     ];
     let expected = out.write_json("expected.json", &cases).unwrap();
-    let python = match meshio_python() {
-        Ok(p) => p,
-        Err(why) if std::env::var("CI").is_ok_and(|v| v == "true") => {
-            panic!("CI=true but meshio is unavailable ({why}): .ci/run installs it into .venv")
-        }
-        Err(why) => {
-            eprintln!(
-                "SKIPPED vtu_files_read_back_by_meshio: {why}; run `python3 -m venv .venv && .venv/bin/pip install meshio` (.ci/run does)"
-            );
-            return;
-        }
+    let Some(report) = common::check_vtu_with_meshio("vtu_files_read_back_by_meshio", &expected)
+    else {
+        return;
     };
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_vtu.py");
-    let run = Command::new(python)
-        .arg(script)
-        .arg(&expected)
-        .output()
-        .unwrap();
-    let report = format!(
-        "{}{}",
-        String::from_utf8_lossy(&run.stdout),
-        String::from_utf8_lossy(&run.stderr)
-    );
-    assert!(run.status.success(), "meshio check failed:\n{report}");
     assert!(report.contains("3 files read back"), "{report}");
 }
 
@@ -191,17 +150,22 @@ fn raw_and_ascii_files_hold_the_same_structure() {
     assert!(r.ends_with(b"\n  </AppendedData>\n</VTKFile>\n"));
 }
 
-#[test]
-fn nan_in_a_field_leaves_no_file() {
-    let dir = scratch("output_vtu_nan");
-    let out = OutputDir::create(&dir).unwrap();
-    let grid = QuadGrid::new(
+/// A 2 x 2 node grid of one cell.
+fn unit_square() -> QuadGrid {
+    QuadGrid::new(
         2,
         2,
         false,
         vec![[0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0; 3]],
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn nan_in_a_field_leaves_no_file() {
+    let dir = scratch("output_vtu_nan");
+    let out = OutputDir::create(&dir).unwrap();
+    let grid = unit_square();
     let vtu = Vtu::new(&grid).point_scalars("pressure", vec![0.0, f64::NAN, 1.0, 2.0]);
     let err = out.write_vtu("bad.vtu", &vtu).unwrap_err();
     assert!(err.to_string().contains("`pressure`[1]"), "{err}");
@@ -212,13 +176,7 @@ fn nan_in_a_field_leaves_no_file() {
 fn pvd_lists_the_sweep() {
     let dir = scratch("output_vtu_pvd");
     let out = OutputDir::create(&dir).unwrap();
-    let grid = QuadGrid::new(
-        2,
-        2,
-        false,
-        vec![[0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [1.0; 3]],
-    )
-    .unwrap();
+    let grid = unit_square();
     let mut pvd = Pvd::new();
     for (i, ratio) in [0.5, 1.0, 2.0].into_iter().enumerate() {
         let name = format!("sweep/ratio_{i:03}.vtu");

@@ -4,8 +4,9 @@
 //! `# expect: KEY` line at the top. The grid is overridden to 30 x 7 so the thick-body
 //! scenes run in well under a second (the membrane commands ignore it).
 
+mod common;
+
 use std::path::Path;
-use std::process::Command;
 
 fn header(text: &str, key: &str) -> Option<String> {
     text.lines()
@@ -33,25 +34,16 @@ fn every_example_scene_runs_and_yields_its_number() {
             .unwrap_or_else(|| panic!("{}: no `# command:` line", scene.display()));
         let key = header(&text, "expect")
             .unwrap_or_else(|| panic!("{}: no `# expect:` line", scene.display()));
-        let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-            .arg(&command)
-            .arg(scene)
-            .args([
-                "--set",
-                "grid.n2=30",
-                "--set",
-                "grid.n3=7",
-                "--json",
-                "--quiet",
-            ])
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{} ({command}) failed: {}",
-            scene.display(),
-            String::from_utf8_lossy(&out.stderr)
-        );
+        let out = common::capstan(&[
+            &command,
+            scene.to_str().unwrap(),
+            "--set",
+            "grid.n2=30",
+            "--set",
+            "grid.n3=7",
+            "--json",
+            "--quiet",
+        ]);
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         let value = json[&key]
             .as_f64()
@@ -76,12 +68,7 @@ fn every_example_scene_runs_and_yields_its_number() {
 #[test]
 fn ellipse_scene_matches_the_closed_form() {
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/capstan_ellipse.toml");
-    let out = Command::new(env!("CARGO_BIN_EXE_capstan"))
-        .args(["tension", scene.to_str().unwrap(), "--json"])
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let json = common::capstan_json(&["tension", scene.to_str().unwrap()]);
     let ratio = json["tension_ratio"].as_f64().unwrap();
     // eq. PrismEqnPlot: exp(2 mu atan(b/a)) with mu = 1/2, b/a = 0.75
     let exact = (0.75f64).atan().exp();

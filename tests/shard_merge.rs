@@ -2,26 +2,17 @@
 //! refuse parts that do not belong together, and the Slurm / GNU parallel recipes in
 //! `scripts/` work (Slurm's variables set by hand; GNU parallel or its shell-loop fallback).
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-const BIN: &str = env!("CARGO_BIN_EXE_capstan");
+use common::{BIN, capstan, capstan_output, small_sweep, succeed, without_seconds};
 
-/// A small grid: each point takes well under a second in the test build.
-const SWEEP: [&str; 12] = [
-    "--set",
-    "grid.n2=30",
-    "--set",
-    "grid.n3=7",
-    "--param",
-    "body.poisson",
-    "--from",
-    "0.1",
-    "--to",
-    "0.4",
-    "--steps",
-    "7",
-];
+/// Seven points.
+fn sweep() -> [&'static str; 12] {
+    small_sweep("7")
+}
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("capstan-shard-{name}-{}", std::process::id()));
@@ -29,34 +20,45 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
-fn capstan(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("capstan runs")
+/// `capstan sweep` of [`sweep`] with `extra` into `out`, whatever its outcome.
+fn sweep_output(out: &Path, extra: &[&str]) -> Output {
+    capstan_output(
+        &[
+            &["sweep"],
+            &sweep()[..],
+            extra,
+            &["--out", out.to_str().unwrap()],
+        ]
+        .concat(),
+    )
 }
 
-fn ok(out: Output) -> Output {
+/// `capstan sweep` of [`sweep`] with `extra` into `out`, which must succeed.
+fn sweep_into(out: &Path, extra: &[&str]) {
+    let out = sweep_output(out, extra);
     assert!(
         out.status.success(),
-        "{}\n{}",
-        String::from_utf8_lossy(&out.stdout),
+        "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    out
 }
 
-fn sweep_into(out: &Path, extra: &[&str]) -> Output {
-    let mut args = vec!["sweep"];
-    args.extend(SWEEP);
-    args.extend(extra);
-    args.extend(["--out", out.to_str().unwrap()]);
-    capstan(&args)
+/// `capstan merge PARTS --out MERGED`, which must succeed.
+fn merge_into(parts: &Path, merged: &Path) {
+    capstan(&[
+        "merge",
+        parts.to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
 }
 
-/// The wall time is the one field an unsharded run and a merge cannot share.
-fn without_seconds(json: &str) -> String {
-    json.lines()
-        .filter(|l| !l.trim_start().starts_with("\"seconds\""))
-        .collect::<Vec<_>>()
-        .join("\n")
+/// `capstan merge DIRS`, which must be refused with exit code 2; its stderr.
+fn merge_refused(dirs: &[&Path]) -> String {
+    let args: Vec<&str> = dirs.iter().map(|d| d.to_str().unwrap()).collect();
+    let (code, _, stderr) = common::capstan_status(&[&["merge"], &args[..]].concat());
+    assert_eq!(code, Some(2), "{stderr}");
+    stderr
 }
 
 fn assert_same_outputs(unsharded: &Path, merged: &Path) {
@@ -74,7 +76,7 @@ fn assert_same_outputs(unsharded: &Path, merged: &Path) {
 
 fn unsharded(name: &str) -> PathBuf {
     let d = dir(name).join("unsharded");
-    ok(sweep_into(&d, &[]));
+    sweep_into(&d, &[]);
     d
 }
 
@@ -84,39 +86,27 @@ fn three_shards_merge_to_the_unsharded_bytes() {
     let full = unsharded("three-full");
     let parts = root.join("parts");
     for i in 1..=3 {
-        ok(sweep_into(&parts, &["--shard", &format!("{i}/3")]));
+        sweep_into(&parts, &["--shard", &format!("{i}/3")]);
     }
     let merged = root.join("merged");
-    ok(capstan(&[
-        "merge",
-        parts.to_str().unwrap(),
-        "--out",
-        merged.to_str().unwrap(),
-    ]));
+    merge_into(&parts, &merged);
     assert_same_outputs(&full, &merged);
 
     // One part missing: exit 2, naming the points and the shard.
     std::fs::remove_file(parts.join("shard-2-of-3.json")).unwrap();
-    let out = capstan(&["merge", parts.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = merge_refused(&[&parts]);
     assert!(
         err.contains("missing sweep points [1, 4]") && err.contains("shards [2] of 3"),
         "{err}"
     );
 
     // A part from another scene: refused by its hash.
-    ok(sweep_into(
-        &parts,
-        &["--shard", "2/3", "--set", "body.young=2000"],
-    ));
-    let out = capstan(&["merge", parts.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    sweep_into(&parts, &["--shard", "2/3", "--set", "body.young=2000"]);
+    let err = merge_refused(&[&parts]);
     assert!(err.contains("scene hash"), "{err}");
 
     // The same part twice (copied into a second directory): duplicates named.
-    ok(sweep_into(&parts, &["--shard", "2/3"]));
+    sweep_into(&parts, &["--shard", "2/3"]);
     let copy = root.join("copy");
     std::fs::create_dir_all(&copy).unwrap();
     std::fs::copy(
@@ -124,17 +114,13 @@ fn three_shards_merge_to_the_unsharded_bytes() {
         copy.join("shard-2-of-3.json"),
     )
     .unwrap();
-    let out = capstan(&["merge", parts.to_str().unwrap(), copy.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let err = merge_refused(&[&parts, &copy]);
     assert!(err.contains("duplicate sweep points [1, 4]"), "{err}");
 
     // Parts of different N.
-    ok(sweep_into(&copy, &["--shard", "1/2"]));
+    sweep_into(&copy, &["--shard", "1/2"]);
     std::fs::remove_file(copy.join("shard-2-of-3.json")).unwrap();
-    let out = capstan(&["merge", parts.to_str().unwrap(), copy.to_str().unwrap()]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("shards"));
+    assert!(merge_refused(&[&parts, &copy]).contains("shards"));
     let _ = std::fs::remove_dir_all(root);
 }
 
@@ -144,17 +130,12 @@ fn more_shards_than_points_and_a_bad_spec() {
     let parts = root.join("parts");
     let full = unsharded("many-full");
     for i in 1..=9 {
-        ok(sweep_into(&parts, &["--shard", &format!("{i}/9")]));
+        sweep_into(&parts, &["--shard", &format!("{i}/9")]);
     }
     let merged = root.join("merged");
-    ok(capstan(&[
-        "merge",
-        parts.to_str().unwrap(),
-        "--out",
-        merged.to_str().unwrap(),
-    ]));
+    merge_into(&parts, &merged);
     assert_same_outputs(&full, &merged);
-    let out = sweep_into(&parts, &["--shard", "0/3"]);
+    let out = sweep_output(&parts, &["--shard", "0/3"]);
     assert_eq!(
         out.status.code(),
         Some(2),
@@ -171,7 +152,7 @@ fn script(name: &str) -> Command {
             .join("scripts")
             .join(name),
     );
-    c.args(SWEEP).env("CAPSTAN", BIN);
+    c.args(sweep()).env("CAPSTAN", BIN);
     c
 }
 
@@ -181,24 +162,18 @@ fn slurm_array_script_shards_merge_to_the_unsharded_bytes() {
     let full = unsharded("slurm-full");
     // An array --array=0-2: Slurm sets the id, the first id and the count.
     for id in 0..3 {
-        let out = script("slurm_sweep.sh")
-            .env("SLURM_ARRAY_TASK_ID", id.to_string())
-            .env("SLURM_ARRAY_TASK_MIN", "0")
-            .env("SLURM_ARRAY_TASK_COUNT", "3")
-            .env("OUT", &root)
-            .output()
-            .unwrap();
-        ok(out);
+        succeed(
+            script("slurm_sweep.sh")
+                .env("SLURM_ARRAY_TASK_ID", id.to_string())
+                .env("SLURM_ARRAY_TASK_MIN", "0")
+                .env("SLURM_ARRAY_TASK_COUNT", "3")
+                .env("OUT", &root),
+        );
     }
     assert!(root.join("parts/shard-3-of-3.json").exists());
     let merged = root.join("merged");
     let parts = root.join("parts");
-    ok(capstan(&[
-        "merge",
-        parts.to_str().unwrap(),
-        "--out",
-        merged.to_str().unwrap(),
-    ]));
+    merge_into(&parts, &merged);
     assert_same_outputs(&full, &merged);
     let _ = std::fs::remove_dir_all(root);
 }
@@ -222,7 +197,7 @@ fn parallel_script_and_its_loop_fallback_merge_to_the_unsharded_bytes() {
         if fallback {
             c.env("NO_PARALLEL", "1");
         }
-        ok(c.output().unwrap());
+        succeed(&mut c);
         assert_same_outputs(&full, &root);
         let _ = std::fs::remove_dir_all(root);
     }

@@ -21,12 +21,11 @@ use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactSettings, ThickBody, ThresholdSettings, threshold_ratio,
 };
-use capstan_friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_geometry::{EllipticalPrism, Obstacle};
 use clap::Args;
 use serde::Serialize;
 
-use crate::commands::infer_mu::{MembraneSetup, membrane_mu};
+use crate::commands::infer_mu::{MembraneSetup, coulomb_model, membrane_mu};
 use crate::error::CliError;
 use crate::output::{LinePlot, OutputDir, Series, Table, write_plot};
 
@@ -121,11 +120,7 @@ pub fn thick_threshold(c: Config, mu: f64, grid: [usize; 2]) -> Result<f64, CliE
         material: Material::new(1e3, c.poisson)?,
         ..ThickBody::paper(grid[0], grid[1])?
     };
-    let model = body.model(
-        RegularisedCoulomb,
-        RegularisedCoulombParams::new(mu, EPS)?,
-        EPS,
-    )?;
+    let model = coulomb_model(&body, mu, EPS)?;
     let solver = BoundarySolver::new(&model, ContactSettings::default())?;
     let t = threshold_ratio(
         &solver,

@@ -13,9 +13,9 @@ use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 use serde::Serialize;
 
 use crate::error::CliError;
-use crate::output::{OutputDir, Table};
+use crate::figures::reports::report_dir;
+use crate::output::Table;
 use crate::progress::CliObserver;
-use crate::provenance::{Stamped, write_scene};
 use crate::scene::Scene;
 
 /// The contact model a scene describes.
@@ -492,9 +492,7 @@ pub fn write_out(
     sol: &Solved,
     scene: &Scene,
 ) -> Result<(), CliError> {
-    let out = OutputDir::create(dir)?;
-    out.write_json("contact.json", &Stamped::new(report, Some(scene)))?;
-    write_scene(&out, scene)?;
+    let out = report_dir(dir, "contact", report, Some(scene))?;
     let c = &report.contact;
     let table = Table::new()
         .f64("x2", c.x2.clone())

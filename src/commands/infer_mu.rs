@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use capstan_elasticity::Discretisation;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactError, ContactSettings, EndLoads, ThickBody,
+    BoundarySolver, ContactError, ContactModel, ContactSettings, EndLoads, ThickBody,
+    ThickBodyOperator,
 };
 use capstan_friction::FrictionError;
 use capstan_friction::membrane;
@@ -347,11 +348,7 @@ pub fn thick_body_slides(
     ratio: f64,
     eps: f64,
 ) -> Result<bool, CliError> {
-    let model = body.model(
-        RegularisedCoulomb,
-        RegularisedCoulombParams::new(mu, eps)?,
-        eps,
-    )?;
+    let model = coulomb_model(body, mu, eps)?;
     let solver = BoundarySolver::new(&model, ContactSettings::default())?;
     solver_slides(&solver, ratio)
 }
@@ -395,7 +392,7 @@ pub fn kikuchi_oden_mu(
     let guess = if guess > 0.0 { guess } else { 0.1 };
     // The bulk does not depend on `mu`: factorise and condense it once, at the guess.
     let law = |mu: f64| RegularisedCoulombParams::new(mu, eps);
-    let base_model = body.model(RegularisedCoulomb, law(guess)?, eps)?;
+    let base_model = coulomb_model(body, guess, eps)?;
     let base = BoundarySolver::new(&base_model, ContactSettings::default())?;
     let solves = std::cell::Cell::new(0);
     let slides = |mu: f64| -> Result<bool, CliError> {
@@ -471,4 +468,20 @@ pub fn table(r: &InferMuReport, scene: &Scene) -> String {
         r.method,
         r.model
     )
+}
+
+/// Regularised Coulomb with `mu`, regularised and classified at `eps`, on `body`.
+///
+/// # Errors
+/// Invalid `mu` or `eps`; the body's discretisation errors.
+pub(crate) fn coulomb_model(
+    body: &ThickBody,
+    mu: f64,
+    eps: f64,
+) -> Result<ContactModel<ThickBodyOperator, RegularisedCoulomb>, CliError> {
+    Ok(body.model(
+        RegularisedCoulomb,
+        RegularisedCoulombParams::new(mu, eps)?,
+        eps,
+    )?)
 }

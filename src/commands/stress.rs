@@ -264,23 +264,35 @@ fn condition_estimate<
     Some(norm_a * best)
 }
 
+impl StressPoint {
+    /// The point of `axis` and `model` at `parameters` before its solve: nothing converged,
+    /// measured or reported yet.
+    fn unsolved(
+        axis: &'static str,
+        model: &'static str,
+        parameters: BTreeMap<String, serde_json::Value>,
+    ) -> Self {
+        Self {
+            axis,
+            model,
+            parameters,
+            converged: false,
+            failure: None,
+            iterations: None,
+            final_residual: None,
+            condition_estimate: None,
+            refinement_change: None,
+            quantities: BTreeMap::new(),
+            seconds: 0.0,
+        }
+    }
+}
+
 /// Runs one contact point; failures are recorded in the point.
 pub fn run_contact_case(case: ContactCase) -> StressPoint {
     let start = Instant::now();
     let scene = &case.scene;
-    let mut point = StressPoint {
-        axis: case.axis,
-        model: "contact",
-        parameters: case.parameters,
-        converged: false,
-        failure: None,
-        iterations: None,
-        final_residual: None,
-        condition_estimate: None,
-        refinement_change: None,
-        quantities: BTreeMap::new(),
-        seconds: 0.0,
-    };
+    let mut point = StressPoint::unsolved(case.axis, "contact", case.parameters);
     let (n2, n3) = (scene.grid.n2, scene.grid.n3);
     // The paper's Jacobi grid condition psi0 dx2 <= dx3 (psi0 = sqrt(g22) at x3 = 0): recorded,
     // not required by LU.
@@ -530,19 +542,7 @@ pub fn capstan_point(
             }
         })
         .collect();
-    let mut point = StressPoint {
-        axis,
-        model: "capstan",
-        parameters,
-        converged: false,
-        failure: None,
-        iterations: None,
-        final_residual: None,
-        condition_estimate: None,
-        refinement_change: None,
-        quantities: BTreeMap::new(),
-        seconds: 0.0,
-    };
+    let mut point = StressPoint::unsolved(axis, "capstan", parameters);
     let result = Scene::load(None, &all).and_then(|scene| {
         let obstacle = scene.obstacle.build()?;
         let p = membrane::tension_profile(

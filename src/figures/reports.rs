@@ -23,12 +23,25 @@ pub fn write_json_report<T: Serialize>(
     report: &T,
     scene: Option<&Scene>,
 ) -> Result<(), CliError> {
+    report_dir(dir, name, report, scene).map(drop)
+}
+
+/// As [`write_json_report`]; the directory, for the report's other files.
+///
+/// # Errors
+/// Output errors (a non-finite number refuses the file).
+pub fn report_dir<T: Serialize>(
+    dir: &Path,
+    name: &str,
+    report: &T,
+    scene: Option<&Scene>,
+) -> Result<OutputDir, CliError> {
     let out = OutputDir::create(dir)?;
     out.write_json(&format!("{name}.json"), &Stamped::new(report, scene))?;
     if let Some(scene) = scene {
         write_scene(&out, scene)?;
     }
-    Ok(())
+    Ok(out)
 }
 
 /// Writes `tension.json` (stamped), `scene.toml`, `tension.csv` (`theta`, `tension`) and the profile plot
@@ -37,9 +50,7 @@ pub fn write_json_report<T: Serialize>(
 /// # Errors
 /// Output errors.
 pub fn write_tension(dir: &Path, r: &TensionReport, scene: &Scene) -> Result<(), CliError> {
-    let out = OutputDir::create(dir)?;
-    out.write_json("tension.json", &Stamped::new(r, Some(scene)))?;
-    write_scene(&out, scene)?;
+    let out = report_dir(dir, "tension", r, Some(scene))?;
     let table = Table::new()
         .f64("theta", r.theta.clone())
         .f64("tension", r.tension.clone());
@@ -61,9 +72,7 @@ pub fn write_tension(dir: &Path, r: &TensionReport, scene: &Scene) -> Result<(),
 /// # Errors
 /// Output errors.
 pub fn write_geometry(dir: &Path, r: &GeometryReport, scene: &Scene) -> Result<(), CliError> {
-    let out = OutputDir::create(dir)?;
-    out.write_json("geometry.json", &Stamped::new(r, Some(scene)))?;
-    write_scene(&out, scene)?;
+    let out = report_dir(dir, "geometry", r, Some(scene))?;
     let table = Table::new()
         .f64("x2", r.x2.clone())
         .f64("mean_curvature", r.mean_curvature.clone())

@@ -2,7 +2,7 @@
 
 use std::io::Write;
 
-use super::error::{OutputError, check_all_finite};
+use super::error::{OutputError, check_all_finite, check_length};
 
 /// The values of one column.
 #[derive(Debug, Clone, PartialEq)]
@@ -141,13 +141,7 @@ impl Table {
                     name: c.name.clone(),
                 });
             }
-            if c.data.len() != rows {
-                return Err(OutputError::LengthMismatch {
-                    column: c.name.clone(),
-                    expected: rows,
-                    found: c.data.len(),
-                });
-            }
+            check_length(&c.name, rows, c.data.len())?;
             if let ColumnData::F64(v) = &c.data {
                 check_all_finite(&c.name, v)?;
             }

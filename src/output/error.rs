@@ -83,6 +83,28 @@ pub enum OutputError {
 }
 
 impl OutputError {
+    /// An [`OutputError::InvalidParameter`]: `field` = `value` is outside `allowed`.
+    pub(crate) fn invalid(field: &'static str, value: f64, allowed: &'static str) -> Self {
+        Self::InvalidParameter {
+            field,
+            value,
+            allowed,
+        }
+    }
+
+    /// An [`OutputError::LengthMismatch`]: `column` has `found` entries, not `expected`.
+    pub(crate) fn length_mismatch(
+        column: impl Into<String>,
+        expected: usize,
+        found: usize,
+    ) -> Self {
+        Self::LengthMismatch {
+            column: column.into(),
+            expected,
+            found,
+        }
+    }
+
     /// An [`OutputError::Io`] for `path`.
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Self::Io {
@@ -105,6 +127,29 @@ pub(crate) fn check_finite(column: &str, index: usize, value: f64) -> Result<(),
             index,
             value,
         })
+    }
+}
+
+/// [`OutputError::LengthMismatch`] unless `column` has `expected` entries (`found`).
+pub(crate) fn check_length(column: &str, expected: usize, found: usize) -> Result<(), OutputError> {
+    if found == expected {
+        Ok(())
+    } else {
+        Err(OutputError::length_mismatch(column, expected, found))
+    }
+}
+
+/// [`OutputError::InvalidParameter`] (value 0) when `field` has no entries (`len == 0`);
+/// `allowed` says how many it needs.
+pub(crate) fn check_not_empty(
+    field: &'static str,
+    len: usize,
+    allowed: &'static str,
+) -> Result<(), OutputError> {
+    if len == 0 {
+        Err(OutputError::invalid(field, 0.0, allowed))
+    } else {
+        Ok(())
     }
 }
 

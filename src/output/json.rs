@@ -8,7 +8,7 @@ use std::fmt;
 use std::io::Write;
 
 use serde::Serialize;
-use serde::ser::{self, Impossible};
+use serde::ser;
 
 use super::error::OutputError;
 
@@ -179,6 +179,15 @@ macro_rules! accept {
     };
 }
 
+/// The `serialize_*` methods that open a [`Compound`] (sequences, tuples, maps, structs).
+macro_rules! open_compound {
+    ($compound:ty; $($method:ident($($arg:ident: $ty:ty),*)),* $(,)?) => {
+        $(fn $method(self, $($arg: $ty),*) -> Result<$compound, CheckError> {
+            Ok(self.compound())
+        })*
+    };
+}
+
 impl<'a> ser::Serializer for &'a mut Checker {
     type Ok = ();
     type Error = CheckError;
@@ -247,47 +256,16 @@ impl<'a> ser::Serializer for &'a mut Checker {
     ) -> Result<(), CheckError> {
         self.field(variant, value)
     }
-    fn serialize_seq(self, _len: Option<usize>) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_tuple(self, _len: usize) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_tuple_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_tuple_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_map(self, _len: Option<usize>) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
-    fn serialize_struct_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _len: usize,
-    ) -> Result<Compound<'a>, CheckError> {
-        Ok(self.compound())
-    }
+    open_compound!(
+        Compound<'a>;
+        serialize_seq(_len: Option<usize>),
+        serialize_tuple(_len: usize),
+        serialize_tuple_struct(_name: &'static str, _len: usize),
+        serialize_tuple_variant(_name: &'static str, _index: u32, _variant: &'static str, _len: usize),
+        serialize_map(_len: Option<usize>),
+        serialize_struct(_name: &'static str, _len: usize),
+        serialize_struct_variant(_name: &'static str, _index: u32, _variant: &'static str, _len: usize),
+    );
 }
 
 impl Checker {
@@ -300,55 +278,57 @@ impl Checker {
     }
 }
 
-impl ser::SerializeSeq for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
+/// The serde compound traits whose elements are checked in order ([`Compound::element`]).
+macro_rules! checked_elements {
+    ($($serialize:ident::$method:ident),* $(,)?) => {$(
+        impl ser::$serialize for Compound<'_> {
+            type Ok = ();
+            type Error = CheckError;
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
+                self.element(value)
+            }
+            fn end(self) -> Result<(), CheckError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
+checked_elements!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field,
+    SerializeTupleVariant::serialize_field,
+);
+
+/// The serde compound traits whose fields are checked under their names.
+macro_rules! checked_fields {
+    ($($serialize:ident),* $(,)?) => {$(
+        impl ser::$serialize for Compound<'_> {
+            type Ok = ();
+            type Error = CheckError;
+            fn serialize_field<T: Serialize + ?Sized>(
+                &mut self,
+                key: &'static str,
+                value: &T,
+            ) -> Result<(), CheckError> {
+                self.checker.field(key, value)
+            }
+            fn end(self) -> Result<(), CheckError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTupleStruct for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleVariant for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
-        self.element(value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
+checked_fields!(SerializeStruct, SerializeStructVariant);
 
 impl ser::SerializeMap for Compound<'_> {
     type Ok = ();
     type Error = CheckError;
     fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> Result<(), CheckError> {
-        key.serialize(KeyName(&mut self.key))
+        self.key = key_name(key)?;
+        Ok(())
     }
     fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), CheckError> {
         let key = std::mem::take(&mut self.key);
@@ -359,157 +339,14 @@ impl ser::SerializeMap for Compound<'_> {
     }
 }
 
-impl ser::SerializeStruct for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        value: &T,
-    ) -> Result<(), CheckError> {
-        self.checker.field(key, value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeStructVariant for Compound<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    fn serialize_field<T: Serialize + ?Sized>(
-        &mut self,
-        key: &'static str,
-        value: &T,
-    ) -> Result<(), CheckError> {
-        self.checker.field(key, value)
-    }
-    fn end(self) -> Result<(), CheckError> {
-        Ok(())
-    }
-}
-
-/// Renders a map key (a string, number, bool or unit variant, as JSON allows) into a name.
-struct KeyName<'a>(&'a mut String);
-
-macro_rules! key_display {
-    ($($method:ident($ty:ty)),* $(,)?) => {
-        $(fn $method(self, v: $ty) -> Result<(), CheckError> {
-            *self.0 = v.to_string();
-            Ok(())
-        })*
-    };
-}
-
-impl ser::Serializer for KeyName<'_> {
-    type Ok = ();
-    type Error = CheckError;
-    type SerializeSeq = Impossible<(), CheckError>;
-    type SerializeTuple = Impossible<(), CheckError>;
-    type SerializeTupleStruct = Impossible<(), CheckError>;
-    type SerializeTupleVariant = Impossible<(), CheckError>;
-    type SerializeMap = Impossible<(), CheckError>;
-    type SerializeStruct = Impossible<(), CheckError>;
-    type SerializeStructVariant = Impossible<(), CheckError>;
-
-    key_display!(
-        serialize_bool(bool),
-        serialize_i8(i8),
-        serialize_i16(i16),
-        serialize_i32(i32),
-        serialize_i64(i64),
-        serialize_i128(i128),
-        serialize_u8(u8),
-        serialize_u16(u16),
-        serialize_u32(u32),
-        serialize_u64(u64),
-        serialize_u128(u128),
-        serialize_f32(f32),
-        serialize_f64(f64),
-        serialize_char(char),
-        serialize_str(&str),
-    );
-
-    fn serialize_bytes(self, _v: &[u8]) -> Result<(), CheckError> {
-        Err(key_error())
-    }
-    fn serialize_none(self) -> Result<(), CheckError> {
-        Err(key_error())
-    }
-    fn serialize_some<T: Serialize + ?Sized>(self, value: &T) -> Result<(), CheckError> {
-        value.serialize(self)
-    }
-    fn serialize_unit(self) -> Result<(), CheckError> {
-        Err(key_error())
-    }
-    fn serialize_unit_struct(self, _name: &'static str) -> Result<(), CheckError> {
-        Err(key_error())
-    }
-    fn serialize_unit_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        variant: &'static str,
-    ) -> Result<(), CheckError> {
-        *self.0 = variant.to_owned();
-        Ok(())
-    }
-    fn serialize_newtype_struct<T: Serialize + ?Sized>(
-        self,
-        _name: &'static str,
-        value: &T,
-    ) -> Result<(), CheckError> {
-        value.serialize(self)
-    }
-    fn serialize_newtype_variant<T: Serialize + ?Sized>(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _value: &T,
-    ) -> Result<(), CheckError> {
-        Err(key_error())
-    }
-    fn serialize_seq(self, _len: Option<usize>) -> Result<Self::SerializeSeq, CheckError> {
-        Err(key_error())
-    }
-    fn serialize_tuple(self, _len: usize) -> Result<Self::SerializeTuple, CheckError> {
-        Err(key_error())
-    }
-    fn serialize_tuple_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> Result<Self::SerializeTupleStruct, CheckError> {
-        Err(key_error())
-    }
-    fn serialize_tuple_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _len: usize,
-    ) -> Result<Self::SerializeTupleVariant, CheckError> {
-        Err(key_error())
-    }
-    fn serialize_map(self, _len: Option<usize>) -> Result<Self::SerializeMap, CheckError> {
-        Err(key_error())
-    }
-    fn serialize_struct(
-        self,
-        _name: &'static str,
-        _len: usize,
-    ) -> Result<Self::SerializeStruct, CheckError> {
-        Err(key_error())
-    }
-    fn serialize_struct_variant(
-        self,
-        _name: &'static str,
-        _index: u32,
-        _variant: &'static str,
-        _len: usize,
-    ) -> Result<Self::SerializeStructVariant, CheckError> {
-        Err(key_error())
+/// A map key as a name: a string, number, bool or unit variant, as JSON allows (serde_json's
+/// own rendering of it); anything else is refused as serde_json refuses it.
+fn key_name<T: Serialize + ?Sized>(key: &T) -> Result<String, CheckError> {
+    match serde_json::to_value(key) {
+        Ok(serde_json::Value::String(s)) => Ok(s),
+        Ok(serde_json::Value::Number(n)) => Ok(n.to_string()),
+        Ok(serde_json::Value::Bool(b)) => Ok(b.to_string()),
+        _ => Err(key_error()),
     }
 }
 
@@ -571,6 +408,12 @@ mod tests {
         assert_eq!(non_finite(check_finite_json(&v)), ("extra".to_owned(), 0));
         let m: BTreeMap<&str, f64> = [("ok", 1.0), ("bad", f64::NAN)].into();
         assert_eq!(non_finite(check_finite_json(&m)), ("bad".to_owned(), 0));
+        let m: BTreeMap<u32, f64> = [(3, f64::NAN)].into();
+        assert_eq!(non_finite(check_finite_json(&m)), ("3".to_owned(), 0));
+        let m: BTreeMap<bool, f64> = [(true, f64::NAN)].into();
+        assert_eq!(non_finite(check_finite_json(&m)), ("true".to_owned(), 0));
+        let m: BTreeMap<Vec<u8>, f64> = [(vec![1], 1.0)].into();
+        assert!(check_finite_json(&m).is_err()); // a key JSON cannot write
         assert_eq!(
             non_finite(check_finite_json(&f32::NAN)),
             ("(value)".to_owned(), 0)

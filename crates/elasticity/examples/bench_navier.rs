@@ -34,21 +34,8 @@ use capstan_elasticity::solvers::{
     ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver, LuKind,
     SparseLu,
 };
-use capstan_elasticity::verification::GridLevel;
+use capstan_elasticity::verification::{GridLevel, peak_memory_mib};
 use capstan_elasticity::{Discretisation, LinearSystem};
-
-fn vm_hwm_mib() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|k| k.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kib| kib / 1024.0)
-}
 
 fn iterative(
     system: &LinearSystem,
@@ -160,7 +147,7 @@ fn main() {
     lu.solve_in_place(&mut v).expect("solve");
     let t_solve = t.elapsed().as_secs_f64();
     let residual = system.relative_residual(&v);
-    let hwm = vm_hwm_mib();
+    let hwm = peak_memory_mib();
     let max_v2 = (0..n2)
         .map(|i| v[op.dof([i, n3 - 1], capstan_elasticity::Component::X2)].abs())
         .fold(0.0, f64::max);

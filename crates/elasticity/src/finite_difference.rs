@@ -10,11 +10,12 @@ use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
 };
-use crate::discretisation::{ContactNode, Discretisation, SparseRow, plane_strain_dof};
+use crate::discretisation::{ContactNode, Discretisation, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::grid::Grid;
 use crate::material::Material;
+use crate::plane_strain_operator::{plane_strain_numbering, setup_accessors};
 use crate::shell_geometry::ShellGeometry;
 
 /// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
@@ -185,20 +186,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         Ok(op)
     }
 
-    /// The material.
-    pub fn material(&self) -> &Material {
-        &self.material
-    }
-
-    /// The boundary conditions.
-    pub fn boundary(&self) -> &BoundaryConditions {
-        &self.boundary
-    }
-
-    /// The chart.
-    pub fn chart(&self) -> &G {
-        &self.chart
-    }
+    setup_accessors!();
 
     /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
     fn dirichlet_value(
@@ -209,53 +197,13 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         self.boundary.dirichlet_value(&self.grid, node, c)
     }
 
-    /// Nodal difference `d_2` at `(i, .)`: `(i2, weight)` triples (central, or second-order
-    /// one-sided at a bounded end).
-    fn d2_stencil(&self, i: usize) -> [(usize, f64); 3] {
-        let (n, h) = (self.grid.n2(), self.grid.dx2());
-        let w = 0.5 / h;
-        if self.grid.is_periodic() {
-            [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
-        } else if i == 0 {
-            [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
-        } else if i == n - 1 {
-            [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
-        } else {
-            [(i - 1, -w), (i + 1, w), (i, 0.0)]
-        }
-    }
-
-    /// Nodal difference `d_3` at `(., j)`.
-    fn d3_stencil(&self, j: usize) -> [(usize, f64); 3] {
-        let (n, h) = (self.grid.n3(), self.grid.dx3());
-        let w = 0.5 / h;
-        if j == 0 {
-            [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
-        } else if j == n - 1 {
-            [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
-        } else {
-            [(j - 1, -w), (j + 1, w), (j, 0.0)]
-        }
-    }
-
-    fn node_stencil(&self, [i, j]: [usize; 2], out: &mut Stencil) {
-        out.clear();
-        out.push(([i, j], [1.0, 0.0, 0.0]));
-        for (ii, w) in self.d2_stencil(i) {
-            out.push(([ii, j], [0.0, w, 0.0]));
-        }
-        for (jj, w) in self.d3_stencil(j) {
-            out.push(([i, jj], [0.0, 0.0, w]));
-        }
-    }
-
     /// Face `(i + 1/2, j)` between nodes `i` and `ip`.
     fn east_stencil(&self, i: usize, ip: usize, j: usize, out: &mut Stencil) {
         out.clear();
         let w = 1.0 / self.grid.dx2();
         out.push(([i, j], [0.5, -w, 0.0]));
         out.push(([ip, j], [0.5, w, 0.0]));
-        for (jj, w3) in self.d3_stencil(j) {
+        for (jj, w3) in self.grid.d3_stencil(j) {
             out.push(([i, jj], [0.0, 0.0, 0.5 * w3]));
             out.push(([ip, jj], [0.0, 0.0, 0.5 * w3]));
         }
@@ -267,7 +215,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         let w = 1.0 / self.grid.dx3();
         out.push(([i, j], [0.5, 0.0, -w]));
         out.push(([i, j + 1], [0.5, 0.0, w]));
-        for (ii, w2) in self.d2_stencil(i) {
+        for (ii, w2) in self.grid.d2_stencil(i) {
             out.push(([ii, j], [0.0, 0.5 * w2, 0.0]));
             out.push(([ii, j + 1], [0.0, 0.5 * w2, 0.0]));
         }
@@ -382,7 +330,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         } else {
             rhs += h2 / area * self.boundary_flux(Side::X3Min, e, node)?;
         }
-        self.node_stencil(node, st);
+        self.grid.node_stencil(node, st);
         let k = self.grid.node_index(node);
         self.add_terms(terms, 1.0, &self.source[k], e, st);
         if let Some(f) = &self.body_force {
@@ -425,7 +373,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     /// The local displacement at a node from nodal values `v`.
     fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
         let mut st = Vec::with_capacity(8);
-        self.node_stencil(node, &mut st);
+        self.grid.node_stencil(node, &mut st);
         LocalDisplacement::from_stencil(&st, |n, c| v[self.dof(n, Component::ALL[c])])
     }
 }
@@ -451,18 +399,7 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         }
     }
 
-    fn grid(&self) -> &Grid {
-        &self.grid
-    }
-
-    fn dof_count(&self) -> usize {
-        2 * self.grid.node_count()
-    }
-
-    #[track_caller]
-    fn dof(&self, node: [usize; 2], component: Component) -> usize {
-        plane_strain_dof(&self.grid, node, component)
-    }
+    plane_strain_numbering!();
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
         let mut entries = Vec::with_capacity(self.dof_count() * 20);
@@ -495,7 +432,7 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
                 let k = self.grid.node_index(node);
                 let (coef, sqrt_g22) = &self.contact[i];
                 let [sqrt_g, _, s33] = self.node_scale[k];
-                self.node_stencil(node, &mut st);
+                self.grid.node_stencil(node, &mut st);
                 let rows = [0, 1].map(|e| {
                     let mut terms = Vec::with_capacity(16);
                     self.add_terms(&mut terms, 1.0, coef, e, &st);

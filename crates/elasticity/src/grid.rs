@@ -132,4 +132,43 @@ impl Grid {
         let w3 = if end3 { 0.5 } else { 1.0 };
         w2 * w3 * self.dx2() * self.dx3()
     }
+
+    /// Nodal difference `d_2` at `(i, .)`: `(i2, weight)` pairs ([`difference_stencil`]).
+    pub(crate) fn d2_stencil(&self, i: usize) -> [(usize, f64); 3] {
+        difference_stencil(i, self.n2(), self.dx2(), self.is_periodic())
+    }
+
+    /// Nodal difference `d_3` at `(., j)`: `(i3, weight)` pairs ([`difference_stencil`]).
+    pub(crate) fn d3_stencil(&self, j: usize) -> [(usize, f64); 3] {
+        difference_stencil(j, self.n3(), self.dx3(), false)
+    }
+
+    /// The gradient-recovery stencil at a node, `(node, [value, d_2, d_3])` weights, in place
+    /// of what `out` held.
+    pub(crate) fn node_stencil(&self, [i, j]: [usize; 2], out: &mut Vec<([usize; 2], [f64; 3])>) {
+        out.clear();
+        out.push(([i, j], [1.0, 0.0, 0.0]));
+        for (ii, w) in self.d2_stencil(i) {
+            out.push(([ii, j], [0.0, w, 0.0]));
+        }
+        for (jj, w) in self.d3_stencil(j) {
+            out.push(([i, jj], [0.0, 0.0, w]));
+        }
+    }
+}
+
+/// Second-order nodal difference weights `(index, weight)` at node `i` of `n` nodes spaced `h`
+/// along a grid direction: central (wrapping round when `periodic`), or second-order one-sided
+/// at a bounded end.
+fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
+    let w = 0.5 / h;
+    if periodic {
+        [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
+    } else if i == 0 {
+        [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
+    } else if i == n - 1 {
+        [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
+    } else {
+        [(i - 1, -w), (i + 1, w), (i, 0.0)]
+    }
 }

@@ -40,6 +40,7 @@ mod finite_difference;
 pub mod finite_element;
 mod grid;
 mod material;
+mod plane_strain_operator;
 pub mod samples;
 mod shell_geometry;
 pub mod solid;

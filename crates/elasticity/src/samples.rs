@@ -355,6 +355,25 @@ pub fn displacement_error<D: Discretisation, M: ManufacturedField>(
     Ok([max, (sum / weight).sqrt()])
 }
 
+/// The errors of `op`'s sparse-LU solution against `field` on `level` (`h = dx3`).
+///
+/// # Errors
+/// The solve's and [`displacement_error`]'s.
+fn lu_study_point<D: Discretisation, M: ManufacturedField>(
+    level: GridLevel,
+    op: &D,
+    field: &M,
+) -> Result<StudyPoint, ElasticityError> {
+    let v = op.solve(&mut capstan_solvers::SparseLu::default())?;
+    let [max_error, l2_error] = displacement_error(op, &v, field)?;
+    Ok(StudyPoint {
+        level,
+        h: op.grid().dx3(),
+        max_error,
+        l2_error,
+    })
+}
+
 impl Study for PrismMms {
     fn name(&self) -> String {
         format!("mms {} {}", self.geometry, self.boundaries.name())
@@ -375,14 +394,7 @@ impl Study for PrismMms {
     }
     fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
         let (op, exact) = self.operator(level)?;
-        let v = op.solve(&mut capstan_solvers::SparseLu::default())?;
-        let [max_error, l2_error] = displacement_error(&op, &v, &exact.field)?;
-        Ok(StudyPoint {
-            level,
-            h: op.grid().dx3(),
-            max_error,
-            l2_error,
-        })
+        lu_study_point(level, &op, &exact.field)
     }
 }
 
@@ -512,15 +524,7 @@ impl Study for LameCylinder {
             .to_vec()
     }
     fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
-        let op = self.operator(level)?;
-        let v = op.solve(&mut capstan_solvers::SparseLu::default())?;
-        let [max_error, l2_error] = displacement_error(&op, &v, &self.field())?;
-        Ok(StudyPoint {
-            level,
-            h: op.grid().dx3(),
-            max_error,
-            l2_error,
-        })
+        lu_study_point(level, &self.operator(level)?, &self.field())
     }
 }
 

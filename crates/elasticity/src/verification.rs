@@ -1,4 +1,5 @@
-//! Convergence studies: grids, errors, observed orders, and the list of registered studies.
+//! Convergence studies: grids, errors, observed orders, and the list of registered studies; the
+//! peak memory the benchmarks report.
 
 use crate::error::ElasticityError;
 
@@ -103,6 +104,21 @@ impl StudyReport {
         );
         s
     }
+}
+
+/// The process's peak resident set (Linux `VmHWM`) in MiB; NaN where `/proc/self/status` does
+/// not tell.
+pub fn peak_memory_mib() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
+                l.split_whitespace()
+                    .nth(1)
+                    .and_then(|k| k.parse::<f64>().ok())
+            })
+        })
+        .map_or(f64::NAN, |kib| kib / 1024.0)
 }
 
 /// Least-squares slope of `ln(error)` against `ln(h)`.

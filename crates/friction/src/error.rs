@@ -1,6 +1,6 @@
 //! The friction crate's error type.
 
-use capstan_geometry::GeometryError;
+use capstan_geometry::{GeometryError, Real};
 
 /// What can go wrong in a friction law or a membrane capstan model.
 ///
@@ -219,4 +219,28 @@ pub fn check(
             allowed,
         })
     }
+}
+
+/// The value as `f64` for [`check`] (NaN when it does not convert, which `check` refuses).
+pub(crate) fn to_f64<F: Real>(x: F) -> f64 {
+    x.to_f64().unwrap_or(f64::NAN)
+}
+
+/// [`check`] of a law's parameter `field` that is finite and `>= 0` (a coefficient, a bound).
+///
+/// # Errors
+/// [`FrictionError::InvalidParameter`] naming `field`.
+pub(crate) fn check_non_negative<F: Real>(
+    field: &'static str,
+    value: F,
+) -> Result<(), FrictionError> {
+    check(field, to_f64(value), "[0, inf)", |v| v >= 0.0).map(drop)
+}
+
+/// [`check`] of `friction.eps`, a law's regularisation width: finite and `> 0`.
+///
+/// # Errors
+/// [`FrictionError::InvalidParameter`] naming `friction.eps`.
+pub(crate) fn check_width<F: Real>(eps: F) -> Result<(), FrictionError> {
+    check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0).map(drop)
 }

@@ -2,10 +2,10 @@
 
 use capstan_geometry::Real;
 
-use crate::error::{FrictionError, check};
+use crate::error::{FrictionError, check, check_non_negative, check_width, to_f64};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
-use crate::smooth_coulomb::{direction_kernel, to_f64};
+use crate::smooth_coulomb::direction_kernel;
 
 /// Howell's power law (fibres and yarns): the friction force grows like a power `n` of the
 /// normal force; `n = 1` is [`crate::RegularisedCoulomb`].
@@ -48,11 +48,11 @@ impl<F: Real> HowellParams<F> {
     /// [`FrictionError::InvalidParameter`] naming `friction.mu`, `friction.exponent` or
     /// `friction.eps` for a value outside its range.
     pub fn new(mu: F, exponent: F, eps: F) -> Result<Self, FrictionError> {
-        check("friction.mu", to_f64(mu), "[0, inf)", |v| v >= 0.0)?;
+        check_non_negative("friction.mu", mu)?;
         check("friction.exponent", to_f64(exponent), "(0, 2]", |v| {
             v > 0.0 && v <= 2.0
         })?;
-        check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0)?;
+        check_width(eps)?;
         Ok(Self { mu, exponent, eps })
     }
     /// `mu'`.

@@ -2,10 +2,9 @@
 
 use capstan_geometry::Real;
 
-use crate::error::{FrictionError, check};
+use crate::error::{FrictionError, check, check_non_negative, check_width, to_f64};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
-use crate::smooth_coulomb::to_f64;
 
 /// Orthotropic Coulomb friction with an elliptic limit surface and the associated slip rule
 /// (Konyukhov's generalised orthotropic law, paper section 1), regularised like
@@ -54,7 +53,7 @@ impl<F: Real> OrthotropicCoulombParams<F> {
     /// [`FrictionError::InvalidParameter`] naming `friction.mu`, `friction.mu2`,
     /// `friction.axis_angle` or `friction.eps`.
     pub fn new(mu: [F; 2], axis_angle: F, eps: F) -> Result<Self, FrictionError> {
-        check("friction.mu", to_f64(mu[0]), "[0, inf)", |v| v >= 0.0)?;
+        check_non_negative("friction.mu", mu[0])?;
         let m1 = to_f64(mu[0]);
         check(
             "friction.mu2",
@@ -68,7 +67,7 @@ impl<F: Real> OrthotropicCoulombParams<F> {
             "(-inf, inf)",
             |_| true,
         )?;
-        check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0)?;
+        check_width(eps)?;
         Ok(Self {
             mu,
             axis: [axis_angle.cos(), axis_angle.sin()],

@@ -2,7 +2,7 @@
 
 use capstan_geometry::Real;
 
-use crate::error::{FrictionError, check};
+use crate::error::{FrictionError, check_non_negative, check_width};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
 
@@ -40,9 +40,8 @@ impl<F: Real> RegularisedCoulombParams<F> {
     /// [`FrictionError::InvalidParameter`] naming `friction.mu` unless `mu` is finite and
     /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
     pub fn new(mu: F, eps: F) -> Result<Self, FrictionError> {
-        let f = |x: F| x.to_f64().unwrap_or(f64::NAN);
-        check("friction.mu", f(mu), "[0, inf)", |v| v >= 0.0)?;
-        check("friction.eps", f(eps), "(0, inf)", |v| v > 0.0)?;
+        check_non_negative("friction.mu", mu)?;
+        check_width(eps)?;
         Ok(Self { mu, eps })
     }
     /// The coefficient of friction `mu`.

@@ -2,9 +2,9 @@
 
 use capstan_geometry::Real;
 
-use crate::error::{FrictionError, check};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
+use crate::regularised_coulomb::RegularisedCoulombParams;
 
 /// Coulomb friction with a smooth (`C^infinity`) regularisation: no kink for Newton.
 ///
@@ -28,45 +28,17 @@ use crate::registration::{RegisteredLaw, bind};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct SmoothCoulomb;
 
-/// Parameters of [`SmoothCoulomb`]: `mu >= 0` (`friction.mu`), `eps > 0` (`friction.eps`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SmoothCoulombParams<F> {
-    mu: F,
-    eps: F,
-}
-
-impl<F: Real> SmoothCoulombParams<F> {
-    /// Coefficient of friction and regularisation width.
-    ///
-    /// # Errors
-    /// [`FrictionError::InvalidParameter`] naming `friction.mu` unless `mu` is finite and
-    /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
-    pub fn new(mu: F, eps: F) -> Result<Self, FrictionError> {
-        check("friction.mu", to_f64(mu), "[0, inf)", |v| v >= 0.0)?;
-        check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0)?;
-        Ok(Self { mu, eps })
-    }
-    /// The coefficient of friction.
-    pub fn mu(&self) -> F {
-        self.mu
-    }
-    /// The regularisation width.
-    pub fn eps(&self) -> F {
-        self.eps
-    }
-}
-
-pub(crate) fn to_f64<F: Real>(x: F) -> f64 {
-    x.to_f64().unwrap_or(f64::NAN)
-}
+/// Parameters of [`SmoothCoulomb`]: those of [`RegularisedCoulomb`](crate::RegularisedCoulomb), `mu >= 0` (`friction.mu`)
+/// and `eps > 0` (`friction.eps`); only the law that reads them differs.
+pub type SmoothCoulombParams<F> = RegularisedCoulombParams<F>;
 
 impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
     type Params = SmoothCoulombParams<F>;
 
     fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
         let [u1, u2] = c.slip;
-        let r = (u1 * u1 + u2 * u2 + p.eps * p.eps).sqrt();
-        let s = p.mu * c.normal_pressure / r;
+        let r = (u1 * u1 + u2 * u2 + p.eps() * p.eps()).sqrt();
+        let s = p.mu() * c.normal_pressure / r;
         [s * u1, s * u2]
     }
 
@@ -76,15 +48,15 @@ impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
         p: &Self::Params,
     ) -> TractionDerivatives<F> {
         let [u1, u2] = c.slip;
-        let r = (u1 * u1 + u2 * u2 + p.eps * p.eps).sqrt();
-        let (inv, mp) = (F::one() / r, p.mu * c.normal_pressure);
+        let r = (u1 * u1 + u2 * u2 + p.eps() * p.eps()).sqrt();
+        let (inv, mp) = (F::one() / r, p.mu() * c.normal_pressure);
         let inv3 = inv * inv * inv;
         TractionDerivatives::new(
             [
                 [mp * (inv - u1 * u1 * inv3), -mp * u1 * u2 * inv3],
                 [-mp * u2 * u1 * inv3, mp * (inv - u2 * u2 * inv3)],
             ],
-            [p.mu * u1 * inv, p.mu * u2 * inv],
+            [p.mu() * u1 * inv, p.mu() * u2 * inv],
         )
     }
 }

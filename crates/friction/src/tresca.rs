@@ -2,10 +2,10 @@
 
 use capstan_geometry::Real;
 
-use crate::error::{FrictionError, check};
+use crate::error::{FrictionError, check_non_negative, check_width};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
-use crate::smooth_coulomb::{direction_kernel, to_f64};
+use crate::smooth_coulomb::direction_kernel;
 
 /// Tresca friction: the traction bound `g` does not depend on the normal stress.
 ///
@@ -42,8 +42,8 @@ impl<F: Real> TrescaParams<F> {
     /// [`FrictionError::InvalidParameter`] naming `friction.bound` unless `g` is finite and
     /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
     pub fn new(bound: F, eps: F) -> Result<Self, FrictionError> {
-        check("friction.bound", to_f64(bound), "[0, inf)", |v| v >= 0.0)?;
-        check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0)?;
+        check_non_negative("friction.bound", bound)?;
+        check_width(eps)?;
         Ok(Self { bound, eps })
     }
     /// The friction bound `g`.

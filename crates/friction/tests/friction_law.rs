@@ -1,35 +1,12 @@
 //! Friction laws: consistent tangents against central differences.
 
+mod common;
+
 use approx::assert_relative_eq;
 use capstan_friction::{
     ContactState, FrictionLaw, Frictionless, RegularisedCoulomb, RegularisedCoulombParams,
 };
 use proptest::prelude::*;
-
-/// Central differences of `traction` in slip and pressure with step `h`.
-fn central_differences<L: FrictionLaw<f64>>(
-    law: &L,
-    c: &ContactState<f64>,
-    p: &L::Params,
-    h: f64,
-) -> ([[f64; 2]; 2], [f64; 2]) {
-    let mut d_slip = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let (mut up, mut down) = (c.slip, c.slip);
-        up[j] += h;
-        down[j] -= h;
-        let tu = law.traction(&ContactState::new(up, c.normal_pressure), p);
-        let td = law.traction(&ContactState::new(down, c.normal_pressure), p);
-        for i in 0..2 {
-            d_slip[i][j] = (tu[i] - td[i]) / (2.0 * h);
-        }
-    }
-    // t is linear in p: a step relative to |p| keeps round-off small
-    let hp = 1e-6 * c.normal_pressure.abs().max(1.0);
-    let tu = law.traction(&ContactState::new(c.slip, c.normal_pressure + hp), p);
-    let td = law.traction(&ContactState::new(c.slip, c.normal_pressure - hp), p);
-    (d_slip, [0, 1].map(|i| (tu[i] - td[i]) / (2.0 * hp)))
-}
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
@@ -49,7 +26,9 @@ proptest! {
         let c = ContactState::new([norm * angle.cos(), norm * angle.sin()], pressure);
         let p = RegularisedCoulombParams::new(mu, eps).unwrap();
         let d = RegularisedCoulomb.traction_derivatives(&c, &p);
-        let (fd_slip, fd_p) = central_differences(&RegularisedCoulomb, &c, &p, h);
+        // t is linear in p: a step relative to |p| keeps round-off small
+        let hp = 1e-6 * c.normal_pressure.abs().max(1.0);
+        let (fd_slip, fd_p) = common::central_differences(&RegularisedCoulomb, &c, &p, h, hp);
         // scale of the slip derivatives: mu |p| / min(|u|, eps); central differences are O(h^2)
         let scale = mu * pressure.abs().max(1.0) / norm.max(eps);
         #[allow(clippy::needless_range_loop)] // mirrors d t_i / d u_j

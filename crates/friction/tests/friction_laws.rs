@@ -1,6 +1,8 @@
 //! The friction laws beyond Kikuchi–Oden: consistent tangents against central differences,
 //! agreement with regularised Coulomb where they reduce to it, typed parameter errors.
 
+mod common;
+
 use approx::assert_relative_eq;
 use capstan_friction::{
     AnyFrictionLaw, AnyFrictionParams, ContactState, FrictionError, FrictionLaw, FrictionLawKind,
@@ -9,30 +11,6 @@ use capstan_friction::{
     TrescaParams,
 };
 use proptest::prelude::*;
-
-/// Central differences of `traction` with slip step `h` and pressure step `hp`.
-fn central_differences<L: FrictionLaw<f64>>(
-    law: &L,
-    c: &ContactState<f64>,
-    p: &L::Params,
-    h: f64,
-    hp: f64,
-) -> ([[f64; 2]; 2], [f64; 2]) {
-    let mut d_slip = [[0.0; 2]; 2];
-    for j in 0..2 {
-        let (mut up, mut down) = (c.slip, c.slip);
-        up[j] += h;
-        down[j] -= h;
-        let tu = law.traction(&ContactState::new(up, c.normal_pressure), p);
-        let td = law.traction(&ContactState::new(down, c.normal_pressure), p);
-        for i in 0..2 {
-            d_slip[i][j] = (tu[i] - td[i]) / (2.0 * h);
-        }
-    }
-    let tu = law.traction(&ContactState::new(c.slip, c.normal_pressure + hp), p);
-    let td = law.traction(&ContactState::new(c.slip, c.normal_pressure - hp), p);
-    (d_slip, [0, 1].map(|i| (tu[i] - td[i]) / (2.0 * hp)))
-}
 
 /// Holds every derivative to its central difference: `|d - fd| <= tol * scale + 1e-12`.
 fn check_tangent<L: FrictionLaw<f64>>(
@@ -45,7 +23,7 @@ fn check_tangent<L: FrictionLaw<f64>>(
     pressure_scale: f64,
 ) -> Result<(), TestCaseError> {
     let d = law.traction_derivatives(c, p);
-    let (fd_slip, fd_p) = central_differences(law, c, p, h, hp);
+    let (fd_slip, fd_p) = common::central_differences(law, c, p, h, hp);
     #[allow(clippy::needless_range_loop)] // mirrors d t_i / d u_j
     for i in 0..2 {
         for j in 0..2 {

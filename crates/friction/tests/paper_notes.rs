@@ -193,17 +193,23 @@ fn item_5_cone_validity_and_theta0() {
     let (theta0, theta1) = (1.0, 2.5);
     let ours = closed_form::right_circular_cone_tension(mu, 1.0, alpha, theta0, theta1);
     let shifted = closed_form::right_circular_cone_tension(mu, 1.0, alpha, 0.0, theta1 - theta0);
-    let strip = GeodesicStrip::new(&cone, mu);
-    let dir = strip.perpendicular_to_generator([1.0, 0.0]).unwrap();
-    let ln = strip
-        .log_tension([1.0, 0.0], dir, &[theta0, theta1])
-        .unwrap();
-    let geodesic = (ln[1] - ln[0]).exp();
+    let geodesic = geodesic_tension_ratio(&cone, mu, theta0, theta1);
     println!(
         "item 5: theta in [1, 2.5]: phi from 0 {ours:.12}, phi from theta0 {shifted:.12}, 3-D geodesic {geodesic:.12}"
     );
     assert_relative_eq!(ours, geodesic, max_relative = 1e-10);
     assert!((shifted - geodesic).abs() > 1e-3);
+}
+
+/// `T(theta1) / T(theta0)` on the 3-D geodesic leaving the cone's generator at `x1 = 1`
+/// perpendicularly.
+fn geodesic_tension_ratio(cone: &RightCircularCone<f64>, mu: f64, theta0: f64, theta1: f64) -> f64 {
+    let strip = GeodesicStrip::new(cone, mu);
+    let dir = strip.perpendicular_to_generator([1.0, 0.0]).unwrap();
+    let ln = strip
+        .log_tension([1.0, 0.0], dir, &[theta0, theta1])
+        .unwrap();
+    (ln[1] - ln[0]).exp()
 }
 
 /// Item 6: Theorem 2's T is the true tension (no cos(phi) factors).
@@ -214,12 +220,7 @@ fn item_6_cone_tension_has_no_cos_phi_factors() {
     let theorem = closed_form::right_circular_cone_tension(mu, 1.0, alpha, theta0, theta1);
     let phi = |t: f64| closed_form::right_circular_cone_phi(alpha, t);
     let with_bc_factors = theorem * phi(theta1).cos() / phi(theta0).cos();
-    let strip = GeodesicStrip::new(&cone, mu);
-    let dir = strip.perpendicular_to_generator([1.0, 0.0]).unwrap();
-    let ln = strip
-        .log_tension([1.0, 0.0], dir, &[theta0, theta1])
-        .unwrap();
-    let geodesic = (ln[1] - ln[0]).exp();
+    let geodesic = geodesic_tension_ratio(&cone, mu, theta0, theta1);
     println!(
         "item 6: alpha=pi/6 mu=1/2 [0.5, 2.5]: Theorem 2 {theorem:.12}, with BC cos(phi) factors {with_bc_factors:.12}, 3-D geodesic {geodesic:.12}"
     );

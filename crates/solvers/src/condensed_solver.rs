@@ -200,16 +200,10 @@ impl CondensedSolver {
     /// [`SolverError::Singular`] if `S` is singular.
     pub fn refactor_interface(&mut self, values: &[f64]) -> Result<(), SolverError> {
         let Some(layout) = self.layout.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "refactor_interface",
-                requires: "analyse",
-            });
+            return Err(SolverError::call_order("refactor_interface", "analyse"));
         };
         if !self.bulk_factored {
-            return Err(SolverError::CallOrder {
-                called: "refactor_interface",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order("refactor_interface", "factor"));
         }
         layout.pattern.check_values_len(values.len())?;
         for &s in &layout.ii_slots {
@@ -236,16 +230,16 @@ impl CondensedSolver {
     /// [`SolverError::DimensionMismatch`] if `block_values` has the wrong length.
     pub fn refactor_interface_block(&mut self, block_values: &[f64]) -> Result<(), SolverError> {
         let Some(layout) = self.layout.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "refactor_interface_block",
-                requires: "analyse",
-            });
+            return Err(SolverError::call_order(
+                "refactor_interface_block",
+                "analyse",
+            ));
         };
         if !self.bulk_factored {
-            return Err(SolverError::CallOrder {
-                called: "refactor_interface_block",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order(
+                "refactor_interface_block",
+                "factor",
+            ));
         }
         if block_values.len() != layout.ii_slots.len() {
             return Err(SolverError::DimensionMismatch {
@@ -438,11 +432,11 @@ impl LinearSolver<f64> for CondensedSolver {
         let mut local: Vec<Option<Local>> = vec![None; n];
         for (k, &g) in self.interface.iter().enumerate() {
             if g >= n || local[g].is_some() {
-                return Err(SolverError::InvalidParameter {
-                    field: "interface",
-                    value: g as f64,
-                    allowed: "distinct unknown indices below the matrix dimension",
-                });
+                return Err(SolverError::invalid(
+                    "interface",
+                    g as f64,
+                    "distinct unknown indices below the matrix dimension",
+                ));
             }
             local[g] = Some(Local::Interface(k));
         }
@@ -522,10 +516,7 @@ impl LinearSolver<f64> for CondensedSolver {
 
     fn factor(&mut self, values: &[f64]) -> Result<(), SolverError> {
         let Some(layout) = self.layout.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "factor",
-                requires: "analyse",
-            });
+            return Err(SolverError::call_order("factor", "analyse"));
         };
         check_values(&layout.pattern, values)?;
         let mut bulk_changed = !self.bulk_factored;
@@ -552,10 +543,7 @@ impl LinearSolver<f64> for CondensedSolver {
         let n = self.layout.as_ref().map_or(0, |l| l.local.len());
         check_rhs(rhs, n)?;
         if !self.interface_factored {
-            return Err(SolverError::CallOrder {
-                called: "solve_in_place",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order("solve_in_place", "factor"));
         }
         let layout = self.layout.as_ref().expect("factored");
         let b = rhs.to_vec();

@@ -55,18 +55,18 @@ impl DirectParams {
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
         if !(self.residual_tolerance > 0.0 && self.residual_tolerance < 1.0) {
-            return Err(SolverError::InvalidParameter {
-                field: "residual_tolerance",
-                value: self.residual_tolerance,
-                allowed: "(0, 1)",
-            });
+            return Err(SolverError::invalid(
+                "residual_tolerance",
+                self.residual_tolerance,
+                "(0, 1)",
+            ));
         }
         if !(self.symmetry_tolerance >= 0.0 && self.symmetry_tolerance < 1.0) {
-            return Err(SolverError::InvalidParameter {
-                field: "symmetry_tolerance",
-                value: self.symmetry_tolerance,
-                allowed: "[0, 1)",
-            });
+            return Err(SolverError::invalid(
+                "symmetry_tolerance",
+                self.symmetry_tolerance,
+                "[0, 1)",
+            ));
         }
         Ok(())
     }

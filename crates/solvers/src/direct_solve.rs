@@ -3,7 +3,8 @@
 
 use crate::direct_params::DirectParams;
 use crate::error::SolverError;
-use crate::linear_solver::{check_many_len, check_rhs};
+use crate::linear_solver::{check_many_len, check_rhs, check_values};
+use crate::scalar::max_abs;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// The checks every direct `solve_in_place` starts with: a finite right-hand side (`ncols`
@@ -20,6 +21,60 @@ pub(crate) fn finite_rhs(rhs: &[f64], n: usize) -> Result<bool, SolverError> {
         });
     }
     Ok(n > 0)
+}
+
+/// The `solve_in_place`, `last_iterations` and `solve_many_in_place` of a direct backend
+/// whose analysed pattern is `self.pattern` and whose solve with the solution check is
+/// `self.checked_solve(rhs, ncols)`: the same three methods for every such backend.
+macro_rules! direct_solves {
+    () => {
+        fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
+            let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
+            $crate::direct_solve::solve_one(n, rhs, |r, k| self.checked_solve(r, k))
+        }
+
+        fn last_iterations(&self) -> Option<usize> {
+            None
+        }
+
+        fn solve_many_in_place(
+            &mut self,
+            rhs: &mut [f64],
+            ncols: usize,
+        ) -> Result<(), SolverError> {
+            let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
+            $crate::direct_solve::solve_many(n, rhs, ncols, |r, k| self.checked_solve(r, k))
+        }
+    };
+}
+pub(crate) use direct_solves;
+
+/// The checks that open a direct backend's `factor`: `analyse` has run (its pattern is
+/// `pattern`), and `values` fit it and are finite.
+///
+/// # Errors
+/// [`SolverError::CallOrder`], [`SolverError::DimensionMismatch`], [`SolverError::NonFinite`].
+pub(crate) fn analysed_values<'p>(
+    pattern: Option<&'p SparsityPattern>,
+    values: &[f64],
+) -> Result<&'p SparsityPattern, SolverError> {
+    let pattern = pattern.ok_or(SolverError::call_order("factor", "analyse"))?;
+    check_values(pattern, values)?;
+    Ok(pattern)
+}
+
+/// [`SolverError::Singular`] at the first row or column of `values` with no nonzero.
+///
+/// # Errors
+/// As said.
+pub(crate) fn check_no_empty_line(
+    pattern: &SparsityPattern,
+    values: &[f64],
+) -> Result<(), SolverError> {
+    match empty_line(pattern, values) {
+        Some(line) => Err(SolverError::Singular { pivot: Some(line) }),
+        None => Ok(()),
+    }
 }
 
 /// `solve_in_place` of a direct backend of order `n`: the length check, then `solve`.
@@ -99,10 +154,6 @@ pub(crate) fn checked_solve(
     Ok(())
 }
 
-pub(crate) fn inf_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
-}
-
 /// Checks (and refines) a solution `x` of `A x = b` produced by `solve`, which overwrites its
 /// argument `r` with `A^-1 r`. `work` has length `n`.
 pub(crate) fn check_and_refine(
@@ -114,13 +165,13 @@ pub(crate) fn check_and_refine(
     work: &mut [f64],
     mut solve: impl FnMut(&mut [f64]),
 ) -> Result<(), SolverError> {
-    let bn = inf_norm(b);
+    let bn = max_abs(b);
     for step in 0..=params.refinement_steps {
         if crate::scalar::first_non_finite(x).is_some() {
             return Err(SolverError::Singular { pivot: None });
         }
         pattern.residual_into(values, x, b, work);
-        let rn = inf_norm(work);
+        let rn = max_abs(work);
         if rn <= params.residual_tolerance * bn {
             return Ok(());
         }
@@ -240,7 +291,7 @@ pub(crate) fn check_and_refine_block(
     if k == 0 || n == 0 {
         return Ok(());
     }
-    let b_norm: Vec<f64> = b.chunks_exact(n).map(inf_norm).collect();
+    let b_norm: Vec<f64> = b.chunks_exact(n).map(max_abs).collect();
     if work.rows.0.is_empty() {
         work.rows = pattern.row_layout();
     }

@@ -170,6 +170,20 @@ impl SolverError {
             source: Box::new(e),
         }
     }
+
+    /// [`SolverError::InvalidParameter`]: `field` = `value` is outside `allowed`.
+    pub(crate) fn invalid(field: &'static str, value: f64, allowed: &'static str) -> Self {
+        Self::InvalidParameter {
+            field,
+            value,
+            allowed,
+        }
+    }
+
+    /// [`SolverError::CallOrder`]: `called` needs `requires` first.
+    pub(crate) fn call_order(called: &'static str, requires: &'static str) -> Self {
+        Self::CallOrder { called, requires }
+    }
 }
 
 #[cfg(test)]

@@ -42,25 +42,17 @@ impl IterativeParams {
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(SolverError::InvalidParameter {
-                field: "tolerance",
-                value: self.tolerance,
-                allowed: "(0, 1)",
-            });
+            return Err(SolverError::invalid("tolerance", self.tolerance, "(0, 1)"));
         }
         if self.max_iterations == 0 {
-            return Err(SolverError::InvalidParameter {
-                field: "max_iterations",
-                value: 0.0,
-                allowed: "[1, inf)",
-            });
+            return Err(SolverError::invalid("max_iterations", 0.0, "[1, inf)"));
         }
         if !(self.relaxation > 0.0 && self.relaxation < 2.0) {
-            return Err(SolverError::InvalidParameter {
-                field: "relaxation",
-                value: self.relaxation,
-                allowed: "(0, 2)",
-            });
+            return Err(SolverError::invalid(
+                "relaxation",
+                self.relaxation,
+                "(0, 2)",
+            ));
         }
         Ok(())
     }
@@ -122,10 +114,7 @@ impl<F: SolverScalar> RowMatrix<F> {
     /// Copies `values` (CSC order) into row order and inverts the diagonal.
     pub(crate) fn factor(&mut self, values: &[F]) -> Result<(), SolverError> {
         if !self.analysed {
-            return Err(SolverError::CallOrder {
-                called: "factor",
-                requires: "analyse",
-            });
+            return Err(SolverError::call_order("factor", "analyse"));
         }
         self.factored = false;
         if values.len() != self.row_slot.len() {
@@ -135,13 +124,7 @@ impl<F: SolverScalar> RowMatrix<F> {
                 found: values.len(),
             });
         }
-        if let Some(index) = crate::scalar::first_non_finite(values) {
-            return Err(SolverError::NonFinite {
-                quantity: "matrix value",
-                index,
-                iteration: None,
-            });
-        }
+        crate::scalar::check_finite("matrix value", values)?;
         for (p, &s) in self.row_slot.iter().enumerate() {
             self.values[p] = values[s];
         }
@@ -178,13 +161,7 @@ impl<F: SolverScalar> RowMatrix<F> {
         mut sweep: impl FnMut(&Self, &mut [F], &[F], &[F]),
     ) -> Result<usize, (usize, SolverError)> {
         if !self.factored {
-            return Err((
-                0,
-                SolverError::CallOrder {
-                    called: "solve_in_place",
-                    requires: "factor",
-                },
-            ));
+            return Err((0, SolverError::call_order("solve_in_place", "factor")));
         }
         check_rhs(rhs, self.n).map_err(|e| (0, e))?;
         let b = rhs.to_vec();

@@ -1,10 +1,8 @@
 //! Jacobi–Newton: the paper's baseline nonlinear solver.
 
 use crate::error::SolverError;
-use crate::newton::{Newton, NewtonParams};
-use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
-use crate::observer::{Observer, SolveStage};
-use crate::problem::Jacobian;
+use crate::newton::{Newton, NewtonParams, solve_with_newton};
+use crate::observer::SolveStage;
 use crate::relaxation::Jacobi;
 
 /// Newton's outer iteration with Jacobi inner iterations for each linear system: the
@@ -23,7 +21,7 @@ use crate::relaxation::Jacobi;
 /// ```
 ///
 /// # Errors
-/// See [`NonlinearSolver::solve`]; inner failures are passed through.
+/// See [`NonlinearSolver::solve`](crate::NonlinearSolver::solve); inner failures are passed through.
 ///
 /// # Example
 /// ```
@@ -57,15 +55,11 @@ impl JacobiNewton {
     pub fn params(&self) -> &NewtonParams {
         self.newton.params()
     }
-}
 
-impl NonlinearSolver<f64> for JacobiNewton {
-    fn solve<P: Jacobian<f64> + ?Sized>(
-        &mut self,
-        problem: &P,
-        u: &mut [f64],
-        observer: &mut dyn Observer<f64>,
-    ) -> Result<SolveReport<f64>, SolverError> {
-        self.newton.solve(problem, u, observer)
+    /// The Newton iteration over the Jacobi backend that does the solves.
+    pub(crate) fn newton_mut(&mut self) -> &mut Newton {
+        &mut self.newton
     }
 }
+
+solve_with_newton!(JacobiNewton, |solver| &mut solver.newton);

@@ -104,7 +104,7 @@ pub use ordering::{
 };
 pub use problem::{Jacobian, Residual};
 pub use relaxation::{GaussSeidel, Jacobi, Relaxation};
-pub use scalar::SolverScalar;
+pub use scalar::{SolverScalar, max_abs, max_abs_difference};
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_lu::SparseLu;
 pub use sparsity_pattern::SparsityPattern;

@@ -136,14 +136,7 @@ pub(crate) fn check_rhs<F: SolverScalar>(rhs: &[F], n: usize) -> Result<(), Solv
             found: rhs.len(),
         });
     }
-    if let Some(index) = crate::scalar::first_non_finite(rhs) {
-        return Err(SolverError::NonFinite {
-            quantity: "right-hand side",
-            index,
-            iteration: None,
-        });
-    }
-    Ok(())
+    crate::scalar::check_finite("right-hand side", rhs)
 }
 
 /// Checks matrix values: length and finiteness.
@@ -152,14 +145,7 @@ pub(crate) fn check_values<F: SolverScalar>(
     values: &[F],
 ) -> Result<(), SolverError> {
     pattern.check_values_len(values.len())?;
-    if let Some(index) = crate::scalar::first_non_finite(values) {
-        return Err(SolverError::NonFinite {
-            quantity: "matrix value",
-            index,
-            iteration: None,
-        });
-    }
-    Ok(())
+    crate::scalar::check_finite("matrix value", values)
 }
 
 /// Checks that the pattern is square and returns its dimension.

@@ -94,13 +94,7 @@ impl NewtonParams {
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
-        let invalid = |field, value, allowed| {
-            Err(SolverError::InvalidParameter {
-                field,
-                value,
-                allowed,
-            })
-        };
+        let invalid = |field, value, allowed| Err(SolverError::invalid(field, value, allowed));
         if self.max_iterations == 0 {
             return invalid("max_iterations", 0.0, "[1, inf)");
         }
@@ -218,6 +212,27 @@ impl Newton {
         &self.params
     }
 }
+
+/// `NonlinearSolver<f64>` for a solver whose solves are those of the [`Newton`] that the
+/// expression `$newton` picks out of `$solver` (the solver, by `&mut`).
+macro_rules! solve_with_newton {
+    ($type:ty, |$solver:ident| $newton:expr) => {
+        impl $crate::nonlinear_solver::NonlinearSolver<f64> for $type {
+            fn solve<P: $crate::problem::Jacobian<f64> + ?Sized>(
+                &mut self,
+                problem: &P,
+                u: &mut [f64],
+                observer: &mut dyn $crate::observer::Observer<f64>,
+            ) -> Result<$crate::nonlinear_solver::SolveReport<f64>, $crate::error::SolverError>
+            {
+                let $solver = self;
+                let newton: &mut $crate::newton::Newton = $newton;
+                newton.solve(problem, u, observer)
+            }
+        }
+    };
+}
+pub(crate) use solve_with_newton;
 
 fn non_finite(quantity: &'static str, index: usize, iteration: usize) -> SolverError {
     SolverError::NonFinite {

@@ -5,10 +5,7 @@ use core::str::FromStr;
 
 use crate::error::SolverError;
 use crate::jacobi_newton::JacobiNewton;
-use crate::newton::{Newton, NewtonParams};
-use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
-use crate::observer::Observer;
-use crate::problem::Jacobian;
+use crate::newton::{Newton, NewtonParams, solve_with_newton};
 
 /// The nonlinear methods, by name: `newton`, `jacobi-newton`.
 ///
@@ -83,7 +80,7 @@ impl FromStr for NonlinearMethod {
     }
 }
 
-/// A nonlinear solver chosen at run time ([`NonlinearSolver::solve`] is generic, so the
+/// A nonlinear solver chosen at run time ([`NonlinearSolver::solve`](crate::NonlinearSolver::solve) is generic, so the
 /// choice is an enum rather than a trait object).
 #[derive(Debug)]
 #[non_exhaustive]
@@ -94,19 +91,10 @@ pub enum AnyNonlinearSolver {
     JacobiNewton(JacobiNewton),
 }
 
-impl NonlinearSolver<f64> for AnyNonlinearSolver {
-    fn solve<P: Jacobian<f64> + ?Sized>(
-        &mut self,
-        problem: &P,
-        u: &mut [f64],
-        observer: &mut dyn Observer<f64>,
-    ) -> Result<SolveReport<f64>, SolverError> {
-        match self {
-            Self::Newton(s) => s.solve(problem, u, observer),
-            Self::JacobiNewton(s) => s.solve(problem, u, observer),
-        }
-    }
-}
+solve_with_newton!(AnyNonlinearSolver, |solver| match solver {
+    AnyNonlinearSolver::Newton(s) => s,
+    AnyNonlinearSolver::JacobiNewton(s) => s.newton_mut(),
+});
 
 #[cfg(test)]
 mod tests {

@@ -147,11 +147,7 @@ impl ColumnOrdering {
                     });
                 }
                 if separator_width == 0 {
-                    return Err(SolverError::InvalidParameter {
-                        field: "separator_width",
-                        value: 0.0,
-                        allowed: ">= 1",
-                    });
+                    return Err(SolverError::invalid("separator_width", 0.0, ">= 1"));
                 }
                 Ok(Some(nested_dissection_grid(grid, separator_width)))
             }
@@ -164,11 +160,7 @@ impl ColumnOrdering {
                     });
                 }
                 if degree == 0 {
-                    return Err(SolverError::InvalidParameter {
-                        field: "degree",
-                        value: 0.0,
-                        allowed: ">= 1",
-                    });
+                    return Err(SolverError::invalid("degree", 0.0, ">= 1"));
                 }
                 Ok(Some(nested_dissection_elements(grid, degree)))
             }

@@ -76,11 +76,7 @@ impl Poisson2d {
 
     /// The assembled system.
     pub fn system(&self) -> LinearSystem {
-        ConvectionDiffusion2d {
-            n: self.n,
-            velocity: [0.0, 0.0],
-        }
-        .system()
+        ConvectionDiffusion2d::new(self.n, [0.0, 0.0]).system()
     }
 }
 
@@ -101,6 +97,11 @@ pub struct ConvectionDiffusion2d {
 }
 
 impl ConvectionDiffusion2d {
+    /// The problem on an `n x n` interior grid with `velocity`.
+    pub fn new(n: usize, velocity: [f64; 2]) -> Self {
+        Self { n, velocity }
+    }
+
     /// The assembled system.
     pub fn system(&self) -> LinearSystem {
         let n = self.n;

@@ -40,6 +40,37 @@ pub(crate) fn norm2<F: SolverScalar>(x: &[F]) -> F {
     scale * sum.sqrt()
 }
 
+/// Maximum norm `max_i |x_i|` (0 for an empty slice).
+pub fn max_abs(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// `max_i |a_i - b_i|` over the common length of `a` and `b` (0 when either is empty).
+pub fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+/// [`SolverError::NonFinite`](crate::SolverError::NonFinite) naming `quantity` at the first
+/// non-finite entry of `x`, outside any iteration.
+///
+/// # Errors
+/// As said.
+pub(crate) fn check_finite<F: SolverScalar>(
+    quantity: &'static str,
+    x: &[F],
+) -> Result<(), crate::error::SolverError> {
+    match first_non_finite(x) {
+        Some(index) => Err(crate::error::SolverError::NonFinite {
+            quantity,
+            index,
+            iteration: None,
+        }),
+        None => Ok(()),
+    }
+}
+
 /// Index of the first non-finite entry, if any.
 pub(crate) fn first_non_finite<F: SolverScalar>(x: &[F]) -> Option<usize> {
     x.iter().position(|v| !v.is_finite())

@@ -8,11 +8,12 @@ use faer::sparse::linalg::cholesky::{
 
 use crate::direct_params::DirectParams;
 use crate::direct_solve::{
-    checked_solve, empty_line, finite_rhs, inf_norm, scratch, solve_many, solve_one,
+    analysed_values, check_no_empty_line, checked_solve, direct_solves, finite_rhs, scratch,
 };
 use crate::error::SolverError;
-use crate::linear_solver::{LinearSolver, check_square, check_values};
+use crate::linear_solver::{LinearSolver, check_square};
 use crate::ordering::ColumnOrdering;
+use crate::scalar::max_abs;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// Sparse Cholesky factorisation (faer) for symmetric positive definite (SPD) matrices.
@@ -93,7 +94,7 @@ impl SparseCholesky {
     }
 
     fn check_symmetry(&self, pattern: &SparsityPattern, values: &[f64]) -> Result<(), SolverError> {
-        let bound = self.params.symmetry_tolerance * inf_norm(values);
+        let bound = self.params.symmetry_tolerance * max_abs(values);
         let col_ptr = pattern.col_ptr();
         let row_idx = pattern.row_idx();
         for j in 0..pattern.ncols() {
@@ -127,10 +128,7 @@ impl SparseCholesky {
         let (Some(pattern), Some(symbolic), true) =
             (self.pattern.as_ref(), self.symbolic.as_ref(), self.factored)
         else {
-            return Err(SolverError::CallOrder {
-                called: "solve_in_place",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order("solve_in_place", "factor"));
         };
         let n = pattern.nrows();
         if !finite_rhs(rhs, n)? {
@@ -190,18 +188,10 @@ impl LinearSolver<f64> for SparseCholesky {
     }
 
     fn factor(&mut self, values: &[f64]) -> Result<(), SolverError> {
-        let Some(pattern) = self.pattern.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "factor",
-                requires: "analyse",
-            });
-        };
         self.factored = false;
-        check_values(pattern, values)?;
+        let pattern = analysed_values(self.pattern.as_ref(), values)?;
         self.check_symmetry(pattern, values)?;
-        if let Some(line) = empty_line(pattern, values) {
-            return Err(SolverError::Singular { pivot: Some(line) });
-        }
+        check_no_empty_line(pattern, values)?;
         self.values.copy_from_slice(values);
         for (x, &slot) in self.lower_values.iter_mut().zip(&self.lower_slot) {
             *x = values[slot];
@@ -243,19 +233,7 @@ impl LinearSolver<f64> for SparseCholesky {
         Ok(())
     }
 
-    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
-        let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        solve_one(n, rhs, |r, k| self.checked_solve(r, k))
-    }
-
-    fn last_iterations(&self) -> Option<usize> {
-        None
-    }
-
-    fn solve_many_in_place(&mut self, rhs: &mut [f64], ncols: usize) -> Result<(), SolverError> {
-        let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        solve_many(n, rhs, ncols, |r, k| self.checked_solve(r, k))
-    }
+    direct_solves!();
 }
 
 /// The slot of the transpose `(j, i)` of every entry `(i, j)`, `None` where it is not in the

@@ -17,11 +17,11 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
 use crate::direct_params::DirectParams;
 use crate::direct_solve::{
-    RefineWork, check_and_refine, check_and_refine_block, checked_solve, empty_line, finite_rhs,
-    scratch, solve_many, solve_one, to_column_major, to_row_major,
+    RefineWork, analysed_values, check_and_refine, check_and_refine_block, check_no_empty_line,
+    checked_solve, direct_solves, finite_rhs, scratch, to_column_major, to_row_major,
 };
 use crate::error::SolverError;
-use crate::linear_solver::{LinearSolver, check_square, check_values};
+use crate::linear_solver::{LinearSolver, check_square};
 use crate::lu_kind::LuKind;
 use crate::multifrontal_lu::solve::{BlockWork, SOLVE_BLOCK_WIDTH};
 use crate::multifrontal_lu::{FrontFailure, FrontalFactors, FrontalStructure};
@@ -222,10 +222,7 @@ impl SparseLu {
     /// Solve of `ncols >= 1` columns with the solution check; `rhs` is column-major.
     pub(crate) fn checked_solve(&self, rhs: &mut [f64], ncols: usize) -> Result<(), SolverError> {
         let (Some(pattern), Some(kind)) = (self.pattern.as_ref(), self.factored) else {
-            return Err(SolverError::CallOrder {
-                called: "solve_in_place",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order("solve_in_place", "factor"));
         };
         let n = pattern.nrows();
         if !finite_rhs(rhs, n)? {
@@ -235,10 +232,7 @@ impl SparseLu {
             return self.checked_solve_multifrontal(pattern, rhs, ncols);
         }
         let Some(symbolic) = self.symbolic.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "solve_in_place",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order("solve_in_place", "factor"));
         };
         let row_perm = PermRef::new_checked(&self.row_perm_fwd, &self.row_perm_inv, n);
         checked_solve(&self.params, pattern, &self.values, rhs, ncols, |r, k| {
@@ -260,10 +254,7 @@ impl SparseLu {
         ncols: usize,
     ) -> Result<(), SolverError> {
         let Some(frontal) = self.frontal.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "solve_in_place",
-                requires: "factor",
-            });
+            return Err(SolverError::call_order("solve_in_place", "factor"));
         };
         let n = pattern.nrows();
         if ncols == 1 {
@@ -321,11 +312,11 @@ impl SparseLu {
                 });
             }
             if !is_permutation(perm, n) {
-                return Err(SolverError::InvalidParameter {
-                    field: "column permutation",
-                    value: n as f64,
-                    allowed: "a permutation of 0..n",
-                });
+                return Err(SolverError::invalid(
+                    "column permutation",
+                    n as f64,
+                    "a permutation of 0..n",
+                ));
             }
         }
         Ok(perm)
@@ -430,10 +421,7 @@ impl SparseLu {
     fn factor_supernodal(&mut self) -> Result<(), SolverError> {
         let (Some(pattern), Some(symbolic)) = (self.pattern.as_ref(), self.symbolic.as_ref())
         else {
-            return Err(SolverError::CallOrder {
-                called: "factor",
-                requires: "analyse",
-            });
+            return Err(SolverError::call_order("factor", "analyse"));
         };
         let n = pattern.nrows();
         let par = faer::get_global_parallelism();
@@ -518,17 +506,9 @@ impl LinearSolver<f64> for SparseLu {
     }
 
     fn factor(&mut self, values: &[f64]) -> Result<(), SolverError> {
-        let Some(pattern) = self.pattern.as_ref() else {
-            return Err(SolverError::CallOrder {
-                called: "factor",
-                requires: "analyse",
-            });
-        };
         self.factored = None;
-        check_values(pattern, values)?;
-        if let Some(line) = empty_line(pattern, values) {
-            return Err(SolverError::Singular { pivot: Some(line) });
-        }
+        let pattern = analysed_values(self.pattern.as_ref(), values)?;
+        check_no_empty_line(pattern, values)?;
         self.values.copy_from_slice(values);
         let n = pattern.nrows();
         let mut kind = LuKind::Supernodal;
@@ -561,19 +541,7 @@ impl LinearSolver<f64> for SparseLu {
         Ok(())
     }
 
-    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
-        let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        solve_one(n, rhs, |r, k| self.checked_solve(r, k))
-    }
-
-    fn last_iterations(&self) -> Option<usize> {
-        None
-    }
-
-    fn solve_many_in_place(&mut self, rhs: &mut [f64], ncols: usize) -> Result<(), SolverError> {
-        let n = self.pattern.as_ref().map_or(0, |p| p.nrows());
-        solve_many(n, rhs, ncols, |r, k| self.checked_solve(r, k))
-    }
+    direct_solves!();
 }
 
 #[cfg(test)]

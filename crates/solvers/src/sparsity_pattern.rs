@@ -113,11 +113,7 @@ impl SparsityPattern {
         row_idx: Vec<usize>,
     ) -> Result<Self, SolverError> {
         let bad = |field: &'static str, value: usize, allowed: &'static str| {
-            Err(SolverError::InvalidParameter {
-                field,
-                value: value as f64,
-                allowed,
-            })
+            Err(SolverError::invalid(field, value as f64, allowed))
         };
         if col_ptr.len() != ncols + 1 || col_ptr[0] != 0 || col_ptr[ncols] != row_idx.len() {
             return bad("col_ptr", col_ptr.len(), "ncols + 1 pointers from 0 to nnz");

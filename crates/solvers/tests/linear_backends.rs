@@ -4,7 +4,7 @@
 use capstan_solvers::samples::{ConvectionDiffusion2d, LinearSystem, Poisson2d};
 use capstan_solvers::{
     GaussSeidel, IterativeParams, Jacobi, LinearBackend, LinearSolver, SolverError, SparseCholesky,
-    SparseLu, SparsityPattern,
+    SparseLu, SparsityPattern, max_abs, max_abs_difference,
 };
 
 /// Solves `system` with `backend`; returns the solution and the iterations reported.
@@ -15,14 +15,6 @@ fn solve(system: &LinearSystem, backend: LinearBackend) -> (Vec<f64>, Option<usi
     let mut x = system.rhs.clone();
     solver.solve_in_place(&mut x).unwrap();
     (x, solver.last_iterations())
-}
-
-fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
-}
-
-fn max_abs(a: &[f64]) -> f64 {
-    a.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
 fn norm(a: &[f64]) -> f64 {
@@ -65,11 +57,7 @@ fn iterative_counts_on_poisson_are_pinned() {
 
 #[test]
 fn convection_diffusion_is_solved_by_lu_jacobi_and_gauss_seidel() {
-    let system = ConvectionDiffusion2d {
-        n: 16,
-        velocity: [20.0, 10.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(16, [20.0, 10.0]).system();
     let b = norm(&system.rhs);
     let (reference, _) = solve(&system, LinearBackend::Lu);
     assert!(system.residual_norm(&reference) <= 1e-13 * b); // direct: round-off only
@@ -88,11 +76,7 @@ fn convection_diffusion_is_solved_by_lu_jacobi_and_gauss_seidel() {
 
 #[test]
 fn cholesky_rejects_the_nonsymmetric_convection_operator() {
-    let system = ConvectionDiffusion2d {
-        n: 4,
-        velocity: [20.0, 0.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(4, [20.0, 0.0]).system();
     let mut chol = SparseCholesky::default();
     chol.analyse(&system.pattern).unwrap();
     assert!(matches!(
@@ -133,11 +117,7 @@ fn refactor_with_new_values_on_the_same_pattern() {
 
 #[test]
 fn many_right_hand_sides_match_single_solves() {
-    let system = ConvectionDiffusion2d {
-        n: 10,
-        velocity: [5.0, -5.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(10, [5.0, -5.0]).system();
     let n = system.dimension();
     let ncols = 5;
     let rhs: Vec<f64> = (0..n * ncols)
@@ -190,15 +170,14 @@ fn direct_solvers() -> Vec<Box<dyn LinearSolver<f64> + Send>> {
     ]
 }
 
-#[test]
-fn exactly_singular_matrix_is_a_typed_error_not_nan() {
-    // [[1, 1], [1, 1]]: no empty line, an exact zero pivot after one elimination step
-    let (pattern, values) = dense_system(2, &[1.0, 1.0, 1.0, 1.0]);
+/// Every direct solver refuses `values` on `pattern` (or the solve of `x` with them) as
+/// singular or not positive definite: a typed error, never NaN.
+fn assert_every_direct_solver_refuses(pattern: &SparsityPattern, values: &[f64], rhs: &[f64]) {
     for mut solver in direct_solvers() {
-        solver.analyse(&pattern).unwrap();
-        let mut x = vec![1.0, 2.0];
+        solver.analyse(pattern).unwrap();
+        let mut x = rhs.to_vec();
         let result = solver
-            .factor(&values)
+            .factor(values)
             .and_then(|()| solver.solve_in_place(&mut x));
         assert!(
             matches!(
@@ -208,6 +187,13 @@ fn exactly_singular_matrix_is_a_typed_error_not_nan() {
             "{result:?}"
         );
     }
+}
+
+#[test]
+fn exactly_singular_matrix_is_a_typed_error_not_nan() {
+    // [[1, 1], [1, 1]]: no empty line, an exact zero pivot after one elimination step
+    let (pattern, values) = dense_system(2, &[1.0, 1.0, 1.0, 1.0]);
+    assert_every_direct_solver_refuses(&pattern, &values, &[1.0, 2.0]);
 }
 
 #[test]
@@ -463,20 +449,7 @@ fn exact_zero_pivot_inside_a_large_matrix_is_singular_not_a_panic() {
     for (k, v) in contributions.into_iter().enumerate() {
         values[slots[k]] += v;
     }
-    for mut solver in direct_solvers() {
-        solver.analyse(&pattern).unwrap();
-        let mut x = vec![1.0; m + 2];
-        let result = solver
-            .factor(&values)
-            .and_then(|()| solver.solve_in_place(&mut x));
-        assert!(
-            matches!(
-                result,
-                Err(SolverError::Singular { .. } | SolverError::NotPositiveDefinite { .. })
-            ),
-            "{result:?}"
-        );
-    }
+    assert_every_direct_solver_refuses(&pattern, &values, &vec![1.0; m + 2]);
 }
 
 #[test]

@@ -70,11 +70,7 @@ fn samples() -> Vec<(&'static str, LinearSystem)> {
         ("poisson", Poisson2d::new(12).system()),
         (
             "convection-diffusion",
-            ConvectionDiffusion2d {
-                n: 12,
-                velocity: [30.0, -20.0],
-            }
-            .system(),
+            ConvectionDiffusion2d::new(12, [30.0, -20.0]).system(),
         ),
         (
             "random dominant",
@@ -121,11 +117,7 @@ fn multifrontal_keeps_its_pivots_inside_the_fronts_on_the_samples() {
 #[test]
 fn multifrontal_stores_less_than_the_supernodal_bound_on_a_grid() {
     // the point of the kernel: the structure of A + A^T instead of A^T A
-    let system = ConvectionDiffusion2d {
-        n: 40,
-        velocity: [10.0, 5.0],
-    }
-    .system();
+    let system = ConvectionDiffusion2d::new(40, [10.0, 5.0]).system();
     let grid = GridShape {
         n2: 40,
         n3: 40,

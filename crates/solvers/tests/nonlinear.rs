@@ -6,13 +6,23 @@ use capstan_solvers::samples::{Arctangent, CubeRoot, CubicReaction};
 use capstan_solvers::{
     CondensedSolver, IterativeParams, JacobiNewton, Jacobian, LineSearch, LinearBackend, Newton,
     NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
-    SolveStage, SolverError, SparsityPattern,
+    SolveStage, SolverError, SparsityPattern, max_abs_difference,
 };
 
-fn max_error(u: &[f64], exact: &[f64]) -> f64 {
-    u.iter()
-        .zip(exact)
-        .fold(0.0, |m, (a, b)| m.max((a - b).abs()))
+/// The failure of Newton with `params` but no line search on `problem` from `u`.
+fn newton_failure<P: Jacobian<f64>>(
+    params: NewtonParams,
+    problem: &P,
+    u: &mut [f64],
+) -> SolverError {
+    let params = NewtonParams {
+        line_search: LineSearch::None,
+        ..params
+    };
+    Newton::new(params)
+        .unwrap()
+        .solve(problem, u, &mut SilentObserver)
+        .unwrap_err()
 }
 
 #[test]
@@ -30,7 +40,7 @@ fn newton_converges_quadratically_on_the_cubic_reaction() {
     assert_eq!(report.factorisations, 6);
     assert_eq!(report.linear_iterations, 0); // direct backend
     assert_eq!(report.residuals.len(), report.iterations + 1);
-    assert!(max_error(&u, &problem.exact_solution()) < 1e-12);
+    assert!(max_abs_difference(&u, &problem.exact_solution()) < 1e-12);
     // |r_{k+1}| <= C |r_k|^2 once in the asymptotic regime (|r_k| < 1), above round-off
     let r = &report.residuals;
     let mut checked = 0;
@@ -64,7 +74,7 @@ fn newton_gives_the_same_root_with_every_linear_backend() {
         .unwrap()
         .solve(&problem, &mut u, &mut SilentObserver)
         .unwrap();
-        assert!(max_error(&u, &exact) < 1e-10, "{backend}");
+        assert!(max_abs_difference(&u, &exact) < 1e-10, "{backend}");
         assert_eq!(
             report.linear_iterations > 0,
             !backend.is_direct(),
@@ -84,7 +94,7 @@ fn newton_with_cholesky_solves_the_spd_jacobian_problem() {
     .unwrap()
     .solve(&problem, &mut u, &mut SilentObserver)
     .unwrap();
-    assert!(max_error(&u, &problem.exact_solution()) < 1e-10);
+    assert!(max_abs_difference(&u, &problem.exact_solution()) < 1e-10);
 }
 
 #[test]
@@ -108,7 +118,7 @@ fn jacobi_newton_finds_the_same_root() {
     // inexact inner solves: linear outer convergence with rate ~1e-6
     assert_eq!(report.iterations, 6);
     assert_eq!(report.linear_iterations, 148);
-    assert!(max_error(&u, &newton_u) < 1e-10);
+    assert!(max_abs_difference(&u, &newton_u) < 1e-10);
     // chosen by name it is the same solver
     let mut by_name = NonlinearMethod::JacobiNewton
         .build(*solver.params())
@@ -140,13 +150,7 @@ fn line_search_rescues_newton_on_arctangent() {
     assert!(report.residuals.windows(2).all(|w| w[1] < w[0]));
 
     let mut u = start.to_vec();
-    let err = Newton::new(NewtonParams {
-        line_search: LineSearch::None,
-        ..Default::default()
-    })
-    .unwrap()
-    .solve(&problem, &mut u, &mut SilentObserver)
-    .unwrap_err();
+    let err = newton_failure(NewtonParams::default(), &problem, &mut u);
     // the iterates explode (10 -> -139 -> 3e4 -> -1.4e9 ...) until J underflows to 0
     assert!(
         matches!(
@@ -161,14 +165,11 @@ fn line_search_rescues_newton_on_arctangent() {
 fn newton_without_line_search_reports_divergence_on_cube_root() {
     let problem = CubeRoot::new(2);
     let mut u = vec![1.0, -2.0];
-    let err = Newton::new(NewtonParams {
-        line_search: LineSearch::None,
+    let params = NewtonParams {
         divergence_limit: 10.0,
         ..Default::default()
-    })
-    .unwrap()
-    .solve(&problem, &mut u, &mut SilentObserver)
-    .unwrap_err();
+    };
+    let err = newton_failure(params, &problem, &mut u);
     // |r| grows by 2^(1/3) per step: 2^(k/3) > 10 first at k = 10
     assert!(
         matches!(err, SolverError::Diverged { iteration: 10, .. }),
@@ -262,13 +263,7 @@ fn line_search_backs_off_from_a_nan_trial_point() {
     assert!((u[0] - 1.0).abs() < 1e-9);
     // without a line search the NaN is reported, not returned
     let mut u = vec![16.0];
-    let err = Newton::new(NewtonParams {
-        line_search: LineSearch::None,
-        ..Default::default()
-    })
-    .unwrap()
-    .solve(&problem, &mut u, &mut SilentObserver)
-    .unwrap_err();
+    let err = newton_failure(NewtonParams::default(), &problem, &mut u);
     assert!(
         matches!(
             err,
@@ -414,7 +409,7 @@ fn solver_can_be_reused_across_solves_and_patterns() {
     let other = CubicReaction::new(12);
     let mut v = vec![0.0; 12];
     newton.solve(&other, &mut v, &mut SilentObserver).unwrap();
-    assert!(max_error(&v, &other.exact_solution()) < 1e-10);
+    assert!(max_abs_difference(&v, &other.exact_solution()) < 1e-10);
 }
 
 /// Poisson-like bulk with a cubic reaction on a few "contact" unknowns only, so the Jacobian
@@ -474,5 +469,5 @@ fn newton_with_a_condensed_linear_solver_matches_lu() {
     .solve(&problem, &mut u, &mut SilentObserver)
     .unwrap();
     assert_eq!(report.iterations, lu_report.iterations);
-    assert!(max_error(&u, &lu_u) < 1e-12);
+    assert!(max_abs_difference(&u, &lu_u) < 1e-12);
 }

@@ -7,7 +7,7 @@ use capstan_solvers::samples::{
 };
 use capstan_solvers::{
     ColumnOrdering, DirectParams, GridShape, LinearSolver, SolverError, SparseCholesky, SparseLu,
-    SparsityPattern, is_permutation, nested_dissection_grid,
+    SparsityPattern, is_permutation, max_abs_difference, nested_dissection_grid,
 };
 use proptest::prelude::*;
 
@@ -29,10 +29,6 @@ fn solve(solver: &mut impl LinearSolver<f64>, system: &LinearSystem) -> Vec<f64>
 
 fn norm(a: &[f64]) -> f64 {
     a.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-fn max_abs_difference(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
 }
 
 /// The unknown `k = i + n j` of the samples' `n x n` grids: `n2 = n` (j), `n3 = n` (i).
@@ -62,11 +58,7 @@ fn every_ordering_solves_poisson_and_convection_diffusion_like_colamd() {
     let n = 24;
     let systems = [
         Poisson2d::new(n).system(),
-        ConvectionDiffusion2d {
-            n,
-            velocity: [30.0, -20.0],
-        }
-        .system(),
+        ConvectionDiffusion2d::new(n, [30.0, -20.0]).system(),
     ];
     for system in &systems {
         let reference = solve(&mut SparseLu::default(), system);
@@ -183,11 +175,15 @@ fn singular_matrix_with_nested_dissection_is_a_typed_error() {
 #[test]
 fn orderings_that_do_not_fit_the_pattern_are_rejected() {
     let system = Poisson2d::new(5).system();
-    let wrong_grid = lu_with(ColumnOrdering::NestedDissection {
-        grid: square_grid(4),
-        separator_width: 2,
-    })
-    .analyse(&system.pattern);
+    // nested dissection of a square grid of `n` nodes a side, separators `width` lines wide
+    let analyse = |n: usize, width: usize| {
+        lu_with(ColumnOrdering::NestedDissection {
+            grid: square_grid(n),
+            separator_width: width,
+        })
+        .analyse(&system.pattern)
+    };
+    let wrong_grid = analyse(4, 2);
     assert!(matches!(
         wrong_grid,
         Err(SolverError::DimensionMismatch {
@@ -196,11 +192,7 @@ fn orderings_that_do_not_fit_the_pattern_are_rejected() {
             ..
         })
     ));
-    let zero_width = lu_with(ColumnOrdering::NestedDissection {
-        grid: square_grid(5),
-        separator_width: 0,
-    })
-    .analyse(&system.pattern);
+    let zero_width = analyse(5, 0);
     assert!(matches!(
         zero_width,
         Err(SolverError::InvalidParameter {

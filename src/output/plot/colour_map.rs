@@ -3,8 +3,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::style::{Plot, extent, font, tick_label};
-use crate::output::error::{OutputError, check_all_finite};
+use super::style::{Plot, extent, font, label_axes};
+use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 use crate::output::vtu::QuadGrid;
 
 /// Viridis at `t = 0, 1/8, ..., 1` (perceptually uniform, colour-blind safe, prints in grey).
@@ -106,13 +106,7 @@ impl ColourMap {
         axes: [usize; 2],
         node_values: &[f64],
     ) -> Result<Self, OutputError> {
-        if node_values.len() != grid.node_count() {
-            return Err(OutputError::LengthMismatch {
-                column: "node values".into(),
-                expected: grid.node_count(),
-                found: node_values.len(),
-            });
-        }
+        check_length("node values", grid.node_count(), node_values.len())?;
         check_all_finite("node values", node_values)?;
         let cells = grid.cells();
         let values = cells
@@ -133,13 +127,7 @@ impl ColourMap {
         axes: [usize; 2],
         cell_values: &[f64],
     ) -> Result<Self, OutputError> {
-        if cell_values.len() != grid.cell_count() {
-            return Err(OutputError::LengthMismatch {
-                column: "cell values".into(),
-                expected: grid.cell_count(),
-                found: cell_values.len(),
-            });
-        }
+        check_length("cell values", grid.cell_count(), cell_values.len())?;
         Self::from_grid(title, grid, axes, grid.cells(), cell_values.to_vec())
     }
 
@@ -151,11 +139,7 @@ impl ColourMap {
         values: Vec<f64>,
     ) -> Result<Self, OutputError> {
         if let Some(&a) = axes.iter().find(|&&a| a > 2) {
-            return Err(OutputError::InvalidParameter {
-                field: "axes",
-                value: a as f64,
-                allowed: "{0, 1, 2}",
-            });
+            return Err(OutputError::invalid("axes", a as f64, "{0, 1, 2}"));
         }
         let points = grid
             .points()
@@ -223,38 +207,26 @@ impl Plot for ColourMap {
     }
 
     fn validate(&self) -> Result<(), OutputError> {
-        if self.cells.is_empty() {
-            return Err(OutputError::InvalidParameter {
-                field: "cells",
-                value: 0.0,
-                allowed: "at least one cell",
-            });
-        }
-        if self.values.len() != self.cells.len() {
-            return Err(OutputError::LengthMismatch {
-                column: "cell values".into(),
-                expected: self.cells.len(),
-                found: self.values.len(),
-            });
-        }
+        check_not_empty("cells", self.cells.len(), "at least one cell")?;
+        check_length("cell values", self.cells.len(), self.values.len())?;
         check_all_finite("points", self.points.as_flattened())?;
         check_all_finite("cell values", &self.values)?;
         let n = self.points.len();
         if let Some(&k) = self.cells.iter().flatten().find(|&&k| k >= n) {
-            return Err(OutputError::InvalidParameter {
-                field: "cells (node number)",
-                value: k as f64,
-                allowed: "below the number of points",
-            });
+            return Err(OutputError::invalid(
+                "cells (node number)",
+                k as f64,
+                "below the number of points",
+            ));
         }
         if let Some((lo, hi)) = self.range
             && !(lo.is_finite() && hi.is_finite() && hi > lo)
         {
-            return Err(OutputError::InvalidParameter {
-                field: "range",
-                value: hi,
-                allowed: "finite, above the lower end",
-            });
+            return Err(OutputError::invalid(
+                "range",
+                hi,
+                "finite, above the lower end",
+            ));
         }
         Ok(())
     }
@@ -285,15 +257,9 @@ impl Plot for ColourMap {
             .x_label_area_size(x_area)
             .y_label_area_size(y_area)
             .build_cartesian_2d(cx - hx..cx + hx, cy - hy..cy + hy)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .x_label_formatter(&tick_label)
-            .y_label_formatter(&tick_label)
-            .light_line_style(RGBColor(240, 240, 240))
+        let mut mesh = chart.configure_mesh();
+        label_axes(&mut mesh, Some(&self.x_label), Some(&self.y_label));
+        mesh.light_line_style(RGBColor(240, 240, 240))
             .bold_line_style(RGBColor(215, 215, 215))
             .draw()?;
         let t = |v: f64| (v - lo) / (hi - lo);
@@ -321,15 +287,9 @@ impl Plot for ColourMap {
             .margin_right(8)
             .right_y_label_area_size(86)
             .build_cartesian_2d(0.0..1.0, lo..hi)?;
-        bar_chart
-            .configure_mesh()
-            .disable_mesh()
-            .disable_x_axis()
-            .y_desc(&self.label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .y_label_formatter(&tick_label)
-            .draw()?;
+        let mut mesh = bar_chart.configure_mesh();
+        label_axes(&mut mesh, None, Some(&self.label));
+        mesh.disable_mesh().disable_x_axis().draw()?;
         let bands = 128;
         bar_chart.draw_series((0..bands).map(|i| {
             let a = lo + (hi - lo) * i as f64 / bands as f64;

@@ -6,8 +6,8 @@ use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters_backend::{BackendCoord, DrawingErrorKind};
 
-use super::style::{PALETTE, Plot, extent, font, tick_label};
-use crate::output::error::{OutputError, check_all_finite};
+use super::style::{PALETTE, Plot, extent, font, label_axes};
+use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 
 /// An axis scale.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -259,15 +259,9 @@ impl LinePlot {
             .x_label_area_size(56)
             .y_label_area_size(84)
             .build_cartesian_2d(x, y)?;
-        chart
-            .configure_mesh()
-            .x_desc(&self.x_label)
-            .y_desc(&self.y_label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .x_label_formatter(&tick_label)
-            .y_label_formatter(&tick_label)
-            .light_line_style(RGBColor(235, 235, 235))
+        let mut mesh = chart.configure_mesh();
+        label_axes(&mut mesh, Some(&self.x_label), Some(&self.y_label));
+        mesh.light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(200, 200, 200))
             .draw()?;
         let mut marked = 0;
@@ -404,36 +398,24 @@ impl Plot for LinePlot {
     }
 
     fn validate(&self) -> Result<(), OutputError> {
-        if self.series.is_empty() {
-            return Err(OutputError::InvalidParameter {
-                field: "series",
-                value: 0.0,
-                allowed: "at least one series",
-            });
-        }
+        check_not_empty("series", self.series.len(), "at least one series")?;
         for s in &self.series {
-            if s.y.len() != s.x.len() {
-                return Err(OutputError::LengthMismatch {
-                    column: format!("{}.y", s.label),
-                    expected: s.x.len(),
-                    found: s.y.len(),
-                });
-            }
+            check_length(&format!("{}.y", s.label), s.x.len(), s.y.len())?;
             for (axis, values, scale) in [("x", &s.x, self.x_scale), ("y", &s.y, self.y_scale)] {
                 let column = format!("{}.{axis}", s.label);
                 check_all_finite(&column, values)?;
                 if scale == Scale::Log
                     && let Some(&v) = values.iter().find(|v| **v <= 0.0)
                 {
-                    return Err(OutputError::InvalidParameter {
-                        field: if axis == "x" {
+                    return Err(OutputError::invalid(
+                        if axis == "x" {
                             "x (log axis)"
                         } else {
                             "y (log axis)"
                         },
-                        value: v,
-                        allowed: "(0, inf)",
-                    });
+                        v,
+                        "(0, inf)",
+                    ));
                 }
             }
         }

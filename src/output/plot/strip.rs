@@ -4,8 +4,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::style::{Plot, extent, font, tick_label};
-use crate::output::error::{OutputError, check_all_finite};
+use super::style::{Plot, extent, font, label_axes};
+use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 
 /// Band colours of the states -1, 0, +1 (blue, grey, vermillion).
 const STATE_COLOURS: [RGBColor; 3] = [
@@ -102,34 +102,18 @@ impl Plot for StateStrip {
     }
 
     fn validate(&self) -> Result<(), OutputError> {
-        if self.x.is_empty() {
-            return Err(OutputError::InvalidParameter {
-                field: "x",
-                value: 0.0,
-                allowed: "at least one sample",
-            });
-        }
-        if self.states.len() != self.x.len() {
-            return Err(OutputError::LengthMismatch {
-                column: "states".into(),
-                expected: self.x.len(),
-                found: self.states.len(),
-            });
-        }
+        check_not_empty("x", self.x.len(), "at least one sample")?;
+        check_length("states", self.x.len(), self.states.len())?;
         check_all_finite("x", &self.x)?;
         if let Some(w) = self.x.windows(2).find(|w| w[1] <= w[0]) {
-            return Err(OutputError::InvalidParameter {
-                field: "x (must increase)",
-                value: w[1],
-                allowed: "greater than the previous sample",
-            });
+            return Err(OutputError::invalid(
+                "x (must increase)",
+                w[1],
+                "greater than the previous sample",
+            ));
         }
         if let Some(&s) = self.states.iter().find(|s| !(-1..=1).contains(*s)) {
-            return Err(OutputError::InvalidParameter {
-                field: "states",
-                value: f64::from(s),
-                allowed: "{-1, 0, 1}",
-            });
+            return Err(OutputError::invalid("states", f64::from(s), "{-1, 0, 1}"));
         }
         Ok(())
     }
@@ -149,13 +133,9 @@ impl Plot for StateStrip {
             .x_label_area_size(56)
             .y_label_area_size(84)
             .build_cartesian_2d(x0..x1, -1.6..1.6)?;
-        chart
-            .configure_mesh()
-            .disable_y_mesh()
-            .x_desc(&self.x_label)
-            .axis_desc_style(("sans-serif", font::AXIS))
-            .label_style(("sans-serif", font::TICK))
-            .x_label_formatter(&tick_label)
+        let mut mesh = chart.configure_mesh();
+        label_axes(&mut mesh, Some(&self.x_label), None);
+        mesh.disable_y_mesh()
             .y_labels(0) // rows are labelled below, exactly at -1, 0, +1
             .light_line_style(RGBColor(235, 235, 235))
             .bold_line_style(RGBColor(215, 215, 215))

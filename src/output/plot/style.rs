@@ -1,6 +1,7 @@
 //! What every plot shares: the [`Plot`] trait, the palette, font sizes, tick labels and axis
 //! extents.
 
+use plotters::chart::MeshStyle;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -48,6 +49,29 @@ pub(crate) mod font {
     pub const AXIS: u32 = 20;
     /// Tick labels and legend entries.
     pub const TICK: u32 = 16;
+}
+
+/// The axes of every plot: the descriptions given (`x_label`, `y_label`) in the axis font, tick
+/// labels in the tick font written by [`tick_label`].
+pub(crate) fn label_axes<X, Y, DB>(
+    mesh: &mut MeshStyle<'_, '_, X, Y, DB>,
+    x_label: Option<&str>,
+    y_label: Option<&str>,
+) where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+    DB: DrawingBackend,
+{
+    if let Some(x) = x_label {
+        mesh.x_desc(x);
+    }
+    if let Some(y) = y_label {
+        mesh.y_desc(y);
+    }
+    mesh.axis_desc_style(("sans-serif", font::AXIS))
+        .label_style(("sans-serif", font::TICK))
+        .x_label_formatter(&tick_label)
+        .y_label_formatter(&tick_label);
 }
 
 /// Tick label: plain for moderate magnitudes, otherwise `1.5e-7` (plotters' default prints

@@ -276,6 +276,20 @@ impl FrontalStructure {
         &self.rows[self.row_ptr[s]..self.row_ptr[s + 1]]
     }
 
+    /// The shape of supernode `s`'s front.
+    fn front(&self, s: usize) -> Front<'_> {
+        let (b, e) = (self.begin[s], self.begin[s + 1]);
+        let r = self.off_block_rows(s);
+        Front {
+            b,
+            e,
+            ns: e - b,
+            r,
+            nr: r.len(),
+            m: e - b + r.len(),
+        }
+    }
+
     /// Numeric factorisation of `values` (in `pattern` order) into `factors`.
     pub(crate) fn factor(
         &self,
@@ -294,11 +308,7 @@ impl FrontalStructure {
         let mut front: Vec<f64> = Vec::with_capacity(self.max_front * self.max_front);
         let mut contributions: Vec<Option<Vec<f64>>> = vec![None; self.n_supernodes()];
         for s in 0..self.n_supernodes() {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let ns = e - b;
-            let r = self.off_block_rows(s);
-            let nr = r.len();
-            let m = ns + nr;
+            let Front { b, e, ns, r, nr, m } = self.front(s);
             for k in 0..ns {
                 pos[b + k] = k as u32;
             }
@@ -370,6 +380,17 @@ impl FrontalStructure {
 
 mod panel;
 pub(crate) mod solve;
+/// A supernode's front: its columns `b..e` (`ns` of them), the rows `r` below the diagonal block
+/// (`nr` of them), `m = ns + nr` rows in all.
+struct Front<'a> {
+    b: usize,
+    e: usize,
+    ns: usize,
+    r: &'a [u32],
+    nr: usize,
+    m: usize,
+}
+
 #[cfg(test)]
 mod tests;
 

@@ -4,7 +4,7 @@
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::{Accum, MatMut, Par};
 
-use super::{FrontalFactors, FrontalStructure};
+use super::{Front, FrontalFactors, FrontalStructure};
 
 impl FrontalStructure {
     /// Solves `A x = rhs` in place with the factors (no check, no refinement).
@@ -15,10 +15,7 @@ impl FrontalStructure {
         }
         // forward: L y = P y
         for s in 0..self.n_supernodes() {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let ns = e - b;
-            let r = self.off_block_rows(s);
-            let m = ns + r.len();
+            let Front { b, e, ns, r, m, .. } = self.front(s);
             for k in b..e {
                 y.swap(k, factors.swaps[k] as usize);
             }
@@ -39,10 +36,7 @@ impl FrontalStructure {
         }
         // backward: U x = y
         for s in (0..self.n_supernodes()).rev() {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let ns = e - b;
-            let r = self.off_block_rows(s);
-            let m = ns + r.len();
+            let Front { b, e, ns, r, m, .. } = self.front(s);
             let panel = &val[self.val_ptr[s]..self.val_ptr[s] + m * ns];
             let u12 = &val[self.val_ptr[s] + m * ns..self.val_ptr[s + 1]];
             for (t, &i) in r.iter().enumerate() {
@@ -145,11 +139,7 @@ impl FrontalStructure {
         g.resize(self.max_front * k, 0.0);
         let val = &factors.values;
         for s in 0..self.n_supernodes() {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let ns = e - b;
-            let r = self.off_block_rows(s);
-            let nr = r.len();
-            let m = ns + nr;
+            let Front { b, e, ns, r, nr, m } = self.front(s);
             for i in b..e {
                 let p = factors.swaps[i] as usize;
                 if p != i {
@@ -191,11 +181,7 @@ impl FrontalStructure {
             }
         }
         for s in (0..self.n_supernodes()).rev() {
-            let (b, e) = (self.begin[s], self.begin[s + 1]);
-            let ns = e - b;
-            let r = self.off_block_rows(s);
-            let nr = r.len();
-            let m = ns + nr;
+            let Front { b, e, ns, r, nr, m } = self.front(s);
             let panel = &val[self.val_ptr[s]..self.val_ptr[s] + m * ns];
             let u12 = &val[self.val_ptr[s] + m * ns..self.val_ptr[s + 1]];
             if ns < DENSE_SOLVE_COLUMNS {

@@ -140,11 +140,7 @@ fn blocked_panel_equals_the_unblocked_panel() {
 fn blocked_solve_equals_scalar_solves_on_samples() {
     let samples = [
         Poisson2d::new(12).system(),
-        ConvectionDiffusion2d {
-            n: 15,
-            velocity: [30.0, -20.0],
-        }
-        .system(),
+        ConvectionDiffusion2d::new(15, [30.0, -20.0]).system(),
         RandomDiagonallyDominant {
             n: 300,
             off_diagonals: 4,

@@ -18,12 +18,13 @@ use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficien
 use crate::continuum::{
     PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix, mixed_strains,
 };
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem, plane_strain_dof};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_difference::BodyForce;
 use crate::grid::Grid;
 use crate::material::Material;
+use crate::plane_strain_operator::{plane_strain_numbering, setup_accessors};
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::SparsityPattern;
 
@@ -346,20 +347,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         self.volumetric
     }
 
-    /// The material.
-    pub fn material(&self) -> &Material {
-        &self.material
-    }
-
-    /// The boundary conditions.
-    pub fn boundary(&self) -> &BoundaryConditions {
-        &self.boundary
-    }
-
-    /// The chart.
-    pub fn chart(&self) -> &G {
-        &self.chart
-    }
+    setup_accessors!();
 
     /// Number of elements `[in x2, in x3]`.
     pub fn element_counts(&self) -> [usize; 2] {
@@ -468,18 +456,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         self.order.cholesky_ordering(&self.grid)
     }
 
-    fn grid(&self) -> &Grid {
-        &self.grid
-    }
-
-    fn dof_count(&self) -> usize {
-        2 * self.grid.node_count()
-    }
-
-    #[track_caller]
-    fn dof(&self, node: [usize; 2], component: Component) -> usize {
-        plane_strain_dof(&self.grid, node, component)
-    }
+    plane_strain_numbering!();
 
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
         Ok(self.pattern.entries().collect())

@@ -11,16 +11,9 @@ use crate::shell_geometry::ShellGeometry;
 
 impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// The gradient-recovery stencil at a node: `(node, [value, d_2, d_3])` weights.
-    pub(super) fn node_stencil(&self, [i, j]: [usize; 2]) -> Vec<([usize; 2], [f64; 3])> {
+    pub(super) fn node_stencil(&self, node: [usize; 2]) -> Vec<([usize; 2], [f64; 3])> {
         let mut out = Vec::with_capacity(7);
-        out.push(([i, j], [1.0, 0.0, 0.0]));
-        let g = &self.grid;
-        for (ii, w) in difference_stencil(i, g.n2(), g.dx2(), g.is_periodic()) {
-            out.push(([ii, j], [0.0, w, 0.0]));
-        }
-        for (jj, w) in difference_stencil(j, g.n3(), g.dx3(), false) {
-            out.push(([i, jj], [0.0, 0.0, w]));
-        }
+        self.grid.node_stencil(node, &mut out);
         out
     }
 
