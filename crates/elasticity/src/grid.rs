@@ -159,9 +159,13 @@ impl Grid {
 
 /// Second-order nodal difference weights `(index, weight)` at node `i` of `n` nodes spaced `h`
 /// along a grid direction: central (wrapping round when `periodic`), or second-order one-sided
-/// at a bounded end.
-fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
+/// at a bounded end; the first-order difference on a line of two nodes.
+pub(crate) fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
     let w = 0.5 / h;
+    if !periodic && n == 2 {
+        // two nodes: the one difference there is
+        return [(0, -2.0 * w), (1, 2.0 * w), (i, 0.0)];
+    }
     if periodic {
         [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
     } else if i == 0 {

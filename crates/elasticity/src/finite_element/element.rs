@@ -205,25 +205,6 @@ pub(crate) fn lagrange_weights(points: &[f64], s: f64) -> Vec<f64> {
         .collect()
 }
 
-/// Second-order nodal difference weights `(index, weight)` along a grid direction (the
-/// first-order difference on a line of two nodes).
-pub(crate) fn difference_stencil(i: usize, n: usize, h: f64, periodic: bool) -> [(usize, f64); 3] {
-    let w = 0.5 / h;
-    if !periodic && n == 2 {
-        // two nodes: the one difference there is (first order)
-        return [(0, -2.0 * w), (1, 2.0 * w), (i, 0.0)];
-    }
-    if periodic {
-        [((i + n - 1) % n, -w), ((i + 1) % n, w), (i, 0.0)]
-    } else if i == 0 {
-        [(0, -3.0 * w), (1, 4.0 * w), (2, -w)]
-    } else if i == n - 1 {
-        [(n - 1, 3.0 * w), (n - 2, -4.0 * w), (n - 3, w)]
-    } else {
-        [(i - 1, -w), (i + 1, w), (i, 0.0)]
-    }
-}
-
 /// The lumped boundary weight `int N_i dx` of node `i` of `n` on a line of spacing `dx` (row
 /// sums of the 1-D mass matrix): Q1 `dx` (`dx/2` at an end), Q2 `2 dx/3` at element ends and
 /// `4 dx/3` at midpoints (halved at an end of a non-periodic line).

@@ -32,8 +32,8 @@ mod problems;
 mod volumetric;
 
 pub use assembly::ElementAssembly;
+pub(crate) use element::lumped_weight;
 pub use element::{ElementOrder, gauss_rule};
-pub(crate) use element::{difference_stencil, lumped_weight};
 pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;

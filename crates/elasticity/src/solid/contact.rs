@@ -8,7 +8,8 @@ use crate::contact::{ContactOperator, Extremum, extremum};
 use crate::continuum::{SOLID, mixed_strains};
 use crate::discretisation::{ContactNode, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
-use crate::finite_element::{difference_stencil, lumped_weight};
+use crate::finite_element::lumped_weight;
+use crate::grid::difference_stencil;
 use crate::shell_geometry::ShellGeometry;
 
 impl<G: ShellGeometry + Sync> SolidNavier<G> {

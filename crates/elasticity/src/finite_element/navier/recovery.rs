@@ -5,7 +5,7 @@ use super::FiniteElementNavier;
 use crate::boundary::Component;
 use crate::continuum::kinematics::LocalDisplacement;
 use crate::discretisation::{Discretisation, SparseRow};
-use crate::finite_element::element::{difference_stencil, gauss_rule, lagrange_weights};
+use crate::finite_element::element::{gauss_rule, lagrange_weights};
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::shell_geometry::ShellGeometry;
 
