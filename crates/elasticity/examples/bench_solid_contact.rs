@@ -19,20 +19,8 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::SolidBody;
+use capstan_elasticity::verification::peak_memory_mib;
 use capstan_geometry::{EllipticalPrism, Obstacle};
-
-fn vm_hwm_mib() -> f64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines().find(|l| l.starts_with("VmHWM:")).and_then(|l| {
-                l.split_whitespace()
-                    .nth(1)
-                    .and_then(|k| k.parse::<f64>().ok())
-            })
-        })
-        .map_or(f64::NAN, |kib| kib / 1024.0)
-}
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -93,6 +81,6 @@ fn main() {
         total - setup_seconds,
         last.stats.residual,
         last.max_azimuthal_displacement.value,
-        vm_hwm_mib()
+        peak_memory_mib()
     );
 }
