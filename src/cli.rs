@@ -236,10 +236,19 @@ fn infer_mu(out: &commands::infer_mu::InferMuArgs) -> Result<String, CliError> {
 
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
-    let (report, solved) = commands::contact::solve(&scene)?;
-    if let Some(dir) = &args.out {
-        commands::contact::write_out(dir, &report, &solved, &scene)?;
-    }
+    let report = if scene.body.dimension == 3 {
+        let (report, _solution) = commands::solid_contact::solve(&scene)?;
+        if let Some(dir) = &args.out {
+            commands::solid_contact::write_out(dir, &report, &scene)?;
+        }
+        report
+    } else {
+        let (report, solved) = commands::contact::solve(&scene)?;
+        if let Some(dir) = &args.out {
+            commands::contact::write_out(dir, &report, &solved, &scene)?;
+        }
+        report
+    };
     if args.scene.json {
         Ok(crate::output::to_json_string(
             &crate::provenance::Stamped::new(&report, Some(&scene)),

@@ -230,6 +230,10 @@ pub struct ContactReport {
     /// coarsest first (the coarsest solved boundary-only, each finer level by Newton from the
     /// coarser solution interpolated; the last is the scene's grid). `null` otherwise.
     pub grid_sequence: Option<Vec<[usize; 3]>>,
+    /// A 3-D body (`body.dimension = 3`): its grid, extent and the `x1` fields of the contact
+    /// surface; absent in plane strain.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solid: Option<crate::commands::solid_report::SolidReport>,
 }
 
 impl ContactReport {
@@ -283,6 +287,7 @@ impl ContactReport {
             solve_seconds: times[1],
             discretisation: "fd",
             grid_sequence: None,
+            solid: None,
         }
     }
 }
@@ -457,6 +462,13 @@ pub fn table(r: &ContactReport) -> String {
         r.solve_seconds
     );
     let e = |x: &Extremum| format!("{:+.6e} at (x2, x3) = ({:.6}, {:.6})", x.value, x.x2, x.x3);
+    if let Some(solid) = &r.solid {
+        let [n1, n2, n3] = solid.grid;
+        s += &format!(
+            "  3-D body: grid {n1} x {n2} x {n3}, x1 in [{}, {}], sides {:?}, {} contact unknowns\n",
+            solid.x1[0], solid.x1[1], solid.sides, solid.contact_unknowns
+        );
+    }
     s += &format!("  max |v2| {}\n", e(&r.max_azimuthal_displacement));
     s += &format!("  max |v3| {}\n", e(&r.max_radial_displacement));
     s += &format!("  Slip {:.6}\n", r.slip_fraction);

@@ -9,6 +9,8 @@ pub mod geometry;
 pub mod infer_mu;
 pub mod merge;
 mod scene_args;
+pub mod solid_contact;
+pub mod solid_report;
 pub mod stress;
 pub mod sweep;
 pub mod tension;

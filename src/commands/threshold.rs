@@ -39,6 +39,9 @@ pub struct ThresholdReport {
     pub grid: [usize; 2],
     /// Wall time, seconds.
     pub seconds: f64,
+    /// `grid.n1` of a 3-D body (`body.dimension = 3`); absent in plane strain.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid_n1: Option<usize>,
 }
 
 /// Computes the report.
@@ -47,9 +50,15 @@ pub struct ThresholdReport {
 /// Bad input (2); non-convergence (4).
 pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let t = Instant::now();
-    let model = model(scene)?;
-    let solver = BoundarySolver::new(&model, ContactSettings::default())?;
-    let r = threshold_ratio(&solver, ThresholdSettings::default())?;
+    let r = if scene.body.dimension == 3 {
+        let model = crate::commands::solid_contact::model(scene)?;
+        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        threshold_ratio(&solver, ThresholdSettings::default())?
+    } else {
+        let model = model(scene)?;
+        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        threshold_ratio(&solver, ThresholdSettings::default())?
+    };
     let obstacle = scene.obstacle.build()?;
     let problem = MembraneProblem {
         theta0: scene.membrane.theta0,
@@ -70,6 +79,7 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         solves: r.solves,
         grid: [scene.grid.n2, scene.grid.n3],
         seconds: t.elapsed().as_secs_f64(),
+        grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
     })
 }
 

@@ -69,3 +69,19 @@ pub fn human_bytes(bytes: f64) -> String {
     }
     format!("{b:.1} {}", UNITS[unit])
 }
+
+/// Bytes of sparse LU factors per `N^(4/3)` of a 3-D contact solve (`N` unknowns), fitted
+/// above the measured peak (bench_solid_contact, full-system Newton, 11 x 201 x 15 Q1:
+/// 99,495 unknowns, VmHWM 1.88 GB against 2.33 GB estimated).
+pub const SOLID_BYTES_PER_N_4_3: f64 = 500.0;
+
+/// The memory a 3-D contact solve on an `n1 x n2 x n3` grid needs, bytes: the sparse LU
+/// (`SOLID_BYTES_PER_N_4_3 N^(4/3)`, `N = 3 n1 n2 n3`) plus 128 MiB, and for the boundary-only
+/// solver (`condensed`) four dense `m x m` matrices (`P Z`, `N Z`, the Newton matrix and its
+/// LU), `m = 2 n1 n2` contact unknowns.
+pub fn solid_memory_estimate([n1, n2, n3]: [usize; 3], condensed: bool) -> f64 {
+    let n = (3 * n1 * n2 * n3) as f64;
+    let m = (2 * n1 * n2) as f64;
+    let dense = if condensed { 4.0 * 8.0 * m * m } else { 0.0 };
+    SOLID_BYTES_PER_N_4_3 * n.powf(4.0 / 3.0) + dense + 128.0 * 1024.0 * 1024.0
+}

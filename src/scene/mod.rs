@@ -10,6 +10,7 @@ use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
 use capstan_elasticity::finite_element::{DiscretisationMethod, VolumetricIntegration};
+use capstan_elasticity::solid::SideFaces;
 use capstan_elasticity::solvers::LinearBackend;
 use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
 use capstan_geometry::expression::Expression;
@@ -255,6 +256,18 @@ pub struct BodySpec {
     pub young: f64,
     /// Poisson's ratio `nu`.
     pub poisson: f64,
+    /// `2` (default): plane strain on the `(x2, x3)` rectangle of a prism; `3`: the 3-D body on
+    /// the box `[x1 - width/2, x1 + width/2] x [theta0, theta_max] x [0, h]` of any obstacle
+    /// (prisms and cones), finite elements (`discretisation.method = fem-q1 | fem-q2`).
+    pub dimension: u8,
+    /// The extent of a 3-D body along `x1` (`body.dimension = 3`).
+    pub width: f64,
+    /// The centre of a 3-D body along `x1` (on a cone: the distance of the centre from the apex
+    /// along the axis, above `width/2`).
+    pub x1: f64,
+    /// The side faces `x1 = const` of a 3-D body: `free` (default, a body of finite width) or
+    /// `plane-strain` (`v^1 = 0`: the 2-D body extruded).
+    pub sides: SideFaces,
 }
 
 impl Default for BodySpec {
@@ -263,6 +276,10 @@ impl Default for BodySpec {
             thickness: 1.0,
             young: 1e3,
             poisson: 0.25,
+            dimension: 2,
+            width: 1.0,
+            x1: 1.0,
+            sides: SideFaces::Free,
         }
     }
 }
@@ -275,11 +292,17 @@ pub struct GridSpec {
     pub n2: usize,
     /// Points along `x3` (through the thickness).
     pub n3: usize,
+    /// Points along `x1` (across the width of a 3-D body, `body.dimension = 3`).
+    pub n1: usize,
 }
 
 impl Default for GridSpec {
     fn default() -> Self {
-        Self { n2: 250, n3: 41 }
+        Self {
+            n2: 250,
+            n3: 41,
+            n1: 5,
+        }
     }
 }
 
@@ -325,6 +348,6 @@ mod validate;
 pub use load::{Origins, known_keys};
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
-    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, available_memory, human_bytes,
-    memory_estimate,
+    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, SOLID_BYTES_PER_N_4_3, available_memory,
+    human_bytes, memory_estimate, solid_memory_estimate,
 };

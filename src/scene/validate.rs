@@ -143,6 +143,22 @@ impl Scene {
             "(-1, 1/2)",
             b.poisson > -1.0 && b.poisson < 0.5,
         )?;
+        if !matches!(b.dimension, 2 | 3) {
+            return Err(bad(
+                "body.dimension",
+                b.dimension.to_string(),
+                "{2, 3} (2: plane strain on a prism, 3: the 3-D body on any obstacle)",
+            ));
+        }
+        real("body.width", b.width, "(0, inf)", b.width > 0.0)?;
+        real("body.x1", b.x1, "finite values", true)?;
+        if b.dimension == 3 && self.discretisation.method == DiscretisationMethod::Fd {
+            return Err(bad(
+                "discretisation.method",
+                "\"fd\"".into(),
+                "{\"fem-q1\", \"fem-q2\"} with body.dimension = 3 (finite differences are plane strain only)",
+            ));
+        }
         self.validate_grid(at)?;
         if self.discretisation.method == DiscretisationMethod::Fd
             && self.discretisation.volumetric != VolumetricIntegration::Full
@@ -203,6 +219,9 @@ impl Scene {
                 });
             }
         }
+        if self.body.dimension == 3 {
+            return self.validate_solid_grid(at);
+        }
         let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
         if let Some(have) = available_memory()
             && need > have
@@ -216,6 +235,55 @@ impl Scene {
                     human_bytes(need),
                     2 * g.n2 * g.n3,
                     human_bytes(have)
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// `grid.n1` of a 3-D body (`[2, 10^5]`, odd for `fem-q2`) and its memory estimate
+    /// ([`solid_memory_estimate`]) against the memory available.
+    fn validate_solid_grid(&self, at: &Origins) -> Result<(), CliError> {
+        let g = &self.grid;
+        let q2 = self.discretisation.method == DiscretisationMethod::FemQ2;
+        if !(2..=100_000).contains(&g.n1) || (q2 && (g.n1.is_multiple_of(2) || g.n1 < 3)) {
+            return Err(CliError::Scene {
+                origin: at.locate("grid.n1"),
+                message: format!(
+                    "`grid.n1` = {} is outside {}",
+                    g.n1,
+                    if q2 {
+                        "odd values in [3, 10^5] (fem-q2)"
+                    } else {
+                        "[2, 10^5]"
+                    }
+                ),
+            });
+        }
+        let condensed = self.solver.nonlinear == "newton";
+        let need = solid_memory_estimate([g.n1, g.n2, g.n3], condensed);
+        if let Some(have) = available_memory()
+            && need > have
+        {
+            return Err(CliError::Scene {
+                origin: at.locate("grid.n1"),
+                message: format!(
+                    "3-D grid {} x {} x {} needs about {} ({}), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid{}",
+                    g.n1,
+                    g.n2,
+                    g.n3,
+                    human_bytes(need),
+                    if condensed {
+                        "dense condensed contact matrices of 2 n1 n2 rows and the sparse LU"
+                    } else {
+                        "the sparse LU factors"
+                    },
+                    human_bytes(have),
+                    if condensed {
+                        " or solver.nonlinear = \"full-newton\""
+                    } else {
+                        ""
+                    }
                 ),
             });
         }

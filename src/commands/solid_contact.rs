@@ -1,0 +1,191 @@
+//! `capstan contact` and `capstan threshold` for a 3-D body (`body.dimension = 3`): the body
+//! on the box `[x1 - width/2, x1 + width/2] x [theta0, theta_max] x [0, h]` of any obstacle
+//! (prisms and cones), Q1/Q2 hexahedra, under the scene's friction law acting on the
+//! two-component slip in the tangent plane.
+
+use std::time::Instant;
+
+use capstan_elasticity::Material;
+use capstan_elasticity::contact::{
+    BoundarySolver, ContactModel, ContactSettings, ContactSolution, FullSystemSolver,
+};
+use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
+use capstan_elasticity::friction::AnyFrictionLaw;
+use capstan_elasticity::solid::{SolidBody, SolidNavier};
+use capstan_geometry::{Obstacle, ShellChart};
+
+use crate::commands::contact::{ContactReport, SceneSolver, loads, scene_law};
+use crate::commands::solid_report::{SolidContactArrays, SolidReport};
+use crate::error::CliError;
+use crate::progress::CliObserver;
+use crate::scene::Scene;
+
+/// The contact model of a 3-D scene.
+pub type SolidSceneModel = ContactModel<SolidNavier<ShellChart<Obstacle>>, AnyFrictionLaw>;
+
+/// The 3-D body a scene describes.
+///
+/// # Errors
+/// A body reaching the apex of a cone (`body.x1 - body.width/2 <= 0`); finite differences;
+/// bad material values.
+pub fn solid_body(scene: &Scene) -> Result<SolidBody<Obstacle>, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    let b = &scene.body;
+    let x1 = [b.x1 - 0.5 * b.width, b.x1 + 0.5 * b.width];
+    if obstacle.is_cone() && x1[0] <= 0.0 {
+        return Err(CliError::Scene {
+            origin: "body.x1".into(),
+            message: format!(
+                "`body.x1` = {} puts the body's side x1 = {} at or past the cone's apex (x1 = 0); allowed: body.x1 > body.width / 2 = {}",
+                b.x1,
+                x1[0],
+                0.5 * b.width
+            ),
+        });
+    }
+    let order = match scene.discretisation.method {
+        DiscretisationMethod::FemQ1 => ElementOrder::Q1,
+        DiscretisationMethod::FemQ2 => ElementOrder::Q2,
+        DiscretisationMethod::Fd => {
+            return Err(CliError::Scene {
+                origin: "discretisation.method".into(),
+                message: "\"fd\" is plane strain only: use \"fem-q1\" or \"fem-q2\" with body.dimension = 3".into(),
+            });
+        }
+    };
+    Ok(SolidBody {
+        surface: obstacle,
+        x1,
+        theta: [scene.membrane.theta0, scene.membrane.theta_max],
+        thickness: b.thickness,
+        material: Material::new(b.young, b.poisson)?,
+        nodes: [scene.grid.n1, scene.grid.n2, scene.grid.n3],
+        order,
+        volumetric: scene.discretisation.volumetric,
+        sides: b.sides,
+    })
+}
+
+/// The contact model of a 3-D scene.
+///
+/// # Errors
+/// See [`solid_body`]; bad friction values; assembly errors (a degenerate chart).
+pub fn model(scene: &Scene) -> Result<SolidSceneModel, CliError> {
+    let (law, params, eps) = scene_law(scene)?;
+    Ok(solid_body(scene)?.model(law, params, eps)?)
+}
+
+/// The report of a 3-D solution (the plane-strain keys, `x2` fastest, and `solid`).
+fn report(
+    scene: &Scene,
+    model: &SolidSceneModel,
+    sol: &ContactSolution,
+    limiting: Option<[f64; 2]>,
+    times: [f64; 2],
+) -> ContactReport {
+    let c = sol.contact.solid.as_ref();
+    let take = |f: fn(&capstan_elasticity::contact::SolidContactProfile) -> &Vec<f64>| {
+        c.map(f).cloned().unwrap_or_default()
+    };
+    let body = &scene.body;
+    ContactReport {
+        discretisation: capstan_elasticity::contact::ContactOperator::method(
+            model.discretisation(),
+        ),
+        solid: Some(SolidReport {
+            dimension: 3,
+            grid: [scene.grid.n1, scene.grid.n2, scene.grid.n3],
+            x1: [body.x1 - 0.5 * body.width, body.x1 + 0.5 * body.width],
+            sides: body.sides,
+            contact_unknowns: model.active().len(),
+            contact: SolidContactArrays {
+                x1: take(|p| &p.x1),
+                v1: take(|p| &p.v1),
+                shear_stress_1: take(|p| &p.shear_stress_1),
+                slip_1: take(|p| &p.slip_1),
+                friction_traction_1: take(|p| &p.friction_traction_1),
+            },
+        }),
+        ..ContactReport::new(sol, limiting, [scene.grid.n2, scene.grid.n3], times)
+    }
+}
+
+/// Solves a 3-D scene's contact problem with its solver (`newton`: boundary-only, `2m x 2m`
+/// for `m` contact nodes; `full-newton` / `jacobi-newton`: the full system, no grid
+/// sequencing in 3-D).
+///
+/// # Errors
+/// Bad input (exit 2), no equilibrium (3), non-convergence (4).
+pub fn solve(scene: &Scene) -> Result<(ContactReport, ContactSolution), CliError> {
+    let method = SceneSolver::from_scene(scene)?;
+    let loads = loads(scene);
+    let t0 = Instant::now();
+    let model = model(scene)?;
+    let mut observer = CliObserver::new();
+    let (sol, limiting, setup, t1) = match method {
+        SceneSolver::Condensed => {
+            let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+            let setup = t0.elapsed().as_secs_f64();
+            let t1 = Instant::now();
+            let sol = solver.solve_observed(loads, &mut observer)?;
+            let limiting = solver
+                .sliding_at(sol.loads.tau0)?
+                .map(|m| [m.lower_ratio, m.upper_ratio]);
+            (sol, limiting, setup, t1)
+        }
+        SceneSolver::FullNewton(_) | SceneSolver::JacobiNewton => {
+            let solver = FullSystemSolver::new(&model, method.full_settings())?;
+            let setup = t0.elapsed().as_secs_f64();
+            let t1 = Instant::now();
+            (
+                solver.solve_observed(loads, &mut observer)?,
+                None,
+                setup,
+                t1,
+            )
+        }
+    };
+    let times = [setup, t1.elapsed().as_secs_f64()];
+    Ok((report(scene, &model, &sol, limiting, times), sol))
+}
+
+/// Writes `contact.json` (stamped), `scene.toml` and `contact.csv` (the contact surface,
+/// `x1` and `x2` per node with both tangential components).
+///
+/// # Errors
+/// Output errors.
+pub fn write_out(
+    dir: &std::path::Path,
+    report: &ContactReport,
+    scene: &Scene,
+) -> Result<crate::output::OutputDir, CliError> {
+    let out = crate::figures::reports::report_dir(dir, "contact", report, Some(scene))?;
+    let c = &report.contact;
+    let empty = SolidContactArrays {
+        x1: vec![],
+        v1: vec![],
+        shear_stress_1: vec![],
+        slip_1: vec![],
+        friction_traction_1: vec![],
+    };
+    let s = report.solid.as_ref().map_or(&empty, |s| &s.contact);
+    let table = crate::output::Table::new()
+        .f64("x1", s.x1.clone())
+        .f64("x2", c.x2.clone())
+        .f64("v1", s.v1.clone())
+        .f64("v2", c.v2.clone())
+        .f64("v3", c.v3.clone())
+        .f64("normal_stress", c.normal_stress.clone())
+        .f64("shear_stress_1", s.shear_stress_1.clone())
+        .f64("shear_stress", c.shear_stress.clone())
+        .f64("slip_1", s.slip_1.clone())
+        .f64("slip", c.slip.clone())
+        .f64("friction_traction_1", s.friction_traction_1.clone())
+        .f64("friction_traction", c.friction_traction.clone())
+        .i32(
+            "state",
+            c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
+        );
+    out.write_csv("contact.csv", &table)?;
+    Ok(out)
+}

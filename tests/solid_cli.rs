@@ -1,0 +1,177 @@
+//! `capstan contact` and `capstan threshold` on a 3-D body (`body.dimension = 3`): the report's
+//! `solid` part, the plane-strain extrusion against the 2-D scene, cones, the CSV, bad input.
+
+mod common;
+
+use common::{capstan_json, capstan_status, scratch_dir};
+
+/// A small finite-width body on the ellipse `a = 2`, `b = 1.5`.
+const ELLIPSE: [&str; 14] = [
+    "--set",
+    "obstacle.shape=ellipse",
+    "--set",
+    "obstacle.b=1.5",
+    "--set",
+    "discretisation.method=fem-q1",
+    "--set",
+    "grid.n2=21",
+    "--set",
+    "grid.n3=5",
+    "--set",
+    "grid.n1=3",
+    "--set",
+    "loads.tau_max=1.5",
+];
+
+fn values(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+#[test]
+fn plane_strain_extrusion_reports_the_two_dimensional_contact() {
+    let plane = capstan_json(&[&["contact"], &ELLIPSE[..]].concat());
+    let solid = capstan_json(
+        &[
+            &[
+                "contact",
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "body.sides=plane-strain",
+            ],
+            &ELLIPSE[..],
+        ]
+        .concat(),
+    );
+    assert!(
+        plane.get("solid").is_none(),
+        "plane strain has no `solid` key"
+    );
+    let s = &solid["solid"];
+    assert_eq!(s["dimension"], 3);
+    assert_eq!(s["grid"], serde_json::json!([3, 21, 5]));
+    assert_eq!(s["sides"], "plane-strain");
+    assert_eq!(solid["discretisation"], "solid-q1");
+    // three x1 rows of the 2-D profile
+    let (v2, v2_plane) = (
+        values(&solid["contact"]["v2"]),
+        values(&plane["contact"]["v2"]),
+    );
+    assert_eq!(v2.len(), 3 * v2_plane.len());
+    let scale = v2_plane.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for row in v2.chunks(v2_plane.len()) {
+        for (a, b) in row.iter().zip(&v2_plane) {
+            assert!((a - b).abs() < 1e-9 * scale, "{a} vs {b}");
+        }
+    }
+    let slip = |r: &serde_json::Value| r["slip_fraction"].as_f64().unwrap();
+    assert!((slip(&solid) - slip(&plane)).abs() < 1e-12);
+    // v^1 = 0 on the side faces, round-off in between
+    assert!(
+        values(&s["contact"]["v1"])
+            .iter()
+            .all(|x| x.abs() < 1e-12 * scale)
+    );
+}
+
+#[test]
+fn cone_band_of_finite_width_solves_and_writes_its_contact_table() {
+    let dir = scratch_dir("solid-cone");
+    let out = dir.to_str().unwrap();
+    let r = capstan_json(&[
+        "contact",
+        "--set",
+        "body.dimension=3",
+        "--set",
+        "discretisation.method=fem-q1",
+        "--set",
+        "obstacle.shape=cone",
+        "--set",
+        "obstacle.ubar=0.25*sin(t)",
+        "--set",
+        "obstacle.vbar=0.25*cos(t)",
+        "--set",
+        "body.x1=1.2",
+        "--set",
+        "body.width=0.4",
+        "--set",
+        "body.thickness=0.1",
+        "--set",
+        "grid.n2=17",
+        "--set",
+        "grid.n3=3",
+        "--set",
+        "grid.n1=3",
+        "--set",
+        "loads.tau_max=1.3",
+        "--out",
+        out,
+    ]);
+    assert_eq!(r["status"], "converged");
+    assert!(r["residual"].as_f64().unwrap() < 1e-9);
+    assert_eq!(r["solid"]["x1"], serde_json::json!([1.0, 1.4]));
+    // the band slides towards the apex under its hoop tension: v^1 < 0 along the contact
+    assert!(
+        values(&r["solid"]["contact"]["v1"])
+            .iter()
+            .all(|x| *x < 0.0)
+    );
+    let csv = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(
+        header.starts_with("x1,x2,v1,v2,v3,normal_stress"),
+        "{header}"
+    );
+    assert_eq!(csv.lines().count(), 1 + 3 * 17);
+    assert!(dir.join("scene.toml").exists() && dir.join("contact.json").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn threshold_of_a_three_dimensional_body() {
+    let r = capstan_json(&[&["threshold", "--set", "body.dimension=3"], &ELLIPSE[..]].concat());
+    assert_eq!(r["grid_n1"], 3);
+    let ratio = r["threshold_ratio"].as_f64().unwrap();
+    assert!(ratio > 1.5 && ratio < 10.0, "{ratio}");
+    assert!(r["slip_fraction_below"].as_f64().unwrap() > 0.9);
+}
+
+#[test]
+fn bad_three_dimensional_input_names_the_key() {
+    for (set, key) in [
+        (&["--set", "body.dimension=4"][..], "body.dimension"),
+        (&["--set", "body.dimension=3"][..], "discretisation.method"),
+        (
+            &["--set", "body.dimension=3", "--set", "body.width=-1"][..],
+            "body.width",
+        ),
+        (
+            &["--set", "body.dimension=3", "--set", "grid.n1=1"][..],
+            "grid.n1",
+        ),
+        (
+            &[
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "obstacle.shape=cone",
+                "--set",
+                "body.x1=0.2",
+            ][..],
+            "body.x1",
+        ),
+    ] {
+        let method: &[&str] = if key == "discretisation.method" {
+            &[]
+        } else {
+            &["--set", "discretisation.method=fem-q1"]
+        };
+        let (code, _, stderr) = capstan_status(&[&["contact"], set, method].concat());
+        assert_eq!(code, Some(2), "{set:?}: {stderr}");
+        assert!(stderr.contains(key), "{set:?}: {stderr}");
+    }
+}
