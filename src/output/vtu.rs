@@ -337,6 +337,16 @@ impl<'g> Vtu<'g> {
         self
     }
 
+    /// The point arrays, in the order they were added.
+    pub fn point_arrays(&self) -> &[DataArray] {
+        &self.point_data
+    }
+
+    /// The grid the arrays live on.
+    pub fn grid(&self) -> &QuadGrid {
+        self.grid
+    }
+
     /// Checks the file can be written.
     ///
     /// # Errors
