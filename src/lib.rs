@@ -14,6 +14,9 @@ pub mod provenance;
 pub mod scale;
 pub mod scene;
 
+pub use capstan_elasticity as elasticity;
+pub use capstan_elasticity::solvers;
+pub use capstan_friction as friction;
 pub use capstan_geometry as geometry;
 pub use error::CliError;
 pub use scene::Scene;
