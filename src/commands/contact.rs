@@ -532,8 +532,11 @@ pub fn write_out(
         &sol.obstacle,
         &sol.fields,
         &sol.solution.contact,
-        None,
-        true,
+        crate::figures::body::BodyFiles {
+            time: None,
+            plots: true,
+            output: &scene.output,
+        },
     )?;
     Ok(())
 }

@@ -140,8 +140,11 @@ fn point_vtu(
         &solved.obstacle,
         &solved.fields,
         &sol.contact,
-        Some(value),
-        false,
+        crate::figures::body::BodyFiles {
+            time: Some(value),
+            plots: false,
+            output: &scene.output,
+        },
     )?;
     Ok(())
 }
