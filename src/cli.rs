@@ -278,11 +278,14 @@ fn sweep(args: &SweepArgs) -> Result<String, CliError> {
         &values,
         fields.as_ref(),
     )?;
+    let scene = args.scene.load()?;
     if let Some(dir) = &args.out {
-        commands::sweep::write_out(dir, &report)?;
+        commands::sweep::write_out(dir, &report, &scene)?;
     }
     if args.scene.json {
-        Ok(crate::output::to_json_string(&report)?)
+        Ok(crate::output::to_json_string(
+            &crate::provenance::Stamped::new(&report, Some(&scene)),
+        )?)
     } else {
         Ok(commands::sweep::table(&report))
     }
@@ -294,15 +297,19 @@ fn sweep_shard(
     values: &[f64],
     spec: crate::scale::ShardSpec,
 ) -> Result<String, CliError> {
+    let out = match &args.out {
+        Some(dir) => Some(crate::output::OutputDir::create(dir)?),
+        None => None,
+    };
     let part = crate::scale::run_shard(
         args.scene.scene.as_deref(),
         &args.scene.sets,
         &args.param,
         values,
         spec,
+        out.as_ref(),
     )?;
-    if let Some(dir) = &args.out {
-        let out = crate::output::OutputDir::create(dir)?;
+    if let Some(out) = &out {
         out.write_json(&crate::scale::shard_file_name(spec), &part)?;
     }
     if args.scene.json {
@@ -330,11 +337,15 @@ fn sweep_mpi(args: &SweepArgs, values: &[f64]) -> Result<Option<String>, CliErro
         // Other ranks print nothing (MPI is finalised when `sweep` returns).
         MpiSweep::Worker => std::process::exit(0),
         MpiSweep::Root(report) => {
+            let resolved = scene.load()?;
             if let Some(dir) = &args.out {
-                commands::sweep::write_out(dir, &report)?;
+                commands::sweep::write_out(dir, &report, &resolved)?;
             }
             Ok(Some(if scene.json {
-                crate::output::to_json_string(&report)?
+                crate::output::to_json_string(&crate::provenance::Stamped::new(
+                    &report,
+                    Some(&resolved),
+                ))?
             } else {
                 commands::sweep::table(&report)
             }))

@@ -1,5 +1,18 @@
 //! capstan: friction between elastic bodies and rough rigid curved obstacles.
 //!
+//! # Quick start
+//! ```
+//! use capstan::{Scene, commands};
+//! // the default scene: a membrane over a semi-elliptical prism a = b = 2, mu = 1/2, half a turn
+//! let scene = Scene::default();
+//! let tension = commands::tension::report(&scene).unwrap();
+//! assert!((tension.tension_ratio - (0.5 * std::f64::consts::PI).exp()).abs() < 1e-9);
+//! // any scene key, checked as `--set` checks it
+//! let coarse = scene.with_raw("grid.n2", "41", "set").unwrap().with_raw("grid.n3", "9", "set").unwrap();
+//! let (report, _) = commands::contact::solve_observed(&coarse, &mut capstan::solvers::SilentObserver).unwrap();
+//! assert!(report.converged && report.slip_fraction > 0.0);
+//! ```
+//!
 //! The facade re-exports the member crates and provides scene files, the command line and
 //! output writers. See the README for the two problems it solves.
 #![warn(missing_docs)]
@@ -14,6 +27,9 @@ pub mod provenance;
 pub mod scale;
 pub mod scene;
 
+pub use capstan_elasticity as elasticity;
+pub use capstan_elasticity::solvers;
+pub use capstan_friction as friction;
 pub use capstan_geometry as geometry;
 pub use error::CliError;
 pub use scene::Scene;

@@ -9,7 +9,7 @@ use capstan_elasticity::contact::{
     FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced_observed,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
-use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
+use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod, Observer};
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -352,11 +352,24 @@ pub fn solved(
     })
 }
 
-/// Solves a scene's contact problem with its solver.
+/// Solves a scene's contact problem with its solver, reporting progress as the command line
+/// does ([`CliObserver`]: `-v` lines, a spinner on a terminal).
 ///
 /// # Errors
 /// Bad input (exit 2), no equilibrium (3), non-convergence (4).
 pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
+    solve_observed(scene, &mut CliObserver::new())
+}
+
+/// As [`solve`], with every iteration of the solve reported to `observer` (which may stop it:
+/// [`ContactError::Interrupted`]). The Python package passes its callback and Ctrl-C check here.
+///
+/// # Errors
+/// As [`solve`]; [`ContactError::Interrupted`] when `observer` asks to stop.
+pub fn solve_observed(
+    scene: &Scene,
+    observer: &mut dyn Observer<f64>,
+) -> Result<(ContactReport, Solved), CliError> {
     let method = SceneSolver::from_scene(scene)?;
     let loads = loads(scene);
     let t0 = Instant::now();
@@ -367,7 +380,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let solver = BoundarySolver::new(&model, ContactSettings::default())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            let sol = solver.solve_observed(loads, &mut CliObserver::new())?;
+            let sol = solver.solve_observed(loads, observer)?;
             let limiting = solver
                 .sliding_at(sol.loads.tau0)?
                 .map(|m| [m.lower_ratio, m.upper_ratio]);
@@ -383,10 +396,8 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let body = thick_body(scene)?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            let mut observer = CliObserver::new();
             let settings = method.full_settings();
-            match solve_sequenced_observed(&body, law, params, eps, loads, settings, &mut observer)
-            {
+            match solve_sequenced_observed(&body, law, params, eps, loads, settings, observer) {
                 Ok(seq) => {
                     let report = ContactReport {
                         discretisation: capstan_elasticity::Discretisation::method(
@@ -415,7 +426,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let solver = FullSystemSolver::new(&model, method.full_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            match solver.solve_observed(loads, &mut CliObserver::new()) {
+            match solver.solve_observed(loads, observer) {
                 Ok(sol) => {
                     let report = ContactReport {
                         discretisation: capstan_elasticity::Discretisation::method(
@@ -531,8 +542,11 @@ pub fn write_out(
         &sol.obstacle,
         &sol.fields,
         &sol.solution.contact,
-        None,
-        true,
+        crate::figures::body::BodyFiles {
+            time: None,
+            plots: true,
+            output: &scene.output,
+        },
     )?;
     Ok(())
 }

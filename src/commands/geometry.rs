@@ -45,33 +45,89 @@ pub fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
 /// # Errors
 /// Invalid obstacle parameters, or a degenerate point in the interval (typed geometry error).
 pub fn report(scene: &Scene) -> Result<GeometryReport, CliError> {
+    let m = &scene.membrane;
+    Ok(report_at(scene, &linspace(m.theta0, m.theta_max, m.samples.max(2)))?.report)
+}
+
+/// The geometry at chosen points `x2`: the keys of [`GeometryReport`] and the whole tensors
+/// (what `capstan.geometry(scene, x2)` returns in Python).
+#[derive(Debug, Clone, Serialize)]
+pub struct GeometryDetail {
+    /// The keys of `capstan geometry --json`, at these points.
+    #[serde(flatten)]
+    pub report: GeometryReport,
+    /// `sigma(x1, x2)`.
+    pub point: Vec<[f64; 3]>,
+    /// Unit normal `N`.
+    pub normal: Vec<[f64; 3]>,
+    /// `a_ab`, the metric of the surface (first fundamental form).
+    pub first_form: Vec<[[f64; 2]; 2]>,
+    /// `a^ab`.
+    pub first_form_inverse: Vec<[[f64; 2]; 2]>,
+    /// `b_ab` (second fundamental form).
+    pub second_form: Vec<[[f64; 2]; 2]>,
+    /// `b^a_b`.
+    pub mixed_second_form: Vec<[[f64; 2]; 2]>,
+    /// `christoffel[c][a][b] = Gamma^c_ab` of the surface.
+    pub christoffel: Vec<[[[f64; 2]; 2]; 2]>,
+    /// `g_ij` of the shell chart on the obstacle (`x3 = 0`).
+    pub shell_metric: Vec<[[f64; 3]; 3]>,
+    /// `g_ij` of the shell chart at `x3 = body.thickness`.
+    pub shell_metric_outer: Vec<[[f64; 3]; 3]>,
+}
+
+/// The geometry of the scene's obstacle at the points `x2` (`x1` as in [`report`]).
+///
+/// # Errors
+/// As [`report`].
+pub fn report_at(scene: &Scene, x2: &[f64]) -> Result<GeometryDetail, CliError> {
     let obstacle = scene.obstacle.build()?;
     let x1 = if obstacle.is_cone() { 1.0 } else { 0.0 };
     let chart = ShellChart::new(&obstacle);
-    let m = &scene.membrane;
-    let x2 = linspace(m.theta0, m.theta_max, m.samples.max(2));
-    let mut r = GeometryReport {
-        obstacle: scene.obstacle.clone(),
-        x1,
-        x2: x2.clone(),
-        mean_curvature: vec![],
-        gaussian_curvature: vec![],
-        a22: vec![],
-        b22: vec![],
-        christoffel_222: vec![],
-        sqrt_g_outer: vec![],
+    let x2 = x2.to_vec();
+    let mut d = GeometryDetail {
+        report: GeometryReport {
+            obstacle: scene.obstacle.clone(),
+            x1,
+            x2: x2.clone(),
+            mean_curvature: vec![],
+            gaussian_curvature: vec![],
+            a22: vec![],
+            b22: vec![],
+            christoffel_222: vec![],
+            sqrt_g_outer: vec![],
+        },
+        point: vec![],
+        normal: vec![],
+        first_form: vec![],
+        first_form_inverse: vec![],
+        second_form: vec![],
+        mixed_second_form: vec![],
+        christoffel: vec![],
+        shell_metric: vec![],
+        shell_metric_outer: vec![],
     };
     for &t in &x2 {
         let g = Surface::<f64>::geometry(&obstacle, [x1, t])?;
+        let r = &mut d.report;
         r.mean_curvature.push(g.mean_curvature);
         r.gaussian_curvature.push(g.gaussian_curvature);
         r.a22.push(g.first_form[1][1]);
         r.b22.push(g.second_form[1][1]);
         r.christoffel_222.push(g.christoffel[1][1][1]);
-        r.sqrt_g_outer
-            .push(chart.point([x1, t, scene.body.thickness])?.sqrt_g);
+        let outer = chart.point([x1, t, scene.body.thickness])?;
+        r.sqrt_g_outer.push(outer.sqrt_g);
+        d.point.push(g.point);
+        d.normal.push(g.normal);
+        d.first_form.push(g.first_form);
+        d.first_form_inverse.push(g.first_form_inverse);
+        d.second_form.push(g.second_form);
+        d.mixed_second_form.push(g.mixed_second_form);
+        d.christoffel.push(g.christoffel);
+        d.shell_metric.push(chart.point([x1, t, 0.0])?.metric);
+        d.shell_metric_outer.push(outer.metric);
     }
-    Ok(r)
+    Ok(d)
 }
 
 /// Human-readable table of the report.

@@ -277,7 +277,18 @@ pub fn membrane_ratio<C: ProfileCurve<f64>>(
             start: EndCondition::Tension(1.0),
             end: EndCondition::Displacement(pull),
         };
-        let s = model.solve(&problem, None, Default::default())?;
+        // -v prints the membrane's Newton iterations (stage `membrane`)
+        let mut observer = crate::progress::CliObserver::new();
+        let mut report = |iteration: usize, residual: f64, step: f64| {
+            use capstan_elasticity::solvers::{Observer, Progress, SolveStage};
+            observer.iteration(&Progress::new(
+                SolveStage::Membrane,
+                iteration,
+                residual,
+                step,
+            ));
+        };
+        let s = model.solve_observed(&problem, None, Default::default(), &mut report)?;
         if s.slip_fraction(setup.eps) == 1.0 {
             return Ok(s.tension_ratio());
         }

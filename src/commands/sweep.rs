@@ -10,6 +10,7 @@ use serde::Serialize;
 use crate::commands::contact::{loads, model};
 use crate::error::CliError;
 use crate::output::{OutputDir, Table};
+use crate::provenance::{Stamped, write_scene};
 use crate::scene::Scene;
 
 /// One point of a sweep.
@@ -139,8 +140,11 @@ fn point_vtu(
         &solved.obstacle,
         &solved.fields,
         &sol.contact,
-        Some(value),
-        false,
+        crate::figures::body::BodyFiles {
+            time: Some(value),
+            plots: false,
+            output: &scene.output,
+        },
     )?;
     Ok(())
 }
@@ -161,16 +165,63 @@ pub fn report_with_fields(
     values: &[f64],
     fields: Option<&OutputDir>,
 ) -> Result<SweepReport, CliError> {
+    report_indexed(path, sets, key, values, fields, &|i| i)
+}
+
+/// As [`report_with_fields`], the `i`-th value being point `index(i)` of the whole sweep (its
+/// VTU is `points/point_NNNN.vtu` with that number): a shard's points keep their grid numbers.
+///
+/// # Errors
+/// As [`report`].
+pub fn report_indexed(
+    path: Option<&std::path::Path>,
+    sets: &[String],
+    key: &str,
+    values: &[f64],
+    fields: Option<&OutputDir>,
+    index: &(dyn Fn(usize) -> usize + Sync),
+) -> Result<SweepReport, CliError> {
     let t = Instant::now();
     let scene = &Scene::load(path, sets)?;
-    capstan_elasticity::contact::sequential_linear_algebra();
-    let bar = crate::progress::bar(values.len(), key, false);
-    let tick = || bar.inc(1);
     let with = |value: f64| -> Result<Scene, CliError> {
         let mut s = sets.to_vec();
         s.push(format!("{key}={value}"));
         Scene::load(path, &s)
     };
+    run(scene, &with, key, values, fields, index, t)
+}
+
+/// As [`report_with_fields`] on a scene already loaded (`scene` with `key` set to each value as
+/// `--set key=value` sets it): the sweep of the Python package. `index(i)` is the number of the
+/// `i`-th value in the whole sweep (its VTU name): the identity, or a shard's grid points.
+///
+/// # Errors
+/// As [`report`].
+pub fn report_scene(
+    scene: &Scene,
+    key: &str,
+    values: &[f64],
+    fields: Option<&OutputDir>,
+    index: &(dyn Fn(usize) -> usize + Sync),
+) -> Result<SweepReport, CliError> {
+    let t = Instant::now();
+    let with = |value: f64| scene.with_raw(key, &value.to_string(), "--set");
+    run(scene, &with, key, values, fields, index, t)
+}
+
+/// The sweep of `scene` over `values` of `key`; `with(v)` is the scene of point `v`.
+fn run(
+    scene: &Scene,
+    with: &(dyn Fn(f64) -> Result<Scene, CliError> + Sync),
+    key: &str,
+    values: &[f64],
+    fields: Option<&OutputDir>,
+    index: &(dyn Fn(usize) -> usize + Sync),
+    t: Instant,
+) -> Result<SweepReport, CliError> {
+    capstan_elasticity::contact::sequential_linear_algebra();
+    let bar = crate::progress::bar(values.len(), key, false);
+    let tick = || bar.inc(1);
     // Validate the key once (and that there is a point).
     with(*values.first().ok_or(CliError::Scene {
         origin: "--steps".into(),
@@ -192,7 +243,7 @@ pub fn report_with_fields(
                 }
                 let mut r = solver.solve(l).map_err(CliError::from);
                 if let (Some(out), Ok(sol)) = (fields, &r)
-                    && let Err(e) = point_vtu(out, i, v, scene, &model, sol)
+                    && let Err(e) = point_vtu(out, index(i), v, scene, &model, sol)
                 {
                     r = Err(e);
                 }
@@ -212,7 +263,7 @@ pub fn report_with_fields(
                     let l = loads(&sc);
                     let mut r = solver.solve(l).map_err(CliError::from);
                     if let (Some(out), Ok(sol)) = (fields, &r)
-                        && let Err(e) = point_vtu(out, i, v, &sc, &m, sol)
+                        && let Err(e) = point_vtu(out, index(i), v, &sc, &m, sol)
                     {
                         r = Err(e);
                     }
@@ -260,15 +311,16 @@ pub fn table(r: &SweepReport) -> String {
     s
 }
 
-/// Writes `sweep.json`, `sweep.csv`, the plot `sweep.{svg,png}` (Slip against the swept
-/// value) and, when `points/point_NNNN.vtu` files were written by [`report_with_fields`],
+/// Writes `sweep.json` (with `capstan_version` and the resolved base `scene`), `scene.toml`,
+/// `sweep.csv`, the plot `sweep.{svg,png}` (Slip against the swept value) and, when `points/point_NNNN.vtu` files were written by [`report_with_fields`],
 /// their collection `sweep.pvd` (time = the swept value; ParaView reads it, meshio does not).
 ///
 /// # Errors
 /// Output errors.
-pub fn write_out(dir: &std::path::Path, r: &SweepReport) -> Result<(), CliError> {
+pub fn write_out(dir: &std::path::Path, r: &SweepReport, scene: &Scene) -> Result<(), CliError> {
     let out = OutputDir::create(dir)?;
-    out.write_json("sweep.json", r)?;
+    out.write_json("sweep.json", &Stamped::new(r, Some(scene)))?;
+    write_scene(&out, scene)?;
     let mut pvd = crate::output::Pvd::new();
     for (i, p) in r.points.iter().enumerate() {
         let name = format!("{}.vtu", point_vtu_name(i));

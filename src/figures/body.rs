@@ -90,6 +90,32 @@ pub fn body_vtu<'g>(grid: &'g QuadGrid, fields: &NodalFields, contact: &ContactP
         .point_scalars("contact_slip", slip)
         .point_scalars("x2", x2)
         .point_scalars("x3", x3)
+        .active_scalars("contact_state")
+        .active_vectors("displacement")
+}
+
+/// The obstacle surface beside the body: `sigma(x1, x2)` on a ribbon `|x1| <= h` (`h` the
+/// body's thickness) over the body's `x2` span widened by a quarter on each side, as quads
+/// (node `i2 n3 + i1`).
+///
+/// # Errors
+/// Geometry failures (a non-finite point).
+pub fn obstacle_grid(obstacle: &Obstacle, fields: &NodalFields) -> Result<QuadGrid, OutputError> {
+    use capstan_geometry::Surface;
+    let g = &fields.grid;
+    let (a, b) = (g.x2(0), g.x2(g.n2() - 1));
+    let (lo, hi) = (a - 0.25 * (b - a), b + 0.25 * (b - a));
+    let h = (g.x3(g.n3() - 1) - g.x3(0)).abs().max(f64::MIN_POSITIVE);
+    let (n2, n1) = (4 * g.n2().max(2), 3);
+    let mut points = Vec::with_capacity(n2 * n1);
+    for i in 0..n2 {
+        let t = lo + (hi - lo) * i as f64 / (n2 - 1) as f64;
+        for j in 0..n1 {
+            let x1 = -h + 2.0 * h * j as f64 / (n1 - 1) as f64;
+            points.push(Surface::<f64>::sigma(obstacle, [x1, t]));
+        }
+    }
+    QuadGrid::new(n2, n1, false, points)
 }
 
 /// Colour maps of `v^2` (rad) and `v^3` on the curved body, seen along `x1` (axes y, z).
@@ -135,8 +161,20 @@ pub fn state_strip(contact: &ContactProfile, title: &str) -> StateStrip {
     .x_label("x2 = theta (rad)")
 }
 
+/// What [`write_body`] writes besides the VTU's fields.
+#[derive(Debug, Clone, Copy)]
+pub struct BodyFiles<'a> {
+    /// The VTU's `TimeValue` (a sweep's value).
+    pub time: Option<f64>,
+    /// Also the plots `STEM_v2`, `STEM_v3`, `STEM_state`.
+    pub plots: bool,
+    /// `[output]` of the scene: compression, the obstacle piece.
+    pub output: &'a crate::scene::OutputSpec,
+}
+
 /// Writes `STEM.vtu`, `STEM_v2.{svg,png}`, `STEM_v3.{svg,png}` and `STEM_state.{svg,png}`
-/// into `out` (each atomically); `time` becomes the VTU's `TimeValue`.
+/// into `out` (each atomically); `options.time` becomes the VTU's `TimeValue`; `options.output` chooses zlib
+/// compression and the obstacle as a second piece ([`obstacle_grid`]).
 ///
 /// # Errors
 /// Geometry or output errors.
@@ -146,11 +184,23 @@ pub fn write_body(
     obstacle: &Obstacle,
     fields: &NodalFields,
     contact: &ContactProfile,
-    time: Option<f64>,
-    plots: bool,
+    options: BodyFiles<'_>,
 ) -> Result<(), OutputError> {
+    let BodyFiles {
+        time,
+        plots,
+        output,
+    } = options;
     let grid = body_grid(obstacle, fields)?;
-    let mut vtu = body_vtu(&grid, fields, contact);
+    let ribbon = if output.vtu_obstacle {
+        Some(obstacle_grid(obstacle, fields)?)
+    } else {
+        None
+    };
+    let mut vtu = body_vtu(&grid, fields, contact).encoding(output.vtu_compression.encoding());
+    if let Some(r) = &ribbon {
+        vtu = vtu.second_piece(r);
+    }
     if let Some(t) = time {
         vtu = vtu.time(t);
     }

@@ -23,7 +23,7 @@ pub use csv::{Column, ColumnData, Table, format_f64};
 pub use error::OutputError;
 pub use json::{check_finite_json, to_json_string, write_json};
 pub use out_dir::OutputDir;
-pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_QUAD, Vtu};
+pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_QUAD, Vtu, VtuCompression};
 mod plot;
 
 pub use plot::{

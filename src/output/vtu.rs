@@ -6,8 +6,10 @@
 //!
 //! Two encodings, both read by meshio 5 and VTK/ParaView: ASCII (shortest round-trip decimals,
 //! so values read back exactly) and appended raw binary (`header_type="UInt64"`, little-endian).
-//! No compression: vtkio 0.6's compressed output is unreadable by both readers, and the
-//! files are small.
+//! Appended data may be zlib-compressed ([`Encoding::AppendedZlib`], VTK's
+//! `vtkZLibDataCompressor` block format, written by our own code with flate2: vtkio 0.6's
+//! compressed output is unreadable by both readers). A second piece can carry another surface
+//! (the obstacle) beside the body.
 
 use std::fmt::Write as _;
 use std::io::Write;
@@ -214,6 +216,57 @@ pub enum Encoding {
     /// its byte count as a `UInt64`: compact and exact.
     #[default]
     AppendedRaw,
+    /// Appended data compressed with zlib in blocks of 32 KiB (`compressor="vtkZLibDataCompressor"`):
+    /// each array is a `UInt64` header (blocks, block size, last block size, compressed sizes)
+    /// and the compressed blocks. Exact, smaller for smooth fields.
+    AppendedZlib,
+}
+
+/// `output.vtu_compression`: how VTU arrays are stored.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VtuCompression {
+    /// Appended raw binary ([`Encoding::AppendedRaw`]).
+    #[default]
+    None,
+    /// zlib ([`Encoding::AppendedZlib`]).
+    Zlib,
+}
+
+impl VtuCompression {
+    /// The encoding of this setting.
+    pub fn encoding(self) -> Encoding {
+        match self {
+            Self::None => Encoding::AppendedRaw,
+            Self::Zlib => Encoding::AppendedZlib,
+        }
+    }
+}
+
+/// Uncompressed bytes per zlib block (VTK's default).
+const ZLIB_BLOCK: usize = 1 << 15;
+
+/// `bytes` in VTK's compressed-block layout: the `UInt64` header, then the blocks.
+fn zlib_blocks(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
+    use flate2::{Compression, write::ZlibEncoder};
+    let blocks: Vec<&[u8]> = bytes.chunks(ZLIB_BLOCK).collect();
+    let mut compressed = Vec::with_capacity(blocks.len());
+    for b in &blocks {
+        let mut e = ZlibEncoder::new(Vec::new(), Compression::default());
+        e.write_all(b)?;
+        compressed.push(e.finish()?);
+    }
+    let last = blocks.last().map_or(0, |b| b.len());
+    let last = if last == ZLIB_BLOCK { 0 } else { last }; // 0: the last block is full
+    let mut out = Vec::new();
+    for x in [blocks.len(), ZLIB_BLOCK, last]
+        .into_iter()
+        .chain(compressed.iter().map(Vec::len))
+    {
+        out.extend((x as u64).to_le_bytes());
+    }
+    compressed.iter().for_each(|c| out.extend(c));
+    Ok(out)
 }
 
 /// A named array of `f64` tuples attached to points or cells.
@@ -255,6 +308,8 @@ pub struct Vtu<'g> {
     time: Option<f64>,
     point_data: Vec<DataArray>,
     cell_data: Vec<DataArray>,
+    active: [Option<String>; 2],
+    second: Option<&'g QuadGrid>,
 }
 
 impl<'g> Vtu<'g> {
@@ -266,7 +321,29 @@ impl<'g> Vtu<'g> {
             time: None,
             point_data: Vec::new(),
             cell_data: Vec::new(),
+            active: [None, None],
+            second: None,
         }
+    }
+
+    /// Marks point array `name` as the active `Scalars` (what ParaView colours by first).
+    pub fn active_scalars(mut self, name: impl Into<String>) -> Self {
+        self.active[0] = Some(name.into());
+        self
+    }
+
+    /// Marks point array `name` (3 components) as the active `Vectors` (what ParaView's
+    /// "Warp By Vector" and glyphs use).
+    pub fn active_vectors(mut self, name: impl Into<String>) -> Self {
+        self.active[1] = Some(name.into());
+        self
+    }
+
+    /// Adds `grid` as a second piece (e.g. the obstacle surface beside the body): the same
+    /// point and cell arrays, zero there, so readers that merge pieces see one array per name.
+    pub fn second_piece(mut self, grid: &'g QuadGrid) -> Self {
+        self.second = Some(grid);
+        self
     }
 
     /// Sets the encoding.
@@ -337,6 +414,16 @@ impl<'g> Vtu<'g> {
         self
     }
 
+    /// The point arrays, in the order they were added.
+    pub fn point_arrays(&self) -> &[DataArray] {
+        &self.point_data
+    }
+
+    /// The grid the arrays live on.
+    pub fn grid(&self) -> &QuadGrid {
+        self.grid
+    }
+
     /// Checks the file can be written.
     ///
     /// # Errors
@@ -378,6 +465,22 @@ impl<'g> Vtu<'g> {
                 check_all_finite(&a.name, &a.values)?;
             }
         }
+        for (name, components) in self.active.iter().zip([1, 3]) {
+            if let Some(name) = name {
+                check_xml_name(name)?;
+                let found = self.point_data.iter().find(|a| &a.name == name);
+                if found.is_none_or(|a| a.components != components) {
+                    return Err(OutputError::InvalidName {
+                        name: name.clone(),
+                        reason: if components == 1 {
+                            "is not a scalar point array (active Scalars)"
+                        } else {
+                            "is not a 3-component point array (active Vectors)"
+                        },
+                    });
+                }
+            }
+        }
         Ok(())
     }
 
@@ -387,15 +490,54 @@ impl<'g> Vtu<'g> {
     /// As [`Vtu::validate`] (checked before anything is written), or an I/O error.
     pub fn write<W: Write + ?Sized>(&self, w: &mut W) -> Result<(), OutputError> {
         self.validate()?;
-        let cells = self.grid.cells();
-        let connectivity: Vec<i64> = cells.iter().flatten().map(|&k| k as i64).collect();
-        let offsets: Vec<i64> = (1..=cells.len() as i64).map(|c| 4 * c).collect();
-        let types = vec![VTK_QUAD; cells.len()];
+        // The second piece: its grid with every array of the first, zero.
+        let zeros = |arrays: &[DataArray], tuples: usize| -> Vec<DataArray> {
+            arrays
+                .iter()
+                .map(|a| DataArray {
+                    name: a.name.clone(),
+                    components: a.components,
+                    values: vec![0.0; tuples * a.components],
+                })
+                .collect()
+        };
+        let second = self.second.map(|g| {
+            (
+                g,
+                zeros(&self.point_data, g.node_count()),
+                zeros(&self.cell_data, g.cell_count()),
+            )
+        });
+        let mut pieces = vec![(self.grid, &self.point_data, &self.cell_data)];
+        if let Some((g, p, c)) = &second {
+            pieces.push((g, p, c));
+        }
+        let topology: Vec<(Vec<i64>, Vec<i64>, Vec<u8>)> = pieces
+            .iter()
+            .map(|(g, _, _)| {
+                let cells = g.cells();
+                (
+                    cells.iter().flatten().map(|&k| k as i64).collect(),
+                    (1..=cells.len() as i64).map(|c| 4 * c).collect(),
+                    vec![VTK_QUAD; cells.len()],
+                )
+            })
+            .collect();
 
         // The document as a list of text and arrays, rendered once the encoding is known.
         let mut items: Vec<Item<'_>> = Vec::new();
         let text = |items: &mut Vec<Item<'_>>, s: String| items.push(Item::Text(s));
-        text(&mut items, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n".to_owned());
+        let compressor = if self.encoding == Encoding::AppendedZlib {
+            " compressor=\"vtkZLibDataCompressor\""
+        } else {
+            ""
+        };
+        text(
+            &mut items,
+            format!(
+                "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\"{compressor}>\n  <UnstructuredGrid>\n"
+            ),
+        );
         if let Some(t) = self.time {
             // ASCII in every encoding: one value; VTK needs NumberOfTuples="1" to take it.
             text(
@@ -406,62 +548,68 @@ impl<'g> Vtu<'g> {
                 ),
             );
         }
-        text(
-            &mut items,
-            format!(
-                "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-                self.grid.node_count(),
-                cells.len()
-            ),
-        );
-        for (tag, arrays) in [
-            ("PointData", &self.point_data),
-            ("CellData", &self.cell_data),
-        ] {
-            if arrays.is_empty() {
-                continue;
+        let active: String = [("Scalars", &self.active[0]), ("Vectors", &self.active[1])]
+            .iter()
+            .filter_map(|(k, v)| v.as_ref().map(|v| format!(" {k}=\"{v}\"")))
+            .collect();
+        for ((grid, point_data, cell_data), (connectivity, offsets, types)) in
+            pieces.iter().zip(&topology)
+        {
+            text(
+                &mut items,
+                format!(
+                    "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+                    grid.node_count(),
+                    types.len()
+                ),
+            );
+            for (tag, arrays, attrs) in [
+                ("PointData", *point_data, active.as_str()),
+                ("CellData", *cell_data, ""),
+            ] {
+                if arrays.is_empty() {
+                    continue;
+                }
+                text(&mut items, format!("      <{tag}{attrs}>\n"));
+                for a in arrays.iter() {
+                    // Scalars omit NumberOfComponents (VTK's default, 1): meshio then gives
+                    // shape (n,) rather than (n, 1).
+                    let attributes = if a.components == 1 {
+                        format!("type=\"Float64\" Name=\"{}\"", a.name)
+                    } else {
+                        format!(
+                            "type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"",
+                            a.name, a.components
+                        )
+                    };
+                    items.push(Item::Array(attributes, Block::F64(&a.values)));
+                }
+                text(&mut items, format!("      </{tag}>\n"));
             }
-            text(&mut items, format!("      <{tag}>\n"));
-            for a in arrays {
-                // Scalars omit NumberOfComponents (VTK's default, 1): meshio then gives
-                // shape (n,) rather than (n, 1).
-                let attributes = if a.components == 1 {
-                    format!("type=\"Float64\" Name=\"{}\"", a.name)
-                } else {
-                    format!(
-                        "type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\"",
-                        a.name, a.components
-                    )
-                };
-                items.push(Item::Array(attributes, Block::F64(&a.values)));
-            }
-            text(&mut items, format!("      </{tag}>\n"));
+            text(&mut items, "      <Points>\n".to_owned());
+            items.push(Item::Array(
+                "type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"".to_owned(),
+                Block::F64(grid.points.as_flattened()),
+            ));
+            text(&mut items, "      </Points>\n      <Cells>\n".to_owned());
+            items.push(Item::Array(
+                "type=\"Int64\" Name=\"connectivity\"".to_owned(),
+                Block::I64(connectivity),
+            ));
+            items.push(Item::Array(
+                "type=\"Int64\" Name=\"offsets\"".to_owned(),
+                Block::I64(offsets),
+            ));
+            items.push(Item::Array(
+                "type=\"UInt8\" Name=\"types\"".to_owned(),
+                Block::U8(types),
+            ));
+            text(&mut items, "      </Cells>\n    </Piece>\n".to_owned());
         }
-        text(&mut items, "      <Points>\n".to_owned());
-        items.push(Item::Array(
-            "type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"".to_owned(),
-            Block::F64(self.grid.points.as_flattened()),
-        ));
-        text(&mut items, "      </Points>\n      <Cells>\n".to_owned());
-        items.push(Item::Array(
-            "type=\"Int64\" Name=\"connectivity\"".to_owned(),
-            Block::I64(&connectivity),
-        ));
-        items.push(Item::Array(
-            "type=\"Int64\" Name=\"offsets\"".to_owned(),
-            Block::I64(&offsets),
-        ));
-        items.push(Item::Array(
-            "type=\"UInt8\" Name=\"types\"".to_owned(),
-            Block::U8(&types),
-        ));
-        text(
-            &mut items,
-            "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n".to_owned(),
-        );
+        text(&mut items, "  </UnstructuredGrid>\n".to_owned());
 
         let mut xml = String::new();
-        let mut blocks = Vec::new();
+        let mut blocks: Vec<Vec<u8>> = Vec::new();
         let mut offset = 0usize;
         for item in items {
             match item {
@@ -474,21 +622,29 @@ impl<'g> Vtu<'g> {
                             data.ascii(&mut xml);
                             xml.push_str("</DataArray>\n");
                         }
-                        Encoding::AppendedRaw => {
+                        Encoding::AppendedRaw | Encoding::AppendedZlib => {
                             let _ = writeln!(xml, " format=\"appended\" offset=\"{offset}\"/>");
-                            offset += 8 + data.byte_len();
-                            blocks.push(data);
+                            let mut raw = Vec::with_capacity(8 + data.byte_len());
+                            let block = if self.encoding == Encoding::AppendedZlib {
+                                data.write_le(&mut raw)?;
+                                zlib_blocks(&raw)?
+                            } else {
+                                raw.extend((data.byte_len() as u64).to_le_bytes());
+                                data.write_le(&mut raw)?;
+                                raw
+                            };
+                            offset += block.len();
+                            blocks.push(block);
                         }
                     }
                 }
             }
         }
         w.write_all(xml.as_bytes())?;
-        if self.encoding == Encoding::AppendedRaw {
+        if self.encoding != Encoding::Ascii {
             w.write_all(b"  <AppendedData encoding=\"raw\">\n   _")?;
             for b in &blocks {
-                w.write_all(&(b.byte_len() as u64).to_le_bytes())?;
-                b.write_le(w)?;
+                w.write_all(b)?;
             }
             // meshio drops everything after the last newline of the block: end with one.
             w.write_all(b"\n  </AppendedData>\n")?;

@@ -193,7 +193,8 @@ pub struct ShardFile {
 /// Runs the part `spec` of the sweep of `key` over `values` (the whole grid).
 ///
 /// A part may hold no points (`N` larger than the grid); it is still written, so the merge
-/// sees that shard.
+/// sees that shard. With `fields`, the body fields of each converged point go there as
+/// `points/point_NNNN.vtu`, numbered in the whole grid (the merge collects them).
 ///
 /// # Errors
 /// As [`crate::commands::sweep::report`]; [`CliError::Output`] if the scene cannot be
@@ -204,6 +205,7 @@ pub fn run_shard(
     key: &str,
     values: &[f64],
     spec: ShardSpec,
+    fields: Option<&crate::output::OutputDir>,
 ) -> Result<ShardFile, CliError> {
     let scene = Scene::load(path, sets)?;
     let hash = sweep_hash(&scene, key, values).map_err(crate::output::OutputError::Json)?;
@@ -220,7 +222,9 @@ pub fn run_shard(
             0.0,
         )
     } else {
-        let r = crate::commands::sweep::report(path, sets, key, &subset)?;
+        let r = crate::commands::sweep::report_indexed(path, sets, key, &subset, fields, &|i| {
+            indices[i]
+        })?;
         (r.points, r.shared_factorisation, r.seconds)
     };
     Ok(ShardFile {

@@ -42,6 +42,21 @@ pub struct Scene {
     pub solver: SolverSpec,
     /// `[discretisation]`: how the thick body's Navier operator is discretised.
     pub discretisation: DiscretisationSpec,
+    /// `[output]`: how files are written.
+    pub output: OutputSpec,
+}
+
+/// `[output]`: how `--out` writes its files (the numbers are the same either way).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSpec {
+    /// `none` (default) | `zlib`: VTU arrays compressed with zlib (VTK's
+    /// `vtkZLibDataCompressor`; ParaView, VTK and meshio read both).
+    pub vtu_compression: crate::output::VtuCompression,
+    /// `true`: body VTU files get the obstacle surface (a ribbon of `sigma` around the contact
+    /// interval) as a second piece, so ParaView shows body and obstacle together. Off by
+    /// default: a reader that merges pieces (meshio) then sees both meshes as one.
+    pub vtu_obstacle: bool,
 }
 
 /// The obstacle's shape (`obstacle.shape`).

@@ -2,6 +2,33 @@
 //! body over a rigid prism, discretised by second-order finite differences on the
 //! `(x2, x3)` rectangle `[theta0, theta1] x [0, h]` of a shell chart.
 //!
+//! # Quick start
+//! ```
+//! use capstan_elasticity::Material;
+//! use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
+//! use capstan_elasticity::finite_element::{DiscretisationMethod, VolumetricIntegration};
+//! use capstan_friction::{RegularisedCoulomb, RegularisedCoulombParams};
+//! use capstan_geometry::{EllipticalPrism, Obstacle};
+//! use std::f64::consts::FRAC_PI_2;
+//! // the paper's body (section 3) on a coarse grid, pulled with tau_max / tau0 = 1.5
+//! let body = ThickBody {
+//!     obstacle: Obstacle::Ellipse(EllipticalPrism::new(2.0, 2.0).unwrap()),
+//!     theta: [-FRAC_PI_2, FRAC_PI_2],
+//!     thickness: 1.0,
+//!     material: Material::new(1e3, 0.25).unwrap(),
+//!     n2: 31,
+//!     n3: 7,
+//!     method: DiscretisationMethod::default(),
+//!     volumetric: VolumetricIntegration::default(),
+//! };
+//! let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
+//! let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();
+//! let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+//! let solution = solver.solve(EndLoads::new(1.0, 1.5)).unwrap();
+//! assert!(solution.stick_interval.is_some()); // part of the contact sticks
+//! assert!(solution.slip_fraction.abs() < 1.0); // and part slips
+//! ```
+//!
 //! # Math
 //! ```text
 //! nabla_i T^i_j + f_j = 0,   T^ij = A^ijkl E_kl,   E_kl = (nabla_k v_l + nabla_l v_k)/2

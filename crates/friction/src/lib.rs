@@ -1,6 +1,17 @@
 //! Friction for capstan: pointwise friction laws for contact problems, and membrane capstan
 //! models — the generalised capstan equation of the paper's section 2, forward and inverse.
 //!
+//! # Quick start
+//! ```
+//! use capstan_friction::membrane::{self, MembraneProblem};
+//! use capstan_geometry::{CircularCylinder, Obstacle};
+//! // a belt over half a cylinder: the capstan equation T_max / T0 = exp(mu pi)
+//! let cylinder = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
+//! let problem = MembraneProblem { mu: 0.3, t0: 1.0, theta0: 0.0, theta_max: std::f64::consts::PI, ..Default::default() };
+//! let profile = membrane::tension_profile(&cylinder, &problem).unwrap();
+//! assert!((profile.tension_ratio() - (0.3 * std::f64::consts::PI).exp()).abs() < 1e-12);
+//! ```
+//!
 //! # Status
 //! - [`FrictionLaw`] with [`RegularisedCoulomb`] (Kikuchi–Oden), [`SmoothCoulomb`],
 //!   [`Tresca`], [`Howell`]'s power law, [`OrthotropicCoulomb`] and [`Frictionless`], with

@@ -212,6 +212,23 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         initial: Option<&[f64]>,
         newton: MembraneNewton,
     ) -> Result<MembraneDisplacementSolution, FrictionError> {
+        self.solve_observed(problem, initial, newton, &mut |_, _, _| {})
+    }
+
+    /// As [`MembraneDisplacement::solve`], calling `progress(iteration, residual, step)` after
+    /// the initial residual (iteration 0, step 0) and after every Newton step (the residual
+    /// max-norm, the line-search step length). The facade forwards these to its `Observer`
+    /// (stage `membrane`); this crate knows no solver types, so a closure is the hook.
+    ///
+    /// # Errors
+    /// As [`MembraneDisplacement::solve`].
+    pub fn solve_observed(
+        &self,
+        problem: &MembraneDisplacementProblem,
+        initial: Option<&[f64]>,
+        newton: MembraneNewton,
+        progress: &mut dyn FnMut(usize, f64, f64),
+    ) -> Result<MembraneDisplacementSolution, FrictionError> {
         let pr = problem;
         check("membrane.theta0", pr.theta0, "(-inf, inf)", |_| true)?;
         check(
@@ -265,6 +282,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         let mut jac = vec![[0.0; 3]; n];
         let mut norm = self.assemble(pr, &nodes, &c, d, &w, &mut r, Some(&mut jac));
         let mut iterations = 0;
+        progress(0, norm, 0.0);
         // Round-off floor of the residual: differences c (w_{i+1} - w_i) of large terms.
         let c_max = c.iter().fold(0.0f64, |m, x| m.max(*x));
         let floor =
@@ -296,6 +314,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
             }
             w.copy_from_slice(&trial);
             norm = self.assemble(pr, &nodes, &c, d, &w, &mut r, Some(&mut jac));
+            progress(iterations, norm, step);
         }
         // Node tensions and reactions.
         let half: Vec<f64> = (0..n - 1).map(|i| c[i] * (w[i + 1] - w[i])).collect();

@@ -1,6 +1,19 @@
 //! Surfaces and shell charts for capstan: metric, Christoffel symbols and fundamental forms,
 //! all derived exactly from a parametrisation `sigma(x1, x2)` written once.
 //!
+//! # Quick start
+//! ```
+//! use capstan_geometry::{EllipticalPrism, ShellChart, Surface};
+//! // sigma = (x1, a sin t, b cos t): at t = 0, H = a b / (2 phi^3) with phi = a
+//! let (a, b) = (2.0_f64, 1.0_f64);
+//! let ellipse = EllipticalPrism::new(a, b).unwrap();
+//! let g = ellipse.geometry([0.0, 0.0]).unwrap();
+//! assert!((g.mean_curvature - b / (2.0 * a * a)).abs() < 1e-14);
+//! // the shell chart sigma + x3 N: sqrt(g_22) = phi + x3 a b / phi^2
+//! let p = ShellChart::new(ellipse).point([0.0, 0.0, 0.5]).unwrap();
+//! assert!((p.metric[1][1].sqrt() - (a + 0.5 * b / a)).abs() < 1e-13);
+//! ```
+//!
 //! # Conventions
 //! Paper indices 1, 2, 3 are array indices 0, 1, 2. Christoffel symbols are stored as
 //! `gamma[k][i][j] = Gamma^k_ij`. The unit normal is `N = a_1 x a_2 / |a_1 x a_2|`; the mean
@@ -26,6 +39,7 @@ mod elliptical_prism;
 mod error;
 pub mod expression;
 mod expression_profile;
+mod nalgebra_views;
 mod obstacle;
 mod prism;
 mod profile;
@@ -40,6 +54,8 @@ pub use cone::GeneralCone;
 pub use elliptical_prism::{CircularCylinder, EllipticalPrism};
 pub use error::GeometryError;
 pub use expression_profile::ExpressionProfile;
+/// The nalgebra the views (`SurfaceGeometry::first_form_matrix`, `ShellPoint::metric_matrix`, ...) return.
+pub use nalgebra;
 pub use obstacle::Obstacle;
 pub use prism::GeneralPrism;
 pub use profile::ProfileCurve;

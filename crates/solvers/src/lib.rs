@@ -1,5 +1,18 @@
 //! Linear and nonlinear solver backends for capstan. Knows no physics.
 //!
+//! # Quick start
+//! ```
+//! use capstan_solvers::{LinearSolver, SparseLu, SparsityPattern};
+//! // [[0, 2], [1, 0]] x = [4, 3]: the pattern once, then values and right-hand sides
+//! let (pattern, _) = SparsityPattern::from_entries(2, 2, &[(0, 0), (1, 0), (0, 1), (1, 1)]).unwrap();
+//! let mut lu = SparseLu::default();
+//! lu.analyse(&pattern).unwrap();
+//! lu.factor(&[0.0, 1.0, 2.0, 0.0]).unwrap();
+//! let mut x = vec![4.0, 3.0];
+//! lu.solve_in_place(&mut x).unwrap();
+//! assert_eq!(x, vec![3.0, 2.0]);
+//! ```
+//!
 //! # Purpose
 //! The discretised contact problems of capstan are sparse nonlinear systems `r(u) = 0` whose
 //! Jacobian keeps one sparsity pattern for the whole solve. This crate provides:
