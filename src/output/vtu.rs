@@ -22,6 +22,9 @@ use super::error::{OutputError, check_all_finite, check_finite};
 /// VTK's cell type number for a 4-node quadrilateral.
 pub const VTK_QUAD: u8 = 9;
 
+/// VTK cell type of a linear hexahedron (bottom quad, then the top quad above it).
+pub const VTK_HEXAHEDRON: u8 = 12;
+
 /// A structured `n2 x n3` grid of points in E^3, written as quads.
 ///
 /// Node `k = i2 n3 + i3` (`x3` fastest), the numbering of the elasticity crate's grid, so
@@ -42,6 +45,8 @@ pub const VTK_QUAD: u8 = 9;
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct QuadGrid {
+    /// Layers in `x1`: 1 for a quad grid, `n1 >= 2` for the hexahedra of a 3-D body.
+    n1: usize,
     n2: usize,
     n3: usize,
     periodic: bool,
@@ -86,6 +91,7 @@ impl QuadGrid {
         }
         check_all_finite("points", points.as_flattened())?;
         Ok(Self {
+            n1: 1,
             n2,
             n3,
             periodic,
@@ -124,6 +130,61 @@ impl QuadGrid {
         Ok(grid)
     }
 
+    /// The hexahedra between consecutive `layers` (quad grids of the same shape at increasing
+    /// `x1`, e.g. [`QuadGrid::from_chart`] at each `x1` node of a 3-D body): nodes
+    /// `(i1 n2 + i2) n3 + i3`, cell `(i1, i2, i3)` the quad `(i2, i3)` of layer `i1` and the
+    /// same quad of layer `i1 + 1` (VTK's hexahedron order). Bases are kept if every layer has
+    /// them.
+    ///
+    /// # Errors
+    /// [`OutputError::InvalidParameter`] for fewer than two layers, layers of different
+    /// shapes or layers that are themselves layered.
+    pub fn layered(layers: Vec<QuadGrid>) -> Result<Self, OutputError> {
+        let Some(first) = layers.first() else {
+            return Err(OutputError::InvalidParameter {
+                field: "layers",
+                value: 0.0,
+                allowed: "[2, inf)",
+            });
+        };
+        let (n2, n3, periodic) = (first.n2, first.n3, first.periodic);
+        if layers.len() < 2 {
+            return Err(OutputError::InvalidParameter {
+                field: "layers",
+                value: layers.len() as f64,
+                allowed: "[2, inf)",
+            });
+        }
+        if layers
+            .iter()
+            .any(|l| l.n1 != 1 || l.n2 != n2 || l.n3 != n3 || l.periodic != periodic)
+        {
+            return Err(OutputError::InvalidParameter {
+                field: "layers",
+                value: layers.len() as f64,
+                allowed: "quad grids of one shape",
+            });
+        }
+        let bases = layers
+            .iter()
+            .map(|l| l.bases.clone())
+            .collect::<Option<Vec<_>>>()
+            .map(|b| b.concat());
+        Ok(Self {
+            n1: layers.len(),
+            n2,
+            n3,
+            periodic,
+            points: layers.iter().flat_map(|l| l.points.iter().copied()).collect(),
+            bases,
+        })
+    }
+
+    /// Layers in `x1` (1 for a quad grid).
+    pub fn n1(&self) -> usize {
+        self.n1
+    }
+
     /// Nodes in `x2`.
     pub fn n2(&self) -> usize {
         self.n2
@@ -139,9 +200,9 @@ impl QuadGrid {
         self.periodic
     }
 
-    /// Number of nodes, `n2 n3`.
+    /// Number of nodes, `n1 n2 n3`.
     pub fn node_count(&self) -> usize {
-        self.n2 * self.n3
+        self.n1 * self.n2 * self.n3
     }
 
     /// Cells in `x2`: `n2` when periodic, `n2 - 1` otherwise.
@@ -149,9 +210,9 @@ impl QuadGrid {
         if self.periodic { self.n2 } else { self.n2 - 1 }
     }
 
-    /// Number of quad cells.
+    /// Number of cells: quads, or hexahedra of a layered grid.
     pub fn cell_count(&self) -> usize {
-        self.cells2() * (self.n3 - 1)
+        self.cells2() * (self.n3 - 1) * (self.n1 - 1).max(1)
     }
 
     /// The points, `points()[i2 * n3 + i3]`.
@@ -159,7 +220,26 @@ impl QuadGrid {
         &self.points
     }
 
-    /// The node numbers of every cell, in cell order (see the type's docs).
+    /// The VTK cells: connectivity, nodes per cell and cell type (quads, or the hexahedra of a
+    /// layered grid, in the order `(i1, i2, i3)`).
+    pub fn topology(&self) -> (Vec<usize>, usize, u8) {
+        let quads = self.cells();
+        if self.n1 == 1 {
+            return (quads.into_iter().flatten().collect(), 4, VTK_QUAD);
+        }
+        let layer = self.n2 * self.n3;
+        let mut connectivity = Vec::with_capacity(8 * self.cell_count());
+        for i1 in 0..self.n1 - 1 {
+            for q in &quads {
+                connectivity.extend(q.iter().map(|k| i1 * layer + k));
+                connectivity.extend(q.iter().map(|k| (i1 + 1) * layer + k));
+            }
+        }
+        (connectivity, 8, VTK_HEXAHEDRON)
+    }
+
+    /// The node numbers of every quad cell, in cell order (see the type's docs); of one layer
+    /// for a layered grid.
     pub fn cells(&self) -> Vec<[usize; 4]> {
         let (n2, n3) = (self.n2, self.n3);
         let mut cells = Vec::with_capacity(self.cell_count());
@@ -515,11 +595,12 @@ impl<'g> Vtu<'g> {
         let topology: Vec<(Vec<i64>, Vec<i64>, Vec<u8>)> = pieces
             .iter()
             .map(|(g, _, _)| {
-                let cells = g.cells();
+                let (connectivity, per_cell, kind) = g.topology();
+                let cells = connectivity.len() / per_cell;
                 (
-                    cells.iter().flatten().map(|&k| k as i64).collect(),
-                    (1..=cells.len() as i64).map(|c| 4 * c).collect(),
-                    vec![VTK_QUAD; cells.len()],
+                    connectivity.iter().map(|&k| k as i64).collect(),
+                    (1..=cells as i64).map(|c| per_cell as i64 * c).collect(),
+                    vec![kind; cells],
                 )
             })
             .collect();
