@@ -237,9 +237,10 @@ fn infer_mu(out: &commands::infer_mu::InferMuArgs) -> Result<String, CliError> {
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
     let report = if scene.body.dimension == 3 {
-        let (report, _solution) = commands::solid_contact::solve(&scene)?;
+        let (report, solution, model) = commands::solid_contact::solve(&scene)?;
         if let Some(dir) = &args.out {
-            commands::solid_contact::write_out(dir, &report, &scene)?;
+            let out = commands::solid_contact::write_out(dir, &report, &scene)?;
+            commands::solid_contact::write_body(&out, &scene, &model, &solution)?;
         }
         report
     } else {

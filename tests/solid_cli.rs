@@ -127,7 +127,9 @@ fn cone_band_of_finite_width_solves_and_writes_its_contact_table() {
         "{header}"
     );
     assert_eq!(csv.lines().count(), 1 + 3 * 17);
-    assert!(dir.join("scene.toml").exists() && dir.join("contact.json").exists());
+    for file in ["scene.toml", "contact.json", "body.vtu"] {
+        assert!(dir.join(file).exists(), "{file}");
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -11,12 +11,14 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::AnyFrictionLaw;
-use capstan_elasticity::solid::{SolidBody, SolidNavier};
+use capstan_elasticity::solid::{SolidBody, SolidFields, SolidNavier};
 use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::commands::contact::{ContactReport, SceneSolver, loads, scene_law};
 use crate::commands::solid_report::{SolidContactArrays, SolidReport};
 use crate::error::CliError;
+use crate::figures::solid_body::{solid_grid, write_solid_body};
+use crate::output::QuadGrid;
 use crate::progress::CliObserver;
 use crate::scene::Scene;
 
@@ -116,18 +118,29 @@ fn report(
 ///
 /// # Errors
 /// Bad input (exit 2), no equilibrium (3), non-convergence (4).
-pub fn solve(scene: &Scene) -> Result<(ContactReport, ContactSolution), CliError> {
+pub fn solve(scene: &Scene) -> Result<(ContactReport, ContactSolution, SolidSceneModel), CliError> {
+    solve_observed(scene, &mut CliObserver::new())
+}
+
+/// [`solve`] reporting every iteration to `observer`.
+///
+/// # Errors
+/// See [`solve`]; [`capstan_elasticity::contact::ContactError::Interrupted`] when the
+/// observer stops the solve.
+pub fn solve_observed(
+    scene: &Scene,
+    observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
+) -> Result<(ContactReport, ContactSolution, SolidSceneModel), CliError> {
     let method = SceneSolver::from_scene(scene)?;
     let loads = loads(scene);
     let t0 = Instant::now();
     let model = model(scene)?;
-    let mut observer = CliObserver::new();
     let (sol, limiting, setup, t1) = match method {
         SceneSolver::Condensed => {
             let solver = BoundarySolver::new(&model, ContactSettings::default())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            let sol = solver.solve_observed(loads, &mut observer)?;
+            let sol = solver.solve_observed(loads, observer)?;
             let limiting = solver
                 .sliding_at(sol.loads.tau0)?
                 .map(|m| [m.lower_ratio, m.upper_ratio]);
@@ -137,16 +150,12 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, ContactSolution), CliError
             let solver = FullSystemSolver::new(&model, method.full_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            (
-                solver.solve_observed(loads, &mut observer)?,
-                None,
-                setup,
-                t1,
-            )
+            (solver.solve_observed(loads, observer)?, None, setup, t1)
         }
     };
     let times = [setup, t1.elapsed().as_secs_f64()];
-    Ok((report(scene, &model, &sol, limiting, times), sol))
+    let report = report(scene, &model, &sol, limiting, times);
+    Ok((report, sol, model))
 }
 
 /// Writes `contact.json` (stamped), `scene.toml` and `contact.csv` (the contact surface,
@@ -188,4 +197,59 @@ pub fn write_out(
         );
     out.write_csv("contact.csv", &table)?;
     Ok(out)
+}
+
+/// The 3-D body's hexahedra, nodal fields and node coordinates `(x1, x2, x3)` for the
+/// solution.
+///
+/// # Errors
+/// Geometry failures.
+pub fn body_fields(
+    scene: &Scene,
+    model: &SolidSceneModel,
+    solution: &ContactSolution,
+) -> Result<(QuadGrid, SolidFields, Vec<[f64; 3]>), CliError> {
+    let op = model.discretisation();
+    let grid = op.grid();
+    let [n1, n2, n3] = grid.counts();
+    let axis = |a: usize, n: usize| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let mut node = [0; 3];
+                node[a] = i;
+                grid.coordinates(node)[a]
+            })
+            .collect()
+    };
+    let (x1, x2, x3) = (axis(0, n1), axis(1, n2), axis(2, n3));
+    let hexahedra = solid_grid(&scene.obstacle.build()?, &x1, &x2, &x3)?;
+    let fields = op.fields(&solution.displacement)?;
+    let coordinates: Vec<[f64; 3]> = (0..grid.node_count())
+        .map(|k| grid.coordinates(grid.node(k)))
+        .collect();
+    Ok((hexahedra, fields, coordinates))
+}
+
+/// Writes `body.vtu`: the 3-D body's fields on its hexahedra
+/// ([`crate::figures::solid_body::SOLID_VTU_ARRAYS`]).
+///
+/// # Errors
+/// Geometry or output errors.
+pub fn write_body(
+    out: &crate::output::OutputDir,
+    scene: &Scene,
+    model: &SolidSceneModel,
+    solution: &ContactSolution,
+) -> Result<(), CliError> {
+    let (hexahedra, fields, coordinates) = body_fields(scene, model, solution)?;
+    write_solid_body(
+        out,
+        "body",
+        &hexahedra,
+        &fields,
+        &coordinates,
+        &solution.contact,
+        &scene.output,
+    )?;
+    Ok(())
 }

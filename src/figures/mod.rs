@@ -4,3 +4,4 @@
 pub mod body;
 pub mod paper;
 pub mod reports;
+pub mod solid_body;

@@ -175,7 +175,10 @@ impl QuadGrid {
             n2,
             n3,
             periodic,
-            points: layers.iter().flat_map(|l| l.points.iter().copied()).collect(),
+            points: layers
+                .iter()
+                .flat_map(|l| l.points.iter().copied())
+                .collect(),
             bases,
         })
     }

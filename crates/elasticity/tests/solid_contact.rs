@@ -203,3 +203,50 @@ fn orthotropic_coulomb_slips_off_the_traction_direction_on_the_three_dimensional
         "{off_axis} of {slipping} slipping sites slide off their traction"
     );
 }
+
+/// The recovered nodal stress of the interpolated manufactured field on the elliptical cone
+/// (`g_12 != 0`) converges at second order to the exact `T^ij` (differences of the nodal
+/// values, one-sided at the faces).
+#[test]
+#[allow(clippy::needless_range_loop)] // mirrors T^ij = T^i_l g^lj
+fn recovered_nodal_stress_is_second_order_on_the_elliptical_cone() {
+    use capstan_elasticity::finite_element::ElementOrder;
+    use capstan_elasticity::solid::samples::{SolidField, SolidMms};
+    let mms = SolidMms::elliptical_cone();
+    let exact = mms.exact();
+    let mut errors = Vec::new();
+    for m in [4, 8, 16] {
+        let op = mms.operator([m + 1; 3], ElementOrder::Q1).unwrap();
+        let grid = op.grid();
+        let v: Vec<f64> = (0..grid.node_count())
+            .flat_map(|k| exact.field.displacement(grid.coordinates(grid.node(k))).0)
+            .collect();
+        let fields = op.fields(&v).unwrap();
+        let (mut err, mut size) = (0.0f64, 0.0f64);
+        for k in 0..grid.node_count() {
+            let x = grid.coordinates(grid.node(k));
+            let p = capstan_geometry::ShellChart::new(mms.obstacle.clone())
+                .point(x)
+                .unwrap();
+            let mixed = exact.mixed_stress(x).unwrap();
+            for i in 0..3 {
+                for j in 0..3 {
+                    let t: f64 = (0..3).map(|l| mixed[i][l] * p.inverse_metric[l][j]).sum();
+                    err = err.max((fields.stress[k][i][j] - t).abs());
+                    size = size.max(t.abs());
+                }
+            }
+            assert_eq!(
+                fields.displacement[k],
+                [v[3 * k], v[3 * k + 1], v[3 * k + 2]]
+            );
+        }
+        errors.push(err / size);
+    }
+    let orders: Vec<f64> = errors.windows(2).map(|e| (e[0] / e[1]).log2()).collect();
+    assert!(
+        orders.iter().all(|p| (p - 2.0).abs() < 0.3),
+        "{errors:?} {orders:?}"
+    );
+    assert!(errors[2] < 1e-2, "{errors:?}");
+}

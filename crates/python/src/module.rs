@@ -359,8 +359,27 @@ impl Observer<f64> for PyObserver<'_> {
 /// One whole-body array: name, components per node, little-endian `f64` bytes.
 type Field = (String, usize, Vec<u8>);
 
+/// The node positions and the point arrays of a body VTU as `(name, k, bytes)`.
+fn field_bytes(points: &[[f64; 3]], arrays: &[capstan::output::DataArray]) -> Vec<Field> {
+    let mut fields: Vec<Field> = vec![(
+        "points".into(),
+        3,
+        points
+            .as_flattened()
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect(),
+    )];
+    for a in arrays {
+        let bytes = a.values.iter().flat_map(|x| x.to_le_bytes()).collect();
+        fields.push((a.name.clone(), a.components, bytes));
+    }
+    fields
+}
+
 /// `capstan contact --json`, the whole-body fields `(name, k, bytes)` on the `n2 x n3` grid
-/// (node `i2 n3 + i3`), and `[n2, n3]`. `callback(progress: dict)` sees every iteration.
+/// (node `i2 n3 + i3`; a 3-D body: `n1 x n2 x n3`, node `(i1 n2 + i2) n3 + i3`) and the grid's
+/// shape. `callback(progress: dict)` sees every iteration.
 #[pyfunction]
 #[pyo3(signature = (scene, callback = None, out = None))]
 #[allow(clippy::type_complexity)] // (json, fields, shape) as Python receives them
@@ -372,7 +391,7 @@ fn contact<'py>(
 ) -> PyResult<(
     String,
     Vec<(String, usize, Bound<'py, PyBytes>)>,
-    [usize; 2],
+    Vec<usize>,
 )> {
     let s = scene.scene.clone();
     let error = Arc::new(Mutex::new(None));
@@ -383,6 +402,25 @@ fn contact<'py>(
             error: caught,
             stop,
         };
+        if s.body.dimension == 3 {
+            let (report, solution, model) =
+                commands::solid_contact::solve_observed(&s, &mut observer)?;
+            if let Some(dir) = &out {
+                let o = commands::solid_contact::write_out(dir, &report, &s)?;
+                commands::solid_contact::write_body(&o, &s, &model, &solution)?;
+            }
+            let json = stamped(&report, &s)?;
+            let (grid, fields, coordinates) =
+                commands::solid_contact::body_fields(&s, &model, &solution)?;
+            let vtu = capstan::figures::solid_body::solid_vtu(
+                &grid,
+                &fields,
+                &coordinates,
+                &solution.contact,
+            );
+            let shape = vec![grid.n1(), grid.n2(), grid.n3()];
+            return Ok((json, field_bytes(grid.points(), vtu.point_arrays()), shape));
+        }
         let (report, solved) = commands::contact::solve_observed(&s, &mut observer)?;
         if let Some(dir) = &out {
             commands::contact::write_out(dir, &report, &solved, &s)?;
@@ -391,20 +429,11 @@ fn contact<'py>(
         let grid = capstan::figures::body::body_grid(&solved.obstacle, &solved.fields)
             .map_err(CliError::from)?;
         let vtu = capstan::figures::body::body_vtu(&grid, &solved.fields, &solved.solution.contact);
-        let mut fields: Vec<Field> = vec![(
-            "points".into(),
-            3,
-            grid.points()
-                .as_flattened()
-                .iter()
-                .flat_map(|x| x.to_le_bytes())
-                .collect(),
-        )];
-        for a in vtu.point_arrays() {
-            let bytes = a.values.iter().flat_map(|x| x.to_le_bytes()).collect();
-            fields.push((a.name.clone(), a.components, bytes));
-        }
-        Ok((json, fields, [grid.n2(), grid.n3()]))
+        Ok((
+            json,
+            field_bytes(grid.points(), vtu.point_arrays()),
+            vec![grid.n2(), grid.n3()],
+        ))
     });
     if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
         // the callback raised: that error, not the solver's `Interrupted`

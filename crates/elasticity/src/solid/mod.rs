@@ -30,11 +30,13 @@
 mod body;
 mod boundary;
 mod contact;
+mod fields;
 mod grid;
 mod operator;
 pub mod samples;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
+pub use fields::SolidFields;
 pub use grid::BoxGrid;
 pub use operator::{SolidForce, SolidNavier};

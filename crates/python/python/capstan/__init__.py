@@ -159,14 +159,14 @@ class ContactResult(Result):
     grid): the arrays of ``body.vtu`` (``displacement``, ``displacement_contravariant``,
     ``displacement_physical``, ``stress``, ``stress_physical``, ``strain``, ``strain_physical``
     with ``k = 9`` row-major, ``contact_state``, ``contact_slip``, ``x2``, ``x3``) and
-    ``points``, the nodes' Cartesian positions.
+    ``points``, the nodes' Cartesian positions. A 3-D body (``body.dimension = 3``) gives
+    ``(n1, n2, n3, k)`` arrays, with ``contact_slip_1`` and ``x1`` besides.
     """
 
     def __init__(self, text: str, fields: list, shape: list):
         super().__init__(text)
-        n2, n3 = shape
         self.fields = {
-            name: np.frombuffer(b, dtype="<f8").reshape(n2, n3, k).copy()
+            name: np.frombuffer(b, dtype="<f8").reshape(*shape, k).copy()
             for name, k, b in fields
         }
 

@@ -1,0 +1,129 @@
+//! Nodal fields of a 3-D body: displacement, strain and stress at every node, recovered by
+//! second-order differences of the nodal values (the contact rows' recovery, everywhere).
+
+use super::operator::SolidNavier;
+use crate::continuum::{SOLID, mixed_strains};
+use crate::error::ElasticityError;
+use crate::grid::difference_stencil;
+use crate::shell_geometry::ShellGeometry;
+
+/// Displacement, strain and stress at the nodes of a 3-D body (node order of
+/// [`super::BoxGrid::node_index`]).
+///
+/// # Math
+/// With the twelve inputs `u = [v^c, d_p v^c]` at a node (differences of the nodal values)
+/// and the mixed strains `M_k` of the unit inputs ([`crate::continuum::mixed_strains`]):
+/// ```text
+/// E^i_j = sum_k u_k M_k[i][j],  E_ij = g_im E^m_j
+/// T^i_j = lambda delta^i_j E^m_m + 2 mu E^i_j,  T^ij = T^i_m g^mj
+/// physical: sqrt(g_ii) v^i,  sqrt(g_ii g_jj) T^ij,  E_ij / sqrt(g_ii g_jj)
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolidFields {
+    /// Contravariant displacement `[v^1, v^2, v^3]`.
+    pub displacement: Vec<[f64; 3]>,
+    /// Cartesian displacement `v^i g_i`.
+    pub cartesian_displacement: Vec<[f64; 3]>,
+    /// Contravariant stress `T^ij`.
+    pub stress: Vec<[[f64; 3]; 3]>,
+    /// Covariant strain `E_ij`.
+    pub strain: Vec<[[f64; 3]; 3]>,
+    /// `sqrt(g_ii)` per node: the physical scales.
+    pub scale: Vec<[f64; 3]>,
+}
+
+impl SolidFields {
+    /// Physical displacement `sqrt(g_ii) v^i` at node `k`.
+    pub fn physical_displacement(&self, k: usize) -> [f64; 3] {
+        let (v, s) = (self.displacement[k], self.scale[k]);
+        core::array::from_fn(|i| s[i] * v[i])
+    }
+
+    /// Physical stress `sqrt(g_ii g_jj) T^ij` at node `k`.
+    pub fn physical_stress(&self, k: usize) -> [[f64; 3]; 3] {
+        let (t, s) = (&self.stress[k], self.scale[k]);
+        core::array::from_fn(|i| core::array::from_fn(|j| s[i] * s[j] * t[i][j]))
+    }
+
+    /// Physical strain `E_ij / sqrt(g_ii g_jj)` at node `k`.
+    pub fn physical_strain(&self, k: usize) -> [[f64; 3]; 3] {
+        let (e, s) = (&self.strain[k], self.scale[k]);
+        core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+    }
+}
+
+impl<G: ShellGeometry + Sync> SolidNavier<G> {
+    /// The nodal fields of the solution `v` (see [`SolidFields`]).
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
+    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+    pub fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
+        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
+        let [n1, n2, n3] = self.grid.counts();
+        let d = self.grid.spacing();
+        let periodic = [false, self.grid.is_periodic(), false];
+        let counts = [n1, n2, n3];
+        let n = self.grid.node_count();
+        let mut out = SolidFields {
+            displacement: Vec::with_capacity(n),
+            cartesian_displacement: Vec::with_capacity(n),
+            stress: Vec::with_capacity(n),
+            strain: Vec::with_capacity(n),
+            scale: Vec::with_capacity(n),
+        };
+        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
+        for m in 0..n {
+            let node = self.grid.node(m);
+            let p = self.chart.shell_point(self.grid.coordinates(node))?;
+            let value: [f64; 3] = core::array::from_fn(|c| v[3 * m + c]);
+            // u = [v^c, d_p v^c] (input 3 + 3 p + c)
+            let mut u = [0.0; 12];
+            u[..3].copy_from_slice(&value);
+            for q in 0..3 {
+                for (i, w) in difference_stencil(node[q], counts[q], d[q], periodic[q]) {
+                    let mut at = node;
+                    at[q] = i;
+                    let k = 3 * self.grid.node_index(at);
+                    for c in 0..3 {
+                        u[3 + 3 * q + c] += w * v[k + c];
+                    }
+                }
+            }
+            let strains = mixed_strains(&p, &SOLID);
+            let mut mixed = [[0.0; 3]; 3];
+            for (mk, uk) in strains.iter().zip(&u) {
+                for i in 0..3 {
+                    for j in 0..3 {
+                        mixed[i][j] += uk * mk[i][j];
+                    }
+                }
+            }
+            let trace = mixed[0][0] + mixed[1][1] + mixed[2][2];
+            let (g, gi) = (&p.metric, &p.inverse_metric);
+            let mut strain = [[0.0; 3]; 3];
+            let mut stress = [[0.0; 3]; 3];
+            for i in 0..3 {
+                for j in 0..3 {
+                    strain[i][j] = (0..3).map(|k| g[i][k] * mixed[k][j]).sum();
+                    stress[i][j] = (0..3)
+                        .map(|k| {
+                            let t =
+                                if i == k { lambda * trace } else { 0.0 } + two_mu * mixed[i][k];
+                            t * gi[k][j]
+                        })
+                        .sum();
+                }
+            }
+            let basis = &p.covariant_basis;
+            out.cartesian_displacement.push(core::array::from_fn(|a| {
+                (0..3).map(|i| value[i] * basis[i][a]).sum()
+            }));
+            out.scale.push(core::array::from_fn(|i| g[i][i].sqrt()));
+            out.displacement.push(value);
+            out.strain.push(strain);
+            out.stress.push(stress);
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,106 @@
+//! The 3-D body's fields as a VTU of hexahedra on the curved body (`capstan contact --out`
+//! with `body.dimension = 3`).
+
+use capstan_elasticity::contact::ContactProfile;
+use capstan_elasticity::solid::SolidFields;
+use capstan_geometry::{Obstacle, ShellChart};
+
+use crate::output::{OutputDir, OutputError, QuadGrid, Vtu};
+
+/// Names of the VTU point arrays of a 3-D body, with their component counts (a public
+/// contract, documented in `docs/guide.md`): those of the plane-strain body
+/// ([`super::body::VTU_ARRAYS`], `v^1` now non-zero) plus `contact_slip_1` and `x1`.
+pub const SOLID_VTU_ARRAYS: [(&str, usize); 13] = [
+    ("displacement", 3),
+    ("displacement_contravariant", 3),
+    ("displacement_physical", 3),
+    ("stress", 9),
+    ("stress_physical", 9),
+    ("strain", 9),
+    ("strain_physical", 9),
+    ("contact_state", 1),
+    ("contact_slip", 1),
+    ("contact_slip_1", 1),
+    ("x1", 1),
+    ("x2", 1),
+    ("x3", 1),
+];
+
+/// The body's nodes `Theta(x1, x2, x3)` as hexahedra (node `(i1 n2 + i2) n3 + i3`).
+///
+/// # Errors
+/// Geometry failures at a node.
+pub fn solid_grid(
+    obstacle: &Obstacle,
+    x1: &[f64],
+    x2: &[f64],
+    x3: &[f64],
+) -> Result<QuadGrid, OutputError> {
+    let chart = ShellChart::new(obstacle);
+    let layers = x1
+        .iter()
+        .map(|&a| QuadGrid::from_chart(&chart, a, x2, x3, false))
+        .collect::<Result<Vec<_>, _>>()?;
+    QuadGrid::layered(layers)
+}
+
+/// Writes `STEM.vtu`: [`SOLID_VTU_ARRAYS`] on `grid` (`n3` nodes through the thickness;
+/// `coordinates[k] = (x1, x2, x3)` of node `k`), the contact state and physical slips of the
+/// contact node below each node, compressed as `output` says.
+///
+/// # Errors
+/// Output errors.
+pub fn write_solid_body(
+    out: &OutputDir,
+    stem: &str,
+    grid: &QuadGrid,
+    fields: &SolidFields,
+    coordinates: &[[f64; 3]],
+    contact: &ContactProfile,
+    output: &crate::scene::OutputSpec,
+) -> Result<(), OutputError> {
+    let vtu =
+        solid_vtu(grid, fields, coordinates, contact).encoding(output.vtu_compression.encoding());
+    out.write_vtu(&format!("{stem}.vtu"), &vtu)?;
+    Ok(())
+}
+
+/// The VTU of [`write_solid_body`] (its point arrays are also what the Python package returns
+/// as the whole-body fields).
+pub fn solid_vtu<'g>(
+    grid: &'g QuadGrid,
+    fields: &SolidFields,
+    coordinates: &[[f64; 3]],
+    contact: &ContactProfile,
+) -> Vtu<'g> {
+    let n = fields.displacement.len();
+    let n3 = grid.n3();
+    let solid = contact.solid.as_ref();
+    // contact node (i1, i2) is entry i1 n2 + i2 of the profile: the column of node k
+    let column = |k: usize| k / n3;
+    let per_node =
+        |f: &dyn Fn(usize) -> f64| -> Vec<f64> { (0..n).map(|k| f(column(k))).collect() };
+    let state = per_node(&|c| contact.state.get(c).map_or(0.0, |&s| f64::from(s)));
+    let slip = per_node(&|c| contact.slip.get(c).copied().unwrap_or(0.0));
+    let slip_1 = per_node(&|c| solid.and_then(|s| s.slip_1.get(c)).copied().unwrap_or(0.0));
+    let coordinate = |j: usize| -> Vec<f64> { coordinates.iter().map(|x| x[j]).collect() };
+    let physical: Vec<[f64; 3]> = (0..n).map(|k| fields.physical_displacement(k)).collect();
+    let stress_physical: Vec<_> = (0..n).map(|k| fields.physical_stress(k)).collect();
+    let strain_physical: Vec<_> = (0..n).map(|k| fields.physical_strain(k)).collect();
+    Vtu::new(grid)
+        .point_vectors("displacement", &fields.cartesian_displacement)
+        .point_vectors("displacement_contravariant", &fields.displacement)
+        .point_vectors("displacement_physical", &physical)
+        .point_tensors("stress", &fields.stress)
+        .point_tensors("stress_physical", &stress_physical)
+        .point_tensors("strain", &fields.strain)
+        .point_tensors("strain_physical", &strain_physical)
+        .point_scalars("contact_state", state)
+        .point_scalars("contact_slip", slip)
+        .point_scalars("contact_slip_1", slip_1)
+        .point_scalars("x1", coordinate(0))
+        .point_scalars("x2", coordinate(1))
+        .point_scalars("x3", coordinate(2))
+        .active_scalars("contact_state")
+        .active_vectors("displacement")
+}
