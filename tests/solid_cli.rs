@@ -177,3 +177,57 @@ fn bad_three_dimensional_input_names_the_key() {
         assert!(stderr.contains(key), "{set:?}: {stderr}");
     }
 }
+
+#[test]
+fn sweep_of_a_three_dimensional_body_matches_contact_and_writes_hexahedra() {
+    let dir = scratch_dir("solid-sweep");
+    let out = dir.to_str().unwrap();
+    let sweep = capstan_json(
+        &[
+            &[
+                "sweep",
+                "--param",
+                "loads.tau_max",
+                "--from",
+                "1.5",
+                "--to",
+                "2",
+                "--steps",
+                "2",
+                "--set",
+                "body.dimension=3",
+                "--out",
+                out,
+            ],
+            &ELLIPSE[..],
+        ]
+        .concat(),
+    );
+    let contact = capstan_json(&[&["contact", "--set", "body.dimension=3"], &ELLIPSE[..]].concat());
+    let first = &sweep["points"][0];
+    assert_eq!(first["status"], "converged");
+    assert_eq!(first["slip_fraction"], contact["slip_fraction"]);
+    for i in 0..2 {
+        assert!(dir.join(format!("points/point_{i:04}.vtu")).exists());
+    }
+    assert!(dir.join("sweep.pvd").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn plane_strain_only_commands_refuse_a_three_dimensional_body() {
+    let dir = scratch_dir("solid-export");
+    let (code, _, stderr) = capstan_status(&[
+        "export-system",
+        "--out",
+        dir.to_str().unwrap(),
+        "--set",
+        "body.dimension=3",
+        "--set",
+        "discretisation.method=fem-q1",
+    ]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("body.dimension"), "{stderr}");
+    assert!(!dir.join("system.mtx").exists(), "no partial output");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -83,6 +83,15 @@ impl SceneSolver {
 /// # Errors
 /// Bad obstacle (a cone), geometry or material values.
 pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
+    if scene.body.dimension != 2 {
+        return Err(CliError::Scene {
+            origin: "body.dimension".into(),
+            message: format!(
+                "`body.dimension` = {}: this command solves the plane-strain body only (allowed: 2); `capstan contact`, `sweep` and `threshold` solve the 3-D body",
+                scene.body.dimension
+            ),
+        });
+    }
     let obstacle = scene.obstacle.build()?;
     if !obstacle.is_prism() {
         return Err(CliError::Scene {

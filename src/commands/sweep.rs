@@ -3,11 +3,15 @@
 
 use std::time::Instant;
 
-use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads};
+use capstan_elasticity::contact::{
+    BoundarySolver, ContactModel, ContactOperator, ContactSettings, ContactSolution, EndLoads,
+};
+use capstan_elasticity::friction::AnyFrictionLaw;
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::commands::contact::{loads, model};
+use crate::commands::solid_contact::{SolidSceneModel, model as solid_model};
 use crate::error::CliError;
 use crate::output::{OutputDir, Table};
 use crate::provenance::{Stamped, write_scene};
@@ -209,6 +213,109 @@ pub fn report_scene(
     run(scene, &with, key, values, fields, index, t)
 }
 
+/// The points of the sweep of `scene` over `values` of `key` (`with(v)` the scene of point
+/// `v`) for a body whose model `build` makes and whose point VTU `vtu` writes: the
+/// plane-strain body or the 3-D body.
+#[allow(clippy::too_many_arguments)] // the sweep's inputs and the body's two hooks
+fn points<D>(
+    scene: &Scene,
+    with: &(dyn Fn(f64) -> Result<Scene, CliError> + Sync),
+    key: &str,
+    values: &[f64],
+    fields: Option<&OutputDir>,
+    index: &(dyn Fn(usize) -> usize + Sync),
+    tick: &(dyn Fn() + Sync),
+    build: &BuildModel<D>,
+    vtu: &PointVtu<D>,
+) -> Result<Vec<SweepPoint>, CliError>
+where
+    D: ContactOperator + Sync + Send,
+{
+    let shared = key == "loads.tau_max" || key == "loads.tau0";
+    Ok(if shared {
+        let model = build(scene)?;
+        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        values
+            .par_iter()
+            .enumerate()
+            .map(|(i, &v)| {
+                let mut l = loads(scene);
+                if key == "loads.tau_max" {
+                    l.tau_max = v;
+                } else {
+                    l.tau0 = v;
+                }
+                let mut r = solver.solve(l).map_err(CliError::from);
+                if let (Some(out), Ok(sol)) = (fields, &r)
+                    && let Err(e) = vtu(out, index(i), v, scene, &model, sol)
+                {
+                    r = Err(e);
+                }
+                tick();
+                point(v, l, r)
+            })
+            .collect()
+    } else {
+        values
+            .par_iter()
+            .enumerate()
+            .map(|(i, &v)| {
+                let run = || -> Result<(EndLoads, Result<_, CliError>), CliError> {
+                    let sc = with(v)?;
+                    let m = build(&sc)?;
+                    let solver = BoundarySolver::new(&m, ContactSettings::default())?;
+                    let l = loads(&sc);
+                    let mut r = solver.solve(l).map_err(CliError::from);
+                    if let (Some(out), Ok(sol)) = (fields, &r)
+                        && let Err(e) = vtu(out, index(i), v, &sc, &m, sol)
+                    {
+                        r = Err(e);
+                    }
+                    Ok((l, r))
+                };
+                let p = match run() {
+                    Ok((l, r)) => point(v, l, r),
+                    Err(e) => point(v, loads(scene), Err(e)),
+                };
+                tick();
+                p
+            })
+            .collect()
+    })
+}
+
+/// Builds the contact model of a point's scene.
+type BuildModel<D> = dyn Fn(&Scene) -> Result<ContactModel<D, AnyFrictionLaw>, CliError> + Sync;
+
+/// Writes the VTU of one converged sweep point (`points/point_NNNN.vtu`).
+type PointVtu<D> = dyn Fn(
+        &OutputDir,
+        usize,
+        f64,
+        &Scene,
+        &ContactModel<D, AnyFrictionLaw>,
+        &ContactSolution,
+    ) -> Result<(), CliError>
+    + Sync;
+
+/// The VTU of sweep point `index` of a 3-D body (hexahedra, `TimeValue` = the swept value).
+fn solid_point_vtu(
+    out: &OutputDir,
+    index: usize,
+    value: f64,
+    scene: &Scene,
+    model: &SolidSceneModel,
+    sol: &ContactSolution,
+) -> Result<(), CliError> {
+    let (grid, fields, coordinates) =
+        crate::commands::solid_contact::body_fields(scene, model, sol)?;
+    let vtu = crate::figures::solid_body::solid_vtu(&grid, &fields, &coordinates, &sol.contact)
+        .encoding(scene.output.vtu_compression.encoding())
+        .time(value);
+    out.write_vtu(&format!("{}.vtu", point_vtu_name(index)), &vtu)?;
+    Ok(())
+}
+
 /// The sweep of `scene` over `values` of `key`; `with(v)` is the scene of point `v`.
 fn run(
     scene: &Scene,
@@ -228,56 +335,30 @@ fn run(
         message: "no points".into(),
     })?)?;
     let shared = key == "loads.tau_max" || key == "loads.tau0";
-    let points: Vec<SweepPoint> = if shared {
-        let model = model(scene)?;
-        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
-        values
-            .par_iter()
-            .enumerate()
-            .map(|(i, &v)| {
-                let mut l = loads(scene);
-                if key == "loads.tau_max" {
-                    l.tau_max = v;
-                } else {
-                    l.tau0 = v;
-                }
-                let mut r = solver.solve(l).map_err(CliError::from);
-                if let (Some(out), Ok(sol)) = (fields, &r)
-                    && let Err(e) = point_vtu(out, index(i), v, scene, &model, sol)
-                {
-                    r = Err(e);
-                }
-                tick();
-                point(v, l, r)
-            })
-            .collect()
+    let points = if scene.body.dimension == 3 {
+        let vtu =
+            |out: &OutputDir,
+             i: usize,
+             v: f64,
+             sc: &Scene,
+             m: &SolidSceneModel,
+             sol: &ContactSolution| { solid_point_vtu(out, i, v, sc, m, sol) };
+        points(
+            scene,
+            with,
+            key,
+            values,
+            fields,
+            index,
+            &tick,
+            &solid_model,
+            &vtu,
+        )
     } else {
-        values
-            .par_iter()
-            .enumerate()
-            .map(|(i, &v)| {
-                let run = || -> Result<(EndLoads, Result<_, CliError>), CliError> {
-                    let sc = with(v)?;
-                    let m = model(&sc)?;
-                    let solver = BoundarySolver::new(&m, ContactSettings::default())?;
-                    let l = loads(&sc);
-                    let mut r = solver.solve(l).map_err(CliError::from);
-                    if let (Some(out), Ok(sol)) = (fields, &r)
-                        && let Err(e) = point_vtu(out, index(i), v, &sc, &m, sol)
-                    {
-                        r = Err(e);
-                    }
-                    Ok((l, r))
-                };
-                let p = match run() {
-                    Ok((l, r)) => point(v, l, r),
-                    Err(e) => point(v, loads(scene), Err(e)),
-                };
-                tick();
-                p
-            })
-            .collect()
-    };
+        points(
+            scene, with, key, values, fields, index, &tick, &model, &point_vtu,
+        )
+    }?;
     bar.finish_and_clear();
     Ok(SweepReport {
         param: key.to_owned(),
