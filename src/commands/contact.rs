@@ -525,19 +525,7 @@ pub fn write_out(
     scene: &Scene,
 ) -> Result<(), CliError> {
     let out = report_dir(dir, "contact", report, Some(scene))?;
-    let c = &report.contact;
-    let table = Table::new()
-        .f64("x2", c.x2.clone())
-        .f64("v2", c.v2.clone())
-        .f64("v3", c.v3.clone())
-        .f64("normal_stress", c.normal_stress.clone())
-        .f64("shear_stress", c.shear_stress.clone())
-        .f64("slip", c.slip.clone())
-        .f64("friction_traction", c.friction_traction.clone())
-        .i32(
-            "state",
-            c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
-        );
+    let table = contact_table(report);
     out.write_csv("contact.csv", &table)?;
     let nodes = Table::new()
         .f64("x2", sol.nodes.x2.clone())
@@ -558,4 +546,46 @@ pub fn write_out(
         },
     )?;
     Ok(())
+}
+
+/// The contact surface as a table (`contact.csv`): `x2, v2, v3, normal_stress, shear_stress,
+/// slip, friction_traction, state`; a 3-D body adds `x1`, `v1`, `shear_stress_1`, `slip_1`,
+/// `friction_traction_1` beside their `x2` counterparts.
+pub fn contact_table(report: &ContactReport) -> Table {
+    let c = &report.contact;
+    let solid = report.solid.as_ref().map(|s| &s.contact);
+    let mut table = Table::new();
+    if let Some(s) = solid {
+        table = table.f64("x1", s.x1.clone());
+    }
+    table = table.f64("x2", c.x2.clone());
+    if let Some(s) = solid {
+        table = table.f64("v1", s.v1.clone());
+    }
+    table = table
+        .f64("v2", c.v2.clone())
+        .f64("v3", c.v3.clone())
+        .f64("normal_stress", c.normal_stress.clone());
+    for (name, plane, across) in [
+        (
+            "shear_stress",
+            &c.shear_stress,
+            solid.map(|s| &s.shear_stress_1),
+        ),
+        ("slip", &c.slip, solid.map(|s| &s.slip_1)),
+        (
+            "friction_traction",
+            &c.friction_traction,
+            solid.map(|s| &s.friction_traction_1),
+        ),
+    ] {
+        if let Some(values) = across {
+            table = table.f64(format!("{name}_1"), values.clone());
+        }
+        table = table.f64(name, plane.clone());
+    }
+    table.i32(
+        "state",
+        c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
+    )
 }

@@ -169,32 +169,7 @@ pub fn write_out(
     scene: &Scene,
 ) -> Result<crate::output::OutputDir, CliError> {
     let out = crate::figures::reports::report_dir(dir, "contact", report, Some(scene))?;
-    let c = &report.contact;
-    let empty = SolidContactArrays {
-        x1: vec![],
-        v1: vec![],
-        shear_stress_1: vec![],
-        slip_1: vec![],
-        friction_traction_1: vec![],
-    };
-    let s = report.solid.as_ref().map_or(&empty, |s| &s.contact);
-    let table = crate::output::Table::new()
-        .f64("x1", s.x1.clone())
-        .f64("x2", c.x2.clone())
-        .f64("v1", s.v1.clone())
-        .f64("v2", c.v2.clone())
-        .f64("v3", c.v3.clone())
-        .f64("normal_stress", c.normal_stress.clone())
-        .f64("shear_stress_1", s.shear_stress_1.clone())
-        .f64("shear_stress", c.shear_stress.clone())
-        .f64("slip_1", s.slip_1.clone())
-        .f64("slip", c.slip.clone())
-        .f64("friction_traction_1", s.friction_traction_1.clone())
-        .f64("friction_traction", c.friction_traction.clone())
-        .i32(
-            "state",
-            c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
-        );
+    let table = crate::commands::contact::contact_table(report);
     out.write_csv("contact.csv", &table)?;
     Ok(out)
 }
@@ -231,7 +206,8 @@ pub fn body_fields(
 }
 
 /// Writes `body.vtu`: the 3-D body's fields on its hexahedra
-/// ([`crate::figures::solid_body::SOLID_VTU_ARRAYS`]).
+/// ([`crate::figures::body::VTU_ARRAYS`] and
+/// [`crate::figures::solid_body::SOLID_EXTRA_VTU_ARRAYS`]).
 ///
 /// # Errors
 /// Geometry or output errors.

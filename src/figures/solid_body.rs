@@ -7,24 +7,10 @@ use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::output::{OutputDir, OutputError, QuadGrid, Vtu};
 
-/// Names of the VTU point arrays of a 3-D body, with their component counts (a public
-/// contract, documented in `docs/guide.md`): those of the plane-strain body
-/// ([`super::body::VTU_ARRAYS`], `v^1` now non-zero) plus `contact_slip_1` and `x1`.
-pub const SOLID_VTU_ARRAYS: [(&str, usize); 13] = [
-    ("displacement", 3),
-    ("displacement_contravariant", 3),
-    ("displacement_physical", 3),
-    ("stress", 9),
-    ("stress_physical", 9),
-    ("strain", 9),
-    ("strain_physical", 9),
-    ("contact_state", 1),
-    ("contact_slip", 1),
-    ("contact_slip_1", 1),
-    ("x1", 1),
-    ("x2", 1),
-    ("x3", 1),
-];
+/// The VTU point arrays a 3-D body has beyond those of the plane-strain body
+/// ([`super::body::VTU_ARRAYS`], with `v^1` now non-zero), with their component counts (a
+/// public contract, documented in `docs/solid.md`).
+pub const SOLID_EXTRA_VTU_ARRAYS: [(&str, usize); 2] = [("contact_slip_1", 1), ("x1", 1)];
 
 /// The body's nodes `Theta(x1, x2, x3)` as hexahedra (node `(i1 n2 + i2) n3 + i3`).
 ///
@@ -44,7 +30,7 @@ pub fn solid_grid(
     QuadGrid::layered(layers)
 }
 
-/// Writes `STEM.vtu`: [`SOLID_VTU_ARRAYS`] on `grid` (`n3` nodes through the thickness;
+/// Writes `STEM.vtu`: [`super::body::VTU_ARRAYS`] and [`SOLID_EXTRA_VTU_ARRAYS`] on `grid` (`n3` nodes through the thickness;
 /// `coordinates[k] = (x1, x2, x3)` of node `k`), the contact state and physical slips of the
 /// contact node below each node, compressed as `output` says.
 ///
@@ -97,10 +83,10 @@ pub fn solid_vtu<'g>(
         .point_tensors("strain_physical", &strain_physical)
         .point_scalars("contact_state", state)
         .point_scalars("contact_slip", slip)
-        .point_scalars("contact_slip_1", slip_1)
-        .point_scalars("x1", coordinate(0))
         .point_scalars("x2", coordinate(1))
         .point_scalars("x3", coordinate(2))
+        .point_scalars("contact_slip_1", slip_1)
+        .point_scalars("x1", coordinate(0))
         .active_scalars("contact_state")
         .active_vectors("displacement")
 }

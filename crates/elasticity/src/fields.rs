@@ -43,14 +43,12 @@ impl NodalFields {
 
     /// Physical stress components `sqrt(g_ii g_jj) T^ij` at node `k`.
     pub fn physical_stress(&self, k: usize) -> [[f64; 3]; 3] {
-        let (t, s) = (&self.stress[k], self.scale[k]);
-        core::array::from_fn(|i| core::array::from_fn(|j| s[i] * s[j] * t[i][j]))
+        physical_stress(&self.stress[k], self.scale[k])
     }
 
     /// Physical strain components `E_ij / sqrt(g_ii g_jj)` at node `k`.
     pub fn physical_strain(&self, k: usize) -> [[f64; 3]; 3] {
-        let (e, s) = (&self.strain[k], self.scale[k]);
-        core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+        physical_strain(&self.strain[k], self.scale[k])
     }
 
     /// The fields of a plane-strain discretisation: at every node of `grid`, `local` gives the
@@ -91,4 +89,16 @@ impl NodalFields {
         }
         Ok(out)
     }
+}
+
+/// Physical stress components `sqrt(g_ii g_jj) T^ij` of the contravariant stress `t`, with
+/// `scale[i] = sqrt(g_ii)`.
+pub(crate) fn physical_stress(t: &[[f64; 3]; 3], scale: [f64; 3]) -> [[f64; 3]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|j| scale[i] * scale[j] * t[i][j]))
+}
+
+/// Physical strain components `E_ij / sqrt(g_ii g_jj)` of the covariant strain `e`, with
+/// `scale[i] = sqrt(g_ii)`.
+pub(crate) fn physical_strain(e: &[[f64; 3]; 3], scale: [f64; 3]) -> [[f64; 3]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (scale[i] * scale[j])))
 }
