@@ -45,6 +45,23 @@ pub enum CliError {
     /// (tension ratio beyond what friction holds: 3), or non-convergence (4).
     #[error(transparent)]
     Contact(#[from] capstan_elasticity::contact::ContactError),
+    /// A thick-body solve ran out of a work budget that scene keys set (exit code 4): the
+    /// contact error, then the budget keys with their values and what to change.
+    #[error("{source}; work budget: {budget}")]
+    ContactBudget {
+        /// The solver's error.
+        source: capstan_elasticity::contact::ContactError,
+        /// The scene keys with their values and what to change.
+        budget: String,
+    },
+    /// The run passed its `--timeout` (exit code 5, status `timed out`); nothing was written.
+    #[error(
+        "timed out after {seconds} s (--timeout {seconds}): no output was written; raise --timeout"
+    )]
+    TimedOut {
+        /// The limit.
+        seconds: f64,
+    },
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
@@ -54,12 +71,54 @@ pub enum CliError {
     Shard(#[from] crate::scale::ShardError),
 }
 
+/// A contact error that a work budget of the scene may explain, with the keys named
+/// ([`CliError::ContactBudget`]); other errors pass through.
+pub fn contact_budget(
+    e: capstan_elasticity::contact::ContactError,
+    solver: &crate::scene::SolverSpec,
+) -> CliError {
+    use capstan_elasticity::contact::ContactError;
+    use capstan_elasticity::solvers::SolverError;
+    let iterative = matches!(solver.linear.as_str(), "jacobi" | "gauss-seidel")
+        && solver.nonlinear != "newton"
+        || solver.nonlinear == "jacobi-newton";
+    let budget = match &e {
+        ContactError::NotConverged { .. } => {
+            format!(
+                "`solver.max_iterations` = {} Newton iterations per load step, `solver.max_continuation_steps` = {} steps, `solver.min_load_step` = {}; raise the first two or lower the third (--set solver.max_iterations={})",
+                solver.max_iterations,
+                solver.max_continuation_steps,
+                solver.min_load_step,
+                solver.max_iterations.saturating_mul(4)
+            ) + if iterative {
+                "; the inner Jacobi / Gauss-Seidel solves are bounded by `solver.max_sweeps` (unset: 10,000; jacobi-newton 10^7): raise it"
+            } else {
+                ""
+            }
+        }
+        ContactError::Solver(SolverError::NotConverged { iterations, .. }) => format!(
+            "{iterations} iterations reached: `solver.max_sweeps` = {} Jacobi / Gauss-Seidel sweeps per linear solve, `solver.max_iterations` = {} Newton iterations; raise them (--set solver.max_sweeps={})",
+            solver.max_sweeps.map_or_else(
+                || "unset (10,000; jacobi-newton 10^7)".into(),
+                |n| n.to_string()
+            ),
+            solver.max_iterations,
+            iterations.saturating_mul(10)
+        ),
+        _ => return e.into(),
+    };
+    CliError::ContactBudget { source: e, budget }
+}
+
 impl CliError {
     /// Process exit code: 2 for bad input, 3 when no limiting equilibrium exists, 4 for
-    /// non-convergence, 1 otherwise.
+    /// non-convergence (a work budget ran out), 5 when stopped (`--timeout`: `timed out`; an
+    /// observer's stop: `interrupted`), 1 otherwise.
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
+            Self::ContactBudget { .. } => 4,
+            Self::TimedOut { .. } => 5,
             Self::Scene { .. }
             | Self::Set { .. }
             | Self::Geometry(_)

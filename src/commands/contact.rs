@@ -74,6 +74,20 @@ impl SceneSolver {
         }
         s
     }
+
+    /// [`SceneSolver::full_settings`] with the scene's work budgets (`solver.max_iterations`,
+    /// `max_continuation_steps`, `min_load_step`, `max_sweeps`).
+    pub fn full_settings_for(self, scene: &Scene) -> FullSystemSettings {
+        let mut s = self.full_settings();
+        s.continuation = ContactSettings {
+            tolerance: s.continuation.tolerance,
+            ..scene.solver.contact_settings()
+        };
+        if let Some(sweeps) = scene.solver.max_sweeps {
+            s.newton.iterative.max_iterations = sweeps;
+        }
+        s
+    }
 }
 
 /// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`,
@@ -352,6 +366,13 @@ pub fn solved(
 /// # Errors
 /// Bad input (exit 2), no equilibrium (3), non-convergence (4).
 pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
+    solve_unnamed(scene).map_err(|e| match e {
+        CliError::Contact(e) => crate::error::contact_budget(e, &scene.solver),
+        e => e,
+    })
+}
+
+fn solve_unnamed(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
     let method = SceneSolver::from_scene(scene)?;
     let loads = loads(scene);
     let t0 = Instant::now();
@@ -359,7 +380,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
     match method {
         SceneSolver::Condensed => {
             let model = model(scene)?;
-            let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+            let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             let sol = solver.solve_observed(loads, &mut CliObserver::new())?;
@@ -379,7 +400,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             let mut observer = CliObserver::new();
-            let settings = method.full_settings();
+            let settings = method.full_settings_for(scene);
             match solve_sequenced_observed(&body, law, params, eps, loads, settings, &mut observer)
             {
                 Ok(seq) => {
@@ -407,7 +428,7 @@ pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
         }
         SceneSolver::JacobiNewton => {
             let model = model(scene)?;
-            let solver = FullSystemSolver::new(&model, method.full_settings())?;
+            let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             match solver.solve_observed(loads, &mut CliObserver::new()) {

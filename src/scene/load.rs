@@ -17,11 +17,9 @@ impl Scene {
     /// unknown keys, wrong types or values outside their allowed range (naming the key, the
     /// value and the range), [`CliError::Set`] for a malformed override.
     pub fn load(path: Option<&Path>, sets: &[String]) -> Result<Self, CliError> {
-        let mut origins = Origins::default();
-        let mut text = String::new();
-        let mut table = match path {
+        let file = match path {
             Some(p) => {
-                text = std::fs::read_to_string(p).map_err(|source| {
+                let text = std::fs::read_to_string(p).map_err(|source| {
                     if source.kind() == std::io::ErrorKind::InvalidData {
                         CliError::Scene {
                             origin: p.display().to_string(),
@@ -34,12 +32,37 @@ impl Scene {
                         }
                     }
                 })?;
-                origins.file = Some(p.display().to_string());
+                Some((p.display().to_string(), text))
+            }
+            None => None,
+        };
+        Self::from_text(file.as_ref().map(|(n, t)| (n.as_str(), t.as_str())), sets)
+    }
+
+    /// [`Scene::load`] on the text of a scene file already read: `file` is `(name, text)`,
+    /// the name used in error messages (`name:line`).
+    ///
+    /// # Errors
+    /// As [`Scene::load`], without the I/O errors.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan::scene::Scene;
+    /// let s = Scene::from_text(Some(("s.toml", "[friction]\nmu = 0.3\n")), &["membrane.t0=2".into()]).unwrap();
+    /// assert_eq!((s.friction.mu, s.membrane.t0), (0.3, 2.0));
+    /// ```
+    pub fn from_text(file: Option<(&str, &str)>, sets: &[String]) -> Result<Self, CliError> {
+        let mut origins = Origins::default();
+        let mut text = "";
+        let mut table = match file {
+            Some((name, file_text)) => {
+                text = file_text;
+                origins.file = Some(name.to_string());
                 let table = text.parse::<toml::Table>().map_err(|e| CliError::Scene {
-                    origin: p.display().to_string(),
+                    origin: name.to_string(),
                     message: e.to_string(),
                 })?;
-                origins.lines = key_lines(&text);
+                origins.lines = key_lines(text);
                 table
             }
             None => toml::Table::new(),
@@ -55,7 +78,7 @@ impl Scene {
                 // The merged table carries no spans: when the file alone is already wrong,
                 // report the file's error, which points to the line.
                 if let Some(file) = &origins.file
-                    && let Err(file_error) = toml::from_str::<Scene>(&text)
+                    && let Err(file_error) = toml::from_str::<Scene>(text)
                 {
                     return Err(CliError::Scene {
                         origin: file.clone(),
@@ -81,7 +104,10 @@ impl Scene {
 /// Every key a scene accepts, as dotted names (from the defaults, plus optional keys).
 pub fn known_keys() -> Vec<String> {
     let table = toml::Table::try_from(Scene::default()).expect("the default scene serialises");
-    let mut keys = vec!["membrane.t_max".to_string()];
+    let mut keys = vec![
+        "membrane.t_max".to_string(),
+        "solver.max_sweeps".to_string(),
+    ];
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
     }
