@@ -71,45 +71,6 @@ pub enum CliError {
     Shard(#[from] crate::scale::ShardError),
 }
 
-/// A contact error that a work budget of the scene may explain, with the keys named
-/// ([`CliError::ContactBudget`]); other errors pass through.
-pub fn contact_budget(
-    e: capstan_elasticity::contact::ContactError,
-    solver: &crate::scene::SolverSpec,
-) -> CliError {
-    use capstan_elasticity::contact::ContactError;
-    use capstan_elasticity::solvers::SolverError;
-    let iterative = matches!(solver.linear.as_str(), "jacobi" | "gauss-seidel")
-        && solver.nonlinear != "newton"
-        || solver.nonlinear == "jacobi-newton";
-    let budget = match &e {
-        ContactError::NotConverged { .. } => {
-            format!(
-                "`solver.max_iterations` = {} Newton iterations per load step, `solver.max_continuation_steps` = {} steps, `solver.min_load_step` = {}; raise the first two or lower the third (--set solver.max_iterations={})",
-                solver.max_iterations,
-                solver.max_continuation_steps,
-                solver.min_load_step,
-                solver.max_iterations.saturating_mul(4)
-            ) + if iterative {
-                "; the inner Jacobi / Gauss-Seidel solves are bounded by `solver.max_sweeps` (unset: 10,000; jacobi-newton 10^7): raise it"
-            } else {
-                ""
-            }
-        }
-        ContactError::Solver(SolverError::NotConverged { iterations, .. }) => format!(
-            "{iterations} iterations reached: `solver.max_sweeps` = {} Jacobi / Gauss-Seidel sweeps per linear solve, `solver.max_iterations` = {} Newton iterations; raise them (--set solver.max_sweeps={})",
-            solver.max_sweeps.map_or_else(
-                || "unset (10,000; jacobi-newton 10^7)".into(),
-                |n| n.to_string()
-            ),
-            solver.max_iterations,
-            iterations.saturating_mul(10)
-        ),
-        _ => return e.into(),
-    };
-    CliError::ContactBudget { source: e, budget }
-}
-
 impl CliError {
     /// Process exit code: 2 for bad input, 3 when no limiting equilibrium exists, 4 for
     /// non-convergence (a work budget ran out), 5 when stopped (`--timeout`: `timed out`; an
