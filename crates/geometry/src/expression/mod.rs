@@ -255,7 +255,13 @@ impl Expression {
                 Op::Times(c) => top * real::<F>(c),
                 Op::Over(c) => top / real::<F>(c),
                 Op::ConstantOver(c) => S::from(real::<F>(c)) / top,
+                // num-dual forms `x^n` as `x^(n-3) x x x`: at `x = 0` with `n < 3` that is
+                // `inf * 0 = NaN` in the value, where `f64` gives 0 or inf (fuzz finding
+                // `2^t^-2` at `t = 0`). At zero: `1 / x^|n|` and `exp(c ln x)`, whose values
+                // are `f64`'s (derivatives there are infinite or NaN either way).
+                Op::PowI(n) if n < 0 && top.re() == F::zero() => top.powi(-n).recip(),
                 Op::PowI(n) => top.powi(n),
+                Op::PowF(c) if top.re() == F::zero() => (top.ln() * real::<F>(c)).exp(),
                 Op::PowF(c) => top.powf(real::<F>(c)),
                 Op::ExpTimes(c) => (top * real::<F>(c)).exp(),
                 Op::Negate => -top,
