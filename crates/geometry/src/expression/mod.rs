@@ -255,14 +255,18 @@ impl Expression {
                 Op::Times(c) => top * real::<F>(c),
                 Op::Over(c) => top / real::<F>(c),
                 Op::ConstantOver(c) => S::from(real::<F>(c)) / top,
-                // num-dual forms `x^n` as `x^(n-3) x x x`: at `x = 0` with `n < 3` that is
-                // `inf * 0 = NaN` in the value, where `f64` gives 0 or inf (fuzz finding
-                // `2^t^-2` at `t = 0`). At zero: `1 / x^|n|` and `exp(c ln x)`, whose values
-                // are `f64`'s (derivatives there are infinite or NaN either way).
-                Op::PowI(n) if n < 0 && top.re() == F::zero() => top.powi(-n).recip(),
-                Op::PowI(n) => top.powi(n),
-                Op::PowF(c) if top.re() == F::zero() => (top.ln() * real::<F>(c)).exp(),
-                Op::PowF(c) => top.powf(real::<F>(c)),
+                // num-dual forms `x^n` as `x^(n-3) x x x`, whose first factor over- or
+                // underflows (or is `0^negative`) where `x^n` does not: `1 / x^|n|`, as `f64`
+                // computes it (fuzz findings `2^t^-2` at `t = 0`, `t^-1` at `t = 5.7e148`).
+                Op::PowI(n) => {
+                    let y = top.powi(n);
+                    if n < 0 && !same_value(y.re(), top.re().powi(n)) {
+                        top.powi(-n).recip()
+                    } else {
+                        y
+                    }
+                }
+                Op::PowF(c) => power_by_real(top, real::<F>(c)),
                 Op::ExpTimes(c) => (top * real::<F>(c)).exp(),
                 Op::Negate => -top,
                 Op::Call(function) => function.apply(top),
@@ -322,4 +326,38 @@ impl Expression {
         }
         Ok(())
     }
+}
+
+/// `x^c` for a non-integer (or large) constant `c` on any scalar: num-dual's `powf`, unless
+/// its value differs from `f64`'s `x^c` (its intermediate `x^(c-3)` over- or underflows, or is
+/// `0^negative`); then `exp(c ln|x|)` (with the sign of an integer power of a negative `x`)
+/// if that has `f64`'s value to `1e-12`. On `f64` itself this is `powf`.
+fn power_by_real<F: Real, S: Scalar<F>>(x: S, c: F) -> S {
+    let y = x.powf(c);
+    let target = x.re().powf(c);
+    if same_value(y.re(), target) {
+        return y;
+    }
+    let z = if x.re() < F::zero() && c.fract() == F::zero() {
+        let z = ((-x).ln() * c).exp();
+        if (c * real::<F>(0.5)).fract() == F::zero() {
+            z
+        } else {
+            -z
+        }
+    } else {
+        (x.ln() * c).exp()
+    };
+    // `exp(c ln x)` rounds `c ln x`, whose size is hundreds here: agree to 1e-12.
+    let close = (z.re() - target).abs() <= real::<F>(1e-12) * target.abs();
+    if same_value(z.re(), target) || close {
+        z
+    } else {
+        y
+    }
+}
+
+/// Equal, or both NaN.
+fn same_value<F: Real>(a: F, b: F) -> bool {
+    a == b || (a.is_nan() && b.is_nan())
 }
