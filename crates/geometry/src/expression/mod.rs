@@ -242,9 +242,12 @@ impl Expression {
                     sp -= 1;
                     stack[sp] * top
                 }
+                // num-dual divides as `a (1/b)`, two roundings: the value is moved to `f64`'s
+                // `a / b` (fuzz finding `1 - t/t + ...` at `t = 4e-80`, where cancellation
+                // exposed the last bit).
                 Op::Divide => {
                     sp -= 1;
-                    stack[sp] / top
+                    with_value(stack[sp] / top, stack[sp].re() / top.re())
                 }
                 Op::Power => {
                     sp -= 1;
@@ -253,8 +256,10 @@ impl Expression {
                 Op::Plus(c) => top + real::<F>(c),
                 Op::ConstantMinus(c) => S::from(real::<F>(c)) - top,
                 Op::Times(c) => top * real::<F>(c),
-                Op::Over(c) => top / real::<F>(c),
-                Op::ConstantOver(c) => S::from(real::<F>(c)) / top,
+                Op::Over(c) => with_value(top / real::<F>(c), top.re() / real::<F>(c)),
+                Op::ConstantOver(c) => {
+                    with_value(S::from(real::<F>(c)) / top, real::<F>(c) / top.re())
+                }
                 // num-dual forms `x^n` as `x^(n-3) x x x`, whose first factor over- or
                 // underflows (or is `0^negative`) where `x^n` does not: `1 / x^|n|`, as `f64`
                 // computes it (fuzz findings `2^t^-2` at `t = 0`, `t^-1` at `t = 5.7e148`).
