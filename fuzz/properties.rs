@@ -8,14 +8,16 @@ use capstan_geometry::ad::curve_jet;
 use capstan_geometry::expression::Expression;
 
 /// Expression parser and evaluator: parsing never panics; a parsed expression reparses from its
-/// source; its value at `t` (the first 8 bytes, when finite) is the same in `f64` and in the
-/// third-order dual numbers that carry its derivatives; `check_finite_on` answers.
+/// source; its value at `t` (the first 8 bytes, when an angle: `|t| <= 1e6`, and 0 or
+/// `|t| >= 1e-12`) is the same in `f64` and in the third-order dual numbers that carry its
+/// derivatives; `check_finite_on` answers. (At `|t| ~ 1e-300` or `1e150` dual arithmetic
+/// over/underflows in its derivative parts where `f64` does not; scenes check finiteness.)
 pub fn expression(data: &[u8]) {
+    let angle = |t: f64| t.abs() <= 1e6 && (t == 0.0 || t.abs() >= 1e-12);
     let (t, src) = match data.split_first_chunk::<8>() {
-        Some((head, rest)) if f64::from_le_bytes(*head).is_finite() => {
-            (f64::from_le_bytes(*head), rest)
-        }
-        _ => (0.7, data),
+        Some((head, rest)) if angle(f64::from_le_bytes(*head)) => (f64::from_le_bytes(*head), rest),
+        Some((_, rest)) => (0.7, rest),
+        None => (0.7, data),
     };
     let Ok(src) = std::str::from_utf8(src) else {
         return;
