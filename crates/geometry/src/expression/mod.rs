@@ -357,6 +357,10 @@ fn power_by_real<F: Real, S: Scalar<F>>(x: S, c: F) -> S {
     let close = (z.re() - target).abs() <= real::<F>(1e-12) * target.abs();
     if same_value(z.re(), target) || close {
         z
+    } else if target.is_infinite() {
+        // e.g. `(-inf)^0.1 = inf` (IEEE `pow`), NaN through `ln`: the value is infinite,
+        // derivatives have no meaning there (fuzz finding `(t/0)^.1`).
+        S::from(target)
     } else {
         y
     }
