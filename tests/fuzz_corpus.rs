@@ -1,7 +1,8 @@
-//! Replays the fuzz corpora (`fuzz/corpus/<target>/*`, minimised with `cargo fuzz cmin`)
-//! through the same properties the fuzz targets check (`fuzz/properties.rs`): expression
+//! Replays the fuzz corpora (`fuzz/corpus/<target>/*`, minimised with `cargo fuzz cmin`) and
+//! the fuzzer's findings (`fuzz/regressions/<target>/*`, kept apart so that `cmin` cannot drop
+//! them) through the same properties the fuzz targets check (`fuzz/properties.rs`): expression
 //! parser and evaluator, scene parser with `--set` overrides, membrane models on random valid
-//! scenes. Every finding of the fuzzer stays here as a regression test.
+//! scenes.
 
 #[path = "../fuzz/properties.rs"]
 mod properties;
