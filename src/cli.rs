@@ -24,6 +24,10 @@ pub struct Cli {
     /// More notes on stderr (repeatable: `-vv`).
     #[arg(long, short = 'v', action = clap::ArgAction::Count, global = true)]
     pub verbose: u8,
+    /// Stop after this many seconds of wall-clock time: exit code 5 (`timed out`), and none
+    /// of the run's files is left in `--out` (they are renamed into place only at the end).
+    #[arg(long, global = true, value_name = "SECONDS")]
+    pub timeout: Option<f64>,
 }
 
 const EXAMPLES: &str = "Examples:\n  capstan geometry --set obstacle.shape=ellipse --set obstacle.b=1 --json\n  capstan tension examples/scenes/capstan_ellipse.toml --out out/tension\n  capstan contact --set loads.tau_max=1 --out out/contact\n  capstan figure all --quick --out out/figures";
@@ -168,6 +172,37 @@ pub struct VerifyArgs {
 /// Any [`CliError`]; the caller maps it to an exit code.
 pub fn run(cli: Cli) -> Result<String, CliError> {
     crate::progress::set_flags(cli.quiet, cli.verbose);
+    let Some(seconds) = cli.timeout else {
+        return run_command(cli);
+    };
+    if !(seconds.is_finite() && seconds > 0.0) {
+        return Err(CliError::Set {
+            set: format!("--timeout {seconds}"),
+            message: "SECONDS must be a positive number".into(),
+        });
+    }
+    crate::output::defer_commits();
+    std::thread::spawn(move || {
+        std::thread::sleep(std::time::Duration::from_secs_f64(seconds));
+        // Nothing happens when the run has committed its files already (it is finishing).
+        crate::output::discard_outputs_and(|| {
+            eprintln!("error: {}", CliError::TimedOut { seconds });
+            std::process::exit(CliError::TimedOut { seconds }.exit_code())
+        });
+    });
+    match run_command(cli) {
+        Ok(out) => {
+            crate::output::commit_deferred()?;
+            Ok(out)
+        }
+        Err(e) => {
+            crate::output::discard_outputs_and(|| ());
+            Err(e)
+        }
+    }
+}
+
+fn run_command(cli: Cli) -> Result<String, CliError> {
     match cli.command {
         None => default_job(),
         Some(Command::Geometry(args)) => geometry(&args),

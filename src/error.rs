@@ -45,6 +45,23 @@ pub enum CliError {
     /// (tension ratio beyond what friction holds: 3), or non-convergence (4).
     #[error(transparent)]
     Contact(#[from] capstan_elasticity::contact::ContactError),
+    /// A thick-body solve ran out of a work budget that scene keys set (exit code 4): the
+    /// contact error, then the budget keys with their values and what to change.
+    #[error("{source}; work budget: {budget}")]
+    ContactBudget {
+        /// The solver's error.
+        source: capstan_elasticity::contact::ContactError,
+        /// The scene keys with their values and what to change.
+        budget: String,
+    },
+    /// The run passed its `--timeout` (exit code 5, status `timed out`); nothing was written.
+    #[error(
+        "timed out after {seconds} s (--timeout {seconds}): no output was written; raise --timeout"
+    )]
+    TimedOut {
+        /// The limit.
+        seconds: f64,
+    },
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
@@ -56,10 +73,13 @@ pub enum CliError {
 
 impl CliError {
     /// Process exit code: 2 for bad input, 3 when no limiting equilibrium exists, 4 for
-    /// non-convergence, 1 otherwise.
+    /// non-convergence (a work budget ran out), 5 when stopped (`--timeout`: `timed out`; an
+    /// observer's stop: `interrupted`), 1 otherwise.
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
+            Self::ContactBudget { .. } => 4,
+            Self::TimedOut { .. } => 5,
             Self::Scene { .. }
             | Self::Set { .. }
             | Self::Geometry(_)

@@ -144,6 +144,8 @@ pub fn row(c: Config, grid: [usize; 2]) -> Result<CompareRow, CliError> {
         stiffness: 1e3,
         eps: EPS,
         nodes: crate::commands::infer_mu::MEMBRANE_NODES,
+        max_newton_iterations: 100,
+        max_root_iterations: 200,
     };
     Ok(CompareRow {
         config: c,

@@ -74,6 +74,20 @@ impl SceneSolver {
         }
         s
     }
+
+    /// [`SceneSolver::full_settings`] with the scene's work budgets (`solver.max_iterations`,
+    /// `max_continuation_steps`, `min_load_step`, `max_sweeps`).
+    pub fn full_settings_for(self, scene: &Scene) -> FullSystemSettings {
+        let mut s = self.full_settings();
+        s.continuation = ContactSettings {
+            tolerance: s.continuation.tolerance,
+            ..scene.solver.contact_settings()
+        };
+        if let Some(sweeps) = scene.solver.max_sweeps {
+            s.newton.iterative.max_iterations = sweeps;
+        }
+        s
+    }
 }
 
 /// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`,
@@ -379,6 +393,16 @@ pub fn solve_observed(
     scene: &Scene,
     observer: &mut dyn Observer<f64>,
 ) -> Result<(ContactReport, Solved), CliError> {
+    solve_unnamed(scene, observer).map_err(|e| match e {
+        CliError::Contact(e) => contact_budget(e, &scene.solver),
+        e => e,
+    })
+}
+
+fn solve_unnamed(
+    scene: &Scene,
+    observer: &mut dyn Observer<f64>,
+) -> Result<(ContactReport, Solved), CliError> {
     let method = SceneSolver::from_scene(scene)?;
     let loads = loads(scene);
     let t0 = Instant::now();
@@ -386,7 +410,7 @@ pub fn solve_observed(
     match method {
         SceneSolver::Condensed => {
             let model = model(scene)?;
-            let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+            let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             let sol = solver.solve_observed(loads, observer)?;
@@ -405,7 +429,7 @@ pub fn solve_observed(
             let body = thick_body(scene)?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            let settings = method.full_settings();
+            let settings = method.full_settings_for(scene);
             match solve_sequenced_observed(&body, law, params, eps, loads, settings, observer) {
                 Ok(seq) => {
                     let report = ContactReport {
@@ -432,7 +456,7 @@ pub fn solve_observed(
         }
         SceneSolver::JacobiNewton => {
             let model = model(scene)?;
-            let solver = FullSystemSolver::new(&model, method.full_settings())?;
+            let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             match solver.solve_observed(loads, observer) {
@@ -452,6 +476,45 @@ pub fn solve_observed(
             }
         }
     }
+}
+
+/// A contact error that a work budget of the scene may explain, with the keys named
+/// ([`CliError::ContactBudget`]); other errors pass through.
+pub(crate) fn contact_budget(
+    e: capstan_elasticity::contact::ContactError,
+    solver: &crate::scene::SolverSpec,
+) -> CliError {
+    use capstan_elasticity::contact::ContactError;
+    use capstan_elasticity::solvers::SolverError;
+    let iterative = matches!(solver.linear.as_str(), "jacobi" | "gauss-seidel")
+        && solver.nonlinear != "newton"
+        || solver.nonlinear == "jacobi-newton";
+    let budget = match &e {
+        ContactError::NotConverged { .. } => {
+            format!(
+                "`solver.max_iterations` = {} Newton iterations per load step, `solver.max_continuation_steps` = {} steps, `solver.min_load_step` = {}; raise the first two or lower the third (--set solver.max_iterations={})",
+                solver.max_iterations,
+                solver.max_continuation_steps,
+                solver.min_load_step,
+                solver.max_iterations.saturating_mul(4)
+            ) + if iterative {
+                "; the inner Jacobi / Gauss-Seidel solves are bounded by `solver.max_sweeps` (unset: 10,000; jacobi-newton 10^7): raise it"
+            } else {
+                ""
+            }
+        }
+        ContactError::Solver(SolverError::NotConverged { iterations, .. }) => format!(
+            "{iterations} iterations reached: `solver.max_sweeps` = {} Jacobi / Gauss-Seidel sweeps per linear solve, `solver.max_iterations` = {} Newton iterations; raise them (--set solver.max_sweeps={})",
+            solver.max_sweeps.map_or_else(
+                || "unset (10,000; jacobi-newton 10^7)".into(),
+                |n| n.to_string()
+            ),
+            solver.max_iterations,
+            iterations.saturating_mul(10)
+        ),
+        _ => return e.into(),
+    };
+    CliError::ContactBudget { source: e, budget }
 }
 
 /// A full-system non-convergence, told apart: no equilibrium (checked by the boundary-only

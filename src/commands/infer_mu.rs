@@ -11,7 +11,7 @@ use capstan_elasticity::contact::{
 use capstan_friction::FrictionError;
 use capstan_friction::membrane;
 use capstan_friction::membrane_displacement::{
-    EndCondition, MembraneDisplacement, MembraneDisplacementProblem,
+    EndCondition, MembraneDisplacement, MembraneDisplacementProblem, MembraneNewton,
 };
 use capstan_friction::root::Brent;
 use capstan_friction::{RegularisedCoulomb, RegularisedCoulombParams};
@@ -121,7 +121,12 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
     let obstacle = scene.obstacle.build()?;
     let t0 = scene.membrane.t0;
     let ratio = t_max / t0;
-    let capstan = membrane::infer_mu(&obstacle, &membrane_problem(scene), t_max)?;
+    let capstan = membrane::infer_mu_within(
+        &obstacle,
+        &membrane_problem(scene),
+        t_max,
+        &scene.membrane.budget(),
+    )?;
     let mut r = InferMuReport {
         mu: capstan.mu,
         model: model.as_str(),
@@ -157,6 +162,8 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
                     stiffness: b.young * b.thickness / (1.0 - b.poisson * b.poisson),
                     eps,
                     nodes: MEMBRANE_NODES,
+                    max_newton_iterations: scene.membrane.max_newton_iterations,
+                    max_root_iterations: scene.membrane.max_root_iterations,
                 },
                 ratio,
             )?;
@@ -244,6 +251,10 @@ pub struct MembraneSetup {
     pub eps: f64,
     /// Nodes.
     pub nodes: usize,
+    /// Newton iterations per solve (`membrane.max_newton_iterations`).
+    pub max_newton_iterations: usize,
+    /// Iterations of the root finder (`membrane.max_root_iterations`).
+    pub max_root_iterations: usize,
 }
 
 /// A coefficient found by inverting a forward model.
@@ -288,7 +299,11 @@ pub fn membrane_ratio<C: ProfileCurve<f64>>(
                 step,
             ));
         };
-        let s = model.solve_observed(&problem, None, Default::default(), &mut report)?;
+        let newton = MembraneNewton {
+            max_iterations: setup.max_newton_iterations,
+            ..Default::default()
+        };
+        let s = model.solve_observed(&problem, None, newton, &mut report)?;
         if s.slip_fraction(setup.eps) == 1.0 {
             return Ok(s.tension_ratio());
         }
@@ -337,7 +352,7 @@ pub fn membrane_mu<C: ProfileCurve<f64>>(
     }
     let mu = Brent {
         x_tol: 1e-10,
-        ..Default::default()
+        max_iterations: setup.max_root_iterations,
     }
     .solve(&mut f, 0.0, f0, hi, f_hi)?;
     Ok(ImpliedMu {

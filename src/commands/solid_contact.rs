@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactSettings, ContactSolution, FullSystemSolver,
+    BoundarySolver, ContactModel, ContactSolution, FullSystemSolver,
 };
 use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::AnyFrictionLaw;
@@ -131,13 +131,23 @@ pub fn solve_observed(
     scene: &Scene,
     observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
 ) -> Result<(ContactReport, ContactSolution, SolidSceneModel), CliError> {
+    solve_unnamed(scene, observer).map_err(|e| match e {
+        CliError::Contact(e) => crate::commands::contact::contact_budget(e, &scene.solver),
+        e => e,
+    })
+}
+
+fn solve_unnamed(
+    scene: &Scene,
+    observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
+) -> Result<(ContactReport, ContactSolution, SolidSceneModel), CliError> {
     let method = SceneSolver::from_scene(scene)?;
     let loads = loads(scene);
     let t0 = Instant::now();
     let model = model(scene)?;
     let (sol, limiting, setup, t1) = match method {
         SceneSolver::Condensed => {
-            let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+            let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             let sol = solver.solve_observed(loads, observer)?;
@@ -147,7 +157,7 @@ pub fn solve_observed(
             (sol, limiting, setup, t1)
         }
         SceneSolver::FullNewton(_) | SceneSolver::JacobiNewton => {
-            let solver = FullSystemSolver::new(&model, method.full_settings())?;
+            let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             (solver.solve_observed(loads, observer)?, None, setup, t1)

@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactOperator, ContactSettings, ContactSolution, EndLoads,
+    BoundarySolver, ContactModel, ContactOperator, ContactSolution, EndLoads,
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
 use rayon::prelude::*;
@@ -234,7 +234,7 @@ where
     let shared = key == "loads.tau_max" || key == "loads.tau0";
     Ok(if shared {
         let model = build(scene)?;
-        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
         values
             .par_iter()
             .enumerate()
@@ -263,7 +263,7 @@ where
                 let run = || -> Result<(EndLoads, Result<_, CliError>), CliError> {
                     let sc = with(v)?;
                     let m = build(&sc)?;
-                    let solver = BoundarySolver::new(&m, ContactSettings::default())?;
+                    let solver = BoundarySolver::new(&m, sc.solver.contact_settings())?;
                     let l = loads(&sc);
                     let mut r = solver.solve(l).map_err(CliError::from);
                     if let (Some(out), Ok(sol)) = (fields, &r)

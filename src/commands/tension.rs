@@ -47,7 +47,11 @@ pub struct TensionReport {
 /// non-convergence (4); see [`capstan_friction::membrane::tension_profile`].
 pub fn report(scene: &Scene) -> Result<TensionReport, CliError> {
     let obstacle = scene.obstacle.build()?;
-    let p = membrane::tension_profile(&obstacle, &membrane_problem(scene))?;
+    let p = membrane::tension_profile_within(
+        &obstacle,
+        &membrane_problem(scene),
+        &scene.membrane.budget(),
+    )?;
     Ok(TensionReport {
         t_max: p.t_max(),
         tension_ratio: p.tension_ratio(),

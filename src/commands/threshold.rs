@@ -3,9 +3,7 @@
 
 use std::time::Instant;
 
-use capstan_elasticity::contact::{
-    BoundarySolver, ContactSettings, ThresholdSettings, threshold_ratio,
-};
+use capstan_elasticity::contact::{BoundarySolver, ThresholdSettings, threshold_ratio};
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
@@ -52,11 +50,11 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let t = Instant::now();
     let r = if scene.body.dimension == 3 {
         let model = crate::commands::solid_contact::model(scene)?;
-        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
         threshold_ratio(&solver, ThresholdSettings::default())?
     } else {
         let model = model(scene)?;
-        let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
         threshold_ratio(&solver, ThresholdSettings::default())?
     };
     let obstacle = scene.obstacle.build()?;

@@ -18,7 +18,7 @@ mod json;
 mod out_dir;
 mod vtu;
 
-pub use atomic::write_atomic;
+pub use atomic::{commit_deferred, defer_commits, discard_outputs_and, write_atomic};
 pub use csv::{Column, ColumnData, Table, format_f64};
 pub use error::OutputError;
 pub use json::{check_finite_json, to_json_string, write_json};

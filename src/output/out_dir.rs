@@ -1,10 +1,10 @@
 //! The `--out DIR` directory: every output file of a run, written atomically.
 
-use std::fs::{self, File};
+use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Component, Path, PathBuf};
 
-use super::atomic::write_atomic;
+use super::atomic::{create_dirs, write_atomic};
 use super::csv::Table;
 use super::error::OutputError;
 use super::json::{check_finite_json, write_json};
@@ -35,7 +35,7 @@ impl OutputDir {
     /// [`OutputError::Io`] if the directory cannot be created (or `root` is a file).
     pub fn create(root: impl Into<PathBuf>) -> Result<Self, OutputError> {
         let root = root.into();
-        fs::create_dir_all(&root).map_err(|e| OutputError::io(&root, e))?;
+        create_dirs(&root)?;
         Ok(Self { root })
     }
 
@@ -83,7 +83,7 @@ impl OutputDir {
     ) -> Result<PathBuf, OutputError> {
         let path = self.file(name)?;
         if let Some(parent) = path.parent() {
-            fs::create_dir_all(parent).map_err(|e| OutputError::io(parent, e))?;
+            create_dirs(parent)?;
         }
         write_atomic(&path, write)?;
         Ok(path)
@@ -131,7 +131,7 @@ impl OutputDir {
     ) -> Result<[PathBuf; 2], OutputError> {
         let stem = self.file(name)?;
         if let Some(parent) = stem.parent() {
-            fs::create_dir_all(parent).map_err(|e| OutputError::io(parent, e))?;
+            create_dirs(parent)?;
         }
         write_plot(&stem, plot)
     }

@@ -126,8 +126,20 @@ impl Scene {
         })
     }
 
-    /// `text` (with its origin, a file name) and `sets` into a validated scene.
-    fn from_text(text: Option<(&str, &str)>, sets: &[String]) -> Result<Self, CliError> {
+    /// [`Scene::load`] on the text of a scene file already read: `text` is `(text, origin)`,
+    /// the origin (a file name) used in error messages (`origin:line`), and `sets` the
+    /// `KEY=VALUE` overrides.
+    ///
+    /// # Errors
+    /// As [`Scene::load`], without the I/O errors.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan::scene::Scene;
+    /// let s = Scene::from_text(Some(("[friction]\nmu = 0.3\n", "s.toml")), &["membrane.t0=2".into()]).unwrap();
+    /// assert_eq!((s.friction.mu, s.membrane.t0), (0.3, 2.0));
+    /// ```
+    pub fn from_text(text: Option<(&str, &str)>, sets: &[String]) -> Result<Self, CliError> {
         let mut origins = Origins::default();
         let mut table = match text {
             Some((text, origin)) => {
@@ -206,7 +218,10 @@ fn insert_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Resu
 /// Every key a scene accepts, as dotted names (from the defaults, plus optional keys).
 pub fn known_keys() -> Vec<String> {
     let table = toml::Table::try_from(Scene::default()).expect("the default scene serialises");
-    let mut keys = vec!["membrane.t_max".to_string()];
+    let mut keys = vec![
+        "membrane.t_max".to_string(),
+        "solver.max_sweeps".to_string(),
+    ];
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
     }

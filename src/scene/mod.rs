@@ -213,6 +213,31 @@ pub struct MembraneSpec {
     /// Measured tension at `theta_max` (for `infer-mu`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub t_max: Option<f64>,
+    /// Work budget: panels of adaptive quadrature (prism turning angle, the general cone's
+    /// nested quadrature), default `2^20`.
+    pub max_subdivisions: usize,
+    /// Work budget: steps of the ODE integrator (membranes with weight), default 100,000.
+    pub max_steps: usize,
+    /// Smallest ODE step before giving up (0, the default: the round-off floor only).
+    pub min_step: f64,
+    /// Work budget: iterations of `infer-mu`'s root finder (Brent), default 200.
+    pub max_root_iterations: usize,
+    /// Work budget: Newton iterations of the membrane displacement model
+    /// (`infer-mu --model membrane`), default 100.
+    pub max_newton_iterations: usize,
+}
+
+impl MembraneSpec {
+    /// The work budgets of the membrane models (`membrane.max_subdivisions`, `max_steps`,
+    /// `min_step`, `max_root_iterations`).
+    pub fn budget(&self) -> capstan_friction::membrane::MembraneBudget {
+        capstan_friction::membrane::MembraneBudget {
+            max_subdivisions: self.max_subdivisions,
+            max_steps: self.max_steps,
+            min_step: self.min_step,
+            max_root_iterations: self.max_root_iterations,
+        }
+    }
 }
 
 impl Default for MembraneSpec {
@@ -223,6 +248,13 @@ impl Default for MembraneSpec {
             theta_max: FRAC_PI_2,
             samples: 101,
             t_max: None,
+            max_subdivisions: capstan_friction::membrane::MembraneBudget::default()
+                .max_subdivisions,
+            max_steps: capstan_friction::membrane::MembraneBudget::default().max_steps,
+            min_step: 0.0,
+            max_root_iterations: capstan_friction::membrane::MembraneBudget::default()
+                .max_root_iterations,
+            max_newton_iterations: 100,
         }
     }
 }
@@ -329,13 +361,42 @@ pub struct SolverSpec {
     pub linear: String,
     /// `newton | jacobi-newton`.
     pub nonlinear: String,
+    /// Work budget: contact Newton iterations per load step (every nonlinear solver; with
+    /// `full-newton` per grid-sequencing level too), default 60.
+    pub max_iterations: usize,
+    /// Work budget: steps of the load continuation (and of the slip homotopy), default 400.
+    pub max_continuation_steps: usize,
+    /// Smallest load step of the continuation before giving up, default `1e-4`.
+    pub min_load_step: f64,
+    /// Work budget: Jacobi / Gauss–Seidel sweeps per linear solve (`solver.linear = "jacobi"`
+    /// or `"gauss-seidel"`, and `jacobi-newton`); unset: 10,000 (10^7 for `jacobi-newton`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_sweeps: Option<usize>,
 }
 
 impl Default for SolverSpec {
     fn default() -> Self {
+        let contact = capstan_elasticity::contact::ContactSettings::default();
         Self {
             linear: "lu".into(),
             nonlinear: "newton".into(),
+            max_iterations: contact.max_iterations,
+            max_continuation_steps: contact.max_continuation_steps,
+            min_load_step: contact.min_load_step,
+            max_sweeps: None,
+        }
+    }
+}
+
+impl SolverSpec {
+    /// The contact solvers' settings with the scene's budgets (`solver.max_iterations`,
+    /// `max_continuation_steps`, `min_load_step`).
+    pub fn contact_settings(&self) -> capstan_elasticity::contact::ContactSettings {
+        capstan_elasticity::contact::ContactSettings {
+            max_iterations: self.max_iterations,
+            max_continuation_steps: self.max_continuation_steps,
+            min_load_step: self.min_load_step,
+            ..Default::default()
         }
     }
 }

@@ -121,6 +121,33 @@ impl Scene {
         if let Some(t_max) = m.t_max {
             real("membrane.t_max", t_max, "(0, inf)", t_max > 0.0)?;
         }
+        let s = &self.solver;
+        for (key, n) in [
+            ("membrane.max_subdivisions", m.max_subdivisions),
+            ("membrane.max_steps", m.max_steps),
+            ("membrane.max_root_iterations", m.max_root_iterations),
+            ("membrane.max_newton_iterations", m.max_newton_iterations),
+            ("solver.max_iterations", s.max_iterations),
+            ("solver.max_continuation_steps", s.max_continuation_steps),
+            ("solver.max_sweeps", s.max_sweeps.unwrap_or(1)),
+        ] {
+            if n == 0 {
+                return Err(bad(key, "0".into(), "[1, inf)"));
+            }
+        }
+        real(
+            "membrane.min_step",
+            m.min_step,
+            "[0, inf)",
+            m.min_step >= 0.0,
+        )?;
+        let initial = capstan_elasticity::contact::ContactSettings::default().initial_load_step;
+        real(
+            "solver.min_load_step",
+            s.min_load_step,
+            "(0, 0.25] (the first load step is 0.25)",
+            s.min_load_step > 0.0 && s.min_load_step <= initial,
+        )?;
         let l = &self.loads;
         real("loads.gravity", l.gravity, "[0, inf)", l.gravity >= 0.0)?;
         real("loads.density", l.density, "[0, inf)", l.density >= 0.0)?;

@@ -119,25 +119,35 @@ pub enum FrictionError {
         /// Where.
         angle: f64,
     },
-    /// The ODE integrator's step size fell below round-off.
-    #[error("ODE step size {step:.3e} too small at t = {at:.9}")]
+    /// The ODE integrator's step size fell below its floor: `membrane.min_step`, or round-off
+    /// (`10 eps |t|`) when that is larger.
+    #[error(
+        "ODE step size {step:.3e} fell below the minimum step {min_step:.3e} at t = {at:.9} (`membrane.min_step`, or round-off at t): the equilibrium is stiff or singular there; lower `membrane.min_step` (0: round-off only) or end the interval before t"
+    )]
     StepSizeTooSmall {
         /// Where it stalled.
         at: f64,
         /// The step size.
         step: f64,
+        /// The floor it fell below.
+        min_step: f64,
     },
-    /// The ODE integrator needed more steps than allowed.
-    #[error("ODE integration needed more than {max_steps} steps (stopped at t = {at:.9})")]
+    /// The ODE integrator needed more steps than its budget `membrane.max_steps`.
+    #[error(
+        "ODE integration ran out of its work budget: `membrane.max_steps` = {max_steps} steps reached at t = {at:.9}; raise `membrane.max_steps` (e.g. --set membrane.max_steps={suggested}) or shorten the interval"
+    )]
     TooManySteps {
         /// Where it stopped.
         at: f64,
         /// The limit.
         max_steps: usize,
+        /// A larger budget to try (ten times the limit).
+        suggested: usize,
     },
-    /// Adaptive quadrature did not reach its tolerance within its panel budget.
+    /// Adaptive quadrature did not reach its tolerance within its panel budget
+    /// `membrane.max_subdivisions` (or a panel could not be split further).
     #[error(
-        "quadrature on [{a:.9}, {b:.9}] did not converge: error estimate {error:.3e} after {panels} panels"
+        "quadrature on [{a:.9}, {b:.9}] did not converge: error estimate {error:.3e} after {panels} panels (work budget `membrane.max_subdivisions` = {limit}); raise `membrane.max_subdivisions` if the profile is smooth there, otherwise end the interval before its singular point"
     )]
     QuadratureNotConverged {
         /// Lower limit.
@@ -148,16 +158,29 @@ pub enum FrictionError {
         error: f64,
         /// Panels used.
         panels: usize,
+        /// The panel budget (`membrane.max_subdivisions`).
+        limit: usize,
     },
-    /// A bracketing root finder did not converge.
+    /// A bracketing root finder did not converge within `membrane.max_root_iterations`.
     #[error(
-        "root finding did not converge after {iterations} iterations (bracket width {width:.3e})"
+        "root finding ran out of its work budget: `membrane.max_root_iterations` = {iterations} iterations reached (bracket width {width:.3e}); raise `membrane.max_root_iterations`"
     )]
     RootNotConverged {
         /// Iterations done.
         iterations: usize,
         /// Final bracket width.
         width: f64,
+    },
+    /// The membrane displacement model's Newton iteration did not converge within
+    /// `membrane.max_newton_iterations`.
+    #[error(
+        "membrane Newton ran out of its work budget: `membrane.max_newton_iterations` = {iterations} iterations reached at residual {residual:.3e}; raise `membrane.max_newton_iterations`"
+    )]
+    NewtonNotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// The residual then (max norm).
+        residual: f64,
     },
 }
 
@@ -194,7 +217,8 @@ impl FrictionError {
             | Self::StepSizeTooSmall { .. }
             | Self::TooManySteps { .. }
             | Self::QuadratureNotConverged { .. }
-            | Self::RootNotConverged { .. } => ErrorCategory::NotConverged,
+            | Self::RootNotConverged { .. }
+            | Self::NewtonNotConverged { .. } => ErrorCategory::NotConverged,
         }
     }
 }

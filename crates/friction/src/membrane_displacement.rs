@@ -289,9 +289,9 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
             |w: &[f64]| 100.0 * f64::EPSILON * c_max * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         while norm > (newton.tolerance * scale).max(floor(&w)) {
             if iterations == newton.max_iterations {
-                return Err(FrictionError::RootNotConverged {
+                return Err(FrictionError::NewtonNotConverged {
                     iterations,
-                    width: norm,
+                    residual: norm,
                 });
             }
             iterations += 1;

@@ -202,8 +202,12 @@ pub struct Dop853<F> {
     pub rel_tol: F,
     /// Absolute tolerance per component.
     pub abs_tol: F,
-    /// Largest number of accepted plus rejected steps.
+    /// Largest number of accepted plus rejected steps (scene key `membrane.max_steps`).
     pub max_steps: usize,
+    /// Smallest step size `|h|` before giving up (scene key `membrane.min_step`; `0`: only the
+    /// round-off floor `10 eps max(|t|, 1)`). The last step, shortened to end on `t_end`, is
+    /// exempt.
+    pub min_step: F,
     /// Largest step size `|h|`.
     pub max_step: F,
     /// Fixed step count instead of adaptivity (`0`: adaptive). For convergence studies.
@@ -216,6 +220,7 @@ impl<F: Real> Default for Dop853<F> {
             rel_tol: real(1e-12),
             abs_tol: real(1e-12),
             max_steps: 100_000,
+            min_step: F::zero(),
             max_step: F::infinity(),
             fixed_steps: 0,
         }
@@ -480,12 +485,20 @@ impl<F: Real> Dop853<F> {
                 return Err(FrictionError::TooManySteps {
                     at: t.to_f64().unwrap_or(f64::NAN),
                     max_steps: self.max_steps,
+                    suggested: self.max_steps.saturating_mul(10),
                 });
             }
-            if h.abs() <= real::<F>(10.0) * F::epsilon() * t.abs().max(F::one()) {
+            let round_off = real::<F>(10.0) * F::epsilon() * t.abs().max(F::one());
+            let floor = if last {
+                round_off
+            } else {
+                round_off.max(self.min_step)
+            };
+            if h.abs() <= floor {
                 return Err(FrictionError::StepSizeTooSmall {
                     at: t.to_f64().unwrap_or(f64::NAN),
                     step: h.to_f64().unwrap_or(f64::NAN),
+                    min_step: floor.to_f64().unwrap_or(f64::NAN),
                 });
             }
             for i in 1..12 {

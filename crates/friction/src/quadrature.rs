@@ -134,6 +134,9 @@ where
     })
 }
 
+/// The default panel budget of adaptive quadrature (`membrane.max_subdivisions`): `2^20`.
+pub const DEFAULT_MAX_SUBDIVISIONS: usize = 1 << 20;
+
 /// Settings of the globally adaptive Gauss–Kronrod integrator.
 ///
 /// The panel with the largest error estimate is bisected until the summed estimate is below
@@ -144,7 +147,7 @@ pub struct GaussKronrod<F> {
     pub abs_tol: F,
     /// Relative tolerance (against `int |f|`).
     pub rel_tol: F,
-    /// Largest number of panels before giving up.
+    /// Largest number of panels before giving up (scene key `membrane.max_subdivisions`).
     pub max_panels: usize,
     /// Largest `|integral|` of one accepted panel (e.g. `pi/2` to keep each panel's turning
     /// angle on one branch of `atan2`); infinite by default.
@@ -156,7 +159,7 @@ impl<F: Real> Default for GaussKronrod<F> {
         Self {
             abs_tol: real(1e-14),
             rel_tol: real(1e-13),
-            max_panels: 4000,
+            max_panels: DEFAULT_MAX_SUBDIVISIONS,
             max_panel_integral: F::infinity(),
         }
     }
@@ -180,47 +183,62 @@ impl<F: Real> GaussKronrod<F> {
     where
         G: FnMut(F) -> Result<F, FrictionError>,
     {
-        let mut panels = vec![gauss_kronrod_15(&mut f, a, b)?];
+        use std::collections::BinaryHeap;
+        // Work per split is O(log panels): a heap orders the panels by error (the bits of a
+        // non-negative f64 order as the value), a stack holds the panels too large in value,
+        // and the sums are kept running (recomputed exactly before acceptance).
+        let key = |p: &Panel<F>| p.error.to_f64().unwrap_or(f64::INFINITY).to_bits();
+        let first = gauss_kronrod_15(&mut f, a, b)?;
+        let mut panels = vec![first];
+        let mut heap = BinaryHeap::from([(key(&first), 0usize)]);
+        let mut too_big: Vec<usize> = Vec::new();
+        if first.integral.abs() > self.max_panel_integral {
+            too_big.push(0);
+        }
+        let (mut error, mut abs) = (first.error, first.abs_integral);
         let mut evaluations = 15;
-        loop {
-            let (mut value, mut error, mut abs) = (F::zero(), F::zero(), F::zero());
-            for p in &panels {
-                value += p.integral;
-                error += p.error;
-                abs += p.abs_integral;
-            }
-            let target = self.abs_tol.max(self.rel_tol * abs);
-            // Split a panel that is too large in value, else the one with the largest error.
-            let too_big = panels
+        let exact_sums = |panels: &[Panel<F>]| {
+            panels
                 .iter()
-                .position(|p| p.integral.abs() > self.max_panel_integral);
-            let worst = match too_big {
-                Some(i) => i,
-                None if error <= target => {
-                    panels.sort_by(|p, q| {
-                        let (pa, qa) = (p.a.to_f64(), q.a.to_f64());
-                        if b >= a {
-                            pa.partial_cmp(&qa)
-                        } else {
-                            qa.partial_cmp(&pa)
-                        }
-                        .unwrap_or(core::cmp::Ordering::Equal)
-                    });
-                    return Ok(Quadrature {
-                        value,
-                        error,
-                        panels,
-                        evaluations,
-                    });
-                }
-                None => {
-                    let mut w = 0;
-                    for (i, p) in panels.iter().enumerate() {
-                        if p.error > panels[w].error {
-                            w = i;
-                        }
+                .fold((F::zero(), F::zero(), F::zero()), |(v, e, s), p| {
+                    (v + p.integral, e + p.error, s + p.abs_integral)
+                })
+        };
+        loop {
+            let worst = if let Some(i) = too_big.pop() {
+                i
+            } else {
+                let target = self.abs_tol.max(self.rel_tol * abs);
+                if error <= target {
+                    let (value, exact_error, exact_abs) = exact_sums(&panels);
+                    error = exact_error;
+                    abs = exact_abs;
+                    if error <= self.abs_tol.max(self.rel_tol * abs) {
+                        panels.sort_by(|p, q| {
+                            let (pa, qa) = (p.a.to_f64(), q.a.to_f64());
+                            if b >= a {
+                                pa.partial_cmp(&qa)
+                            } else {
+                                qa.partial_cmp(&pa)
+                            }
+                            .unwrap_or(core::cmp::Ordering::Equal)
+                        });
+                        return Ok(Quadrature {
+                            value,
+                            error,
+                            panels,
+                            evaluations,
+                        });
                     }
-                    w
+                }
+                // Entries go stale when their panel is split; the index then holds a newer
+                // panel whose key differs.
+                loop {
+                    match heap.pop() {
+                        Some((k, i)) if k == key(&panels[i]) => break i,
+                        Some(_) => {}
+                        None => unreachable!("every panel has a heap entry"),
+                    }
                 }
             };
             let p = panels[worst];
@@ -230,15 +248,24 @@ impl<F: Real> GaussKronrod<F> {
                 return Err(FrictionError::QuadratureNotConverged {
                     a: a.to_f64().unwrap_or(f64::NAN),
                     b: b.to_f64().unwrap_or(f64::NAN),
-                    error: error.to_f64().unwrap_or(f64::NAN),
+                    error: exact_sums(&panels).1.to_f64().unwrap_or(f64::NAN),
                     panels: panels.len(),
+                    limit: self.max_panels,
                 });
             }
             let left = gauss_kronrod_15(&mut f, p.a, mid)?;
             let right = gauss_kronrod_15(&mut f, mid, p.b)?;
             evaluations += 30;
+            error = (error - p.error + left.error + right.error).max(F::zero());
+            abs = (abs - p.abs_integral + left.abs_integral + right.abs_integral).max(F::zero());
             panels[worst] = left;
             panels.push(right);
+            for (i, q) in [(worst, left), (panels.len() - 1, right)] {
+                heap.push((key(&q), i));
+                if q.integral.abs() > self.max_panel_integral {
+                    too_big.push(i);
+                }
+            }
         }
     }
 }

@@ -13,8 +13,9 @@ use crate::quadrature::{GaussKronrod, gauss_kronrod_15};
 /// panel): nine times the rounding floor `50 eps` of the Gauss–Kronrod error estimate.
 const RELATIVE_TOLERANCE: f64 = 1e-13;
 
-/// Work budget of the cone's nested quadrature: panels over all of `[theta0, theta_max]`.
-pub const MAX_CONE_PANELS: usize = 1 << 20;
+/// Work budget of the cone's nested quadrature: panels over all of `[theta0, theta_max]`
+/// (the default of `membrane.max_subdivisions`).
+pub const MAX_CONE_PANELS: usize = crate::quadrature::DEFAULT_MAX_SUBDIVISIONS;
 
 /// Local quantities of a cone `x1 w(t)`, `w = (1, ubar, vbar)`, from the profile jet.
 ///
@@ -71,6 +72,7 @@ impl ConePoint {
 pub struct ConeMembrane<'a, C: ?Sized> {
     profile: &'a C,
     tolerance: f64,
+    max_panels: usize,
 }
 
 impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
@@ -79,6 +81,17 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
         Self {
             profile,
             tolerance: 1e-13,
+            max_panels: MAX_CONE_PANELS,
+        }
+    }
+
+    /// The same within a budget of `max_subdivisions` quadrature panels
+    /// (`membrane.max_subdivisions`, default `2^20`).
+    pub fn with_max_subdivisions(&self, max_subdivisions: usize) -> Self {
+        Self {
+            profile: self.profile,
+            tolerance: self.tolerance,
+            max_panels: max_subdivisions,
         }
     }
 
@@ -101,9 +114,12 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
     /// # Errors
     /// Degenerate profile; quadrature failure.
     pub fn phi(&self, t: f64) -> Result<f64, FrictionError> {
-        Ok(GaussKronrod::default()
-            .integrate(|s| Ok(self.point(s)?.phi_rate), 0.0, t)?
-            .value)
+        Ok(GaussKronrod {
+            max_panels: self.max_panels,
+            ..GaussKronrod::default()
+        }
+        .integrate(|s| Ok(self.point(s)?.phi_rate), 0.0, t)?
+        .value)
     }
 
     /// Integrates `(exponent, phi)` over `[a, b]` from `phi(a)`, adaptively and depth first.
@@ -145,12 +161,13 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
         let accepted = |p: &crate::quadrature::Panel<f64>| {
             p.error <= tol.max(RELATIVE_TOLERANCE * p.abs_integral)
         };
-        if *panels > MAX_CONE_PANELS {
+        if *panels > self.max_panels {
             return Err(FrictionError::QuadratureNotConverged {
                 a,
                 b,
                 error: exponent.error,
                 panels: *panels,
+                limit: self.max_panels,
             });
         }
         if (accepted(&exponent) && accepted(&phi_panel)) || depth >= 40 {
@@ -162,6 +179,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
                     b,
                     error: exponent.error,
                     panels: 1 << depth.min(30),
+                    limit: self.max_panels,
                 });
             }
             return Ok((exponent.integral, phi_a + phi_panel.integral));

@@ -2,6 +2,7 @@
 
 use capstan_geometry::{Surface, SurfaceGeometry};
 
+use super::budget::MembraneBudget;
 use super::load_field::{Gravity, LoadField, NoLoad};
 use super::problem::{MembraneProblem, Method, TensionProfile};
 use super::validity::{first_failure, merged};
@@ -62,6 +63,15 @@ impl<'a, S: Surface<f64> + ?Sized> MembraneEquilibrium<'a, S> {
                 ..Default::default()
             },
         }
+    }
+    /// The same within `budget` (`membrane.max_steps`, `membrane.min_step`).
+    pub fn with_budget(self, budget: &MembraneBudget) -> Self {
+        let ode = Dop853 {
+            max_steps: budget.max_steps,
+            min_step: budget.min_step,
+            ..self.ode
+        };
+        Self { ode, ..self }
     }
     /// The same along `x1 = x1`.
     pub fn at_x1(self, x1: f64) -> Self {

@@ -26,6 +26,7 @@
 //! # References
 //! Paper section 2 (eqs. PrismEqn02, capGrav, PrismEqn, PrismEqnPlot; Theorems 1, 2; Corollary 1).
 
+mod budget;
 pub mod closed_form;
 mod cone;
 mod equilibrium;
@@ -38,12 +39,15 @@ mod problem;
 mod turning_angle;
 mod validity;
 
+pub use budget::MembraneBudget;
 pub use cone::{ConeMembrane, ConePoint};
 pub use equilibrium::{LocalEquilibrium, MembraneEquilibrium};
 pub use geodesic_strip::GeodesicStrip;
 pub use infinite::InfiniteMembrane;
 pub use load_field::{Gravity, LoadField, NoLoad};
-pub use obstacle::{FrictionEstimate, infer_mu, tension_profile};
+pub use obstacle::{
+    FrictionEstimate, infer_mu, infer_mu_within, tension_profile, tension_profile_within,
+};
 pub use prism::PrismMembrane;
 pub use problem::{MembraneLoads, MembraneProblem, Method, TensionProfile};
-pub use turning_angle::{ProfilePoint, turning_angles};
+pub use turning_angle::{ProfilePoint, turning_angles, turning_angles_within};

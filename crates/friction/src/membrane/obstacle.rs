@@ -5,6 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 
 use capstan_geometry::{Obstacle, ProfileCurve};
 
+use super::budget::MembraneBudget;
 use super::closed_form::{
     CylinderGravity, ellipse_turning_angle, right_circular_cone_exponent, right_circular_cone_phi,
 };
@@ -12,7 +13,7 @@ use super::cone::{ConeMembrane, validate_cone_problem};
 use super::equilibrium::MembraneEquilibrium;
 use super::prism::{PrismMembrane, check_speed};
 use super::problem::{MembraneProblem, Method, TensionProfile, exp_tension};
-use super::turning_angle::ProfilePoint;
+use super::turning_angle::{ProfilePoint, turning_angles_within};
 use super::validity::{first_failure, grid, merged};
 use crate::error::{FrictionError, check};
 use crate::root::Brent;
@@ -46,7 +47,23 @@ pub fn tension_profile(
     obstacle: &Obstacle,
     problem: &MembraneProblem,
 ) -> Result<TensionProfile, FrictionError> {
+    tension_profile_within(obstacle, problem, &MembraneBudget::default())
+}
+
+/// [`tension_profile`] within `budget` (the scene keys `membrane.max_subdivisions`,
+/// `membrane.max_steps`, `membrane.min_step`).
+///
+/// # Errors
+/// As [`tension_profile`]; [`FrictionError::QuadratureNotConverged`],
+/// [`FrictionError::TooManySteps`], [`FrictionError::StepSizeTooSmall`] when a budget runs out,
+/// each naming its scene key.
+pub fn tension_profile_within(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    budget: &MembraneBudget,
+) -> Result<TensionProfile, FrictionError> {
     problem.validate()?;
+    budget.validate()?;
     let weighted = problem.loads.weight_per_length() != 0.0;
     let c = problem.loads.speed_tension();
     let thetas = problem.thetas();
@@ -74,8 +91,12 @@ pub fn tension_profile(
             let h0 = ProfilePoint::from_jet(e.profile_jet(problem.theta0)).mean_curvature;
             closed(&|t| ellipse_turning_angle(e.a(), e.b(), t), h0)
         }
-        Obstacle::Ellipse(e) => MembraneEquilibrium::new(e, *problem).solve(),
-        Obstacle::Prism(p) => PrismMembrane::new(p.profile_curve()).tension_profile(problem),
+        Obstacle::Ellipse(e) => MembraneEquilibrium::new(e, *problem)
+            .with_budget(budget)
+            .solve(),
+        Obstacle::Prism(p) => {
+            PrismMembrane::new(p.profile_curve()).tension_profile_within(problem, budget)
+        }
         Obstacle::CircularCone(cone) => {
             validate_cone_problem(problem)?;
             let alpha = cone.half_angle();
@@ -93,7 +114,9 @@ pub fn tension_profile(
                 method: Method::ClosedForm,
             })
         }
-        Obstacle::Cone(cone) => ConeMembrane::new(cone.profile_curve()).tension_profile(problem),
+        Obstacle::Cone(cone) => ConeMembrane::new(cone.profile_curve())
+            .with_max_subdivisions(budget.max_subdivisions)
+            .tension_profile(problem),
     }
 }
 
@@ -176,6 +199,7 @@ pub struct FrictionEstimate {
 fn unit_exponent(
     obstacle: &Obstacle,
     problem: &MembraneProblem,
+    budget: &MembraneBudget,
 ) -> Result<(f64, Method), FrictionError> {
     let (t0, t1) = (problem.theta0, problem.theta_max);
     Ok(match obstacle {
@@ -191,7 +215,7 @@ fn unit_exponent(
             Method::ClosedForm,
         ),
         Obstacle::Prism(p) => (
-            PrismMembrane::new(p.profile_curve()).turning_angles(t0, &[t1])?[0],
+            turning_angles_within(p.profile_curve(), t0, &[t1], budget.max_subdivisions)?[0],
             Method::Quadrature,
         ),
         Obstacle::CircularCone(cone) => {
@@ -202,7 +226,9 @@ fn unit_exponent(
             )
         }
         Obstacle::Cone(cone) => (
-            ConeMembrane::new(cone.profile_curve()).exponents(t0, &[t1])?[0],
+            ConeMembrane::new(cone.profile_curve())
+                .with_max_subdivisions(budget.max_subdivisions)
+                .exponents(t0, &[t1])?[0],
             Method::Quadrature,
         ),
     })
@@ -240,7 +266,22 @@ pub fn infer_mu(
     problem: &MembraneProblem,
     t_max: f64,
 ) -> Result<FrictionEstimate, FrictionError> {
+    infer_mu_within(obstacle, problem, t_max, &MembraneBudget::default())
+}
+
+/// [`infer_mu`] within `budget` (the forward model's budgets and
+/// `membrane.max_root_iterations`).
+///
+/// # Errors
+/// As [`infer_mu`]; [`FrictionError::RootNotConverged`] when the root finder's budget runs out.
+pub fn infer_mu_within(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    t_max: f64,
+    budget: &MembraneBudget,
+) -> Result<FrictionEstimate, FrictionError> {
     problem.validate()?;
+    budget.validate()?;
     check("membrane.t_max", t_max, "(0, inf)", |v| v > 0.0)?;
     let t0 = problem.t0;
     if obstacle.is_cone() {
@@ -251,7 +292,7 @@ pub fn infer_mu(
         if t_max < t0 {
             return Err(FrictionError::TensionRatioBelowOne { ratio: t_max / t0 });
         }
-        let (e, method) = unit_exponent(obstacle, problem)?;
+        let (e, method) = unit_exponent(obstacle, problem, budget)?;
         if t0 < c {
             let h0 = match obstacle.profile_jet(problem.theta0) {
                 Some(jet) => ProfilePoint::from_jet(jet).mean_curvature,
@@ -273,13 +314,14 @@ pub fn infer_mu(
     }
     // With weight: bracket and solve T_max(mu) = t_max.
     let end = |mu: f64| -> Result<(f64, Method), FrictionError> {
-        let p = tension_profile(
+        let p = tension_profile_within(
             obstacle,
             &MembraneProblem {
                 mu,
                 samples: 2,
                 ..*problem
             },
+            budget,
         )?;
         Ok((p.t_max(), p.method))
     };
@@ -306,7 +348,7 @@ pub fn infer_mu(
         if f_hi >= t_max {
             let mu = Brent {
                 x_tol: 1e-14,
-                ..Default::default()
+                max_iterations: budget.max_root_iterations,
             }
             .solve(
                 |mu| Ok(end(mu)?.0 - t_max),

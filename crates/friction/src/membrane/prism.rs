@@ -2,9 +2,10 @@
 
 use capstan_geometry::{GeneralPrism, ProfileCurve};
 
+use super::budget::MembraneBudget;
 use super::equilibrium::MembraneEquilibrium;
 use super::problem::{MembraneProblem, Method, TensionProfile, exp_tension};
-use super::turning_angle::{ProfilePoint, turning_angles};
+use super::turning_angle::{ProfilePoint, turning_angles, turning_angles_within};
 use crate::error::FrictionError;
 
 /// A membrane on the prism over `profile` (Theorem 1 of the paper).
@@ -57,13 +58,33 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> PrismMembrane<'a, C> {
         &self,
         problem: &MembraneProblem,
     ) -> Result<TensionProfile, FrictionError> {
+        self.tension_profile_within(problem, &MembraneBudget::default())
+    }
+
+    /// [`PrismMembrane::tension_profile`] within `budget`.
+    ///
+    /// # Errors
+    /// As [`PrismMembrane::tension_profile`]; the typed error of the budget that runs out.
+    pub fn tension_profile_within(
+        &self,
+        problem: &MembraneProblem,
+        budget: &MembraneBudget,
+    ) -> Result<TensionProfile, FrictionError> {
         problem.validate()?;
+        budget.validate()?;
         if problem.loads.weight_per_length() != 0.0 {
             let prism = GeneralPrism::new(self.profile);
-            return MembraneEquilibrium::new(&prism, *problem).solve();
+            return MembraneEquilibrium::new(&prism, *problem)
+                .with_budget(budget)
+                .solve();
         }
         let thetas = problem.thetas();
-        let psi = self.turning_angles(problem.theta0, &thetas)?;
+        let psi = turning_angles_within(
+            self.profile,
+            problem.theta0,
+            &thetas,
+            budget.max_subdivisions,
+        )?;
         let c = problem.loads.speed_tension();
         check_speed(problem, || {
             Ok(ProfilePoint::from_jet(self.profile.profile_jet(problem.theta0)).mean_curvature)

@@ -6,7 +6,7 @@ use capstan_geometry::ProfileCurve;
 
 use super::validity::{first_failure, grid, merged};
 use crate::error::FrictionError;
-use crate::quadrature::GaussKronrod;
+use crate::quadrature::{DEFAULT_MAX_SUBDIVISIONS, GaussKronrod};
 
 /// Local quantities of a profile `(u(t), v(t))` from its jet.
 ///
@@ -82,10 +82,25 @@ pub fn turning_angles<C: ProfileCurve<f64> + ?Sized>(
     theta0: f64,
     thetas: &[f64],
 ) -> Result<Vec<f64>, FrictionError> {
+    turning_angles_within(profile, theta0, thetas, DEFAULT_MAX_SUBDIVISIONS)
+}
+
+/// [`turning_angles`] within a budget of `max_subdivisions` quadrature panels
+/// (`membrane.max_subdivisions`).
+///
+/// # Errors
+/// As [`turning_angles`]; [`FrictionError::QuadratureNotConverged`] when the budget runs out.
+pub fn turning_angles_within<C: ProfileCurve<f64> + ?Sized>(
+    profile: &C,
+    theta0: f64,
+    thetas: &[f64],
+    max_subdivisions: usize,
+) -> Result<Vec<f64>, FrictionError> {
     let end = thetas.last().copied().unwrap_or(theta0).max(theta0);
     let mut bad: Option<f64> = None;
     let gk = GaussKronrod {
         max_panel_integral: FRAC_PI_2,
+        max_panels: max_subdivisions,
         ..Default::default()
     };
     let q = gk.integrate(

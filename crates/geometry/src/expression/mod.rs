@@ -242,9 +242,12 @@ impl Expression {
                     sp -= 1;
                     stack[sp] * top
                 }
+                // num-dual divides as `a (1/b)`, two roundings: the value is moved to `f64`'s
+                // `a / b` (fuzz finding `1 - t/t + ...` at `t = 4e-80`, where cancellation
+                // exposed the last bit).
                 Op::Divide => {
                     sp -= 1;
-                    stack[sp] / top
+                    with_value(stack[sp] / top, stack[sp].re() / top.re())
                 }
                 Op::Power => {
                     sp -= 1;
@@ -253,10 +256,22 @@ impl Expression {
                 Op::Plus(c) => top + real::<F>(c),
                 Op::ConstantMinus(c) => S::from(real::<F>(c)) - top,
                 Op::Times(c) => top * real::<F>(c),
-                Op::Over(c) => top / real::<F>(c),
-                Op::ConstantOver(c) => S::from(real::<F>(c)) / top,
-                Op::PowI(n) => top.powi(n),
-                Op::PowF(c) => top.powf(real::<F>(c)),
+                Op::Over(c) => with_value(top / real::<F>(c), top.re() / real::<F>(c)),
+                Op::ConstantOver(c) => {
+                    with_value(S::from(real::<F>(c)) / top, real::<F>(c) / top.re())
+                }
+                // num-dual forms `x^n` as `x^(n-3) x x x`, whose first factor over- or
+                // underflows (or is `0^negative`) where `x^n` does not: `1 / x^|n|`, as `f64`
+                // computes it (fuzz findings `2^t^-2` at `t = 0`, `t^-1` at `t = 5.7e148`).
+                Op::PowI(n) => {
+                    let y = top.powi(n);
+                    if n < 0 && !same_value(y.re(), top.re().powi(n)) {
+                        with_value(top.powi(-n).recip(), top.re().powi(n))
+                    } else {
+                        with_value(y, top.re().powi(n))
+                    }
+                }
+                Op::PowF(c) => power_by_real(top, real::<F>(c)),
                 Op::ExpTimes(c) => (top * real::<F>(c)).exp(),
                 Op::Negate => -top,
                 Op::Call(function) => function.apply(top),
@@ -316,4 +331,54 @@ impl Expression {
         }
         Ok(())
     }
+}
+
+/// `x^c` for a non-integer (or large) constant `c` on any scalar: num-dual's `powf`, unless
+/// its value differs from `f64`'s `x^c` (its intermediate `x^(c-3)` over- or underflows, or is
+/// `0^negative`); then `exp(c ln|x|)` (with the sign of an integer power of a negative `x`)
+/// if that has `f64`'s value to `1e-12`. On `f64` itself this is `powf`.
+fn power_by_real<F: Real, S: Scalar<F>>(x: S, c: F) -> S {
+    let target = x.re().powf(c);
+    let y = with_value(x.powf(c), target);
+    if same_value(y.re(), target) {
+        return y;
+    }
+    let z = if x.re() < F::zero() && c.fract() == F::zero() {
+        let z = ((-x).ln() * c).exp();
+        if (c * real::<F>(0.5)).fract() == F::zero() {
+            z
+        } else {
+            -z
+        }
+    } else {
+        (x.ln() * c).exp()
+    };
+    // `exp(c ln x)` rounds `c ln x`, whose size is hundreds here: agree to 1e-12.
+    let close = (z.re() - target).abs() <= real::<F>(1e-12) * target.abs();
+    if same_value(z.re(), target) || close {
+        z
+    } else if target.is_infinite() {
+        // e.g. `(-inf)^0.1 = inf` (IEEE `pow`), NaN through `ln`: the value is infinite,
+        // derivatives have no meaning there (fuzz finding `(t/0)^.1`).
+        S::from(target)
+    } else {
+        y
+    }
+}
+
+/// `y` with its value moved to `f64`'s `target` when both are finite (derivatives unchanged):
+/// num-dual's `x^(c-3) x x x` rounds four times, and an ill-conditioned caller (`sin(t^0.2)` at
+/// `t = 3.7e76`, a fuzz finding) would amplify that into a different value than on `f64`.
+fn with_value<F: Real, S: Scalar<F>>(y: S, target: F) -> S {
+    let re = y.re();
+    if re != target && re.is_finite() && target.is_finite() {
+        y + S::from(target - re)
+    } else {
+        y
+    }
+}
+
+/// Equal, or both NaN.
+fn same_value<F: Real>(a: F, b: F) -> bool {
+    a == b || (a.is_nan() && b.is_nan())
 }

@@ -1,0 +1,7 @@
+//! Fuzz target `expression`: the property is [`properties::expression`] (shared with `tests/fuzz_corpus.rs`).
+#![no_main]
+
+#[path = "../properties.rs"]
+mod properties;
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| properties::expression(data));
