@@ -139,26 +139,14 @@ impl ColumnOrdering {
                 grid,
                 separator_width,
             } => {
-                if grid.dof_count() != pattern.ncols() {
-                    return Err(SolverError::DimensionMismatch {
-                        quantity: "grid unknowns",
-                        expected: pattern.ncols(),
-                        found: grid.dof_count(),
-                    });
-                }
+                check_grid(grid, pattern)?;
                 if separator_width == 0 {
                     return Err(SolverError::invalid("separator_width", 0.0, ">= 1"));
                 }
                 Ok(Some(nested_dissection_grid(grid, separator_width)))
             }
             Self::ElementNestedDissection { grid, degree } => {
-                if grid.dof_count() != pattern.ncols() {
-                    return Err(SolverError::DimensionMismatch {
-                        quantity: "grid unknowns",
-                        expected: pattern.ncols(),
-                        found: grid.dof_count(),
-                    });
-                }
+                check_grid(grid, pattern)?;
                 if degree == 0 {
                     return Err(SolverError::invalid("degree", 0.0, ">= 1"));
                 }
@@ -166,6 +154,18 @@ impl ColumnOrdering {
             }
         }
     }
+}
+
+/// [`SolverError::DimensionMismatch`] unless `grid` numbers `pattern.ncols()` unknowns.
+fn check_grid(grid: GridShape, pattern: &SparsityPattern) -> Result<(), SolverError> {
+    if grid.dof_count() != pattern.ncols() {
+        return Err(SolverError::DimensionMismatch {
+            quantity: "grid unknowns",
+            expected: pattern.ncols(),
+            found: grid.dof_count(),
+        });
+    }
+    Ok(())
 }
 
 /// Regions with at most this many nodes are leaves of the dissection, numbered naturally.
