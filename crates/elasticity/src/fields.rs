@@ -34,6 +34,18 @@ pub struct NodalFields {
     pub cartesian_displacement: Vec<[f64; 3]>,
 }
 
+/// `sqrt(g_ii g_jj) T^ij`: physical components of a contravariant tensor, from the scales
+/// `s[i] = sqrt(g_ii)`.
+pub(crate) fn physical_stress(t: &[[f64; 3]; 3], s: [f64; 3]) -> [[f64; 3]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|j| s[i] * s[j] * t[i][j]))
+}
+
+/// `E_ij / sqrt(g_ii g_jj)`: physical components of a covariant tensor, from the scales
+/// `s[i] = sqrt(g_ii)`.
+pub(crate) fn physical_strain(e: &[[f64; 3]; 3], s: [f64; 3]) -> [[f64; 3]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+}
+
 impl NodalFields {
     /// Physical displacement components `[sqrt(g_22) v^2, sqrt(g_33) v^3]` at node `k`.
     pub fn physical_displacement(&self, k: usize) -> [f64; 2] {
@@ -43,14 +55,12 @@ impl NodalFields {
 
     /// Physical stress components `sqrt(g_ii g_jj) T^ij` at node `k`.
     pub fn physical_stress(&self, k: usize) -> [[f64; 3]; 3] {
-        let (t, s) = (&self.stress[k], self.scale[k]);
-        core::array::from_fn(|i| core::array::from_fn(|j| s[i] * s[j] * t[i][j]))
+        physical_stress(&self.stress[k], self.scale[k])
     }
 
     /// Physical strain components `E_ij / sqrt(g_ii g_jj)` at node `k`.
     pub fn physical_strain(&self, k: usize) -> [[f64; 3]; 3] {
-        let (e, s) = (&self.strain[k], self.scale[k]);
-        core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+        physical_strain(&self.strain[k], self.scale[k])
     }
 
     /// The fields of a plane-strain discretisation: at every node of `grid`, `local` gives the

@@ -4,6 +4,7 @@
 use super::operator::SolidNavier;
 use crate::continuum::{SOLID, mixed_strains};
 use crate::error::ElasticityError;
+use crate::fields::{physical_strain, physical_stress};
 use crate::grid::difference_stencil;
 use crate::shell_geometry::ShellGeometry;
 
@@ -41,14 +42,12 @@ impl SolidFields {
 
     /// Physical stress `sqrt(g_ii g_jj) T^ij` at node `k`.
     pub fn physical_stress(&self, k: usize) -> [[f64; 3]; 3] {
-        let (t, s) = (&self.stress[k], self.scale[k]);
-        core::array::from_fn(|i| core::array::from_fn(|j| s[i] * s[j] * t[i][j]))
+        physical_stress(&self.stress[k], self.scale[k])
     }
 
     /// Physical strain `E_ij / sqrt(g_ii g_jj)` at node `k`.
     pub fn physical_strain(&self, k: usize) -> [[f64; 3]; 3] {
-        let (e, s) = (&self.strain[k], self.scale[k]);
-        core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+        physical_strain(&self.strain[k], self.scale[k])
     }
 }
 
