@@ -473,27 +473,20 @@ pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
     if n[0] >= FULL_NEWTON_FROM_N2 {
         sets.push("solver.nonlinear=full-newton".into());
     }
-    let mut point = StressPoint {
-        axis: "grid",
-        model: "contact",
-        parameters: BTreeMap::from([("grid".to_string(), serde_json::json!(n))]),
-        converged: false,
-        failure: None,
-        iterations: None,
-        final_residual: None,
-        condition_estimate: None,
-        refinement_change: None,
-        quantities: BTreeMap::from([(
-            "memory_estimate_bytes".to_string(),
-            memory_estimate(
-                n[0],
-                n[1],
-                DiscretisationMethod::Fd,
-                n[0] < FULL_NEWTON_FROM_N2,
-            ),
-        )]),
-        seconds: 0.0,
-    };
+    let mut point = StressPoint::unsolved(
+        "grid",
+        "contact",
+        BTreeMap::from([("grid".to_string(), serde_json::json!(n))]),
+    );
+    point.quantities.insert(
+        "memory_estimate_bytes".to_string(),
+        memory_estimate(
+            n[0],
+            n[1],
+            DiscretisationMethod::Fd,
+            n[0] < FULL_NEWTON_FROM_N2,
+        ),
+    );
     if let Some(have) = available_memory() {
         point
             .quantities

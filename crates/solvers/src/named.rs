@@ -29,3 +29,34 @@ macro_rules! named_enum {
 }
 
 pub(crate) use named_enum;
+
+#[cfg(test)]
+mod tests {
+    use core::fmt::{Debug, Display};
+    use core::str::FromStr;
+
+    use crate::{LinearBackend, NonlinearMethod, SolverError};
+
+    fn assert_round_trip<T>(all: impl IntoIterator<Item = T>, name: fn(T) -> &'static str)
+    where
+        T: Copy + Debug + Display + FromStr<Err = SolverError> + PartialEq,
+        T: serde::Serialize + serde::de::DeserializeOwned,
+    {
+        for v in all {
+            assert_eq!(v.to_string().parse::<T>().unwrap(), v);
+            let json = serde_json::to_string(&v).unwrap();
+            assert_eq!(json, format!("\"{}\"", name(v)));
+            assert_eq!(serde_json::from_str::<T>(&json).unwrap(), v);
+        }
+        assert!(matches!(
+            "broyden".parse::<T>(),
+            Err(SolverError::UnknownName { .. })
+        ));
+    }
+
+    #[test]
+    fn names_round_trip_through_display_fromstr_and_serde() {
+        assert_round_trip(LinearBackend::ALL, LinearBackend::name);
+        assert_round_trip(NonlinearMethod::ALL, NonlinearMethod::name);
+    }
+}

@@ -73,21 +73,3 @@ solve_with_newton!(AnyNonlinearSolver, |solver| match solver {
     AnyNonlinearSolver::Newton(s) => s,
     AnyNonlinearSolver::JacobiNewton(s) => s.newton_mut(),
 });
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_round_trip_through_display_fromstr_and_serde() {
-        for m in NonlinearMethod::ALL {
-            assert_eq!(m.to_string().parse::<NonlinearMethod>().unwrap(), m);
-            let json = serde_json::to_string(&m).unwrap();
-            assert_eq!(serde_json::from_str::<NonlinearMethod>(&json).unwrap(), m);
-        }
-        assert!(matches!(
-            "broyden".parse::<NonlinearMethod>(),
-            Err(SolverError::UnknownName { .. })
-        ));
-    }
-}

@@ -501,25 +501,24 @@ pub fn is_permutation(perm: &[usize], n: usize) -> bool {
 mod tests {
     use super::*;
 
+    fn grid_shape(n2: usize, n3: usize, dofs_per_node: usize, periodic: bool) -> GridShape {
+        GridShape {
+            n2,
+            n3,
+            dofs_per_node,
+            periodic,
+        }
+    }
+
     #[test]
     fn small_grid_is_natural_order() {
-        let grid = GridShape {
-            n2: 4,
-            n3: 3,
-            dofs_per_node: 2,
-            periodic: false,
-        };
+        let grid = grid_shape(4, 3, 2, false);
         assert_eq!(nested_dissection_grid(grid, 2), (0..24).collect::<Vec<_>>());
     }
 
     #[test]
     fn separator_splits_halves_numbered_first() {
-        let grid = GridShape {
-            n2: 40,
-            n3: 4,
-            dofs_per_node: 1,
-            periodic: false,
-        };
+        let grid = grid_shape(40, 4, 1, false);
         let perm = nested_dissection_grid(grid, 3);
         assert!(is_permutation(&perm, 160));
         // first cut: (40 - 3) / 2 = 18, strip = lines 18, 19, 20, last 12 unknowns
@@ -532,12 +531,7 @@ mod tests {
 
     #[test]
     fn periodic_grid_is_cut_twice() {
-        let grid = GridShape {
-            n2: 20,
-            n3: 2,
-            dofs_per_node: 1,
-            periodic: true,
-        };
+        let grid = grid_shape(20, 2, 1, true);
         let perm = nested_dissection_grid(grid, 1);
         assert!(is_permutation(&perm, 40));
         let last: Vec<usize> = perm[36..].iter().map(|&p| p / 2).collect();
@@ -680,12 +674,7 @@ mod tests {
     #[test]
     fn element_dissection_cuts_on_element_boundaries_and_fills_less_than_natural() {
         for (periodic, n2) in [(false, 17), (true, 16)] {
-            let grid = GridShape {
-                n2,
-                n3: 9,
-                dofs_per_node: 2,
-                periodic,
-            };
+            let grid = grid_shape(n2, 9, 2, periodic);
             let perm = nested_dissection_elements(grid, 2);
             assert!(is_permutation(&perm, grid.dof_count()));
             // the last line eliminated is a single element-boundary line
