@@ -232,21 +232,46 @@ fn dissect(
     r3: (usize, usize),
     perm: &mut Vec<usize>,
 ) {
-    let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
-    if l2 * l3 <= LEAF_NODES || l2.max(l3) < w + 2 {
-        push_block(grid, r2, r3, perm);
-        return;
-    }
-    if l2 >= l3 {
-        let m = r2.0 + (l2 - w) / 2;
-        dissect(grid, w, (r2.0, m), r3, perm);
-        dissect(grid, w, (m + w, r2.1), r3, perm);
-        push_block(grid, (m, m + w), r3, perm);
-    } else {
-        let m = r3.0 + (l3 - w) / 2;
-        dissect(grid, w, r2, (r3.0, m), perm);
-        dissect(grid, w, r2, (m + w, r3.1), perm);
-        push_block(grid, r2, (m, m + w), perm);
+    dissect_by(grid, r2, r3, perm, &|r2, r3| {
+        let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
+        if l2 * l3 <= LEAF_NODES || l2.max(l3) < w + 2 {
+            None
+        } else if l2 >= l3 {
+            Some(Cut::X2(r2.0 + (l2 - w) / 2, w))
+        } else {
+            Some(Cut::X3(r3.0 + (l3 - w) / 2, w))
+        }
+    });
+}
+
+/// A separator of a region: the grid lines `m..m + width` across `x2` or across `x3`.
+enum Cut {
+    X2(usize, usize),
+    X3(usize, usize),
+}
+
+/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`: the two sides
+/// of the separator `cut(r2, r3)` recursively, then the separator; a region without one
+/// naturally ([`push_block`]).
+fn dissect_by(
+    grid: GridShape,
+    r2: (usize, usize),
+    r3: (usize, usize),
+    perm: &mut Vec<usize>,
+    cut: &dyn Fn((usize, usize), (usize, usize)) -> Option<Cut>,
+) {
+    match cut(r2, r3) {
+        None => push_block(grid, r2, r3, perm),
+        Some(Cut::X2(m, width)) => {
+            dissect_by(grid, (r2.0, m), r3, perm, cut);
+            dissect_by(grid, (m + width, r2.1), r3, perm, cut);
+            push_block(grid, (m, m + width), r3, perm);
+        }
+        Some(Cut::X3(m, width)) => {
+            dissect_by(grid, r2, (r3.0, m), perm, cut);
+            dissect_by(grid, r2, (m + width, r3.1), perm, cut);
+            push_block(grid, r2, (m, m + width), perm);
+        }
     }
 }
 
@@ -331,26 +356,19 @@ fn dissect_elements(
     r3: (usize, usize),
     perm: &mut Vec<usize>,
 ) {
-    let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
-    if l2 * l3 <= LEAF_NODES {
-        push_block(grid, r2, r3, perm);
-        return;
-    }
-    let cut2 = aligned_cut(r2.0, r2.1, degree);
-    let cut3 = aligned_cut(r3.0, r3.1, degree);
-    match (cut2, cut3) {
-        (Some(m), _) if l2 >= l3 || cut3.is_none() => {
-            dissect_elements(grid, degree, (r2.0, m), r3, perm);
-            dissect_elements(grid, degree, (m + 1, r2.1), r3, perm);
-            push_block(grid, (m, m + 1), r3, perm);
+    dissect_by(grid, r2, r3, perm, &|r2, r3| {
+        let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
+        if l2 * l3 <= LEAF_NODES {
+            return None;
         }
-        (_, Some(m)) => {
-            dissect_elements(grid, degree, r2, (r3.0, m), perm);
-            dissect_elements(grid, degree, r2, (m + 1, r3.1), perm);
-            push_block(grid, r2, (m, m + 1), perm);
+        let cut2 = aligned_cut(r2.0, r2.1, degree);
+        let cut3 = aligned_cut(r3.0, r3.1, degree);
+        match (cut2, cut3) {
+            (Some(m), _) if l2 >= l3 || cut3.is_none() => Some(Cut::X2(m, 1)),
+            (_, Some(m)) => Some(Cut::X3(m, 1)),
+            _ => None,
         }
-        _ => push_block(grid, r2, r3, perm),
-    }
+    });
 }
 
 /// Appends the unknowns of a block, the longer side outermost (smaller bandwidth).
