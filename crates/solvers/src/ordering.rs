@@ -209,30 +209,26 @@ pub fn nested_dissection_grid(grid: GridShape, separator_width: usize) -> Vec<us
     assert!(separator_width > 0, "separator_width must be positive");
     let mut perm = Vec::with_capacity(grid.dof_count());
     let w = separator_width;
+    let cut = separator_cut(w);
     if grid.periodic && grid.n2 >= 2 * w + 4 {
         // two strips half a period apart split the ring into two open pieces
         let half = w + (grid.n2 - 2 * w) / 2;
-        dissect(grid, w, (w, half), (0, grid.n3), &mut perm);
-        dissect(grid, w, (half + w, grid.n2), (0, grid.n3), &mut perm);
+        dissect_by(grid, (w, half), (0, grid.n3), &mut perm, &cut);
+        dissect_by(grid, (half + w, grid.n2), (0, grid.n3), &mut perm, &cut);
         push_block(grid, (0, w), (0, grid.n3), &mut perm);
         push_block(grid, (half, half + w), (0, grid.n3), &mut perm);
     } else {
         // a periodic grid too short to cut twice is simply numbered naturally
-        dissect(grid, w, (0, grid.n2), (0, grid.n3), &mut perm);
+        dissect_by(grid, (0, grid.n2), (0, grid.n3), &mut perm, &cut);
     }
     debug_assert_eq!(perm.len(), grid.dof_count());
     perm
 }
 
-/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`.
-fn dissect(
-    grid: GridShape,
-    w: usize,
-    r2: (usize, usize),
-    r3: (usize, usize),
-    perm: &mut Vec<usize>,
-) {
-    dissect_by(grid, r2, r3, perm, &|r2, r3| {
+/// The separators of [`nested_dissection_grid`]: `w` lines across the middle of the longer
+/// side; none for a region of at most [`LEAF_NODES`] nodes or too short to cut.
+fn separator_cut(w: usize) -> impl Fn((usize, usize), (usize, usize)) -> Option<Cut> {
+    move |r2, r3| {
         let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
         if l2 * l3 <= LEAF_NODES || l2.max(l3) < w + 2 {
             None
@@ -241,7 +237,7 @@ fn dissect(
         } else {
             Some(Cut::X3(r3.0 + (l3 - w) / 2, w))
         }
-    });
+    }
 }
 
 /// A separator of a region: the grid lines `m..m + width` across `x2` or across `x3`.
@@ -312,18 +308,19 @@ fn dissect_by(
 #[track_caller]
 pub fn nested_dissection_elements(grid: GridShape, degree: usize) -> Vec<usize> {
     assert!(degree > 0, "degree must be positive");
+    let cut = element_cut(degree);
     let mut perm = Vec::with_capacity(grid.dof_count());
     // on the ring, line 0 comes again after line n2 - 1: the second cut is half way round
     let half = aligned_cut(0, grid.n2 + 1, degree).filter(|&h| h > 1 && h + 1 < grid.n2);
     match half {
         Some(half) if grid.periodic => {
             // lines 0 and `half` split the ring into two open pieces
-            dissect_elements(grid, degree, (1, half), (0, grid.n3), &mut perm);
-            dissect_elements(grid, degree, (half + 1, grid.n2), (0, grid.n3), &mut perm);
+            dissect_by(grid, (1, half), (0, grid.n3), &mut perm, &cut);
+            dissect_by(grid, (half + 1, grid.n2), (0, grid.n3), &mut perm, &cut);
             push_block(grid, (0, 1), (0, grid.n3), &mut perm);
             push_block(grid, (half, half + 1), (0, grid.n3), &mut perm);
         }
-        _ => dissect_elements(grid, degree, (0, grid.n2), (0, grid.n3), &mut perm),
+        _ => dissect_by(grid, (0, grid.n2), (0, grid.n3), &mut perm, &cut),
     }
     debug_assert_eq!(perm.len(), grid.dof_count());
     perm
@@ -347,16 +344,11 @@ fn aligned_cut(a: usize, b: usize, degree: usize) -> Option<usize> {
     }
 }
 
-/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`, cutting along
-/// element boundaries.
-fn dissect_elements(
-    grid: GridShape,
-    degree: usize,
-    r2: (usize, usize),
-    r3: (usize, usize),
-    perm: &mut Vec<usize>,
-) {
-    dissect_by(grid, r2, r3, perm, &|r2, r3| {
+/// The separators of [`nested_dissection_elements`]: the element-boundary line nearest the
+/// middle of the longer side (the other side if the longer one has none); none for a region
+/// of at most [`LEAF_NODES`] nodes or without an interior boundary line.
+fn element_cut(degree: usize) -> impl Fn((usize, usize), (usize, usize)) -> Option<Cut> {
+    move |r2, r3| {
         let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
         if l2 * l3 <= LEAF_NODES {
             return None;
@@ -368,7 +360,7 @@ fn dissect_elements(
             (_, Some(m)) => Some(Cut::X3(m, 1)),
             _ => None,
         }
-    });
+    }
 }
 
 /// Appends the unknowns of a block, the longer side outermost (smaller bandwidth).
