@@ -15,7 +15,7 @@ use capstan_elasticity::solid::{SolidBody, SolidFields, SolidNavier};
 use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::commands::contact::{ContactReport, SceneSolver, loads, scene_law};
-use crate::commands::solid_report::{SolidContactArrays, SolidReport};
+use crate::commands::solid_report::SolidReport;
 use crate::error::CliError;
 use crate::figures::solid_body::{solid_grid, write_solid_body};
 use crate::output::QuadGrid;
@@ -85,10 +85,6 @@ fn report(
     limiting: Option<[f64; 2]>,
     times: [f64; 2],
 ) -> ContactReport {
-    let c = sol.contact.solid.as_ref();
-    let take = |f: fn(&capstan_elasticity::contact::SolidContactProfile) -> &Vec<f64>| {
-        c.map(f).cloned().unwrap_or_default()
-    };
     let body = &scene.body;
     ContactReport {
         discretisation: capstan_elasticity::contact::ContactOperator::method(
@@ -100,13 +96,7 @@ fn report(
             x1: [body.x1 - 0.5 * body.width, body.x1 + 0.5 * body.width],
             sides: body.sides,
             contact_unknowns: model.active().len(),
-            contact: SolidContactArrays {
-                x1: take(|p| &p.x1),
-                v1: take(|p| &p.v1),
-                shear_stress_1: take(|p| &p.shear_stress_1),
-                slip_1: take(|p| &p.slip_1),
-                friction_traction_1: take(|p| &p.friction_traction_1),
-            },
+            contact: sol.contact.solid.clone().unwrap_or_default(),
         }),
         ..ContactReport::new(sol, limiting, [scene.grid.n2, scene.grid.n3], times)
     }

@@ -1,24 +1,13 @@
 //! The 3-D part of the contact report (`capstan contact --json` key `solid`).
 
+use capstan_elasticity::contact::SolidContactProfile;
 use capstan_elasticity::solid::SideFaces;
 use serde::Serialize;
 
 /// The `x1` fields of a 3-D body's contact surface, one entry per contact node (node order:
-/// `x2` fastest, then `x1`).
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SolidContactArrays {
-    /// `x1` of the contact nodes.
-    pub x1: Vec<f64>,
-    /// `v^1`.
-    pub v1: Vec<f64>,
-    /// `T^3_1`.
-    pub shear_stress_1: Vec<f64>,
-    /// Physical slip along `e_1 = a_1/|a_1|` (the report's `contact.slip` is along
-    /// `e_2 = a^2/|a^2|`).
-    pub slip_1: Vec<f64>,
-    /// Physical friction traction on the body along `e_1`.
-    pub friction_traction_1: Vec<f64>,
-}
+/// `x2` fastest, then `x1`): the solver's profile as reported (the report's `contact.slip` is
+/// along `e_2 = a^2/|a^2|`, `slip_1` along `e_1 = a_1/|a_1|`).
+pub type SolidContactArrays = SolidContactProfile;
 
 /// The 3-D part of `capstan contact --json` (key `solid`; absent in plane strain).
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -473,27 +473,20 @@ pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
     if n[0] >= FULL_NEWTON_FROM_N2 {
         sets.push("solver.nonlinear=full-newton".into());
     }
-    let mut point = StressPoint {
-        axis: "grid",
-        model: "contact",
-        parameters: BTreeMap::from([("grid".to_string(), serde_json::json!(n))]),
-        converged: false,
-        failure: None,
-        iterations: None,
-        final_residual: None,
-        condition_estimate: None,
-        refinement_change: None,
-        quantities: BTreeMap::from([(
-            "memory_estimate_bytes".to_string(),
-            memory_estimate(
-                n[0],
-                n[1],
-                DiscretisationMethod::Fd,
-                n[0] < FULL_NEWTON_FROM_N2,
-            ),
-        )]),
-        seconds: 0.0,
-    };
+    let mut point = StressPoint::unsolved(
+        "grid",
+        "contact",
+        BTreeMap::from([("grid".to_string(), serde_json::json!(n))]),
+    );
+    point.quantities.insert(
+        "memory_estimate_bytes".to_string(),
+        memory_estimate(
+            n[0],
+            n[1],
+            DiscretisationMethod::Fd,
+            n[0] < FULL_NEWTON_FROM_N2,
+        ),
+    );
     if let Some(have) = available_memory() {
         point
             .quantities
@@ -606,31 +599,28 @@ fn capstan_points(quick: bool) -> Vec<StressPoint> {
     } else {
         &[1.0, 5.0, 20.0, 50.0]
     };
+    let cylinder = vec![("obstacle.shape", s("cylinder"))];
+    let circle_prism = vec![
+        ("obstacle.shape", s("prism")),
+        ("obstacle.u", s("2*sin(t)")),
+        ("obstacle.v", s("2*cos(t)")),
+    ];
     for &k in wraps {
         for mu in [0.5, 5.0] {
             let angle = 2.0 * PI * k;
-            out.push(capstan_point(
-                "capstan-wraps",
-                &[
-                    ("obstacle.shape", s("cylinder")),
+            for obstacle in [&cylinder, &circle_prism] {
+                let mut sets = obstacle.clone();
+                sets.extend([
                     ("friction.mu", num(mu)),
                     ("membrane.theta0", num(0.0)),
                     ("membrane.theta_max", num(angle)),
-                ],
-                Some(closed_form::capstan(mu, 1.0, angle)),
-            ));
-            out.push(capstan_point(
-                "capstan-wraps",
-                &[
-                    ("obstacle.shape", s("prism")),
-                    ("obstacle.u", s("2*sin(t)")),
-                    ("obstacle.v", s("2*cos(t)")),
-                    ("friction.mu", num(mu)),
-                    ("membrane.theta0", num(0.0)),
-                    ("membrane.theta_max", num(angle)),
-                ],
-                Some(closed_form::capstan(mu, 1.0, angle)),
-            ));
+                ]);
+                out.push(capstan_point(
+                    "capstan-wraps",
+                    &sets,
+                    Some(closed_form::capstan(mu, 1.0, angle)),
+                ));
+            }
         }
     }
     // Cones: near a needle (alpha -> 0, the apex region) and near a plane (alpha -> pi/2).

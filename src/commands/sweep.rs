@@ -430,38 +430,19 @@ pub fn write_out(dir: &std::path::Path, r: &SweepReport, scene: &Scene) -> Resul
         out.write_plot("sweep", &plot)?;
     }
     let converged: Vec<&SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
+    let column =
+        |value: fn(&SweepPoint) -> f64| converged.iter().map(|p| value(p)).collect::<Vec<_>>();
     let table = Table::new()
-        .f64(
-            "value",
-            converged.iter().map(|p| p.value).collect::<Vec<_>>(),
-        )
-        .f64(
-            "slip_fraction",
-            converged
-                .iter()
-                .map(|p| p.slip_fraction.unwrap_or(0.0))
-                .collect::<Vec<_>>(),
-        )
-        .f64(
-            "tension_ratio",
-            converged
-                .iter()
-                .map(|p| p.tension_ratio)
-                .collect::<Vec<_>>(),
-        )
+        .f64("value", column(|p| p.value))
+        .f64("slip_fraction", column(|p| p.slip_fraction.unwrap_or(0.0)))
+        .f64("tension_ratio", column(|p| p.tension_ratio))
         .f64(
             "max_v2",
-            converged
-                .iter()
-                .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
-                .collect::<Vec<_>>(),
+            column(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value)),
         )
         .f64(
             "max_v3",
-            converged
-                .iter()
-                .map(|p| p.max_radial_displacement.map_or(0.0, |e| e.value))
-                .collect::<Vec<_>>(),
+            column(|p| p.max_radial_displacement.map_or(0.0, |e| e.value)),
         );
     out.write_csv("sweep.csv", &table)?;
     Ok(())

@@ -147,18 +147,14 @@ pub fn displacement_maps(
     ])
 }
 
+/// The contact states `-1/0/+1` as the integers of a CSV column or a strip.
+pub fn contact_states(contact: &ContactProfile) -> Vec<i32> {
+    contact.state.iter().map(|&s| i32::from(s)).collect()
+}
+
 /// The stick/slip state along the contact surface.
 pub fn state_strip(contact: &ContactProfile, title: &str) -> StateStrip {
-    StateStrip::new(
-        title,
-        contact.x2.clone(),
-        contact
-            .state
-            .iter()
-            .map(|&s| i32::from(s))
-            .collect::<Vec<_>>(),
-    )
-    .x_label("x2 = theta (rad)")
+    StateStrip::new(title, contact.x2.clone(), contact_states(contact)).x_label("x2 = theta (rad)")
 }
 
 /// What [`write_body`] writes besides the VTU's fields.

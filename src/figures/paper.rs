@@ -389,10 +389,7 @@ fn slip_stick(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
     let table = Table::new()
         .f64("x2", c.x2.clone())
         .f64("slip", c.slip.clone())
-        .i32(
-            "state",
-            c.state.iter().map(|&x| i32::from(x)).collect::<Vec<_>>(),
-        );
+        .i32("state", crate::figures::body::contact_states(c));
     out.write_csv("slip-stick.csv", &table)?;
     out.write_plot(
         "slip-stick",

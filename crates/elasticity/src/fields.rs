@@ -34,6 +34,18 @@ pub struct NodalFields {
     pub cartesian_displacement: Vec<[f64; 3]>,
 }
 
+/// `sqrt(g_ii g_jj) T^ij`: physical components of a contravariant tensor, from the scales
+/// `s[i] = sqrt(g_ii)`.
+pub(crate) fn physical_stress(t: &[[f64; 3]; 3], s: [f64; 3]) -> [[f64; 3]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|j| s[i] * s[j] * t[i][j]))
+}
+
+/// `E_ij / sqrt(g_ii g_jj)`: physical components of a covariant tensor, from the scales
+/// `s[i] = sqrt(g_ii)`.
+pub(crate) fn physical_strain(e: &[[f64; 3]; 3], s: [f64; 3]) -> [[f64; 3]; 3] {
+    core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (s[i] * s[j])))
+}
+
 impl NodalFields {
     /// Physical displacement components `[sqrt(g_22) v^2, sqrt(g_33) v^3]` at node `k`.
     pub fn physical_displacement(&self, k: usize) -> [f64; 2] {
@@ -89,16 +101,4 @@ impl NodalFields {
         }
         Ok(out)
     }
-}
-
-/// Physical stress components `sqrt(g_ii g_jj) T^ij` of the contravariant stress `t`, with
-/// `scale[i] = sqrt(g_ii)`.
-pub(crate) fn physical_stress(t: &[[f64; 3]; 3], scale: [f64; 3]) -> [[f64; 3]; 3] {
-    core::array::from_fn(|i| core::array::from_fn(|j| scale[i] * scale[j] * t[i][j]))
-}
-
-/// Physical strain components `E_ij / sqrt(g_ii g_jj)` of the covariant strain `e`, with
-/// `scale[i] = sqrt(g_ii)`.
-pub(crate) fn physical_strain(e: &[[f64; 3]; 3], scale: [f64; 3]) -> [[f64; 3]; 3] {
-    core::array::from_fn(|i| core::array::from_fn(|j| e[i][j] / (scale[i] * scale[j])))
 }

@@ -120,26 +120,12 @@ impl<G: ShellGeometry, M: ManufacturedField> ExactSolution<G, M> {
     /// # Errors
     /// Geometry failures.
     pub fn forcing(&self, x: [f64; 2]) -> Result<[f64; 2], ElasticityError> {
-        let h = 2e-3;
         let flux = |y: [f64; 2], a: usize| -> Result<[f64; 2], ElasticityError> {
             let p = self.point(y)?;
             let t = mixed_stress(&p, &self.material, &self.field.displacement(y));
             Ok([p.sqrt_g * t[a][1], p.sqrt_g * t[a][2]])
         };
-        let mut div = [0.0; 2];
-        for (axis, a) in [(0usize, 1usize), (1, 2)] {
-            let diff = |step: f64| -> Result<[f64; 2], ElasticityError> {
-                let (mut yp, mut ym) = (x, x);
-                yp[axis] += step;
-                ym[axis] -= step;
-                let (fp, fm) = (flux(yp, a)?, flux(ym, a)?);
-                Ok([0, 1].map(|e| (fp[e] - fm[e]) / (2.0 * step)))
-            };
-            let (d1, d2) = (diff(h)?, diff(0.5 * h)?);
-            for e in 0..2 {
-                div[e] += (4.0 * d2[e] - d1[e]) / 3.0;
-            }
-        }
+        let div = richardson_divergence(x, [(0, 1), (1, 2)], flux)?;
         let p = self.point(x)?;
         let t = mixed_stress(&p, &self.material, &self.field.displacement(x));
         Ok([0, 1].map(|e| -(div[e] / p.sqrt_g - christoffel_contraction(&p, &t, e + 1))))
@@ -586,4 +572,29 @@ impl PaperEllipse {
     ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
         self.parts(level)?.finite_difference()
     }
+}
+/// `sum_a d_a P_a(x)` by the Richardson-extrapolated central difference of the forcing docs:
+/// `d_a P ~ (4 D(h/2) - D(h))/3`, `D(h) = (P(x + h e_axis) - P(x - h e_axis))/(2h)`,
+/// `h = 2e-3`, over `axes = (coordinate axis, flux index a)` in order; `flux(y, a)` is `P_a(y)`.
+pub(crate) fn richardson_divergence<const D: usize, const N: usize>(
+    x: [f64; D],
+    axes: impl IntoIterator<Item = (usize, usize)>,
+    flux: impl Fn([f64; D], usize) -> Result<[f64; N], ElasticityError>,
+) -> Result<[f64; N], ElasticityError> {
+    let h = 2e-3;
+    let mut div = [0.0; N];
+    for (axis, a) in axes {
+        let diff = |step: f64| -> Result<[f64; N], ElasticityError> {
+            let (mut yp, mut ym) = (x, x);
+            yp[axis] += step;
+            ym[axis] -= step;
+            let (fp, fm) = (flux(yp, a)?, flux(ym, a)?);
+            Ok(core::array::from_fn(|e| (fp[e] - fm[e]) / (2.0 * step)))
+        };
+        let (d1, d2) = (diff(h)?, diff(0.5 * h)?);
+        for e in 0..N {
+            div[e] += (4.0 * d2[e] - d1[e]) / 3.0;
+        }
+    }
+    Ok(div)
 }

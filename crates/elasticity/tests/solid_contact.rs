@@ -3,7 +3,8 @@
 //! width and on a cone, and orthotropic friction slips off the traction direction.
 
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver, ThickBody,
+    BoundarySolver, ContactSettings, ContactSolution, EndLoads, FullSystemSettings,
+    FullSystemSolver, ThickBody,
 };
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::friction::{
@@ -26,6 +27,16 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
 
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+/// The two solutions' displacements agree to `1e-7` of the largest (the solvers' tolerances);
+/// returns that scale.
+#[track_caller]
+fn assert_agree(a: &ContactSolution, b: &ContactSolution, what: &str) -> f64 {
+    let scale = max_abs(&a.displacement);
+    let d = max_diff(&a.displacement, &b.displacement);
+    assert!(d < 1e-7 * scale, "{what}: {:e}", d / scale);
+    scale
 }
 
 #[test]
@@ -93,9 +104,7 @@ fn finite_width_ellipse_condensed_solver_agrees_with_full_system_newton() {
         let loads = EndLoads::ratio(ratio);
         let a = condensed.solve(loads).unwrap();
         let b = full.solve(loads).unwrap();
-        let scale = max_abs(&a.displacement);
-        let d = max_diff(&a.displacement, &b.displacement);
-        assert!(d < 1e-7 * scale, "ratio {ratio}: {:e}", d / scale);
+        let scale = assert_agree(&a, &b, &format!("ratio {ratio}"));
         // symmetric in x1: the free sides bulge symmetrically, no net axial slide
         let v1 = &a.contact.solid.as_ref().unwrap().v1;
         let n2 = 17;
@@ -132,13 +141,7 @@ fn cones_condensed_solver_agrees_with_full_system_newton() {
             let loads = EndLoads::ratio(ratio);
             let x = condensed.solve(loads).unwrap();
             let y = full.solve(loads).unwrap();
-            let scale = max_abs(&x.displacement);
-            let d = max_diff(&x.displacement, &y.displacement);
-            assert!(
-                d < 1e-7 * scale,
-                "a = {a}, b = {b}, ratio {ratio}: {:e}",
-                d / scale
-            );
+            assert_agree(&x, &y, &format!("a = {a}, b = {b}, ratio {ratio}"));
             assert!(x.stats.residual < 1e-9);
             // compressive contact (the band is pressed on the cone)
             assert!(x.contact.normal_stress.iter().filter(|s| **s < 0.0).count() > 40);

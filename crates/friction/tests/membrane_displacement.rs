@@ -50,6 +50,19 @@ fn table(study: &[(f64, f64)]) -> String {
         .collect()
 }
 
+/// Prints the `what` study of obstacle `name` and asserts its observed order is `expected`
+/// within 0.1.
+#[track_caller]
+fn assert_order(name: &str, what: &str, study: &[(f64, f64)], expected: f64) {
+    let p = observed_order(study);
+    println!("{name}: {what} order {p:.3}\n{}", table(study));
+    assert!(
+        (p - expected).abs() < 0.1,
+        "{name}: order {p}\n{}",
+        table(study)
+    );
+}
+
 fn solve<C: ProfileCurve<f64>, L: FrictionLaw<f64>>(
     profile: &C,
     law: L,
@@ -114,13 +127,7 @@ fn full_slip_coulomb_membrane_is_the_capstan_profile_to_second_order_in_the_grid
                 )
             })
             .collect();
-        let p = observed_order(&study);
-        println!("{name}: grid order {p:.3}\n{}", table(&study));
-        assert!(
-            (p - 2.0).abs() < 0.1,
-            "{name}: order {p}\n{}",
-            table(&study)
-        );
+        assert_order(name, "grid", &study, 2.0);
         assert!(study[3].1 < 2e-5, "{name}: {}", table(&study));
     }
     for_obstacles!(run);
@@ -145,13 +152,7 @@ fn full_slip_smooth_membrane_converges_to_capstan_at_second_order_in_eps() {
                 (eps, capstan_error(profile, &s, false))
             })
             .collect();
-        let p = observed_order(&study);
-        println!("{name}: smooth eps order {p:.3}\n{}", table(&study));
-        assert!(
-            (p - 2.0).abs() < 0.1,
-            "{name}: order {p}\n{}",
-            table(&study)
-        );
+        assert_order(name, "smooth eps", &study, 2.0);
     }
     for_obstacles!(run);
 }
@@ -176,13 +177,7 @@ fn anchored_coulomb_membrane_converges_to_capstan_at_first_order_in_eps() {
                 (eps, capstan_error(profile, &s, true))
             })
             .collect();
-        let p = observed_order(&study);
-        println!("{name}: anchored eps order {p:.3}\n{}", table(&study));
-        assert!(
-            (p - 1.0).abs() < 0.1,
-            "{name}: order {p}\n{}",
-            table(&study)
-        );
+        assert_order(name, "anchored eps", &study, 1.0);
         // the leading term mu kappa(theta0) delta / 2, delta = eps k / T(theta0)
         let kappa0 = {
             let pt = ProfilePoint::from_jet(profile.profile_jet(-FRAC_PI_2));

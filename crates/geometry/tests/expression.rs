@@ -404,6 +404,17 @@ fn too_long_input_is_rejected_before_parsing() {
     assert_eq!(error(&src).position(), Some(MAX_LENGTH));
 }
 
+/// Each `(source, a, b)` of `cases` fails to parse with `expected(a, b)`.
+#[track_caller]
+fn assert_errors<A: Copy, B: Copy>(
+    cases: &[(&str, A, B)],
+    expected: impl Fn(A, B) -> ExpressionError,
+) {
+    for &(src, a, b) in cases {
+        assert_eq!(error(src), expected(a, b), "`{src}`");
+    }
+}
+
 #[test]
 fn empty_input_is_rejected() {
     assert_eq!(error(""), ExpressionError::Empty);
@@ -422,13 +433,9 @@ fn unexpected_characters_are_located() {
         ("t = 1", 2, '='),
         ("t\u{a0}+ 1", 1, '\u{a0}'), // only ASCII whitespace is skipped
     ];
-    for &(src, position, found) in cases {
-        assert_eq!(
-            error(src),
-            ExpressionError::UnexpectedCharacter { position, found },
-            "`{src}`"
-        );
-    }
+    assert_errors(cases, |position, found| {
+        ExpressionError::UnexpectedCharacter { position, found }
+    });
 }
 
 #[test]
@@ -442,13 +449,10 @@ fn missing_operands_are_located() {
         ("-", 1, None),
         ("(, t)", 1, Some(',')),
     ];
-    for &(src, position, found) in cases {
-        assert_eq!(
-            error(src),
-            ExpressionError::ExpectedOperand { position, found },
-            "`{src}`"
-        );
-    }
+    assert_errors(cases, |position, found| ExpressionError::ExpectedOperand {
+        position,
+        found,
+    });
     assert!(
         error("t +")
             .to_string()
@@ -548,13 +552,9 @@ fn missing_closing_parentheses_point_at_both_ends() {
         ("((t)", 4, 0),
         ("sin(t 1)", 6, 3),
     ];
-    for &(src, position, open) in cases {
-        assert_eq!(
-            error(src),
-            ExpressionError::MissingClosingParenthesis { position, open },
-            "`{src}`"
-        );
-    }
+    assert_errors(cases, |position, open| {
+        ExpressionError::MissingClosingParenthesis { position, open }
+    });
 }
 
 #[test]
@@ -569,13 +569,10 @@ fn trailing_input_is_located() {
         ("t (1)", 2, '('),
         ("sin(t) cos(t)", 7, 'c'),
     ];
-    for &(src, position, found) in cases {
-        assert_eq!(
-            error(src),
-            ExpressionError::TrailingInput { position, found },
-            "`{src}`"
-        );
-    }
+    assert_errors(cases, |position, found| ExpressionError::TrailingInput {
+        position,
+        found,
+    });
 }
 
 #[test]

@@ -611,23 +611,26 @@ mod tests {
         }
     }
 
-    #[test]
-    fn singular_interface_block_names_the_pivot() {
-        // A_BB = [1], A_II = [1], A_IB = A_BI = [1]: S = 1 - 1 = 0
+    /// A dense 2 x 2 pattern analysed with unknown 1 as the interface.
+    fn analysed_two_by_two() -> CondensedSolver {
         let entries = [(0, 0), (1, 0), (0, 1), (1, 1)];
         let (p, _) = SparsityPattern::from_entries(2, 2, &entries).unwrap();
         let mut s = CondensedSolver::new(&[1]);
         s.analyse(&p).unwrap();
+        s
+    }
+
+    #[test]
+    fn singular_interface_block_names_the_pivot() {
+        // A_BB = [1], A_II = [1], A_IB = A_BI = [1]: S = 1 - 1 = 0
+        let mut s = analysed_two_by_two();
         let err = s.factor(&[1.0, 1.0, 1.0, 1.0]).unwrap_err();
         assert!(matches!(err, SolverError::Singular { pivot: Some(1) }));
     }
 
     #[test]
     fn bulk_is_not_refactored_when_only_the_interface_changes() {
-        let entries = [(0, 0), (1, 0), (0, 1), (1, 1)];
-        let (p, _) = SparsityPattern::from_entries(2, 2, &entries).unwrap();
-        let mut s = CondensedSolver::new(&[1]);
-        s.analyse(&p).unwrap();
+        let mut s = analysed_two_by_two();
         s.factor(&[2.0, 1.0, 1.0, 2.0]).unwrap();
         s.factor(&[2.0, 1.0, 1.0, 5.0]).unwrap();
         assert_eq!(

@@ -86,6 +86,7 @@ mod linear_backend;
 mod linear_solver;
 mod lu_kind;
 mod multifrontal_lu;
+mod named;
 mod newton;
 mod nonlinear_method;
 mod nonlinear_solver;

@@ -1,8 +1,5 @@
 //! Choosing a linear backend by value (scene files, command lines).
 
-use core::fmt;
-use core::str::FromStr;
-
 use crate::direct_params::DirectParams;
 use crate::error::SolverError;
 use crate::iterative_params::IterativeParams;
@@ -14,7 +11,7 @@ use crate::sparse_lu::SparseLu;
 
 /// The linear backends, by name: `lu`, `cholesky`, `jacobi`, `gauss-seidel`.
 ///
-/// The same spelling is used by serde, [`FromStr`] and [`fmt::Display`].
+/// The same spelling is used by serde, [`FromStr`](core::str::FromStr) and [`Display`](core::fmt::Display).
 ///
 /// # Example
 /// ```
@@ -94,40 +91,11 @@ impl LinearBackend {
     }
 }
 
-impl fmt::Display for LinearBackend {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for LinearBackend {
-    type Err = SolverError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|b| b.name() == s)
-            .ok_or_else(|| SolverError::UnknownName {
-                kind: "linear backend",
-                name: s.to_owned(),
-                allowed: Self::NAMES,
-            })
-    }
-}
+crate::named::named_enum!(LinearBackend, "linear backend");
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn names_round_trip_through_display_fromstr_and_serde() {
-        for b in LinearBackend::ALL {
-            assert_eq!(b.to_string().parse::<LinearBackend>().unwrap(), b);
-            let json = serde_json::to_string(&b).unwrap();
-            assert_eq!(json, format!("\"{}\"", b.name()));
-            assert_eq!(serde_json::from_str::<LinearBackend>(&json).unwrap(), b);
-        }
-    }
 
     #[test]
     fn build_rejects_bad_iterative_params_only_for_iterative_backends() {

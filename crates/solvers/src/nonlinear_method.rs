@@ -1,8 +1,5 @@
 //! Choosing a nonlinear solver by value.
 
-use core::fmt;
-use core::str::FromStr;
-
 use crate::error::SolverError;
 use crate::jacobi_newton::JacobiNewton;
 use crate::newton::{Newton, NewtonParams, solve_with_newton};
@@ -59,26 +56,7 @@ impl NonlinearMethod {
     }
 }
 
-impl fmt::Display for NonlinearMethod {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for NonlinearMethod {
-    type Err = SolverError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| SolverError::UnknownName {
-                kind: "nonlinear method",
-                name: s.to_owned(),
-                allowed: Self::NAMES,
-            })
-    }
-}
+crate::named::named_enum!(NonlinearMethod, "nonlinear method");
 
 /// A nonlinear solver chosen at run time ([`NonlinearSolver::solve`](crate::NonlinearSolver::solve) is generic, so the
 /// choice is an enum rather than a trait object).
@@ -95,21 +73,3 @@ solve_with_newton!(AnyNonlinearSolver, |solver| match solver {
     AnyNonlinearSolver::Newton(s) => s,
     AnyNonlinearSolver::JacobiNewton(s) => s.newton_mut(),
 });
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn names_round_trip_through_display_fromstr_and_serde() {
-        for m in NonlinearMethod::ALL {
-            assert_eq!(m.to_string().parse::<NonlinearMethod>().unwrap(), m);
-            let json = serde_json::to_string(&m).unwrap();
-            assert_eq!(serde_json::from_str::<NonlinearMethod>(&json).unwrap(), m);
-        }
-        assert!(matches!(
-            "broyden".parse::<NonlinearMethod>(),
-            Err(SolverError::UnknownName { .. })
-        ));
-    }
-}

@@ -139,26 +139,14 @@ impl ColumnOrdering {
                 grid,
                 separator_width,
             } => {
-                if grid.dof_count() != pattern.ncols() {
-                    return Err(SolverError::DimensionMismatch {
-                        quantity: "grid unknowns",
-                        expected: pattern.ncols(),
-                        found: grid.dof_count(),
-                    });
-                }
+                check_grid(grid, pattern)?;
                 if separator_width == 0 {
                     return Err(SolverError::invalid("separator_width", 0.0, ">= 1"));
                 }
                 Ok(Some(nested_dissection_grid(grid, separator_width)))
             }
             Self::ElementNestedDissection { grid, degree } => {
-                if grid.dof_count() != pattern.ncols() {
-                    return Err(SolverError::DimensionMismatch {
-                        quantity: "grid unknowns",
-                        expected: pattern.ncols(),
-                        found: grid.dof_count(),
-                    });
-                }
+                check_grid(grid, pattern)?;
                 if degree == 0 {
                     return Err(SolverError::invalid("degree", 0.0, ">= 1"));
                 }
@@ -166,6 +154,18 @@ impl ColumnOrdering {
             }
         }
     }
+}
+
+/// [`SolverError::DimensionMismatch`] unless `grid` numbers `pattern.ncols()` unknowns.
+fn check_grid(grid: GridShape, pattern: &SparsityPattern) -> Result<(), SolverError> {
+    if grid.dof_count() != pattern.ncols() {
+        return Err(SolverError::DimensionMismatch {
+            quantity: "grid unknowns",
+            expected: pattern.ncols(),
+            found: grid.dof_count(),
+        });
+    }
+    Ok(())
 }
 
 /// Regions with at most this many nodes are leaves of the dissection, numbered naturally.
@@ -209,44 +209,65 @@ pub fn nested_dissection_grid(grid: GridShape, separator_width: usize) -> Vec<us
     assert!(separator_width > 0, "separator_width must be positive");
     let mut perm = Vec::with_capacity(grid.dof_count());
     let w = separator_width;
+    let cut = separator_cut(w);
     if grid.periodic && grid.n2 >= 2 * w + 4 {
         // two strips half a period apart split the ring into two open pieces
         let half = w + (grid.n2 - 2 * w) / 2;
-        dissect(grid, w, (w, half), (0, grid.n3), &mut perm);
-        dissect(grid, w, (half + w, grid.n2), (0, grid.n3), &mut perm);
+        dissect_by(grid, (w, half), (0, grid.n3), &mut perm, &cut);
+        dissect_by(grid, (half + w, grid.n2), (0, grid.n3), &mut perm, &cut);
         push_block(grid, (0, w), (0, grid.n3), &mut perm);
         push_block(grid, (half, half + w), (0, grid.n3), &mut perm);
     } else {
         // a periodic grid too short to cut twice is simply numbered naturally
-        dissect(grid, w, (0, grid.n2), (0, grid.n3), &mut perm);
+        dissect_by(grid, (0, grid.n2), (0, grid.n3), &mut perm, &cut);
     }
     debug_assert_eq!(perm.len(), grid.dof_count());
     perm
 }
 
-/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`.
-fn dissect(
+/// The separators of [`nested_dissection_grid`]: `w` lines across the middle of the longer
+/// side; none for a region of at most [`LEAF_NODES`] nodes or too short to cut.
+fn separator_cut(w: usize) -> impl Fn((usize, usize), (usize, usize)) -> Option<Cut> {
+    move |r2, r3| {
+        let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
+        if l2 * l3 <= LEAF_NODES || l2.max(l3) < w + 2 {
+            None
+        } else if l2 >= l3 {
+            Some(Cut::X2(r2.0 + (l2 - w) / 2, w))
+        } else {
+            Some(Cut::X3(r3.0 + (l3 - w) / 2, w))
+        }
+    }
+}
+
+/// A separator of a region: the grid lines `m..m + width` across `x2` or across `x3`.
+enum Cut {
+    X2(usize, usize),
+    X3(usize, usize),
+}
+
+/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`: the two sides
+/// of the separator `cut(r2, r3)` recursively, then the separator; a region without one
+/// naturally ([`push_block`]).
+fn dissect_by(
     grid: GridShape,
-    w: usize,
     r2: (usize, usize),
     r3: (usize, usize),
     perm: &mut Vec<usize>,
+    cut: &dyn Fn((usize, usize), (usize, usize)) -> Option<Cut>,
 ) {
-    let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
-    if l2 * l3 <= LEAF_NODES || l2.max(l3) < w + 2 {
-        push_block(grid, r2, r3, perm);
-        return;
-    }
-    if l2 >= l3 {
-        let m = r2.0 + (l2 - w) / 2;
-        dissect(grid, w, (r2.0, m), r3, perm);
-        dissect(grid, w, (m + w, r2.1), r3, perm);
-        push_block(grid, (m, m + w), r3, perm);
-    } else {
-        let m = r3.0 + (l3 - w) / 2;
-        dissect(grid, w, r2, (r3.0, m), perm);
-        dissect(grid, w, r2, (m + w, r3.1), perm);
-        push_block(grid, r2, (m, m + w), perm);
+    match cut(r2, r3) {
+        None => push_block(grid, r2, r3, perm),
+        Some(Cut::X2(m, width)) => {
+            dissect_by(grid, (r2.0, m), r3, perm, cut);
+            dissect_by(grid, (m + width, r2.1), r3, perm, cut);
+            push_block(grid, (m, m + width), r3, perm);
+        }
+        Some(Cut::X3(m, width)) => {
+            dissect_by(grid, r2, (r3.0, m), perm, cut);
+            dissect_by(grid, r2, (m + width, r3.1), perm, cut);
+            push_block(grid, r2, (m, m + width), perm);
+        }
     }
 }
 
@@ -287,18 +308,19 @@ fn dissect(
 #[track_caller]
 pub fn nested_dissection_elements(grid: GridShape, degree: usize) -> Vec<usize> {
     assert!(degree > 0, "degree must be positive");
+    let cut = element_cut(degree);
     let mut perm = Vec::with_capacity(grid.dof_count());
     // on the ring, line 0 comes again after line n2 - 1: the second cut is half way round
     let half = aligned_cut(0, grid.n2 + 1, degree).filter(|&h| h > 1 && h + 1 < grid.n2);
     match half {
         Some(half) if grid.periodic => {
             // lines 0 and `half` split the ring into two open pieces
-            dissect_elements(grid, degree, (1, half), (0, grid.n3), &mut perm);
-            dissect_elements(grid, degree, (half + 1, grid.n2), (0, grid.n3), &mut perm);
+            dissect_by(grid, (1, half), (0, grid.n3), &mut perm, &cut);
+            dissect_by(grid, (half + 1, grid.n2), (0, grid.n3), &mut perm, &cut);
             push_block(grid, (0, 1), (0, grid.n3), &mut perm);
             push_block(grid, (half, half + 1), (0, grid.n3), &mut perm);
         }
-        _ => dissect_elements(grid, degree, (0, grid.n2), (0, grid.n3), &mut perm),
+        _ => dissect_by(grid, (0, grid.n2), (0, grid.n3), &mut perm, &cut),
     }
     debug_assert_eq!(perm.len(), grid.dof_count());
     perm
@@ -322,34 +344,22 @@ fn aligned_cut(a: usize, b: usize, degree: usize) -> Option<usize> {
     }
 }
 
-/// Orders the region `[r2.0, r2.1) x [r3.0, r3.1)` (not periodic) into `perm`, cutting along
-/// element boundaries.
-fn dissect_elements(
-    grid: GridShape,
-    degree: usize,
-    r2: (usize, usize),
-    r3: (usize, usize),
-    perm: &mut Vec<usize>,
-) {
-    let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
-    if l2 * l3 <= LEAF_NODES {
-        push_block(grid, r2, r3, perm);
-        return;
-    }
-    let cut2 = aligned_cut(r2.0, r2.1, degree);
-    let cut3 = aligned_cut(r3.0, r3.1, degree);
-    match (cut2, cut3) {
-        (Some(m), _) if l2 >= l3 || cut3.is_none() => {
-            dissect_elements(grid, degree, (r2.0, m), r3, perm);
-            dissect_elements(grid, degree, (m + 1, r2.1), r3, perm);
-            push_block(grid, (m, m + 1), r3, perm);
+/// The separators of [`nested_dissection_elements`]: the element-boundary line nearest the
+/// middle of the longer side (the other side if the longer one has none); none for a region
+/// of at most [`LEAF_NODES`] nodes or without an interior boundary line.
+fn element_cut(degree: usize) -> impl Fn((usize, usize), (usize, usize)) -> Option<Cut> {
+    move |r2, r3| {
+        let (l2, l3) = (r2.1 - r2.0, r3.1 - r3.0);
+        if l2 * l3 <= LEAF_NODES {
+            return None;
         }
-        (_, Some(m)) => {
-            dissect_elements(grid, degree, r2, (r3.0, m), perm);
-            dissect_elements(grid, degree, r2, (m + 1, r3.1), perm);
-            push_block(grid, r2, (m, m + 1), perm);
+        let cut2 = aligned_cut(r2.0, r2.1, degree);
+        let cut3 = aligned_cut(r3.0, r3.1, degree);
+        match (cut2, cut3) {
+            (Some(m), _) if l2 >= l3 || cut3.is_none() => Some(Cut::X2(m, 1)),
+            (_, Some(m)) => Some(Cut::X3(m, 1)),
+            _ => None,
         }
-        _ => push_block(grid, r2, r3, perm),
     }
 }
 
@@ -501,25 +511,24 @@ pub fn is_permutation(perm: &[usize], n: usize) -> bool {
 mod tests {
     use super::*;
 
+    fn grid_shape(n2: usize, n3: usize, dofs_per_node: usize, periodic: bool) -> GridShape {
+        GridShape {
+            n2,
+            n3,
+            dofs_per_node,
+            periodic,
+        }
+    }
+
     #[test]
     fn small_grid_is_natural_order() {
-        let grid = GridShape {
-            n2: 4,
-            n3: 3,
-            dofs_per_node: 2,
-            periodic: false,
-        };
+        let grid = grid_shape(4, 3, 2, false);
         assert_eq!(nested_dissection_grid(grid, 2), (0..24).collect::<Vec<_>>());
     }
 
     #[test]
     fn separator_splits_halves_numbered_first() {
-        let grid = GridShape {
-            n2: 40,
-            n3: 4,
-            dofs_per_node: 1,
-            periodic: false,
-        };
+        let grid = grid_shape(40, 4, 1, false);
         let perm = nested_dissection_grid(grid, 3);
         assert!(is_permutation(&perm, 160));
         // first cut: (40 - 3) / 2 = 18, strip = lines 18, 19, 20, last 12 unknowns
@@ -532,12 +541,7 @@ mod tests {
 
     #[test]
     fn periodic_grid_is_cut_twice() {
-        let grid = GridShape {
-            n2: 20,
-            n3: 2,
-            dofs_per_node: 1,
-            periodic: true,
-        };
+        let grid = grid_shape(20, 2, 1, true);
         let perm = nested_dissection_grid(grid, 1);
         assert!(is_permutation(&perm, 40));
         let last: Vec<usize> = perm[36..].iter().map(|&p| p / 2).collect();
@@ -680,12 +684,7 @@ mod tests {
     #[test]
     fn element_dissection_cuts_on_element_boundaries_and_fills_less_than_natural() {
         for (periodic, n2) in [(false, 17), (true, 16)] {
-            let grid = GridShape {
-                n2,
-                n3: 9,
-                dofs_per_node: 2,
-                periodic,
-            };
+            let grid = grid_shape(n2, 9, 2, periodic);
             let perm = nested_dissection_elements(grid, 2);
             assert!(is_permutation(&perm, grid.dof_count()));
             // the last line eliminated is a single element-boundary line

@@ -273,91 +273,75 @@ impl Jacobian<f64> for CubicReaction {
     }
 }
 
-/// `atan(u_i) = 0` componentwise: the classic case where the full Newton step overshoots
-/// (for `|u_0| > 1.39` the iterates grow without bound) and a line search is needed.
-///
-/// # Math
-/// ```text
-/// r_i(u) = atan(u_i),   J = diag(1 / (1 + u_i^2)),   root u* = 0
-/// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct Arctangent {
-    pattern: SparsityPattern,
-}
-
-impl Arctangent {
-    /// The problem with `n` unknowns.
-    pub fn new(n: usize) -> Self {
-        let entries: Vec<(usize, usize)> = (0..n).map(|i| (i, i)).collect();
-        let (pattern, _) = SparsityPattern::from_entries(n, n, &entries).expect("in bounds");
-        Self { pattern }
-    }
-}
-
-impl Residual<f64> for Arctangent {
-    type Error = Infallible;
-    fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Infallible> {
-        for (ri, ui) in r.iter_mut().zip(u) {
-            *ri = ui.atan();
+/// A problem `r_i(u) = f(u_i)` on the diagonal pattern: the struct, `new(n)`, [`Residual`]
+/// and [`Jacobian`] (`J = diag(f'(u_i))`), from `f` and `f'` written once.
+macro_rules! componentwise_problem {
+    ($(#[$doc:meta])* $name:ident, residual: |$u:ident| $f:expr, derivative: |$v:ident| $df:expr) => {
+        $(#[$doc])*
+        #[derive(Clone, Debug, PartialEq)]
+        pub struct $name {
+            pattern: SparsityPattern,
         }
-        Ok(())
-    }
-}
 
-impl Jacobian<f64> for Arctangent {
-    fn pattern(&self) -> &SparsityPattern {
-        &self.pattern
-    }
-    fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Infallible> {
-        for (v, ui) in values.iter_mut().zip(u) {
-            *v += 1.0 / (1.0 + ui * ui);
+        impl $name {
+            /// The problem with `n` unknowns.
+            pub fn new(n: usize) -> Self {
+                let entries: Vec<(usize, usize)> = (0..n).map(|i| (i, i)).collect();
+                let (pattern, _) =
+                    SparsityPattern::from_entries(n, n, &entries).expect("in bounds");
+                Self { pattern }
+            }
         }
-        Ok(())
-    }
-}
 
-/// `cbrt(u_i) = 0` componentwise: the full Newton step maps `u` to `-2 u`, so the residual
-/// grows by `2^(1/3)` per iteration (divergence), while a damped step converges.
-///
-/// # Math
-/// ```text
-/// r_i(u) = u_i^(1/3),   J = diag(u_i^(-2/3) / 3),   u_{k+1} = u_k - 3 u_k = -2 u_k
-/// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct CubeRoot {
-    pattern: SparsityPattern,
-}
-
-impl CubeRoot {
-    /// The problem with `n` unknowns.
-    pub fn new(n: usize) -> Self {
-        let entries: Vec<(usize, usize)> = (0..n).map(|i| (i, i)).collect();
-        let (pattern, _) = SparsityPattern::from_entries(n, n, &entries).expect("in bounds");
-        Self { pattern }
-    }
-}
-
-impl Residual<f64> for CubeRoot {
-    type Error = Infallible;
-    fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Infallible> {
-        for (ri, ui) in r.iter_mut().zip(u) {
-            *ri = ui.cbrt();
+        impl Residual<f64> for $name {
+            type Error = Infallible;
+            fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Infallible> {
+                for (ri, &$u) in r.iter_mut().zip(u) {
+                    *ri = $f;
+                }
+                Ok(())
+            }
         }
-        Ok(())
-    }
+
+        impl Jacobian<f64> for $name {
+            fn pattern(&self) -> &SparsityPattern {
+                &self.pattern
+            }
+            fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Infallible> {
+                for (value, &$v) in values.iter_mut().zip(u) {
+                    *value += $df;
+                }
+                Ok(())
+            }
+        }
+    };
 }
 
-impl Jacobian<f64> for CubeRoot {
-    fn pattern(&self) -> &SparsityPattern {
-        &self.pattern
-    }
-    fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Infallible> {
-        for (v, ui) in values.iter_mut().zip(u) {
-            *v += 1.0 / (3.0 * ui.abs().cbrt().powi(2));
-        }
-        Ok(())
-    }
-}
+componentwise_problem!(
+    /// `atan(u_i) = 0` componentwise: the classic case where the full Newton step overshoots
+    /// (for `|u_0| > 1.39` the iterates grow without bound) and a line search is needed.
+    ///
+    /// # Math
+    /// ```text
+    /// r_i(u) = atan(u_i),   J = diag(1 / (1 + u_i^2)),   root u* = 0
+    /// ```
+    Arctangent,
+    residual: |u| u.atan(),
+    derivative: |u| 1.0 / (1.0 + u * u)
+);
+
+componentwise_problem!(
+    /// `cbrt(u_i) = 0` componentwise: the full Newton step maps `u` to `-2 u`, so the residual
+    /// grows by `2^(1/3)` per iteration (divergence), while a damped step converges.
+    ///
+    /// # Math
+    /// ```text
+    /// r_i(u) = u_i^(1/3),   J = diag(u_i^(-2/3) / 3),   u_{k+1} = u_k - 3 u_k = -2 u_k
+    /// ```
+    CubeRoot,
+    residual: |u| u.cbrt(),
+    derivative: |u| 1.0 / (3.0 * u.abs().cbrt().powi(2))
+);
 
 #[cfg(test)]
 mod tests {

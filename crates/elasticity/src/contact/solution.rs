@@ -55,7 +55,7 @@ pub struct ContactProfile {
 /// contact node (the order of [`ContactProfile`]). In a 3-D body [`ContactProfile::slip`] and
 /// [`ContactProfile::friction_traction`] are the `e_2` components in the orthonormal frame
 /// `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|` of the tangent plane.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct SolidContactProfile {
     /// `x1` of the nodes.
     pub x1: Vec<f64>,

@@ -63,13 +63,7 @@ impl ElementAssembly {
         )?;
         let ne = connectivity.len() / nen.max(1);
         // node -> elements, by counting
-        let mut start = vec![0usize; node_count + 1];
-        for &m in &connectivity {
-            start[m + 1] += 1;
-        }
-        for m in 0..node_count {
-            start[m + 1] += start[m];
-        }
+        let start = bucket_starts(&connectivity, node_count);
         let mut fill = start[..node_count].to_vec();
         let mut elements_of = vec![0usize; connectivity.len()];
         for (k, &m) in connectivity.iter().enumerate() {
@@ -222,6 +216,19 @@ impl ElementAssembly {
         }
         LinearSystem::from_parts(self.pattern.clone(), values, rhs)
     }
+}
+
+/// The first position of each bucket when the `keys` (each `< buckets`) are sorted by
+/// counting: `start[b]..start[b + 1]` holds the keys equal to `b` (`start.len() = buckets + 1`).
+pub(super) fn bucket_starts(keys: &[usize], buckets: usize) -> Vec<usize> {
+    let mut start = vec![0usize; buckets + 1];
+    for &k in keys {
+        start[k + 1] += 1;
+    }
+    for b in 0..buckets {
+        start[b + 1] += start[b];
+    }
+    start
 }
 
 #[cfg(test)]

@@ -122,26 +122,12 @@ impl<G: ShellGeometry, F: SolidField> SolidExact<G, F> {
     /// # Errors
     /// Geometry failures.
     pub fn forcing(&self, x: [f64; 3]) -> Result<[f64; 3], ElasticityError> {
-        let h = 2e-3;
         let flux = |y: [f64; 3], a: usize| -> Result<[f64; 3], ElasticityError> {
             let p = self.point(y)?;
             let t = mixed_stress_of(&p, &SOLID, &self.material, &self.field.inputs(y));
             Ok([0, 1, 2].map(|j| p.sqrt_g * t[a][j]))
         };
-        let mut div = [0.0; 3];
-        for a in 0..3 {
-            let diff = |step: f64| -> Result<[f64; 3], ElasticityError> {
-                let (mut yp, mut ym) = (x, x);
-                yp[a] += step;
-                ym[a] -= step;
-                let (fp, fm) = (flux(yp, a)?, flux(ym, a)?);
-                Ok([0, 1, 2].map(|j| (fp[j] - fm[j]) / (2.0 * step)))
-            };
-            let (d1, d2) = (diff(h)?, diff(0.5 * h)?);
-            for j in 0..3 {
-                div[j] += (4.0 * d2[j] - d1[j]) / 3.0;
-            }
-        }
+        let div = crate::samples::richardson_divergence(x, [(0, 0), (1, 1), (2, 2)], flux)?;
         let p = self.point(x)?;
         let t = mixed_stress_of(&p, &SOLID, &self.material, &self.field.inputs(x));
         Ok([0, 1, 2].map(|j| -(div[j] / p.sqrt_g - christoffel_contraction(&p, &t, j))))

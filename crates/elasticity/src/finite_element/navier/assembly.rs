@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use super::{FiniteElementNavier, PACK};
 use crate::boundary::Component;
 use crate::discretisation::Discretisation;
+use crate::finite_element::assembly::bucket_starts;
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::SparsityPattern;
@@ -130,13 +131,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             });
         // the compressed columns: the row-wise pattern transposed by a counting pass (rows come
         // out increasing in each column), and every row-wise slot mapped to its column slot
-        let mut col_ptr = vec![0usize; ndof + 1];
-        for &c in &columns {
-            col_ptr[c + 1] += 1;
-        }
-        for c in 0..ndof {
-            col_ptr[c + 1] += col_ptr[c];
-        }
+        let col_ptr = bucket_starts(&columns, ndof);
         let mut next = col_ptr[..ndof].to_vec();
         let mut row_idx = vec![0usize; columns.len()];
         let mut column_slot = vec![0u32; columns.len()];
