@@ -214,7 +214,7 @@ pub struct MembraneSpec {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub t_max: Option<f64>,
     /// Work budget: panels of adaptive quadrature (prism turning angle, the general cone's
-    /// nested quadrature), default `2^20`.
+    /// nested quadrature), default `2^16`.
     pub max_subdivisions: usize,
     /// Work budget: steps of the ODE integrator (membranes with weight), default 100,000.
     pub max_steps: usize,

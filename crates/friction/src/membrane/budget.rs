@@ -27,7 +27,7 @@ use crate::quadrature::DEFAULT_MAX_SUBDIVISIONS;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MembraneBudget {
     /// Panels of adaptive quadrature (turning angle of a prism, the nested quadrature of a
-    /// general cone; `membrane.max_subdivisions`, default `2^20`).
+    /// general cone; `membrane.max_subdivisions`, default `2^16`).
     pub max_subdivisions: usize,
     /// Steps (accepted and rejected) of the ODE integrator (`membrane.max_steps`, default
     /// 100,000).

@@ -86,7 +86,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
     }
 
     /// The same within a budget of `max_subdivisions` quadrature panels
-    /// (`membrane.max_subdivisions`, default `2^20`).
+    /// (`membrane.max_subdivisions`, default `2^16`).
     pub fn with_max_subdivisions(&self, max_subdivisions: usize) -> Self {
         Self {
             profile: self.profile,
