@@ -16,6 +16,7 @@ mod csv;
 mod error;
 mod json;
 mod out_dir;
+mod quad_grid;
 mod vtu;
 
 pub use atomic::{commit_deferred, defer_commits, discard_outputs_and, write_atomic};
@@ -23,7 +24,7 @@ pub use csv::{Column, ColumnData, Table, format_f64};
 pub use error::OutputError;
 pub use json::{check_finite_json, to_json_string, write_json};
 pub use out_dir::OutputDir;
-pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_QUAD, Vtu, VtuCompression};
+pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_HEXAHEDRON, VTK_QUAD, Vtu, VtuCompression};
 mod plot;
 
 pub use plot::{
