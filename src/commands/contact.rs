@@ -410,16 +410,14 @@ fn solve_unnamed(
     match method {
         SceneSolver::Condensed => {
             let model = model(scene)?;
-            let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-            let setup = t0.elapsed().as_secs_f64();
-            let t1 = Instant::now();
-            let sol = solver.solve_observed(loads, observer)?;
-            let limiting = solver
-                .sliding_at(sol.loads.tau0)?
-                .map(|m| [m.lower_ratio, m.upper_ratio]);
+            let CondensedRun {
+                sol,
+                limiting,
+                times,
+            } = condensed(&model, scene, loads, observer, t0)?;
             let report = ContactReport {
                 discretisation: capstan_elasticity::Discretisation::method(model.discretisation()),
-                ..ContactReport::new(&sol, limiting, grid, [setup, t1.elapsed().as_secs_f64()])
+                ..ContactReport::new(&sol, limiting, grid, times)
             };
             Ok((report, solved(scene, &model, sol)?))
         }
@@ -651,4 +649,40 @@ pub fn contact_table(report: &ContactReport) -> Table {
         "state",
         c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
     )
+}
+
+/// A boundary-only solve as the commands report it.
+pub(crate) struct CondensedRun {
+    /// The contact solution.
+    pub sol: ContactSolution,
+    /// Limiting ratios `[lower, upper]` when the body can slide rigidly.
+    pub limiting: Option<[f64; 2]>,
+    /// Wall times `[set-up since t0, solve]`, seconds.
+    pub times: [f64; 2],
+}
+
+/// The boundary-only solve of `model` with the scene's budgets (`solver.*`). Shared by the
+/// plane-strain and the 3-D body.
+///
+/// # Errors
+/// Solver errors; [`ContactError::Interrupted`] when `observer` stops the solve.
+pub(crate) fn condensed<D: capstan_elasticity::contact::ContactOperator>(
+    model: &ContactModel<D, AnyFrictionLaw>,
+    scene: &Scene,
+    loads: EndLoads,
+    observer: &mut dyn Observer<f64>,
+    t0: Instant,
+) -> Result<CondensedRun, CliError> {
+    let solver = BoundarySolver::new(model, scene.solver.contact_settings())?;
+    let setup = t0.elapsed().as_secs_f64();
+    let t1 = Instant::now();
+    let sol = solver.solve_observed(loads, observer)?;
+    let limiting = solver
+        .sliding_at(sol.loads.tau0)?
+        .map(|m| [m.lower_ratio, m.upper_ratio]);
+    Ok(CondensedRun {
+        sol,
+        limiting,
+        times: [setup, t1.elapsed().as_secs_f64()],
+    })
 }

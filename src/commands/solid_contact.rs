@@ -6,15 +6,13 @@
 use std::time::Instant;
 
 use capstan_elasticity::Material;
-use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactSolution, FullSystemSolver,
-};
+use capstan_elasticity::contact::{ContactModel, ContactSolution, FullSystemSolver};
 use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::AnyFrictionLaw;
 use capstan_elasticity::solid::{SolidBody, SolidFields, SolidNavier};
 use capstan_geometry::{Obstacle, ShellChart};
 
-use crate::commands::contact::{ContactReport, SceneSolver, loads, scene_law};
+use crate::commands::contact::{ContactReport, SceneSolver, condensed, loads, scene_law};
 use crate::commands::solid_report::SolidReport;
 use crate::error::CliError;
 use crate::figures::solid_body::{solid_grid, write_solid_body};
@@ -135,25 +133,19 @@ fn solve_unnamed(
     let loads = loads(scene);
     let t0 = Instant::now();
     let model = model(scene)?;
-    let (sol, limiting, setup, t1) = match method {
+    let (sol, limiting, times) = match method {
         SceneSolver::Condensed => {
-            let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-            let setup = t0.elapsed().as_secs_f64();
-            let t1 = Instant::now();
-            let sol = solver.solve_observed(loads, observer)?;
-            let limiting = solver
-                .sliding_at(sol.loads.tau0)?
-                .map(|m| [m.lower_ratio, m.upper_ratio]);
-            (sol, limiting, setup, t1)
+            let run = condensed(&model, scene, loads, observer, t0)?;
+            (run.sol, run.limiting, run.times)
         }
         SceneSolver::FullNewton(_) | SceneSolver::JacobiNewton => {
             let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
-            (solver.solve_observed(loads, observer)?, None, setup, t1)
+            let sol = solver.solve_observed(loads, observer)?;
+            (sol, None, [setup, t1.elapsed().as_secs_f64()])
         }
     };
-    let times = [setup, t1.elapsed().as_secs_f64()];
     let report = report(scene, &model, &sol, limiting, times);
     Ok((report, sol, model))
 }
