@@ -307,12 +307,10 @@ fn sweep(args: &SweepArgs) -> Result<String, CliError> {
         Some(dir) => Some(crate::output::OutputDir::create(dir)?),
         None => None,
     };
-    let report = commands::sweep::report_with_fields(
+    let report = commands::sweep::report_indexed(
         args.scene.scene.as_deref(),
         &args.scene.sets,
-        &args.param,
-        &values,
-        fields.as_ref(),
+        commands::sweep::SweepPoints::new(&args.param, &values).fields(fields.as_ref()),
     )?;
     let scene = args.scene.load()?;
     if let Some(dir) = &args.out {

@@ -125,7 +125,7 @@ pub fn report(
     key: &str,
     values: &[f64],
 ) -> Result<SweepReport, CliError> {
-    report_with_fields(path, sets, key, values, None)
+    report_indexed(path, sets, SweepPoints::new(key, values))
 }
 
 /// The VTU of sweep point `index` (`points/point_NNNN.vtu`, `TimeValue` = the swept value).
@@ -157,60 +157,73 @@ fn point_vtu_name(index: usize) -> String {
     format!("points/point_{index:04}")
 }
 
-/// As [`report`]; with `fields`, also writes the body fields of every converged point as
-/// `points/point_NNNN.vtu` into it (see [`write_out`] for the `.pvd` collection).
-///
-/// # Errors
-/// As [`report`].
-pub fn report_with_fields(
-    path: Option<&std::path::Path>,
-    sets: &[String],
-    key: &str,
-    values: &[f64],
-    fields: Option<&OutputDir>,
-) -> Result<SweepReport, CliError> {
-    report_indexed(path, sets, key, values, fields, &|i| i)
+/// The points of a sweep: `key` set to each of `values`; with `fields`, the body fields of every
+/// converged point written as `points/point_NNNN.vtu` into it (see [`write_out`] for the `.pvd`
+/// collection), the `i`-th value being point `index(i)` of the whole sweep (a shard's points keep
+/// their grid numbers).
+#[derive(Clone, Copy)]
+pub struct SweepPoints<'a> {
+    /// The swept scene key.
+    pub key: &'a str,
+    /// Its values.
+    pub values: &'a [f64],
+    /// Where the VTU files of the converged points go, if anywhere.
+    pub fields: Option<&'a OutputDir>,
+    /// The number of the `i`-th value in the whole sweep (its VTU name).
+    pub index: &'a (dyn Fn(usize) -> usize + Sync),
 }
 
-/// As [`report_with_fields`], the `i`-th value being point `index(i)` of the whole sweep (its
-/// VTU is `points/point_NNNN.vtu` with that number): a shard's points keep their grid numbers.
+/// The numbering of a whole sweep: point `i` is the `i`-th value.
+fn identity(i: usize) -> usize {
+    i
+}
+
+impl<'a> SweepPoints<'a> {
+    /// The whole sweep of `key` over `values`, no files.
+    pub fn new(key: &'a str, values: &'a [f64]) -> Self {
+        Self {
+            key,
+            values,
+            fields: None,
+            index: &identity,
+        }
+    }
+
+    /// With the body fields written into `fields`.
+    #[must_use]
+    pub fn fields(self, fields: Option<&'a OutputDir>) -> Self {
+        Self { fields, ..self }
+    }
+}
+
+/// As [`report`], for the points `at` (body fields, numbering: [`SweepPoints`]).
 ///
 /// # Errors
 /// As [`report`].
 pub fn report_indexed(
     path: Option<&std::path::Path>,
     sets: &[String],
-    key: &str,
-    values: &[f64],
-    fields: Option<&OutputDir>,
-    index: &(dyn Fn(usize) -> usize + Sync),
+    at: SweepPoints<'_>,
 ) -> Result<SweepReport, CliError> {
     let t = Instant::now();
     let scene = &Scene::load(path, sets)?;
     let with = |value: f64| -> Result<Scene, CliError> {
         let mut s = sets.to_vec();
-        s.push(format!("{key}={value}"));
+        s.push(format!("{}={value}", at.key));
         Scene::load(path, &s)
     };
-    run(scene, &with, key, values, fields, index, t)
+    run(scene, &with, at, t)
 }
 
-/// As [`report_with_fields`] on a scene already loaded (`scene` with `key` set to each value as
-/// `--set key=value` sets it): the sweep of the Python package. `index(i)` is the number of the
-/// `i`-th value in the whole sweep (its VTU name): the identity, or a shard's grid points.
+/// As [`report_indexed`] on a scene already loaded (`scene` with the key set to each value as
+/// `--set key=value` sets it): the sweep of the Python package.
 ///
 /// # Errors
 /// As [`report`].
-pub fn report_scene(
-    scene: &Scene,
-    key: &str,
-    values: &[f64],
-    fields: Option<&OutputDir>,
-    index: &(dyn Fn(usize) -> usize + Sync),
-) -> Result<SweepReport, CliError> {
+pub fn report_scene(scene: &Scene, at: SweepPoints<'_>) -> Result<SweepReport, CliError> {
     let t = Instant::now();
-    let with = |value: f64| scene.with_raw(key, &value.to_string(), "--set");
-    run(scene, &with, key, values, fields, index, t)
+    let with = |value: f64| scene.with_raw(at.key, &value.to_string(), "--set");
+    run(scene, &with, at, t)
 }
 
 /// The points of the sweep of `scene` over `values` of `key` (`with(v)` the scene of point
@@ -220,10 +233,7 @@ pub fn report_scene(
 fn points<D>(
     scene: &Scene,
     with: &(dyn Fn(f64) -> Result<Scene, CliError> + Sync),
-    key: &str,
-    values: &[f64],
-    fields: Option<&OutputDir>,
-    index: &(dyn Fn(usize) -> usize + Sync),
+    at: SweepPoints<'_>,
     tick: &(dyn Fn() + Sync),
     build: &BuildModel<D>,
     vtu: &PointVtu<D>,
@@ -231,6 +241,12 @@ fn points<D>(
 where
     D: ContactOperator + Sync + Send,
 {
+    let SweepPoints {
+        key,
+        values,
+        fields,
+        index,
+    } = at;
     let shared = key == "loads.tau_max" || key == "loads.tau0";
     Ok(if shared {
         let model = build(scene)?;
@@ -320,12 +336,10 @@ fn solid_point_vtu(
 fn run(
     scene: &Scene,
     with: &(dyn Fn(f64) -> Result<Scene, CliError> + Sync),
-    key: &str,
-    values: &[f64],
-    fields: Option<&OutputDir>,
-    index: &(dyn Fn(usize) -> usize + Sync),
+    at: SweepPoints<'_>,
     t: Instant,
 ) -> Result<SweepReport, CliError> {
+    let (key, values) = (at.key, at.values);
     capstan_elasticity::contact::sequential_linear_algebra();
     let bar = crate::progress::bar(values.len(), key, false);
     let tick = || bar.inc(1);
@@ -343,21 +357,9 @@ fn run(
              sc: &Scene,
              m: &SolidSceneModel,
              sol: &ContactSolution| { solid_point_vtu(out, i, v, sc, m, sol) };
-        points(
-            scene,
-            with,
-            key,
-            values,
-            fields,
-            index,
-            &tick,
-            &solid_model,
-            &vtu,
-        )
+        points(scene, with, at, &tick, &solid_model, &vtu)
     } else {
-        points(
-            scene, with, key, values, fields, index, &tick, &model, &point_vtu,
-        )
+        points(scene, with, at, &tick, &model, &point_vtu)
     }?;
     bar.finish_and_clear();
     Ok(SweepReport {
@@ -393,7 +395,7 @@ pub fn table(r: &SweepReport) -> String {
 }
 
 /// Writes `sweep.json` (with `capstan_version` and the resolved base `scene`), `scene.toml`,
-/// `sweep.csv`, the plot `sweep.{svg,png}` (Slip against the swept value) and, when `points/point_NNNN.vtu` files were written by [`report_with_fields`],
+/// `sweep.csv`, the plot `sweep.{svg,png}` (Slip against the swept value) and, when `points/point_NNNN.vtu` files were written by [`report_indexed`],
 /// their collection `sweep.pvd` (time = the swept value; ParaView reads it, meshio does not).
 ///
 /// # Errors

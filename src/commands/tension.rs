@@ -1,6 +1,6 @@
 //! `capstan tension`: the membrane's tension profile on the contact interval (paper section 2).
 
-use capstan_friction::membrane::{self, MembraneLoads, MembraneProblem};
+use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -8,20 +8,14 @@ use crate::scene::Scene;
 
 /// The membrane problem a scene describes (`friction.mu`, `membrane.*`, `loads.*`).
 pub fn membrane_problem(scene: &Scene) -> MembraneProblem {
-    let (m, l) = (&scene.membrane, &scene.loads);
+    let m = &scene.membrane;
     MembraneProblem {
         mu: scene.friction.mu,
         t0: m.t0,
         theta0: m.theta0,
         theta_max: m.theta_max,
         samples: m.samples,
-        loads: MembraneLoads {
-            gravity: l.gravity,
-            density: l.density,
-            width: l.width,
-            thickness: l.thickness,
-            speed: l.speed,
-        },
+        loads: scene.loads.membrane(),
     }
 }
 

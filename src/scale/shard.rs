@@ -222,9 +222,13 @@ pub fn run_shard(
             0.0,
         )
     } else {
-        let r = crate::commands::sweep::report_indexed(path, sets, key, &subset, fields, &|i| {
-            indices[i]
-        })?;
+        let at = crate::commands::sweep::SweepPoints {
+            key,
+            values: &subset,
+            fields,
+            index: &|i| indices[i],
+        };
+        let r = crate::commands::sweep::report_indexed(path, sets, at)?;
         (r.points, r.shared_factorisation, r.seconds)
     };
     Ok(ShardFile {

@@ -12,6 +12,7 @@ use std::path::Path;
 use capstan_elasticity::finite_element::{DiscretisationMethod, VolumetricIntegration};
 use capstan_elasticity::solid::SideFaces;
 use capstan_elasticity::solvers::LinearBackend;
+use capstan_friction::membrane::MembraneLoads;
 use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
 use capstan_geometry::expression::Expression;
 use capstan_geometry::{
@@ -280,15 +281,37 @@ pub struct LoadsSpec {
 }
 
 impl Default for LoadsSpec {
+    /// The membrane's defaults ([`MembraneLoads::default`]), end tractions `tau0 = 1`,
+    /// `tau_max = 2`.
     fn default() -> Self {
+        let MembraneLoads {
+            gravity,
+            density,
+            width,
+            thickness,
+            speed,
+        } = MembraneLoads::default();
         Self {
-            gravity: 0.0,
-            density: 0.0,
-            width: 1.0,
-            thickness: 1.0,
-            speed: 0.0,
+            gravity,
+            density,
+            width,
+            thickness,
+            speed,
             tau0: 1.0,
             tau_max: 2.0,
+        }
+    }
+}
+
+impl LoadsSpec {
+    /// The body forces on the membrane (every key but the thick body's end tractions).
+    pub fn membrane(&self) -> MembraneLoads {
+        MembraneLoads {
+            gravity: self.gravity,
+            density: self.density,
+            width: self.width,
+            thickness: self.thickness,
+            speed: self.speed,
         }
     }
 }

@@ -245,6 +245,31 @@ pub fn check(
     }
 }
 
+/// [`check`] of the wrap interval `[theta0, theta_max]` (`membrane.theta0` finite,
+/// `membrane.theta_max > membrane.theta0`) and of the sample count `samples` in
+/// `[min_samples, max_samples]` (`allowed` says that range in words).
+///
+/// # Errors
+/// [`FrictionError::InvalidParameter`] naming the first bad key.
+pub(crate) fn check_wrap(
+    theta0: f64,
+    theta_max: f64,
+    samples: usize,
+    (min_samples, max_samples, allowed): (f64, f64, &'static str),
+) -> Result<(), FrictionError> {
+    check("membrane.theta0", theta0, "(-inf, inf)", |_| true)?;
+    check(
+        "membrane.theta_max",
+        theta_max,
+        "(membrane.theta0, inf)",
+        |v| v > theta0,
+    )?;
+    check("membrane.samples", samples as f64, allowed, |v| {
+        (min_samples..=max_samples).contains(&v)
+    })?;
+    Ok(())
+}
+
 /// The value as `f64` for [`check`] (NaN when it does not convert, which `check` refuses).
 pub(crate) fn to_f64<F: Real>(x: F) -> f64 {
     x.to_f64().unwrap_or(f64::NAN)

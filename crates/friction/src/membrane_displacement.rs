@@ -43,7 +43,7 @@
 
 use capstan_geometry::ProfileCurve;
 
-use crate::error::{FrictionError, check};
+use crate::error::{FrictionError, check, check_wrap};
 use crate::friction_law::{ContactState, FrictionLaw};
 use crate::membrane::ProfilePoint;
 
@@ -230,16 +230,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         progress: &mut dyn FnMut(usize, f64, f64),
     ) -> Result<MembraneDisplacementSolution, FrictionError> {
         let pr = problem;
-        check("membrane.theta0", pr.theta0, "(-inf, inf)", |_| true)?;
-        check(
-            "membrane.theta_max",
-            pr.theta1,
-            "(membrane.theta0, inf)",
-            |v| v > pr.theta0,
-        )?;
-        check("membrane.samples", pr.nodes as f64, "[3, 10^8]", |v| {
-            (3.0..=1e8).contains(&v)
-        })?;
+        check_wrap(pr.theta0, pr.theta1, pr.nodes, (3.0, 1e8, "[3, 10^8]"))?;
         check("membrane.stiffness", pr.stiffness, "(0, inf)", |v| v > 0.0)?;
         for e in [pr.start, pr.end] {
             let (EndCondition::Tension(x) | EndCondition::Displacement(x)) = e;

@@ -299,7 +299,8 @@ fn sweep(
             Some(dir) => Some(capstan::output::OutputDir::create(dir)?),
             None => None,
         };
-        let report = commands::sweep::report_scene(&s, &param, &values, fields.as_ref(), &|i| i)?;
+        let at = commands::sweep::SweepPoints::new(&param, &values).fields(fields.as_ref());
+        let report = commands::sweep::report_scene(&s, at)?;
         if let Some(dir) = &out {
             commands::sweep::write_out(dir, &report, &s)?;
         }

@@ -2,7 +2,7 @@
 
 use std::f64::consts::FRAC_PI_2;
 
-use crate::error::{FrictionError, check};
+use crate::error::{FrictionError, check, check_wrap};
 
 /// External loads on the membrane and its steady speed (scene table `[loads]`).
 ///
@@ -113,16 +113,12 @@ impl MembraneProblem {
     pub fn validate(&self) -> Result<(), FrictionError> {
         check("friction.mu", self.mu, "[0, inf)", |v| v >= 0.0)?;
         check("membrane.t0", self.t0, "(0, inf)", |v| v > 0.0)?;
-        check("membrane.theta0", self.theta0, "(-inf, inf)", |_| true)?;
-        check(
-            "membrane.theta_max",
+        check_wrap(
+            self.theta0,
             self.theta_max,
-            "(membrane.theta0, inf)",
-            |v| v > self.theta0,
+            self.samples,
+            (2.0, 1e7, "[2, 10^7]"),
         )?;
-        check("membrane.samples", self.samples as f64, "[2, 10^7]", |v| {
-            (2.0..=1e7).contains(&v)
-        })?;
         self.loads.validate()
     }
     /// The output sample angles: `samples` evenly spaced points, both ends exact.
