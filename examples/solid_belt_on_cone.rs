@@ -17,11 +17,29 @@
 //! Run: `cargo run --release --example solid_belt_on_cone`
 //! Look at: the metric (identity), the slip fraction growing with the tension ratio, the
 //! boundary-only solver agreeing with the full-system Newton, and the membrane ratio of
-//! Theorem 2 for comparison (a thick belt free to rotate about the axis slides earlier).
+//! Theorem 2 for comparison (a thick belt slides earlier).
+//!
+//! The thin limit: `cargo run --release --example solid_belt_on_cone -- thin-limit` (about ten
+//! minutes) finds the full-slip threshold of the belt (`mu = 1/2`, `E = 1e3`, width 0.4, free
+//! sides, `tau0 = 1`, `tau_max = r`) for thicknesses `h = 0.2 ... 0.0125`, Poisson ratios 0
+//! (the membrane of Theorem 2 has none) and 1/4, on three grids, and writes the table to
+//! stdout and `out/solid_cone_thin_limit.csv`. The threshold `r_K` is the smallest ratio at
+//! which every contact node slides (`|u| >= eps`), by bisection (relative bracket `1e-4`). In
+//! 3-D a node can slide with a small negative `e_2` component (sideways, at the belt's edges),
+//! so the 2-D criterion "every node slides forward" (Slip = 1) may never be met: the table
+//! counts those nodes at `r_K` (`backward`). A ratio at which the solver finds no solution
+//! counts as past the threshold (the 3-D body has no sliding-mode limit to test it against,
+//! see docs/solid.md) and is counted (`failed`). The normal curvature of the geodesic at
+//! `x2 = 0` is `cot(alpha)/d = 4`, so `h = 0.2` is a body 0.8 times as thick as its radius of
+//! curvature `R = 0.25`: compare `h / R` with the plane-strain study in docs/models.md.
 
+use std::io::Write;
+
+use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
+    BoundarySolver, ContactError, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
 };
+use capstan_elasticity::finite_element::ElementOrder;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::SolidBody;
 use capstan_geometry::{Scalar, Surface};
@@ -51,6 +69,7 @@ const CONE: DevelopedCone = DevelopedCone {
     d: 1.0,
 };
 const HALF_LENGTH: f64 = 0.5;
+const WIDTH: f64 = 0.4;
 const MU: f64 = 0.5;
 const EPS: f64 = 1e-5;
 
@@ -98,7 +117,145 @@ fn solve(body: &SolidBody<DevelopedCone>, ratios: &[f64]) -> Vec<[f64; 4]> {
         .collect()
 }
 
-fn main() {
+/// One threshold search.
+#[derive(Debug, Clone, Copy)]
+struct Threshold {
+    /// Largest ratio with a stick node.
+    below: f64,
+    /// Smallest ratio fully slipping or without a solution.
+    above: f64,
+    /// Slip at `below`.
+    slip_below: f64,
+    /// Ratios tried at which the solver found no solution.
+    failures: usize,
+    /// Contact solves.
+    solves: usize,
+    /// At `above`: the nodes sliding with a negative `e_2` component (`usize::MAX`: `above`
+    /// had no solution).
+    backward: usize,
+}
+
+/// The belt of thickness `h`, Poisson ratio `nu` on `[n1, n2, n3]` Q2 nodes: its threshold.
+fn threshold(h: f64, nu: f64, nodes: [usize; 3]) -> Result<Threshold, ContactError> {
+    let body = SolidBody {
+        material: Material::new(1e3, nu).expect("a valid material"),
+        order: ElementOrder::Q2,
+        ..belt(h, WIDTH, nodes)
+    };
+    let params = RegularisedCoulombParams::new(MU, EPS).expect("valid");
+    let model = body.model(RegularisedCoulomb, params, EPS)?;
+    let solver = BoundarySolver::new(&model, ContactSettings::default())?;
+    let (mut failures, mut solves, mut backward) = (0, 0, 0);
+    let mut warm: Option<Vec<f64>> = None;
+    // Some(slip) below the threshold, None at or past it
+    let mut probe = |r: f64, warm: &mut Option<Vec<f64>>| -> Result<Option<f64>, ContactError> {
+        solves += 1;
+        match solver.solve_from(EndLoads::ratio(r), warm.as_deref()) {
+            // every node slides (in 3-D a node may slide with a negative e_2 component)
+            Ok(sol) if sol.fully_slipping() => {
+                backward = sol.contact.state.iter().filter(|&&s| s < 0).count();
+                Ok(None)
+            }
+            Ok(sol) => {
+                *warm = Some(sol.unknowns.clone());
+                Ok(Some(sol.slip_fraction))
+            }
+            Err(ContactError::NotConverged { .. } | ContactError::NoEquilibrium { .. }) => {
+                failures += 1;
+                backward = usize::MAX;
+                Ok(None)
+            }
+            Err(e) => Err(e),
+        }
+    };
+    let (mut below, mut slip_below) = (1.0, probe(1.0, &mut warm)?.unwrap_or(1.0));
+    // bracket: step up by 10 % until the belt slides
+    let mut above = below;
+    for _ in 0..60 {
+        above *= 1.1;
+        match probe(above, &mut warm)? {
+            Some(s) => (below, slip_below) = (above, s),
+            None => break,
+        }
+    }
+    while above - below > 1e-4 * above {
+        let mid = 0.5 * (below + above);
+        match probe(mid, &mut warm)? {
+            Some(s) => (below, slip_below) = (mid, s),
+            None => above = mid,
+        }
+    }
+    Ok(Threshold {
+        below,
+        above,
+        slip_below,
+        failures,
+        solves,
+        backward,
+    })
+}
+
+/// The backward count for the table, `no solution` where the threshold is a failed solve.
+fn backward(n: usize) -> String {
+    if n == usize::MAX {
+        "no solution".into()
+    } else {
+        n.to_string()
+    }
+}
+
+/// The thin-limit table (see the module docs).
+fn thin_limit() -> Result<(), Box<dyn std::error::Error>> {
+    let membrane = membrane_ratio();
+    println!("Theorem 2 (membrane): {membrane:.5}");
+    std::fs::create_dir_all("out")?;
+    let mut csv = std::fs::File::create("out/solid_cone_thin_limit.csv")?;
+    writeln!(
+        csv,
+        "h,h_over_R,nu,n1,n2,n3,threshold,below,slip_below,failures,solves,backward,gap"
+    )?;
+    println!(
+        "{:>6} {:>5} {:>5} {:>12} {:>10} {:>9} {:>8} {:>8} {:>9}",
+        "h", "h/R", "nu", "grid", "r_K", "gap", "failed", "solves", "backward"
+    );
+    for nu in [0.0, 0.25] {
+        for h in [0.2, 0.1, 0.05, 0.025, 0.0125] {
+            for n2 in [41, 81, 161] {
+                let nodes = [5, n2, 3];
+                let t = threshold(h, nu, nodes)?;
+                let gap = membrane - t.above;
+                let h_over_r = h * CONE.d.recip() / CONE.tan_alpha;
+                println!(
+                    "{h:>6} {h_over_r:>5.2} {nu:>5} {:>12} {:>10.5} {gap:>9.5} {:>8} {:>8} {:>9}",
+                    format!("{}x{}x{}", nodes[0], nodes[1], nodes[2]),
+                    t.above,
+                    t.failures,
+                    t.solves,
+                    backward(t.backward)
+                );
+                writeln!(
+                    csv,
+                    "{h},{h_over_r},{nu},{},{},{},{},{},{},{},{},{},{gap}",
+                    nodes[0],
+                    nodes[1],
+                    nodes[2],
+                    t.above,
+                    t.below,
+                    t.slip_below,
+                    t.failures,
+                    t.solves,
+                    backward(t.backward)
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    if std::env::args().nth(1).as_deref() == Some("thin-limit") {
+        return thin_limit();
+    }
     let g = CONE.geometry([0.1, 0.3]).expect("a regular point");
     println!("metric a_ab at (0.1, 0.3): {:?}", g.first_form);
     println!("Theorem 2 (membrane) ratio: {:.6}", membrane_ratio());
@@ -109,6 +266,7 @@ fn main() {
     for [r, slip, v2, diff] in solve(&belt(0.2, 0.4, [5, 41, 5]), &[1.5, 2.0, 2.5, 3.0]) {
         println!("{r:>8.3} {slip:>10.6} {v2:>12.6e} {diff:>14.2e}");
     }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -144,5 +302,20 @@ mod tests {
         }
         assert!(rows[1][1] > rows[0][1], "{rows:?}");
         assert!(membrane_ratio() > 5.9 && membrane_ratio() < 6.0);
+    }
+
+    #[test]
+    fn thinner_belts_slide_closer_to_theorem_2() {
+        // coarse grid: the trend of the thin-limit table, not its numbers
+        let thick = threshold(0.2, 0.0, [3, 21, 3]).expect("a threshold");
+        let thin = threshold(0.05, 0.0, [3, 21, 3]).expect("a threshold");
+        for t in [thick, thin] {
+            assert!(t.below < t.above && t.above < membrane_ratio(), "{t:?}");
+            assert!(t.above - t.below <= 1e-4 * t.above, "{t:?}");
+        }
+        assert!(
+            membrane_ratio() - thin.above < 0.7 * (membrane_ratio() - thick.above),
+            "{thick:?} {thin:?}"
+        );
     }
 }

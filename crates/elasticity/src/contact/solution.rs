@@ -237,9 +237,16 @@ impl ContactSolution {
         self.intervals.iter().filter(|i| i.state != 0)
     }
 
-    /// Whether every contact node slides in the positive direction.
+    /// Whether the whole contact slides: in plane strain every node in the positive direction
+    /// (state `+1`); on a 3-D body every node (`|u| >= eps`, state `+-1`), because at the edges
+    /// of a body of finite width a node can slide sideways with a small backward `e_2`
+    /// component at any tension ratio (docs/models.md, the thin limit on a cone).
     pub fn fully_slipping(&self) -> bool {
-        self.contact.state.iter().all(|&s| s == 1)
+        if self.contact.solid.is_some() {
+            self.contact.state.iter().all(|&s| s != 0)
+        } else {
+            self.contact.state.iter().all(|&s| s == 1)
+        }
     }
 }
 
