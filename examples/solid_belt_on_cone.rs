@@ -152,7 +152,7 @@ fn threshold(h: f64, nu: f64, nodes: [usize; 3]) -> Result<Threshold, ContactErr
         solves += 1;
         match solver.solve_from(EndLoads::ratio(r), warm.as_deref()) {
             // every node slides (in 3-D a node may slide with a negative e_2 component)
-            Ok(sol) if sol.fully_slipping() => {
+            Ok(sol) if sol.every_node_slipping() => {
                 backward = sol.contact.state.iter().filter(|&&s| s < 0).count();
                 Ok(None)
             }

@@ -237,16 +237,20 @@ impl ContactSolution {
         self.intervals.iter().filter(|i| i.state != 0)
     }
 
-    /// Whether the whole contact slides: in plane strain every node in the positive direction
-    /// (state `+1`); on a 3-D body every node (`|u| >= eps`, state `+-1`), because at the edges
-    /// of a body of finite width a node can slide sideways with a small backward `e_2`
-    /// component at any tension ratio (docs/models.md, the thin limit on a cone).
+    /// Whether every contact node slides in the positive direction (state `+1`; on a 3-D body
+    /// the sign of the slip's `e_2` component).
     pub fn fully_slipping(&self) -> bool {
-        if self.contact.solid.is_some() {
-            self.contact.state.iter().all(|&s| s != 0)
-        } else {
-            self.contact.state.iter().all(|&s| s == 1)
-        }
+        self.contact.state.iter().all(|&s| s == 1)
+    }
+
+    /// Whether every contact node slides (`|u| >= eps`, state `+-1`), in any direction. On a
+    /// 3-D body of finite width the edge nodes can slide sideways with a small backward `e_2`
+    /// component, so [`ContactSolution::fully_slipping`] may never hold; this is the threshold
+    /// criterion of the thin-limit study on a cone (docs/models.md). It is not one for a band
+    /// that slides sideways at any load (a band along a circle of a cone, pulled towards the
+    /// apex: every node slides already at ratio 1).
+    pub fn every_node_slipping(&self) -> bool {
+        self.contact.state.iter().all(|&s| s != 0)
     }
 }
 

@@ -46,8 +46,8 @@ pub struct ThresholdResult {
 }
 
 /// Finds the smallest `tau_max / tau0 >= 1` (with `tau0 = 1`) at which every contact node slides
-/// in the positive direction (a 3-D body: every node slides, see
-/// [`ContactSolution::fully_slipping`](crate::contact::ContactSolution::fully_slipping)), or
+/// in the positive direction
+/// ([`ContactSolution::fully_slipping`](crate::contact::ContactSolution::fully_slipping)), or
 /// beyond which no static solution exists.
 ///
 /// # Errors
