@@ -1,6 +1,6 @@
 //! `capstan bench work-precision`: run time against error for the finite differences and the
 //! Q1/Q2 finite elements with each applicable linear backend, on three problems, beside peer
-//! FEM libraries (scikit-fem, NGSolve: [`peers::PEERS`]) on the Lamé cylinder.
+//! FEM libraries (scikit-fem, NGSolve: [`PEERS`]) on the Lamé cylinder.
 //!
 //! # Problems
 //! - `lame`: the Lamé thick cylinder (exact), full wrap, `n2 = 4m`, `n3 = m + 1`;
