@@ -445,7 +445,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             })?;
         runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm))?);
     }
-    let mut peers = vec![];
+    let mut statuses = vec![];
     if args.no_peer {
         eprintln!("work-precision: peers skipped (--no-peer)");
     } else {
@@ -455,7 +455,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 eprintln!("work-precision: peer {}: {}", peer.name, status.status);
             }
             runs.extend(r);
-            peers.push(status);
+            statuses.push(status);
         }
     }
     let series = targets::series_times(&runs, &PROBLEMS.map(Problem::name));
@@ -470,7 +470,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
         quick: args.quick,
         memory: if use_vmhwm { "vmhwm-delta" } else { "estimate" },
         threads,
-        peers,
+        peers: statuses,
         runs,
         series,
         headlines,

@@ -26,6 +26,7 @@ pub struct PeerOrder {
 }
 
 /// A peer library: its script, the module that must import, its orders and linear solvers.
+/// The script names its methods `MODULE-...` ([`is_peer_method`]).
 #[derive(Debug, Clone, Copy)]
 pub struct Peer {
     /// Display name.
@@ -212,9 +213,10 @@ fn parse_line(line: &str) -> Result<Run, String> {
     })
 }
 
-/// Whether a method name is a peer's (`skfem-...`, `ngsolve-...`).
+/// Whether a method name is a peer's: the scripts name their methods after the module
+/// (`skfem-q2`, `ngsolve-p4`).
 pub fn is_peer_method(method: &str) -> bool {
-    method.starts_with("skfem") || method.starts_with("ngsolve")
+    PEERS.iter().any(|p| method.starts_with(p.module))
 }
 
 #[cfg(test)]
