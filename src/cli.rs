@@ -43,7 +43,7 @@ pub enum Command {
     /// Convergence studies of the elasticity discretisations: errors and observed orders.
     #[command(after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json")]
     Verify(VerifyArgs),
-    /// Benchmarks: `work-precision` (run time against error, FD vs FEM vs scikit-fem).
+    /// Benchmarks: `work-precision` (run time against error, FD vs FEM vs scikit-fem and NGSolve).
     #[command(after_help = "Example:\n  capstan bench work-precision --quick")]
     Bench(commands::bench::BenchArgs),
     /// Tension profile of a membrane at limiting equilibrium (generalised capstan equation).

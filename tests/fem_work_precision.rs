@@ -1,6 +1,7 @@
 //! `capstan bench work-precision`: argument parsing, a smoke run of the benchmark on its
-//! quick grids (ignored in CI: several seconds), and a very small smoke test of the
-//! scikit-fem peer script when `.venv/bin/python` has scikit-fem (skipped otherwise).
+//! quick grids (ignored in CI: several seconds), and very small smoke tests of the peer
+//! scripts (scikit-fem, NGSolve) when `.venv/bin/python` has the library (skipped with a note
+//! otherwise; CI installs neither).
 
 mod common;
 
@@ -27,7 +28,15 @@ fn work_precision_arguments_parse() {
     };
     let BenchCommand::WorkPrecision(a) = b.what;
     assert!(a.quick && a.json && !a.no_peer);
+    assert!(a.threads.is_empty()); // all cores
     assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
+    let cli =
+        Cli::try_parse_from(["capstan", "bench", "work-precision", "--threads", "1,2"]).unwrap();
+    let Some(Sub::Bench(b)) = cli.command else {
+        panic!("not bench")
+    };
+    let BenchCommand::WorkPrecision(a) = b.what;
+    assert_eq!(a.threads, [1, 2]);
 }
 
 #[test]
@@ -38,7 +47,7 @@ fn quick_work_precision_writes_csv_and_plots() {
         quick: true,
         out: Some(dir.clone()),
         no_peer: true,
-        json: false,
+        ..Default::default()
     })
     .unwrap();
     // 3 problems x (fd lu, q1 lu+chol, q2 lu+chol) x 3 grids, plus Gauss-Seidel on the
@@ -88,4 +97,55 @@ fn peer_script_smoke_when_scikit_fem_is_installed() {
     let e: Vec<f64> = lines.iter().map(|l| l["error"].as_f64().unwrap()).collect();
     // Q2 on the exact annulus: third order, so halving h divides the error by about 8
     assert!(e[1] < e[0] / 5.0 && e[1] < 1e-2, "{e:?}");
+}
+
+#[test]
+fn ngsolve_peer_script_smoke_when_ngsolve_is_installed() {
+    let Some(python) = common::venv_python_with("ngsolve") else {
+        eprintln!("skipped: the NGSolve peer smoke test (.venv/bin/pip install ngsolve)");
+        return;
+    };
+    let run = |inverse: &str| -> Vec<serde_json::Value> {
+        let out = common::succeed(
+            Command::new(&python)
+                .current_dir(env!("CARGO_MANIFEST_DIR"))
+                .args([
+                    "bench/peers/ngsolve_lame.py",
+                    "--order",
+                    "3",
+                    "--levels",
+                    "2,4",
+                    "--inverse",
+                    inverse,
+                    "--repeat-min",
+                    "1",
+                    "--repeat-max",
+                    "1",
+                ]),
+        );
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect()
+    };
+    let cholesky = run("sparsecholesky");
+    assert_eq!(cholesky.len(), 2);
+    assert_eq!(cholesky[0]["method"], "ngsolve-p3");
+    assert_eq!(cholesky[0]["backend"], "sparsecholesky");
+    let e: Vec<f64> = cholesky
+        .iter()
+        .map(|l| l["error"].as_f64().unwrap())
+        .collect();
+    // p = 3 on curved triangles: order 4 in L2, so halving maxh divides the error by about 16
+    // (the coarse netgen meshes are not exactly nested: at least 8 here)
+    assert!(e[1] < e[0] / 8.0 && e[1] < 1e-3, "{e:?}");
+    // the other factorisation solves the same system: the same error up to round-off
+    let umfpack = run("umfpack");
+    assert_eq!(umfpack[1]["backend"], "umfpack");
+    let e_umfpack = umfpack[1]["error"].as_f64().unwrap();
+    assert!(
+        (e_umfpack / e[1] - 1.0).abs() < 1e-6,
+        "{e_umfpack} vs {}",
+        e[1]
+    );
 }

@@ -22,7 +22,7 @@ run (total time) is reported, with its stage split (defaults 2, 5, 1.0 s).
 Usage:
   .venv/bin/python bench/peers/skfem_lame.py --order 2 --levels 4,8,16 [--radius 1 ...]
       [--repeat-min 2 --repeat-max 5 --repeat-budget 1.0]
-Prints one JSON object per line: {"order", "m", "n2", "n3", "dofs", "setup_seconds",
+Prints one JSON object per line: {"method", "backend", "order", "m", "n2", "n3", "dofs", "setup_seconds",
 "assemble_seconds", "solve_seconds", "seconds", "error", "peak_mib"} (setup: mesh and bases;
 solve: condensation and spsolve).
 """
@@ -148,6 +148,8 @@ def run(order, m, radius, thickness, young, poisson, pressure):
 
     error = np.sqrt(err2.assemble(ebasis, uh=uh) / norm2.assemble(ebasis))
     return {
+        "method": f"skfem-q{order}",
+        "backend": "scipy-superlu",
         "order": order,
         "m": m,
         "n2": n2,

@@ -1,6 +1,6 @@
 //! `capstan bench work-precision`: run time against error for the finite differences and the
-//! Q1/Q2 finite elements with each applicable linear backend, on three problems, beside a peer
-//! FEM library (scikit-fem) on the Lamé cylinder.
+//! Q1/Q2 finite elements with each applicable linear backend, on three problems, beside peer
+//! FEM libraries (scikit-fem, NGSolve: [`PEERS`]) on the Lamé cylinder.
 //!
 //! # Problems
 //! - `lame`: the Lamé thick cylinder (exact), full wrap, `n2 = 4m`, `n3 = m + 1`;
@@ -12,7 +12,9 @@
 //! # Measures
 //! - time: wall clock of building the discretisation (geometry, data, pattern), assembling,
 //!   and analysing + factorising + solving, i.e. data to solution; every run is repeated by
-//!   [`REPEAT_RULE`] (2 to 5 times, about 1 s), the peer's too, and the fastest kept;
+//!   [`REPEAT_RULE`] (2 to 5 times, about 1 s), the peers' too, and the fastest kept; capstan
+//!   with each `--threads` count (a rayon pool of that size: the element loops, and faer,
+//!   whose default parallelism is the current pool's), the peers with one thread;
 //! - error: relative physical L2 norm of the displacement error, `||U_h - U|| / ||U||`
 //!   (`dA = sqrt(g) dx2 dx3`): for the finite elements by Gauss quadrature of the
 //!   interpolant, for the finite differences (nodal values only) by the nodal trapezoid rule;
@@ -20,9 +22,20 @@
 //! - memory: growth of the peak resident set (VmHWM) over the run, after resetting the peak
 //!   through `/proc/self/clear_refs` (Linux); `estimate` (values + pattern + factor bound)
 //!   where that is unavailable.
+//!
+//! # Output
+//! Every run, the time of every series to each of [`TARGETS`] (log-log interpolation), and
+//! the fastest capstan series per thread count against the fastest peer at each target.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod peers;
+mod run;
+mod targets;
+
+pub use peers::{PEERS, Peer, PeerOrder, PeerStatus};
+pub use run::{REPEAT_RULE, RepeatRule, Run, SeriesKey};
+pub use targets::{Headline, SeriesTimes, TARGETS, time_to_error};
+
+use std::path::PathBuf;
 use std::time::Instant;
 
 use capstan_elasticity::finite_element::{
@@ -54,7 +67,8 @@ pub struct BenchArgs {
 /// The benchmarks.
 #[derive(Debug, Subcommand, Clone)]
 pub enum BenchCommand {
-    /// Run time against error: FD, FEM-Q1, FEM-Q2 with each linear backend, beside scikit-fem.
+    /// Run time against error: FD, FEM-Q1, FEM-Q2 with each linear backend, beside scikit-fem
+    /// and NGSolve.
     #[command(
         after_help = "Examples:\n  capstan bench work-precision --quick\n  cargo run --release -- bench work-precision --out out/work-precision"
     )]
@@ -73,57 +87,13 @@ pub struct WorkPrecisionArgs {
     /// Three coarse grids per series only (seconds, not minutes).
     #[arg(long)]
     pub quick: bool,
-    /// Skip the scikit-fem peer even if `.venv/bin/python` has it.
+    /// Skip the peers (scikit-fem, NGSolve) even if `.venv/bin/python` has them.
     #[arg(long)]
     pub no_peer: bool,
-}
-
-/// One timed solve.
-#[derive(Debug, Clone, Serialize)]
-pub struct Run {
-    /// `lame`, `mms`, `paper`.
-    pub problem: &'static str,
-    /// `fd`, `fem-q1`, `fem-q2`, `skfem-q1`, `skfem-q2`.
-    pub method: String,
-    /// `lu`, `cholesky`, `gauss-seidel`, `scipy-superlu`.
-    pub backend: String,
-    /// Nodes in `x2` (the peer: vertices around).
-    pub n2: usize,
-    /// Nodes in `x3`.
-    pub n3: usize,
-    /// Unknowns.
-    pub dofs: usize,
-    /// Discretisation build (geometry, data, pattern), seconds.
-    pub setup_seconds: f64,
-    /// Assembly, seconds.
-    pub assemble_seconds: f64,
-    /// Analyse + factor + solve (or iterate), seconds.
-    pub solve_seconds: f64,
-    /// Data to solution, seconds.
-    pub seconds: f64,
-    /// Relative L2 displacement error.
-    pub error: f64,
-    /// Peak memory of the run, MiB.
-    pub peak_mib: f64,
-}
-
-/// The time each series needs for one relative error, interpolated log-log between runs.
-#[derive(Debug, Clone, Serialize)]
-pub struct Headline {
-    /// Problem.
-    pub problem: &'static str,
-    /// Target relative error.
-    pub target_error: f64,
-    /// Fastest capstan series at the target: `method/backend`.
-    pub capstan: String,
-    /// Its time, seconds.
-    pub capstan_seconds: f64,
-    /// Fastest peer series at the target.
-    pub peer: Option<String>,
-    /// Its time, seconds.
-    pub peer_seconds: Option<f64>,
-    /// `peer_seconds / capstan_seconds`.
-    pub ratio: Option<f64>,
+    /// Thread counts of capstan's runs, each a pass over every series (e.g. `1,2`); default:
+    /// all available cores (as does 0). The peers always run with one thread.
+    #[arg(long, value_delimiter = ',')]
+    pub threads: Vec<usize>,
 }
 
 /// The whole benchmark.
@@ -133,13 +103,15 @@ pub struct WorkPrecisionReport {
     pub quick: bool,
     /// How memory was measured: `vmhwm-delta` or `estimate`.
     pub memory: &'static str,
-    /// Threads of the rayon pool (element loops, faer).
-    pub threads: usize,
-    /// What happened to the peer (`ran`, or why it was skipped).
-    pub peer: String,
+    /// Thread counts of capstan's passes (rayon pool: element loops, faer).
+    pub threads: Vec<usize>,
+    /// What happened to each peer.
+    pub peers: Vec<PeerStatus>,
     /// Every run.
     pub runs: Vec<Run>,
-    /// Time to reach `1e-6` (and `1e-4`) relative error, per problem.
+    /// Time of every series to each of [`TARGETS`].
+    pub series: Vec<SeriesTimes>,
+    /// Fastest capstan series (per thread count) against the fastest peer at each target.
     pub headlines: Vec<Headline>,
     /// Files written.
     pub files: Vec<PathBuf>,
@@ -357,46 +329,6 @@ fn build_solver(
     })
 }
 
-/// How often each run of the benchmark (capstan's and the peer's alike) is repeated: at least
-/// `min` times, then until `budget_seconds` of run time have been spent or `max` runs made; the
-/// fastest run (total time) is kept, with its stage split. The minimum is the least perturbed
-/// estimate of the work on a shared machine: noise only ever adds time.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RepeatRule {
-    /// Runs at least this many times.
-    pub min: usize,
-    /// Runs at most this many times.
-    pub max: usize,
-    /// Stops repeating (after `min` runs) once the runs have taken this long in total.
-    pub budget_seconds: f64,
-}
-
-/// The rule of `capstan bench work-precision`: 2 to 5 runs, about 1 s per grid.
-pub const REPEAT_RULE: RepeatRule = RepeatRule {
-    min: 2,
-    max: 5,
-    budget_seconds: 1.0,
-};
-
-impl RepeatRule {
-    /// Whether another run is due after `runs` runs that took `spent` seconds in total.
-    pub fn again(&self, runs: usize, spent: f64) -> bool {
-        runs < self.min || (runs < self.max && spent < self.budget_seconds)
-    }
-
-    /// The peer's command-line arguments for the same rule.
-    fn peer_args(&self) -> [String; 6] {
-        [
-            "--repeat-min".to_owned(),
-            self.min.to_string(),
-            "--repeat-max".to_owned(),
-            self.max.to_string(),
-            "--repeat-budget".to_owned(),
-            self.budget_seconds.to_string(),
-        ]
-    }
-}
-
 /// One method/backend on one grid: time, error, memory; the fastest of the runs of
 /// [`REPEAT_RULE`].
 fn run_one(
@@ -437,6 +369,7 @@ fn run_one(
             problem: problem.name(),
             method: method.map_or("fd", ElementOrder::method_name).to_owned(),
             backend: backend.name().to_owned(),
+            threads: rayon::current_num_threads(),
             n2: grid.n2(),
             n3: grid.n3(),
             dofs,
@@ -452,129 +385,6 @@ fn run_one(
         }
     }
     Ok(best.expect("at least one run"))
-}
-
-/// The peer script, if `.venv/bin/python` can import scikit-fem.
-fn peer_python() -> Result<PathBuf, String> {
-    let python = PathBuf::from(".venv/bin/python");
-    let script = Path::new("bench/peers/skfem_lame.py");
-    if !script.exists() {
-        return Err(format!(
-            "skipped: {} not found (run from the repository root)",
-            script.display()
-        ));
-    }
-    match Command::new(&python).args(["-c", "import skfem"]).output() {
-        Ok(o) if o.status.success() => Ok(python),
-        _ => Err("skipped: .venv/bin/python with scikit-fem not found (python3 -m venv .venv && .venv/bin/pip install scikit-fem)".to_owned()),
-    }
-}
-
-fn run_peer(python: &Path, order: usize, levels: &str) -> Result<Vec<Run>, String> {
-    let out = Command::new(python)
-        .args([
-            "bench/peers/skfem_lame.py",
-            "--order",
-            &order.to_string(),
-            "--levels",
-            levels,
-        ])
-        .args(REPEAT_RULE.peer_args())
-        .output()
-        .map_err(|e| format!("peer failed to start: {e}"))?;
-    if !out.status.success() {
-        return Err(format!(
-            "peer failed: {}",
-            String::from_utf8_lossy(&out.stderr)
-                .lines()
-                .last()
-                .unwrap_or("")
-        ));
-    }
-    let mut runs = vec![];
-    for line in String::from_utf8_lossy(&out.stdout).lines() {
-        let v: serde_json::Value =
-            serde_json::from_str(line).map_err(|e| format!("peer output: {e}"))?;
-        let num = |k: &str| v[k].as_f64().unwrap_or(f64::NAN);
-        runs.push(Run {
-            problem: "lame",
-            method: format!("skfem-q{order}"),
-            backend: "scipy-superlu".to_owned(),
-            n2: num("n2") as usize,
-            n3: num("n3") as usize,
-            dofs: num("dofs") as usize,
-            setup_seconds: num("setup_seconds"),
-            assemble_seconds: num("assemble_seconds"),
-            solve_seconds: num("solve_seconds"),
-            seconds: num("seconds"),
-            error: num("error"),
-            peak_mib: num("peak_mib"),
-        });
-    }
-    Ok(runs)
-}
-
-/// Time to reach `target` along one series (log-log interpolation between the bracketing
-/// runs); `None` if the series never gets there.
-fn time_to_error(runs: &[&Run], target: f64) -> Option<f64> {
-    let mut pts: Vec<(f64, f64)> = runs.iter().map(|r| (r.error, r.seconds)).collect();
-    pts.sort_by(|a, b| b.0.total_cmp(&a.0)); // decreasing error
-    pts.windows(2).find_map(|w| {
-        let ((e0, t0), (e1, t1)) = (w[0], w[1]);
-        (e0 >= target && e1 <= target).then(|| {
-            let s = (target.ln() - e0.ln()) / (e1.ln() - e0.ln());
-            (t0.ln() + s * (t1.ln() - t0.ln())).exp()
-        })
-    })
-}
-
-fn series_names(runs: &[Run], problem: &str) -> Vec<(String, String)> {
-    let mut names: Vec<(String, String)> = vec![];
-    for r in runs.iter().filter(|r| r.problem == problem) {
-        let key = (r.method.clone(), r.backend.clone());
-        if !names.contains(&key) {
-            names.push(key);
-        }
-    }
-    names
-}
-
-fn headlines(runs: &[Run]) -> Vec<Headline> {
-    let mut out = vec![];
-    for problem in ["lame", "mms", "paper"] {
-        for target in [1e-4, 1e-6] {
-            let mut capstan: Option<(String, f64)> = None;
-            let mut peer: Option<(String, f64)> = None;
-            for (method, backend) in series_names(runs, problem) {
-                let series: Vec<&Run> = runs
-                    .iter()
-                    .filter(|r| r.problem == problem && r.method == method && r.backend == backend)
-                    .collect();
-                if let Some(t) = time_to_error(&series, target) {
-                    let slot = if method.starts_with("skfem") {
-                        &mut peer
-                    } else {
-                        &mut capstan
-                    };
-                    if slot.as_ref().is_none_or(|s| t < s.1) {
-                        *slot = Some((format!("{method}/{backend}"), t));
-                    }
-                }
-            }
-            if let Some((name, t)) = capstan {
-                out.push(Headline {
-                    problem,
-                    target_error: target,
-                    capstan: name,
-                    capstan_seconds: t,
-                    ratio: peer.as_ref().map(|p| p.1 / t),
-                    peer_seconds: peer.as_ref().map(|p| p.1),
-                    peer: peer.map(|p| p.0),
-                });
-            }
-        }
-    }
-    out
 }
 
 /// Runs the benchmark and writes the CSV and plots.
@@ -608,23 +418,100 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
         let v = op.solve(chol.as_mut())?;
         (level.n2, level.n3, v)
     };
+    let references = [
+        Reference::Exact(&lame_f),
+        Reference::Exact(&mms_f),
+        Reference::Nodal(&reference_values),
+    ];
+    let threads = if args.threads.is_empty() {
+        vec![rayon_threads()]
+    } else {
+        let all = rayon_threads();
+        args.threads
+            .iter()
+            .map(|&n| if n == 0 { all } else { n })
+            .collect()
+    };
     let mut runs = vec![];
-    for problem in [Problem::Lame, Problem::Mms, Problem::Paper] {
-        let reference = match problem {
-            Problem::Lame => Reference::Exact(&lame_f),
-            Problem::Mms => Reference::Exact(&mms_f),
-            Problem::Paper => Reference::Nodal(&reference_values),
-        };
-        for method in [None, Some(ElementOrder::Q1), Some(ElementOrder::Q2)] {
-            let mut backends = vec![Backend::Named(LinearBackend::Lu)];
-            if method.is_some() {
-                backends.push(Backend::Named(LinearBackend::Cholesky));
-                backends.push(Backend::CholeskyAmd);
-                backends.push(Backend::CholeskyNestedDissection);
+    for &n in &threads {
+        // the element loops run in this pool; faer's default parallelism, `Par::rayon(0)`,
+        // is the current pool's size
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| CliError::Io {
+                path: format!("rayon pool of --threads {n}"),
+                source: std::io::Error::other(e),
+            })?;
+        runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm))?);
+    }
+    let mut statuses = vec![];
+    if args.no_peer {
+        eprintln!("work-precision: peers skipped (--no-peer)");
+    } else {
+        for peer in &PEERS {
+            let (r, status) = peers::run_peer(peer, args.quick);
+            if status.status != "ran" {
+                eprintln!("work-precision: peer {}: {}", peer.name, status.status);
             }
-            for &backend in &backends {
-                for &m in &levels {
-                    runs.push(run_one(problem, m, method, backend, &reference, use_vmhwm)?);
+            runs.extend(r);
+            statuses.push(status);
+        }
+    }
+    let series = targets::series_times(&runs, &PROBLEMS.map(Problem::name));
+    let headlines = targets::headlines(&series);
+    let out = OutputDir::create(
+        args.out
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("out/work-precision")),
+    )?;
+    let files = write_outputs(&out, &runs)?;
+    let report = WorkPrecisionReport {
+        quick: args.quick,
+        memory: if use_vmhwm { "vmhwm-delta" } else { "estimate" },
+        threads,
+        peers: statuses,
+        runs,
+        series,
+        headlines,
+        files,
+    };
+    out.write_json("work-precision.json", &report)?;
+    Ok(report)
+}
+
+/// The problems, in the order they run.
+const PROBLEMS: [Problem; 3] = [Problem::Lame, Problem::Mms, Problem::Paper];
+
+/// capstan's methods: `None` the finite differences, else the finite elements of that order.
+/// A new method is one more entry here.
+const METHODS: [Option<ElementOrder>; 3] = [None, Some(ElementOrder::Q1), Some(ElementOrder::Q2)];
+
+/// The linear backends of one method: LU for all; the Cholesky variants for the (symmetric)
+/// finite elements.
+fn backends(method: Option<ElementOrder>) -> Vec<Backend> {
+    let mut backends = vec![Backend::Named(LinearBackend::Lu)];
+    if method.is_some() {
+        backends.push(Backend::Named(LinearBackend::Cholesky));
+        backends.push(Backend::CholeskyAmd);
+        backends.push(Backend::CholeskyNestedDissection);
+    }
+    backends
+}
+
+/// Every capstan series of every problem, in the current rayon pool; `references` in the
+/// order of [`PROBLEMS`].
+fn capstan_pass(
+    levels: &[usize],
+    references: &[Reference<'_>; 3],
+    use_vmhwm: bool,
+) -> Result<Vec<Run>, CliError> {
+    let mut runs = vec![];
+    for (problem, reference) in PROBLEMS.into_iter().zip(references) {
+        for method in METHODS {
+            for backend in backends(method) {
+                for &m in levels {
+                    runs.push(run_one(problem, m, method, backend, reference, use_vmhwm)?);
                 }
             }
             // the iterative baseline on the smallest grid only (20,000 sweeps at most)
@@ -633,7 +520,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 levels[0],
                 method,
                 Backend::Named(LinearBackend::GaussSeidel),
-                &reference,
+                reference,
                 use_vmhwm,
             ) {
                 Ok(r) => runs.push(r),
@@ -646,45 +533,64 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             }
         }
     }
-    let peer = if args.no_peer {
-        "skipped: --no-peer".to_owned()
+    Ok(runs)
+}
+
+/// A series' label in the plots: `method backend`, with the threads of capstan's series.
+fn label(key: &SeriesKey) -> String {
+    if peers::is_peer_method(&key.0) {
+        format!("{} {}", key.0, key.1)
     } else {
-        match peer_python() {
-            Ok(python) => {
-                let peer_levels = if args.quick { "4,8" } else { "4,8,16,32" };
-                let mut status = "ran".to_owned();
-                for order in [1, 2] {
-                    match run_peer(&python, order, peer_levels) {
-                        Ok(r) => runs.extend(r),
-                        Err(e) => status = e,
-                    }
-                }
-                status
-            }
-            Err(why) => why,
-        }
-    };
-    if peer != "ran" {
-        eprintln!("work-precision: peer {peer}");
+        format!("{} {} {}t", key.0, key.1, key.2)
     }
-    let headlines = headlines(&runs);
-    let out = OutputDir::create(
-        args.out
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("out/work-precision")),
-    )?;
+}
+
+/// For the peer plot: per (method, threads), the backend that reaches the smallest error
+/// target the fastest (the other backends of the method are in the CSV and the main plot).
+fn best_backends(runs: &[Run], problem: &str) -> Vec<SeriesKey> {
+    // (targets reached, -time to the last one reached): larger is better
+    let score = |key: &SeriesKey| {
+        let series = targets::series_runs(runs, problem, key);
+        TARGETS
+            .iter()
+            .filter_map(|&t| time_to_error(&series, t))
+            .enumerate()
+            .last()
+            .map_or((0, f64::NEG_INFINITY), |(k, t)| (k + 1, -t))
+    };
+    let names = targets::series_names(runs, problem);
+    let mut best: Vec<SeriesKey> = vec![];
+    for key in &names {
+        if best.iter().any(|b| b.0 == key.0 && b.2 == key.2) {
+            continue; // this method and thread count has been chosen
+        }
+        let winner = names
+            .iter()
+            .filter(|k| k.0 == key.0 && k.2 == key.2)
+            .max_by(|a, b| {
+                let (sa, sb) = (score(a), score(b));
+                sa.0.cmp(&sb.0).then(sa.1.total_cmp(&sb.1))
+            })
+            .unwrap_or(key);
+        best.push(winner.clone());
+    }
+    best
+}
+
+/// The CSV and the log-log plots: one per problem with every series, and for `lame` one with
+/// the best backend of each method, capstan's and the peers'.
+fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError> {
     let mut files = vec![];
     let col = |f: fn(&Run) -> f64| runs.iter().map(f).collect::<Vec<f64>>();
+    let int = |f: fn(&Run) -> usize| runs.iter().map(|r| f(r) as i32).collect::<Vec<i32>>();
     let table = Table::new()
         .text("problem", runs.iter().map(|r| r.problem))
         .text("method", runs.iter().map(|r| r.method.clone()))
         .text("backend", runs.iter().map(|r| r.backend.clone()))
-        .i32("n2", runs.iter().map(|r| r.n2 as i32).collect::<Vec<_>>())
-        .i32("n3", runs.iter().map(|r| r.n3 as i32).collect::<Vec<_>>())
-        .i32(
-            "dofs",
-            runs.iter().map(|r| r.dofs as i32).collect::<Vec<_>>(),
-        )
+        .i32("threads", int(|r| r.threads))
+        .i32("n2", int(|r| r.n2))
+        .i32("n3", int(|r| r.n3))
+        .i32("dofs", int(|r| r.dofs))
         .f64("setup_s", col(|r| r.setup_seconds))
         .f64("assemble_s", col(|r| r.assemble_seconds))
         .f64("solve_s", col(|r| r.solve_seconds))
@@ -692,62 +598,95 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
         .f64("relative_l2_error", col(|r| r.error))
         .f64("peak_mib", col(|r| r.peak_mib));
     files.push(out.write_csv("work-precision.csv", &table)?);
-    for problem in ["lame", "mms", "paper"] {
-        let title = match problem {
-            "lame" => "Lame cylinder (exact): relative L2 error vs time",
-            "mms" => "Manufactured solution, ellipse b/a = 2: relative L2 error vs time",
-            _ => "Paper's linear stand-in (Q2 reference): relative L2 error vs time",
-        };
+    let plots = [
+        (
+            "lame",
+            "Lame cylinder (exact): relative L2 error vs time",
+            false,
+        ),
+        (
+            "lame",
+            "Lame cylinder: capstan and the peers, best backend per method",
+            true,
+        ),
+        (
+            "mms",
+            "Manufactured solution, ellipse b/a = 2: relative L2 error vs time",
+            false,
+        ),
+        (
+            "paper",
+            "Paper's linear stand-in (Q2 reference): relative L2 error vs time",
+            false,
+        ),
+    ];
+    for (problem, title, best) in plots {
         let mut plot = LinePlot::new(title)
+            .size(1200, 800)
             .x_label("wall time (s)")
             .y_label("relative L2 error")
             .log_log();
-        for (method, backend) in series_names(&runs, problem) {
-            let mut pts: Vec<(f64, f64)> = runs
-                .iter()
-                .filter(|r| r.problem == problem && r.method == method && r.backend == backend)
+        let keys = if best {
+            best_backends(runs, problem)
+        } else {
+            targets::series_names(runs, problem)
+        };
+        for key in keys {
+            let mut pts: Vec<(f64, f64)> = targets::series_runs(runs, problem, &key)
+                .into_iter()
                 .map(|r| (r.seconds, r.error))
                 .filter(|p| p.0 > 0.0 && p.1 > 0.0)
                 .collect();
             pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let label = format!("{method} {backend}");
             let (x, y): (Vec<f64>, Vec<f64>) = pts.into_iter().unzip();
             plot = plot.series(if x.len() > 1 {
-                Series::line(label, x, y).with_markers()
+                Series::line(label(&key), x, y).with_markers()
             } else {
-                Series::markers(label, x, y)
+                Series::markers(label(&key), x, y)
             });
         }
-        files.extend(out.write_plot(&format!("work-precision-{problem}"), &plot)?);
+        let name = if best {
+            format!("work-precision-{problem}-peers")
+        } else {
+            format!("work-precision-{problem}")
+        };
+        files.extend(out.write_plot(&name, &plot)?);
     }
-    let report = WorkPrecisionReport {
-        quick: args.quick,
-        memory: if use_vmhwm { "vmhwm-delta" } else { "estimate" },
-        threads: rayon_threads(),
-        peer,
-        runs,
-        headlines,
-        files,
-    };
-    out.write_json("work-precision.json", &report)?;
-    Ok(report)
+    Ok(files)
 }
 
 fn rayon_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
-/// A plain-text table of the runs and the headline ratios.
+fn seconds_cell(t: Option<f64>) -> String {
+    t.map_or_else(|| "-".to_owned(), |t| format!("{t:.4}"))
+}
+
+/// A plain-text table of the runs, the times to the targets and the headline ratios.
 pub fn table(r: &WorkPrecisionReport) -> String {
+    let peers: Vec<String> = r
+        .peers
+        .iter()
+        .map(|p| match &p.version {
+            Some(v) => format!("{} {v}: {}", p.name, p.status),
+            None => format!("{}: {}", p.name, p.status),
+        })
+        .collect();
     let mut s = format!(
-        "capstan bench work-precision ({} grids, memory: {}, {} threads, peer: {})\n\n{:<6} {:<9} {:<14} {:>5} {:>5} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8}\n",
+        "capstan bench work-precision ({} grids, memory: {}, threads {:?}, peers: {})\n\n{:<6} {:<10} {:<14} {:>3} {:>5} {:>5} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8}\n",
         if r.quick { "quick" } else { "all" },
         r.memory,
         r.threads,
-        r.peer,
+        if peers.is_empty() {
+            "skipped".to_owned()
+        } else {
+            peers.join("; ")
+        },
         "prob",
         "method",
         "backend",
+        "thr",
         "n2",
         "n3",
         "dofs",
@@ -760,10 +699,11 @@ pub fn table(r: &WorkPrecisionReport) -> String {
     );
     for x in &r.runs {
         s += &format!(
-            "{:<6} {:<9} {:<14} {:>5} {:>5} {:>8} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>10.3e} {:>8.1}\n",
+            "{:<6} {:<10} {:<14} {:>3} {:>5} {:>5} {:>8} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>10.3e} {:>8.1}\n",
             x.problem,
             x.method,
             x.backend,
+            x.threads,
             x.n2,
             x.n3,
             x.dofs,
@@ -775,14 +715,37 @@ pub fn table(r: &WorkPrecisionReport) -> String {
             x.peak_mib
         );
     }
-    s += "\ntime to reach a relative error (log-log interpolation):\n";
-    for h in &r.headlines {
+    s += "\nseconds to reach a relative error (log-log interpolation; - never reached):\n";
+    s += &format!(
+        "{:<6} {:<10} {:<14} {:>3}",
+        "prob", "method", "backend", "thr"
+    );
+    for t in TARGETS {
+        s += &format!(" {:>9.0e}", t);
+    }
+    s.push('\n');
+    for x in &r.series {
         s += &format!(
-            "{:<6} {:>8.0e}: capstan {} {:.4} s",
-            h.problem, h.target_error, h.capstan, h.capstan_seconds
+            "{:<6} {:<10} {:<14} {:>3}",
+            x.problem, x.method, x.backend, x.threads
         );
-        if let (Some(p), Some(t), Some(ratio)) = (&h.peer, h.peer_seconds, h.ratio) {
-            s += &format!(", peer {p} {t:.4} s, ratio {ratio:.1}x");
+        for &t in &x.seconds {
+            s += &format!(" {:>9}", seconds_cell(t));
+        }
+        s.push('\n');
+    }
+    s += "\nfastest capstan (per thread count) against the fastest peer (ratio: peer / capstan):\n";
+    for h in &r.headlines {
+        s += &format!("{:<6} {:>6.0e} {}t: ", h.problem, h.target_error, h.threads);
+        s += &match (&h.capstan, h.capstan_seconds) {
+            (Some(c), Some(t)) => format!("capstan {c} {t:.4} s"),
+            _ => "capstan does not reach it".to_owned(),
+        };
+        if let (Some(p), Some(t)) = (&h.peer, h.peer_seconds) {
+            s += &format!(", peer {p} {t:.4} s");
+        }
+        if let Some(ratio) = h.ratio {
+            s += &format!(", ratio {ratio:.2}x");
         }
         s.push('\n');
     }
@@ -790,51 +753,4 @@ pub fn table(r: &WorkPrecisionReport) -> String {
         s += &format!("wrote {}\n", f.display());
     }
     s
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn run(error: f64, seconds: f64) -> Run {
-        Run {
-            problem: "lame",
-            method: "fem-q2".into(),
-            backend: "cholesky".into(),
-            n2: 0,
-            n3: 0,
-            dofs: 0,
-            setup_seconds: 0.0,
-            assemble_seconds: 0.0,
-            solve_seconds: 0.0,
-            seconds,
-            error,
-            peak_mib: 0.0,
-        }
-    }
-
-    #[test]
-    fn repeat_rule_runs_twice_at_least_and_stops_at_the_budget_or_five() {
-        let runs = |seconds: f64| {
-            let mut n = 0;
-            while REPEAT_RULE.again(n, n as f64 * seconds) {
-                n += 1;
-            }
-            n
-        };
-        assert_eq!(runs(0.001), 5);
-        assert_eq!(runs(0.3), 4); // 0.9 s after three runs: one more
-        assert_eq!(runs(0.6), 2);
-        assert_eq!(runs(3.0), 2);
-    }
-
-    #[test]
-    fn time_to_error_interpolates_log_log_and_refuses_to_extrapolate() {
-        let runs = [run(1e-3, 0.01), run(1e-5, 0.1), run(1e-7, 1.0)];
-        let refs: Vec<&Run> = runs.iter().collect();
-        // error ~ t^-2 here: 1e-6 lies half way (in logs) between 0.1 s and 1 s
-        let t = time_to_error(&refs, 1e-6).unwrap();
-        assert!((t - 10f64.powf(-0.5)).abs() < 1e-12);
-        assert!(time_to_error(&refs, 1e-8).is_none());
-    }
 }
