@@ -103,8 +103,14 @@ pub struct WorkPrecisionReport {
     pub quick: bool,
     /// How memory was measured: `vmhwm-delta` or `estimate`.
     pub memory: &'static str,
-    /// Thread counts of capstan's passes (rayon pool: element loops, faer).
-    pub threads: Vec<usize>,
+    /// Threads of capstan's largest pass (rayon pool: element loops, faer); kept from the first
+    /// report version, see `thread_counts`.
+    pub threads: usize,
+    /// Thread counts of capstan's passes, one pass each.
+    pub thread_counts: Vec<usize>,
+    /// What happened to the scikit-fem peer (`ran`, or why it was skipped); kept from the first
+    /// report version, see `peers`.
+    pub peer: String,
     /// What happened to each peer.
     pub peers: Vec<PeerStatus>,
     /// Every run.
@@ -469,7 +475,12 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
     let report = WorkPrecisionReport {
         quick: args.quick,
         memory: if use_vmhwm { "vmhwm-delta" } else { "estimate" },
-        threads,
+        threads: threads.iter().copied().max().unwrap_or(1),
+        peer: statuses
+            .iter()
+            .find(|p| p.name == "scikit-fem")
+            .map_or_else(|| "skipped (--no-peer)".to_owned(), |p| p.status.clone()),
+        thread_counts: threads,
         peers: statuses,
         runs,
         series,
@@ -677,7 +688,7 @@ pub fn table(r: &WorkPrecisionReport) -> String {
         "capstan bench work-precision ({} grids, memory: {}, threads {:?}, peers: {})\n\n{:<6} {:<10} {:<14} {:>3} {:>5} {:>5} {:>8} {:>9} {:>9} {:>9} {:>9} {:>10} {:>8}\n",
         if r.quick { "quick" } else { "all" },
         r.memory,
-        r.threads,
+        r.thread_counts,
         if peers.is_empty() {
             "skipped".to_owned()
         } else {
