@@ -25,6 +25,7 @@
 
 mod assembly;
 mod element;
+pub mod high_order;
 mod method;
 mod navier;
 mod problem_parts;
@@ -34,6 +35,7 @@ mod volumetric;
 pub use assembly::ElementAssembly;
 pub(crate) use element::lumped_weight;
 pub use element::{ElementOrder, gauss_rule};
+pub use high_order::{HighOrderNavier, gll_rule};
 pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;
