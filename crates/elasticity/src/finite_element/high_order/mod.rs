@@ -12,6 +12,7 @@
 //!   back-substitution ([`CondensedElement`]).
 //! - `skeleton`: numbering and pattern of the condensed system on the element edges.
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
+//! - `study`: the convergence studies of `capstan verify` ([`high_order_studies`]).
 //!
 //! # Nodes and the grid
 //! The operator takes a [`crate::Grid`] with `n2 = p e2 + 1` (periodic `p e2`) and
@@ -43,6 +44,7 @@ mod kernel;
 mod operator;
 mod skeleton;
 mod solve;
+mod study;
 #[cfg(test)]
 mod tests;
 
@@ -51,3 +53,4 @@ pub use gll::{basis_tables, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{ElementTables, add_element_matrix};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
 pub use solve::CondensedSystem;
+pub use study::{HighOrderStudy, high_order_studies};
