@@ -1,5 +1,5 @@
-//! `capstan bench work-precision`: run time against error for the finite differences and the
-//! Q1/Q2 finite elements with each applicable linear backend, on three problems, beside a peer
+//! `capstan bench work-precision`: run time against error for the finite differences, the
+//! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp8`, `bench/high_order.rs`) with each applicable linear backend, on three problems, beside a peer
 //! FEM library (scikit-fem) on the Lamé cylinder.
 //!
 //! # Problems
@@ -43,6 +43,8 @@ use serde::Serialize;
 use crate::error::CliError;
 use crate::output::{LinePlot, OutputDir, Series, Table};
 
+mod high_order;
+
 /// Arguments of `capstan bench`.
 #[derive(Debug, Args, Clone)]
 pub struct BenchArgs {
@@ -83,7 +85,7 @@ pub struct WorkPrecisionArgs {
 pub struct Run {
     /// `lame`, `mms`, `paper`.
     pub problem: &'static str,
-    /// `fd`, `fem-q1`, `fem-q2`, `skfem-q1`, `skfem-q2`.
+    /// `fd`, `fem-q1`, `fem-q2`, `fem-qp2` ... `fem-qp8`, `skfem-q1`, `skfem-q2`.
     pub method: String,
     /// `lu`, `cholesky`, `gauss-seidel`, `scipy-superlu`.
     pub backend: String,
@@ -542,7 +544,7 @@ fn series_names(runs: &[Run], problem: &str) -> Vec<(String, String)> {
 fn headlines(runs: &[Run]) -> Vec<Headline> {
     let mut out = vec![];
     for problem in ["lame", "mms", "paper"] {
-        for target in [1e-4, 1e-6] {
+        for target in [1e-4, 1e-6, 1e-8, 1e-10] {
             let mut capstan: Option<(String, f64)> = None;
             let mut peer: Option<(String, f64)> = None;
             for (method, backend) in series_names(runs, problem) {
@@ -643,6 +645,19 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                     method.map_or("fd", ElementOrder::method_name)
                 ),
                 Err(e) => return Err(e),
+            }
+        }
+    }
+    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): bench/high_order.rs
+    for problem in [Problem::Lame, Problem::Mms, Problem::Paper] {
+        let reference = match problem {
+            Problem::Lame => Reference::Exact(&lame_f),
+            Problem::Mms => Reference::Exact(&mms_f),
+            Problem::Paper => Reference::Nodal(&reference_values),
+        };
+        for p in high_order::ORDERS {
+            for k in high_order::element_levels(problem, p, args.quick) {
+                runs.push(high_order::run_qp(problem, k, p, &reference, use_vmhwm)?);
             }
         }
     }

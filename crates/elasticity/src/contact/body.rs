@@ -62,7 +62,7 @@ pub enum ThickBodyOperator {
     /// `discretisation.method = fem-q1 | fem-q2`.
     FiniteElement(FiniteElementNavier<ShellChart<Obstacle>>),
     /// `discretisation.method = fem-qp`.
-    HighOrder(HighOrderNavier<ShellChart<Obstacle>>),
+    HighOrder(Box<HighOrderNavier<ShellChart<Obstacle>>>),
 }
 
 /// Forwards a [`Discretisation`] call to the operator inside.
@@ -182,7 +182,7 @@ impl ThickBody {
         let chart = ShellChart::new(self.obstacle.clone());
         let boundary = Self::boundary(tau0, tau_max);
         if self.method == DiscretisationMethod::FemQp {
-            return Ok(ThickBodyOperator::HighOrder(
+            return Ok(ThickBodyOperator::HighOrder(Box::new(
                 HighOrderNavier::with_volumetric(
                     chart,
                     self.material,
@@ -192,7 +192,7 @@ impl ThickBody {
                     self.order,
                     self.volumetric,
                 )?,
-            ));
+            )));
         }
         Ok(match self.method.element_order() {
             None if self.volumetric != VolumetricIntegration::Full => {

@@ -9,6 +9,9 @@ use crate::finite_element::{FemProblem, VolumetricIntegration, lame_parts, mms_p
 use crate::samples::{LameCylinder, ManufacturedField, MmsBoundaries, PrismMms};
 use crate::verification::{GridLevel, Study, StudyPoint};
 
+/// An exact displacement `x -> [v^2, v^3]`.
+type ExactField = Box<dyn Fn([f64; 2]) -> [f64; 2] + Sync>;
+
 /// A convergence study of the Qp elements of order `p` on a reference problem: `levels` are
 /// grids with `n - 1` (periodic `n2`) multiples of `p`. The L2 error is the RMS over the
 /// parameter rectangle of the Cartesian displacement error of the element interpolant
@@ -48,7 +51,7 @@ impl Study for HighOrderStudy {
     }
     fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
         let full = VolumetricIntegration::Full;
-        let (op, exact): (_, Box<dyn Fn([f64; 2]) -> [f64; 2] + Sync>) = match &self.problem {
+        let (op, exact): (_, ExactField) = match &self.problem {
             FemProblem::Mms(m) => {
                 let (parts, exact) = mms_parts(m, level)?;
                 let f = move |x: [f64; 2]| exact.field.displacement(x).value;
