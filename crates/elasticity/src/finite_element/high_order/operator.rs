@@ -86,7 +86,7 @@ pub fn check_order(p: usize) -> Result<(), ElasticityError> {
 /// [`crate::Discretisation`] sees every node (`dof = 2 node_index + c`, the numbering of the
 /// other operators), so the contact solvers, which factorise `system()` once and condense
 /// onto the contact boundary, work unchanged. [`crate::Discretisation::solve`] instead
-/// condenses the element interiors statically (see [`super::condensation`]): the global
+/// condenses the element interiors statically (see [`super::CondensedElement`]): the global
 /// factorisation is of the skeleton system on the element edges only, and the interior values
 /// are recovered element by element ([`HighOrderNavier::condensed_system`],
 /// [`HighOrderNavier::recover`]).

@@ -378,7 +378,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     /// Traction weight `sqrt(g) sqrt(g^33) int N_i dx2` with `int N_i dx2 = w_a L2 / 2` per
     /// element sharing the node (`w_a` the GLL weight: exact, the GLL rule integrates degree
     /// `2p - 1`); `T^3_3`, `T^3_2` from the element polynomials' value and derivatives at the
-    /// node ([`HighOrderNavier::node_terms`], averaged over the elements sharing it), with the
+    /// node (`HighOrderNavier::node_terms`, averaged over the elements sharing it), with the
     /// pointwise stress also under SRI. The entry's `x2` is the node's GLL position.
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
         (0..self.grid.n2())
