@@ -120,23 +120,32 @@ impl CondensedElement {
             rhs[r * m + nb] = f_interior[r];
         }
         cholesky_solve(&kii, ni, &mut rhs, m);
+        // S = K_BB - K_BI X, g = -K_BI y: rows of K_BI times rows of [X | y] (contiguous)
         let mut schur = vec![0.0; nb * nb];
         let mut load = vec![0.0; nb];
+        let mut row = vec![0.0; m];
         for (r, &i) in boundary.iter().enumerate() {
-            for c in r..nb {
-                let j = boundary[c];
-                let mut s = k[i * l + j];
-                for (q, &iq) in interior.iter().enumerate() {
-                    s -= k[i * l + iq] * rhs[q * m + c];
+            row.iter_mut().for_each(|x| *x = 0.0);
+            for (q, &iq) in interior.iter().enumerate() {
+                let kiq = k[i * l + iq];
+                if kiq != 0.0 {
+                    for (x, y) in row.iter_mut().zip(&rhs[q * m..(q + 1) * m]) {
+                        *x += kiq * y;
+                    }
                 }
+            }
+            for (c, &j) in boundary.iter().enumerate() {
+                schur[r * nb + c] = k[i * l + j] - row[c];
+            }
+            load[r] = -row[nb];
+        }
+        // bitwise symmetric (the assembly and the Cholesky backend rely on it)
+        for r in 0..nb {
+            for c in r + 1..nb {
+                let s = 0.5 * (schur[r * nb + c] + schur[c * nb + r]);
                 schur[r * nb + c] = s;
                 schur[c * nb + r] = s;
             }
-            let mut g = 0.0;
-            for (q, &iq) in interior.iter().enumerate() {
-                g -= k[i * l + iq] * rhs[q * m + nb];
-            }
-            load[r] = g;
         }
         let mut coupling = vec![0.0; ni * nb];
         let mut y = vec![0.0; ni];
