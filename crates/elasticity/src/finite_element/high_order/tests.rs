@@ -198,3 +198,22 @@ fn lame_cylinder_converges_exponentially_in_p() {
     );
     assert!(rate > 1.5, "rate {rate}: {errors:?}");
 }
+
+#[test]
+fn registered_studies_report_orders_near_p_plus_1() {
+    use crate::verification::Study;
+    // the Lamé studies of `capstan verify` for p = 2, 3, 4 (4 x {4, 8, 16} elements)
+    for study in super::high_order_studies().iter().skip(7).take(3) {
+        let r = study.run(true).unwrap();
+        let p = r
+            .discretisation
+            .trim_start_matches("fem-qp")
+            .parse::<f64>()
+            .unwrap();
+        println!(
+            "{} {}: L2 order {:.3}",
+            r.name, r.discretisation, r.order_l2
+        );
+        assert!((r.order_l2 - (p + 1.0)).abs() < 0.15, "{}", r.table());
+    }
+}
