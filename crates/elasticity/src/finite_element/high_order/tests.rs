@@ -201,7 +201,6 @@ fn lame_cylinder_converges_exponentially_in_p() {
 
 #[test]
 fn registered_studies_report_orders_near_p_plus_1() {
-    use crate::verification::Study;
     // the Lamé studies of `capstan verify` for p = 2, 3, 4 (4 x {4, 8, 16} elements)
     for study in super::high_order_studies().iter().skip(7).take(3) {
         let r = study.run(true).unwrap();
