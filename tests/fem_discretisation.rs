@@ -120,7 +120,7 @@ fn contact_rows_recover_the_exact_normal_and_shear_stress() {
 fn method_names_and_scene_spelling() {
     assert_eq!(
         DiscretisationMethod::ALL.map(|m| m.name()),
-        ["fd", "fem-q1", "fem-q2"]
+        ["fd", "fem-q1", "fem-q2", "fem-qp"]
     );
     assert_eq!(DiscretisationMethod::default(), DiscretisationMethod::Fd);
     assert!(DiscretisationMethod::FemQ1.is_symmetric() && !DiscretisationMethod::Fd.is_symmetric());

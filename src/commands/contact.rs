@@ -124,6 +124,7 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
         n3: scene.grid.n3,
         method: scene.discretisation.method,
         volumetric: scene.discretisation.volumetric,
+        order: scene.discretisation.order,
     })
 }
 

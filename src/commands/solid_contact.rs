@@ -46,6 +46,12 @@ pub fn solid_body(scene: &Scene) -> Result<SolidBody<Obstacle>, CliError> {
     let order = match scene.discretisation.method {
         DiscretisationMethod::FemQ1 => ElementOrder::Q1,
         DiscretisationMethod::FemQ2 => ElementOrder::Q2,
+        DiscretisationMethod::FemQp => {
+            return Err(CliError::Scene {
+                origin: "discretisation.method".into(),
+                message: "\"fem-qp\" is plane strain only: use \"fem-q1\" or \"fem-q2\" with body.dimension = 3".into(),
+            });
+        }
         DiscretisationMethod::Fd => {
             return Err(CliError::Scene {
                 origin: "discretisation.method".into(),

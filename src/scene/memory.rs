@@ -33,10 +33,11 @@ pub(super) const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod, condensed: bool) -> f64 {
     let (n2, n3) = (n2 as f64, n3 as f64);
     let unknowns = 2.0 * n2 * n3;
-    let width = if method == DiscretisationMethod::FemQ2 {
-        2.0
-    } else {
-        1.0
+    let width = match method {
+        DiscretisationMethod::FemQ2 => 2.0,
+        // wider element couplings; the fill of the element nested dissection grows ~ p
+        DiscretisationMethod::FemQp => 4.0,
+        _ => 1.0,
     };
     let system =
         MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0) + 134_217_728.0;

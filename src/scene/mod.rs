@@ -425,17 +425,31 @@ impl SolverSpec {
 }
 
 /// `[discretisation]`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct DiscretisationSpec {
     /// `fd` (finite differences, the default) | `fem-q1` | `fem-q2` (finite elements on the
-    /// same grid; Q2 needs odd `grid.n2`, `grid.n3`).
+    /// same grid; Q2 needs odd `grid.n2`, `grid.n3`) | `fem-qp` (tensor-product elements of
+    /// order `discretisation.order` with GLL nodes; `grid.n2 - 1`, `grid.n3 - 1` multiples of
+    /// it).
     pub method: DiscretisationMethod,
+    /// The order `p` of `fem-qp`, `1..=10` (default 4). Other methods refuse any other value.
+    pub order: usize,
     /// `full` (default) | `reduced`: how the finite elements integrate the volumetric part
     /// `lambda (div v)(div w) sqrt(g)` of the stiffness; `reduced` is selective reduced
     /// integration (Q1: 1 point, Q2: 2 x 2; the shear part keeps the full rule), the remedy
     /// for volumetric locking as `body.poisson -> 1/2`. `fd` accepts only `full`.
     pub volumetric: VolumetricIntegration,
+}
+
+impl Default for DiscretisationSpec {
+    fn default() -> Self {
+        Self {
+            method: DiscretisationMethod::default(),
+            order: DiscretisationMethod::DEFAULT_ORDER,
+            volumetric: VolumetricIntegration::default(),
+        }
+    }
 }
 
 mod load;

@@ -132,3 +132,47 @@ fn unknown_keys_and_wrong_types_name_the_key() {
         .to_string();
     assert!(e.contains("KEY=VALUE"), "{e}");
 }
+
+#[test]
+fn discretisation_order_is_validated_for_fem_qp_and_refused_elsewhere() {
+    assert!(known_keys().contains(&"discretisation.order".to_string()));
+    assert_eq!(Scene::default().discretisation.order, 4);
+    let s = Scene::load(
+        None,
+        &[
+            "discretisation.method=fem-qp".into(),
+            "discretisation.order=6".into(),
+            "grid.n2=241".into(), // 40 elements of order 6
+            "grid.n3=13".into(),
+        ],
+    )
+    .unwrap();
+    assert_eq!(s.discretisation.method, DiscretisationMethod::FemQp);
+    assert_eq!(s.discretisation.order, 6);
+    let load = |sets: &[&str]| {
+        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        Scene::load(None, &sets).unwrap_err().to_string()
+    };
+    let e = load(&["discretisation.method=fem-qp", "discretisation.order=11"]);
+    assert!(
+        e.contains("`discretisation.order` = 11") && e.contains("1..=10"),
+        "{e}"
+    );
+    let e = load(&["discretisation.method=fem-qp", "discretisation.order=0"]);
+    assert!(e.contains("`discretisation.order` = 0"), "{e}");
+    let e = load(&[
+        "discretisation.method=fem-q2",
+        "discretisation.order=3",
+        "grid.n2=251",
+    ]);
+    assert!(
+        e.contains("`discretisation.order` = 3") && e.contains("fem-qp"),
+        "{e}"
+    );
+    // 250 - 1 nodes intervals are not a whole number of order-4 elements
+    let e = load(&["discretisation.method=fem-qp"]);
+    assert!(
+        e.contains("`grid.n2` = 250") && e.contains("p e + 1"),
+        "{e}"
+    );
+}

@@ -179,6 +179,40 @@ impl Scene {
         }
         real("body.width", b.width, "(0, inf)", b.width > 0.0)?;
         real("body.x1", b.x1, "finite values", true)?;
+        let qp = self.discretisation.method == DiscretisationMethod::FemQp;
+        let order = self.discretisation.order;
+        if qp && !capstan_elasticity::finite_element::high_order::ORDERS.contains(&order) {
+            return Err(bad(
+                "discretisation.order",
+                order.to_string(),
+                "1..=10 (the order p of fem-qp)",
+            ));
+        }
+        if !qp && order != DiscretisationMethod::DEFAULT_ORDER {
+            return Err(bad(
+                "discretisation.order",
+                order.to_string(),
+                "4 (the default) unless discretisation.method = \"fem-qp\": only fem-qp has an order",
+            ));
+        }
+        if qp && b.dimension == 3 {
+            return Err(bad(
+                "discretisation.method",
+                "\"fem-qp\"".into(),
+                "{\"fem-q1\", \"fem-q2\"} with body.dimension = 3 (fem-qp is plane strain only)",
+            ));
+        }
+        if qp {
+            for (key, n) in [("grid.n2", self.grid.n2), ("grid.n3", self.grid.n3)] {
+                if n < 2 || !(n - 1).is_multiple_of(order) {
+                    return Err(bad(
+                        key,
+                        n.to_string(),
+                        "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp",
+                    ));
+                }
+            }
+        }
         if b.dimension == 3 && self.discretisation.method == DiscretisationMethod::Fd {
             return Err(bad(
                 "discretisation.method",

@@ -301,6 +301,22 @@ impl BoundaryConditions {
         node: [usize; 2],
         c: Component,
     ) -> Result<Option<f64>, crate::error::ElasticityError> {
+        self.dirichlet_value_at(grid, node, grid.coordinates(node), c)
+    }
+
+    /// [`BoundaryConditions::dirichlet_value`] for a node of `grid`'s numbering that sits at
+    /// `[x2, x3]` (the nodes of the high-order elements are not uniformly spaced): the side
+    /// functions are evaluated there.
+    ///
+    /// # Errors
+    /// [`crate::ElasticityError::NonFinite`] if the prescribed function is not finite there.
+    pub fn dirichlet_value_at(
+        &self,
+        grid: &Grid,
+        node: [usize; 2],
+        [x2, x3]: [f64; 2],
+        c: Component,
+    ) -> Result<Option<f64>, crate::error::ElasticityError> {
         if let Some(p) = self
             .pinned
             .iter()
@@ -308,7 +324,6 @@ impl BoundaryConditions {
         {
             return Ok(Some(p.value));
         }
-        let [x2, x3] = grid.coordinates(node);
         let (n2, n3) = (grid.n2(), grid.n3());
         let mut sides = Vec::with_capacity(2);
         if node[1] == 0 {

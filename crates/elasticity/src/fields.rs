@@ -72,6 +72,23 @@ impl NodalFields {
     pub(crate) fn from_nodes<G: ShellGeometry>(
         grid: Grid,
         chart: &G,
+        local: impl FnMut(
+            [usize; 2],
+            &ShellPoint<f64>,
+        ) -> Result<(LocalDisplacement, [[f64; 3]; 3]), ElasticityError>,
+    ) -> Result<Self, ElasticityError> {
+        Self::from_nodes_at(grid, |node| grid.coordinates(node), chart, local)
+    }
+
+    /// [`NodalFields::from_nodes`] for nodes of `grid`'s numbering placed at `position(node)`
+    /// (the high-order elements' nodes are not uniformly spaced).
+    ///
+    /// # Errors
+    /// Geometry failures of the chart; whatever `local` returns.
+    pub(crate) fn from_nodes_at<G: ShellGeometry>(
+        grid: Grid,
+        position: impl Fn([usize; 2]) -> [f64; 2],
+        chart: &G,
         mut local: impl FnMut(
             [usize; 2],
             &ShellPoint<f64>,
@@ -88,7 +105,7 @@ impl NodalFields {
         };
         for k in 0..n {
             let node = grid.node(k);
-            let [x2, x3] = grid.coordinates(node);
+            let [x2, x3] = position(node);
             let p = chart.shell_point([0.0, x2, x3])?;
             let (u, stress) = local(node, &p)?;
             out.displacement.push(u.value);

@@ -20,6 +20,7 @@
 //!     n3: 7,
 //!     method: DiscretisationMethod::default(),
 //!     volumetric: VolumetricIntegration::default(),
+//!     order: 4,
 //! };
 //! let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
 //! let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();

@@ -17,6 +17,7 @@ pub fn studies() -> Vec<Box<dyn Study>> {
         Box::new(LameCylinder::default()),
     ];
     studies.extend(fem_studies());
+    studies.extend(crate::finite_element::high_order::high_order_studies());
     // the 3-D body: cones (one with g_12 != 0) and a prism of finite width
     for mms in [
         SolidMms::circular_cone(),

@@ -1,6 +1,7 @@
-//! `capstan bench work-precision`: run time against error for the finite differences and the
-//! Q1/Q2 finite elements with each applicable linear backend, on three problems, beside peer
-//! FEM libraries (scikit-fem, NGSolve: [`PEERS`]) on the Lamé cylinder.
+//! `capstan bench work-precision`: run time against error for the finite differences, the
+//! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp8`, `bench/high_order.rs`) with each
+//! applicable linear backend, on three problems, beside peer FEM libraries (scikit-fem,
+//! NGSolve: [`PEERS`]) on the Lamé cylinder.
 //!
 //! # Problems
 //! - `lame`: the Lamé thick cylinder (exact), full wrap, `n2 = 4m`, `n3 = m + 1`;
@@ -27,6 +28,7 @@
 //! Every run, the time of every series to each of [`TARGETS`] (log-log interpolation), and
 //! the fastest capstan series per thread count against the fastest peer at each target.
 
+mod high_order;
 mod peers;
 mod run;
 mod targets;
@@ -449,7 +451,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 path: format!("rayon pool of --threads {n}"),
                 source: std::io::Error::other(e),
             })?;
-        runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm))?);
+        runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm, args.quick))?);
     }
     let mut statuses = vec![];
     if args.no_peer {
@@ -516,6 +518,7 @@ fn capstan_pass(
     levels: &[usize],
     references: &[Reference<'_>; 3],
     use_vmhwm: bool,
+    quick: bool,
 ) -> Result<Vec<Run>, CliError> {
     let mut runs = vec![];
     for (problem, reference) in PROBLEMS.into_iter().zip(references) {
@@ -541,6 +544,14 @@ fn capstan_pass(
                     method.map_or("fd", ElementOrder::method_name)
                 ),
                 Err(e) => return Err(e),
+            }
+        }
+    }
+    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs
+    for (problem, reference) in PROBLEMS.into_iter().zip(references) {
+        for p in high_order::ORDERS {
+            for k in high_order::element_levels(problem, p, quick) {
+                runs.push(high_order::run_qp(problem, k, p, reference, use_vmhwm)?);
             }
         }
     }

@@ -12,7 +12,9 @@ use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_difference::FiniteDifferenceNavier;
-use crate::finite_element::{DiscretisationMethod, FiniteElementNavier, VolumetricIntegration};
+use crate::finite_element::{
+    DiscretisationMethod, FiniteElementNavier, HighOrderNavier, VolumetricIntegration,
+};
 use crate::grid::Grid;
 use crate::material::Material;
 
@@ -46,6 +48,9 @@ pub struct ThickBody {
     pub method: DiscretisationMethod,
     /// How the finite elements integrate the volumetric part (`Full` for `fd`).
     pub volumetric: VolumetricIntegration,
+    /// The order `p` of `fem-qp` (`n2 - 1`, `n3 - 1` multiples of it); ignored by the other
+    /// methods.
+    pub order: usize,
 }
 
 /// The discretisation [`ThickBody`] builds: finite differences or finite elements of the same
@@ -56,6 +61,8 @@ pub enum ThickBodyOperator {
     FiniteDifference(FiniteDifferenceNavier<ShellChart<Obstacle>>),
     /// `discretisation.method = fem-q1 | fem-q2`.
     FiniteElement(FiniteElementNavier<ShellChart<Obstacle>>),
+    /// `discretisation.method = fem-qp`.
+    HighOrder(Box<HighOrderNavier<ShellChart<Obstacle>>>),
 }
 
 /// Forwards a [`Discretisation`] call to the operator inside.
@@ -64,6 +71,7 @@ macro_rules! forward {
         match $self {
             ThickBodyOperator::FiniteDifference($op) => $call,
             ThickBodyOperator::FiniteElement($op) => $call,
+            ThickBodyOperator::HighOrder($op) => $call,
         }
     };
 }
@@ -117,6 +125,13 @@ impl Discretisation for ThickBodyOperator {
     fn refill(&self, system: &mut LinearSystem) -> Result<(), ElasticityError> {
         forward!(self, op => op.refill(system))
     }
+
+    fn solve(
+        &self,
+        solver: &mut dyn capstan_solvers::LinearSolver<f64>,
+    ) -> Result<Vec<f64>, ElasticityError> {
+        forward!(self, op => op.solve(solver))
+    }
 }
 
 impl ThickBody {
@@ -136,6 +151,7 @@ impl ThickBody {
             n3,
             method: DiscretisationMethod::Fd,
             volumetric: VolumetricIntegration::Full,
+            order: DiscretisationMethod::DEFAULT_ORDER,
         })
     }
 
@@ -165,6 +181,19 @@ impl ThickBody {
         let grid = Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?;
         let chart = ShellChart::new(self.obstacle.clone());
         let boundary = Self::boundary(tau0, tau_max);
+        if self.method == DiscretisationMethod::FemQp {
+            return Ok(ThickBodyOperator::HighOrder(Box::new(
+                HighOrderNavier::with_volumetric(
+                    chart,
+                    self.material,
+                    grid,
+                    boundary,
+                    None,
+                    self.order,
+                    self.volumetric,
+                )?,
+            )));
+        }
         Ok(match self.method.element_order() {
             None if self.volumetric != VolumetricIntegration::Full => {
                 return Err(ElasticityError::InvalidParameter {
@@ -194,8 +223,22 @@ impl ThickBody {
 
     /// The body on the next coarser grid of grid sequencing: `n -> (n + 1) / 2` nodes per
     /// direction (every other node of an odd `n`), kept odd for `fem-q2`; `None` when a
-    /// direction would fall below 5 nodes (9 for `fem-q2`).
+    /// direction would fall below 5 nodes (9 for `fem-q2`). `fem-qp`: half the elements
+    /// (`n = p e + 1 -> p e / 2 + 1`, `e` even, at least 2 elements left).
     pub fn coarser(&self) -> Option<ThickBody> {
+        if self.method == DiscretisationMethod::FemQp {
+            let p = self.order.max(1);
+            let halve = |n: usize| {
+                let e = (n - 1) / p;
+                (e.is_multiple_of(2) && e >= 4 && (n - 1).is_multiple_of(p))
+                    .then_some(p * e / 2 + 1)
+            };
+            return Some(ThickBody {
+                n2: halve(self.n2)?,
+                n3: halve(self.n3)?,
+                ..self.clone()
+            });
+        }
         let q2 = self.method == DiscretisationMethod::FemQ2;
         let halve = |n: usize| {
             let c = n.div_ceil(2);

@@ -146,6 +146,11 @@ impl ElementAssembly {
         })
     }
 
+    /// The compressed-column pattern of the assembled matrix.
+    pub fn pattern(&self) -> &SparsityPattern {
+        &self.pattern
+    }
+
     /// Number of elements.
     pub fn element_count(&self) -> usize {
         self.connectivity.len() / self.nodes_per_element.max(1)

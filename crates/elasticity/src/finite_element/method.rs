@@ -3,6 +3,7 @@
 use core::fmt;
 
 use super::element::ElementOrder;
+use super::high_order::HighOrderNavier;
 use super::navier::FiniteElementNavier;
 use crate::boundary::BoundaryConditions;
 use crate::discretisation::Discretisation;
@@ -12,7 +13,8 @@ use crate::grid::Grid;
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
 
-/// The discretisations of the Navier operator, by name: `fd`, `fem-q1`, `fem-q2`.
+/// The discretisations of the Navier operator, by name: `fd`, `fem-q1`, `fem-q2`, `fem-qp`
+/// (with its order `p`, scene key `discretisation.order`, given separately).
 ///
 /// The same spelling is used by serde and [`fmt::Display`].
 ///
@@ -43,14 +45,20 @@ pub enum DiscretisationMethod {
     FemQ1,
     /// [`FiniteElementNavier`] with biquadratic (Q2) elements (odd `n2`, `n3`).
     FemQ2,
+    /// [`HighOrderNavier`]: tensor-product elements of order `p` with GLL nodes (`n - 1` a
+    /// multiple of `p`), statically condensed.
+    FemQp,
 }
 
 impl DiscretisationMethod {
     /// Every method, in declaration order.
-    pub const ALL: [Self; 3] = [Self::Fd, Self::FemQ1, Self::FemQ2];
+    pub const ALL: [Self; 4] = [Self::Fd, Self::FemQ1, Self::FemQ2, Self::FemQp];
 
     /// The accepted spellings, for messages.
-    pub const NAMES: &'static str = "`fd`, `fem-q1`, `fem-q2`";
+    pub const NAMES: &'static str = "`fd`, `fem-q1`, `fem-q2`, `fem-qp`";
+
+    /// The order of `fem-qp` when none is given (`discretisation.order`).
+    pub const DEFAULT_ORDER: usize = 4;
 
     /// The name as used in files.
     pub fn name(self) -> &'static str {
@@ -58,6 +66,7 @@ impl DiscretisationMethod {
             Self::Fd => "fd",
             Self::FemQ1 => "fem-q1",
             Self::FemQ2 => "fem-q2",
+            Self::FemQp => "fem-qp",
         }
     }
 
@@ -66,10 +75,10 @@ impl DiscretisationMethod {
         Self::ALL.into_iter().find(|m| m.name() == name)
     }
 
-    /// The element order of a finite-element method.
+    /// The element order of a Q1/Q2 finite-element method (`None` for `fd` and `fem-qp`).
     pub fn element_order(self) -> Option<ElementOrder> {
         match self {
-            Self::Fd => None,
+            Self::Fd | Self::FemQp => None,
             Self::FemQ1 => Some(ElementOrder::Q1),
             Self::FemQ2 => Some(ElementOrder::Q2),
         }
@@ -81,10 +90,11 @@ impl DiscretisationMethod {
         self != Self::Fd
     }
 
-    /// Builds the discretisation.
+    /// Builds the discretisation (`fem-qp` of order [`Self::DEFAULT_ORDER`]).
     ///
     /// # Errors
-    /// The constructor's errors ([`FiniteDifferenceNavier::new`], [`FiniteElementNavier::new`]).
+    /// The constructor's errors ([`FiniteDifferenceNavier::new`], [`FiniteElementNavier::new`],
+    /// [`HighOrderNavier::new`]).
     pub fn build<G: ShellGeometry + Send + Sync + 'static>(
         self,
         chart: G,
@@ -93,6 +103,34 @@ impl DiscretisationMethod {
         boundary: BoundaryConditions,
         body_force: Option<BodyForce>,
     ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
+        self.build_with_order(
+            chart,
+            material,
+            grid,
+            boundary,
+            body_force,
+            Self::DEFAULT_ORDER,
+        )
+    }
+
+    /// Builds the discretisation; `order` is the `p` of `fem-qp` (ignored by the others).
+    ///
+    /// # Errors
+    /// See [`Self::build`].
+    pub fn build_with_order<G: ShellGeometry + Send + Sync + 'static>(
+        self,
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+        order: usize,
+    ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
+        if self == Self::FemQp {
+            return Ok(Box::new(HighOrderNavier::new(
+                chart, material, grid, boundary, body_force, order,
+            )?));
+        }
         Ok(match self.element_order() {
             None => Box::new(FiniteDifferenceNavier::new(
                 chart, material, grid, boundary, body_force,

@@ -13,7 +13,9 @@
 //! # Status
 //! Verified by the manufactured solutions and the Lamé cylinder of the finite-difference
 //! studies ([`fem_studies`], run by `capstan verify`): order 2 (Q1) and 3 (Q2) in L2.
-//! [`DiscretisationMethod`] selects `fd | fem-q1 | fem-q2` (scene key `discretisation.method`);
+//! [`DiscretisationMethod`] selects `fd | fem-q1 | fem-q2 | fem-qp` (scene key
+//! `discretisation.method`; `fem-qp` is [`HighOrderNavier`], elements of any order `p` with
+//! Gauss–Lobatto–Legendre nodes and static condensation, module [`high_order`]);
 //! [`VolumetricIntegration`] selects `full | reduced` integration of the volumetric part
 //! (scene key `discretisation.volumetric`: selective reduced integration against volumetric
 //! locking as `nu -> 1/2`).
@@ -25,6 +27,7 @@
 
 mod assembly;
 mod element;
+pub mod high_order;
 mod method;
 mod navier;
 mod problem_parts;
@@ -34,6 +37,7 @@ mod volumetric;
 pub use assembly::ElementAssembly;
 pub(crate) use element::lumped_weight;
 pub use element::{ElementOrder, gauss_rule};
+pub use high_order::{HighOrderNavier, gll_rule};
 pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;

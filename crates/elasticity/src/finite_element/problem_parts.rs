@@ -4,6 +4,7 @@
 use capstan_geometry::{Obstacle, ShellChart};
 
 use super::element::ElementOrder;
+use super::high_order::HighOrderNavier;
 use super::navier::FiniteElementNavier;
 use super::volumetric::VolumetricIntegration;
 use crate::boundary::BoundaryConditions;
@@ -82,6 +83,27 @@ impl ProblemParts {
             self.boundary,
             self.body_force,
             order,
+            volumetric,
+        )
+    }
+
+    /// The tensor-product elements of order `p` ([`HighOrderNavier`]; the grid's `n - 1`
+    /// a multiple of `p`) with the volumetric part integrated as `volumetric` says.
+    ///
+    /// # Errors
+    /// See [`HighOrderNavier::new`].
+    pub fn high_order(
+        self,
+        p: usize,
+        volumetric: VolumetricIntegration,
+    ) -> Result<HighOrderNavier<SampleChart>, ElasticityError> {
+        HighOrderNavier::with_volumetric(
+            self.chart,
+            self.material,
+            self.grid,
+            self.boundary,
+            self.body_force,
+            p,
             volumetric,
         )
     }

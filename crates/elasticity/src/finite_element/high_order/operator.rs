@@ -1,0 +1,571 @@
+//! The operator type of the tensor-product elements Qp: setup (nodes, geometry at the
+//! quadrature points, loads, Dirichlet data) and the per-node recovery the contact rows and
+//! output fields share.
+
+use std::sync::OnceLock;
+
+use rayon::prelude::*;
+
+use super::gll::{gauss_legendre, gll_rule};
+use super::kernel::ElementTables;
+use super::skeleton::Skeleton;
+use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
+use crate::error::ElasticityError;
+use crate::finite_difference::BodyForce;
+use crate::finite_element::assembly::ElementAssembly;
+use crate::finite_element::volumetric::VolumetricIntegration;
+use crate::grid::Grid;
+use crate::material::Material;
+use crate::plane_strain_operator::setup_accessors;
+use crate::shell_geometry::ShellGeometry;
+
+/// The orders the Qp elements accept (`discretisation.order`).
+pub const ORDERS: core::ops::RangeInclusive<usize> = 1..=10;
+
+/// Method names per order, for reports (`fem-qp1` ... `fem-qp10`).
+const NAMES: [&str; 11] = [
+    "fem-qp0", "fem-qp1", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6", "fem-qp7",
+    "fem-qp8", "fem-qp9", "fem-qp10",
+];
+
+/// The report name of order `p` (`"fem-qp4"`).
+///
+/// # Panics
+/// For `p` outside [`ORDERS`].
+#[track_caller]
+pub fn order_name(p: usize) -> &'static str {
+    assert!(ORDERS.contains(&p), "order {p} outside 1..=10");
+    NAMES[p]
+}
+
+/// Checks `discretisation.order`.
+///
+/// # Errors
+/// [`ElasticityError::InvalidParameter`] naming `discretisation.order` outside [`ORDERS`].
+pub fn check_order(p: usize) -> Result<(), ElasticityError> {
+    if ORDERS.contains(&p) {
+        Ok(())
+    } else {
+        Err(ElasticityError::InvalidParameter {
+            field: "discretisation.order",
+            value: p as f64,
+            allowed: "1..=10",
+        })
+    }
+}
+
+/// The plane-strain curvilinear Navier operator by tensor-product Lagrange elements of any
+/// order `p` (Qp) with Gauss–Lobatto–Legendre nodes, on the element partition of a
+/// [`Grid`]: `n2 = p e2 + 1` (periodic: `p e2`), `n3 = p e3 + 1` nodes.
+///
+/// # Math
+/// The weak form is that of [`crate::finite_element::FiniteElementNavier`]:
+/// ```text
+/// a(v, w) = int_Omega A^ijkl E_kl(v) E_ij(w) sqrt(g) dx2 dx3,  l(w) = int f_j w^j sqrt(g) + int_sides phi_j w^j ds
+/// ```
+/// Element `(e2, e3)` is the parameter rectangle of the grid's element boundaries (every
+/// `p`-th node line of the uniform grid); inside it node `(a2, a3)` sits at the GLL points
+/// `xi_a2`, `xi_a3` of [`gll_rule`]:
+/// ```text
+/// x2(p e2 + a2) = theta0 + (e2 + (1 + xi_a2) / 2) L2,   x3(p e3 + a3) = (e3 + (1 + xi_a3) / 2) L3
+/// ```
+/// so grid node `(i2, i3)` is **not** at the uniform grid's `grid.coordinates`: use
+/// [`HighOrderNavier::node_coordinates`] (the contact entries, output fields and error norms
+/// do). The basis is the Lagrange basis through the GLL nodes; the stiffness uses the
+/// `(p + 1)^2` Gauss–Legendre rule (exact for the constant-coefficient integrand; as Q1/Q2,
+/// which it reproduces for `p = 1, 2`), the geometry (`sqrt(g)`, `A^ijkl` through
+/// [`energy_matrix`]) evaluated from the chart at every quadrature point, and the element
+/// matrix is formed by sum factorisation ([`super::kernel::add_element_matrix`], `O(p^5)`).
+///
+/// Selective reduced integration ([`VolumetricIntegration::Reduced`]): the volumetric part
+/// `lambda sqrt(g) (div v)(div w)` with the `p x p` Gauss rule, the shear part with the full
+/// rule, exactly as Q1 (1 point) and Q2 (2 x 2) do.
+///
+/// # Unknowns and solves
+/// [`crate::Discretisation`] sees every node (`dof = 2 node_index + c`, the numbering of the
+/// other operators), so the contact solvers, which factorise `system()` once and condense
+/// onto the contact boundary, work unchanged. [`crate::Discretisation::solve`] instead
+/// condenses the element interiors statically (see [`super::CondensedElement`]): the global
+/// factorisation is of the skeleton system on the element edges only, and the interior values
+/// are recovered element by element ([`HighOrderNavier::condensed_system`],
+/// [`HighOrderNavier::recover`]).
+///
+/// # Example
+/// ```
+/// use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Grid, Material};
+/// use capstan_elasticity::finite_element::HighOrderNavier;
+/// use capstan_geometry::{EllipticalPrism, ShellChart};
+/// use capstan_solvers::SparseCholesky;
+/// let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
+/// // p = 4: 6 x 1 elements
+/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
+/// let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
+/// let m = Material::new(1e3, 0.25).unwrap();
+/// let op = HighOrderNavier::new(chart, m, grid, bc, None, 4).unwrap();
+/// let v = op.solve(&mut SparseCholesky::default()).unwrap(); // condensed
+/// let (left, right) = (v[op.dof([0, 4], Component::X2)], v[op.dof([24, 4], Component::X2)]);
+/// assert!(left < 0.0 && (left + right).abs() < 1e-10); // odd in x2
+/// ```
+pub struct HighOrderNavier<G> {
+    pub(super) chart: G,
+    pub(super) material: Material,
+    pub(super) grid: Grid,
+    pub(super) boundary: BoundaryConditions,
+    /// The order `p`.
+    pub(super) degree: usize,
+    pub(super) volumetric: VolumetricIntegration,
+    /// Elements in `x2` and `x3`.
+    pub(super) elements: [usize; 2],
+    /// Element size `[L2, L3]`.
+    pub(super) size: [f64; 2],
+    /// GLL nodes on `[-1, 1]`.
+    pub(super) gll: Vec<f64>,
+    /// GLL weights.
+    pub(super) gll_weights: Vec<f64>,
+    /// `x2` of each node line `i2`, `x3` of each node line `i3`.
+    pub(super) x2: Vec<f64>,
+    pub(super) x3: Vec<f64>,
+    /// Basis tables at the full rule.
+    pub(super) tables: ElementTables,
+    /// Basis tables at the reduced rule (SRI).
+    pub(super) reduced_tables: Option<ElementTables>,
+    /// `l_j'(xi_i)` at the GLL nodes, index `j n + i`.
+    pub(super) derivative_at_nodes: Vec<f64>,
+    /// Pointwise energy matrix times weights, index `e nq^2 + q`.
+    pub(super) kq: Vec<[[f64; 6]; 6]>,
+    /// Volumetric part at the reduced points (SRI), index `e nr^2 + r`.
+    pub(super) kv: Vec<[[f64; 6]; 6]>,
+    pub(super) dirichlet: Vec<Option<f64>>,
+    pub(super) load: Vec<f64>,
+    /// The full pattern, built on first use.
+    pub(super) full: OnceLock<ElementAssembly>,
+    /// The skeleton pattern and numbering, built on first use.
+    pub(super) skeleton: OnceLock<Skeleton>,
+}
+
+impl<G> core::fmt::Debug for HighOrderNavier<G> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("HighOrderNavier")
+            .field("degree", &self.degree)
+            .field("material", &self.material)
+            .field("grid", &self.grid)
+            .field("boundary", &self.boundary)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
+    /// Builds the operator of order `p` with full integration: nodes, geometry and load.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] for `p` outside [`ORDERS`] (field
+    /// `discretisation.order`) or a grid that is not a whole number of elements (`n - 1`,
+    /// periodic `n`, a multiple of `p`; at least two elements around a periodic direction);
+    /// [`ElasticityError::InconsistentBoundary`], [`ElasticityError::Geometry`],
+    /// [`ElasticityError::NotPlaneStrain`], [`ElasticityError::NonFinite`] as
+    /// [`crate::finite_element::FiniteElementNavier::new`].
+    pub fn new(
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+        p: usize,
+    ) -> Result<Self, ElasticityError> {
+        Self::with_volumetric(
+            chart,
+            material,
+            grid,
+            boundary,
+            body_force,
+            p,
+            VolumetricIntegration::Full,
+        )
+    }
+
+    /// As [`HighOrderNavier::new`], with the volumetric part integrated as `volumetric` says
+    /// (`Reduced`: `p x p` Gauss points for `lambda (div v)(div w)`).
+    ///
+    /// # Errors
+    /// See [`HighOrderNavier::new`].
+    pub fn with_volumetric(
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+        p: usize,
+        volumetric: VolumetricIntegration,
+    ) -> Result<Self, ElasticityError> {
+        check_order(p)?;
+        boundary.check_grid(&grid)?;
+        let periodic = grid.is_periodic();
+        let count = |field: &'static str, n: usize, periodic: bool| {
+            let intervals = if periodic { n } else { n - 1 };
+            if intervals.is_multiple_of(p) && intervals / p >= if periodic { 2 } else { 1 } {
+                Ok(intervals / p)
+            } else {
+                Err(ElasticityError::InvalidParameter {
+                    field,
+                    value: n as f64,
+                    allowed: "p e + 1 nodes for e elements (periodic: p e, e >= 2)",
+                })
+            }
+        };
+        let elements = [
+            count("grid.n2", grid.n2(), periodic)?,
+            count("grid.n3", grid.n3(), false)?,
+        ];
+        let [t0, t1] = grid.theta();
+        let size = [
+            (t1 - t0) / elements[0] as f64,
+            grid.thickness() / elements[1] as f64,
+        ];
+        let (gll, gll_weights) = gll_rule(p);
+        let line = |origin: f64, length: f64, n: usize| -> Vec<f64> {
+            (0..n)
+                .map(|i| {
+                    let (e, a) = (i / p, i % p);
+                    origin + (e as f64 + 0.5 * (1.0 + gll[a])) * length
+                })
+                .collect()
+        };
+        let mut x2 = line(t0, size[0], grid.n2());
+        let mut x3 = line(0.0, size[1], grid.n3());
+        // element ends exactly on the uniform grid's lines
+        for (i, x) in x2.iter_mut().enumerate() {
+            if i % p == 0 {
+                *x = grid.x2(i);
+            }
+        }
+        for (i, x) in x3.iter_mut().enumerate() {
+            if i % p == 0 {
+                *x = grid.x3(i);
+            }
+        }
+        let (gq, _) = gauss_legendre(p + 1);
+        let tables = ElementTables::new(&gll, &gq, size);
+        let reduced_tables = (volumetric == VolumetricIntegration::Reduced)
+            .then(|| ElementTables::new(&gll, &gauss_legendre(p).0, size));
+        let (_, dn) = super::gll::basis_tables(&gll, &gll);
+        let mut op = Self {
+            chart,
+            material,
+            grid,
+            boundary,
+            degree: p,
+            volumetric,
+            elements,
+            size,
+            gll,
+            gll_weights,
+            x2,
+            x3,
+            tables,
+            reduced_tables,
+            derivative_at_nodes: dn.into_iter().flatten().collect(),
+            kq: vec![],
+            kv: vec![],
+            dirichlet: vec![],
+            load: vec![],
+            full: OnceLock::new(),
+            skeleton: OnceLock::new(),
+        };
+        op.dirichlet = (0..2 * grid.node_count())
+            .map(|d| {
+                let node = grid.node(d / 2);
+                op.boundary.dirichlet_value_at(
+                    &grid,
+                    node,
+                    op.node_coordinates(node),
+                    Component::ALL[d % 2],
+                )
+            })
+            .collect::<Result<_, _>>()?;
+        op.load = vec![0.0; 2 * grid.node_count()];
+        op.cache_geometry(body_force.as_ref())?;
+        op.add_boundary_loads()?;
+        Ok(op)
+    }
+
+    setup_accessors!();
+
+    /// The order `p`.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// How the volumetric part is integrated.
+    pub fn volumetric(&self) -> VolumetricIntegration {
+        self.volumetric
+    }
+
+    /// Number of elements `[in x2, in x3]`.
+    pub fn element_counts(&self) -> [usize; 2] {
+        self.elements
+    }
+
+    /// `(x2, x3)` of grid node `(i2, i3)`: GLL points inside each element.
+    ///
+    /// # Panics
+    /// If the node is outside the grid.
+    #[track_caller]
+    pub fn node_coordinates(&self, node: [usize; 2]) -> [f64; 2] {
+        [self.x2[node[0]], self.x3[node[1]]]
+    }
+
+    /// Nodes per element direction, `p + 1`.
+    pub(super) fn np(&self) -> usize {
+        self.degree + 1
+    }
+
+    /// Grid node numbers of element `e = e2 e3count + e3`, local node `a = a2 (p + 1) + a3`.
+    pub(super) fn element_nodes(&self, e: usize) -> Vec<usize> {
+        let (p, np) = (self.degree, self.np());
+        let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
+        let n2 = self.grid.n2();
+        let mut out = Vec::with_capacity(np * np);
+        for a2 in 0..np {
+            let i2 = (p * e2 + a2) % n2;
+            for a3 in 0..np {
+                out.push(self.grid.node_index([i2, p * e3 + a3]));
+            }
+        }
+        out
+    }
+
+    /// Lower-left corner of element `e`.
+    pub(super) fn element_origin(&self, e: usize) -> [f64; 2] {
+        let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
+        let [t0, _] = self.grid.theta();
+        [t0 + e2 as f64 * self.size[0], e3 as f64 * self.size[1]]
+    }
+
+    /// Evaluates the chart at the tensor points `gp` of every element (one chart column per
+    /// `x2` abscissa, element columns in parallel) and calls `visit(e, q, point, x, weight)`
+    /// with `q = q2 nq + q3` and `weight = w_q2 w_q3 det J`; `out` has `nq^2` entries per
+    /// element.
+    fn walk_points<T: Send + Clone + Default>(
+        &self,
+        gp: &[f64],
+        gw: &[f64],
+        visit: impl Fn(&capstan_geometry::ShellPoint<f64>, [f64; 2], f64) -> Result<T, ElasticityError>
+        + Sync,
+    ) -> Result<Vec<T>, ElasticityError> {
+        let [ne2, ne3] = self.elements;
+        let nq = gp.len();
+        let [l2, l3] = self.size;
+        let det = 0.25 * l2 * l3;
+        let heights: Vec<f64> = (0..ne3)
+            .flat_map(|e3| {
+                gp.iter()
+                    .map(move |&eta| (e3 as f64 + 0.5 * (eta + 1.0)) * l3)
+            })
+            .collect();
+        let mut out = vec![T::default(); ne2 * ne3 * nq * nq];
+        out.par_chunks_mut(ne3 * nq * nq).enumerate().try_for_each(
+            |(e2, column)| -> Result<(), ElasticityError> {
+                let x0 = self.element_origin(e2 * ne3)[0];
+                let mut points = Vec::with_capacity(heights.len());
+                for (q2, &xi) in gp.iter().enumerate() {
+                    let x2 = x0 + 0.5 * (xi + 1.0) * l2;
+                    points.clear();
+                    self.chart.shell_column([0.0, x2], &heights, &mut points)?;
+                    for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
+                        check_plane_strain(p, [0.0, x2, x3])?;
+                        let (e3, q3) = (idx / nq, idx % nq);
+                        column[e3 * nq * nq + q2 * nq + q3] =
+                            visit(p, [x2, x3], gw[q2] * gw[q3] * det)?;
+                    }
+                }
+                Ok(())
+            },
+        )?;
+        Ok(out)
+    }
+
+    /// The energy matrices at the quadrature points (and at the reduced points with SRI) and
+    /// the body-force load `int f_j N_a sqrt(g) dA`.
+    fn cache_geometry(&mut self, body_force: Option<&BodyForce>) -> Result<(), ElasticityError> {
+        let (gp, gw) = gauss_legendre(self.degree + 1);
+        let (lambda, mu) = (self.material.lambda(), self.material.mu());
+        let full_lambda = if self.volumetric == VolumetricIntegration::Full {
+            lambda
+        } else {
+            0.0
+        };
+        let points = self.walk_points(&gp, &gw, |p, x, w| {
+            let k = energy_matrix(p, &PLANE_STRAIN, full_lambda, mu, w);
+            let f = match body_force {
+                Some(f) => {
+                    let fx = f(x);
+                    if !(fx[0].is_finite() && fx[1].is_finite()) {
+                        return Err(ElasticityError::NonFinite {
+                            what: "body force",
+                            at: x,
+                        });
+                    }
+                    [fx[0] * p.sqrt_g * w, fx[1] * p.sqrt_g * w]
+                }
+                None => [0.0; 2],
+            };
+            Ok((k, f))
+        })?;
+        if body_force.is_some() {
+            let (np, nq) = (self.np(), gp.len());
+            let t = &self.tables;
+            for e in 0..self.elements[0] * self.elements[1] {
+                let nodes = self.element_nodes(e);
+                for q2 in 0..nq {
+                    for q3 in 0..nq {
+                        let f = points[e * nq * nq + q2 * nq + q3].1;
+                        for a2 in 0..np {
+                            for a3 in 0..np {
+                                let n = t.value[a2 * nq + q2] * t.value[a3 * nq + q3];
+                                let d = 2 * nodes[a2 * np + a3];
+                                self.load[d] += n * f[0];
+                                self.load[d + 1] += n * f[1];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        self.kq = points.into_iter().map(|(k, _)| k).collect();
+        if self.volumetric == VolumetricIntegration::Reduced {
+            let (rp, rw) = gauss_legendre(self.degree);
+            self.kv = self.walk_points(&rp, &rw, |p, _, w| {
+                let t = divergence_coefficients(p, &PLANE_STRAIN);
+                let c = lambda * p.sqrt_g * w;
+                Ok(core::array::from_fn(|a| {
+                    core::array::from_fn(|b| c * t[a] * t[b])
+                }))
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Adds `int phi_j N_a ds` over every side with a natural condition (Gauss rule of
+    /// `p + 1` points along each boundary edge).
+    fn add_boundary_loads(&mut self) -> Result<(), ElasticityError> {
+        let (gp, gw) = gauss_legendre(self.degree + 1);
+        let (p, np) = (self.degree, self.np());
+        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        for side in Side::ALL {
+            let Some(cond) = self.boundary.side(side).cloned() else {
+                continue; // periodic x2
+            };
+            let a = side.normal_index();
+            let along_x2 = a == 2;
+            let (count, length) = if along_x2 {
+                (self.elements[0], self.size[0])
+            } else {
+                (self.elements[1], self.size[1])
+            };
+            for e in 0..count {
+                for (&xi, &w) in gp.iter().zip(&gw) {
+                    let (shape, _) = super::gll::lagrange_basis(&self.gll, xi);
+                    let (x, nodes): ([f64; 2], Vec<[usize; 2]>) = if along_x2 {
+                        let i3 = if side == Side::X3Min { 0 } else { n3 - 1 };
+                        let x2 = self.element_origin(e * self.elements[1])[0]
+                            + 0.5 * (xi + 1.0) * length;
+                        (
+                            [x2, self.x3[i3]],
+                            (0..np).map(|b| [(p * e + b) % n2, i3]).collect(),
+                        )
+                    } else {
+                        let i2 = if side == Side::X2Min { 0 } else { n2 - 1 };
+                        let x3 = (e as f64 + 0.5 * (xi + 1.0)) * length;
+                        (
+                            [self.x2[i2], x3],
+                            (0..np).map(|b| [i2, p * e + b]).collect(),
+                        )
+                    };
+                    let s = if along_x2 { x[0] } else { x[1] };
+                    let at = [0.0, x[0], x[1]];
+                    let pt = self.chart.shell_point(at)?;
+                    check_plane_strain(&pt, at)?;
+                    for c in Component::ALL {
+                        let flux = match cond.component(c) {
+                            ComponentCondition::Displacement(_) => continue,
+                            ComponentCondition::Traction(f) => {
+                                pt.sqrt_g * pt.inverse_metric[a][a].sqrt() * f.eval(s)
+                            }
+                            ComponentCondition::Stress(f) => side.sign() * pt.sqrt_g * f.eval(s),
+                        };
+                        if !flux.is_finite() {
+                            return Err(ElasticityError::NonFinite {
+                                what: "boundary traction",
+                                at: x,
+                            });
+                        }
+                        for (node, n) in nodes.iter().zip(&shape) {
+                            let d = 2 * self.grid.node_index(*node) + c.index();
+                            self.load[d] += n * flux * w * 0.5 * length;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The elements along one direction containing node line `i`: `(element, local index)`.
+    pub(super) fn elements_along(
+        &self,
+        i: usize,
+        count: usize,
+        periodic: bool,
+    ) -> Vec<(usize, usize)> {
+        let p = self.degree;
+        if !i.is_multiple_of(p) {
+            return vec![(i / p, i % p)];
+        }
+        let mut out = Vec::with_capacity(2);
+        if periodic {
+            out.push(((i / p) % count, 0));
+            out.push(((i / p + count - 1) % count, p));
+        } else {
+            if i / p < count {
+                out.push((i / p, 0));
+            }
+            if i > 0 {
+                out.push((i / p - 1, p));
+            }
+        }
+        out
+    }
+
+    /// The nodal value and derivatives at grid node `node` as weights of nodal values:
+    /// `(node index, [value, d_2, d_3])`, the derivatives of the element polynomials at the
+    /// node averaged over the elements sharing it (one-sided limits at element edges).
+    ///
+    /// # Math
+    /// ```text
+    /// d_2 v (node) = (1 / #E2) sum_(e2 in E2) (2 / L2) sum_b l_b'(xi_a) v(p e2 + b, i3)
+    /// ```
+    /// and likewise in `x3`: exact for polynomials of degree `p` in the direction.
+    pub(super) fn node_terms(&self, [i2, i3]: [usize; 2]) -> Vec<(usize, [f64; 3])> {
+        let (p, np) = (self.degree, self.np());
+        let n2 = self.grid.n2();
+        let mut terms = vec![(self.grid.node_index([i2, i3]), [1.0, 0.0, 0.0])];
+        let along2 = self.elements_along(i2, self.elements[0], self.grid.is_periodic());
+        let w2 = 1.0 / along2.len() as f64;
+        for (e2, a2) in along2 {
+            for b in 0..np {
+                let d = self.derivative_at_nodes[b * np + a2] * 2.0 / self.size[0] * w2;
+                terms.push((self.grid.node_index([(p * e2 + b) % n2, i3]), [0.0, d, 0.0]));
+            }
+        }
+        let along3 = self.elements_along(i3, self.elements[1], false);
+        let w3 = 1.0 / along3.len() as f64;
+        for (e3, a3) in along3 {
+            for b in 0..np {
+                let d = self.derivative_at_nodes[b * np + a3] * 2.0 / self.size[1] * w3;
+                terms.push((self.grid.node_index([i2, p * e3 + b]), [0.0, 0.0, d]));
+            }
+        }
+        terms
+    }
+}

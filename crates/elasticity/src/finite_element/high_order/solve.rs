@@ -1,0 +1,439 @@
+//! Assembly of the Qp operator (full and statically condensed), its [`Discretisation`]
+//! implementation (contact entries, output fields) and error norms.
+
+use capstan_geometry::ShellPoint;
+use rayon::prelude::*;
+
+use super::condensation::CondensedElement;
+use super::gll::{gauss_legendre, lagrange_basis};
+use super::kernel::{add_element_matrix, symmetrise};
+use super::operator::HighOrderNavier;
+use super::skeleton::Skeleton;
+use crate::continuum::kinematics::{
+    LocalDisplacement, contravariant_stress, mixed_stress_coefficients,
+};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
+use crate::error::ElasticityError;
+use crate::fields::NodalFields;
+use crate::finite_element::{DisplacementErrors, ElementAssembly};
+use crate::plane_strain_operator::plane_strain_numbering;
+use crate::shell_geometry::ShellGeometry;
+use capstan_solvers::LinearSolver;
+
+/// The statically condensed system of a [`HighOrderNavier`]: the skeleton system and what
+/// each element needs to recover its interior values.
+#[derive(Debug, Clone)]
+pub struct CondensedSystem {
+    /// `S u_B = f_B + g` on the skeleton dofs (`2 s + c`, skeleton node `s`).
+    pub system: LinearSystem,
+    elements: Vec<CondensedElement>,
+}
+
+impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
+    /// Element dofs `l = 2 (p + 1)^2`.
+    fn local_dofs(&self) -> usize {
+        2 * self.np() * self.np()
+    }
+
+    /// Adds the (symmetric) stiffness matrix of element `e` to `out` (`l x l`, local dof
+    /// `2 a + c`).
+    pub(super) fn element_matrix(&self, e: usize, out: &mut [f64]) {
+        let nq2 = self.tables.nq * self.tables.nq;
+        add_element_matrix(&self.tables, &self.kq[e * nq2..(e + 1) * nq2], out);
+        if let Some(rt) = &self.reduced_tables {
+            let nr2 = rt.nq * rt.nq;
+            add_element_matrix(rt, &self.kv[e * nr2..(e + 1) * nr2], out);
+        }
+        symmetrise(out, self.local_dofs());
+    }
+
+    fn element_count(&self) -> usize {
+        self.elements[0] * self.elements[1]
+    }
+
+    /// The pattern of the whole system (every GLL node), built on first use.
+    fn full_assembly(&self) -> Result<&ElementAssembly, ElasticityError> {
+        if let Some(a) = self.full.get() {
+            return Ok(a);
+        }
+        let connectivity = (0..self.element_count())
+            .flat_map(|e| self.element_nodes(e))
+            .collect();
+        let a = ElementAssembly::new(
+            self.grid.node_count(),
+            2,
+            self.np() * self.np(),
+            connectivity,
+            &self.dirichlet,
+        )?;
+        let _ = self.full.set(a);
+        Ok(self.full.get().expect("just set"))
+    }
+
+    /// The skeleton numbering and pattern, built on first use.
+    fn skeleton(&self) -> Result<&Skeleton, ElasticityError> {
+        if let Some(s) = self.skeleton.get() {
+            return Ok(s);
+        }
+        let s = Skeleton::new(
+            self.degree,
+            [self.grid.n2(), self.grid.n3()],
+            self.element_count(),
+            |e| self.element_nodes(e),
+            &self.dirichlet,
+        )?;
+        let _ = self.skeleton.set(s);
+        Ok(self.skeleton.get().expect("just set"))
+    }
+
+    /// The system on every node, not condensed (what [`Discretisation::system`] returns).
+    ///
+    /// # Errors
+    /// [`ElasticityError::NonFinite`] for a non-finite element matrix; pattern errors.
+    pub fn full_system(&self) -> Result<LinearSystem, ElasticityError> {
+        self.full_assembly()?.assemble(
+            |e, out| self.element_matrix(e, out),
+            &self.load,
+            &self.dirichlet,
+        )
+    }
+
+    /// Condenses the element interiors: the element Schur complements (in parallel) and the
+    /// skeleton system they assemble into ([`super::condensation::CondensedElement`]).
+    ///
+    /// # Errors
+    /// [`ElasticityError::InconsistentBoundary`] for a prescribed dof inside an element;
+    /// [`ElasticityError::Solver`] if an interior block is not positive definite.
+    pub fn condensed_system(&self) -> Result<CondensedSystem, ElasticityError> {
+        let sk = self.skeleton()?;
+        let l = self.local_dofs();
+        let local = |set: &[usize]| -> Vec<usize> {
+            set.iter().flat_map(|&a| [2 * a, 2 * a + 1]).collect()
+        };
+        let (bd, id) = (local(&sk.boundary_local), local(&sk.interior_local));
+        let elements = (0..self.element_count())
+            .into_par_iter()
+            .map(|e| {
+                let mut k = vec![0.0; l * l];
+                self.element_matrix(e, &mut k);
+                let nodes = self.element_nodes(e);
+                let f: Vec<f64> = id
+                    .iter()
+                    .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
+                    .collect();
+                CondensedElement::new(&k, l, &bd, &id, &f)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut load: Vec<f64> = sk
+            .nodes
+            .iter()
+            .flat_map(|&m| [self.load[2 * m], self.load[2 * m + 1]])
+            .collect();
+        for (e, c) in elements.iter().enumerate() {
+            let nodes = sk.assembly.nodes(e);
+            for (r, g) in c.load.iter().enumerate() {
+                load[2 * nodes[r / 2] + r % 2] += g;
+            }
+        }
+        let system = sk.assembly.assemble(
+            |e, out| out.copy_from_slice(&elements[e].schur),
+            &load,
+            &sk.dirichlet,
+        )?;
+        Ok(CondensedSystem { system, elements })
+    }
+
+    /// The displacement on every node from the skeleton solution `u_skeleton` of
+    /// `condensed.system`: skeleton values scattered, interiors `u_I = y - X u_B`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length.
+    pub fn recover(
+        &self,
+        condensed: &CondensedSystem,
+        u_skeleton: &[f64],
+    ) -> Result<Vec<f64>, ElasticityError> {
+        let sk = self.skeleton()?;
+        ElasticityError::check_length("skeleton solution", 2 * sk.nodes.len(), u_skeleton.len())?;
+        let mut v = vec![0.0; self.dof_count()];
+        for (s, &m) in sk.nodes.iter().enumerate() {
+            v[2 * m] = u_skeleton[2 * s];
+            v[2 * m + 1] = u_skeleton[2 * s + 1];
+        }
+        let interiors: Vec<Vec<f64>> = (0..self.element_count())
+            .into_par_iter()
+            .map(|e| {
+                let ub: Vec<f64> = sk
+                    .assembly
+                    .nodes(e)
+                    .iter()
+                    .flat_map(|&s| [u_skeleton[2 * s], u_skeleton[2 * s + 1]])
+                    .collect();
+                condensed.elements[e].recover(&ub)
+            })
+            .collect();
+        for (e, ui) in interiors.iter().enumerate() {
+            let nodes = self.element_nodes(e);
+            for (r, &a) in sk.interior_local.iter().enumerate() {
+                v[2 * nodes[a]] = ui[2 * r];
+                v[2 * nodes[a] + 1] = ui[2 * r + 1];
+            }
+        }
+        Ok(v)
+    }
+
+    /// Solves by static condensation: condense, factorise and solve the skeleton system with
+    /// `solver`, recover the interiors. Falls back to the full system when a prescribed dof
+    /// lies inside an element.
+    ///
+    /// # Errors
+    /// Assembly or solver errors.
+    pub fn solve_condensed(
+        &self,
+        solver: &mut dyn LinearSolver<f64>,
+    ) -> Result<Vec<f64>, ElasticityError> {
+        match self.condensed_system() {
+            Ok(c) => {
+                let u = c.system.solve(solver)?;
+                self.recover(&c, &u)
+            }
+            Err(ElasticityError::InconsistentBoundary { .. }) => self.full_system()?.solve(solver),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The local displacement (value and gradient) at a node ([`Self::node_terms`]).
+    fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
+        let mut s = [[0.0; 2]; 3];
+        for (m, w) in self.node_terms(node) {
+            for (t, wt) in w.iter().enumerate() {
+                s[t][0] += wt * v[2 * m];
+                s[t][1] += wt * v[2 * m + 1];
+            }
+        }
+        LocalDisplacement {
+            value: s[0],
+            gradient: [s[1], s[2]],
+        }
+    }
+
+    /// The element containing `x` (clamped to the rectangle) and the reference coordinates
+    /// there.
+    fn locate(&self, [x2, x3]: [f64; 2]) -> (usize, [f64; 2]) {
+        let [t0, _] = self.grid.theta();
+        let locate1 = |t: f64, count: usize| -> (usize, f64) {
+            let e = (t.floor().max(0.0) as usize).min(count - 1);
+            (e, 2.0 * (t - e as f64) - 1.0)
+        };
+        let (e2, xi) = locate1((x2 - t0) / self.size[0], self.elements[0]);
+        let (e3, eta) = locate1(x3 / self.size[1], self.elements[1]);
+        (e2 * self.elements[1] + e3, [xi, eta])
+    }
+
+    /// The discrete displacement `[v^2, v^3]` at `x` (the element polynomial; clamped to the
+    /// rectangle).
+    pub fn displacement_at(&self, v: &[f64], x: [f64; 2]) -> [f64; 2] {
+        let (e, [xi, eta]) = self.locate(x);
+        let nodes = self.element_nodes(e);
+        let np = self.np();
+        let (b2, _) = lagrange_basis(&self.gll, xi);
+        let (b3, _) = lagrange_basis(&self.gll, eta);
+        let mut u = [0.0; 2];
+        for a2 in 0..np {
+            for a3 in 0..np {
+                let (n, m) = (b2[a2] * b3[a3], nodes[a2 * np + a3]);
+                u[0] += n * v[2 * m];
+                u[1] += n * v[2 * m + 1];
+            }
+        }
+        u
+    }
+
+    /// Interpolates the discrete and the exact displacement over every element with a
+    /// `(p + 2)`-point Gauss rule per direction and returns the error norms (as
+    /// [`crate::finite_element::FiniteElementNavier::displacement_errors`]; the max error is
+    /// over the GLL nodes at their own coordinates).
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
+    pub fn displacement_errors(
+        &self,
+        v: &[f64],
+        exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
+    ) -> Result<DisplacementErrors, ElasticityError> {
+        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
+        let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
+            let g = &p.metric;
+            g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
+        };
+        let max = (0..self.grid.node_count())
+            .into_par_iter()
+            .map(|k| -> Result<f64, ElasticityError> {
+                let [x2, x3] = self.node_coordinates(self.grid.node(k));
+                let p = self.chart.shell_point([0.0, x2, x3])?;
+                let u = exact([x2, x3]);
+                Ok(norm2(&p, [v[2 * k] - u[0], v[2 * k + 1] - u[1]]).sqrt())
+            })
+            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
+        let (gp, gw) = gauss_legendre(self.degree + 2);
+        let [l2, l3] = self.size;
+        let det = 0.25 * l2 * l3;
+        let np = self.np();
+        let basis: Vec<Vec<f64>> = gp.iter().map(|&x| lagrange_basis(&self.gll, x).0).collect();
+        let sums = (0..self.element_count())
+            .into_par_iter()
+            .map(|e| -> Result<[f64; 3], ElasticityError> {
+                let nodes = self.element_nodes(e);
+                let [x0, y0] = self.element_origin(e);
+                let mut s = [0.0; 3];
+                for (i, &xi) in gp.iter().enumerate() {
+                    for (j, &eta) in gp.iter().enumerate() {
+                        let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
+                        let mut uh = [0.0; 2];
+                        for a2 in 0..np {
+                            for a3 in 0..np {
+                                let n = basis[i][a2] * basis[j][a3];
+                                let m = nodes[a2 * np + a3];
+                                uh[0] += n * v[2 * m];
+                                uh[1] += n * v[2 * m + 1];
+                            }
+                        }
+                        let p = self.chart.shell_point([0.0, x[0], x[1]])?;
+                        let u = exact(x);
+                        let w = gw[i] * gw[j] * det;
+                        let err2 = norm2(&p, [uh[0] - u[0], uh[1] - u[1]]);
+                        s[0] += w * err2;
+                        s[1] += w * p.sqrt_g * err2;
+                        s[2] += w * p.sqrt_g * norm2(&p, u);
+                    }
+                }
+                Ok(s)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let s = sums.iter().fold([0.0; 3], |acc, x| {
+            [acc[0] + x[0], acc[1] + x[1], acc[2] + x[2]]
+        });
+        let [t0, t1] = self.grid.theta();
+        let area = (t1 - t0) * self.grid.thickness();
+        Ok(DisplacementErrors {
+            max,
+            rms: (s[0] / area).sqrt(),
+            l2: s[1].sqrt(),
+            l2_exact: s[2].sqrt(),
+        })
+    }
+}
+
+impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
+    fn method(&self) -> &'static str {
+        "fem-qp"
+    }
+
+    /// Nested dissection along element boundaries of degree `p`: it eliminates the element
+    /// interiors first, the sparse-factorisation counterpart of static condensation.
+    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
+        capstan_solvers::ColumnOrdering::ElementNestedDissection {
+            grid: capstan_solvers::GridShape {
+                n2: self.grid.n2(),
+                n3: self.grid.n3(),
+                dofs_per_node: 2,
+                periodic: self.grid.is_periodic(),
+            },
+            degree: self.degree,
+        }
+    }
+
+    plane_strain_numbering!();
+
+    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
+        Ok(self.full_assembly()?.pattern().entries().collect())
+    }
+
+    fn fill(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
+        let system = self.full_system()?;
+        for (k, x) in system.values.into_iter().enumerate() {
+            add(k, x);
+        }
+        rhs.copy_from_slice(&system.rhs);
+        Ok(())
+    }
+
+    /// The whole system (every node), assembled straight into its pattern; equal to the
+    /// default `entries()` + `fill()` path.
+    fn system(&self) -> Result<LinearSystem, ElasticityError> {
+        self.full_system()
+    }
+
+    /// Static condensation ([`HighOrderNavier::solve_condensed`]).
+    fn solve(&self, solver: &mut dyn LinearSolver<f64>) -> Result<Vec<f64>, ElasticityError> {
+        self.solve_condensed(solver)
+    }
+
+    /// # Math
+    /// Traction weight `sqrt(g) sqrt(g^33) int N_i dx2` with `int N_i dx2 = w_a L2 / 2` per
+    /// element sharing the node (`w_a` the GLL weight: exact, the GLL rule integrates degree
+    /// `2p - 1`); `T^3_3`, `T^3_2` from the element polynomials' value and derivatives at the
+    /// node (`HighOrderNavier::node_terms`, averaged over the elements sharing it), with the
+    /// pointwise stress also under SRI. The entry's `x2` is the node's GLL position.
+    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        (0..self.grid.n2())
+            .map(|i| {
+                let x2 = self.x2[i];
+                let at = [0.0, x2, 0.0];
+                let p = self.chart.shell_point(at)?;
+                crate::continuum::check_plane_strain(&p, at)?;
+                let c = mixed_stress_coefficients(&p, &self.material);
+                let terms = self.node_terms([i, 0]);
+                let row = |j: usize| {
+                    let mut t: Vec<(usize, f64)> = terms
+                        .iter()
+                        .flat_map(|&(m, w)| {
+                            (0..2).map(move |comp| {
+                                let coef: f64 = (0..3).map(|t| w[t] * c[2 * t + comp][2][j]).sum();
+                                (2 * m + comp, coef)
+                            })
+                        })
+                        .collect();
+                    SparseRow::from_terms(&mut t)
+                };
+                let length: f64 = self
+                    .elements_along(i, self.elements[0], self.grid.is_periodic())
+                    .iter()
+                    .map(|&(_, a)| self.gll_weights[a] * 0.5 * self.size[0])
+                    .sum();
+                let weight = p.sqrt_g * p.inverse_metric[2][2].sqrt() * length;
+                let mut node = ContactNode::at(
+                    self,
+                    i,
+                    &self.dirichlet,
+                    weight,
+                    p.metric[1][1].sqrt(),
+                    [row(1), row(2)],
+                );
+                node.x2 = x2;
+                Ok(node)
+            })
+            .collect()
+    }
+
+    /// Fields at the GLL nodes (at their own coordinates; `NodalFields::grid` is the uniform
+    /// grid of the same node counts): value and gradient of the element polynomials,
+    /// averaged over the elements sharing a node.
+    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
+        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
+        NodalFields::from_nodes_at(
+            self.grid,
+            |node| self.node_coordinates(node),
+            &self.chart,
+            |node, p| {
+                let u = self.local(node, v);
+                Ok((u, contravariant_stress(p, &self.material, &u)))
+            },
+        )
+    }
+}

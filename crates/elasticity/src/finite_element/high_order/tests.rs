@@ -1,0 +1,218 @@
+//! The Qp operator against Q1/Q2, its condensed solve against the full one, and its
+//! convergence on the manufactured solution and the Lamé cylinder.
+
+use capstan_solvers::SparseCholesky;
+
+use super::HighOrderNavier;
+use crate::discretisation::Discretisation;
+use crate::finite_element::{ElementOrder, VolumetricIntegration, lame_parts, mms_parts};
+use crate::samples::{
+    LameCylinder, ManufacturedField, MmsBoundaries, PrismMms, TrigonometricExact,
+};
+use crate::verification::{GridLevel, observed_order};
+use std::sync::Arc;
+
+fn mms() -> PrismMms {
+    PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)
+}
+
+/// The manufactured problem with `2k x k` elements of order `p`.
+fn mms_qp(
+    p: usize,
+    k: usize,
+    volumetric: VolumetricIntegration,
+) -> (
+    HighOrderNavier<crate::finite_element::SampleChart>,
+    Arc<TrigonometricExact>,
+) {
+    let level = GridLevel {
+        n2: 2 * k * p + 1,
+        n3: k * p + 1,
+    };
+    let (parts, exact) = mms_parts(&mms(), level).unwrap();
+    (parts.high_order(p, volumetric).unwrap(), exact)
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+#[test]
+fn qp1_and_qp2_reproduce_fem_q1_and_fem_q2() {
+    for volumetric in VolumetricIntegration::ALL {
+        for (p, order) in [(1, ElementOrder::Q1), (2, ElementOrder::Q2)] {
+            let level = GridLevel { n2: 9, n3: 5 };
+            let (parts, _) = mms_parts(&mms(), level).unwrap();
+            let q = parts
+                .clone()
+                .finite_element_with(order, volumetric)
+                .unwrap();
+            let qp = parts.high_order(p, volumetric).unwrap();
+            let a = q.solve(&mut SparseCholesky::default()).unwrap();
+            let b = qp
+                .full_system()
+                .unwrap()
+                .solve(&mut SparseCholesky::default())
+                .unwrap();
+            let diff = a
+                .iter()
+                .zip(&b)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max);
+            // same nodes, rules and weak form: only the summation order differs
+            assert!(diff < 1e-12 * max_abs(&a), "p {p} {volumetric:?}: {diff:e}");
+            // the contact rows: Q1/Q2 recover T^3_j by finite differences, Qp by the element
+            // polynomial; the traction weights are the same integrals int N_i dx2
+            let (ca, cb) = (q.contact_nodes().unwrap(), qp.contact_nodes().unwrap());
+            for (x, y) in ca.iter().zip(&cb) {
+                assert!((x.traction_weight - y.traction_weight).abs() < 1e-14);
+                assert!((x.x2 - y.x2).abs() < 1e-14);
+            }
+        }
+    }
+}
+
+#[test]
+fn static_condensation_equals_the_full_solve() {
+    for p in [2, 3, 5, 8] {
+        for volumetric in VolumetricIntegration::ALL {
+            let (op, _) = mms_qp(p, 2, volumetric);
+            let full = op
+                .full_system()
+                .unwrap()
+                .solve(&mut SparseCholesky::default())
+                .unwrap();
+            let condensed = op.solve(&mut SparseCholesky::default()).unwrap();
+            let diff = full
+                .iter()
+                .zip(&condensed)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0, f64::max);
+            assert!(diff < 1e-10 * max_abs(&full), "p {p}: {diff:e}"); // round-off of two factorisations
+        }
+    }
+}
+
+/// `(h, L2 error)` on `2k x k` elements of order `p` for each `k`.
+fn mms_study(p: usize, ks: &[usize]) -> Vec<(f64, f64)> {
+    ks.iter()
+        .map(|&k| {
+            let (op, exact) = mms_qp(p, k, VolumetricIntegration::Full);
+            let v = op.solve(&mut SparseCholesky::default()).unwrap();
+            let e = op
+                .displacement_errors(&v, &|x| exact.field.displacement(x).value)
+                .unwrap();
+            (op.grid().thickness() / k as f64, e.rms)
+        })
+        .collect()
+}
+
+/// Relative L2 errors `(h, error)` of the Lamé cylinder with `4 x e3` elements of order `p`
+/// (the solution does not depend on `x2`: refined through the thickness only).
+fn lame_h_study(p: usize, e3s: &[usize]) -> Vec<(f64, f64)> {
+    let lame = LameCylinder::default();
+    let field = lame.field();
+    e3s.iter()
+        .map(|&e3| {
+            let level = GridLevel {
+                n2: 4 * p,
+                n3: p * e3 + 1,
+            };
+            let op = lame_parts(&lame, level)
+                .unwrap()
+                .high_order(p, VolumetricIntegration::Full)
+                .unwrap();
+            let v = op.solve(&mut SparseCholesky::default()).unwrap();
+            let e = op
+                .displacement_errors(&v, &|x| field.displacement(x).value)
+                .unwrap();
+            (lame.thickness / e3 as f64, e.l2 / e.l2_exact)
+        })
+        .collect()
+}
+
+#[test]
+fn manufactured_solution_converges_with_order_p_plus_1_in_l2() {
+    // three grids per order (2k x k elements), in the asymptotic range and above the
+    // forcing's round-off floor (~1e-12: the MMS forcing is a Richardson difference)
+    let grids: [&[usize]; 4] = [&[8, 16, 32], &[4, 8, 16], &[2, 4, 8], &[2, 4, 8]];
+    for (p, ks) in (1..=4).zip(grids) {
+        let study = mms_study(p, ks);
+        let order = observed_order(&study);
+        assert!(
+            (order - (p as f64 + 1.0)).abs() < 0.15,
+            "p {p}: order {order}, {study:?}"
+        );
+    }
+}
+
+#[test]
+fn lame_cylinder_converges_with_order_p_plus_1_for_p_5_and_approaches_it_for_p_6() {
+    // p = 5: 4 x {4, 8, 16} elements, 4.6e-9 ... 1.4e-12 (measured 5.87)
+    let study = lame_h_study(5, &[4, 8, 16]);
+    let order = observed_order(&study);
+    assert!((order - 6.0).abs() < 0.15, "p 5: order {order}, {study:?}");
+    assert!(study[2].1 < 1e-11, "{study:?}");
+    // p = 6: the asymptotic range starts where the error meets the round-off floor of the
+    // solve (~1e-12 relative); the local orders rise towards 7 from below (5.6, 6.3, 6.7)
+    let study = lame_h_study(6, &[2, 4, 8]);
+    let last = (study[2].1 / study[1].1).ln() / (study[2].0 / study[1].0).ln();
+    assert!(
+        last > 6.5 && last < 7.15,
+        "p 6: last order {last}, {study:?}"
+    );
+}
+
+#[test]
+fn lame_cylinder_converges_exponentially_in_p() {
+    let lame = LameCylinder::default();
+    let field = lame.field();
+    let errors: Vec<(f64, f64)> = (2..=8)
+        .map(|p| {
+            // 4 x 1 elements
+            let level = GridLevel {
+                n2: 4 * p,
+                n3: p + 1,
+            };
+            let op = lame_parts(&lame, level)
+                .unwrap()
+                .high_order(p, VolumetricIntegration::Full)
+                .unwrap();
+            let v = op.solve(&mut SparseCholesky::default()).unwrap();
+            let e = op
+                .displacement_errors(&v, &|x| field.displacement(x).value)
+                .unwrap();
+            (p as f64, e.l2 / e.l2_exact)
+        })
+        .collect();
+    // slope of ln(error) against p: the rate of exponential convergence
+    let n = errors.len() as f64;
+    let mx = errors.iter().map(|e| e.0).sum::<f64>() / n;
+    let my = errors.iter().map(|e| e.1.ln()).sum::<f64>() / n;
+    let sxy: f64 = errors.iter().map(|e| (e.0 - mx) * (e.1.ln() - my)).sum();
+    let sxx: f64 = errors.iter().map(|e| (e.0 - mx).powi(2)).sum();
+    let rate = -sxy / sxx;
+    assert!(
+        errors.windows(2).all(|w| w[1].1 < 0.5 * w[0].1),
+        "{errors:?}"
+    );
+    assert!(rate > 1.5, "rate {rate}: {errors:?}");
+}
+
+#[test]
+fn registered_studies_report_orders_near_p_plus_1() {
+    // the Lamé studies of `capstan verify` for p = 2, 3, 4 (4 x {4, 8, 16} elements)
+    for study in super::high_order_studies().iter().skip(7).take(3) {
+        let r = study.run(true).unwrap();
+        let p = r
+            .discretisation
+            .trim_start_matches("fem-qp")
+            .parse::<f64>()
+            .unwrap();
+        println!(
+            "{} {}: L2 order {:.3}",
+            r.name, r.discretisation, r.order_l2
+        );
+        assert!((r.order_l2 - (p + 1.0)).abs() < 0.15, "{}", r.table());
+    }
+}
