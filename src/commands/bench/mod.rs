@@ -1,6 +1,6 @@
 //! `capstan bench work-precision`: run time against error for the finite differences, the
-//! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp8`, `bench/high_order.rs`) with each
-//! applicable linear backend, on three problems, beside peer FEM libraries (scikit-fem,
+//! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp8`, `bench/high_order.rs`)
+//! with each applicable linear backend, on three problems, beside peer FEM libraries (scikit-fem,
 //! NGSolve: [`PEERS`]) on the Lamé cylinder.
 //!
 //! # Problems

@@ -26,7 +26,7 @@ pub struct PeerOrder {
 }
 
 /// A peer library: its script, the module that must import, its orders and linear solvers.
-/// The script names its methods `MODULE-...` ([`is_peer_method`]).
+/// The script names its methods `MODULE-...` (see `is_peer_method`).
 #[derive(Debug, Clone, Copy)]
 pub struct Peer {
     /// Display name.
