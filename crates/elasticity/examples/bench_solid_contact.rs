@@ -15,7 +15,8 @@
 //! difference `max |v - v_ref| / max |v_ref|` to a saved one (work-precision).
 //! Prints one JSON line: grid, unknowns, contact unknowns, solver, seconds of the model
 //! (assembly), the solver set-up, the solve (and a 26-point ratio sweep from 1.0 to 2.0 with
-//! `--sweep`, warm-started), Newton iterations, relative residual, max `|v^2|`, VmHWM in MiB.
+//! `--sweep`, warm-started), Newton and Krylov iterations, residuals, max `|v^2|`, CPU seconds,
+//! VmHWM in MiB.
 
 use std::time::Instant;
 
@@ -118,7 +119,7 @@ fn main() {
     });
     let loads = EndLoads::ratio(*ratios.last().expect("a ratio"));
     println!(
-        "{{\"nodes\":{nodes:?},\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"{solver}\",\"krylov_tolerance\":{krylov_tol:.0e},\"solves\":{},\"model_seconds\":{model_seconds:.3},\"setup_seconds\":{setup_seconds:.3},\"solve_seconds\":{:.3},\"newton_iterations\":{iterations},\"krylov_iterations\":{krylov},\"krylov_per_newton\":{:.1},\"residual\":{:.2e},\"relative_residual\":{:.2e},\"difference_to_reference\":{},\"max_v2\":{:.9e},\"vm_hwm_mib\":{:.0}}}",
+        "{{\"nodes\":{nodes:?},\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"{solver}\",\"krylov_tolerance\":{krylov_tol:.0e},\"solves\":{},\"model_seconds\":{model_seconds:.3},\"setup_seconds\":{setup_seconds:.3},\"solve_seconds\":{:.3},\"newton_iterations\":{iterations},\"krylov_iterations\":{krylov},\"krylov_per_newton\":{:.1},\"residual\":{:.2e},\"relative_residual\":{:.2e},\"difference_to_reference\":{},\"max_v2\":{:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
         model.dof_count(),
         model.active().len(),
         results.len(),
@@ -128,6 +129,22 @@ fn main() {
         model.relative_residual(loads, v),
         difference.map_or("null".to_owned(), |d| format!("{d:.2e}")),
         last.max_azimuthal_displacement.value,
+        cpu_seconds(),
         peak_memory_mib()
     );
+}
+
+/// User + system CPU seconds of this process (`/proc/self/stat`, 100 ticks a second; 0
+/// elsewhere): the machine is shared, so wall-clock times alone overstate the work.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let tick = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (tick(11) + tick(12)) / 100.0
 }

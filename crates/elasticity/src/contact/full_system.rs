@@ -294,7 +294,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         if start.iter().all(|x| x.is_finite()) {
             match self.newton(loads, &mut v, &mut stats, observer) {
                 Ok(_) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
-                Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
+                Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
+                    return Err(e.into());
+                }
                 Err(_) => {}
             }
         }
@@ -323,7 +325,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// Solves for the loads.
     ///
     /// # Errors
-    /// [`ContactError::NotConverged`] when the continuation fails; invalid loads.
+    /// [`ContactError::NotConverged`] when the continuation fails; invalid loads;
+    /// [`SolverError::BudgetSpent`] (inside [`ContactError::Solver`], naming
+    /// `krylov.max_iterations`) when an iterative bulk solve spends its budget (no
+    /// continuation is tried: a smaller load step does not make the linear solves cheaper).
     pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
         self.solve_observed(loads, &mut SilentObserver)
     }
@@ -346,7 +351,8 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut stats = self.fresh_stats(usize::from(self.stuck.get().is_none()));
         let mut v = self.stuck(loads)?;
         let first = self.newton(loads, &mut v, &mut stats, observer);
-        if let Err(e @ SolverError::Interrupted { .. }) = first {
+        if let Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) = first
+        {
             return Err(e.into());
         }
         if first.is_err() {
@@ -376,7 +382,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                         current = trial;
                         step = (step * 1.5).min(1.0);
                     }
-                    Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
+                    Err(
+                        e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. }),
+                    ) => {
+                        return Err(e.into());
+                    }
                     Err(e) => {
                         last = match e {
                             SolverError::Stagnated { residual, .. }
