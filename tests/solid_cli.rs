@@ -231,3 +231,58 @@ fn plane_strain_only_commands_refuse_a_three_dimensional_body() {
     assert!(!dir.join("system.mtx").exists(), "no partial output");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn multigrid_bulk_solver_reproduces_the_direct_contact_and_is_refused_in_plane_strain() {
+    let run = |linear: &str| {
+        capstan_json(
+            &[
+                &[
+                    "contact",
+                    "--set",
+                    "body.dimension=3",
+                    "--set",
+                    "solver.nonlinear=full-newton",
+                    "--set",
+                    &format!("solver.linear={linear}"),
+                ][..],
+                &ELLIPSE[..],
+            ]
+            .concat(),
+        )
+    };
+    let (lu, mg) = (run("lu"), run("multigrid"));
+    assert_eq!(mg["status"], "converged");
+    let (a, b) = (
+        values(&lu["solid"]["contact"]["v1"]),
+        values(&mg["solid"]["contact"]["v1"]),
+    );
+    let scale = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-8 * scale),
+        "{a:?} {b:?}"
+    );
+    for (set, key) in [
+        (&["--set", "body.dimension=2"][..], "solver.linear"),
+        (
+            &[
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "solver.nonlinear=newton",
+            ][..],
+            "solver.linear",
+        ),
+    ] {
+        let (code, _, stderr) = capstan_status(
+            &[
+                &["contact", "--set", "solver.linear=multigrid"][..],
+                set,
+                &ELLIPSE[..],
+            ]
+            .concat(),
+        );
+        assert_eq!(code, Some(2), "{set:?}: {stderr}");
+        assert!(stderr.contains(key), "{set:?}: {stderr}");
+    }
+}
