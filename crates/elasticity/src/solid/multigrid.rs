@@ -259,7 +259,7 @@ mod tests {
             let node = grid.node(m);
             if node[2] == 0 {
                 let (cols, vals) = p.row(3 * m + 2);
-                if node[0] % 2 == 0 && node[1] % 2 == 0 {
+                if node[0].is_multiple_of(2) && node[1].is_multiple_of(2) {
                     assert_eq!(vals, &[1.0]);
                     assert_eq!(cols.len(), 1);
                 } else {
