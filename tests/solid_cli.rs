@@ -286,3 +286,40 @@ fn multigrid_bulk_solver_reproduces_the_direct_contact_and_is_refused_in_plane_s
         assert!(stderr.contains(key), "{set:?}: {stderr}");
     }
 }
+
+#[test]
+fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
+    // 33 x 321 x 33 Q1: 1,048,707 unknowns, the LU estimate 59 GiB (docs/solid.md)
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map(|kib| kib * 1024.0);
+    if available.is_none_or(|b| b > 59.0 * (1u64 << 30) as f64) {
+        eprintln!("skipped: more than 59 GiB available, the LU would be attempted");
+        return;
+    }
+    let (code, _, stderr) = capstan_status(&[
+        "contact",
+        "--set",
+        "body.dimension=3",
+        "--set",
+        "discretisation.method=fem-q1",
+        "--set",
+        "solver.nonlinear=full-newton",
+        "--set",
+        "grid.n1=33",
+        "--set",
+        "grid.n2=321",
+        "--set",
+        "grid.n3=33",
+    ]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("grid.n1") && stderr.contains("solver.linear = \"multigrid\""),
+        "{stderr}"
+    );
+}

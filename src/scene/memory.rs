@@ -92,7 +92,8 @@ pub fn solid_memory_estimate([n1, n2, n3]: [usize; 3], condensed: bool) -> f64 {
 /// (`solver.linear = "multigrid"`), fitted above the measured peaks of `bench_solid_contact`
 /// (see [`solid_multigrid_memory_estimate`]): VmHWM 1,107 MiB at 111,843 unknowns
 /// (17 x 129 x 17 Q1) and 3,081 MiB at 301,875 (25 x 161 x 25), 10.9 KB per unknown between
-/// the two, plus the 60 more GMRES vectors of the default restart (100) since.
+/// the two, plus the 60 more GMRES vectors of the default restart (100) since; 11,203 MiB
+/// at 1,048,707 (33 x 321 x 33) against 12.3 GiB estimated.
 pub const SOLID_MULTIGRID_BYTES_PER_UNKNOWN: f64 = 12_500.0;
 
 /// The memory a 3-D contact solve on an `n1 x n2 x n3` grid needs with the iterative bulk

@@ -31,7 +31,7 @@ fn clamped(nodes: [usize; 3]) -> SolidNavier<ShellChart<EllipticalPrism<f64>>> {
         FaceComponent::fixed(),
     ]);
     SolidNavier::new(
-        ShellChart::new(body.surface.clone()),
+        ShellChart::new(body.surface),
         body.material,
         body.grid().unwrap(),
         &boundary,
