@@ -235,7 +235,12 @@ mod tests {
                 constrained[3 * m + 2] = true;
             }
         }
-        let h = box_hierarchy(&grid, &constrained, 0);
+        assert_eq!(
+            box_hierarchy(&grid, &constrained, 0).counts,
+            vec![[5, 9, 5], [3, 5, 3], [3, 3, 3]]
+        );
+        // stops at a level of at most `coarsest_unknowns` (3 x 3 x 5 x 3 = 135)
+        let h = box_hierarchy(&grid, &constrained, 135);
         assert_eq!(h.counts, vec![[5, 9, 5], [3, 5, 3]]);
         let p = &h.prolongations[0];
         let coarse = BoxGrid::new([0.0, 1.0], [0.0, 2.0], 1.0, [3, 5, 3], false).unwrap();
