@@ -1,10 +1,11 @@
-//! The full-system contact solver: Newton (sparse LU refactorised each step) or the paper's
-//! Jacobi–Newton on the whole residual. The reference the boundary-only solver is checked
+//! The full-system contact solver: Newton (sparse LU refactorised each step, or GMRES with the
+//! discretisation's geometric multigrid: [`BulkMultigrid`]) or the paper's Jacobi–Newton on
+//! the whole residual. The reference the boundary-only solver is checked
 //! against, and the baseline of the benchmarks.
 
-use capstan_friction::FrictionLaw;
 use std::sync::{Arc, OnceLock};
 
+use capstan_friction::FrictionLaw;
 use capstan_solvers::{
     ColumnOrdering, CsrMatrix, DirectParams, Jacobian, KrylovMethod, LinearSolver, Newton,
     NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
