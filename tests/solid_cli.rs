@@ -319,7 +319,7 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
     ]);
     assert_eq!(code, Some(2), "{stderr}");
     assert!(
-        stderr.contains("grid.n1") && stderr.contains("solver.linear = \"multigrid\""),
+        stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"multigrid\""),
         "{stderr}"
     );
 }
