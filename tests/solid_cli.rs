@@ -231,3 +231,95 @@ fn plane_strain_only_commands_refuse_a_three_dimensional_body() {
     assert!(!dir.join("system.mtx").exists(), "no partial output");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn multigrid_bulk_solver_reproduces_the_direct_contact_and_is_refused_in_plane_strain() {
+    let run = |linear: &str| {
+        capstan_json(
+            &[
+                &[
+                    "contact",
+                    "--set",
+                    "body.dimension=3",
+                    "--set",
+                    "solver.nonlinear=full-newton",
+                    "--set",
+                    &format!("solver.linear={linear}"),
+                ][..],
+                &ELLIPSE[..],
+            ]
+            .concat(),
+        )
+    };
+    let (lu, mg) = (run("lu"), run("multigrid"));
+    assert_eq!(mg["status"], "converged");
+    let (a, b) = (
+        values(&lu["solid"]["contact"]["v1"]),
+        values(&mg["solid"]["contact"]["v1"]),
+    );
+    let scale = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-8 * scale),
+        "{a:?} {b:?}"
+    );
+    for (set, key) in [
+        (&["--set", "body.dimension=2"][..], "solver.linear"),
+        (
+            &[
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "solver.nonlinear=newton",
+            ][..],
+            "solver.linear",
+        ),
+    ] {
+        let (code, _, stderr) = capstan_status(
+            &[
+                &["contact", "--set", "solver.linear=multigrid"][..],
+                set,
+                &ELLIPSE[..],
+            ]
+            .concat(),
+        );
+        assert_eq!(code, Some(2), "{set:?}: {stderr}");
+        assert!(stderr.contains(key), "{set:?}: {stderr}");
+    }
+}
+
+#[test]
+fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
+    // 33 x 321 x 33 Q1: 1,048,707 unknowns, the LU estimate 59 GiB (docs/solid.md)
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map(|kib| kib * 1024.0);
+    if available.is_none_or(|b| b > 59.0 * (1u64 << 30) as f64) {
+        eprintln!("skipped: more than 59 GiB available, the LU would be attempted");
+        return;
+    }
+    let (code, _, stderr) = capstan_status(&[
+        "contact",
+        "--set",
+        "body.dimension=3",
+        "--set",
+        "discretisation.method=fem-q1",
+        "--set",
+        "solver.nonlinear=full-newton",
+        "--set",
+        "grid.n1=33",
+        "--set",
+        "grid.n2=321",
+        "--set",
+        "grid.n3=33",
+    ]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"multigrid\""),
+        "{stderr}"
+    );
+}

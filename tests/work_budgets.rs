@@ -4,7 +4,7 @@
 
 use capstan::CliError;
 use capstan::commands::infer_mu::{FrictionModel, report_for};
-use capstan::commands::{contact, tension};
+use capstan::commands::{contact, solid_contact, tension};
 use capstan::scene::Scene;
 use capstan_friction::FrictionError;
 
@@ -178,6 +178,24 @@ fn jacobi_sweeps_run_out_naming_max_sweeps() {
         .concat(),
     );
     let e = contact::solve(&s).unwrap_err();
+    names(&e, "solver.max_sweeps");
+}
+
+#[test]
+fn multigrid_krylov_iterations_run_out_naming_max_sweeps() {
+    // 8415 unknowns: above the coarsest multigrid level, so GMRES / CG iterate
+    let s = scene(&[
+        "body.dimension=3",
+        "obstacle.b=1.5",
+        "discretisation.method=fem-q1",
+        "grid.n1=5",
+        "grid.n2=33",
+        "grid.n3=17",
+        "solver.nonlinear=full-newton",
+        "solver.linear=multigrid",
+        "solver.max_sweeps=1",
+    ]);
+    let e = solid_contact::solve(&s).unwrap_err();
     names(&e, "solver.max_sweeps");
 }
 

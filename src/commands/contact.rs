@@ -5,8 +5,9 @@ use std::time::Instant;
 
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactError, ContactModel, ContactSettings, ContactSolution, EndLoads,
-    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced_observed,
+    BoundarySolver, BulkMultigrid, ContactError, ContactModel, ContactSettings, ContactSolution,
+    EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
+    solve_sequenced_observed,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod, Observer};
@@ -31,6 +32,9 @@ pub enum SceneSolver {
     FullNewton(LinearBackend),
     /// `jacobi-newton`: the paper's Jacobi–Newton (damped Jacobi, relaxation 1/2).
     JacobiNewton,
+    /// `full-newton` with `solver.linear = "multigrid"`: each Newton step by GMRES with the
+    /// geometric multigrid of the 3-D body ([`BulkMultigrid`]).
+    FullNewtonMultigrid,
 }
 
 impl SceneSolver {
@@ -39,6 +43,17 @@ impl SceneSolver {
     /// # Errors
     /// [`CliError::Scene`] for an unknown name.
     pub fn from_scene(scene: &Scene) -> Result<Self, CliError> {
+        if scene.solver.linear == "multigrid" {
+            return match scene.solver.nonlinear.as_str() {
+                "full-newton" => Ok(Self::FullNewtonMultigrid),
+                other => Err(CliError::Scene {
+                    origin: "solver.linear".into(),
+                    message: format!(
+                        "`solver.linear` = \"multigrid\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
+                    ),
+                }),
+            };
+        }
         let linear: LinearBackend = scene.solver.linear.parse().map_err(
             |e: capstan_elasticity::solvers::SolverError| CliError::Scene {
                 origin: "solver.linear".into(),
@@ -63,6 +78,7 @@ impl SceneSolver {
         let mut s = FullSystemSettings::default();
         match self {
             Self::FullNewton(linear) => s.newton.linear = linear,
+            Self::FullNewtonMultigrid => s.multigrid = Some(BulkMultigrid::default()),
             Self::JacobiNewton => {
                 s.method = NonlinearMethod::JacobiNewton;
                 s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here
@@ -85,6 +101,9 @@ impl SceneSolver {
         };
         if let Some(sweeps) = scene.solver.max_sweeps {
             s.newton.iterative.max_iterations = sweeps;
+            if let Some(m) = s.multigrid.as_mut() {
+                m.krylov.max_iterations = sweeps;
+            }
         }
         s
     }
@@ -422,7 +441,7 @@ fn solve_unnamed(
             };
             Ok((report, solved(scene, &model, sol)?))
         }
-        SceneSolver::FullNewton(_) => {
+        SceneSolver::FullNewton(_) | SceneSolver::FullNewtonMultigrid => {
             // Grid sequencing: the model is assembled level by level inside.
             let (law, params, eps) = scene_law(scene)?;
             let body = thick_body(scene)?;
@@ -502,6 +521,14 @@ pub(crate) fn contact_budget(
                 ""
             }
         }
+        ContactError::Solver(SolverError::BudgetSpent { iterations, .. }) => format!(
+            "{iterations} Krylov iterations spent: `solver.max_sweeps` = {} GMRES / CG iterations per linear solve of `solver.linear` = \"multigrid\" (unset: {}); raise it (--set solver.max_sweeps={})",
+            solver
+                .max_sweeps
+                .map_or_else(|| "unset".into(), |n| n.to_string()),
+            BulkMultigrid::default().krylov.max_iterations,
+            iterations.saturating_mul(4)
+        ),
         ContactError::Solver(SolverError::NotConverged { iterations, .. }) => format!(
             "{iterations} iterations reached: `solver.max_sweeps` = {} Jacobi / Gauss-Seidel sweeps per linear solve, `solver.max_iterations` = {} Newton iterations; raise them (--set solver.max_sweeps={})",
             solver.max_sweeps.map_or_else(

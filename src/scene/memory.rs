@@ -72,9 +72,11 @@ pub fn human_bytes(bytes: f64) -> String {
 }
 
 /// Bytes of sparse LU factors per `N^(4/3)` of a 3-D contact solve (`N` unknowns), fitted
-/// above the measured peak (bench_solid_contact, full-system Newton, 11 x 201 x 15 Q1:
-/// 99,495 unknowns, VmHWM 1.88 GB against 2.33 GB estimated).
-pub const SOLID_BYTES_PER_N_4_3: f64 = 500.0;
+/// above the measured peaks (bench_solid_contact, full-system Newton, Q1: 11 x 201 x 15,
+/// 99,495 unknowns, VmHWM 1.88 GB against 2.8 GB estimated; 17 x 129 x 17, 111,843
+/// unknowns, 2.59 GiB against 3.1 GiB). At 33 x 321 x 33 (1.05e6 unknowns) it is 59 GiB:
+/// refused on the 24 GiB benchmark machine.
+pub const SOLID_BYTES_PER_N_4_3: f64 = 600.0;
 
 /// The memory a 3-D contact solve on an `n1 x n2 x n3` grid needs, bytes: the sparse LU
 /// (`SOLID_BYTES_PER_N_4_3 N^(4/3)`, `N = 3 n1 n2 n3`) plus 128 MiB, and for the boundary-only
@@ -85,4 +87,29 @@ pub fn solid_memory_estimate([n1, n2, n3]: [usize; 3], condensed: bool) -> f64 {
     let m = (2 * n1 * n2) as f64;
     let dense = if condensed { 4.0 * 8.0 * m * m } else { 0.0 };
     SOLID_BYTES_PER_N_4_3 * n.powf(4.0 / 3.0) + dense + 128.0 * 1024.0 * 1024.0
+}
+
+/// Bytes per unknown of a 3-D contact solve with the iterative bulk solver
+/// (`solver.linear = "multigrid"`), fitted above the measured peaks of `bench_solid_contact`
+/// (see [`solid_multigrid_memory_estimate`]): VmHWM 1,107 MiB at 111,843 unknowns
+/// (17 x 129 x 17 Q1) and 3,081 MiB at 301,875 (25 x 161 x 25), 10.9 KB per unknown between
+/// the two, plus the 60 more GMRES vectors of the default restart (100) since; 11,203 MiB
+/// at 1,048,707 (33 x 321 x 33) against 12.3 GiB estimated.
+pub const SOLID_MULTIGRID_BYTES_PER_UNKNOWN: f64 = 12_500.0;
+
+/// The memory a 3-D contact solve on an `n1 x n2 x n3` grid needs with the iterative bulk
+/// solver, bytes: linear in the unknowns (no factorisation).
+///
+/// # Math
+/// ```text
+/// N     = 3 n1 n2 n3
+/// bytes = SOLID_MULTIGRID_BYTES_PER_UNKNOWN N + 2^27
+/// ```
+/// The terms per unknown: about 81 stored entries per row (27 Q1 nodes x 3 components) in the
+/// assembled bulk, the Jacobian on the extended pattern and its compressed-row copy
+/// (16 + 24 + 16 bytes an entry), the element matrices of the assembly, the Galerkin levels
+/// (1/7 of the fine level), 41 GMRES vectors and the multigrid work vectors.
+pub fn solid_multigrid_memory_estimate([n1, n2, n3]: [usize; 3]) -> f64 {
+    let n = (3 * n1 * n2 * n3) as f64;
+    SOLID_MULTIGRID_BYTES_PER_UNKNOWN * n + 128.0 * 1024.0 * 1024.0
 }

@@ -380,7 +380,8 @@ impl Default for GridSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// `lu | cholesky | jacobi | gauss-seidel`.
+    /// `lu | cholesky | jacobi | gauss-seidel | multigrid` (`multigrid`: GMRES with the
+    /// geometric multigrid of the 3-D body, `full-newton` only).
     pub linear: String,
     /// `newton | jacobi-newton`.
     pub nonlinear: String,
@@ -392,7 +393,8 @@ pub struct SolverSpec {
     /// Smallest load step of the continuation before giving up, default `1e-4`.
     pub min_load_step: f64,
     /// Work budget: Jacobi / Gauss–Seidel sweeps per linear solve (`solver.linear = "jacobi"`
-    /// or `"gauss-seidel"`, and `jacobi-newton`); unset: 10,000 (10^7 for `jacobi-newton`).
+    /// or `"gauss-seidel"`, and `jacobi-newton`), GMRES / CG iterations per linear solve with
+    /// `"multigrid"`; unset: 10,000 (10^7 for `jacobi-newton`, 500 for `multigrid`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_sweeps: Option<usize>,
 }
@@ -462,5 +464,5 @@ pub use load::{Origins, known_keys};
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
     MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, SOLID_BYTES_PER_N_4_3, available_memory,
-    human_bytes, memory_estimate, solid_memory_estimate,
+    human_bytes, memory_estimate, solid_memory_estimate, solid_multigrid_memory_estimate,
 };

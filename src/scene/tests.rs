@@ -118,6 +118,20 @@ fn memory_estimate_brackets_the_measured_peaks() {
 }
 
 #[test]
+fn solid_memory_estimates_refuse_the_direct_path_at_a_million_unknowns() {
+    // 33 x 321 x 33 Q1 = 1,048,707 unknowns: the sparse LU would need more than the 24 GiB of
+    // the benchmark machine, the multigrid path fits; both estimates lie above the measured
+    // peaks at 111,843 unknowns (17 x 129 x 17: LU 2.59 GiB, multigrid 1.08 GiB)
+    let gib = |b: f64| b / (1u64 << 30) as f64;
+    let million = [33, 321, 33];
+    assert!(gib(solid_memory_estimate(million, false)) > 24.0);
+    assert!(gib(solid_multigrid_memory_estimate(million)) < 16.0);
+    let small = [17, 129, 17];
+    assert!(gib(solid_memory_estimate(small, false)) > 2.59);
+    assert!(gib(solid_multigrid_memory_estimate(small)) > 1.08);
+}
+
+#[test]
 fn unknown_keys_and_wrong_types_name_the_key() {
     let e = Scene::load(None, &["obstacle.radiu=2".into()])
         .unwrap_err()

@@ -230,11 +230,19 @@ impl Scene {
                 "{\"full\"} for discretisation.method = \"fd\" (finite differences have no quadrature rule to reduce; \"reduced\" needs \"fem-q1\" or \"fem-q2\")",
             ));
         }
-        if self.solver.linear.parse::<LinearBackend>().is_err() {
+        if self.solver.linear == "multigrid" {
+            if self.body.dimension != 3 || self.solver.nonlinear != "full-newton" {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`multigrid` only with body.dimension = 3 and solver.nonlinear = \"full-newton\" (the geometric multigrid of the 3-D box); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`",
+                ));
+            }
+        } else if self.solver.linear.parse::<LinearBackend>().is_err() {
             return Err(bad(
                 "solver.linear",
                 format!("{:?}", self.solver.linear),
-                LinearBackend::NAMES,
+                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton)",
             ));
         }
         if !matches!(
@@ -322,7 +330,12 @@ impl Scene {
             });
         }
         let condensed = self.solver.nonlinear == "newton";
-        let need = solid_memory_estimate([g.n1, g.n2, g.n3], condensed);
+        let multigrid = self.solver.linear == "multigrid";
+        let need = if multigrid {
+            solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
+        } else {
+            solid_memory_estimate([g.n1, g.n2, g.n3], condensed)
+        };
         if let Some(have) = available_memory()
             && need > have
         {
@@ -334,16 +347,20 @@ impl Scene {
                     g.n2,
                     g.n3,
                     human_bytes(need),
-                    if condensed {
+                    if multigrid {
+                        "the sparse Jacobian, its multigrid hierarchy and the GMRES vectors"
+                    } else if condensed {
                         "dense condensed contact matrices of 2 n1 n2 rows and the sparse LU"
                     } else {
                         "the sparse LU factors"
                     },
                     human_bytes(have),
-                    if condensed {
-                        " or solver.nonlinear = \"full-newton\""
-                    } else {
+                    if multigrid {
                         ""
+                    } else if condensed {
+                        " or solver.nonlinear = \"full-newton\" with solver.linear = \"multigrid\""
+                    } else {
+                        " or solver.linear = \"multigrid\" (no factorisation)"
                     }
                 ),
             });

@@ -7,18 +7,27 @@
 //! ```text
 //! cargo run --release -p capstan-elasticity --example bench_solid_contact -- 11 201 15 full
 //! cargo run --release -p capstan-elasticity --example bench_solid_contact -- 5 41 5 condensed --sweep
+//! cargo run --release -p capstan-elasticity --example bench_solid_contact -- 9 257 17 multigrid
 //! ```
+//! `multigrid` is the full-system Newton with GMRES and the geometric multigrid of the box
+//! (`--krylov-tol 1e-8` the relative tolerance of each linear solve, `--smoother jacobi` damped
+//! Jacobi instead of Chebyshev, `--power 12` power iterations of its eigenvalue estimate, `--restart m` of GMRES). `--save FILE` writes the
+//! displacement (raw little-endian f64), `--reference FILE` reports the relative max-norm
+//! difference `max |v - v_ref| / max |v_ref|` to a saved one (work-precision); `--progress`
+//! prints every Newton iterate (seconds since the solve began) to stderr.
 //! Prints one JSON line: grid, unknowns, contact unknowns, solver, seconds of the model
 //! (assembly), the solver set-up, the solve (and a 26-point ratio sweep from 1.0 to 2.0 with
-//! `--sweep`, warm-started), Newton iterations, relative residual, max `|v^2|`, VmHWM in MiB.
+//! `--sweep`, warm-started), Newton and Krylov iterations, residuals, max `|v^2|`, CPU seconds,
+//! VmHWM in MiB.
 
 use std::time::Instant;
 
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
+    BoundarySolver, BulkMultigrid, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
 };
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::SolidBody;
+use capstan_elasticity::solvers::{KrylovParams, MultigridParams, Progress, Smoother};
 use capstan_elasticity::verification::peak_memory_mib;
 use capstan_geometry::{EllipticalPrism, Obstacle};
 
@@ -28,6 +37,22 @@ fn main() {
     let nodes = [n(0, 5), n(1, 41), n(2, 5)];
     let solver = args.get(3).map_or("full", String::as_str);
     let sweep = args.iter().any(|a| a == "--sweep");
+    let progress = args.iter().any(|a| a == "--progress");
+    let flag = |name: &str| {
+        args.iter()
+            .position(|a| a == name)
+            .and_then(|i| args.get(i + 1))
+            .cloned()
+    };
+    let krylov_tol: f64 = flag("--krylov-tol").map_or(1e-8, |t| t.parse().expect("a number"));
+    let smoother = match flag("--smoother").as_deref() {
+        Some("jacobi") => Smoother::Jacobi { omega: 0.6 },
+        _ => Smoother::default(),
+    };
+    let restart: usize = flag("--restart").map_or(KrylovParams::default().restart, |t| {
+        t.parse().expect("a count")
+    });
+    let power_iterations: usize = flag("--power").map_or(12, |t| t.parse().expect("a count"));
     let obstacle = Obstacle::Ellipse(EllipticalPrism::new(2.0, 1.5).expect("valid"));
     let body = SolidBody::new(obstacle, [-0.5, 0.5], nodes);
     let eps = 1e-5;
@@ -61,11 +86,43 @@ fn main() {
             (setup, out)
         }
         _ => {
-            let s = FullSystemSolver::new(&model, FullSystemSettings::default()).expect("set-up");
+            let settings = FullSystemSettings {
+                multigrid: (solver == "multigrid").then(|| BulkMultigrid {
+                    krylov: KrylovParams {
+                        tolerance: krylov_tol,
+                        restart,
+                        ..Default::default()
+                    },
+                    multigrid: MultigridParams {
+                        smoother,
+                        power_iterations,
+                        ..Default::default()
+                    },
+                    ..Default::default()
+                }),
+                ..Default::default()
+            };
+            let s = FullSystemSolver::new(&model, settings).expect("set-up");
             let setup = t.elapsed().as_secs_f64();
             let out: Vec<_> = ratios
                 .iter()
-                .map(|&r| s.solve(EndLoads::ratio(r)).expect("a solution"))
+                .map(|&r| {
+                    let start = Instant::now();
+                    let mut log = |p: &Progress<f64>| {
+                        if progress {
+                            eprintln!(
+                                "{:8.1} s  {} {:3}  residual {:.3e}  step {:.3}",
+                                start.elapsed().as_secs_f64(),
+                                p.stage,
+                                p.iteration,
+                                p.residual_norm,
+                                p.step_length
+                            );
+                        }
+                    };
+                    s.solve_observed(EndLoads::ratio(r), &mut log)
+                        .expect("a solution")
+                })
                 .collect();
             (setup, out)
         }
@@ -73,14 +130,54 @@ fn main() {
     let total = t.elapsed().as_secs_f64();
     let last = results.last().expect("one solve at least");
     let iterations: usize = results.iter().map(|s| s.stats.newton_iterations).sum();
+    let krylov: usize = results.iter().map(|s| s.stats.linear_iterations).sum();
+    let v = &last.displacement;
+    if let Some(path) = flag("--save") {
+        let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+        std::fs::write(path, bytes).expect("writable --save file");
+    }
+    let difference = flag("--reference").map(|path| {
+        let bytes = std::fs::read(path).expect("a readable --reference file");
+        let reference: Vec<f64> = bytes
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect();
+        assert_eq!(reference.len(), v.len(), "the reference is of this grid");
+        let scale = reference.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let diff = reference
+            .iter()
+            .zip(v)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        diff / scale
+    });
+    let loads = EndLoads::ratio(*ratios.last().expect("a ratio"));
     println!(
-        "{{\"nodes\":{nodes:?},\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"{solver}\",\"solves\":{},\"model_seconds\":{model_seconds:.3},\"setup_seconds\":{setup_seconds:.3},\"solve_seconds\":{:.3},\"newton_iterations\":{iterations},\"residual\":{:.2e},\"max_v2\":{:.6e},\"vm_hwm_mib\":{:.0}}}",
+        "{{\"nodes\":{nodes:?},\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"{solver}\",\"krylov_tolerance\":{krylov_tol:.0e},\"solves\":{},\"model_seconds\":{model_seconds:.3},\"setup_seconds\":{setup_seconds:.3},\"solve_seconds\":{:.3},\"newton_iterations\":{iterations},\"krylov_iterations\":{krylov},\"krylov_per_newton\":{:.1},\"residual\":{:.2e},\"relative_residual\":{:.2e},\"difference_to_reference\":{},\"max_v2\":{:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
         model.dof_count(),
         model.active().len(),
         results.len(),
         total - setup_seconds,
+        krylov as f64 / iterations.max(1) as f64,
         last.stats.residual,
+        model.relative_residual(loads, v),
+        difference.map_or("null".to_owned(), |d| format!("{d:.2e}")),
         last.max_azimuthal_displacement.value,
+        cpu_seconds(),
         peak_memory_mib()
     );
+}
+
+/// User + system CPU seconds of this process (`/proc/self/stat`, 100 ticks a second; 0
+/// elsewhere): the machine is shared, so wall-clock times alone overstate the work.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let tick = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (tick(11) + tick(12)) / 100.0
 }

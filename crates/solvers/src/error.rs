@@ -54,6 +54,21 @@ pub enum SolverError {
         /// Residual at the last iterate (relative for linear, absolute for nonlinear solvers).
         residual: f64,
     },
+    /// A Krylov solve spent its work budget (the setting `field`, e.g.
+    /// `krylov.max_iterations`) before reaching its relative-residual tolerance.
+    #[error(
+        "`{field}` = {iterations} iterations spent: relative residual {residual:.3e} above the tolerance {tolerance:.1e}"
+    )]
+    BudgetSpent {
+        /// The setting that bounds the work.
+        field: &'static str,
+        /// Iterations performed (the budget).
+        iterations: usize,
+        /// Relative residual `|b - A x| / |b|` at the last iterate.
+        residual: f64,
+        /// The relative-residual tolerance asked for.
+        tolerance: f64,
+    },
     /// The observer asked the solve to stop ([`crate::Observer::interrupted`]).
     #[error("interrupted after iteration {iteration}")]
     Interrupted {

@@ -24,6 +24,11 @@
 //!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
 //!   [`CondensedSolver`] (static condensation when only a small interface block changes).
 //!   [`LinearBackend`] picks one by name.
+//! - Krylov methods ([`conjugate_gradient`], restarted right-preconditioned [`gmres`]) on a
+//!   [`CsrMatrix`], with a work budget and a typed [`SolverError::BudgetSpent`], and a
+//!   [`Multigrid`] V-cycle on a given hierarchy of prolongations (Galerkin coarse operators,
+//!   Chebyshev–Jacobi or damped-Jacobi smoothing, sparse LU on the coarsest level);
+//!   [`KrylovSolver`] is the pair behind the [`LinearSolver`] calls.
 //! - Fill-reducing orderings for the direct backends ([`DirectParams::ordering`],
 //!   [`ColumnOrdering`]): COLAMD (LU's default), AMD on `A + A^T`, and a geometric nested
 //!   dissection of a structured grid described by [`GridShape`] (no physics: only how the
@@ -43,9 +48,10 @@
 //! - The faer backends, [`CondensedSolver`] and the nonlinear solvers are implemented for
 //!   `f64` only; the pattern helpers and the iterative backends are generic over
 //!   [`SolverScalar`].
-//! - The iterative backends are stationary methods without preconditioning or Krylov
+//! - [`Jacobi`] and [`GaussSeidel`] are stationary methods without preconditioning or Krylov
 //!   acceleration: they are baselines, and need diagonally dominant (Jacobi) or SPD /
-//!   diagonally dominant (Gauss–Seidel) matrices.
+//!   diagonally dominant (Gauss–Seidel) matrices. [`KrylovSolver`] and [`Multigrid`] are
+//!   `f64` only and take the prolongations from the caller (no algebraic coarsening).
 //! - Singularity of a direct factorisation is detected from the solution (non-finite, or a
 //!   residual above [`DirectParams::residual_tolerance`] after refinement), because faer
 //!   factorises numerically singular matrices without complaint; very ill-conditioned
@@ -77,15 +83,19 @@
 #![warn(missing_docs)]
 
 mod condensed_solver;
+mod csr_matrix;
 mod direct_params;
 mod direct_solve;
 mod error;
 mod iterative_params;
 mod jacobi_newton;
+mod krylov;
+mod krylov_solver;
 mod linear_backend;
 mod linear_solver;
 mod lu_kind;
 mod multifrontal_lu;
+mod multigrid;
 mod named;
 mod newton;
 mod nonlinear_method;
@@ -101,13 +111,20 @@ mod sparse_lu;
 mod sparsity_pattern;
 
 pub use condensed_solver::CondensedSolver;
+pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
 pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
+pub use krylov::{
+    IdentityPreconditioner, KRYLOV_BUDGET_FIELD, KrylovMethod, KrylovParams, KrylovReport,
+    Preconditioner, conjugate_gradient, gmres, krylov_solve,
+};
+pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
 pub use linear_solver::LinearSolver;
 pub use lu_kind::LuKind;
+pub use multigrid::{Multigrid, MultigridParams, MultigridPreconditioner, Smoother};
 pub use newton::{LineSearch, Newton, NewtonParams};
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};

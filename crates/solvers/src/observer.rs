@@ -26,6 +26,9 @@ pub enum SolveStage {
     GridLevel,
     /// Newton of a membrane model (tension or implied friction coefficient).
     Membrane,
+    /// A Krylov iteration (CG, GMRES) of a linear solve; `residual_norm` is the relative
+    /// residual `|b - A x_k| / |b|` (GMRES: its estimate from the least-squares problem).
+    Krylov,
 }
 
 impl SolveStage {
@@ -38,6 +41,7 @@ impl SolveStage {
             Self::Continuation => "continuation",
             Self::GridLevel => "grid-level",
             Self::Membrane => "membrane",
+            Self::Krylov => "krylov",
         }
     }
 }

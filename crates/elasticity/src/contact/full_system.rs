@@ -1,16 +1,20 @@
-//! The full-system contact solver: Newton (sparse LU refactorised each step) or the paper's
-//! Jacobi–Newton on the whole residual. The reference the boundary-only solver is checked
+//! The full-system contact solver: Newton (sparse LU refactorised each step, or GMRES with the
+//! discretisation's geometric multigrid: [`BulkMultigrid`]) or the paper's Jacobi–Newton on
+//! the whole residual. The reference the boundary-only solver is checked
 //! against, and the baseline of the benchmarks.
+
+use std::sync::{Arc, OnceLock};
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    ColumnOrdering, DirectParams, Jacobian, LinearSolver, NewtonParams, NonlinearMethod,
-    NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage, SolverError,
-    SparseLu, SparsityPattern,
+    ColumnOrdering, CsrMatrix, DirectParams, Jacobian, KrylovMethod, LinearSolver, Newton,
+    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
+    SolveStage, SolverError, SparseLu, SparsityPattern,
 };
 
 use crate::contact::body::{ThickBody, ThickBodyOperator};
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
+use crate::contact::bulk_multigrid::BulkMultigrid;
 use crate::contact::error::{ContactError, ContactErrorKind};
 use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::operator::ContactOperator;
@@ -30,6 +34,11 @@ pub struct FullSystemSettings {
     /// [`solve_sequenced`] solves grids of at most this many nodes directly (its coarsest
     /// level); default [`SEQUENCING_COARSEST_NODES`].
     pub coarsest_nodes: usize,
+    /// `None` (default): each Newton step by the direct backend `newton.linear`; `Some`: by
+    /// GMRES preconditioned with the discretisation's geometric multigrid
+    /// ([`BulkMultigrid`]; `solver.linear = "multigrid"`, the 3-D body only), the stuck start
+    /// by CG. Ignored by `jacobi-newton`.
+    pub multigrid: Option<BulkMultigrid>,
 }
 
 impl Default for FullSystemSettings {
@@ -39,6 +48,7 @@ impl Default for FullSystemSettings {
             newton: NewtonParams::default(),
             continuation: ContactSettings::default(),
             coarsest_nodes: SEQUENCING_COARSEST_NODES,
+            multigrid: None,
         }
     }
 }
@@ -99,7 +109,9 @@ pub struct FullSystemSolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     settings: FullSystemSettings,
     /// The stuck solution for unit `tau0` and unit `tau_max` (one sparse LU, on first use).
-    stuck: std::sync::OnceLock<[Vec<f64>; 2]>,
+    stuck: OnceLock<[Vec<f64>; 2]>,
+    /// The discretisation's multigrid prolongations (iterative bulk only, on first use).
+    prolongations: OnceLock<Arc<[CsrMatrix]>>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
@@ -111,20 +123,28 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
 }
 
 impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
-    /// Checks the settings (the stuck starting guesses are factorised on first use).
+    /// Checks the settings (the stuck starting guesses are factorised on first use) and builds
+    /// the multigrid hierarchy when [`FullSystemSettings::multigrid`] is set.
     ///
     /// # Errors
-    /// Invalid settings.
+    /// Invalid settings; [`ContactError::InvalidParameter`] naming `solver.linear` for
+    /// `multigrid` on a discretisation without a hierarchy.
     pub fn new(
         model: &'a ContactModel<D, L>,
         settings: FullSystemSettings,
     ) -> Result<Self, ContactError> {
         settings.continuation.validate()?;
         settings.newton.validate()?;
+        let prolongations = OnceLock::new();
+        if let Some(m) = &settings.multigrid {
+            // the hierarchy now, so that a discretisation without one is refused here
+            m.build(model.discretisation(), KrylovMethod::Gmres, &prolongations)?;
+        }
         Ok(Self {
             model,
             settings,
-            stuck: std::sync::OnceLock::new(),
+            stuck: OnceLock::new(),
+            prolongations,
         })
     }
 
@@ -153,7 +173,14 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         for &slot in &ext.tangential_slot {
             values[slot] += 1e4 * values[slot].abs().max(1.0);
         }
-        let mut lu = SparseLu::new(self.direct_params())?;
+        let mut lu: Box<dyn LinearSolver<f64> + Send> = match &self.settings.multigrid {
+            Some(m) => m.build(
+                model.discretisation(),
+                KrylovMethod::Cg,
+                &self.prolongations,
+            )?,
+            None => Box::new(SparseLu::new(self.direct_params())?),
+        };
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
         let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
@@ -189,8 +216,26 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             direct: self.direct_params(),
             ..self.settings.newton
         };
-        let mut solver = self.settings.method.build(params)?;
-        let result = solver.solve(&problem, v, observer);
+        let result = match (&self.settings.multigrid, self.settings.method) {
+            (Some(m), NonlinearMethod::Newton) => {
+                let linear = m
+                    .build(
+                        self.model.discretisation(),
+                        KrylovMethod::Gmres,
+                        &self.prolongations,
+                    )
+                    .map_err(|e| match e {
+                        ContactError::Solver(s) => s,
+                        other => SolverError::problem("jacobian", other),
+                    })?;
+                Newton::with_linear_solver(params, linear)?.solve(&problem, v, observer)
+            }
+            _ => self
+                .settings
+                .method
+                .build(params)?
+                .solve(&problem, v, observer),
+        };
         match result {
             Ok(report) => {
                 stats.newton_iterations += report.iterations;
@@ -250,7 +295,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         if start.iter().all(|x| x.is_finite()) {
             match self.newton(loads, &mut v, &mut stats, observer) {
                 Ok(_) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
-                Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
+                Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
+                    return Err(e.into());
+                }
                 Err(_) => {}
             }
         }
@@ -279,7 +326,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// Solves for the loads.
     ///
     /// # Errors
-    /// [`ContactError::NotConverged`] when the continuation fails; invalid loads.
+    /// [`ContactError::NotConverged`] when the continuation fails; invalid loads;
+    /// [`SolverError::BudgetSpent`] (inside [`ContactError::Solver`], naming
+    /// `krylov.max_iterations`) when an iterative bulk solve spends its budget (no
+    /// continuation is tried: a smaller load step does not make the linear solves cheaper).
     pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
         self.solve_observed(loads, &mut SilentObserver)
     }
@@ -302,7 +352,8 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut stats = self.fresh_stats(usize::from(self.stuck.get().is_none()));
         let mut v = self.stuck(loads)?;
         let first = self.newton(loads, &mut v, &mut stats, observer);
-        if let Err(e @ SolverError::Interrupted { .. }) = first {
+        if let Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) = first
+        {
             return Err(e.into());
         }
         if first.is_err() {
@@ -332,7 +383,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                         current = trial;
                         step = (step * 1.5).min(1.0);
                     }
-                    Err(e @ SolverError::Interrupted { .. }) => return Err(e.into()),
+                    Err(
+                        e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. }),
+                    ) => {
+                        return Err(e.into());
+                    }
                     Err(e) => {
                         last = match e {
                             SolverError::Stagnated { residual, .. }

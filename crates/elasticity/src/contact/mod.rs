@@ -44,6 +44,7 @@
 
 mod body;
 mod boundary_solver;
+mod bulk_multigrid;
 mod error;
 mod full_system;
 mod model;
@@ -53,6 +54,7 @@ mod threshold;
 
 pub use body::{ThickBody, ThickBodyOperator};
 pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
+pub use bulk_multigrid::BulkMultigrid;
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,

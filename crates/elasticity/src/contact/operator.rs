@@ -2,7 +2,9 @@
 //! contact rows and the largest displacements. Every plane-strain [`Discretisation`] provides
 //! it; a 3-D body ([`crate::solid::SolidNavier`]) implements it directly.
 
-use capstan_solvers::ColumnOrdering;
+use std::sync::Arc;
+
+use capstan_solvers::{ColumnOrdering, CsrMatrix};
 
 use crate::boundary::Component;
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
@@ -39,6 +41,15 @@ pub trait ContactOperator {
     /// Jacobians on its pattern (default: the backend's own).
     fn lu_ordering(&self) -> ColumnOrdering {
         ColumnOrdering::Auto
+    }
+
+    /// The prolongations `P_0, P_1, ...` of a geometric multigrid hierarchy on the unknowns
+    /// (finest first, `P_l` from level `l + 1` to level `l`), coarsening to at most
+    /// `coarsest_unknowns`; `None` (the default) for a discretisation without one, which then
+    /// needs a direct linear backend.
+    fn multigrid_prolongations(&self, coarsest_unknowns: usize) -> Option<Arc<[CsrMatrix]>> {
+        let _ = coarsest_unknowns;
+        None
     }
 
     /// The assembled system `A v = b`.

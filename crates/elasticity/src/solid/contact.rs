@@ -137,6 +137,15 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
         }
     }
 
+    /// The trilinear hierarchy of the box ([`crate::solid::box_hierarchy`]), Dirichlet dofs
+    /// constrained.
+    fn multigrid_prolongations(
+        &self,
+        coarsest_unknowns: usize,
+    ) -> Option<std::sync::Arc<[capstan_solvers::CsrMatrix]>> {
+        Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations)
+    }
+
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
         Ok(self.system().clone())
     }

@@ -23,8 +23,12 @@
 //!   `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`; the plane-strain extrusion reproduces the 2-D
 //!   contact solution.
 //!
+//! - A geometric multigrid hierarchy of the box ([`box_hierarchy`]: trilinear prolongations
+//!   per component, Dirichlet dofs constrained, periodic `x2`), used by the full-system
+//!   Newton's iterative bulk solver ([`crate::contact::BulkMultigrid`]).
+//!
 //! # Limitations
-//! Uniform grids; direct solvers only; the contact rows recover `T^3_j` pointwise (no
+//! Uniform grids; the contact rows recover `T^3_j` pointwise (no
 //! reduced-point pressure with selective reduced integration, unlike the 2-D elements).
 
 mod body;
@@ -32,6 +36,7 @@ mod boundary;
 mod contact;
 mod fields;
 mod grid;
+mod multigrid;
 mod operator;
 pub mod samples;
 
@@ -39,4 +44,5 @@ pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 pub use fields::SolidFields;
 pub use grid::BoxGrid;
+pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count};
 pub use operator::{SolidForce, SolidNavier};
