@@ -79,27 +79,9 @@ from ngsolve import (  # noqa: E402
 )
 from ngsolve import Grad  # noqa: E402
 
+from common import add_lame_args, fastest, reset_peak, vm_kib  # noqa: E402
+
 ngsolve.SetNumThreads(1)
-
-
-def vm_kib(field):
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith(field + ":"):
-                    return int(line.split()[1])
-    except OSError:
-        pass
-    return 0
-
-
-def reset_peak():
-    try:
-        with open("/proc/self/clear_refs", "w") as f:
-            f.write("5")
-        return True
-    except OSError:
-        return False
 
 
 def lame_parameters(young, poisson):
@@ -190,18 +172,17 @@ def relative_error(mesh, gfu, order, lam, mu, radius, thickness, pressure):
 
 def run_level(a, m, lam, mu):
     mesh, pins, t_mesh, t_curve = annulus_mesh(m, a.order, a.radius, a.thickness)
-    best, runs, spent = None, 0, 0.0
-    while runs < a.repeat_min or (runs < a.repeat_max and spent < a.repeat_budget):
+
+    def once():
         reset_peak()
         base = vm_kib("VmRSS")
         gfu, dofs, global_dofs, t = solve(
             mesh, pins, a.order, lam, mu, a.pressure, a.inverse, a.condense
         )
         peak_mib = max(vm_kib("VmHWM") - base, 0) / 1024.0
-        runs += 1
-        spent += sum(t)
-        if best is None or sum(t) < sum(best[3]):
-            best = (gfu, dofs, global_dofs, t, peak_mib)
+        return (gfu, dofs, global_dofs, t, peak_mib)
+
+    best, runs = fastest(a, once, lambda r: sum(r[3]))
     gfu, dofs, global_dofs, t, peak_mib = best
     error = relative_error(
         mesh, gfu, a.order, lam, mu, a.radius, a.thickness, a.pressure
@@ -246,14 +227,7 @@ def main():
         action="store_false",
         help="factorise the full system (no static condensation of the bubbles)",
     )
-    ap.add_argument("--radius", type=float, default=1.0)
-    ap.add_argument("--thickness", type=float, default=1.0)
-    ap.add_argument("--young", type=float, default=10.0)
-    ap.add_argument("--poisson", type=float, default=0.3)
-    ap.add_argument("--pressure", type=float, default=1.0)
-    ap.add_argument("--repeat-min", type=int, default=2)
-    ap.add_argument("--repeat-max", type=int, default=5)
-    ap.add_argument("--repeat-budget", type=float, default=1.0)
+    add_lame_args(ap)
     a = ap.parse_args()
     lam, mu = lame_parameters(a.young, a.poisson)
     mesh, pins, _, _ = annulus_mesh(2, a.order, a.radius, a.thickness)  # warm-up

@@ -49,25 +49,7 @@ from skfem import (
 from skfem.helpers import dot
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
-
-def vm_kib(field):
-    try:
-        with open("/proc/self/status") as f:
-            for line in f:
-                if line.startswith(field + ":"):
-                    return int(line.split()[1])
-    except OSError:
-        pass
-    return 0
-
-
-def reset_peak():
-    try:
-        with open("/proc/self/clear_refs", "w") as f:
-            f.write("5")
-        return True
-    except OSError:
-        return False
+from common import add_lame_args, fastest, reset_peak, vm_kib
 
 
 def annulus_mesh(order, m, radius, thickness):
@@ -168,24 +150,15 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--order", type=int, choices=[1, 2], default=2)
     ap.add_argument("--levels", default="4,8,16")
-    ap.add_argument("--radius", type=float, default=1.0)
-    ap.add_argument("--thickness", type=float, default=1.0)
-    ap.add_argument("--young", type=float, default=10.0)
-    ap.add_argument("--poisson", type=float, default=0.3)
-    ap.add_argument("--pressure", type=float, default=1.0)
-    ap.add_argument("--repeat-min", type=int, default=2)
-    ap.add_argument("--repeat-max", type=int, default=5)
-    ap.add_argument("--repeat-budget", type=float, default=1.0)
+    add_lame_args(ap)
     a = ap.parse_args()
     run(a.order, 2, a.radius, a.thickness, a.young, a.poisson, a.pressure)  # warm-up
     for m in [int(s) for s in a.levels.split(",")]:
-        best, runs, spent = None, 0, 0.0
-        while runs < a.repeat_min or (runs < a.repeat_max and spent < a.repeat_budget):
-            r = run(a.order, m, a.radius, a.thickness, a.young, a.poisson, a.pressure)
-            runs += 1
-            spent += r["seconds"]
-            if best is None or r["seconds"] < best["seconds"]:
-                best = r
+        best, runs = fastest(
+            a,
+            lambda: run(a.order, m, a.radius, a.thickness, a.young, a.poisson, a.pressure),
+            lambda r: r["seconds"],
+        )
         best["repeats"] = runs
         print(json.dumps(best), flush=True)
 

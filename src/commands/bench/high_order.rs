@@ -83,9 +83,7 @@ pub(super) fn run_qp(
     reference: &Reference<'_>,
     use_vmhwm: bool,
 ) -> Result<Run, CliError> {
-    let mut best: Option<Run> = None;
-    let (mut runs, mut spent) = (0, 0.0);
-    while REPEAT_RULE.again(runs, spent) {
+    REPEAT_RULE.fastest(|| {
         let parts = problem.parts(k * p)?;
         if use_vmhwm {
             reset_peak();
@@ -115,10 +113,8 @@ pub(super) fn run_qp(
             }
             Reference::Nodal(r) => sampled_error(&op, &v, r)?,
         };
-        runs += 1;
-        spent += total;
         let grid = op.grid();
-        let run = Run {
+        Ok(Run {
             problem: problem.name(),
             method: capstan_elasticity::finite_element::high_order::order_name(p).to_owned(),
             backend: "cholesky".to_owned(),
@@ -132,10 +128,6 @@ pub(super) fn run_qp(
             seconds: total,
             error,
             peak_mib,
-        };
-        if best.as_ref().is_none_or(|b| run.seconds < b.seconds) {
-            best = Some(run);
-        }
-    }
-    Ok(best.expect("at least one run"))
+        })
+    })
 }

@@ -347,9 +347,7 @@ fn run_one(
     reference: &Reference<'_>,
     use_vmhwm: bool,
 ) -> Result<Run, CliError> {
-    let mut best: Option<Run> = None;
-    let (mut runs, mut spent) = (0, 0.0);
-    while REPEAT_RULE.again(runs, spent) {
+    REPEAT_RULE.fastest(|| {
         let parts = problem.parts(m)?;
         let chart = parts.chart.clone();
         let solver = build_solver(backend, &parts, method)?;
@@ -371,9 +369,7 @@ fn run_one(
                 (*t.op.grid(), t.op.dof_count(), t.seconds, t.peak_mib, error)
             }
         };
-        runs += 1;
-        spent += seconds[3];
-        let run = Run {
+        Ok(Run {
             problem: problem.name(),
             method: method.map_or("fd", ElementOrder::method_name).to_owned(),
             backend: backend.name().to_owned(),
@@ -387,12 +383,8 @@ fn run_one(
             seconds: seconds[3],
             error,
             peak_mib,
-        };
-        if best.as_ref().is_none_or(|b| run.seconds < b.seconds) {
-            best = Some(run);
-        }
-    }
-    Ok(best.expect("at least one run"))
+        })
+    })
 }
 
 /// Runs the benchmark and writes the CSV and plots.

@@ -73,6 +73,24 @@ impl RepeatRule {
         runs < self.min || (runs < self.max && spent < self.budget_seconds)
     }
 
+    /// The fastest (least `seconds`) of the runs of `once` this rule asks for.
+    ///
+    /// # Errors
+    /// The first error of `once`.
+    pub fn fastest<E>(&self, mut once: impl FnMut() -> Result<Run, E>) -> Result<Run, E> {
+        let mut best = once()?;
+        let (mut runs, mut spent) = (1, best.seconds);
+        while self.again(runs, spent) {
+            let run = once()?;
+            runs += 1;
+            spent += run.seconds;
+            if run.seconds < best.seconds {
+                best = run;
+            }
+        }
+        Ok(best)
+    }
+
     /// The peer scripts' command-line arguments for the same rule.
     pub fn peer_args(&self) -> [String; 6] {
         [
