@@ -22,6 +22,17 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// The grid as the solvers see it for a fill-reducing ordering: `n2 x n3` nodes of the two
+    /// plane-strain unknowns `(v^2, v^3)`, periodic in `x2` as the grid is.
+    pub fn shape(&self) -> capstan_solvers::GridShape {
+        capstan_solvers::GridShape {
+            n2: self.n2(),
+            n3: self.n3(),
+            dofs_per_node: 2,
+            periodic: self.is_periodic(),
+        }
+    }
+
     /// A grid with `n2 x n3` nodes; `periodic` wraps `x2` (then `theta1 - theta0` is the period).
     ///
     /// # Errors

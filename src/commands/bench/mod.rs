@@ -47,8 +47,7 @@ use capstan_elasticity::samples::{
     LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms,
 };
 use capstan_elasticity::solvers::{
-    ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver,
-    SparseCholesky,
+    ColumnOrdering, DirectParams, IterativeParams, LinearBackend, LinearSolver, SparseCholesky,
 };
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError, ShellGeometry};
@@ -318,12 +317,7 @@ fn build_solver(
             b.build(&iterative).map_err(ElasticityError::from)?
         }
         (Backend::CholeskyNestedDissection, _) => {
-            let grid = GridShape {
-                n2: parts.grid.n2(),
-                n3: parts.grid.n3(),
-                dofs_per_node: 2,
-                periodic: parts.grid.is_periodic(),
-            };
+            let grid = parts.grid.shape();
             let separator_width = method.map_or(1, ElementOrder::degree);
             let params = DirectParams {
                 ordering: ColumnOrdering::NestedDissection {

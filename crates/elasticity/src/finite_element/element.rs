@@ -64,12 +64,7 @@ impl ElementOrder {
     /// ```
     pub fn cholesky_ordering(self, grid: &crate::grid::Grid) -> capstan_solvers::ColumnOrdering {
         capstan_solvers::ColumnOrdering::ElementNestedDissection {
-            grid: capstan_solvers::GridShape {
-                n2: grid.n2(),
-                n3: grid.n3(),
-                dofs_per_node: 2,
-                periodic: grid.is_periodic(),
-            },
+            grid: grid.shape(),
             degree: self.degree(),
         }
     }

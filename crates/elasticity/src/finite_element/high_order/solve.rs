@@ -333,12 +333,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     /// interiors first, the sparse-factorisation counterpart of static condensation.
     fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
         capstan_solvers::ColumnOrdering::ElementNestedDissection {
-            grid: capstan_solvers::GridShape {
-                n2: self.grid.n2(),
-                n3: self.grid.n3(),
-                dofs_per_node: 2,
-                periodic: self.grid.is_periodic(),
-            },
+            grid: self.grid.shape(),
             degree: self.degree,
         }
     }
