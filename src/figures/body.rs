@@ -31,10 +31,14 @@ pub const VTU_ARRAYS: [(&str, usize); 11] = [
 /// # Errors
 /// Geometry failures at a node; a grid too small for quads.
 pub fn body_grid(obstacle: &Obstacle, fields: &NodalFields) -> Result<QuadGrid, OutputError> {
-    let g = &fields.grid;
-    let x2: Vec<f64> = (0..g.n2()).map(|i| g.x2(i)).collect();
-    let x3: Vec<f64> = (0..g.n3()).map(|j| g.x3(j)).collect();
-    QuadGrid::from_chart(&ShellChart::new(obstacle), 0.0, &x2, &x3, g.is_periodic())
+    let periodic = fields.grid.is_periodic();
+    QuadGrid::from_chart(
+        &ShellChart::new(obstacle),
+        0.0,
+        &fields.x2,
+        &fields.x3,
+        periodic,
+    )
 }
 
 /// The contact state and physical slip of the contact node in each node's `x2` column
@@ -44,11 +48,24 @@ fn column_contact(fields: &NodalFields, contact: &ContactProfile) -> (Vec<f64>, 
     let (n2, n3) = (g.n2(), g.n3());
     let mut state = vec![0.0; n2];
     let mut slip = vec![0.0; n2];
+    // the column at the contact node's x2 (columns in increasing x2; the nearest one, as the
+    // node positions of the high-order elements are not uniform)
+    let column = |x: f64| -> Option<usize> {
+        let i = fields.x2.partition_point(|&c| c < x);
+        let near = [i.checked_sub(1), (i < n2).then_some(i)];
+        near.into_iter()
+            .flatten()
+            .min_by(|&a, &b| {
+                (fields.x2[a] - x)
+                    .abs()
+                    .total_cmp(&(fields.x2[b] - x).abs())
+            })
+            .filter(|&c| (fields.x2[c] - x).abs() <= 1e-9 * (1.0 + x.abs()))
+    };
     for (k, &x) in contact.x2.iter().enumerate() {
-        let i = ((x - g.x2(0)) / g.dx2()).round();
-        if i >= 0.0 && (i as usize) < n2 {
-            state[i as usize] = f64::from(contact.state[k]);
-            slip[i as usize] = contact.slip[k];
+        if let Some(i) = column(x) {
+            state[i] = f64::from(contact.state[k]);
+            slip[i] = contact.slip[k];
         }
     }
     let spread = |v: &[f64]| -> Vec<f64> { (0..n2 * n3).map(|node| v[node / n3]).collect() };
@@ -76,8 +93,8 @@ pub fn body_vtu<'g>(grid: &'g QuadGrid, fields: &NodalFields, contact: &ContactP
     let strain_physical: Vec<_> = (0..n).map(|k| fields.physical_strain(k)).collect();
     let (state, slip) = column_contact(fields, contact);
     let g = &fields.grid;
-    let x2: Vec<f64> = (0..n).map(|k| g.x2(g.node(k)[0])).collect();
-    let x3: Vec<f64> = (0..n).map(|k| g.x3(g.node(k)[1])).collect();
+    let x2: Vec<f64> = (0..n).map(|k| fields.x2[g.node(k)[0]]).collect();
+    let x3: Vec<f64> = (0..n).map(|k| fields.x3[g.node(k)[1]]).collect();
     Vtu::new(grid)
         .point_vectors("displacement", &fields.cartesian_displacement)
         .point_vectors("displacement_contravariant", &contravariant)

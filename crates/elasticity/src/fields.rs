@@ -22,6 +22,11 @@ use crate::shell_geometry::ShellGeometry;
 pub struct NodalFields {
     /// The grid.
     pub grid: Grid,
+    /// `x2` of the nodes of column `i2` (the grid's uniform positions, or the high-order
+    /// elements' Gauss–Lobatto–Legendre points).
+    pub x2: Vec<f64>,
+    /// `x3` of the nodes of row `i3`.
+    pub x3: Vec<f64>,
     /// `[v^2, v^3]` (contravariant).
     pub displacement: Vec<[f64; 2]>,
     /// `E_kl` (covariant), indexed `[k][l]`.
@@ -96,6 +101,8 @@ impl NodalFields {
     ) -> Result<Self, ElasticityError> {
         let n = grid.node_count();
         let mut out = Self {
+            x2: (0..grid.n2()).map(|i| position([i, 0])[0]).collect(),
+            x3: (0..grid.n3()).map(|j| position([0, j])[1]).collect(),
             grid,
             displacement: Vec::with_capacity(n),
             strain: Vec::with_capacity(n),

@@ -216,3 +216,24 @@ fn registered_studies_report_orders_near_p_plus_1() {
         assert!((r.order_l2 - (p + 1.0)).abs() < 0.15, "{}", r.table());
     }
 }
+
+#[test]
+fn nodal_fields_sit_at_the_gauss_lobatto_nodes() {
+    // the fields (and so the VTU and the contact columns) carry the nodes' true positions
+    let (op, _) = mms_qp(4, 2, VolumetricIntegration::Full);
+    let v = op.solve(&mut SparseCholesky::default()).unwrap();
+    let fields = op.fields(&v).unwrap();
+    let g = op.grid();
+    assert_eq!((fields.x2.len(), fields.x3.len()), (g.n2(), g.n3()));
+    for (i, x) in fields.x2.iter().enumerate() {
+        assert_eq!(*x, op.node_coordinates([i, 0])[0]);
+    }
+    for (j, x) in fields.x3.iter().enumerate() {
+        assert_eq!(*x, op.node_coordinates([0, j])[1]);
+    }
+    // inside an element the GLL points are not the uniform ones: node 1 of 4 at
+    // (1 - sqrt(3/7)) / 2 of the element, not 1/4
+    let element = g.x2(4) - g.x2(0);
+    let t = (fields.x2[1] - fields.x2[0]) / element;
+    assert!((t - 0.5 * (1.0 - (3.0f64 / 7.0).sqrt())).abs() < 1e-12, "{t}");
+}
