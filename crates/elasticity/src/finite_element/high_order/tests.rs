@@ -235,5 +235,8 @@ fn nodal_fields_sit_at_the_gauss_lobatto_nodes() {
     // (1 - sqrt(3/7)) / 2 of the element, not 1/4
     let element = g.x2(4) - g.x2(0);
     let t = (fields.x2[1] - fields.x2[0]) / element;
-    assert!((t - 0.5 * (1.0 - (3.0f64 / 7.0).sqrt())).abs() < 1e-12, "{t}");
+    assert!(
+        (t - 0.5 * (1.0 - (3.0f64 / 7.0).sqrt())).abs() < 1e-12,
+        "{t}"
+    );
 }
