@@ -1,7 +1,6 @@
 //! Assembly of the Qp operator (full and statically condensed), its [`Discretisation`]
 //! implementation (contact entries, output fields) and error norms.
 
-use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::condensation::CondensedElement;
@@ -15,6 +14,7 @@ use crate::continuum::kinematics::{
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
+use crate::finite_element::navier::{TensorElements, tensor_displacement_errors};
 use crate::finite_element::{DisplacementErrors, ElementAssembly};
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
@@ -262,65 +262,18 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
-            let g = &p.metric;
-            g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
-        };
-        let max = (0..self.grid.node_count())
-            .into_par_iter()
-            .map(|k| -> Result<f64, ElasticityError> {
-                let [x2, x3] = self.node_coordinates(self.grid.node(k));
-                let p = self.chart.shell_point([0.0, x2, x3])?;
-                let u = exact([x2, x3]);
-                Ok(norm2(&p, [v[2 * k] - u[0], v[2 * k + 1] - u[1]]).sqrt())
-            })
-            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
         let (gp, gw) = gauss_legendre(self.degree + 2);
-        let [l2, l3] = self.size;
-        let det = 0.25 * l2 * l3;
-        let np = self.np();
         let basis: Vec<Vec<f64>> = gp.iter().map(|&x| lagrange_basis(&self.gll, x).0).collect();
-        let sums = (0..self.element_count())
-            .into_par_iter()
-            .map(|e| -> Result<[f64; 3], ElasticityError> {
-                let nodes = self.element_nodes(e);
-                let [x0, y0] = self.element_origin(e);
-                let mut s = [0.0; 3];
-                for (i, &xi) in gp.iter().enumerate() {
-                    for (j, &eta) in gp.iter().enumerate() {
-                        let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
-                        let mut uh = [0.0; 2];
-                        for a2 in 0..np {
-                            for a3 in 0..np {
-                                let n = basis[i][a2] * basis[j][a3];
-                                let m = nodes[a2 * np + a3];
-                                uh[0] += n * v[2 * m];
-                                uh[1] += n * v[2 * m + 1];
-                            }
-                        }
-                        let p = self.chart.shell_point([0.0, x[0], x[1]])?;
-                        let u = exact(x);
-                        let w = gw[i] * gw[j] * det;
-                        let err2 = norm2(&p, [uh[0] - u[0], uh[1] - u[1]]);
-                        s[0] += w * err2;
-                        s[1] += w * p.sqrt_g * err2;
-                        s[2] += w * p.sqrt_g * norm2(&p, u);
-                    }
-                }
-                Ok(s)
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let s = sums.iter().fold([0.0; 3], |acc, x| {
-            [acc[0] + x[0], acc[1] + x[1], acc[2] + x[2]]
-        });
-        let [t0, t1] = self.grid.theta();
-        let area = (t1 - t0) * self.grid.thickness();
-        Ok(DisplacementErrors {
-            max,
-            rms: (s[0] / area).sqrt(),
-            l2: s[1].sqrt(),
-            l2_exact: s[2].sqrt(),
-        })
+        let element = |e: usize| (self.element_origin(e), self.element_nodes(e));
+        let elements = TensorElements {
+            count: self.element_count(),
+            size: self.size,
+            rule: (&gp, &gw),
+            basis: &basis,
+            element: &element,
+        };
+        let position = |node: [usize; 2]| self.node_coordinates(node);
+        tensor_displacement_errors(&self.chart, &self.grid, &elements, &position, v, exact)
     }
 }
 

@@ -36,68 +36,120 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
-            let g = &p.metric;
-            g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
-        };
-        let max = (0..self.grid.node_count())
-            .into_par_iter()
-            .map(|k| -> Result<f64, ElasticityError> {
-                let [x2, x3] = self.grid.coordinates(self.grid.node(k));
-                let p = self.chart.shell_point([0.0, x2, x3])?;
-                let u = exact([x2, x3]);
-                Ok(norm2(&p, [v[2 * k] - u[0], v[2 * k + 1] - u[1]]).sqrt())
-            })
-            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
         let (gp, gw) = gauss_rule(self.order.nodes_per_direction() + 1);
-        let [l2, l3] = self.element_size();
-        let det = 0.25 * l2 * l3;
         let np = self.order.nodes_per_direction();
-        let ne = self.elements[0] * self.elements[1];
-        let sums = (0..ne)
-            .into_par_iter()
-            .map(|e| -> Result<[f64; 3], ElasticityError> {
-                let mut nodes = [0; 9];
-                self.element_nodes(e, &mut nodes);
-                let [x0, y0] = self.element_origin(e);
-                let mut s = [0.0; 3];
-                for (i, &xi) in gp.iter().enumerate() {
-                    let (n2, _) = self.order.shape_1d(xi);
-                    for (j, &eta) in gp.iter().enumerate() {
-                        let (n3, _) = self.order.shape_1d(eta);
-                        let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
-                        let mut uh = [0.0; 2];
-                        for a2 in 0..np {
-                            for a3 in 0..np {
-                                let node = nodes[a2 * np + a3];
-                                let n = n2[a2] * n3[a3];
-                                uh[0] += n * v[2 * node];
-                                uh[1] += n * v[2 * node + 1];
-                            }
-                        }
-                        let p = self.chart.shell_point([0.0, x[0], x[1]])?;
-                        let u = exact(x);
-                        let w = gw[i] * gw[j] * det;
-                        let err2 = norm2(&p, [uh[0] - u[0], uh[1] - u[1]]);
-                        s[0] += w * err2;
-                        s[1] += w * p.sqrt_g * err2;
-                        s[2] += w * p.sqrt_g * norm2(&p, u);
-                    }
-                }
-                Ok(s)
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        // sequential sum in element order: reproducible
-        let s = sums.iter().fold([0.0; 3], |acc, x| {
-            [acc[0] + x[0], acc[1] + x[1], acc[2] + x[2]]
-        });
-        let [t0, t1] = self.grid.theta();
-        let area = (t1 - t0) * self.grid.thickness();
-        Ok(DisplacementErrors {
-            max,
-            rms: (s[0] / area).sqrt(),
-            l2: s[1].sqrt(),
-            l2_exact: s[2].sqrt(),
-        })
+        let basis: Vec<Vec<f64>> = gp
+            .iter()
+            .map(|&x| self.order.shape_1d(x).0[..np].to_vec())
+            .collect();
+        let element = |e: usize| {
+            let mut nodes = [0; 9];
+            self.element_nodes(e, &mut nodes);
+            (self.element_origin(e), nodes[..np * np].to_vec())
+        };
+        let elements = TensorElements {
+            count: self.elements[0] * self.elements[1],
+            size: self.element_size(),
+            rule: (&gp, &gw),
+            basis: &basis,
+            element: &element,
+        };
+        let position = |node: [usize; 2]| self.grid.coordinates(node);
+        tensor_displacement_errors(&self.chart, &self.grid, &elements, &position, v, exact)
     }
+}
+
+/// A tensor-product Lagrange discretisation element by element, for
+/// [`tensor_displacement_errors`].
+pub(crate) struct TensorElements<'a> {
+    /// Number of elements.
+    pub count: usize,
+    /// Element size `[l2, l3]` in the parameters.
+    pub size: [f64; 2],
+    /// Gauss points and weights on `[-1, 1]`.
+    pub rule: (&'a [f64], &'a [f64]),
+    /// The 1-D shape functions at Gauss point `i`: `basis[i][a]`, `a < np`.
+    pub basis: &'a [Vec<f64>],
+    /// Origin `(x2, x3)` and the `np x np` node numbers (index `a2 np + a3`) of element `e`.
+    pub element: &'a (dyn Fn(usize) -> ([f64; 2], Vec<usize>) + Sync),
+}
+
+/// The error norms of the discrete displacement `v = [v^2, v^3]` (per node) against `exact`:
+/// the max over the nodes (at `position(node)`) of `|U_h - U|`, and by the Gauss rule of
+/// `elements` over every element
+/// ```text
+/// rms^2 = int |U_h - U|^2 dx2 dx3 / area,  l2^2 = int |U_h - U|^2 sqrt(g) dx2 dx3,
+/// l2_exact^2 = int |U|^2 sqrt(g) dx2 dx3,  |e|^2 = g_22 e2 e2 + 2 g_23 e2 e3 + g_33 e3 e3
+/// ```
+/// summed in element order (reproducible under parallelism).
+///
+/// # Errors
+/// Geometry failures of the chart.
+pub(crate) fn tensor_displacement_errors<G: ShellGeometry + Sync>(
+    chart: &G,
+    grid: &crate::grid::Grid,
+    elements: &TensorElements<'_>,
+    position: &(dyn Fn([usize; 2]) -> [f64; 2] + Sync),
+    v: &[f64],
+    exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
+) -> Result<DisplacementErrors, ElasticityError> {
+    let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
+        let g = &p.metric;
+        g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
+    };
+    let max = (0..grid.node_count())
+        .into_par_iter()
+        .map(|k| -> Result<f64, ElasticityError> {
+            let [x2, x3] = position(grid.node(k));
+            let p = chart.shell_point([0.0, x2, x3])?;
+            let u = exact([x2, x3]);
+            Ok(norm2(&p, [v[2 * k] - u[0], v[2 * k + 1] - u[1]]).sqrt())
+        })
+        .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
+    let (gp, gw) = elements.rule;
+    let [l2, l3] = elements.size;
+    let det = 0.25 * l2 * l3;
+    let basis = elements.basis;
+    let sums = (0..elements.count)
+        .into_par_iter()
+        .map(|e| -> Result<[f64; 3], ElasticityError> {
+            let ([x0, y0], nodes) = (elements.element)(e);
+            let np = basis.first().map_or(0, Vec::len);
+            let mut s = [0.0; 3];
+            for (i, &xi) in gp.iter().enumerate() {
+                for (j, &eta) in gp.iter().enumerate() {
+                    let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
+                    let mut uh = [0.0; 2];
+                    for a2 in 0..np {
+                        for a3 in 0..np {
+                            let node = nodes[a2 * np + a3];
+                            let n = basis[i][a2] * basis[j][a3];
+                            uh[0] += n * v[2 * node];
+                            uh[1] += n * v[2 * node + 1];
+                        }
+                    }
+                    let p = chart.shell_point([0.0, x[0], x[1]])?;
+                    let u = exact(x);
+                    let w = gw[i] * gw[j] * det;
+                    let err2 = norm2(&p, [uh[0] - u[0], uh[1] - u[1]]);
+                    s[0] += w * err2;
+                    s[1] += w * p.sqrt_g * err2;
+                    s[2] += w * p.sqrt_g * norm2(&p, u);
+                }
+            }
+            Ok(s)
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    // sequential sum in element order: reproducible
+    let s = sums.iter().fold([0.0; 3], |acc, x| {
+        [acc[0] + x[0], acc[1] + x[1], acc[2] + x[2]]
+    });
+    let [t0, t1] = grid.theta();
+    let area = (t1 - t0) * grid.thickness();
+    Ok(DisplacementErrors {
+        max,
+        rms: (s[0] / area).sqrt(),
+        l2: s[1].sqrt(),
+        l2_exact: s[2].sqrt(),
+    })
 }
