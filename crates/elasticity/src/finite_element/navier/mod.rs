@@ -7,7 +7,6 @@ mod assembly;
 mod boundary_terms;
 mod geometry_cache;
 pub(super) mod norms;
-pub(crate) use norms::{TensorElements, tensor_displacement_errors};
 mod recovery;
 
 use capstan_geometry::ShellPoint;
