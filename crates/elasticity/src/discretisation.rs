@@ -315,6 +315,12 @@ pub trait Discretisation {
         capstan_solvers::ColumnOrdering::Auto
     }
 
+    /// The parameters `(x2, x3)` of node `(i2, i3)`: the grid's uniform positions by default;
+    /// the high-order elements place the nodes inside an element at its Gauss–Lobatto points.
+    fn node_position(&self, node: [usize; 2]) -> [f64; 2] {
+        self.grid().coordinates(node)
+    }
+
     /// The unknown of `component` at node `(i2, i3)`.
     ///
     /// # Panics

@@ -98,6 +98,10 @@ impl Discretisation for ThickBodyOperator {
         forward!(self, op => op.dof(node, component))
     }
 
+    fn node_position(&self, node: [usize; 2]) -> [f64; 2] {
+        forward!(self, op => op.node_position(node))
+    }
+
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
         forward!(self, op => op.entries())
     }

@@ -127,7 +127,10 @@ impl<D: Discretisation + ?Sized> ContactOperator for D {
             extremum(
                 grid.n2() * n3,
                 |k| v[self.dof([k / n3, k % n3], c)],
-                |k| (None, grid.x2(k / n3), grid.x3(k % n3)),
+                |k| {
+                    let [x2, x3] = self.node_position([k / n3, k % n3]);
+                    (None, x2, x3)
+                },
             )
         })
     }

@@ -293,6 +293,11 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
 
     plane_strain_numbering!();
 
+    /// The Gauss–Lobatto–Legendre positions ([`HighOrderNavier::node_coordinates`]).
+    fn node_position(&self, node: [usize; 2]) -> [f64; 2] {
+        self.node_coordinates(node)
+    }
+
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
         Ok(self.full_assembly()?.pattern().entries().collect())
     }

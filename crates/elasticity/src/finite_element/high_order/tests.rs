@@ -240,3 +240,19 @@ fn nodal_fields_sit_at_the_gauss_lobatto_nodes() {
         "{t}"
     );
 }
+
+#[test]
+fn contact_extremes_are_reported_at_the_gauss_lobatto_nodes() {
+    use crate::contact::ContactOperator;
+    let (op, _) = mms_qp(4, 2, VolumetricIntegration::Full);
+    let v = op.solve(&mut SparseCholesky::default()).unwrap();
+    let g = op.grid();
+    for e in op.extremes(&v) {
+        // the extreme sits at some node's true position
+        let at_node =
+            (0..g.n2()).any(|i| (0..g.n3()).any(|j| op.node_coordinates([i, j]) == [e.x2, e.x3]));
+        assert!(at_node, "{e:?}");
+    }
+    assert_eq!(op.node_position([1, 1]), op.node_coordinates([1, 1]));
+    assert_ne!(op.node_position([1, 1]), g.coordinates([1, 1]));
+}
