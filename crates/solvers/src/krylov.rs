@@ -106,6 +106,55 @@ pub struct KrylovReport {
     pub residuals: Vec<f64>,
 }
 
+impl KrylovReport {
+    /// Records iteration `iterations + 1` with relative residual `relative` and step `step`,
+    /// and reports it to `observer`.
+    ///
+    /// # Errors
+    /// [`SolverError::Interrupted`] when the observer asks to stop.
+    fn record(
+        &mut self,
+        relative: f64,
+        step: f64,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(), SolverError> {
+        self.iterations += 1;
+        self.residuals.push(relative);
+        observer.iteration(&Progress::new(
+            SolveStage::Krylov,
+            self.iterations,
+            relative,
+            step,
+        ));
+        if observer.interrupted() {
+            return Err(SolverError::Interrupted {
+                iteration: self.iterations,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The common start of a Krylov solve from `x = 0`: the checks, `|b|` and an empty report;
+/// `None` for `b = 0` (then `x = 0` is the answer).
+fn start(
+    a: &CsrMatrix,
+    b: &[f64],
+    x: &mut [f64],
+    params: &KrylovParams,
+) -> Result<Option<f64>, SolverError> {
+    check(a, b, x, params)?;
+    x.fill(0.0);
+    let bn = norm(b);
+    Ok((bn != 0.0).then_some(bn))
+}
+
+/// A report of no iterations.
+const NO_ITERATIONS: KrylovReport = KrylovReport {
+    iterations: 0,
+    residuals: Vec::new(),
+};
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -193,17 +242,11 @@ pub fn conjugate_gradient(
     params: &KrylovParams,
     observer: &mut dyn Observer<f64>,
 ) -> Result<KrylovReport, SolverError> {
-    check(a, b, x, params)?;
-    let n = b.len();
-    x.fill(0.0);
-    let bn = norm(b);
-    let mut report = KrylovReport {
-        iterations: 0,
-        residuals: Vec::new(),
+    let Some(bn) = start(a, b, x, params)? else {
+        return Ok(NO_ITERATIONS);
     };
-    if bn == 0.0 {
-        return Ok(report);
-    }
+    let n = b.len();
+    let mut report = NO_ITERATIONS;
     let mut r = b.to_vec();
     let mut z = vec![0.0; n];
     let mut ap = vec![0.0; n];
@@ -233,12 +276,7 @@ pub fn conjugate_gradient(
             r[i] -= alpha * ap[i];
         }
         let rn = norm(&r);
-        report.iterations = k + 1;
-        report.residuals.push(rn / bn);
-        observer.iteration(&Progress::new(SolveStage::Krylov, k + 1, rn / bn, alpha));
-        if observer.interrupted() {
-            return Err(SolverError::Interrupted { iteration: k + 1 });
-        }
+        report.record(rn / bn, alpha, observer)?;
         if !rn.is_finite() {
             return Err(breakdown(k + 1));
         }
@@ -285,18 +323,12 @@ pub fn gmres(
     params: &KrylovParams,
     observer: &mut dyn Observer<f64>,
 ) -> Result<KrylovReport, SolverError> {
-    check(a, b, x, params)?;
+    let Some(bn) = start(a, b, x, params)? else {
+        return Ok(NO_ITERATIONS);
+    };
     let n = b.len();
     let m = params.restart.min(params.max_iterations).min(n.max(1));
-    x.fill(0.0);
-    let bn = norm(b);
-    let mut report = KrylovReport {
-        iterations: 0,
-        residuals: Vec::new(),
-    };
-    if bn == 0.0 {
-        return Ok(report);
-    }
+    let mut report = NO_ITERATIONS;
     let target = params.tolerance * bn;
     let mut r = b.to_vec();
     let mut rn = bn;
@@ -340,20 +372,8 @@ pub fn gmres(
             g[j] *= c;
             h.push(col);
             let estimate = g[j + 1].abs();
-            report.iterations += 1;
             j += 1;
-            report.residuals.push(estimate / bn);
-            observer.iteration(&Progress::new(
-                SolveStage::Krylov,
-                report.iterations,
-                estimate / bn,
-                1.0,
-            ));
-            if observer.interrupted() {
-                return Err(SolverError::Interrupted {
-                    iteration: report.iterations,
-                });
-            }
+            report.record(estimate / bn, 1.0, observer)?;
             if !estimate.is_finite() || !wn.is_finite() {
                 return Err(breakdown(report.iterations));
             }
