@@ -1,12 +1,16 @@
 //! The `capstan` command line.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
+use serde::Serialize;
 
 use crate::commands;
-pub use crate::commands::SceneArgs;
+pub use crate::commands::{SceneArgs, StudyArgs};
 use crate::error::CliError;
+use crate::figures::reports::{write_geometry, write_json_report, write_tension};
+use crate::output::OutputDir;
+use crate::provenance::Stamped;
 use crate::scene::Scene;
 
 /// Friction between elastic bodies and rough rigid curved obstacles.
@@ -41,8 +45,12 @@ pub enum Command {
     )]
     Geometry(OutSceneArgs),
     /// Convergence studies of the elasticity discretisations: errors and observed orders.
-    #[command(after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json")]
-    Verify(VerifyArgs),
+    #[command(
+        after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json",
+        mut_arg("quick", |a| a.help("Only the three coarsest grids of each study")),
+        mut_arg("out", |a| a.help("Also write `verify.json` into this directory"))
+    )]
+    Verify(StudyArgs),
     /// Benchmarks: `work-precision` (run time against error, FD vs FEM vs scikit-fem and NGSolve).
     #[command(after_help = "Example:\n  capstan bench work-precision --quick")]
     Bench(commands::bench::BenchArgs),
@@ -75,15 +83,20 @@ pub enum Command {
     /// Implied coefficients of friction of the capstan, membrane and Kikuchi–Oden models
     /// against b/a, h and nu, with the thick body's threshold as h -> 0 (CSV, SVG/PNG plots).
     #[command(
-        after_help = "Examples:\n  capstan compare --quick\n  capstan compare --json --out out/models"
+        after_help = "Examples:\n  capstan compare --quick\n  capstan compare --json --out out/models",
+        mut_arg("out", |a| a.help("Write `compare.json`, `implied_mu.csv`, `thickness.csv` and the plots `implied_mu_vs_{b_over_a,thickness,poisson}.{svg,png}` into this directory")),
+        mut_arg("quick", |a| a.help("Grid 41 x 9, three values per axis, one grid in the thickness study (under a second in release; the full study takes about 40 s on 2 cores)"))
     )]
-    Compare(commands::compare::CompareArgs),
+    Compare(StudyArgs),
     /// Numerical stability under stress: each parameter toward its hard limit (contact and
     /// capstan models), with iterations, residuals, condition estimates, refinement changes.
     #[command(
-        after_help = "Examples:\n  capstan stress --quick\n  capstan stress --json --out out/stress"
+        after_help = "Examples:\n  capstan stress --quick\n  capstan stress --json --out out/stress",
+        mut_arg("json", |a| a.help("Print one JSON object (`points`: one object per stressed point) instead of a table")),
+        mut_arg("out", |a| a.help("Write `stress.json` and `stress.md` into this directory")),
+        mut_arg("quick", |a| a.help("A representative subset: every axis at its extreme values (about a minute in release)"))
     )]
-    Stress(commands::stress::StressArgs),
+    Stress(StudyArgs),
     /// The paper's figures and tables (sections 2 and 3) as PNG + SVG + CSV, with an index.
     #[command(
         after_help = "Examples:\n  capstan figure all --out figures\n  capstan figure slip-ratio --quick --out /tmp/fig"
@@ -152,20 +165,6 @@ pub struct OutSceneArgs {
     pub out: Option<PathBuf>,
 }
 
-/// Arguments of `capstan verify`.
-#[derive(Debug, Args, Clone, Default)]
-pub struct VerifyArgs {
-    /// Print one JSON object instead of tables.
-    #[arg(long)]
-    pub json: bool,
-    /// Only the three coarsest grids of each study.
-    #[arg(long)]
-    pub quick: bool,
-    /// Also write `verify.json` into this directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-}
-
 /// Runs the command line; returns what to print on stdout.
 ///
 /// # Errors
@@ -205,67 +204,105 @@ pub fn run(cli: Cli) -> Result<String, CliError> {
 fn run_command(cli: Cli) -> Result<String, CliError> {
     match cli.command {
         None => default_job(),
-        Some(Command::Geometry(args)) => geometry(&args),
-        Some(Command::Verify(args)) => verify(&args),
+        Some(Command::Geometry(args)) => scene_command(
+            &args.scene,
+            args.out.as_deref(),
+            commands::geometry::report,
+            write_geometry,
+            |r, scene| Ok(commands::geometry::table(r, &scene.obstacle.build()?)),
+        ),
+        Some(Command::Verify(args)) => study(
+            &args,
+            commands::verify::report,
+            |dir, r| write_json_report(dir, "verify", r, None),
+            commands::verify::table,
+        ),
         Some(Command::Bench(args)) => bench(&args),
-        Some(Command::Tension(args)) => tension(&args),
-        Some(Command::InferMu(args)) => infer_mu(&args),
+        Some(Command::Tension(args)) => scene_command(
+            &args.scene,
+            args.out.as_deref(),
+            commands::tension::report,
+            write_tension,
+            |r, scene| Ok(commands::tension::table(r, scene)),
+        ),
+        Some(Command::InferMu(args)) => scene_command(
+            &args.scene,
+            args.out.as_deref(),
+            |scene| commands::infer_mu::report_for(scene, args.model),
+            |dir, r, scene| write_json_report(dir, "infer-mu", r, Some(scene)),
+            |r, scene| Ok(commands::infer_mu::table(r, scene)),
+        ),
         Some(Command::Contact(args)) => contact(&args),
         Some(Command::Sweep(args)) => sweep(&args),
-        Some(Command::Threshold(args)) => threshold(&args),
-        Some(Command::Compare(args)) => compare(&args),
-        Some(Command::Stress(args)) => stress(&args),
+        Some(Command::Threshold(args)) => scene_command(
+            &args.scene,
+            args.out.as_deref(),
+            commands::threshold::report,
+            |dir, r, scene| write_json_report(dir, "threshold", r, Some(scene)),
+            |r, _| Ok(commands::threshold::table(r)),
+        ),
+        Some(Command::Compare(args)) => study(
+            &args,
+            commands::compare::report,
+            commands::compare::write_out,
+            commands::compare::table,
+        ),
+        Some(Command::Stress(args)) => study(
+            &args,
+            commands::stress::report,
+            commands::stress::write_out,
+            commands::stress::table,
+        ),
         Some(Command::Figure(args)) => figure(&args, cli.quiet),
         Some(Command::Merge(args)) => commands::merge::run(&args),
         Some(Command::ExportSystem(args)) => export_system(&args),
     }
 }
 
-fn geometry(out: &OutSceneArgs) -> Result<String, CliError> {
-    let args = &out.scene;
+/// The report of one scene: `report(scene)`, written into `out` by `write`; printed as one
+/// JSON object stamped with the scene (`--json`) or as `table(report, scene)`.
+fn scene_command<R: Serialize>(
+    args: &SceneArgs,
+    out: Option<&Path>,
+    report: impl FnOnce(&Scene) -> Result<R, CliError>,
+    write: impl FnOnce(&Path, &R, &Scene) -> Result<(), CliError>,
+    table: impl FnOnce(&R, &Scene) -> Result<String, CliError>,
+) -> Result<String, CliError> {
     let scene = args.load()?;
-    let report = commands::geometry::report(&scene)?;
-    if let Some(dir) = &out.out {
-        crate::figures::reports::write_geometry(dir, &report, &scene)?;
+    let report = report(&scene)?;
+    if let Some(dir) = out {
+        write(dir, &report, &scene)?;
     }
-    if args.json {
-        Ok(crate::output::to_json_string(
-            &crate::provenance::Stamped::new(&report, Some(&scene)),
-        )?)
-    } else {
-        Ok(commands::geometry::table(&report, &scene.obstacle.build()?))
-    }
+    render(args.json, &Stamped::new(&report, Some(&scene)), || {
+        table(&report, &scene)
+    })
 }
 
-fn tension(out: &OutSceneArgs) -> Result<String, CliError> {
-    let args = &out.scene;
-    let scene = args.load()?;
-    let report = commands::tension::report(&scene)?;
-    if let Some(dir) = &out.out {
-        crate::figures::reports::write_tension(dir, &report, &scene)?;
+/// A fixed study: `report(quick)`, written into `--out` by `write`; printed as one JSON object
+/// (`--json`) or as `table(report)`.
+fn study<R: Serialize>(
+    args: &StudyArgs,
+    report: impl FnOnce(bool) -> Result<R, CliError>,
+    write: impl FnOnce(&Path, &R) -> Result<(), CliError>,
+    table: impl FnOnce(&R) -> String,
+) -> Result<String, CliError> {
+    let report = report(args.quick)?;
+    if let Some(dir) = &args.out {
+        write(dir, &report)?;
     }
-    if args.json {
-        Ok(crate::output::to_json_string(
-            &crate::provenance::Stamped::new(&report, Some(&scene)),
-        )?)
-    } else {
-        Ok(commands::tension::table(&report, &scene))
-    }
+    render(args.json, &report, || Ok(table(&report)))
 }
 
-fn infer_mu(out: &commands::infer_mu::InferMuArgs) -> Result<String, CliError> {
-    let args = &out.scene;
-    let scene = args.load()?;
-    let report = commands::infer_mu::report_for(&scene, out.model)?;
-    if let Some(dir) = &out.out {
-        crate::figures::reports::write_json_report(dir, "infer-mu", &report, Some(&scene))?;
-    }
-    if args.json {
-        Ok(crate::output::to_json_string(
-            &crate::provenance::Stamped::new(&report, Some(&scene)),
-        )?)
+/// What a command prints: `report` as one JSON object when `json`, else `table()`.
+fn render<R: Serialize>(
+    json: bool,
+    report: &R,
+    table: impl FnOnce() -> Result<String, CliError>,
+) -> Result<String, CliError> {
+    if json {
+        Ok(crate::output::to_json_string(report)?)
     } else {
-        Ok(commands::infer_mu::table(&report, &scene))
+        table()
     }
 }
 
@@ -285,13 +322,11 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
         }
         report
     };
-    if args.scene.json {
-        Ok(crate::output::to_json_string(
-            &crate::provenance::Stamped::new(&report, Some(&scene)),
-        )?)
-    } else {
-        Ok(commands::contact::table(&report))
-    }
+    render(
+        args.scene.json,
+        &Stamped::new(&report, Some(&scene)),
+        || Ok(commands::contact::table(&report)),
+    )
 }
 
 fn sweep(args: &SweepArgs) -> Result<String, CliError> {
@@ -303,26 +338,27 @@ fn sweep(args: &SweepArgs) -> Result<String, CliError> {
     if let Some(out) = sweep_mpi(args, &values)? {
         return Ok(out);
     }
-    let fields = match &args.out {
-        Some(dir) => Some(crate::output::OutputDir::create(dir)?),
-        None => None,
-    };
+    let fields = args.out.as_deref().map(OutputDir::create).transpose()?;
     let report = commands::sweep::report_indexed(
         args.scene.scene.as_deref(),
         &args.scene.sets,
         commands::sweep::SweepPoints::new(&args.param, &values).fields(fields.as_ref()),
     )?;
+    sweep_output(args, &report)
+}
+
+/// A whole sweep: written into `--out`, printed as JSON stamped with the scene or as a table.
+fn sweep_output(
+    args: &SweepArgs,
+    report: &commands::sweep::SweepReport,
+) -> Result<String, CliError> {
     let scene = args.scene.load()?;
     if let Some(dir) = &args.out {
-        commands::sweep::write_out(dir, &report, &scene)?;
+        commands::sweep::write_out(dir, report, &scene)?;
     }
-    if args.scene.json {
-        Ok(crate::output::to_json_string(
-            &crate::provenance::Stamped::new(&report, Some(&scene)),
-        )?)
-    } else {
-        Ok(commands::sweep::table(&report))
-    }
+    render(args.scene.json, &Stamped::new(report, Some(&scene)), || {
+        Ok(commands::sweep::table(report))
+    })
 }
 
 /// `capstan sweep --shard I/N`: one part, written as `shard-I-of-N.json`.
@@ -331,10 +367,7 @@ fn sweep_shard(
     values: &[f64],
     spec: crate::scale::ShardSpec,
 ) -> Result<String, CliError> {
-    let out = match &args.out {
-        Some(dir) => Some(crate::output::OutputDir::create(dir)?),
-        None => None,
-    };
+    let out = args.out.as_deref().map(OutputDir::create).transpose()?;
     let part = crate::scale::run_shard(
         args.scene.scene.as_deref(),
         &args.scene.sets,
@@ -346,9 +379,7 @@ fn sweep_shard(
     if let Some(out) = &out {
         out.write_json(&crate::scale::shard_file_name(spec), &part)?;
     }
-    if args.scene.json {
-        Ok(crate::output::to_json_string(&part)?)
-    } else {
+    render(args.scene.json, &part, || {
         Ok(format!(
             "sweep of {}: shard {}/{} holds points {:?} of {} ({})\n",
             part.param,
@@ -358,7 +389,7 @@ fn sweep_shard(
             part.values.len(),
             part.scene_hash
         ))
-    }
+    })
 }
 
 /// `mpirun -n K capstan sweep ...` (feature `mpi`): `None` when not under MPI with 2+ ranks.
@@ -370,102 +401,27 @@ fn sweep_mpi(args: &SweepArgs, values: &[f64]) -> Result<Option<String>, CliErro
         MpiSweep::Serial => Ok(None),
         // Other ranks print nothing (MPI is finalised when `sweep` returns).
         MpiSweep::Worker => std::process::exit(0),
-        MpiSweep::Root(report) => {
-            let resolved = scene.load()?;
-            if let Some(dir) = &args.out {
-                commands::sweep::write_out(dir, &report, &resolved)?;
-            }
-            Ok(Some(if scene.json {
-                crate::output::to_json_string(&crate::provenance::Stamped::new(
-                    &report,
-                    Some(&resolved),
-                ))?
-            } else {
-                commands::sweep::table(&report)
-            }))
-        }
+        MpiSweep::Root(report) => sweep_output(args, &report).map(Some),
     }
 }
 
 fn export_system(args: &commands::export_system::ExportSystemArgs) -> Result<String, CliError> {
     let report = commands::export_system::run(args)?;
-    if args.scene.json {
-        Ok(crate::output::to_json_string(&report)?)
-    } else {
+    render(args.scene.json, &report, || {
         Ok(commands::export_system::table(&report))
-    }
-}
-
-fn threshold(out: &OutSceneArgs) -> Result<String, CliError> {
-    let args = &out.scene;
-    let scene = args.load()?;
-    let report = commands::threshold::report(&scene)?;
-    if let Some(dir) = &out.out {
-        crate::figures::reports::write_json_report(dir, "threshold", &report, Some(&scene))?;
-    }
-    if args.json {
-        Ok(crate::output::to_json_string(
-            &crate::provenance::Stamped::new(&report, Some(&scene)),
-        )?)
-    } else {
-        Ok(commands::threshold::table(&report))
-    }
+    })
 }
 
 fn figure(args: &commands::figure::FigureArgs, quiet: bool) -> Result<String, CliError> {
     let index = commands::figure::run(args, quiet)?;
-    if args.json {
-        Ok(crate::output::to_json_string(&index)?)
-    } else {
-        Ok(commands::figure::table(&index))
-    }
-}
-
-fn compare(args: &commands::compare::CompareArgs) -> Result<String, CliError> {
-    let report = commands::compare::report(args.quick)?;
-    if let Some(dir) = &args.out {
-        commands::compare::write_out(dir, &report)?;
-    }
-    if args.json {
-        Ok(crate::output::to_json_string(&report)?)
-    } else {
-        Ok(commands::compare::table(&report))
-    }
-}
-
-fn stress(args: &commands::stress::StressArgs) -> Result<String, CliError> {
-    let report = commands::stress::report(args.quick)?;
-    if let Some(dir) = &args.out {
-        commands::stress::write_out(dir, &report)?;
-    }
-    if args.json {
-        Ok(crate::output::to_json_string(&report)?)
-    } else {
-        Ok(commands::stress::table(&report))
-    }
-}
-
-fn verify(args: &VerifyArgs) -> Result<String, CliError> {
-    let report = commands::verify::report(args.quick)?;
-    if let Some(dir) = &args.out {
-        crate::figures::reports::write_json_report(dir, "verify", &report, None)?;
-    }
-    if args.json {
-        Ok(crate::output::to_json_string(&report)?)
-    } else {
-        Ok(commands::verify::table(&report))
-    }
+    render(args.json, &index, || Ok(commands::figure::table(&index)))
 }
 
 fn bench(args: &commands::bench::BenchArgs) -> Result<String, CliError> {
     match &args.what {
         commands::bench::BenchCommand::WorkPrecision(a) => {
             let report = commands::bench::report(a)?;
-            if a.json {
-                Ok(crate::output::to_json_string(&report)?)
-            } else {
-                Ok(commands::bench::table(&report))
-            }
+            render(a.json, &report, || Ok(commands::bench::table(&report)))
         }
     }
 }

@@ -5,6 +5,7 @@
 
 mod common;
 
+use std::path::Path;
 use std::process::Command;
 
 use capstan::cli::{Cli, Command as Sub};
@@ -73,26 +74,34 @@ fn quick_work_precision_writes_csv_and_plots() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `python ARGS` in the repository root, which must succeed: its stdout, one JSON object a line.
+fn peer_lines(python: &Path, args: &[&str]) -> Vec<serde_json::Value> {
+    let out = common::succeed(
+        Command::new(python)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .args(args),
+    );
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 #[test]
 fn peer_script_smoke_when_scikit_fem_is_installed() {
     let Some(python) = common::venv_python_with("skfem") else {
         return;
     };
-    let out = common::succeed(
-        Command::new(&python)
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .args([
-                "bench/peers/skfem_lame.py",
-                "--order",
-                "2",
-                "--levels",
-                "2,4",
-            ]),
+    let lines = peer_lines(
+        &python,
+        &[
+            "bench/peers/skfem_lame.py",
+            "--order",
+            "2",
+            "--levels",
+            "2,4",
+        ],
     );
-    let lines: Vec<serde_json::Value> = String::from_utf8_lossy(&out.stdout)
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
     assert_eq!(lines.len(), 2);
     let e: Vec<f64> = lines.iter().map(|l| l["error"].as_f64().unwrap()).collect();
     // Q2 on the exact annulus: third order, so halving h divides the error by about 8
@@ -105,28 +114,23 @@ fn ngsolve_peer_script_smoke_when_ngsolve_is_installed() {
         eprintln!("skipped: the NGSolve peer smoke test (.venv/bin/pip install ngsolve)");
         return;
     };
-    let run = |inverse: &str| -> Vec<serde_json::Value> {
-        let out = common::succeed(
-            Command::new(&python)
-                .current_dir(env!("CARGO_MANIFEST_DIR"))
-                .args([
-                    "bench/peers/ngsolve_lame.py",
-                    "--order",
-                    "3",
-                    "--levels",
-                    "2,4",
-                    "--inverse",
-                    inverse,
-                    "--repeat-min",
-                    "1",
-                    "--repeat-max",
-                    "1",
-                ]),
-        );
-        String::from_utf8_lossy(&out.stdout)
-            .lines()
-            .map(|l| serde_json::from_str(l).unwrap())
-            .collect()
+    let run = |inverse: &str| {
+        peer_lines(
+            &python,
+            &[
+                "bench/peers/ngsolve_lame.py",
+                "--order",
+                "3",
+                "--levels",
+                "2,4",
+                "--inverse",
+                inverse,
+                "--repeat-min",
+                "1",
+                "--repeat-max",
+                "1",
+            ],
+        )
     };
     let cholesky = run("sparsecholesky");
     assert_eq!(cholesky.len(), 2);

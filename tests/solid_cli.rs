@@ -23,6 +23,15 @@ const ELLIPSE: [&str; 14] = [
     "loads.tau_max=1.5",
 ];
 
+/// `capstan contact` on a 3-D body of Q1 elements.
+const SOLID_Q1_CONTACT: [&str; 5] = [
+    "contact",
+    "--set",
+    "body.dimension=3",
+    "--set",
+    "discretisation.method=fem-q1",
+];
+
 fn values(v: &serde_json::Value) -> Vec<f64> {
     v.as_array()
         .unwrap()
@@ -82,12 +91,7 @@ fn plane_strain_extrusion_reports_the_two_dimensional_contact() {
 fn cone_band_of_finite_width_solves_and_writes_its_contact_table() {
     let dir = scratch_dir("solid-cone");
     let out = dir.to_str().unwrap();
-    let r = capstan_json(&[
-        "contact",
-        "--set",
-        "body.dimension=3",
-        "--set",
-        "discretisation.method=fem-q1",
+    let cone = [
         "--set",
         "obstacle.shape=cone",
         "--set",
@@ -110,7 +114,8 @@ fn cone_band_of_finite_width_solves_and_writes_its_contact_table() {
         "loads.tau_max=1.3",
         "--out",
         out,
-    ]);
+    ];
+    let r = capstan_json(&[&SOLID_Q1_CONTACT[..], &cone[..]].concat());
     assert_eq!(r["status"], "converged");
     assert!(r["residual"].as_f64().unwrap() < 1e-9);
     assert_eq!(r["solid"]["x1"], serde_json::json!([1.0, 1.4]));
@@ -302,12 +307,7 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
         eprintln!("skipped: more than 59 GiB available, the LU would be attempted");
         return;
     }
-    let (code, _, stderr) = capstan_status(&[
-        "contact",
-        "--set",
-        "body.dimension=3",
-        "--set",
-        "discretisation.method=fem-q1",
+    let large = [
         "--set",
         "solver.nonlinear=full-newton",
         "--set",
@@ -316,7 +316,8 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
         "grid.n2=321",
         "--set",
         "grid.n3=33",
-    ]);
+    ];
+    let (code, _, stderr) = capstan_status(&[&SOLID_Q1_CONTACT[..], &large[..]].concat());
     assert_eq!(code, Some(2), "{stderr}");
     assert!(
         stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"multigrid\""),

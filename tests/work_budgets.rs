@@ -148,37 +148,20 @@ fn contact_newton_and_continuation_run_out_naming_their_keys() {
 }
 
 #[test]
-fn full_newton_runs_out_naming_max_iterations() {
-    let s = scene(
-        &[
-            SMALL_BODY,
-            &[
-                "solver.nonlinear=full-newton",
-                "solver.max_iterations=1",
-                "solver.max_continuation_steps=1",
-            ],
-        ]
-        .concat(),
-    );
-    let e = contact::solve(&s).unwrap_err();
-    names(&e, "solver.max_iterations");
-}
-
-#[test]
-fn jacobi_sweeps_run_out_naming_max_sweeps() {
-    let s = scene(
-        &[
-            SMALL_BODY,
-            &[
-                "solver.nonlinear=full-newton",
-                "solver.linear=jacobi",
-                "solver.max_sweeps=1",
-            ],
-        ]
-        .concat(),
-    );
-    let e = contact::solve(&s).unwrap_err();
-    names(&e, "solver.max_sweeps");
+fn full_newton_iterations_and_jacobi_sweeps_run_out_naming_their_keys() {
+    for (budget, key) in [
+        (
+            ["solver.max_iterations=1", "solver.max_continuation_steps=1"],
+            "solver.max_iterations",
+        ),
+        (
+            ["solver.linear=jacobi", "solver.max_sweeps=1"],
+            "solver.max_sweeps",
+        ),
+    ] {
+        let s = scene(&[SMALL_BODY, &["solver.nonlinear=full-newton"], &budget].concat());
+        names(&contact::solve(&s).unwrap_err(), key);
+    }
 }
 
 #[test]

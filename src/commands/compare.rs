@@ -15,14 +15,13 @@
 //! `docs/models.md` records the measured numbers.
 
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactSettings, ThickBody, ThresholdSettings, threshold_ratio,
 };
 use capstan_geometry::{EllipticalPrism, Obstacle};
-use clap::Args;
 use serde::Serialize;
 
 use crate::commands::infer_mu::{MembraneSetup, coulomb_model, membrane_mu};
@@ -33,22 +32,6 @@ use crate::output::{LinePlot, OutputDir, Series, Table, write_plot};
 pub const EPS: f64 = 1e-5;
 /// The thick body's coefficient `nu_F`.
 pub const NU_F: f64 = 0.5;
-
-/// Arguments of `capstan compare`.
-#[derive(Debug, Args, Clone, Default)]
-pub struct CompareArgs {
-    /// Print one JSON object instead of tables.
-    #[arg(long)]
-    pub json: bool,
-    /// Write `compare.json`, `implied_mu.csv`, `thickness.csv` and the plots
-    /// `implied_mu_vs_{b_over_a,thickness,poisson}.{svg,png}` into this directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-    /// Grid 41 x 9, three values per axis, one grid in the thickness study (under a second in
-    /// release; the full study takes about 40 s on 2 cores).
-    #[arg(long)]
-    pub quick: bool,
-}
 
 /// One configuration of the thick body.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

@@ -12,9 +12,11 @@ mod scene_args;
 pub mod solid_contact;
 pub mod solid_report;
 pub mod stress;
+mod study_args;
 pub mod sweep;
 pub mod tension;
 pub mod threshold;
 pub mod verify;
 
 pub use scene_args::SceneArgs;
+pub use study_args::StudyArgs;

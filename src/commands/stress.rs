@@ -14,7 +14,6 @@
 
 use std::collections::BTreeMap;
 use std::f64::consts::{FRAC_PI_2, PI};
-use std::path::PathBuf;
 use std::time::Instant;
 
 use capstan_elasticity::contact::{
@@ -24,26 +23,11 @@ use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solvers::{LinearSolver, SparseLu};
 use capstan_friction::membrane::{self, closed_form};
-use clap::Args;
 use serde::Serialize;
 
 use crate::error::CliError;
 use crate::output::OutputDir;
 use crate::scene::{Scene, available_memory, memory_estimate};
-
-/// Arguments of `capstan stress`.
-#[derive(Debug, Args, Clone, Default)]
-pub struct StressArgs {
-    /// Print one JSON object (`points`: one object per stressed point) instead of a table.
-    #[arg(long)]
-    pub json: bool,
-    /// Write `stress.json` and `stress.md` into this directory.
-    #[arg(long, value_name = "DIR")]
-    pub out: Option<PathBuf>,
-    /// A representative subset: every axis at its extreme values (about a minute in release).
-    #[arg(long)]
-    pub quick: bool,
-}
 
 /// One stressed point.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -6,6 +6,7 @@
 
 use capstan_elasticity::NodalFields;
 use capstan_elasticity::contact::ContactProfile;
+use capstan_elasticity::solid::SolidFields;
 use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::output::{ColourMap, OutputDir, OutputError, QuadGrid, StateStrip, Vtu};
@@ -89,19 +90,70 @@ pub fn body_vtu<'g>(grid: &'g QuadGrid, fields: &NodalFields, contact: &ContactP
             [0.0, p[0], p[1]]
         })
         .collect();
-    let stress_physical: Vec<_> = (0..n).map(|k| fields.physical_stress(k)).collect();
-    let strain_physical: Vec<_> = (0..n).map(|k| fields.physical_strain(k)).collect();
     let (state, slip) = column_contact(fields, contact);
     let g = &fields.grid;
     let x2: Vec<f64> = (0..n).map(|k| fields.x2[g.node(k)[0]]).collect();
     let x3: Vec<f64> = (0..n).map(|k| fields.x3[g.node(k)[1]]).collect();
+    body_arrays_vtu(
+        grid,
+        [&fields.cartesian_displacement, &contravariant, &physical],
+        fields,
+        [state, slip, x2, x3],
+    )
+}
+
+/// The nodal tensors a body VTU shows, of a plane-strain ([`NodalFields`]) or a 3-D
+/// ([`SolidFields`]) body.
+pub(crate) trait NodalTensors {
+    /// `[T^ij, E_ij]` at every node: the contravariant stress and the covariant strain.
+    fn tensors(&self) -> [&[[[f64; 3]; 3]]; 2];
+    /// Their physical components at node `k`: `[sqrt(g_ii g_jj) T^ij, E_ij / sqrt(g_ii g_jj)]`.
+    fn physical_tensors(&self, k: usize) -> [[[f64; 3]; 3]; 2];
+}
+
+impl NodalTensors for NodalFields {
+    fn tensors(&self) -> [&[[[f64; 3]; 3]]; 2] {
+        [&self.stress, &self.strain]
+    }
+    fn physical_tensors(&self, k: usize) -> [[[f64; 3]; 3]; 2] {
+        [self.physical_stress(k), self.physical_strain(k)]
+    }
+}
+
+impl NodalTensors for SolidFields {
+    fn tensors(&self) -> [&[[[f64; 3]; 3]]; 2] {
+        [&self.stress, &self.strain]
+    }
+    fn physical_tensors(&self, k: usize) -> [[[f64; 3]; 3]; 2] {
+        [self.physical_stress(k), self.physical_strain(k)]
+    }
+}
+
+/// The arrays of [`VTU_ARRAYS`] on `grid`, one entry per node: `displacement` as
+/// `[Cartesian, contravariant, physical]` components, the stress and strain of `fields` with
+/// their physical components, and `scalars` = `[contact_state, contact_slip, x2, x3]`; the
+/// contact state and the Cartesian displacement are the active arrays.
+pub(crate) fn body_arrays_vtu<'g>(
+    grid: &'g QuadGrid,
+    displacement: [&[[f64; 3]]; 3],
+    fields: &impl NodalTensors,
+    scalars: [Vec<f64>; 4],
+) -> Vtu<'g> {
+    let [stress, strain] = fields.tensors();
+    let (stress_physical, strain_physical): (Vec<_>, Vec<_>) = (0..stress.len())
+        .map(|k| {
+            let [t, e] = fields.physical_tensors(k);
+            (t, e)
+        })
+        .unzip();
+    let [state, slip, x2, x3] = scalars;
     Vtu::new(grid)
-        .point_vectors("displacement", &fields.cartesian_displacement)
-        .point_vectors("displacement_contravariant", &contravariant)
-        .point_vectors("displacement_physical", &physical)
-        .point_tensors("stress", &fields.stress)
+        .point_vectors("displacement", displacement[0])
+        .point_vectors("displacement_contravariant", displacement[1])
+        .point_vectors("displacement_physical", displacement[2])
+        .point_tensors("stress", stress)
         .point_tensors("stress_physical", &stress_physical)
-        .point_tensors("strain", &fields.strain)
+        .point_tensors("strain", strain)
         .point_tensors("strain_physical", &strain_physical)
         .point_scalars("contact_state", state)
         .point_scalars("contact_slip", slip)

@@ -5,6 +5,7 @@ use capstan_elasticity::contact::ContactProfile;
 use capstan_elasticity::solid::SolidFields;
 use capstan_geometry::{Obstacle, ShellChart};
 
+use super::body::body_arrays_vtu;
 use crate::output::{OutputDir, OutputError, QuadGrid, Vtu};
 
 /// The VTU point arrays a 3-D body has beyond those of the plane-strain body
@@ -71,22 +72,16 @@ pub fn solid_vtu<'g>(
     let slip_1 = per_node(&|c| solid.and_then(|s| s.slip_1.get(c)).copied().unwrap_or(0.0));
     let coordinate = |j: usize| -> Vec<f64> { coordinates.iter().map(|x| x[j]).collect() };
     let physical: Vec<[f64; 3]> = (0..n).map(|k| fields.physical_displacement(k)).collect();
-    let stress_physical: Vec<_> = (0..n).map(|k| fields.physical_stress(k)).collect();
-    let strain_physical: Vec<_> = (0..n).map(|k| fields.physical_strain(k)).collect();
-    Vtu::new(grid)
-        .point_vectors("displacement", &fields.cartesian_displacement)
-        .point_vectors("displacement_contravariant", &fields.displacement)
-        .point_vectors("displacement_physical", &physical)
-        .point_tensors("stress", &fields.stress)
-        .point_tensors("stress_physical", &stress_physical)
-        .point_tensors("strain", &fields.strain)
-        .point_tensors("strain_physical", &strain_physical)
-        .point_scalars("contact_state", state)
-        .point_scalars("contact_slip", slip)
-        .point_scalars("x2", coordinate(1))
-        .point_scalars("x3", coordinate(2))
-        .point_scalars("contact_slip_1", slip_1)
-        .point_scalars("x1", coordinate(0))
-        .active_scalars("contact_state")
-        .active_vectors("displacement")
+    body_arrays_vtu(
+        grid,
+        [
+            &fields.cartesian_displacement,
+            &fields.displacement,
+            &physical,
+        ],
+        fields,
+        [state, slip, coordinate(1), coordinate(2)],
+    )
+    .point_scalars("contact_slip_1", slip_1)
+    .point_scalars("x1", coordinate(0))
 }

@@ -3,9 +3,21 @@
 use super::load::key_lines;
 use super::*;
 
+/// The scene of the built-in defaults with `sets` (`KEY=VALUE`), which must be valid.
+fn load(sets: &[&str]) -> Scene {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    Scene::load(None, &sets).unwrap()
+}
+
+/// The message of the error that `sets` must cause.
+fn load_error(sets: &[&str]) -> String {
+    let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+    Scene::load(None, &sets).unwrap_err().to_string()
+}
+
 #[test]
 fn empty_scene_is_the_paper_default() {
-    let s = Scene::load(None, &[]).unwrap();
+    let s = load(&[]);
     assert_eq!(s, Scene::default());
     assert_eq!(s.grid.n2, 250);
     assert_eq!(s.body.young, 1e3);
@@ -13,15 +25,11 @@ fn empty_scene_is_the_paper_default() {
 
 #[test]
 fn set_overrides_numbers_and_strings() {
-    let s = Scene::load(
-        None,
-        &[
-            "obstacle.shape=prism".into(),
-            "obstacle.u=2*sin(t) + 0.2*sin(2*t)".into(),
-            "friction.mu=0.3".into(),
-        ],
-    )
-    .unwrap();
+    let s = load(&[
+        "obstacle.shape=prism",
+        "obstacle.u=2*sin(t) + 0.2*sin(2*t)",
+        "friction.mu=0.3",
+    ]);
     assert_eq!(s.obstacle.shape, Shape::Prism);
     assert_eq!(s.obstacle.u, "2*sin(t) + 0.2*sin(2*t)");
     assert_eq!(s.friction.mu, 0.3);
@@ -34,18 +42,12 @@ fn discretisation_method_defaults_to_fd_and_accepts_fem() {
         DiscretisationMethod::Fd
     );
     assert!(known_keys().contains(&"discretisation.method".to_string()));
-    let s = Scene::load(
-        None,
-        &[
-            "discretisation.method=fem-q2".into(),
-            "grid.n2=251".into(), // Q2 needs odd node counts
-        ],
-    )
-    .unwrap();
+    let s = load(&[
+        "discretisation.method=fem-q2",
+        "grid.n2=251", // Q2 needs odd node counts
+    ]);
     assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ2);
-    let e = Scene::load(None, &["discretisation.method=fem-q3".into()])
-        .unwrap_err()
-        .to_string();
+    let e = load_error(&["discretisation.method=fem-q3"]);
     assert!(e.contains("fem-q3"), "{e}");
 }
 
@@ -56,25 +58,17 @@ fn discretisation_volumetric_defaults_to_full_and_is_refused_for_fd() {
         VolumetricIntegration::Full
     );
     assert!(known_keys().contains(&"discretisation.volumetric".to_string()));
-    let s = Scene::load(
-        None,
-        &[
-            "discretisation.method=fem-q1".into(),
-            "discretisation.volumetric=reduced".into(),
-        ],
-    )
-    .unwrap();
+    let s = load(&[
+        "discretisation.method=fem-q1",
+        "discretisation.volumetric=reduced",
+    ]);
     assert_eq!(s.discretisation.volumetric, VolumetricIntegration::Reduced);
-    let e = Scene::load(None, &["discretisation.volumetric=reduced".into()])
-        .unwrap_err()
-        .to_string();
+    let e = load_error(&["discretisation.volumetric=reduced"]);
     assert!(
         e.contains("`discretisation.volumetric` = \"reduced\" is outside") && e.contains("fem-q1"),
         "{e}"
     );
-    let e = Scene::load(None, &["discretisation.volumetric=selective".into()])
-        .unwrap_err()
-        .to_string();
+    let e = load_error(&["discretisation.volumetric=selective"]);
     assert!(
         e.contains("selective") && e.contains("`full`") && e.contains("`reduced`"),
         "{e}"
@@ -133,17 +127,11 @@ fn solid_memory_estimates_refuse_the_direct_path_at_a_million_unknowns() {
 
 #[test]
 fn unknown_keys_and_wrong_types_name_the_key() {
-    let e = Scene::load(None, &["obstacle.radiu=2".into()])
-        .unwrap_err()
-        .to_string();
+    let e = load_error(&["obstacle.radiu=2"]);
     assert!(e.contains("obstacle.radiu"), "{e}");
-    let e = Scene::load(None, &["friction.mu=abc".into()])
-        .unwrap_err()
-        .to_string();
+    let e = load_error(&["friction.mu=abc"]);
     assert!(e.contains("mu"), "{e}");
-    let e = Scene::load(None, &["nonsense".into()])
-        .unwrap_err()
-        .to_string();
+    let e = load_error(&["nonsense"]);
     assert!(e.contains("KEY=VALUE"), "{e}");
 }
 
@@ -151,30 +139,22 @@ fn unknown_keys_and_wrong_types_name_the_key() {
 fn discretisation_order_is_validated_for_fem_qp_and_refused_elsewhere() {
     assert!(known_keys().contains(&"discretisation.order".to_string()));
     assert_eq!(Scene::default().discretisation.order, 4);
-    let s = Scene::load(
-        None,
-        &[
-            "discretisation.method=fem-qp".into(),
-            "discretisation.order=6".into(),
-            "grid.n2=241".into(), // 40 elements of order 6
-            "grid.n3=13".into(),
-        ],
-    )
-    .unwrap();
+    let s = load(&[
+        "discretisation.method=fem-qp",
+        "discretisation.order=6",
+        "grid.n2=241", // 40 elements of order 6
+        "grid.n3=13",
+    ]);
     assert_eq!(s.discretisation.method, DiscretisationMethod::FemQp);
     assert_eq!(s.discretisation.order, 6);
-    let load = |sets: &[&str]| {
-        let sets: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-        Scene::load(None, &sets).unwrap_err().to_string()
-    };
-    let e = load(&["discretisation.method=fem-qp", "discretisation.order=11"]);
+    let e = load_error(&["discretisation.method=fem-qp", "discretisation.order=11"]);
     assert!(
         e.contains("`discretisation.order` = 11") && e.contains("1..=10"),
         "{e}"
     );
-    let e = load(&["discretisation.method=fem-qp", "discretisation.order=0"]);
+    let e = load_error(&["discretisation.method=fem-qp", "discretisation.order=0"]);
     assert!(e.contains("`discretisation.order` = 0"), "{e}");
-    let e = load(&[
+    let e = load_error(&[
         "discretisation.method=fem-q2",
         "discretisation.order=3",
         "grid.n2=251",
@@ -184,7 +164,7 @@ fn discretisation_order_is_validated_for_fem_qp_and_refused_elsewhere() {
         "{e}"
     );
     // 250 - 1 nodes intervals are not a whole number of order-4 elements
-    let e = load(&["discretisation.method=fem-qp"]);
+    let e = load_error(&["discretisation.method=fem-qp"]);
     assert!(
         e.contains("`grid.n2` = 250") && e.contains("p e + 1"),
         "{e}"

@@ -27,15 +27,18 @@
 //! of the grid, with separators `--separator-width W` lines wide, default 1 for the multifrontal
 //! kernel and 2 for the supernodal one) or `amd` (AMD on `A + A^T`).
 
+mod common;
+
 use std::time::Instant;
 
 use capstan_elasticity::samples::PaperEllipse;
 use capstan_elasticity::solvers::{
     ColumnOrdering, DirectParams, GridShape, IterativeParams, LinearBackend, LinearSolver, LuKind,
-    SparseLu,
+    SparseLu, max_abs, max_abs_difference,
 };
 use capstan_elasticity::verification::{GridLevel, peak_memory_mib};
 use capstan_elasticity::{Discretisation, LinearSystem};
+use common::ExampleArgs;
 
 fn iterative(
     system: &LinearSystem,
@@ -52,11 +55,9 @@ fn iterative(
     let t = Instant::now();
     let result = system.solve(&mut *solver);
     let seconds = t.elapsed().as_secs_f64();
-    let diff = result.as_ref().map_or(f64::NAN, |v| {
-        v.iter()
-            .zip(reference)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-    });
+    let diff = result
+        .as_ref()
+        .map_or(f64::NAN, |v| max_abs_difference(v, reference));
     format!(
         "{{\"backend\":\"{backend}\",\"relaxation\":{relaxation},\"ok\":{},\"iterations\":{:?},\"seconds\":{seconds:.3},\"max_diff_to_lu\":{diff:.3e}}}",
         result.is_ok(),
@@ -65,19 +66,13 @@ fn iterative(
 }
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let n2 = args.first().and_then(|a| a.parse().ok()).unwrap_or(250);
-    let n3 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(41);
-    let with_iterative = args.iter().any(|a| a == "--iterative");
-    let with_compare = args.iter().any(|a| a == "--compare");
-    let option = |name: &str| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|k| args.get(k + 1))
-            .map(String::as_str)
-    };
-    let ordering_name = option("--ordering").unwrap_or("auto");
-    let lu_kind = match option("--lu-kind").unwrap_or("auto") {
+    let args = ExampleArgs::from_env();
+    let n2 = args.positional(0, 250);
+    let n3 = args.positional(1, 41);
+    let with_iterative = args.flag("--iterative");
+    let with_compare = args.flag("--compare");
+    let ordering_name = args.option("--ordering").unwrap_or("auto");
+    let lu_kind = match args.option("--lu-kind").unwrap_or("auto") {
         "auto" => LuKind::Auto,
         "multifrontal" => LuKind::Multifrontal,
         "supernodal" => LuKind::Supernodal,
@@ -85,8 +80,9 @@ fn main() {
     };
     // the supernodal structure (A^T A) reaches twice as far as A + A^T
     let default_width = if lu_kind == LuKind::Supernodal { 2 } else { 1 };
-    let separator_width: usize =
-        option("--separator-width").map_or(default_width, |w| w.parse().expect("width"));
+    let separator_width: usize = args
+        .option("--separator-width")
+        .map_or(default_width, |w| w.parse().expect("width"));
     // dof = 2 (i2 n3 + i3) + c, the numbering GridShape describes
     let grid = GridShape {
         n2,
@@ -166,18 +162,13 @@ fn main() {
         })
         .expect("valid parameters");
         let w = system.solve(&mut reference).expect("reference solve");
-        let scale = w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let diff = v
-            .iter()
-            .zip(&w)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         extra = format!(
             ",\"compare\":{{\"lu_kind\":\"{}\",\"max_relative_diff\":{:.2e}}}",
             format!("{other:?}").to_lowercase(),
-            diff / scale
+            max_abs_difference(&v, &w) / max_abs(&w)
         );
     }
-    if let Some(k) = option("--rhs") {
+    if let Some(k) = args.option("--rhs") {
         let k: usize = k.parse().expect("number of right-hand sides");
         let n = op.dof_count();
         let mut block = vec![0.0; n * k];
@@ -194,15 +185,10 @@ fn main() {
         lu.solve_many_in_place(&mut block, k)
             .expect("blocked solve");
         let t_blocked = t.elapsed().as_secs_f64();
-        let scale = looped.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let diff = block
-            .iter()
-            .zip(&looped)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
         extra += &format!(
             ",\"rhs\":{{\"k\":{k},\"loop_s\":{t_loop:.3},\"blocked_s\":{t_blocked:.3},\"speedup\":{:.1},\"max_relative_diff\":{:.2e}}}",
             t_loop / t_blocked,
-            diff / scale
+            max_abs_difference(&block, &looped) / max_abs(&looped)
         );
     }
     if with_iterative {

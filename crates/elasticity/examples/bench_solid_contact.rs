@@ -20,6 +20,8 @@
 //! `--sweep`, warm-started), Newton and Krylov iterations, residuals, max `|v^2|`, CPU seconds,
 //! VmHWM in MiB.
 
+mod common;
+
 use std::time::Instant;
 
 use capstan_elasticity::contact::{
@@ -27,32 +29,38 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::SolidBody;
-use capstan_elasticity::solvers::{KrylovParams, MultigridParams, Progress, Smoother};
+use capstan_elasticity::solvers::{
+    KrylovParams, MultigridParams, Progress, Smoother, max_abs, max_abs_difference,
+};
 use capstan_elasticity::verification::peak_memory_mib;
 use capstan_geometry::{EllipticalPrism, Obstacle};
+use common::ExampleArgs;
 
 fn main() {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let n = |i: usize, d: usize| args.get(i).and_then(|a| a.parse().ok()).unwrap_or(d);
-    let nodes = [n(0, 5), n(1, 41), n(2, 5)];
-    let solver = args.get(3).map_or("full", String::as_str);
-    let sweep = args.iter().any(|a| a == "--sweep");
-    let progress = args.iter().any(|a| a == "--progress");
-    let flag = |name: &str| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|i| args.get(i + 1))
-            .cloned()
-    };
-    let krylov_tol: f64 = flag("--krylov-tol").map_or(1e-8, |t| t.parse().expect("a number"));
-    let smoother = match flag("--smoother").as_deref() {
+    let args = ExampleArgs::from_env();
+    let nodes = [
+        args.positional(0, 5),
+        args.positional(1, 41),
+        args.positional(2, 5),
+    ];
+    let solver = args.word(3).unwrap_or("full");
+    let sweep = args.flag("--sweep");
+    let progress = args.flag("--progress");
+    let krylov_tol: f64 = args
+        .option("--krylov-tol")
+        .map_or(1e-8, |t| t.parse().expect("a number"));
+    let smoother = match args.option("--smoother") {
         Some("jacobi") => Smoother::Jacobi { omega: 0.6 },
         _ => Smoother::default(),
     };
-    let restart: usize = flag("--restart").map_or(KrylovParams::default().restart, |t| {
-        t.parse().expect("a count")
-    });
-    let power_iterations: usize = flag("--power").map_or(12, |t| t.parse().expect("a count"));
+    let restart: usize = args
+        .option("--restart")
+        .map_or(KrylovParams::default().restart, |t| {
+            t.parse().expect("a count")
+        });
+    let power_iterations: usize = args
+        .option("--power")
+        .map_or(12, |t| t.parse().expect("a count"));
     let obstacle = Obstacle::Ellipse(EllipticalPrism::new(2.0, 1.5).expect("valid"));
     let body = SolidBody::new(obstacle, [-0.5, 0.5], nodes);
     let eps = 1e-5;
@@ -132,23 +140,18 @@ fn main() {
     let iterations: usize = results.iter().map(|s| s.stats.newton_iterations).sum();
     let krylov: usize = results.iter().map(|s| s.stats.linear_iterations).sum();
     let v = &last.displacement;
-    if let Some(path) = flag("--save") {
+    if let Some(path) = args.option("--save") {
         let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
         std::fs::write(path, bytes).expect("writable --save file");
     }
-    let difference = flag("--reference").map(|path| {
+    let difference = args.option("--reference").map(|path| {
         let bytes = std::fs::read(path).expect("a readable --reference file");
         let reference: Vec<f64> = bytes
             .chunks_exact(8)
             .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
             .collect();
         assert_eq!(reference.len(), v.len(), "the reference is of this grid");
-        let scale = reference.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let diff = reference
-            .iter()
-            .zip(v)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        diff / scale
+        max_abs_difference(&reference, v) / max_abs(&reference)
     });
     let loads = EndLoads::ratio(*ratios.last().expect("a ratio"));
     println!(

@@ -14,6 +14,8 @@
 //! dissection with separators `degree` lines wide), `end` (nested dissection along element
 //! boundaries, 1-line separators).
 
+mod common;
+
 use std::time::Instant;
 
 use capstan_elasticity::finite_element::{ElementOrder, lame_parts};
@@ -23,25 +25,22 @@ use capstan_elasticity::solvers::{
 };
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError};
+use common::ExampleArgs;
 
 fn main() -> Result<(), ElasticityError> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let m: usize = args.first().and_then(|s| s.parse().ok()).unwrap_or(64);
-    let flag = |name: &str| args.iter().any(|a| a == name);
-    let value = |name: &str| {
-        args.iter()
-            .position(|a| a == name)
-            .and_then(|i| args.get(i + 1))
-            .cloned()
-    };
-    let order = if flag("--q1") {
+    let args = ExampleArgs::from_env();
+    let m: usize = args.positional(0, 64);
+    let order = if args.flag("--q1") {
         ElementOrder::Q1
     } else {
         ElementOrder::Q2
     };
-    let reps: usize = value("--reps").and_then(|s| s.parse().ok()).unwrap_or(10);
-    let ordering = value("--ordering").unwrap_or_else(|| "amd".to_owned());
-    if flag("--seq") {
+    let reps: usize = args
+        .option("--reps")
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10);
+    let ordering = args.option("--ordering").unwrap_or("amd");
+    if args.flag("--seq") {
         faer::set_global_parallelism(faer::Par::Seq);
     }
     let level = GridLevel {
@@ -63,7 +62,7 @@ fn main() -> Result<(), ElasticityError> {
             periodic: parts.grid.is_periodic(),
         };
         let params = DirectParams {
-            ordering: match ordering.as_str() {
+            ordering: match ordering {
                 "nd" => ColumnOrdering::NestedDissection {
                     grid,
                     separator_width: order.degree(),
@@ -109,7 +108,7 @@ fn main() -> Result<(), ElasticityError> {
         "{{\"m\":{m},\"order\":\"{}\",\"dofs\":{},\"ordering\":\"{ordering}\",\"seq\":{},\"setup_ms\":{:.2},\"assemble_ms\":{:.2},\"analyse_ms\":{:.2},\"factor_ms\":{:.2},\"solve_ms\":{:.2},\"total_ms\":{:.2},\"l_values\":{l_values},\"error\":{error:.3e}}}",
         order.method_name(),
         2 * level.n2 * level.n3,
-        flag("--seq"),
+        args.flag("--seq"),
         ms[0],
         ms[1],
         ms[2],
