@@ -169,9 +169,12 @@ pub fn report(quick: bool) -> Result<CompareReport, CliError> {
         }
     }
     let mut skipped = Vec::new();
-    let mut sweep = |configs: Vec<Config>| {
+    // the base configuration with one axis (`set`) at each of `values`
+    let mut sweep = |values: &[f64], set: fn(&mut Config, f64)| {
         let mut rows = Vec::new();
-        for c in configs {
+        for &value in values {
+            let mut c = base;
+            set(&mut c, value);
             match row(c, grid) {
                 Ok(r) => rows.push(r),
                 Err(e) => skipped.push(format!(
@@ -187,27 +190,13 @@ pub fn report(quick: bool) -> Result<CompareReport, CliError> {
     } else {
         &[0.5, 0.75, 1.0, 1.25, 1.5, 2.0]
     };
-    let b_over_a = sweep(
-        ba.iter()
-            .map(|&b| Config {
-                b_over_a: b,
-                ..base
-            })
-            .collect(),
-    );
+    let b_over_a = sweep(ba, |c, b| c.b_over_a = b);
     let nus: &[f64] = if quick {
         &[0.0, 0.25, 0.45]
     } else {
         &[0.0, 0.1, 0.25, 0.35, 0.45]
     };
-    let poisson = sweep(
-        nus.iter()
-            .map(|&nu| Config {
-                poisson: nu,
-                ..base
-            })
-            .collect(),
-    );
+    let poisson = sweep(nus, |c, nu| c.poisson = nu);
     Ok(CompareReport {
         nu_f: NU_F,
         capstan_ratio: (NU_F * PI).exp(),

@@ -36,43 +36,81 @@ fn set_overrides_numbers_and_strings() {
 }
 
 #[test]
-fn discretisation_method_defaults_to_fd_and_accepts_fem() {
-    assert_eq!(
-        Scene::default().discretisation.method,
-        DiscretisationMethod::Fd
-    );
-    assert!(known_keys().contains(&"discretisation.method".to_string()));
-    let s = load(&[
-        "discretisation.method=fem-q2",
-        "grid.n2=251", // Q2 needs odd node counts
-    ]);
-    assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ2);
-    let e = load_error(&["discretisation.method=fem-q3"]);
-    assert!(e.contains("fem-q3"), "{e}");
+fn discretisation_keys_are_known_and_default_to_fd_full_order_4() {
+    let known = known_keys();
+    for key in ["method", "volumetric", "order"] {
+        assert!(known.contains(&format!("discretisation.{key}")), "{key}");
+    }
+    let d = Scene::default().discretisation;
+    assert_eq!(d.method, DiscretisationMethod::Fd);
+    assert_eq!(d.volumetric, VolumetricIntegration::Full);
+    assert_eq!(d.order, 4);
 }
 
 #[test]
-fn discretisation_volumetric_defaults_to_full_and_is_refused_for_fd() {
-    assert_eq!(
-        Scene::default().discretisation.volumetric,
-        VolumetricIntegration::Full
-    );
-    assert!(known_keys().contains(&"discretisation.volumetric".to_string()));
-    let s = load(&[
+fn discretisation_values_are_read() {
+    let q2 = load(&[
+        "discretisation.method=fem-q2",
+        "grid.n2=251", // Q2 needs odd node counts
+    ]);
+    assert_eq!(q2.discretisation.method, DiscretisationMethod::FemQ2);
+    let reduced = load(&[
         "discretisation.method=fem-q1",
         "discretisation.volumetric=reduced",
     ]);
-    assert_eq!(s.discretisation.volumetric, VolumetricIntegration::Reduced);
-    let e = load_error(&["discretisation.volumetric=reduced"]);
-    assert!(
-        e.contains("`discretisation.volumetric` = \"reduced\" is outside") && e.contains("fem-q1"),
-        "{e}"
-    );
-    let e = load_error(&["discretisation.volumetric=selective"]);
-    assert!(
-        e.contains("selective") && e.contains("`full`") && e.contains("`reduced`"),
-        "{e}"
-    );
+    let d = reduced.discretisation;
+    assert_eq!(d.volumetric, VolumetricIntegration::Reduced);
+    let qp = load(&[
+        "discretisation.method=fem-qp",
+        "discretisation.order=6",
+        "grid.n2=241", // 40 elements of order 6
+        "grid.n3=13",
+    ]);
+    let d = qp.discretisation;
+    assert_eq!((d.method, d.order), (DiscretisationMethod::FemQp, 6));
+}
+
+#[test]
+fn bad_values_unknown_keys_and_wrong_types_are_refused_naming_them() {
+    let fem_qp = "discretisation.method=fem-qp";
+    for (sets, expected) in [
+        (&["discretisation.method=fem-q3"][..], &["fem-q3"][..]),
+        (
+            &["discretisation.volumetric=reduced"],
+            &[
+                "`discretisation.volumetric` = \"reduced\" is outside",
+                "fem-q1",
+            ],
+        ),
+        (
+            &["discretisation.volumetric=selective"],
+            &["selective", "`full`", "`reduced`"],
+        ),
+        (
+            &[fem_qp, "discretisation.order=11"],
+            &["`discretisation.order` = 11", "1..=10"],
+        ),
+        (
+            &[fem_qp, "discretisation.order=0"],
+            &["`discretisation.order` = 0"],
+        ),
+        (
+            &[
+                "discretisation.method=fem-q2",
+                "discretisation.order=3",
+                "grid.n2=251",
+            ],
+            &["`discretisation.order` = 3", "fem-qp"],
+        ),
+        // 250 - 1 node intervals are not a whole number of order-4 elements
+        (&[fem_qp], &["`grid.n2` = 250", "p e + 1"]),
+        (&["obstacle.radiu=2"], &["obstacle.radiu"]),
+        (&["friction.mu=abc"], &["mu"]),
+        (&["nonsense"], &["KEY=VALUE"]),
+    ] {
+        let e = load_error(sets);
+        assert!(expected.iter().all(|x| e.contains(x)), "{sets:?}: {e}");
+    }
 }
 
 #[test]
@@ -123,50 +161,4 @@ fn solid_memory_estimates_refuse_the_direct_path_at_a_million_unknowns() {
     let small = [17, 129, 17];
     assert!(gib(solid_memory_estimate(small, false)) > 2.59);
     assert!(gib(solid_multigrid_memory_estimate(small)) > 1.08);
-}
-
-#[test]
-fn unknown_keys_and_wrong_types_name_the_key() {
-    let e = load_error(&["obstacle.radiu=2"]);
-    assert!(e.contains("obstacle.radiu"), "{e}");
-    let e = load_error(&["friction.mu=abc"]);
-    assert!(e.contains("mu"), "{e}");
-    let e = load_error(&["nonsense"]);
-    assert!(e.contains("KEY=VALUE"), "{e}");
-}
-
-#[test]
-fn discretisation_order_is_validated_for_fem_qp_and_refused_elsewhere() {
-    assert!(known_keys().contains(&"discretisation.order".to_string()));
-    assert_eq!(Scene::default().discretisation.order, 4);
-    let s = load(&[
-        "discretisation.method=fem-qp",
-        "discretisation.order=6",
-        "grid.n2=241", // 40 elements of order 6
-        "grid.n3=13",
-    ]);
-    assert_eq!(s.discretisation.method, DiscretisationMethod::FemQp);
-    assert_eq!(s.discretisation.order, 6);
-    let e = load_error(&["discretisation.method=fem-qp", "discretisation.order=11"]);
-    assert!(
-        e.contains("`discretisation.order` = 11") && e.contains("1..=10"),
-        "{e}"
-    );
-    let e = load_error(&["discretisation.method=fem-qp", "discretisation.order=0"]);
-    assert!(e.contains("`discretisation.order` = 0"), "{e}");
-    let e = load_error(&[
-        "discretisation.method=fem-q2",
-        "discretisation.order=3",
-        "grid.n2=251",
-    ]);
-    assert!(
-        e.contains("`discretisation.order` = 3") && e.contains("fem-qp"),
-        "{e}"
-    );
-    // 250 - 1 nodes intervals are not a whole number of order-4 elements
-    let e = load_error(&["discretisation.method=fem-qp"]);
-    assert!(
-        e.contains("`grid.n2` = 250") && e.contains("p e + 1"),
-        "{e}"
-    );
 }
