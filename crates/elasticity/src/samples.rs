@@ -73,6 +73,48 @@ impl ManufacturedField for TrigonometricField {
     }
 }
 
+/// A manufactured field with more variation than [`TrigonometricField`] (about three times
+/// its frequencies, trigonometric in both directions, zero `v^3` on `x3 = 0`), for the studies
+/// of high-order elements: its interpolation error dominates the geometry's, so the observed
+/// orders settle at `p + 1` on grids whose errors are well above round-off.
+///
+/// ```text
+/// v^2 = 0.05 sin(3.7 x2 + 0.2) cos(2.9 x3 - 0.3)
+/// v^3 = 0.1 sin(4.1 x3) (1 + cos(3.3 x2)/2)
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct OscillatoryField;
+
+impl ManufacturedField for OscillatoryField {
+    fn value<S: Scalar<f64>>(&self, [x2, x3]: [S; 2]) -> [S; 2] {
+        let w = (x2 * 3.3).cos() * 0.5 + 1.0;
+        [
+            (x2 * 3.7 + 0.2).sin() * (x3 * 2.9 - 0.3).cos() * 0.05,
+            (x3 * 4.1).sin() * w * 0.1,
+        ]
+    }
+}
+
+/// The field of a prism study ([`PrismMms::field`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrismField {
+    /// [`TrigonometricField`], of the finite-difference and Q1/Q2 studies.
+    #[default]
+    Trigonometric,
+    /// [`OscillatoryField`], of the high-order (Qp) studies.
+    Oscillatory,
+}
+
+impl ManufacturedField for PrismField {
+    fn value<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 2] {
+        match self {
+            Self::Trigonometric => TrigonometricField.value(x),
+            Self::Oscillatory => OscillatoryField.value(x),
+        }
+    }
+}
+
 /// The exact radial field of the Lamé cylinder: `v^2 = 0`, `v^3 = A r + B/r`, `r = R + x3`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RadialField {
@@ -196,8 +238,8 @@ impl<Surf: Surface<f64>, M: ManufacturedField> ExactSolution<ShellChart<Surf>, M
     }
 }
 
-/// The exact solution of the prism studies.
-pub type TrigonometricExact = ExactSolution<SampleChart, TrigonometricField>;
+/// The exact solution of the prism studies (the field of [`PrismMms::field`]).
+pub type TrigonometricExact = ExactSolution<SampleChart, PrismField>;
 
 /// Which conditions a manufactured-solution study imposes (all data from the exact field).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -221,8 +263,8 @@ impl MmsBoundaries {
     }
 }
 
-/// A manufactured-solution study on a prism: [`TrigonometricField`] on
-/// `[theta0, theta1] x [0, h]`, forcing and boundary data from the exact field.
+/// A manufactured-solution study on a prism: a [`PrismField`] ([`TrigonometricField`] unless
+/// set) on `[theta0, theta1] x [0, h]`, forcing and boundary data from the exact field.
 #[derive(Debug, Clone)]
 pub struct PrismMms {
     /// Short name of the geometry, e.g. `ellipse b/a=0.5`.
@@ -237,6 +279,8 @@ pub struct PrismMms {
     pub material: Material,
     /// The boundary conditions.
     pub boundaries: MmsBoundaries,
+    /// The manufactured field.
+    pub field: PrismField,
 }
 
 fn material(young: f64, poisson: f64) -> Material {
@@ -259,6 +303,7 @@ impl PrismMms {
             thickness: 0.5,
             material: material(10.0, 0.3),
             boundaries,
+            field: PrismField::Trigonometric,
         }
     }
 
@@ -273,6 +318,7 @@ impl PrismMms {
             thickness: 0.4,
             material: material(10.0, 0.3),
             boundaries,
+            field: PrismField::Trigonometric,
         }
     }
 
@@ -280,7 +326,7 @@ impl PrismMms {
         Arc::new(ExactSolution {
             chart: ShellChart::new(self.obstacle.clone()),
             material: self.material,
-            field: TrigonometricField,
+            field: self.field,
         })
     }
 
@@ -414,7 +460,11 @@ fn lu_study_point<D: Discretisation, M: ManufacturedField>(
 
 impl Study for PrismMms {
     fn name(&self) -> String {
-        format!("mms {} {}", self.geometry, self.boundaries.name())
+        let field = match self.field {
+            PrismField::Trigonometric => "",
+            PrismField::Oscillatory => " oscillatory field",
+        };
+        format!("mms {} {}{field}", self.geometry, self.boundaries.name())
     }
     fn geometry(&self) -> String {
         self.geometry.clone()
