@@ -76,7 +76,7 @@ impl Study for HighOrderStudy {
 
 /// The manufactured problem of the Qp studies: [`crate::samples::OscillatoryField`] on the
 /// ellipse `b/a = 0.5` (traction-contact set).
-pub fn high_order_mms() -> PrismMms {
+pub(crate) fn high_order_mms() -> PrismMms {
     PrismMms {
         field: PrismField::Oscillatory,
         ..PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)
@@ -85,7 +85,7 @@ pub fn high_order_mms() -> PrismMms {
 
 /// `k` of the `2k x k`-element grids of the manufactured Qp study of order `p = 1 ... 6`
 /// (index `p - 1`): in the asymptotic range, the finest error above `1e-12`.
-pub const HIGH_ORDER_MMS_GRIDS: [[usize; 3]; 6] = [
+pub(crate) const HIGH_ORDER_MMS_GRIDS: [[usize; 3]; 6] = [
     [8, 16, 32],
     [4, 8, 16],
     [4, 8, 16],
@@ -94,8 +94,8 @@ pub const HIGH_ORDER_MMS_GRIDS: [[usize; 3]; 6] = [
     [4, 6, 8],
 ];
 
-/// The Qp studies of the registry: the manufactured solution of [`high_order_mms`] with
-/// `2k x k` elements ([`HIGH_ORDER_MMS_GRIDS`]) and the Lamé cylinder with `4 x e3`
+/// The Qp studies of the registry: the manufactured solution of `high_order_mms` with
+/// `2k x k` elements (`HIGH_ORDER_MMS_GRIDS`) and the Lamé cylinder with `4 x e3`
 /// elements, for `p = 1 ... 6`, on grids in the asymptotic range and above round-off where
 /// there is one (see `docs/high-order.md`).
 pub fn high_order_studies() -> Vec<Box<dyn Study>> {
