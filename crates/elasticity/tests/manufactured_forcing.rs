@@ -226,3 +226,33 @@ fn solid_forcing_agrees_with_the_richardson_difference_on_the_cone() {
     }
     println!("cone: max |AD - Richardson| / (1 + |f|) = {worst:.2e}");
 }
+
+#[test]
+fn field_gradients_by_ad_match_their_closed_forms() {
+    // Lamé: d_3 v^3 = A - B / r^2; trigonometric: d_2 v^2 = 0.065 cos(1.3 x2 + 0.2) q(x3),
+    // d_2 v^3 = -0.04 sin(1.2 x3) sin(0.8 x2)
+    let field = LameCylinder::default().field();
+    for x3 in [0.0, 0.4, 1.0] {
+        let u = field.displacement([0.3, x3]);
+        let r = field.radius + x3;
+        let closed = field.a - field.b / (r * r);
+        assert!((u.gradient[1][1] - closed).abs() < 1e-14 * closed.abs()); // round-off only
+        assert_eq!(
+            [
+                u.value[0],
+                u.gradient[0][0],
+                u.gradient[0][1],
+                u.gradient[1][0]
+            ],
+            [0.0; 4]
+        );
+    }
+    for [x2, x3] in [[-0.7f64, 0.1f64], [0.4, 0.45]] {
+        let u = TrigonometricField.displacement([x2, x3]);
+        let q = 1.0 + 0.5 * x3 + 0.25 * x3 * x3;
+        let d22 = 0.065 * (1.3 * x2 + 0.2).cos() * q;
+        let d23 = -0.04 * (1.2 * x3).sin() * (0.8 * x2).sin();
+        assert!((u.gradient[0][0] - d22).abs() < 1e-15);
+        assert!((u.gradient[0][1] - d23).abs() < 1e-15);
+    }
+}
