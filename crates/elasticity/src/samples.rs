@@ -3,9 +3,10 @@
 
 use std::sync::Arc;
 
+use capstan_geometry::ad::{self, Dual1};
 use capstan_geometry::{
-    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism, Obstacle, ShellChart,
-    ShellPoint,
+    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism, Obstacle, Scalar,
+    ShellChart, ShellPoint, Surface,
 };
 
 use crate::boundary::{
@@ -13,6 +14,7 @@ use crate::boundary::{
     SideCondition, X2Ends,
 };
 use crate::continuum::kinematics::{LocalDisplacement, christoffel_contraction, mixed_stress};
+use crate::continuum::{InputLayout, PLANE_STRAIN, mixed_stress_of};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
@@ -25,10 +27,29 @@ use crate::verification::{GridLevel, Study, StudyPoint};
 /// The chart type of the samples.
 pub use crate::finite_element::SampleChart;
 
-/// A smooth displacement field with its exact first derivatives.
+/// A smooth displacement field `(x2, x3) -> [v^2, v^3]`, written once for every scalar: its
+/// derivatives (the gradient in the boundary data and the errors, the second derivatives in
+/// the forcing) follow exactly by forward-mode AD through [`ManufacturedField::value`].
 pub trait ManufacturedField: Send + Sync {
+    /// `[v^2, v^3]` at `(x2, x3)`.
+    fn value<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 2];
+
+    /// The six inputs `[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]` of
+    /// [`PLANE_STRAIN`] at `(x2, x3)`, by AD through [`ManufacturedField::value`] (at dual
+    /// `x` they carry their own derivatives).
+    fn inputs<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 6] {
+        let (v, g) = ad::value_and_gradient(|y| self.value(y), x);
+        [v[0], v[1], g[0][0], g[0][1], g[1][0], g[1][1]]
+    }
+
     /// `v^2, v^3` and their `x2`, `x3` derivatives at `(x2, x3)`.
-    fn displacement(&self, x: [f64; 2]) -> LocalDisplacement;
+    fn displacement(&self, x: [f64; 2]) -> LocalDisplacement {
+        let [v2, v3, d22, d23, d32, d33] = self.inputs(x);
+        LocalDisplacement {
+            value: [v2, v3],
+            gradient: [[d22, d23], [d32, d33]],
+        }
+    }
 }
 
 /// The manufactured field of the convergence studies (zero `v^3` on `x3 = 0`, so it also
@@ -42,19 +63,54 @@ pub trait ManufacturedField: Send + Sync {
 pub struct TrigonometricField;
 
 impl ManufacturedField for TrigonometricField {
-    fn displacement(&self, [x2, x3]: [f64; 2]) -> LocalDisplacement {
-        let (s, c) = (1.3 * x2 + 0.2).sin_cos();
-        let q = 1.0 + 0.5 * x3 + 0.25 * x3 * x3;
-        let dq = 0.5 + 0.5 * x3;
-        let (s3, c3) = (1.2 * x3).sin_cos();
-        let (s8, c8) = (0.8 * x2).sin_cos();
-        let w = 1.0 + 0.5 * c8;
-        LocalDisplacement {
-            value: [0.05 * s * q, 0.1 * s3 * w],
-            gradient: [
-                [0.05 * 1.3 * c * q, 0.1 * s3 * (-0.4 * s8)],
-                [0.05 * s * dq, 0.1 * 1.2 * c3 * w],
-            ],
+    fn value<S: Scalar<f64>>(&self, [x2, x3]: [S; 2]) -> [S; 2] {
+        let q = x3 * 0.5 + x3 * x3 * 0.25 + 1.0;
+        let w = (x2 * 0.8).cos() * 0.5 + 1.0;
+        [
+            (x2 * 1.3 + 0.2).sin() * q * 0.05,
+            (x3 * 1.2).sin() * w * 0.1,
+        ]
+    }
+}
+
+/// A manufactured field with more variation than [`TrigonometricField`] (about three times
+/// its frequencies, trigonometric in both directions, zero `v^3` on `x3 = 0`), for the studies
+/// of high-order elements: its interpolation error dominates the geometry's, so the observed
+/// orders settle at `p + 1` on grids whose errors are well above round-off.
+///
+/// ```text
+/// v^2 = 0.05 sin(3.7 x2 + 0.2) cos(2.9 x3 - 0.3)
+/// v^3 = 0.1 sin(4.1 x3) (1 + cos(3.3 x2)/2)
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct OscillatoryField;
+
+impl ManufacturedField for OscillatoryField {
+    fn value<S: Scalar<f64>>(&self, [x2, x3]: [S; 2]) -> [S; 2] {
+        let w = (x2 * 3.3).cos() * 0.5 + 1.0;
+        [
+            (x2 * 3.7 + 0.2).sin() * (x3 * 2.9 - 0.3).cos() * 0.05,
+            (x3 * 4.1).sin() * w * 0.1,
+        ]
+    }
+}
+
+/// The field of a prism study ([`PrismMms::field`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PrismField {
+    /// [`TrigonometricField`], of the finite-difference and Q1/Q2 studies.
+    #[default]
+    Trigonometric,
+    /// [`OscillatoryField`], of the high-order (Qp) studies.
+    Oscillatory,
+}
+
+impl ManufacturedField for PrismField {
+    fn value<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 2] {
+        match self {
+            Self::Trigonometric => TrigonometricField.value(x),
+            Self::Oscillatory => OscillatoryField.value(x),
         }
     }
 }
@@ -71,13 +127,49 @@ pub struct RadialField {
 }
 
 impl ManufacturedField for RadialField {
-    fn displacement(&self, [_, x3]: [f64; 2]) -> LocalDisplacement {
-        let r = self.radius + x3;
-        LocalDisplacement {
-            value: [0.0, self.a * r + self.b / r],
-            gradient: [[0.0, 0.0], [0.0, self.a - self.b / (r * r)]],
-        }
+    fn value<S: Scalar<f64>>(&self, [_, x3]: [S; 2]) -> [S; 2] {
+        let r = x3 + self.radius;
+        [S::zero(), r * self.a + r.recip() * self.b]
     }
+}
+
+/// The forcing `f_j = -nabla_i T^i_j` (`j = 1, 2, 3`) of a manufactured field given by its
+/// `layout` inputs, at `x` on a shell chart, exactly: the fluxes are differentiated by
+/// forward-mode AD along the coordinate `axes`.
+///
+/// # Math
+/// ```text
+/// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k     (a in axes)
+/// d_a (sqrt(g) T^a_j): sqrt(g) T^a_j evaluated at x + eps e_a (dual numbers through sigma,
+///                      the shell point and the field); the eps part
+/// ```
+/// `inputs(y)` are the field's inputs at the dual point `y`.
+///
+/// # Errors
+/// Geometry failures.
+pub(crate) fn manufactured_forcing<Surf: Surface<f64>, const N: usize>(
+    chart: &ShellChart<Surf>,
+    material: &Material,
+    layout: &InputLayout<N>,
+    x: [f64; 3],
+    axes: &[usize],
+    inputs: impl Fn([Dual1<f64>; 3]) -> [Dual1<f64>; N],
+) -> Result<[f64; 3], ElasticityError> {
+    let p = chart.point(x)?;
+    let mut div = [0.0; 3];
+    let mut stress = [[0.0; 3]; 3];
+    for &a in axes {
+        let y = core::array::from_fn(|i| ad::seed(x[i], if i == a { 1.0 } else { 0.0 }));
+        let q = chart.point_over(y)?;
+        let t = mixed_stress_of(&q, layout, material, &inputs(y));
+        for (j, d) in div.iter_mut().enumerate() {
+            *d += ad::derivative_part(q.sqrt_g * t[a][j]);
+        }
+        stress = t.map(|row| row.map(ad::value_part));
+    }
+    Ok(core::array::from_fn(|j| {
+        -(div[j] / p.sqrt_g - christoffel_contraction(&p, &stress, j))
+    }))
 }
 
 /// Stresses, tractions and the forcing of a manufactured field, pointwise on a chart.
@@ -107,30 +199,6 @@ impl<G: ShellGeometry, M: ManufacturedField> ExactSolution<G, M> {
         ))
     }
 
-    /// The forcing `f_j = -nabla_i T^i_j` (`j = 2, 3`) of the exact field.
-    ///
-    /// # Math
-    /// ```text
-    /// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k
-    /// d_a P ~ (4 D(h/2) - D(h))/3,  D(h) = (P(x + h e_a) - P(x - h e_a))/(2h),  h = 2e-3
-    /// ```
-    /// The Richardson-extrapolated central difference has truncation error `O(h^4) ~ 1e-12`
-    /// relative to the field's fifth derivatives, and round-off `~1e-13`.
-    ///
-    /// # Errors
-    /// Geometry failures.
-    pub fn forcing(&self, x: [f64; 2]) -> Result<[f64; 2], ElasticityError> {
-        let flux = |y: [f64; 2], a: usize| -> Result<[f64; 2], ElasticityError> {
-            let p = self.point(y)?;
-            let t = mixed_stress(&p, &self.material, &self.field.displacement(y));
-            Ok([p.sqrt_g * t[a][1], p.sqrt_g * t[a][2]])
-        };
-        let div = richardson_divergence(x, [(0, 1), (1, 2)], flux)?;
-        let p = self.point(x)?;
-        let t = mixed_stress(&p, &self.material, &self.field.displacement(x));
-        Ok([0, 1].map(|e| -(div[e] / p.sqrt_g - christoffel_contraction(&p, &t, e + 1))))
-    }
-
     /// The traction `t_j = n_i T^i_j` on `side` at `x`.
     ///
     /// # Errors
@@ -144,8 +212,34 @@ impl<G: ShellGeometry, M: ManufacturedField> ExactSolution<G, M> {
     }
 }
 
-/// The exact solution of the prism studies.
-pub type TrigonometricExact = ExactSolution<SampleChart, TrigonometricField>;
+impl<Surf: Surface<f64>, M: ManufacturedField> ExactSolution<ShellChart<Surf>, M> {
+    /// The forcing `f_j = -nabla_i T^i_j` (`j = 2, 3`) of the exact field, exact to round-off.
+    ///
+    /// # Math
+    /// ```text
+    /// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k     (a = 2, 3)
+    /// ```
+    /// `d_a (sqrt(g) T^a_j)` by forward-mode AD: the shell point at dual coordinates
+    /// ([`ShellChart::point_over`], fourth derivatives of `sigma`) and the field's inputs at
+    /// dual coordinates ([`ManufacturedField::inputs`], second derivatives of the field).
+    ///
+    /// # Errors
+    /// Geometry failures.
+    pub fn forcing(&self, x: [f64; 2]) -> Result<[f64; 2], ElasticityError> {
+        let f = manufactured_forcing(
+            &self.chart,
+            &self.material,
+            &PLANE_STRAIN,
+            [0.0, x[0], x[1]],
+            &[1, 2],
+            |y| self.field.inputs([y[1], y[2]]),
+        )?;
+        Ok([f[1], f[2]])
+    }
+}
+
+/// The exact solution of the prism studies (the field of [`PrismMms::field`]).
+pub type TrigonometricExact = ExactSolution<SampleChart, PrismField>;
 
 /// Which conditions a manufactured-solution study imposes (all data from the exact field).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -169,8 +263,8 @@ impl MmsBoundaries {
     }
 }
 
-/// A manufactured-solution study on a prism: [`TrigonometricField`] on
-/// `[theta0, theta1] x [0, h]`, forcing and boundary data from the exact field.
+/// A manufactured-solution study on a prism: a [`PrismField`] ([`TrigonometricField`] unless
+/// set) on `[theta0, theta1] x [0, h]`, forcing and boundary data from the exact field.
 #[derive(Debug, Clone)]
 pub struct PrismMms {
     /// Short name of the geometry, e.g. `ellipse b/a=0.5`.
@@ -185,6 +279,8 @@ pub struct PrismMms {
     pub material: Material,
     /// The boundary conditions.
     pub boundaries: MmsBoundaries,
+    /// The manufactured field.
+    pub field: PrismField,
 }
 
 fn material(young: f64, poisson: f64) -> Material {
@@ -207,6 +303,7 @@ impl PrismMms {
             thickness: 0.5,
             material: material(10.0, 0.3),
             boundaries,
+            field: PrismField::Trigonometric,
         }
     }
 
@@ -221,6 +318,7 @@ impl PrismMms {
             thickness: 0.4,
             material: material(10.0, 0.3),
             boundaries,
+            field: PrismField::Trigonometric,
         }
     }
 
@@ -228,7 +326,7 @@ impl PrismMms {
         Arc::new(ExactSolution {
             chart: ShellChart::new(self.obstacle.clone()),
             material: self.material,
-            field: TrigonometricField,
+            field: self.field,
         })
     }
 
@@ -362,7 +460,11 @@ fn lu_study_point<D: Discretisation, M: ManufacturedField>(
 
 impl Study for PrismMms {
     fn name(&self) -> String {
-        format!("mms {} {}", self.geometry, self.boundaries.name())
+        let field = match self.field {
+            PrismField::Trigonometric => "",
+            PrismField::Oscillatory => " oscillatory field",
+        };
+        format!("mms {} {}{field}", self.geometry, self.boundaries.name())
     }
     fn geometry(&self) -> String {
         self.geometry.clone()
@@ -572,29 +674,4 @@ impl PaperEllipse {
     ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
         self.parts(level)?.finite_difference()
     }
-}
-/// `sum_a d_a P_a(x)` by the Richardson-extrapolated central difference of the forcing docs:
-/// `d_a P ~ (4 D(h/2) - D(h))/3`, `D(h) = (P(x + h e_axis) - P(x - h e_axis))/(2h)`,
-/// `h = 2e-3`, over `axes = (coordinate axis, flux index a)` in order; `flux(y, a)` is `P_a(y)`.
-pub(crate) fn richardson_divergence<const D: usize, const N: usize>(
-    x: [f64; D],
-    axes: impl IntoIterator<Item = (usize, usize)>,
-    flux: impl Fn([f64; D], usize) -> Result<[f64; N], ElasticityError>,
-) -> Result<[f64; N], ElasticityError> {
-    let h = 2e-3;
-    let mut div = [0.0; N];
-    for (axis, a) in axes {
-        let diff = |step: f64| -> Result<[f64; N], ElasticityError> {
-            let (mut yp, mut ym) = (x, x);
-            yp[axis] += step;
-            ym[axis] -= step;
-            let (fp, fm) = (flux(yp, a)?, flux(ym, a)?);
-            Ok(core::array::from_fn(|e| (fp[e] - fm[e]) / (2.0 * step)))
-        };
-        let (d1, d2) = (diff(h)?, diff(0.5 * h)?);
-        for e in 0..N {
-            div[e] += (4.0 * d2[e] - d1[e]) / 3.0;
-        }
-    }
-    Ok(div)
 }

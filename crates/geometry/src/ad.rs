@@ -12,12 +12,72 @@
 //! directions (2,2,2): d_222
 //! ```
 
-use num_dual::{Dual3, HyperHyperDual};
+use num_dual::{Dual, Dual3, HyperHyperDual};
 
-use crate::scalar::Real;
+use crate::scalar::{Real, Scalar};
 
 /// A scalar type carrying third-order mixed derivatives, used to differentiate charts.
-pub type Jet3<F> = HyperHyperDual<F>;
+///
+/// `Jet3<D>` over a dual number `D` (e.g. [`Dual1`]) nests: its parts then carry one more
+/// derivative (fourth derivatives of `sigma`, first derivatives of the shell geometry).
+pub type Jet3<D> = HyperHyperDual<D>;
+
+/// A first-order dual number `x + eps dx` over the scalar `D` (a float or a dual number):
+/// evaluating a generic map on it gives the map and its directional derivative exactly.
+pub type Dual1<D> = Dual<D>;
+
+/// The dual number `x + eps dx`.
+pub fn seed<F: Real, D: Scalar<F>>(x: D, dx: D) -> Dual1<D> {
+    Dual::new(x, dx)
+}
+
+/// The value `x` of `x + eps dx`.
+pub fn value_part<F: Real, D: Scalar<F>>(d: Dual1<D>) -> D {
+    d.re
+}
+
+/// The derivative part `dx` of `x + eps dx`.
+pub fn derivative_part<F: Real, D: Scalar<F>>(d: Dual1<D>) -> D {
+    d.eps
+}
+
+/// The primitive real part of any scalar (`x` itself for a float, the innermost value of a
+/// nested dual number).
+pub fn real_part<F: Real, D: Scalar<F>>(d: D) -> F {
+    d.re()
+}
+
+/// Value and exact gradient of a map `R^M -> R^N` written generically, at a point whose
+/// coordinates are any scalar `D` (floats, or dual numbers for derivatives of the gradient).
+///
+/// # Math
+/// `f(x)`, then `M` evaluations on `x + eps e_k` (`k = 1 ... M`): `f(x + eps e_k) = f(x) + eps d_k f(x)`.
+/// Returns `(f(x), gradient)` with `gradient[k][n] = d_k f_n(x)`.
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{ad::value_and_gradient, Scalar};
+/// fn f<S: Scalar<f64>>([x, y]: [S; 2]) -> [S; 1] {
+///     [x * y * y]
+/// }
+/// let (v, g) = value_and_gradient(f, [3.0_f64, 2.0]);
+/// assert_eq!((v[0], g[0][0], g[1][0]), (12.0, 4.0, 12.0));
+/// ```
+pub fn value_and_gradient<F: Real, D: Scalar<F>, const M: usize, const N: usize, G>(
+    f: G,
+    x: [D; M],
+) -> ([D; N], [[D; N]; M])
+where
+    G: Fn([Dual1<D>; M]) -> [Dual1<D>; N],
+{
+    let value = f(x.map(Dual::from_re)).map(|o| o.re);
+    let gradient = core::array::from_fn(|k| {
+        let y =
+            core::array::from_fn(|i| Dual::new(x[i], if i == k { D::one() } else { D::zero() }));
+        f(y).map(|o| o.eps)
+    });
+    (value, gradient)
+}
 
 /// Position and exact partial derivatives of a surface map up to third order at one point.
 ///
@@ -47,9 +107,9 @@ impl<F: Real> SurfaceJet<F> {
 }
 
 /// Seeds `x` for the derivative directions `dirs` (each 0 or 1) and evaluates `f`.
-fn eval_along<F: Real, G>(f: &G, x: [F; 2], dirs: [usize; 3]) -> [Jet3<F>; 3]
+fn eval_along<F: Real, D: Scalar<F>, G>(f: &G, x: [D; 2], dirs: [usize; 3]) -> [Jet3<D>; 3]
 where
-    G: Fn([Jet3<F>; 2]) -> [Jet3<F>; 3],
+    G: Fn([Jet3<D>; 2]) -> [Jet3<D>; 3],
 {
     let seed = |k: usize| {
         let mut v = Jet3::from_re(x[k]);
@@ -88,7 +148,29 @@ pub fn surface_jet<F: Real, G>(f: G, x: [F; 2]) -> SurfaceJet<F>
 where
     G: Fn([Jet3<F>; 2]) -> [Jet3<F>; 3],
 {
-    let z = F::zero();
+    surface_jet_over::<F, F, G>(f, x)
+}
+
+/// [`surface_jet`] at a point whose coordinates are any scalar `D`: with `D` a dual number
+/// ([`Dual1`]), every entry of the jet carries its derivative along the seeded direction
+/// (so `sigma`'s fourth derivatives, exactly).
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{ad, Scalar};
+/// fn f<S: Scalar<f64>>([x, y]: [S; 2]) -> [S; 3] {
+///     [x * x * x * x * y, y, x]
+/// }
+/// // d/dx of the jet at (1, 2): d_x (d_x d_x d_x (x^4 y)) = 24 y = 48
+/// let x = [ad::seed(1.0_f64, 1.0), ad::seed(2.0, 0.0)];
+/// let jet = ad::surface_jet_over(f, x);
+/// assert_eq!(ad::derivative_part(jet.d3[0][0][0][0]), 48.0);
+/// ```
+pub fn surface_jet_over<F: Real, D: Scalar<F>, G>(f: G, x: [D; 2]) -> SurfaceJet<D>
+where
+    G: Fn([Jet3<D>; 2]) -> [Jet3<D>; 3],
+{
+    let z = D::zero();
     let mut jet = SurfaceJet {
         point: [z; 3],
         d1: [[z; 3]; 2],

@@ -29,7 +29,8 @@
 //!
 //! # Limitations
 //! Charts must be `C^3` where they are evaluated (the shell chart's Christoffel symbols use
-//! third derivatives of `sigma`). Expression profiles are evaluated by an interpreter, several
+//! third derivatives of `sigma`), `C^4` for the derivatives of the shell geometry
+//! ([`ShellChart::point_over`] on dual coordinates). Expression profiles are evaluated by an interpreter, several
 //! times slower than a compiled `sigma`.
 #![warn(missing_docs)]
 

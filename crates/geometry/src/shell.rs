@@ -1,11 +1,11 @@
 //! The shell chart `Theta(x1, x2, x3) = sigma(x1, x2) + x3 N(x1, x2)` and its 3-D geometry.
 
-use crate::ad::SurfaceJet;
+use crate::ad::{self, SurfaceJet};
 use crate::error::GeometryError;
-use crate::scalar::Real;
+use crate::scalar::{Real, Scalar};
 use crate::surface::Surface;
 use crate::surface::point3;
-use crate::vector::{add, axpy, cross, dot, is_finite, norm, scale};
+use crate::vector::{add, axpy, cross, dot, is_finite, scale};
 
 /// The 3-D geometry of a shell chart at one point `(x1, x2, x3)`.
 ///
@@ -48,13 +48,17 @@ pub struct ShellPoint<F> {
 /// N_c  = n_c / r - n r_c / r^2
 /// N_cd = n_cd / r - (n_c r_d + n_d r_c + n r_cd) / r^2 + 2 n r_c r_d / r^3
 /// ```
+/// Written for any scalar `D` over `F`: on the jet of a dual point ([`ad::surface_jet_over`])
+/// the results carry their derivatives too.
 #[allow(clippy::type_complexity, clippy::needless_range_loop)] // (N, dN, ddN) and index loops mirror the math
-pub fn normal_derivatives<F: Real>(jet: &SurfaceJet<F>) -> ([F; 3], [[F; 3]; 2], [[[F; 3]; 2]; 2]) {
+pub fn normal_derivatives<F: Real, D: Scalar<F>>(
+    jet: &SurfaceJet<D>,
+) -> ([D; 3], [[D; 3]; 2], [[[D; 3]; 2]; 2]) {
     let (a1, a2) = (&jet.d1[0], &jet.d1[1]);
     let n = cross(a1, a2);
-    let r = norm(&n);
-    let nc: [[F; 3]; 2] = [0, 1].map(|c| add(&cross(&jet.d2[0][c], a2), &cross(a1, &jet.d2[1][c])));
-    let z = F::zero();
+    let r = dot(&n, &n).sqrt();
+    let nc: [[D; 3]; 2] = [0, 1].map(|c| add(&cross(&jet.d2[0][c], a2), &cross(a1, &jet.d2[1][c])));
+    let z = D::zero();
     let mut ncd = [[[z; 3]; 2]; 2];
     for (c, row) in ncd.iter_mut().enumerate() {
         for (d, v) in row.iter_mut().enumerate() {
@@ -65,7 +69,7 @@ pub fn normal_derivatives<F: Real>(jet: &SurfaceJet<F>) -> ([F; 3], [[F; 3]; 2],
             *v = add(&add(&t1, &t2), &add(&t3, &t4));
         }
     }
-    let inv_r = F::one() / r;
+    let inv_r = D::one() / r;
     let rc = [0, 1].map(|c| dot(&n, &nc[c]) * inv_r);
     let mut rcd = [[z; 2]; 2];
     for c in 0..2 {
@@ -77,7 +81,7 @@ pub fn normal_derivatives<F: Real>(jet: &SurfaceJet<F>) -> ([F; 3], [[F; 3]; 2],
     let inv_r2 = inv_r * inv_r;
     let dn = [0, 1].map(|c| axpy(&scale(inv_r, &nc[c]), -rc[c] * inv_r2, &n));
     let mut ddn = [[[z; 3]; 2]; 2];
-    let two = F::one() + F::one();
+    let two = D::one() + D::one();
     for c in 0..2 {
         for d in c..2 {
             let mut v = scale(inv_r, &ncd[c][d]);
@@ -152,7 +156,7 @@ impl<F: Real> ShellFrame<F> {
 
     /// The frame of a jet that passed `check_regular`.
     fn unchecked(jet: &SurfaceJet<F>, x: [F; 2]) -> Self {
-        let (normal, dn, ddn) = normal_derivatives(jet);
+        let (normal, dn, ddn) = normal_derivatives::<F, F>(jet);
         Self {
             jet: *jet,
             at: x,
@@ -172,72 +176,21 @@ impl<F: Real> ShellFrame<F> {
     /// # Errors
     /// [`GeometryError::NonFinite`] for non-finite geometry; [`GeometryError::Degenerate`] when
     /// `sqrt(g) <= 0` (`x3` at or past the focal surface).
-    #[allow(clippy::needless_range_loop)] // index loops mirror g_ij and Gamma^k_ij
     pub fn point(&self, x3: F) -> Result<ShellPoint<F>, GeometryError> {
         let at = point3(self.at, x3);
-        let (jet, normal, dn, ddn) = (&self.jet, self.normal, &self.dn, &self.ddn);
-        let g = [
-            axpy(&jet.d1[0], x3, &dn[0]),
-            axpy(&jet.d1[1], x3, &dn[1]),
-            normal,
-        ];
-        let sqrt_g = dot(&g[0], &cross(&g[1], &g[2]));
-        if !sqrt_g.is_finite() {
+        let point = shell_point_of::<F, F>(&self.jet, self.normal, &self.dn, &self.ddn, x3);
+        if !point.sqrt_g.is_finite() {
             return Err(GeometryError::NonFinite {
                 what: "sqrt(g)",
                 at,
             });
         }
-        if sqrt_g <= F::zero() {
+        if point.sqrt_g <= F::zero() {
             return Err(GeometryError::Degenerate {
                 what: "sqrt(g) <= 0: x3 at or past the focal surface",
                 at,
             });
         }
-        let inv = F::one() / sqrt_g;
-        let contra = [
-            scale(inv, &cross(&g[1], &g[2])),
-            scale(inv, &cross(&g[2], &g[0])),
-            scale(inv, &cross(&g[0], &g[1])),
-        ];
-        let z = F::zero();
-        let mut metric = [[z; 3]; 3];
-        let mut inverse_metric = [[z; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                metric[i][j] = dot(&g[i], &g[j]);
-                inverse_metric[i][j] = dot(&contra[i], &contra[j]);
-            }
-        }
-        // dg[i][j] = d_i g_j (symmetric in i, j).
-        let mut dg = [[[z; 3]; 3]; 3];
-        for a in 0..2 {
-            for b in 0..2 {
-                dg[a][b] = axpy(&jet.d2[a][b], x3, &ddn[a][b]);
-            }
-            dg[2][a] = dn[a];
-            dg[a][2] = dn[a];
-        }
-        let mut christoffel = [[[z; 3]; 3]; 3];
-        for (k, gk) in christoffel.iter_mut().enumerate() {
-            for i in 0..3 {
-                for j in i..3 {
-                    // symmetric by construction: computed once, mirrored exactly
-                    gk[i][j] = dot(&contra[k], &dg[i][j]);
-                    gk[j][i] = gk[i][j];
-                }
-            }
-        }
-        let position = axpy(&jet.point, x3, &normal);
-        let point = ShellPoint {
-            position,
-            covariant_basis: g,
-            contravariant_basis: contra,
-            metric,
-            inverse_metric,
-            sqrt_g,
-            christoffel,
-        };
         let finite = is_finite(&point.position)
             && point.christoffel.iter().flatten().all(is_finite)
             && point.inverse_metric.iter().all(is_finite);
@@ -248,6 +201,69 @@ impl<F: Real> ShellFrame<F> {
             });
         }
         Ok(point)
+    }
+}
+
+/// The formulas of [`ShellPoint`] at height `x3` over a surface point, from the jet of `sigma`
+/// and the derivatives of the normal, for any scalar `D` (no checks: the callers check the
+/// real point).
+#[inline]
+#[allow(clippy::needless_range_loop)] // index loops mirror g_ij and Gamma^k_ij
+fn shell_point_of<F: Real, D: Scalar<F>>(
+    jet: &SurfaceJet<D>,
+    normal: [D; 3],
+    dn: &[[D; 3]; 2],
+    ddn: &[[[D; 3]; 2]; 2],
+    x3: D,
+) -> ShellPoint<D> {
+    let g = [
+        axpy(&jet.d1[0], x3, &dn[0]),
+        axpy(&jet.d1[1], x3, &dn[1]),
+        normal,
+    ];
+    let sqrt_g = dot(&g[0], &cross(&g[1], &g[2]));
+    let inv = D::one() / sqrt_g;
+    let contra = [
+        scale(inv, &cross(&g[1], &g[2])),
+        scale(inv, &cross(&g[2], &g[0])),
+        scale(inv, &cross(&g[0], &g[1])),
+    ];
+    let z = D::zero();
+    let mut metric = [[z; 3]; 3];
+    let mut inverse_metric = [[z; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            metric[i][j] = dot(&g[i], &g[j]);
+            inverse_metric[i][j] = dot(&contra[i], &contra[j]);
+        }
+    }
+    // dg[i][j] = d_i g_j (symmetric in i, j).
+    let mut dg = [[[z; 3]; 3]; 3];
+    for a in 0..2 {
+        for b in 0..2 {
+            dg[a][b] = axpy(&jet.d2[a][b], x3, &ddn[a][b]);
+        }
+        dg[2][a] = dn[a];
+        dg[a][2] = dn[a];
+    }
+    let mut christoffel = [[[z; 3]; 3]; 3];
+    for (k, gk) in christoffel.iter_mut().enumerate() {
+        for i in 0..3 {
+            for j in i..3 {
+                // symmetric by construction: computed once, mirrored exactly
+                gk[i][j] = dot(&contra[k], &dg[i][j]);
+                gk[j][i] = gk[i][j];
+            }
+        }
+    }
+    ShellPoint {
+        position: axpy(&jet.point, x3, &normal),
+        covariant_basis: g,
+        contravariant_basis: contra,
+        metric,
+        inverse_metric,
+        sqrt_g,
+        christoffel,
     }
 }
 
@@ -304,6 +320,36 @@ impl<S> ShellChart<S> {
     {
         ShellFrame::new(&self.surface.jet(x), x)
     }
+
+    /// The shell geometry at a point whose coordinates are any scalar `D` over `F`: with dual
+    /// numbers seeded along a direction ([`ad::seed`]), every field of the point carries its
+    /// exact derivative along it (`d_a g_ij`, `d_a Gamma^k_ij`: fourth derivatives of `sigma`,
+    /// by nested forward-mode AD through [`Surface::sigma`]).
+    ///
+    /// # Errors
+    /// Those of [`ShellChart::point`] at the real point (checked there).
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_geometry::{ad, CircularCylinder, ShellChart};
+    /// let chart = ShellChart::new(CircularCylinder::new(2.0_f64).unwrap());
+    /// // along x3: g_22 = r^2 with r = 2 + x3, so d_3 g_22 = 2 r = 5 at x3 = 0.5
+    /// let x = [ad::seed(0.0_f64, 0.0), ad::seed(0.3, 0.0), ad::seed(0.5, 1.0)];
+    /// let p = chart.point_over(x).unwrap();
+    /// assert!((ad::derivative_part(p.metric[1][1]) - 5.0).abs() < 1e-13);
+    /// ```
+    pub fn point_over<F: Real, D: Scalar<F>>(
+        &self,
+        x: [D; 3],
+    ) -> Result<ShellPoint<D>, GeometryError>
+    where
+        S: Surface<F>,
+    {
+        self.point(x.map(ad::real_part::<F, D>))?;
+        let jet = ad::surface_jet_over(|y| self.surface.sigma(y), [x[0], x[1]]);
+        let (normal, dn, ddn) = normal_derivatives::<F, D>(&jet);
+        Ok(shell_point_of::<F, D>(&jet, normal, &dn, &ddn, x[2]))
+    }
 }
 
 #[cfg(test)]
@@ -346,6 +392,56 @@ mod tests {
             &ShellChart::new(CircularCylinder::new(1.0).unwrap()),
             &[-0.5, -1.0, -1.5],
         );
+    }
+
+    /// `point_over` on dual coordinates: real parts equal `point` bit for bit, derivative
+    /// parts equal central differences of `point` (h = 1e-5: truncation ~1e-10).
+    fn dual_point_matches_differences<S: Surface<f64>>(chart: &ShellChart<S>) {
+        let h = 1e-5;
+        for x in [[0.3, -0.4, 0.1], [0.0, 0.9, 0.35], [0.5, 0.2, 0.0]] {
+            for axis in 1..3 {
+                let y = core::array::from_fn(|i| ad::seed(x[i], if i == axis { 1.0 } else { 0.0 }));
+                let dual = chart.point_over(y).unwrap();
+                let (mut xp, mut xm) = (x, x);
+                xp[axis] += h;
+                xm[axis] -= h;
+                let (p, pp, pm) = (
+                    chart.point(x).unwrap(),
+                    chart.point(xp).unwrap(),
+                    chart.point(xm).unwrap(),
+                );
+                let fields = |q: &ShellPoint<f64>| {
+                    let mut v = vec![q.sqrt_g];
+                    v.extend(q.metric.iter().flatten());
+                    v.extend(q.inverse_metric.iter().flatten());
+                    v.extend(q.christoffel.iter().flatten().flatten());
+                    v
+                };
+                let mut duals = vec![dual.sqrt_g];
+                duals.extend(dual.metric.iter().flatten());
+                duals.extend(dual.inverse_metric.iter().flatten());
+                duals.extend(dual.christoffel.iter().flatten().flatten());
+                let (f, fp, fm) = (fields(&p), fields(&pp), fields(&pm));
+                for (k, d) in duals.iter().enumerate() {
+                    assert_eq!(ad::value_part(*d), f[k], "{x:?} field {k}");
+                    let fd = (fp[k] - fm[k]) / (2.0 * h);
+                    let exact = ad::derivative_part(*d);
+                    assert!(
+                        (exact - fd).abs() < 1e-8 * (1.0 + fd.abs()),
+                        "{x:?} axis {axis} field {k}: {exact} against {fd}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn dual_points_carry_exact_derivatives_on_ellipse_and_expression_prism() {
+        dual_point_matches_differences(&ShellChart::new(EllipticalPrism::new(2.0, 0.5).unwrap()));
+        let profile =
+            ExpressionProfile::parse("2 * sin(t) + 0.3 * sin(2 * t)", "cos(t) + 0.1 * t^2")
+                .unwrap();
+        dual_point_matches_differences(&ShellChart::new(GeneralPrism::new(profile)));
     }
 
     #[test]

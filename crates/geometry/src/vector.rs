@@ -1,16 +1,25 @@
 //! Small fixed-size vector kernels used by the geometry formulas.
 
+use core::ops::{Add, Mul, Sub};
+
 use crate::scalar::Real;
+
+/// The arithmetic the vector kernels need: floats and every dual number over them.
+pub(crate) trait Arithmetic:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self>
+{
+}
+impl<T: Copy + Add<Output = T> + Sub<Output = T> + Mul<Output = T>> Arithmetic for T {}
 
 pub(crate) type Vec3<F> = [F; 3];
 
 #[inline]
-pub(crate) fn dot<F: Real>(a: &Vec3<F>, b: &Vec3<F>) -> F {
+pub(crate) fn dot<F: Arithmetic>(a: &Vec3<F>, b: &Vec3<F>) -> F {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 #[inline]
-pub(crate) fn cross<F: Real>(a: &Vec3<F>, b: &Vec3<F>) -> Vec3<F> {
+pub(crate) fn cross<F: Arithmetic>(a: &Vec3<F>, b: &Vec3<F>) -> Vec3<F> {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -19,18 +28,18 @@ pub(crate) fn cross<F: Real>(a: &Vec3<F>, b: &Vec3<F>) -> Vec3<F> {
 }
 
 #[inline]
-pub(crate) fn add<F: Real>(a: &Vec3<F>, b: &Vec3<F>) -> Vec3<F> {
+pub(crate) fn add<F: Arithmetic>(a: &Vec3<F>, b: &Vec3<F>) -> Vec3<F> {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 #[inline]
-pub(crate) fn scale<F: Real>(s: F, a: &Vec3<F>) -> Vec3<F> {
+pub(crate) fn scale<F: Arithmetic>(s: F, a: &Vec3<F>) -> Vec3<F> {
     [s * a[0], s * a[1], s * a[2]]
 }
 
 /// `a + s b`
 #[inline]
-pub(crate) fn axpy<F: Real>(a: &Vec3<F>, s: F, b: &Vec3<F>) -> Vec3<F> {
+pub(crate) fn axpy<F: Arithmetic>(a: &Vec3<F>, s: F, b: &Vec3<F>) -> Vec3<F> {
     [a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]]
 }
 

@@ -1,6 +1,6 @@
 //! The pointwise energy matrix of linear elasticity in the scalar inputs of a layout.
 
-use capstan_geometry::ShellPoint;
+use capstan_geometry::{Scalar, ShellPoint};
 
 use crate::material::Material;
 
@@ -63,16 +63,18 @@ pub const SOLID: InputLayout<12> = [
 /// E_k[i][l] = (N_k[i][n] g_nl + N_k[l][n] g_ni) / 2        covariant strain
 /// M_k[i][l] = g^ij E_k[j][l]                               mixed strain E^i_l
 /// ```
+/// For any scalar `S` (`f64`, or dual numbers for the exact derivatives of the manufactured
+/// forcing).
 #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
-pub fn mixed_strains<const N: usize>(
-    p: &ShellPoint<f64>,
+pub fn mixed_strains<S: Scalar<f64>, const N: usize>(
+    p: &ShellPoint<S>,
     layout: &InputLayout<N>,
-) -> [[[f64; 3]; 3]; N] {
+) -> [[[S; 3]; 3]; N] {
     let (g, gi, gamma) = (&p.metric, &p.inverse_metric, &p.christoffel);
-    let mut mixed = [[[0.0f64; 3]; 3]; N];
+    let mut mixed = [[[S::zero(); 3]; 3]; N];
     for (mk, input) in mixed.iter_mut().zip(layout) {
         // h[i][l] = N_k[i][n] g_nl
-        let mut h = [[0.0f64; 3]; 3];
+        let mut h = [[S::zero(); 3]; 3];
         match *input {
             Input::Value(m) => {
                 for i in 0..3 {
@@ -88,10 +90,10 @@ pub fn mixed_strains<const N: usize>(
                 component,
             } => h[direction] = g[component],
         }
-        let mut e = [[0.0f64; 3]; 3];
+        let mut e = [[S::zero(); 3]; 3];
         for i in 0..3 {
             for l in 0..3 {
-                e[i][l] = 0.5 * (h[i][l] + h[l][i]);
+                e[i][l] = (h[i][l] + h[l][i]) * 0.5;
             }
         }
         for i in 0..3 {
@@ -172,18 +174,19 @@ pub fn divergence_coefficients<const N: usize>(
 /// M = sum_k u_k M_k          mixed strain E^i_j
 /// T^i_j = lambda delta^i_j tr M + 2 mu M^i_j
 /// ```
-pub fn mixed_stress_of<const N: usize>(
-    p: &ShellPoint<f64>,
+/// For any scalar `S`, like [`mixed_strains`].
+pub fn mixed_stress_of<S: Scalar<f64>, const N: usize>(
+    p: &ShellPoint<S>,
     layout: &InputLayout<N>,
     material: &Material,
-    u: &[f64; N],
-) -> [[f64; 3]; 3] {
+    u: &[S; N],
+) -> [[S; 3]; 3] {
     let strains = mixed_strains(p, layout);
-    let mut m = [[0.0; 3]; 3];
+    let mut m = [[S::zero(); 3]; 3];
     for (mk, uk) in strains.iter().zip(u) {
         for (row, rk) in m.iter_mut().zip(mk) {
             for (x, y) in row.iter_mut().zip(rk) {
-                *x += uk * y;
+                *x += *uk * *y;
             }
         }
     }
@@ -191,8 +194,8 @@ pub fn mixed_stress_of<const N: usize>(
     let (lambda, two_mu) = (material.lambda(), 2.0 * material.mu());
     core::array::from_fn(|i| {
         core::array::from_fn(|j| {
-            let delta = if i == j { lambda * trace } else { 0.0 };
-            delta + two_mu * m[i][j]
+            let delta = if i == j { trace * lambda } else { S::zero() };
+            delta + m[i][j] * two_mu
         })
     })
 }

@@ -4,34 +4,43 @@
 use std::sync::Arc;
 
 use capstan_geometry::{
-    ExpressionProfile, GeneralCone, GeneralPrism, Obstacle, ShellChart, ShellPoint,
+    ExpressionProfile, GeneralCone, GeneralPrism, Obstacle, Scalar, ShellChart, ShellPoint,
+    Surface, ad,
 };
 
 use super::boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 use super::grid::BoxGrid;
 use super::operator::{SolidForce, SolidNavier};
-use crate::continuum::kinematics::christoffel_contraction;
 use crate::continuum::{SOLID, mixed_stress_of};
 use crate::error::ElasticityError;
 use crate::finite_element::{ElementOrder, SampleChart, VolumetricIntegration};
 use crate::material::Material;
+use crate::samples::manufactured_forcing;
 use crate::shell_geometry::ShellGeometry;
 use crate::verification::{GridLevel, Study, StudyPoint};
 
-/// A smooth 3-D displacement field with its exact first derivatives.
+/// A smooth 3-D displacement field `x -> [v^1, v^2, v^3]`, written once for every scalar:
+/// its derivatives follow exactly by forward-mode AD through [`SolidField::value`].
 pub trait SolidField: Send + Sync {
-    /// `([v^1, v^2, v^3], gradient)` at `x`, `gradient[p][c] = d_p v^c`.
-    fn displacement(&self, x: [f64; 3]) -> ([f64; 3], [[f64; 3]; 3]);
+    /// `[v^1, v^2, v^3]` at `x`.
+    fn value<S: Scalar<f64>>(&self, x: [S; 3]) -> [S; 3];
 
-    /// The twelve inputs `[v^c, d_1 v^c, d_2 v^c, d_3 v^c]` of [`SOLID`].
-    fn inputs(&self, x: [f64; 3]) -> [f64; 12] {
-        let (v, g) = self.displacement(x);
-        let mut u = [0.0; 12];
-        u[..3].copy_from_slice(&v);
-        for p in 0..3 {
-            u[3 + 3 * p..6 + 3 * p].copy_from_slice(&g[p]);
-        }
-        u
+    /// `([v^1, v^2, v^3], gradient)` at `x`, `gradient[p][c] = d_p v^c` (by AD).
+    fn displacement(&self, x: [f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+        ad::value_and_gradient(|y| self.value(y), x)
+    }
+
+    /// The twelve inputs `[v^c, d_1 v^c, d_2 v^c, d_3 v^c]` of [`SOLID`] (at dual `x` they
+    /// carry their own derivatives).
+    fn inputs<S: Scalar<f64>>(&self, x: [S; 3]) -> [S; 12] {
+        let (v, g) = ad::value_and_gradient(|y| self.value(y), x);
+        core::array::from_fn(|k| {
+            if k < 3 {
+                v[k]
+            } else {
+                g[(k - 3) / 3][(k - 3) % 3]
+            }
+        })
     }
 }
 
@@ -46,38 +55,14 @@ pub trait SolidField: Send + Sync {
 pub struct SolidTrigonometricField;
 
 impl SolidField for SolidTrigonometricField {
-    fn displacement(&self, [x1, x2, x3]: [f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
-        let (s11, c11) = (1.1 * x1 + 0.3).sin_cos();
-        let (s7, c7) = (0.7 * x2).sin_cos();
-        let z1 = 1.0 + 0.5 * x3;
-        let (s13, c13) = (1.3 * x2 + 0.2).sin_cos();
-        let q = 1.0 + 0.5 * x3 + 0.25 * x3 * x3;
-        let dq = 0.5 + 0.5 * x3;
-        let r = 1.0 + 0.2 * x1;
-        let (s12, c12) = (1.2 * x3).sin_cos();
-        let (s8, c8) = (0.8 * x2).sin_cos();
-        let w = 1.0 + 0.5 * c8;
-        let (s1, c1) = x1.sin_cos();
-        let t = 1.0 + 0.3 * s1;
-        let v = [0.04 * s11 * c7 * z1, 0.05 * s13 * q * r, 0.1 * s12 * w * t];
-        let g = [
-            [
-                0.04 * 1.1 * c11 * c7 * z1,
-                0.05 * s13 * q * 0.2,
-                0.1 * s12 * w * 0.3 * c1,
-            ],
-            [
-                -0.04 * 0.7 * s11 * s7 * z1,
-                0.05 * 1.3 * c13 * q * r,
-                0.1 * s12 * (-0.4 * s8) * t,
-            ],
-            [
-                0.04 * s11 * c7 * 0.5,
-                0.05 * s13 * dq * r,
-                0.1 * 1.2 * c12 * w * t,
-            ],
-        ];
-        (v, g)
+    fn value<S: Scalar<f64>>(&self, [x1, x2, x3]: [S; 3]) -> [S; 3] {
+        let q = x3 * 0.5 + x3 * x3 * 0.25 + 1.0;
+        let w = (x2 * 0.8).cos() * 0.5 + 1.0;
+        [
+            (x1 * 1.1 + 0.3).sin() * (x2 * 0.7).cos() * (x3 * 0.5 + 1.0) * 0.04,
+            (x2 * 1.3 + 0.2).sin() * q * (x1 * 0.2 + 1.0) * 0.05,
+            (x3 * 1.2).sin() * w * (x1.sin() * 0.3 + 1.0) * 0.1,
+        ]
     }
 }
 
@@ -109,30 +94,6 @@ impl<G: ShellGeometry, F: SolidField> SolidExact<G, F> {
         ))
     }
 
-    /// The forcing `f_j = -nabla_i T^i_j` of the exact field.
-    ///
-    /// # Math
-    /// ```text
-    /// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k      (a = 1, 2, 3)
-    /// d_a P ~ (4 D(h/2) - D(h))/3,  D(h) = (P(x + h e_a) - P(x - h e_a))/(2h),  h = 2e-3
-    /// ```
-    /// (the Richardson-extrapolated central difference of the 2-D samples: truncation
-    /// `O(h^4) ~ 1e-12` relative, round-off `~1e-13`).
-    ///
-    /// # Errors
-    /// Geometry failures.
-    pub fn forcing(&self, x: [f64; 3]) -> Result<[f64; 3], ElasticityError> {
-        let flux = |y: [f64; 3], a: usize| -> Result<[f64; 3], ElasticityError> {
-            let p = self.point(y)?;
-            let t = mixed_stress_of(&p, &SOLID, &self.material, &self.field.inputs(y));
-            Ok([0, 1, 2].map(|j| p.sqrt_g * t[a][j]))
-        };
-        let div = crate::samples::richardson_divergence(x, [(0, 0), (1, 1), (2, 2)], flux)?;
-        let p = self.point(x)?;
-        let t = mixed_stress_of(&p, &SOLID, &self.material, &self.field.inputs(x));
-        Ok([0, 1, 2].map(|j| -(div[j] / p.sqrt_g - christoffel_contraction(&p, &t, j))))
-    }
-
     /// The traction `t_j = n_i T^i_j` on `face` at `x`.
     ///
     /// # Errors
@@ -143,6 +104,25 @@ impl<G: ShellGeometry, F: SolidField> SolidExact<G, F> {
         let t = mixed_stress_of(&p, &SOLID, &self.material, &self.field.inputs(x));
         let n = face.sign() / p.inverse_metric[a][a].sqrt();
         Ok([0, 1, 2].map(|j| n * t[a][j]))
+    }
+}
+
+impl<Surf: Surface<f64>, F: SolidField> SolidExact<ShellChart<Surf>, F> {
+    /// The forcing `f_j = -nabla_i T^i_j` of the exact field, exact to round-off.
+    ///
+    /// # Math
+    /// ```text
+    /// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k      (a = 1, 2, 3)
+    /// ```
+    /// `d_a (sqrt(g) T^a_j)` by forward-mode AD, as in the 2-D samples
+    /// ([`crate::samples::ExactSolution::forcing`]).
+    ///
+    /// # Errors
+    /// Geometry failures.
+    pub fn forcing(&self, x: [f64; 3]) -> Result<[f64; 3], ElasticityError> {
+        manufactured_forcing(&self.chart, &self.material, &SOLID, x, &[0, 1, 2], |y| {
+            self.field.inputs(y)
+        })
     }
 }
 

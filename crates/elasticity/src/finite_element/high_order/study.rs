@@ -6,7 +6,7 @@ use super::operator::order_name;
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_element::{FemProblem, VolumetricIntegration, lame_parts, mms_parts};
-use crate::samples::{LameCylinder, ManufacturedField, MmsBoundaries, PrismMms};
+use crate::samples::{LameCylinder, ManufacturedField, MmsBoundaries, PrismField, PrismMms};
 use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// An exact displacement `x -> [v^2, v^3]`.
@@ -74,22 +74,34 @@ impl Study for HighOrderStudy {
     }
 }
 
-/// The Qp studies of the registry: the manufactured solution on the ellipse `b/a = 0.5`
-/// (traction-contact set) with `2k x k` elements and the Lamé cylinder with `4 x e3`
+/// The manufactured problem of the Qp studies: [`crate::samples::OscillatoryField`] on the
+/// ellipse `b/a = 0.5` (traction-contact set).
+pub(crate) fn high_order_mms() -> PrismMms {
+    PrismMms {
+        field: PrismField::Oscillatory,
+        ..PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)
+    }
+}
+
+/// `k` of the `2k x k`-element grids of the manufactured Qp study of order `p = 1 ... 6`
+/// (index `p - 1`): in the asymptotic range, the finest error above `1e-12`.
+pub(crate) const HIGH_ORDER_MMS_GRIDS: [[usize; 3]; 6] = [
+    [8, 16, 32],
+    [4, 8, 16],
+    [4, 8, 16],
+    [4, 8, 12],
+    [4, 6, 8],
+    [4, 6, 8],
+];
+
+/// The Qp studies of the registry: the manufactured solution of `high_order_mms` with
+/// `2k x k` elements (`HIGH_ORDER_MMS_GRIDS`) and the Lamé cylinder with `4 x e3`
 /// elements, for `p = 1 ... 6`, on grids in the asymptotic range and above round-off where
 /// there is one (see `docs/high-order.md`).
 pub fn high_order_studies() -> Vec<Box<dyn Study>> {
-    let mms = PrismMms::ellipse(0.5, MmsBoundaries::TractionContact);
+    let mms = high_order_mms();
     let mut out: Vec<Box<dyn Study>> = Vec::new();
-    let mms_k: [&[usize]; 6] = [
-        &[8, 16, 32],
-        &[4, 8, 16],
-        &[2, 4, 8],
-        &[2, 4, 8],
-        &[2, 3, 4],
-        &[2, 3, 4],
-    ];
-    for (p, ks) in (1..=6).zip(mms_k) {
+    for (p, ks) in (1..=6).zip(HIGH_ORDER_MMS_GRIDS) {
         out.push(Box::new(HighOrderStudy {
             problem: FemProblem::Mms(mms.clone()),
             p,
