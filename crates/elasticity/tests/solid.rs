@@ -4,7 +4,7 @@
 use capstan_elasticity::finite_element::{ElementOrder, VolumetricIntegration};
 use capstan_elasticity::samples::{LameCylinder, PaperEllipse};
 use capstan_elasticity::solid::samples::SolidMms;
-use capstan_elasticity::solid::{BoxGrid, FaceCondition, SolidBoundary, SolidNavier};
+use capstan_elasticity::solid::{BoxGrid, FaceCondition, HexElement, SolidBoundary, SolidNavier};
 use capstan_elasticity::solvers::SparseCholesky;
 use capstan_elasticity::verification::{GridLevel, observed_order};
 use capstan_elasticity::{Component, Discretisation, ElasticityError};
@@ -57,18 +57,22 @@ fn manufactured_solutions_converge_at_order_two_for_q1_and_three_for_q2() {
 /// The 3-D body on a prism with plane-strain `x1` faces against the 2-D operator: max
 /// difference of `(v^2, v^3)` over every node, relative to the largest displacement, and the
 /// largest `|v^1|` (relative likewise).
+/// The 2-D operator is Q1/Q2 for [`HexElement::Uniform`], `fem-qp` for [`HexElement::Gll`].
 fn reduction_difference(
     parts: capstan_elasticity::finite_element::ProblemParts,
-    order: ElementOrder,
+    element: HexElement,
     volumetric: VolumetricIntegration,
 ) -> Result<(f64, f64), ElasticityError> {
     let grid2 = parts.grid;
     let boundary2 = parts.boundary.clone();
     let chart = parts.chart.clone();
     let material = parts.material;
-    let plane = parts.finite_element_with(order, volumetric)?;
+    let plane: Box<dyn Discretisation> = match element {
+        HexElement::Uniform(order) => Box::new(parts.finite_element_with(order, volumetric)?),
+        HexElement::Gll(p) => Box::new(parts.high_order(p, volumetric)?),
+    };
     let v2 = plane.solve(&mut SparseCholesky::default())?;
-    let n1 = order.degree() + 1;
+    let n1 = element.degree() + 1;
     let grid3 = BoxGrid::new(
         [0.0, 0.3],
         grid2.theta(),
@@ -77,7 +81,9 @@ fn reduction_difference(
         grid2.is_periodic(),
     )?;
     let boundary3 = SolidBoundary::extruded(&boundary2, FaceCondition::plane_strain(), n1);
-    let solid = SolidNavier::new(chart, material, grid3, &boundary3, None, order, volumetric)?;
+    let solid = SolidNavier::new(
+        chart, material, grid3, &boundary3, None, element, volumetric,
+    )?;
     let v3 = solid.solve(&mut SparseCholesky::default())?;
     let scale = v2.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let (mut diff, mut v1) = (0.0f64, 0.0f64);
@@ -110,11 +116,48 @@ fn a_prism_with_plane_strain_faces_reproduces_the_plane_strain_operator() {
                     .unwrap(),
             ];
             for parts in cases {
-                let (diff, v1) = reduction_difference(parts, order, volumetric).unwrap();
+                let (diff, v1) = reduction_difference(parts, order.into(), volumetric).unwrap();
                 println!("{order:?} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
                 assert!(
                     diff < 1e-10 && v1 < 1e-10,
                     "{order:?} {volumetric:?}: {diff:e} {v1:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn qp_hexahedra_on_a_prism_with_plane_strain_faces_reproduce_the_two_dimensional_fem_qp() {
+    // GLL nodes in x2, x3 (and x1) at the same true positions in 2-D and 3-D: the extrusion
+    // reproduces the 2-D fem-qp solution on every x1 section to round-off
+    let paper = PaperEllipse::default();
+    let lame = LameCylinder::default();
+    for p in [3, 4] {
+        for volumetric in [VolumetricIntegration::Full, VolumetricIntegration::Reduced] {
+            let cases = [
+                paper
+                    .parts(GridLevel {
+                        n2: 4 * p + 1,
+                        n3: p + 1,
+                    })
+                    .unwrap(),
+                lame.parts_pinned(
+                    GridLevel {
+                        n2: 4 * p,
+                        n3: p + 1,
+                    },
+                    &[0, p, 2 * p],
+                )
+                .unwrap(),
+            ];
+            for parts in cases {
+                let (diff, v1) =
+                    reduction_difference(parts, HexElement::Gll(p), volumetric).unwrap();
+                println!("Q{p} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
+                assert!(
+                    diff < 1e-10 && v1 < 1e-10,
+                    "Q{p} {volumetric:?}: {diff:e} {v1:e}"
                 );
             }
         }

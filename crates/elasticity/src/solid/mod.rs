@@ -34,6 +34,7 @@
 mod body;
 mod boundary;
 mod contact;
+mod element;
 mod fields;
 mod grid;
 mod multigrid;
@@ -42,6 +43,7 @@ pub mod samples;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
+pub use element::HexElement;
 pub use fields::SolidFields;
 pub use grid::BoxGrid;
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count};

@@ -236,7 +236,7 @@ impl SolidMms {
     pub fn operator(
         &self,
         n: [usize; 3],
-        order: ElementOrder,
+        order: impl Into<super::HexElement>,
     ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
         let exact = self.exact();
         let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
@@ -288,8 +288,9 @@ impl SolidMms {
     pub fn relative_error(
         &self,
         m: usize,
-        order: ElementOrder,
+        order: impl Into<super::HexElement>,
     ) -> Result<(f64, f64), ElasticityError> {
+        let order = order.into();
         let k = order.degree();
         let n = k * m + 1;
         let op = self.operator([n, n, n], order)?;
