@@ -84,3 +84,65 @@ fn qp_of_degree_one_and_two_is_the_q1_q2_operator_to_round_off() {
         }
     }
 }
+
+/// The finite-width body on the circular prism `a = b = 2` (a rigid rotation held by
+/// friction: a limiting ratio), ratio 2.5, boundary-only solver: `(slip fraction, limiting
+/// ratio, max |v2| on the contact face)`.
+fn circle_contact(element: HexElement, nodes: [usize; 3]) -> (f64, f64, f64) {
+    use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads};
+    use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
+    use capstan_elasticity::solid::{SideFaces, SolidBody};
+    use capstan_geometry::{EllipticalPrism, Obstacle};
+    let obstacle = Obstacle::Ellipse(EllipticalPrism::new(2.0, 2.0).unwrap());
+    let body = SolidBody {
+        order: element,
+        sides: SideFaces::PlaneStrain,
+        ..SolidBody::new(obstacle, [-0.5, 0.5], nodes)
+    };
+    let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
+    let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let limiting = solver
+        .sliding()
+        .expect("the circle has a sliding mode")
+        .upper_ratio;
+    let sol = solver.solve(EndLoads::ratio(2.5)).unwrap();
+    let v2 = sol.contact.v2.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    (sol.slip_fraction, limiting, v2)
+}
+
+/// The 2-D fem-qp contact of the same circle (`n2 x n3`): its limiting ratio.
+fn plane_limiting_ratio(p: usize, n2: usize, n3: usize) -> f64 {
+    use capstan_elasticity::contact::{BoundarySolver, ContactSettings, ThickBody};
+    use capstan_elasticity::finite_element::DiscretisationMethod;
+    use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
+    use capstan_geometry::{EllipticalPrism, Obstacle};
+    let body = ThickBody {
+        obstacle: Obstacle::Ellipse(EllipticalPrism::new(2.0, 2.0).unwrap()),
+        method: DiscretisationMethod::FemQp,
+        order: p,
+        ..ThickBody::paper(n2, n3).unwrap()
+    };
+    let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
+    let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    solver.sliding().expect("a sliding mode").upper_ratio
+}
+
+#[test]
+fn qp_contact_agrees_with_a_fine_q2_contact() {
+    // measured: Q2 3 x 41 x 9: slip 0.7317, limiting ratio 3.3344, max |v2| 4.123e-3;
+    // Q3 4 x 19 x 4: 0.7368, 3.3225, 4.188e-3 (Q2 3 x 81 x 17: 0.7654, 3.3470, 4.094e-3)
+    let (slip, limit, v2) = circle_contact(ElementOrder::Q2.into(), [3, 41, 9]);
+    let (qslip, qlimit, qv2) = circle_contact(HexElement::Gll(3), [4, 19, 4]);
+    println!("Q2: {slip} {limit} {v2:e}\nQ3: {qslip} {qlimit} {qv2:e}");
+    assert!((slip - qslip).abs() < 0.03, "slip {slip} {qslip}");
+    assert!(
+        (limit - qlimit).abs() < 0.01 * limit,
+        "limit {limit} {qlimit}"
+    );
+    assert!((v2 - qv2).abs() < 0.03 * v2, "v2 {v2} {qv2}");
+    // the extrusion's limiting ratio is the 2-D fem-qp3 one (same GLL nodes in x2, x3)
+    let plane = plane_limiting_ratio(3, 19, 4);
+    assert!((plane - qlimit).abs() < 1e-10 * plane, "{plane} {qlimit}");
+}
