@@ -1,11 +1,15 @@
 //! Qp hexahedra (GLL nodes) for the 3-D body: manufactured solutions on cones (observed L2
-//! order `p + 1`), and `p = 1, 2` against the Q1/Q2 hexahedra.
+//! order `p + 1`), `p = 1, 2` against the Q1/Q2 hexahedra, and frictional contact against Q2
+//! and the 2-D fem-qp.
 
-use capstan_elasticity::finite_element::ElementOrder;
-use capstan_elasticity::solid::HexElement;
+use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
+use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
+use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::samples::SolidMms;
+use capstan_elasticity::solid::{HexElement, SideFaces, SolidBody};
 use capstan_elasticity::solvers::SparseCholesky;
 use capstan_elasticity::verification::observed_order;
+use capstan_geometry::{EllipticalPrism, Obstacle};
 
 fn table(points: &[(f64, f64)]) -> String {
     points
@@ -85,48 +89,45 @@ fn qp_of_degree_one_and_two_is_the_q1_q2_operator_to_round_off() {
     }
 }
 
-/// The finite-width body on the circular prism `a = b = 2` (a rigid rotation held by
-/// friction: a limiting ratio), ratio 2.5, boundary-only solver: `(slip fraction, limiting
-/// ratio, max |v2| on the contact face)`.
-fn circle_contact(element: HexElement, nodes: [usize; 3]) -> (f64, f64, f64) {
-    use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads};
-    use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-    use capstan_elasticity::solid::{SideFaces, SolidBody};
-    use capstan_geometry::{EllipticalPrism, Obstacle};
-    let obstacle = Obstacle::Ellipse(EllipticalPrism::new(2.0, 2.0).unwrap());
-    let body = SolidBody {
-        order: element,
-        sides: SideFaces::PlaneStrain,
-        ..SolidBody::new(obstacle, [-0.5, 0.5], nodes)
-    };
-    let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
-    let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();
-    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
-    let limiting = solver
-        .sliding()
-        .expect("the circle has a sliding mode")
-        .upper_ratio;
-    let sol = solver.solve(EndLoads::ratio(2.5)).unwrap();
-    let v2 = sol.contact.v2.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    (sol.slip_fraction, limiting, v2)
+fn circle() -> Obstacle {
+    Obstacle::Ellipse(EllipticalPrism::new(2.0, 2.0).unwrap())
 }
 
-/// The 2-D fem-qp contact of the same circle (`n2 x n3`): its limiting ratio.
-fn plane_limiting_ratio(p: usize, n2: usize, n3: usize) -> f64 {
-    use capstan_elasticity::contact::{BoundarySolver, ContactSettings, ThickBody};
-    use capstan_elasticity::finite_element::DiscretisationMethod;
-    use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-    use capstan_geometry::{EllipticalPrism, Obstacle};
-    let body = ThickBody {
-        obstacle: Obstacle::Ellipse(EllipticalPrism::new(2.0, 2.0).unwrap()),
+fn coulomb() -> RegularisedCoulombParams<f64> {
+    RegularisedCoulombParams::new(0.5, 1e-5).unwrap()
+}
+
+/// The body of width 1 on the circular prism `a = b = 2` (a rigid rotation held by
+/// friction: a limiting ratio) with plane-strain sides.
+fn circle_body(element: HexElement, nodes: [usize; 3]) -> SolidBody<Obstacle> {
+    SolidBody {
+        order: element,
+        sides: SideFaces::PlaneStrain,
+        ..SolidBody::new(circle(), [-0.5, 0.5], nodes)
+    }
+}
+
+/// The 2-D fem-qp body on the same circle, `n2 x n3` nodes.
+fn circle_plane(p: usize, n2: usize, n3: usize) -> ThickBody {
+    ThickBody {
+        obstacle: circle(),
         method: DiscretisationMethod::FemQp,
         order: p,
         ..ThickBody::paper(n2, n3).unwrap()
-    };
-    let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
-    let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();
+    }
+}
+
+/// Ratio 2.5, boundary-only solver: `(slip fraction, limiting ratio, max |v2| on the contact
+/// face)`.
+fn circle_contact(element: HexElement, nodes: [usize; 3]) -> (f64, f64, f64) {
+    let model = circle_body(element, nodes)
+        .model(RegularisedCoulomb, coulomb(), 1e-5)
+        .unwrap();
     let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
-    solver.sliding().expect("a sliding mode").upper_ratio
+    let limiting = solver.sliding().expect("a sliding mode").upper_ratio;
+    let sol = solver.solve(EndLoads::ratio(2.5)).unwrap();
+    let v2 = sol.contact.v2.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    (sol.slip_fraction, limiting, v2)
 }
 
 #[test]
@@ -143,6 +144,40 @@ fn qp_contact_agrees_with_a_fine_q2_contact() {
     );
     assert!((v2 - qv2).abs() < 0.03 * v2, "v2 {v2} {qv2}");
     // the extrusion's limiting ratio is the 2-D fem-qp3 one (same GLL nodes in x2, x3)
-    let plane = plane_limiting_ratio(3, 19, 4);
-    assert!((plane - qlimit).abs() < 1e-10 * plane, "{plane} {qlimit}");
+    let plane = circle_plane(3, 19, 4)
+        .model(RegularisedCoulomb, coulomb(), 1e-5)
+        .unwrap();
+    let plane = BoundarySolver::new(&plane, ContactSettings::default()).unwrap();
+    let plane_limit = plane.sliding().expect("a sliding mode").upper_ratio;
+    assert!(
+        (plane_limit - qlimit).abs() < 1e-10 * plane_limit,
+        "{plane_limit} {qlimit}"
+    );
+}
+
+#[test]
+fn qp4_extrusion_contact_is_the_two_dimensional_fem_qp4_contact() {
+    // every x1 row of the contact face carries the 2-D profile (measured 1e-13 relative)
+    let (n2, n3) = (9, 5);
+    let solid = circle_body(HexElement::Gll(4), [5, n2, n3])
+        .model(RegularisedCoulomb, coulomb(), 1e-5)
+        .unwrap();
+    let plane = circle_plane(4, n2, n3)
+        .model(RegularisedCoulomb, coulomb(), 1e-5)
+        .unwrap();
+    let s3 = BoundarySolver::new(&solid, ContactSettings::default()).unwrap();
+    let s2 = BoundarySolver::new(&plane, ContactSettings::default()).unwrap();
+    for ratio in [1.5, 2.0, 2.5] {
+        let a = s3.solve(EndLoads::ratio(ratio)).unwrap();
+        let b = s2.solve(EndLoads::ratio(ratio)).unwrap();
+        let scale = b.contact.v2.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for row in a.contact.v2.chunks(n2) {
+            for (x, y) in row.iter().zip(&b.contact.v2) {
+                assert!((x - y).abs() < 1e-9 * scale, "ratio {ratio}: {x} {y}");
+            }
+        }
+        assert!((a.slip_fraction - b.slip_fraction).abs() < 1e-12);
+        let v1 = &a.contact.solid.as_ref().unwrap().v1;
+        assert!(v1.iter().all(|x| x.abs() < 1e-12 * scale));
+    }
 }
