@@ -1,5 +1,5 @@
-//! Qp hexahedra (GLL nodes) for the 3-D body: manufactured solutions on cones (observed L2
-//! order `p + 1`), `p = 1, 2` against the Q1/Q2 hexahedra, and frictional contact against Q2
+//! Qp hexahedra (GLL nodes) for the 3-D body (the manufactured solutions are in
+//! `tests/solid.rs`): `p = 1, 2` against the Q1/Q2 hexahedra, and frictional contact against Q2
 //! and the 2-D fem-qp.
 
 use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
@@ -8,49 +8,7 @@ use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams}
 use capstan_elasticity::solid::samples::SolidMms;
 use capstan_elasticity::solid::{HexElement, SideFaces, SolidBody};
 use capstan_elasticity::solvers::SparseCholesky;
-use capstan_elasticity::verification::observed_order;
 use capstan_geometry::{EllipticalPrism, Obstacle};
-
-fn table(points: &[(f64, f64)]) -> String {
-    points
-        .iter()
-        .map(|(h, e)| format!("h {h:.4e} error {e:.3e}"))
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-#[test]
-fn manufactured_solutions_converge_at_order_p_plus_one_for_qp_hexahedra() {
-    // (p, elements per direction, bound on the finest relative L2 error)
-    let cases: [(usize, [usize; 3], f64); 4] = [
-        (1, [2, 4, 8], 2.5e-3),
-        (2, [2, 4, 8], 6e-5),
-        (3, [2, 3, 4], 1e-3),
-        (4, [2, 3, 4], 1e-4),
-    ];
-    for mms in [SolidMms::circular_cone(), SolidMms::elliptical_cone()] {
-        for (p, grids, finest) in cases {
-            let points: Vec<(f64, f64)> = grids
-                .iter()
-                .map(|&m| mms.relative_error(m, HexElement::Gll(p)).unwrap())
-                .collect();
-            let order = observed_order(&points);
-            println!("{} Q{p}: order {order:.3}\n{}", mms.name, table(&points));
-            assert!(
-                (order - (p as f64 + 1.0)).abs() < 0.15,
-                "{} Q{p}: order {order:.3}\n{}",
-                mms.name,
-                table(&points)
-            );
-            assert!(
-                points[2].1 < finest,
-                "{} Q{p}\n{}",
-                mms.name,
-                table(&points)
-            );
-        }
-    }
-}
 
 #[test]
 fn qp_of_degree_one_and_two_is_the_q1_q2_operator_to_round_off() {

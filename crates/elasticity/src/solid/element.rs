@@ -6,7 +6,7 @@ use crate::error::ElasticityError;
 use crate::finite_element::high_order::{
     check_order, elements_along, gauss_legendre, gll_rule, lagrange_basis,
 };
-use crate::finite_element::{ElementOrder, lumped_weight};
+use crate::finite_element::{ElementOrder, check_whole_elements, lumped_weight};
 use crate::grid::difference_stencil;
 
 /// Report names of the Qp hexahedra, by degree (`solid-qp1` ... `solid-qp10`).
@@ -137,22 +137,16 @@ impl HexElement {
     ) -> Result<(), ElasticityError> {
         match self {
             Self::Uniform(order) => order.check_nodes(field, n, periodic),
-            Self::Gll(p) => {
-                let intervals = if periodic { n } else { n - 1 };
-                if intervals.is_multiple_of(p) && intervals > 0 {
-                    Ok(())
-                } else {
-                    Err(ElasticityError::InvalidParameter {
-                        field,
-                        value: n as f64,
-                        allowed: if periodic {
-                            "p e nodes (e elements of order p) on a periodic direction with fem-qp"
-                        } else {
-                            "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp"
-                        },
-                    })
-                }
-            }
+            Self::Gll(p) => check_whole_elements(
+                field,
+                n,
+                periodic,
+                p,
+                [
+                    "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp",
+                    "p e nodes (e elements of order p) on a periodic direction with fem-qp",
+                ],
+            ),
         }
     }
 }
