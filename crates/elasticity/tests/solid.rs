@@ -135,65 +135,56 @@ fn reduction_difference(
     Ok((diff / scale, v1 / scale))
 }
 
-#[test]
-fn a_prism_with_plane_strain_faces_reproduces_the_plane_strain_operator() {
-    // the paper's clamped ellipse and the Lamé cylinder (a full wrap, pinned along x1):
-    // the 3-D solution is the 2-D one on every x1 section, v^1 = 0, to round-off
-    let paper = PaperEllipse::default();
-    let lame = LameCylinder::default();
-    for order in [ElementOrder::Q1, ElementOrder::Q2] {
-        for volumetric in [VolumetricIntegration::Full, VolumetricIntegration::Reduced] {
-            let cases = [
-                paper.parts(GridLevel { n2: 21, n3: 5 }).unwrap(),
-                lame.parts_pinned(GridLevel { n2: 16, n3: 5 }, &[0, 4, 8])
-                    .unwrap(),
-            ];
-            for parts in cases {
-                let (diff, v1) = reduction_difference(parts, order.into(), volumetric).unwrap();
-                println!("{order:?} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
-                assert!(
-                    diff < 1e-10 && v1 < 1e-10,
-                    "{order:?} {volumetric:?}: {diff:e} {v1:e}"
-                );
-            }
+/// Asserts that the extrusion of the paper's clamped ellipse (`paper` nodes) and of the Lamé
+/// cylinder (a full wrap, `lame` nodes, pinned at `pins` along `x2`) reproduces the 2-D
+/// solution on every `x1` section, `v^1 = 0`, to round-off, with full and reduced integration.
+#[track_caller]
+fn assert_reduces(element: HexElement, paper: GridLevel, lame: GridLevel, pins: &[usize]) {
+    for volumetric in [VolumetricIntegration::Full, VolumetricIntegration::Reduced] {
+        let cases = [
+            PaperEllipse::default().parts(paper).unwrap(),
+            LameCylinder::default().parts_pinned(lame, pins).unwrap(),
+        ];
+        for parts in cases {
+            let (diff, v1) = reduction_difference(parts, element, volumetric).unwrap();
+            println!("{element:?} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
+            assert!(
+                diff < 1e-10 && v1 < 1e-10,
+                "{element:?} {volumetric:?}: {diff:e} {v1:e}"
+            );
         }
     }
 }
 
 #[test]
+fn a_prism_with_plane_strain_faces_reproduces_the_plane_strain_operator() {
+    for order in [ElementOrder::Q1, ElementOrder::Q2] {
+        assert_reduces(
+            order.into(),
+            GridLevel { n2: 21, n3: 5 },
+            GridLevel { n2: 16, n3: 5 },
+            &[0, 4, 8],
+        );
+    }
+}
+
+#[test]
 fn qp_hexahedra_on_a_prism_with_plane_strain_faces_reproduce_the_two_dimensional_fem_qp() {
-    // GLL nodes in x2, x3 (and x1) at the same true positions in 2-D and 3-D: the extrusion
-    // reproduces the 2-D fem-qp solution on every x1 section to round-off
-    let paper = PaperEllipse::default();
-    let lame = LameCylinder::default();
+    // GLL nodes in x2, x3 (and x1) at the same true positions in 2-D and 3-D (measured:
+    // 1.6e-14 .. 3.4e-13 relative for p = 3, 4)
     for p in [3, 4] {
-        for volumetric in [VolumetricIntegration::Full, VolumetricIntegration::Reduced] {
-            let cases = [
-                paper
-                    .parts(GridLevel {
-                        n2: 4 * p + 1,
-                        n3: p + 1,
-                    })
-                    .unwrap(),
-                lame.parts_pinned(
-                    GridLevel {
-                        n2: 4 * p,
-                        n3: p + 1,
-                    },
-                    &[0, p, 2 * p],
-                )
-                .unwrap(),
-            ];
-            for parts in cases {
-                let (diff, v1) =
-                    reduction_difference(parts, HexElement::Gll(p), volumetric).unwrap();
-                println!("Q{p} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
-                assert!(
-                    diff < 1e-10 && v1 < 1e-10,
-                    "Q{p} {volumetric:?}: {diff:e} {v1:e}"
-                );
-            }
-        }
+        assert_reduces(
+            HexElement::Gll(p),
+            GridLevel {
+                n2: 4 * p + 1,
+                n3: p + 1,
+            },
+            GridLevel {
+                n2: 4 * p,
+                n3: p + 1,
+            },
+            &[0, p, 2 * p],
+        );
     }
 }
 
