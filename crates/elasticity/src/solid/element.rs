@@ -151,6 +151,82 @@ impl HexElement {
     }
 }
 
+/// A tensor Gauss rule on elements of lengths `[L1, L2, L3]` with the basis at its points.
+///
+/// # Math
+/// ```text
+/// int_element f dx = sum_q w_q1 w_q2 w_q3 det f(x_q),   det = L1 L2 L3 / 8
+/// ```
+/// point `q = (q1 nq + q2) nq + q3`.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct ElementRule {
+    /// The 1-D abscissae on `[-1, 1]`.
+    pub(super) points: Vec<f64>,
+    weights: Vec<f64>,
+    det: f64,
+    /// Nodes per element.
+    pub(super) nen: usize,
+    shape: Vec<[f64; 4]>,
+}
+
+impl ElementRule {
+    /// The rule `(points, weights)` (1-D) on the elements of `element` with `lengths`.
+    pub(super) fn new(
+        element: HexElement,
+        (points, weights): (Vec<f64>, Vec<f64>),
+        lengths: [f64; 3],
+    ) -> Self {
+        let shape = shape_table(element, &points, lengths);
+        Self {
+            points,
+            weights,
+            det: lengths.iter().product::<f64>() / 8.0,
+            nen: element.nodes_per_element(),
+            shape,
+        }
+    }
+
+    /// The weight `w_q1 w_q2 w_q3 det` of point `q`.
+    pub(super) fn weight(&self, q: usize) -> f64 {
+        let n = self.points.len();
+        let w = &self.weights;
+        w[q / (n * n)] * w[(q / n) % n] * w[q % n] * self.det
+    }
+
+    /// `[N_a, d_1 N_a, d_2 N_a, d_3 N_a]` of every node `a` at point `q`.
+    pub(super) fn shape_at(&self, q: usize) -> &[[f64; 4]] {
+        &self.shape[q * self.nen..(q + 1) * self.nen]
+    }
+}
+
+/// `[N_a, d_1 N_a, d_2 N_a, d_3 N_a]` of the tensor element at the tensor points `gp^3`
+/// (index `q nen + a`, `q = (q1 np + q2) np + q3`, `a = (a1 np + a2) np + a3`), for element
+/// lengths `lengths`.
+fn shape_table(element: HexElement, gp: &[f64], lengths: [f64; 3]) -> Vec<[f64; 4]> {
+    let np = element.nodes_per_direction();
+    let one: Vec<(Vec<f64>, Vec<f64>)> = gp.iter().map(|&x| element.shape_1d(x)).collect();
+    let mut out = Vec::with_capacity(gp.len().pow(3) * np.pow(3));
+    for (n1, d1) in &one {
+        for (n2, d2) in &one {
+            for (n3, d3) in &one {
+                for a1 in 0..np {
+                    for a2 in 0..np {
+                        for a3 in 0..np {
+                            out.push([
+                                n1[a1] * n2[a2] * n3[a3],
+                                d1[a1] * n2[a2] * n3[a3] * 2.0 / lengths[0],
+                                n1[a1] * d2[a2] * n3[a3] * 2.0 / lengths[1],
+                                n1[a1] * n2[a2] * d3[a3] * 2.0 / lengths[2],
+                            ]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 /// The per-line tables of an element: where the node lines of a grid direction carry
 /// weight and how nodal derivatives are recovered.
 ///

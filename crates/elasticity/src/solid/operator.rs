@@ -7,7 +7,7 @@ use capstan_solvers::LinearSolver;
 use rayon::prelude::*;
 
 use super::boundary::{Face, FaceComponent, SolidBoundary};
-use super::element::{HexElement, LineTables};
+use super::element::{ElementRule, HexElement, LineTables};
 use super::grid::BoxGrid;
 use crate::continuum::{SOLID, divergence_coefficients, energy_matrix};
 use crate::discretisation::LinearSystem;
@@ -78,34 +78,6 @@ impl<G> core::fmt::Debug for SolidNavier<G> {
             .field("material", &self.material)
             .finish_non_exhaustive()
     }
-}
-
-/// `[N_a, d_1 N_a, d_2 N_a, d_3 N_a]` of the tensor element at the tensor points `gp^3`
-/// (index `q nen + a`, `q = (q1 np + q2) np + q3`, `a = (a1 np + a2) np + a3`), for element
-/// lengths `lengths`.
-fn shape_table(element: HexElement, gp: &[f64], lengths: [f64; 3]) -> Vec<[f64; 4]> {
-    let np = element.nodes_per_direction();
-    let one: Vec<(Vec<f64>, Vec<f64>)> = gp.iter().map(|&x| element.shape_1d(x)).collect();
-    let mut out = Vec::with_capacity(gp.len().pow(3) * np.pow(3));
-    for (n1, d1) in &one {
-        for (n2, d2) in &one {
-            for (n3, d3) in &one {
-                for a1 in 0..np {
-                    for a2 in 0..np {
-                        for a3 in 0..np {
-                            out.push([
-                                n1[a1] * n2[a2] * n3[a3],
-                                d1[a1] * n2[a2] * n3[a3] * 2.0 / lengths[0],
-                                n1[a1] * d2[a2] * n3[a3] * 2.0 / lengths[1],
-                                n1[a1] * n2[a2] * d3[a3] * 2.0 / lengths[2],
-                            ]);
-                        }
-                    }
-                }
-            }
-        }
-    }
-    out
 }
 
 /// Adds `scale B^T K B` to the element matrix `out` (`l x l`, `l = 3 nen`) for the shape
@@ -327,40 +299,31 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// Every element matrix (row-major, `l x l` each, symmetric), in parallel.
     fn element_data(&self) -> Result<Vec<f64>, ElasticityError> {
         let element = self.element();
-        let (gp, gw) = element.gauss_1d();
         let len = self.element_size();
-        let det = len.iter().product::<f64>() / 8.0;
-        let shape = shape_table(element, &gp, len);
-        let np = element.nodes_per_direction();
-        let nen = np.pow(3);
+        let full = ElementRule::new(element, element.gauss_1d(), len);
+        let nen = full.nen;
         let l = COMPONENTS * nen;
-        let reduced = (self.volumetric == VolumetricIntegration::Reduced).then(|| {
-            let (rp, rw) = element.reduced_1d();
-            (shape_table(element, &rp, len), rp, rw)
-        });
+        let reduced = (self.volumetric == VolumetricIntegration::Reduced)
+            .then(|| ElementRule::new(element, element.reduced_1d(), len));
         let ne = self.assembly.element_count();
         let mut data = vec![0.0; ne * l * l];
         let (lambda, mu) = (self.material.lambda(), self.material.mu());
         let full_lambda = if reduced.is_some() { 0.0 } else { lambda };
         data.par_chunks_mut(l * l).enumerate().try_for_each(
             |(e, out)| -> Result<(), ElasticityError> {
-                let points = self.element_points(e, &gp)?;
-                let nq = gp.len();
+                let points = self.element_points(e, &full.points)?;
                 for (q, (p, _)) in points.iter().enumerate() {
-                    let w = gw[q / (nq * nq)] * gw[(q / nq) % nq] * gw[q % nq] * det;
-                    let kq = energy_matrix(p, &SOLID, full_lambda, mu, w);
-                    add_point(out, &kq, &shape[q * nen..(q + 1) * nen]);
+                    let kq = energy_matrix(p, &SOLID, full_lambda, mu, full.weight(q));
+                    add_point(out, &kq, full.shape_at(q));
                 }
-                if let Some((rshape, rp, rw)) = &reduced {
+                if let Some(rule) = &reduced {
                     // lambda (div v)(div w) sqrt(g): a rank-one update per reduced point
-                    let points = self.element_points(e, rp)?;
-                    let nr = rp.len();
+                    let points = self.element_points(e, &rule.points)?;
                     let mut d = vec![0.0; l];
                     for (r, (p, _)) in points.iter().enumerate() {
-                        let w = rw[r / (nr * nr)] * rw[(r / nr) % nr] * rw[r % nr] * det;
-                        let c = lambda * p.sqrt_g * w;
+                        let c = lambda * p.sqrt_g * rule.weight(r);
                         let t = divergence_coefficients(p, &SOLID);
-                        for (a, f) in rshape[r * nen..(r + 1) * nen].iter().enumerate() {
+                        for (a, f) in rule.shape_at(r).iter().enumerate() {
                             for comp in 0..COMPONENTS {
                                 d[COMPONENTS * a + comp] = t[comp] * f[0]
                                     + t[3 + comp] * f[1]
@@ -395,17 +358,13 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             return Ok(load);
         };
         let element = self.element();
-        let (gp, gw) = element.gauss_1d();
-        let len = self.element_size();
-        let det = len.iter().product::<f64>() / 8.0;
-        let shape = shape_table(element, &gp, len);
-        let nen = element.nodes_per_element();
-        let nq = gp.len();
+        let rule = ElementRule::new(element, element.gauss_1d(), self.element_size());
+        let nen = rule.nen;
         let local: Vec<Vec<f64>> = (0..self.assembly.element_count())
             .into_par_iter()
             .map(|e| -> Result<Vec<f64>, ElasticityError> {
                 let mut out = vec![0.0; COMPONENTS * nen];
-                for (q, (p, x)) in self.element_points(e, &gp)?.iter().enumerate() {
+                for (q, (p, x)) in self.element_points(e, &rule.points)?.iter().enumerate() {
                     let f = force(*x);
                     if f.iter().any(|v| !v.is_finite()) {
                         return Err(ElasticityError::NonFinite {
@@ -413,8 +372,8 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                             at: [x[1], x[2]],
                         });
                     }
-                    let w = gw[q / (nq * nq)] * gw[(q / nq) % nq] * gw[q % nq] * det * p.sqrt_g;
-                    for (a, s) in shape[q * nen..(q + 1) * nen].iter().enumerate() {
+                    let w = rule.weight(q) * p.sqrt_g;
+                    for (a, s) in rule.shape_at(q).iter().enumerate() {
                         for c in 0..COMPONENTS {
                             out[COMPONENTS * a + c] += s[0] * w * f[c];
                         }
@@ -533,20 +492,19 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     ) -> Result<(f64, f64), ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let element = self.element();
-        let (gp, gw) = gauss_legendre(element.nodes_per_direction() + 1);
-        let len = self.element_size();
-        let det = len.iter().product::<f64>() / 8.0;
-        let shape = shape_table(element, &gp, len);
-        let nen = element.nodes_per_element();
-        let nq = gp.len();
+        let rule = ElementRule::new(
+            element,
+            gauss_legendre(element.nodes_per_direction() + 1),
+            self.element_size(),
+        );
         let sums = (0..self.assembly.element_count())
             .into_par_iter()
             .map(|e| -> Result<[f64; 2], ElasticityError> {
                 let nodes = self.assembly.nodes(e);
                 let mut s = [0.0; 2];
-                for (q, (p, x)) in self.element_points(e, &gp)?.iter().enumerate() {
+                for (q, (p, x)) in self.element_points(e, &rule.points)?.iter().enumerate() {
                     let mut uh = [0.0; 3];
-                    for (a, f) in shape[q * nen..(q + 1) * nen].iter().enumerate() {
+                    for (a, f) in rule.shape_at(q).iter().enumerate() {
                         for (c, u) in uh.iter_mut().enumerate() {
                             *u += f[0] * v[COMPONENTS * nodes[a] + c];
                         }
@@ -557,7 +515,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                             .map(|i| (0..3).map(|j| p.metric[i][j] * e[i] * e[j]).sum::<f64>())
                             .sum()
                     };
-                    let w = gw[q / (nq * nq)] * gw[(q / nq) % nq] * gw[q % nq] * det * p.sqrt_g;
+                    let w = rule.weight(q) * p.sqrt_g;
                     s[0] += w * norm2([uh[0] - u[0], uh[1] - u[1], uh[2] - u[2]]);
                     s[1] += w * norm2(u);
                 }
