@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::boundary::{Face, FaceComponent, SolidBoundary};
 use super::element::{ElementRule, HexElement, LineTables};
 use super::grid::BoxGrid;
-use crate::continuum::{SOLID, divergence_coefficients, energy_matrix};
+use crate::continuum::{FaceData, SOLID, divergence_coefficients, energy_matrix, face_flux};
 use crate::discretisation::LinearSystem;
 use crate::error::ElasticityError;
 use crate::finite_element::ElementAssembly;
@@ -442,19 +442,12 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                             let p = self.chart.shell_point(x)?;
                             let weight = gw[qb] * gw[qc] * 0.25 * len[b] * len[c];
                             for (comp, fc) in cond.0.iter().enumerate() {
-                                let flux = match fc {
+                                let data = match fc {
                                     FaceComponent::Displacement(_) => continue,
-                                    FaceComponent::Traction(f) => {
-                                        p.sqrt_g * p.inverse_metric[a][a].sqrt() * f.eval(x)
-                                    }
-                                    FaceComponent::Stress(f) => face.sign() * p.sqrt_g * f.eval(x),
+                                    FaceComponent::Traction(f) => FaceData::Traction(f.eval(x)),
+                                    FaceComponent::Stress(f) => FaceData::Stress(f.eval(x)),
                                 };
-                                if !flux.is_finite() {
-                                    return Err(ElasticityError::NonFinite {
-                                        what: "boundary traction",
-                                        at: [x[b], x[c]],
-                                    });
-                                }
+                                let flux = face_flux(&p, a, face.sign(), data, [x[b], x[c]])?;
                                 for (ab, nb) in sb.iter().enumerate() {
                                     for (ac, nc) in sc.iter().enumerate() {
                                         let mut node = origin;
