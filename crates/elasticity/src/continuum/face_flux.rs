@@ -35,12 +35,11 @@ pub fn face_flux(
         FaceData::Traction(t) => p.sqrt_g * p.inverse_metric[a][a].sqrt() * t,
         FaceData::Stress(s) => sign * p.sqrt_g * s,
     };
-    if flux.is_finite() {
-        Ok(flux)
-    } else {
-        Err(ElasticityError::NonFinite {
+    if !flux.is_finite() {
+        return Err(ElasticityError::NonFinite {
             what: "boundary traction",
             at,
-        })
+        });
     }
+    Ok(flux)
 }

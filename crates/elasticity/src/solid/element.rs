@@ -124,30 +124,34 @@ impl HexElement {
         gauss_legendre(self.degree())
     }
 
-    /// Checks that an `n`-node grid direction is a whole number of elements.
+    /// Checks that the grid of `n = [n1, n2, n3]` nodes (`x2` periodic when `periodic_x2`)
+    /// is a whole number of elements in every direction.
     ///
     /// # Errors
-    /// [`ElasticityError::InvalidParameter`] naming `field` if `n - 1` (bounded) or `n`
-    /// (periodic) is not a multiple of `p`.
-    pub fn check_nodes(
-        self,
-        field: &'static str,
-        n: usize,
-        periodic: bool,
-    ) -> Result<(), ElasticityError> {
-        match self {
-            Self::Uniform(order) => order.check_nodes(field, n, periodic),
-            Self::Gll(p) => check_whole_elements(
-                field,
-                n,
-                periodic,
-                p,
-                [
-                    "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp",
-                    "p e nodes (e elements of order p) on a periodic direction with fem-qp",
-                ],
-            ),
+    /// [`ElasticityError::InvalidParameter`] naming `grid.n1`, `grid.n2` or `grid.n3` if
+    /// `n - 1` (bounded) or `n` (periodic) is not a positive multiple of `p` (Q2: odd node
+    /// counts, even `n2` when periodic).
+    pub fn check_grid(self, n: [usize; 3], periodic_x2: bool) -> Result<(), ElasticityError> {
+        for (field, n, periodic) in [
+            ("grid.n1", n[0], false),
+            ("grid.n2", n[1], periodic_x2),
+            ("grid.n3", n[2], false),
+        ] {
+            match self {
+                Self::Uniform(order) => order.check_nodes(field, n, periodic)?,
+                Self::Gll(p) => check_whole_elements(
+                    field,
+                    n,
+                    periodic,
+                    p,
+                    [
+                        "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp",
+                        "p e nodes (e elements of order p) on a periodic direction with fem-qp",
+                    ],
+                )?,
+            }
         }
+        Ok(())
     }
 }
 
@@ -377,9 +381,9 @@ mod tests {
 
     #[test]
     fn node_counts_name_the_key() {
-        assert!(HexElement::Gll(3).check_nodes("grid.n1", 10, false).is_ok());
-        assert!(HexElement::Gll(3).check_nodes("grid.n1", 9, true).is_ok());
-        match HexElement::Gll(3).check_nodes("grid.n3", 9, false) {
+        assert!(HexElement::Gll(3).check_grid([10, 9, 4], true).is_ok());
+        assert!(HexElement::Gll(3).check_grid([10, 10, 4], false).is_ok());
+        match HexElement::Gll(3).check_grid([10, 10, 9], false) {
             Err(ElasticityError::InvalidParameter { field, .. }) => assert_eq!(field, "grid.n3"),
             other => panic!("{other:?}"),
         }

@@ -95,13 +95,7 @@ impl BoxGrid {
     /// multiple of `p`.
     pub fn with_gll_lines(self, p: usize) -> Result<Self, ElasticityError> {
         let element = super::element::HexElement::gll(p)?;
-        for (field, n, periodic) in [
-            ("grid.n1", self.n[0], false),
-            ("grid.n2", self.n[1], self.periodic),
-            ("grid.n3", self.n[2], false),
-        ] {
-            element.check_nodes(field, n, periodic)?;
-        }
+        element.check_grid(self.n, self.periodic)?;
         let mut offsets = [0.0; 11];
         for (o, xi) in offsets.iter_mut().zip(element.reference_nodes()) {
             *o = 0.5 * (1.0 + xi);

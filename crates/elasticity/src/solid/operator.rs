@@ -145,9 +145,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                 what: "a pinned node is outside the grid",
             });
         }
-        element.check_nodes("grid.n1", n1, false)?;
-        element.check_nodes("grid.n2", n2, grid.is_periodic())?;
-        element.check_nodes("grid.n3", n3, false)?;
+        element.check_grid([n1, n2, n3], grid.is_periodic())?;
         // the nodes at their true positions: GLL lines inside the Qp elements
         let grid = match element {
             HexElement::Gll(p) => grid.with_gll_lines(p)?,
