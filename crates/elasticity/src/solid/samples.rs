@@ -212,11 +212,11 @@ impl SolidMms {
                 .expect("a valid profile");
         Self {
             obstacle: Obstacle::Prism(GeneralPrism::new(profile)),
-            material: Material::new(10.0, 0.3).expect("a valid material"),
             x1: [0.0, 0.5],
             x2: [-0.5, 0.5],
             thickness: 0.3,
             name: "expression prism",
+            ..Self::elliptical_cone()
         }
     }
 
