@@ -139,7 +139,7 @@ struct Threshold {
 fn threshold(h: f64, nu: f64, nodes: [usize; 3]) -> Result<Threshold, ContactError> {
     let body = SolidBody {
         material: Material::new(1e3, nu).expect("a valid material"),
-        order: ElementOrder::Q2,
+        order: ElementOrder::Q2.into(),
         ..belt(h, WIDTH, nodes)
     };
     let params = RegularisedCoulombParams::new(MU, EPS).expect("valid");

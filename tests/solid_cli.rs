@@ -324,3 +324,54 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
         "{stderr}"
     );
 }
+
+#[test]
+fn fem_qp_solves_a_three_dimensional_body_and_refuses_bad_node_counts() {
+    // 1 x 4 x 1 elements of degree 3 on the finite-width ellipse
+    let qp: [&str; 12] = [
+        "--set",
+        "body.dimension=3",
+        "--set",
+        "discretisation.method=fem-qp",
+        "--set",
+        "discretisation.order=3",
+        "--set",
+        "grid.n1=4",
+        "--set",
+        "grid.n2=13",
+        "--set",
+        "grid.n3=4",
+    ];
+    let r = capstan_json(&[&["contact"], &ELLIPSE[..], &qp[..]].concat());
+    assert_eq!(r["discretisation"], "solid-qp3");
+    assert_eq!(r["solid"]["grid"], serde_json::json!([4, 13, 4]));
+    let v2 = values(&r["contact"]["v2"]);
+    assert_eq!(v2.len(), 4 * 13);
+    assert!(v2.iter().all(|x| x.is_finite()) && v2.iter().any(|x| *x != 0.0));
+    for (key, value) in [
+        ("grid.n1", "grid.n1=5"),
+        ("grid.n2", "grid.n2=12"),
+        ("grid.n3", "grid.n3=5"),
+    ] {
+        let (code, _, stderr) =
+            capstan_status(&[&["contact"], &ELLIPSE[..], &qp[..], &["--set", value]].concat());
+        assert_eq!(code, Some(2), "{value}: {stderr}");
+        assert!(stderr.contains(key), "{value}: {stderr}");
+    }
+    let (code, _, stderr) = capstan_status(
+        &[
+            &["contact"],
+            &ELLIPSE[..],
+            &qp[..],
+            &[
+                "--set",
+                "solver.nonlinear=full-newton",
+                "--set",
+                "solver.linear=multigrid",
+            ],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("solver.linear"), "{stderr}");
+}

@@ -1,6 +1,6 @@
 //! `capstan contact` and `capstan threshold` for a 3-D body (`body.dimension = 3`): the body
 //! on the box `[x1 - width/2, x1 + width/2] x [theta0, theta_max] x [0, h]` of any obstacle
-//! (prisms and cones), Q1/Q2 hexahedra, under the scene's friction law acting on the
+//! (prisms and cones), Q1/Q2/Qp hexahedra, under the scene's friction law acting on the
 //! two-component slip in the tangent plane.
 
 use std::time::Instant;
@@ -9,7 +9,7 @@ use capstan_elasticity::Material;
 use capstan_elasticity::contact::{ContactModel, ContactSolution, FullSystemSolver};
 use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::AnyFrictionLaw;
-use capstan_elasticity::solid::{SolidBody, SolidFields, SolidNavier};
+use capstan_elasticity::solid::{HexElement, SolidBody, SolidFields, SolidNavier};
 use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::commands::contact::{ContactReport, SceneSolver, condensed, loads, scene_law};
@@ -44,18 +44,13 @@ pub fn solid_body(scene: &Scene) -> Result<SolidBody<Obstacle>, CliError> {
         });
     }
     let order = match scene.discretisation.method {
-        DiscretisationMethod::FemQ1 => ElementOrder::Q1,
-        DiscretisationMethod::FemQ2 => ElementOrder::Q2,
-        DiscretisationMethod::FemQp => {
-            return Err(CliError::Scene {
-                origin: "discretisation.method".into(),
-                message: "\"fem-qp\" is plane strain only: use \"fem-q1\" or \"fem-q2\" with body.dimension = 3".into(),
-            });
-        }
+        DiscretisationMethod::FemQ1 => HexElement::Uniform(ElementOrder::Q1),
+        DiscretisationMethod::FemQ2 => HexElement::Uniform(ElementOrder::Q2),
+        DiscretisationMethod::FemQp => HexElement::gll(scene.discretisation.order)?,
         DiscretisationMethod::Fd => {
             return Err(CliError::Scene {
                 origin: "discretisation.method".into(),
-                message: "\"fd\" is plane strain only: use \"fem-q1\" or \"fem-q2\" with body.dimension = 3".into(),
+                message: "\"fd\" is plane strain only: use \"fem-q1\", \"fem-q2\" or \"fem-qp\" with body.dimension = 3".into(),
             });
         }
     };

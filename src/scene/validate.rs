@@ -195,11 +195,11 @@ impl Scene {
                 "4 (the default) unless discretisation.method = \"fem-qp\": only fem-qp has an order",
             ));
         }
-        if qp && b.dimension == 3 {
+        if qp && b.dimension == 3 && order > 2 && self.solver.linear == "multigrid" {
             return Err(bad(
-                "discretisation.method",
-                "\"fem-qp\"".into(),
-                "{\"fem-q1\", \"fem-q2\"} with body.dimension = 3 (fem-qp is plane strain only)",
+                "solver.linear",
+                "\"multigrid\"".into(),
+                "`lu` with fem-qp of order 3 and more in 3-D (the box multigrid's trilinear prolongations assume uniformly spaced nodes, not the GLL nodes)",
             ));
         }
         if qp {
@@ -217,7 +217,7 @@ impl Scene {
             return Err(bad(
                 "discretisation.method",
                 "\"fd\"".into(),
-                "{\"fem-q1\", \"fem-q2\"} with body.dimension = 3 (finite differences are plane strain only)",
+                "{\"fem-q1\", \"fem-q2\", \"fem-qp\"} with body.dimension = 3 (finite differences are plane strain only)",
             ));
         }
         self.validate_grid(at)?;
@@ -310,7 +310,8 @@ impl Scene {
         Ok(())
     }
 
-    /// `grid.n1` of a 3-D body (`[2, 10^5]`, odd for `fem-q2`) and its memory estimate
+    /// `grid.n1` of a 3-D body (`[2, 10^5]`, odd for `fem-q2`, `p e + 1` for `fem-qp`) and its
+    /// memory estimate
     /// ([`solid_memory_estimate`]) against the memory available.
     fn validate_solid_grid(&self, at: &Origins) -> Result<(), CliError> {
         let g = &self.grid;
@@ -326,6 +327,18 @@ impl Scene {
                     } else {
                         "[2, 10^5]"
                     }
+                ),
+            });
+        }
+        let order = self.discretisation.order;
+        if self.discretisation.method == DiscretisationMethod::FemQp
+            && !(g.n1 - 1).is_multiple_of(order)
+        {
+            return Err(CliError::Scene {
+                origin: at.locate("grid.n1"),
+                message: format!(
+                    "`grid.n1` = {} is outside p e + 1 nodes (e elements of order p = discretisation.order = {order}) with fem-qp",
+                    g.n1
                 ),
             });
         }

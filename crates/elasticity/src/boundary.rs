@@ -86,14 +86,19 @@ impl Component {
     }
 }
 
+/// A scalar function of a boundary point `X`: of the boundary coordinate (`X = f64`,
+/// [`BoundaryFunction`]) in plane strain, of the point `(x1, x2, x3)` on a face of a 3-D body
+/// (`X = [f64; 3]`, [`crate::solid::FaceFunction`]).
+#[derive(Clone)]
+pub struct PointFunction<X>(Arc<dyn Fn(X) -> f64 + Send + Sync>);
+
 /// A scalar function of the boundary coordinate (`x3` on the `x2` sides, `x2` on the `x3`
 /// sides).
-#[derive(Clone)]
-pub struct BoundaryFunction(Arc<dyn Fn(f64) -> f64 + Send + Sync>);
+pub type BoundaryFunction = PointFunction<f64>;
 
-impl BoundaryFunction {
+impl<X: 'static> PointFunction<X> {
     /// Wraps a closure.
-    pub fn new(f: impl Fn(f64) -> f64 + Send + Sync + 'static) -> Self {
+    pub fn new(f: impl Fn(X) -> f64 + Send + Sync + 'static) -> Self {
         Self(Arc::new(f))
     }
     /// The constant `c`.
@@ -104,15 +109,15 @@ impl BoundaryFunction {
     pub fn zero() -> Self {
         Self::constant(0.0)
     }
-    /// Evaluates at the boundary coordinate `s`.
-    pub fn eval(&self, s: f64) -> f64 {
-        (self.0)(s)
+    /// Evaluates at the boundary point `x`.
+    pub fn eval(&self, x: X) -> f64 {
+        (self.0)(x)
     }
 }
 
-impl fmt::Debug for BoundaryFunction {
+impl<X> fmt::Debug for PointFunction<X> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("BoundaryFunction(..)")
+        f.write_str("PointFunction(..)")
     }
 }
 

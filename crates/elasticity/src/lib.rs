@@ -76,8 +76,8 @@ mod studies;
 pub mod verification;
 
 pub use boundary::{
-    BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
-    SideCondition, X2Ends,
+    BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, PointFunction,
+    Side, SideCondition, X2Ends,
 };
 pub use continuum::kinematics;
 pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, interpolate_nodal};

@@ -1,17 +1,18 @@
-//! The 3-D body: manufactured solutions on cones and a prism (observed L2 orders), and the
-//! reduction to the plane-strain operator on prisms.
+//! The 3-D body: manufactured solutions on cones and a prism (observed L2 orders; Q1, Q2 and
+//! the Qp hexahedra), and the reduction to the plane-strain operator on prisms.
 
 use capstan_elasticity::finite_element::{ElementOrder, VolumetricIntegration};
 use capstan_elasticity::samples::{LameCylinder, PaperEllipse};
 use capstan_elasticity::solid::samples::SolidMms;
-use capstan_elasticity::solid::{BoxGrid, FaceCondition, SolidBoundary, SolidNavier};
+use capstan_elasticity::solid::{BoxGrid, FaceCondition, HexElement, SolidBoundary, SolidNavier};
 use capstan_elasticity::solvers::SparseCholesky;
 use capstan_elasticity::verification::{GridLevel, observed_order};
 use capstan_elasticity::{Component, Discretisation, ElasticityError};
 
-fn study(mms: &SolidMms, order: ElementOrder) -> Vec<(f64, f64)> {
-    [2, 4, 8]
-        .map(|m| mms.relative_error(m, order).unwrap())
+/// `(h, relative L2 error)` on `m` elements per direction for each `m` of `grids`.
+fn study(mms: &SolidMms, element: HexElement, grids: [usize; 3]) -> Vec<(f64, f64)> {
+    grids
+        .map(|m| mms.relative_error(m, element).unwrap())
         .to_vec()
 }
 
@@ -36,20 +37,52 @@ fn manufactured_solutions_converge_at_order_two_for_q1_and_three_for_q2() {
             (ElementOrder::Q1, 2.0, 2.5e-3),
             (ElementOrder::Q2, 3.0, 6e-5),
         ] {
-            let points = study(&mms, order);
-            let p = observed_order(&points);
-            assert!(
-                (p - expected).abs() < 0.15,
-                "{} {order:?}: order {p:.3}\n{}",
-                mms.name,
-                table(&points)
-            );
-            assert!(
-                points[2].1 < finest,
-                "{} {order:?}\n{}",
-                mms.name,
-                table(&points)
-            );
+            assert_order(&mms, order.into(), [2, 4, 8], expected, finest);
+        }
+    }
+}
+
+/// Asserts the observed L2 order within 0.15 of `expected` and the finest error below
+/// `finest`.
+#[track_caller]
+fn assert_order(
+    mms: &SolidMms,
+    element: HexElement,
+    grids: [usize; 3],
+    expected: f64,
+    finest: f64,
+) {
+    let points = study(mms, element, grids);
+    let p = observed_order(&points);
+    println!("{} {element:?}: order {p:.3}\n{}", mms.name, table(&points));
+    assert!(
+        (p - expected).abs() < 0.15,
+        "{} {element:?}: order {p:.3}\n{}",
+        mms.name,
+        table(&points)
+    );
+    assert!(
+        points[2].1 < finest,
+        "{} {element:?}\n{}",
+        mms.name,
+        table(&points)
+    );
+}
+
+#[test]
+fn manufactured_solutions_converge_at_order_p_plus_one_for_qp_hexahedra() {
+    // measured (dev profile), circular cone: orders 1.933, 3.008, 3.885, 5.042, finest
+    // 1.9e-3, 3.5e-5, 3.4e-6, 1.2e-7; elliptical cone (g_12 != 0): 1.957, 2.997, 3.880,
+    // 5.023, finest 1.9e-3, 3.8e-5, 3.7e-6, 1.3e-7
+    let cases: [(usize, [usize; 3], f64); 4] = [
+        (1, [2, 4, 8], 2.5e-3),
+        (2, [2, 4, 8], 6e-5),
+        (3, [2, 3, 4], 1e-5),
+        (4, [2, 3, 4], 5e-7),
+    ];
+    for mms in [SolidMms::circular_cone(), SolidMms::elliptical_cone()] {
+        for (p, grids, finest) in cases {
+            assert_order(&mms, HexElement::Gll(p), grids, p as f64 + 1.0, finest);
         }
     }
 }
@@ -57,18 +90,22 @@ fn manufactured_solutions_converge_at_order_two_for_q1_and_three_for_q2() {
 /// The 3-D body on a prism with plane-strain `x1` faces against the 2-D operator: max
 /// difference of `(v^2, v^3)` over every node, relative to the largest displacement, and the
 /// largest `|v^1|` (relative likewise).
+/// The 2-D operator is Q1/Q2 for [`HexElement::Uniform`], `fem-qp` for [`HexElement::Gll`].
 fn reduction_difference(
     parts: capstan_elasticity::finite_element::ProblemParts,
-    order: ElementOrder,
+    element: HexElement,
     volumetric: VolumetricIntegration,
 ) -> Result<(f64, f64), ElasticityError> {
     let grid2 = parts.grid;
     let boundary2 = parts.boundary.clone();
     let chart = parts.chart.clone();
     let material = parts.material;
-    let plane = parts.finite_element_with(order, volumetric)?;
+    let plane: Box<dyn Discretisation> = match element {
+        HexElement::Uniform(order) => Box::new(parts.finite_element_with(order, volumetric)?),
+        HexElement::Gll(p) => Box::new(parts.high_order(p, volumetric)?),
+    };
     let v2 = plane.solve(&mut SparseCholesky::default())?;
-    let n1 = order.degree() + 1;
+    let n1 = element.degree() + 1;
     let grid3 = BoxGrid::new(
         [0.0, 0.3],
         grid2.theta(),
@@ -77,7 +114,9 @@ fn reduction_difference(
         grid2.is_periodic(),
     )?;
     let boundary3 = SolidBoundary::extruded(&boundary2, FaceCondition::plane_strain(), n1);
-    let solid = SolidNavier::new(chart, material, grid3, &boundary3, None, order, volumetric)?;
+    let solid = SolidNavier::new(
+        chart, material, grid3, &boundary3, None, element, volumetric,
+    )?;
     let v3 = solid.solve(&mut SparseCholesky::default())?;
     let scale = v2.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     let (mut diff, mut v1) = (0.0f64, 0.0f64);
@@ -96,28 +135,56 @@ fn reduction_difference(
     Ok((diff / scale, v1 / scale))
 }
 
+/// Asserts that the extrusion of the paper's clamped ellipse (`paper` nodes) and of the Lamé
+/// cylinder (a full wrap, `lame` nodes, pinned at `pins` along `x2`) reproduces the 2-D
+/// solution on every `x1` section, `v^1 = 0`, to round-off, with full and reduced integration.
+#[track_caller]
+fn assert_reduces(element: HexElement, paper: GridLevel, lame: GridLevel, pins: &[usize]) {
+    for volumetric in [VolumetricIntegration::Full, VolumetricIntegration::Reduced] {
+        let cases = [
+            PaperEllipse::default().parts(paper).unwrap(),
+            LameCylinder::default().parts_pinned(lame, pins).unwrap(),
+        ];
+        for parts in cases {
+            let (diff, v1) = reduction_difference(parts, element, volumetric).unwrap();
+            println!("{element:?} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
+            assert!(
+                diff < 1e-10 && v1 < 1e-10,
+                "{element:?} {volumetric:?}: {diff:e} {v1:e}"
+            );
+        }
+    }
+}
+
 #[test]
 fn a_prism_with_plane_strain_faces_reproduces_the_plane_strain_operator() {
-    // the paper's clamped ellipse and the Lamé cylinder (a full wrap, pinned along x1):
-    // the 3-D solution is the 2-D one on every x1 section, v^1 = 0, to round-off
-    let paper = PaperEllipse::default();
-    let lame = LameCylinder::default();
     for order in [ElementOrder::Q1, ElementOrder::Q2] {
-        for volumetric in [VolumetricIntegration::Full, VolumetricIntegration::Reduced] {
-            let cases = [
-                paper.parts(GridLevel { n2: 21, n3: 5 }).unwrap(),
-                lame.parts_pinned(GridLevel { n2: 16, n3: 5 }, &[0, 4, 8])
-                    .unwrap(),
-            ];
-            for parts in cases {
-                let (diff, v1) = reduction_difference(parts, order, volumetric).unwrap();
-                println!("{order:?} {volumetric:?}: difference {diff:.2e}, |v^1| {v1:.2e}");
-                assert!(
-                    diff < 1e-10 && v1 < 1e-10,
-                    "{order:?} {volumetric:?}: {diff:e} {v1:e}"
-                );
-            }
-        }
+        assert_reduces(
+            order.into(),
+            GridLevel { n2: 21, n3: 5 },
+            GridLevel { n2: 16, n3: 5 },
+            &[0, 4, 8],
+        );
+    }
+}
+
+#[test]
+fn qp_hexahedra_on_a_prism_with_plane_strain_faces_reproduce_the_two_dimensional_fem_qp() {
+    // GLL nodes in x2, x3 (and x1) at the same true positions in 2-D and 3-D (measured:
+    // 1.6e-14 .. 3.4e-13 relative for p = 3, 4)
+    for p in [3, 4] {
+        assert_reduces(
+            HexElement::Gll(p),
+            GridLevel {
+                n2: 4 * p + 1,
+                n3: p + 1,
+            },
+            GridLevel {
+                n2: 4 * p,
+                n3: p + 1,
+            },
+            &[0, p, 2 * p],
+        );
     }
 }
 

@@ -19,12 +19,15 @@
 //!   the coefficients of the stress in the six inputs (finite differences, recovery);
 //! - [`stiffness`]: the symmetric input-by-input energy matrix `K_q` (the integrand of the
 //!   weak form), its volumetric/shear split and the divergence coefficients, for any layout;
-//! - [`plane_strain`]: the check that a chart admits the plane-strain reduction.
+//! - [`plane_strain`]: the check that a chart admits the plane-strain reduction;
+//! - [`face_flux`](mod@face_flux): the flux of a traction or stress condition through a face.
 
+pub mod face_flux;
 pub mod kinematics;
 pub mod plane_strain;
 pub mod stiffness;
 
+pub use face_flux::{FaceData, face_flux};
 pub use plane_strain::check_plane_strain;
 pub use stiffness::{
     Input, InputLayout, PLANE_STRAIN, SOLID, divergence_coefficients, energy_matrix, mixed_strains,

@@ -115,20 +115,41 @@ impl ElementOrder {
         n: usize,
         periodic: bool,
     ) -> Result<(), ElasticityError> {
-        let k = self.degree();
-        let intervals = if periodic { n } else { n - 1 };
-        if !intervals.is_multiple_of(k) {
-            return Err(ElasticityError::InvalidParameter {
-                field,
-                value: n as f64,
-                allowed: if periodic {
-                    "even node counts for Q2 on a periodic direction"
-                } else {
-                    "odd node counts for Q2"
-                },
-            });
-        }
+        check_whole_elements(
+            field,
+            n,
+            periodic,
+            self.degree(),
+            [
+                "odd node counts for Q2",
+                "even node counts for Q2 on a periodic direction",
+            ],
+        )
+    }
+}
+
+/// Checks that `n` nodes along a direction make whole elements of degree `k`: `n - 1`
+/// (bounded) or `n` (periodic) a positive multiple of `k`.
+///
+/// # Errors
+/// [`ElasticityError::InvalidParameter`] naming `field`, with `allowed[0]` (bounded) or
+/// `allowed[1]` (periodic) as the allowed range.
+pub(crate) fn check_whole_elements(
+    field: &'static str,
+    n: usize,
+    periodic: bool,
+    k: usize,
+    allowed: [&'static str; 2],
+) -> Result<(), ElasticityError> {
+    let intervals = if periodic { n } else { n.saturating_sub(1) };
+    if intervals > 0 && intervals.is_multiple_of(k) {
         Ok(())
+    } else {
+        Err(ElasticityError::InvalidParameter {
+            field,
+            value: n as f64,
+            allowed: allowed[usize::from(periodic)],
+        })
     }
 }
 

@@ -35,8 +35,8 @@ mod problems;
 mod volumetric;
 
 pub use assembly::ElementAssembly;
-pub(crate) use element::lumped_weight;
 pub use element::{ElementOrder, gauss_rule};
+pub(crate) use element::{check_whole_elements, lumped_weight};
 pub use high_order::{HighOrderNavier, gll_rule};
 pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;

@@ -6,6 +6,7 @@ use capstan_friction::FrictionLaw;
 use capstan_geometry::{ShellChart, Surface};
 
 use super::boundary::{FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
+use super::element::HexElement;
 use super::grid::BoxGrid;
 use super::operator::SolidNavier;
 use crate::contact::{ContactError, ContactModel};
@@ -53,8 +54,8 @@ pub struct SolidBody<S> {
     pub material: Material,
     /// Nodes `[n1, n2, n3]`.
     pub nodes: [usize; 3],
-    /// Q1 or Q2 hexahedra.
-    pub order: ElementOrder,
+    /// Q1, Q2 or Qp hexahedra.
+    pub order: HexElement,
     /// Full or selective reduced integration of the volumetric part.
     pub volumetric: VolumetricIntegration,
     /// The side faces.
@@ -76,7 +77,7 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
             thickness: 1.0,
             material: Material::new(1e3, 0.25).expect("the paper's material"),
             nodes,
-            order: ElementOrder::Q1,
+            order: HexElement::Uniform(ElementOrder::Q1),
             volumetric: VolumetricIntegration::Full,
             sides: SideFaces::Free,
         }

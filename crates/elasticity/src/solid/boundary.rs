@@ -1,9 +1,6 @@
 //! Boundary conditions on the faces of the parametric box of a 3-D body.
 
-use std::fmt;
-use std::sync::Arc;
-
-use crate::boundary::{BoundaryConditions, ComponentCondition, Side, X2Ends};
+use crate::boundary::{BoundaryConditions, ComponentCondition, PointFunction, Side, X2Ends};
 
 /// A face of the box: `x_a = min` or `x_a = max` for `a = 1, 2, 3`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
@@ -61,29 +58,7 @@ impl Face {
 }
 
 /// A scalar function on the boundary, of the point `(x1, x2, x3)`.
-#[derive(Clone)]
-pub struct FaceFunction(Arc<dyn Fn([f64; 3]) -> f64 + Send + Sync>);
-
-impl FaceFunction {
-    /// Wraps a closure.
-    pub fn new(f: impl Fn([f64; 3]) -> f64 + Send + Sync + 'static) -> Self {
-        Self(Arc::new(f))
-    }
-    /// The constant `c`.
-    pub fn constant(c: f64) -> Self {
-        Self::new(move |_| c)
-    }
-    /// Evaluates at `x`.
-    pub fn eval(&self, x: [f64; 3]) -> f64 {
-        (self.0)(x)
-    }
-}
-
-impl fmt::Debug for FaceFunction {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str("FaceFunction(..)")
-    }
-}
+pub type FaceFunction = PointFunction<[f64; 3]>;
 
 /// The condition on one displacement component on one face.
 ///

@@ -8,26 +8,30 @@ use crate::contact::{ContactOperator, Extremum, extremum};
 use crate::continuum::{SOLID, mixed_strains};
 use crate::discretisation::{ContactNode, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
-use crate::finite_element::lumped_weight;
-use crate::grid::difference_stencil;
 use crate::shell_geometry::ShellGeometry;
 
 impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// The gradient-recovery stencil at a node: `(node, [value, d_1, d_2, d_3])` weights
-    /// (second-order differences of the nodal values, one-sided at the faces).
-    fn node_stencil(&self, [i1, i2, i3]: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
-        let [n1, n2, n3] = self.grid.counts();
-        let [d1, d2, d3] = self.grid.spacing();
-        let mut out = Vec::with_capacity(10);
-        out.push(([i1, i2, i3], [1.0, 0.0, 0.0, 0.0]));
-        for (i, w) in difference_stencil(i1, n1, d1, false) {
-            out.push(([i, i2, i3], [0.0, w, 0.0, 0.0]));
-        }
-        for (i, w) in difference_stencil(i2, n2, d2, self.grid.is_periodic()) {
-            out.push(([i1, i, i3], [0.0, 0.0, w, 0.0]));
-        }
-        for (i, w) in difference_stencil(i3, n3, d3, false) {
-            out.push(([i1, i2, i], [0.0, 0.0, 0.0, w]));
+    /// (Q1/Q2: second-order differences of the nodal values, one-sided at the faces; Qp: the
+    /// element polynomials' derivatives averaged over the elements sharing the node; see
+    /// [`super::element::LineTables`]).
+    pub(super) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
+        let counts = self.grid.counts();
+        let spacing = self.grid.spacing();
+        let periodic = [false, self.grid.is_periodic(), false];
+        let mut out = Vec::with_capacity(16);
+        out.push((node, [1.0, 0.0, 0.0, 0.0]));
+        for q in 0..3 {
+            for (i, w) in self
+                .lines
+                .derivative(node[q], counts[q], spacing[q], periodic[q])
+            {
+                let mut at = node;
+                at[q] = i;
+                let mut weights = [0.0; 4];
+                weights[1 + q] = w;
+                out.push((at, weights));
+            }
         }
         out
     }
@@ -38,7 +42,8 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// At `x3 = 0` (`g_ab = a_ab`, `g^33 = 1`, unit normal `n = -g^3`):
     /// ```text
     /// T^3_j = sum_k u_k (lambda delta_3j tr M_k + 2 mu M_k[3][j])   (inputs u of the SOLID layout)
-    /// w = sqrt(g) sqrt(g^33) W1(i1) W2(i2)          lumped int N dx1 dx2 (boundary flux weight)
+    /// w = sqrt(g) sqrt(g^33) W1(i1) W2(i2)          int N dx1 dx2 (boundary flux weight; Q1/Q2
+    ///                                                 lumped, Qp the GLL weights: exact)
     /// frame_1 = [sqrt(a_11), 0],  frame_2 = [a_12 / sqrt(a_11), 1 / sqrt(a^22)]
     /// ```
     /// in the frame `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`: `|F v|^2 = a_ab v^a v^b`.
@@ -77,8 +82,8 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         let normal = row(2);
         let weight = p.sqrt_g
             * gi[2][2].sqrt()
-            * lumped_weight(self.order, i1, n1, d1, false)
-            * lumped_weight(self.order, i2, n2, d2, self.grid.is_periodic());
+            * self.lines.weight(i1, n1, d1, false)
+            * self.lines.weight(i2, n2, d2, self.grid.is_periodic());
         let site = i1 * n2 + i2;
         let sqrt_a11 = g[0][0].sqrt();
         let frames = [[sqrt_a11, 0.0], [g[0][1] / sqrt_a11, 1.0 / gi[1][1].sqrt()]];
@@ -107,10 +112,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
 
 impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     fn method(&self) -> &'static str {
-        match self.order.degree() {
-            1 => "solid-q1",
-            _ => "solid-q2",
-        }
+        self.element().method_name()
     }
 
     fn dof_count(&self) -> usize {
@@ -133,16 +135,20 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
                 dofs_per_node: 3 * n3,
                 periodic: false,
             },
-            degree: self.order.degree(),
+            degree: self.element().degree(),
         }
     }
 
     /// The trilinear hierarchy of the box ([`crate::solid::box_hierarchy`]), Dirichlet dofs
-    /// constrained.
+    /// constrained; `None` for Qp elements of degree 3 and more (GLL nodes: the
+    /// trilinear interpolation between uniform grids does not apply).
     fn multigrid_prolongations(
         &self,
         coarsest_unknowns: usize,
     ) -> Option<std::sync::Arc<[capstan_solvers::CsrMatrix]>> {
+        if self.element().degree() > 2 {
+            return None;
+        }
         Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations)
     }
 

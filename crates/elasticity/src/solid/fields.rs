@@ -1,17 +1,18 @@
 //! Nodal fields of a 3-D body: displacement, strain and stress at every node, recovered by
-//! second-order differences of the nodal values (the contact rows' recovery, everywhere).
+//! the contact rows' stencil everywhere (Q1/Q2: second-order differences of the nodal values;
+//! Qp: the element polynomials).
 
 use super::operator::SolidNavier;
 use crate::continuum::{SOLID, mixed_strains};
 use crate::error::ElasticityError;
-use crate::grid::difference_stencil;
 use crate::shell_geometry::ShellGeometry;
 
 /// Displacement, strain and stress at the nodes of a 3-D body (node order of
 /// [`super::BoxGrid::node_index`]).
 ///
 /// # Math
-/// With the twelve inputs `u = [v^c, d_p v^c]` at a node (differences of the nodal values)
+/// With the twelve inputs `u = [v^c, d_p v^c]` at a node (the recovery stencil of the nodal
+/// values, at the node's true position)
 /// and the mixed strains `M_k` of the unit inputs ([`crate::continuum::mixed_strains`]):
 /// ```text
 /// E^i_j = sum_k u_k M_k[i][j],  E_ij = g_im E^m_j
@@ -58,10 +59,6 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
     pub fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let [n1, n2, n3] = self.grid.counts();
-        let d = self.grid.spacing();
-        let periodic = [false, self.grid.is_periodic(), false];
-        let counts = [n1, n2, n3];
         let n = self.grid.node_count();
         let mut out = SolidFields {
             displacement: Vec::with_capacity(n),
@@ -78,13 +75,11 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             // u = [v^c, d_p v^c] (input 3 + 3 p + c)
             let mut u = [0.0; 12];
             u[..3].copy_from_slice(&value);
-            for q in 0..3 {
-                for (i, w) in difference_stencil(node[q], counts[q], d[q], periodic[q]) {
-                    let mut at = node;
-                    at[q] = i;
-                    let k = 3 * self.grid.node_index(at);
+            for (at, w) in self.node_stencil(node) {
+                let k = 3 * self.grid.node_index(at);
+                for q in 0..3 {
                     for c in 0..3 {
-                        u[3 + 3 * q + c] += w * v[k + c];
+                        u[3 + 3 * q + c] += w[1 + q] * v[k + c];
                     }
                 }
             }

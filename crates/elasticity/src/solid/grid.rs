@@ -11,6 +11,12 @@ use crate::error::ElasticityError;
 /// x3_k = k dx3,        dx3 = h/(n3 - 1)
 /// node (i, j, k) has number (i n2 + j) n3 + k
 /// ```
+/// With GLL node lines of degree `p` ([`BoxGrid::with_gll_lines`], the nodes of the Qp
+/// hexahedra) the element boundaries stay every `p`-th line of that uniform grid and the
+/// node lines inside an element sit at the Gauss–Lobatto–Legendre points:
+/// ```text
+/// i = p e + a:   x_i = x_(p e) + (1 + xi_a)/2 p dx,   xi_a the GLL points of [-1, 1]
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct BoxGrid {
     x1: [f64; 2],
@@ -18,6 +24,15 @@ pub struct BoxGrid {
     thickness: f64,
     n: [usize; 3],
     periodic: bool,
+    #[serde(skip)]
+    lines: Option<GllLines>,
+}
+
+/// The GLL node lines of degree `p` inside an element: `offsets[a] = (1 + xi_a)/2`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct GllLines {
+    degree: usize,
+    offsets: [f64; 11],
 }
 
 impl BoxGrid {
@@ -67,7 +82,33 @@ impl BoxGrid {
             thickness,
             n,
             periodic,
+            lines: None,
         })
+    }
+
+    /// The same grid with the node lines of every element of degree `p` at the GLL points
+    /// (see [`BoxGrid`]); `p = 1` is the uniform grid.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `discretisation.order` outside `1..=10`,
+    /// or `grid.n1`, `grid.n2`, `grid.n3` when `n - 1` (periodic `x2`: `n2`) is not a
+    /// multiple of `p`.
+    pub fn with_gll_lines(self, p: usize) -> Result<Self, ElasticityError> {
+        let element = super::element::HexElement::gll(p)?;
+        element.check_grid(self.n, self.periodic)?;
+        let mut offsets = [0.0; 11];
+        for (o, xi) in offsets.iter_mut().zip(element.reference_nodes()) {
+            *o = 0.5 * (1.0 + xi);
+        }
+        Ok(Self {
+            lines: Some(GllLines { degree: p, offsets }),
+            ..self
+        })
+    }
+
+    /// The degree of the GLL node lines (`None`: uniform nodes).
+    pub fn gll_degree(&self) -> Option<usize> {
+        self.lines.map(|l| l.degree)
     }
 
     /// Nodes per direction `[n1, n2, n3]`.
@@ -100,7 +141,8 @@ impl BoxGrid {
         self.thickness
     }
 
-    /// Spacings `[dx1, dx2, dx3]`.
+    /// Spacings `[dx1, dx2, dx3]` of the uniform grid (with GLL node lines: the element
+    /// lengths divided by `p`).
     pub fn spacing(&self) -> [f64; 3] {
         let [n1, n2, n3] = self.n;
         let cells2 = if self.periodic { n2 } else { n2 - 1 };
@@ -111,13 +153,20 @@ impl BoxGrid {
         ]
     }
 
-    /// Coordinates of node `(i, j, k)`.
+    /// Coordinates of node `(i, j, k)` (at the GLL points inside the elements when the grid
+    /// has GLL node lines).
     pub fn coordinates(&self, [i, j, k]: [usize; 3]) -> [f64; 3] {
         let d = self.spacing();
+        let at = |start: f64, i: usize, d: f64| match self.lines {
+            None => start + i as f64 * d,
+            Some(GllLines { degree: p, offsets }) => {
+                start + (i - i % p) as f64 * d + offsets[i % p] * p as f64 * d
+            }
+        };
         [
-            self.x1[0] + i as f64 * d[0],
-            self.x2[0] + j as f64 * d[1],
-            k as f64 * d[2],
+            at(self.x1[0], i, d[0]),
+            at(self.x2[0], j, d[1]),
+            at(0.0, k, d[2]),
         ]
     }
 
@@ -146,6 +195,30 @@ mod tests {
         }
         assert_eq!(g.spacing(), [0.5, 1.5, 0.125]);
         assert_eq!(g.coordinates([2, 3, 4]), [2.0, 4.5, 0.5]);
+    }
+
+    #[test]
+    fn gll_lines_sit_at_the_gll_points_of_each_element() {
+        let g = BoxGrid::new([1.0, 2.0], [0.0, 6.0], 0.5, [4, 6, 7], true)
+            .unwrap()
+            .with_gll_lines(3)
+            .unwrap();
+        let xi = 5f64.sqrt().recip(); // the interior GLL points of degree 3: -+1/sqrt(5)
+        let x = g.coordinates([1, 4, 5]);
+        assert!((x[0] - (1.0 + 0.5 * (1.0 - xi))).abs() < 1e-15);
+        assert!((x[1] - (3.0 + 1.5 * (1.0 - xi))).abs() < 1e-15);
+        assert!((x[2] - (0.25 + 0.125 * (1.0 + xi))).abs() < 1e-15);
+        // element boundaries are those of the uniform grid
+        assert_eq!(g.coordinates([3, 3, 3]), [2.0, 3.0, 0.25]);
+        assert_eq!(g.gll_degree(), Some(3));
+        let bad = BoxGrid::new([1.0, 2.0], [0.0, 6.0], 0.5, [4, 6, 6], false).unwrap();
+        assert!(matches!(
+            bad.with_gll_lines(3),
+            Err(ElasticityError::InvalidParameter {
+                field: "grid.n2",
+                ..
+            })
+        ));
     }
 
     #[test]

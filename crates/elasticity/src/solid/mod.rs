@@ -11,8 +11,9 @@
 //! # Status
 //! - [`BoxGrid`], [`SolidBoundary`] (per face and component: displacement, traction or
 //!   stress as functions of the point; periodic `x2`; pinned dofs; the extrusion of a 2-D
-//!   problem with plane-strain `x1` faces), [`SolidNavier`] (Q1/Q2 hexahedra, full or
-//!   selective reduced integration, symmetric Dirichlet elimination, assembled once).
+//!   problem with plane-strain `x1` faces), [`SolidNavier`] (Q1/Q2 hexahedra and Qp
+//!   hexahedra with GLL nodes, [`HexElement`]; full or selective reduced integration,
+//!   symmetric Dirichlet elimination, assembled once).
 //! - Verified by manufactured solutions on cones (one with `g_12 != 0`) and an expression
 //!   prism ([`samples`]: L2 orders 2 and 3), and against the 2-D plane-strain operator on
 //!   prisms (the extruded problem reproduces it to round-off).
@@ -34,6 +35,7 @@
 mod body;
 mod boundary;
 mod contact;
+mod element;
 mod fields;
 mod grid;
 mod multigrid;
@@ -42,6 +44,7 @@ pub mod samples;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
+pub use element::HexElement;
 pub use fields::SolidFields;
 pub use grid::BoxGrid;
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count};

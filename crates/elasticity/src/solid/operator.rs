@@ -1,4 +1,4 @@
-//! The 3-D curvilinear Navier operator by Q1/Q2 hexahedral finite elements on the box.
+//! The 3-D curvilinear Navier operator by Q1/Q2/Qp hexahedral finite elements on the box.
 
 use std::sync::Arc;
 
@@ -7,12 +7,14 @@ use capstan_solvers::LinearSolver;
 use rayon::prelude::*;
 
 use super::boundary::{Face, FaceComponent, SolidBoundary};
+use super::element::{ElementRule, HexElement, LineTables};
 use super::grid::BoxGrid;
-use crate::continuum::{SOLID, divergence_coefficients, energy_matrix};
+use crate::continuum::{FaceData, SOLID, divergence_coefficients, energy_matrix, face_flux};
 use crate::discretisation::LinearSystem;
 use crate::error::ElasticityError;
 use crate::finite_element::ElementAssembly;
-use crate::finite_element::{ElementOrder, VolumetricIntegration, gauss_rule};
+use crate::finite_element::VolumetricIntegration;
+use crate::finite_element::high_order::gauss_legendre;
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
 
@@ -26,8 +28,8 @@ type PointAt = (ShellPoint<f64>, [f64; 3]);
 const COMPONENTS: usize = 3;
 
 /// The curvilinear Navier operator of a 3-D body on the parametric box
-/// `[x1a, x1b] x [x2a, x2b] x [0, h]` of a shell chart `sigma + x3 N`, by Q1 or Q2 Lagrange
-/// hexahedra, assembled from the chart alone.
+/// `[x1a, x1b] x [x2a, x2b] x [0, h]` of a shell chart `sigma + x3 N`, by Q1, Q2 or Qp
+/// Lagrange hexahedra ([`HexElement`]; Qp with GLL nodes), assembled from the chart alone.
 ///
 /// # Math
 /// ```text
@@ -44,7 +46,7 @@ const COMPONENTS: usize = 3;
 /// traction t_j:   phi_j = sqrt(g) sqrt(g^aa) t_j      (dS = sqrt(g) sqrt(g^aa) dx_b dx_c)
 /// stress T^a_j:   phi_j = s sqrt(g) T^a_j
 /// ```
-/// Quadrature: `(k + 1)^3` Gauss points per element (exact for the constant-coefficient
+/// Quadrature: `(k + 1)^3` Gauss points per element (`k` the degree) (exact for the constant-coefficient
 /// integrand of degree `2k` per direction). With [`VolumetricIntegration::Reduced`] the
 /// volumetric part `lambda (div v)(div w) sqrt(g)` is integrated at `k^3` points (selective
 /// reduced integration), the shear part with the full rule. Dirichlet conditions are imposed
@@ -60,7 +62,7 @@ pub struct SolidNavier<G> {
     pub(super) chart: G,
     pub(super) material: Material,
     pub(super) grid: BoxGrid,
-    pub(super) order: ElementOrder,
+    pub(super) lines: LineTables,
     volumetric: VolumetricIntegration,
     elements: [usize; 3],
     pub(super) dirichlet: Vec<Option<f64>>,
@@ -71,39 +73,11 @@ pub struct SolidNavier<G> {
 impl<G> core::fmt::Debug for SolidNavier<G> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("SolidNavier")
-            .field("order", &self.order)
+            .field("element", &self.lines.element())
             .field("grid", &self.grid)
             .field("material", &self.material)
             .finish_non_exhaustive()
     }
-}
-
-/// `[N_a, d_1 N_a, d_2 N_a, d_3 N_a]` of the tensor element at the tensor points `gp^3`
-/// (index `q nen + a`, `q = (q1 np + q2) np + q3`, `a = (a1 np + a2) np + a3`), for element
-/// lengths `lengths`.
-fn shape_table(order: ElementOrder, gp: &[f64], lengths: [f64; 3]) -> Vec<[f64; 4]> {
-    let np = order.nodes_per_direction();
-    let one: Vec<([f64; 3], [f64; 3])> = gp.iter().map(|&x| order.shape_1d(x)).collect();
-    let mut out = Vec::with_capacity(gp.len().pow(3) * np.pow(3));
-    for (n1, d1) in &one {
-        for (n2, d2) in &one {
-            for (n3, d3) in &one {
-                for a1 in 0..np {
-                    for a2 in 0..np {
-                        for a3 in 0..np {
-                            out.push([
-                                n1[a1] * n2[a2] * n3[a3],
-                                d1[a1] * n2[a2] * n3[a3] * 2.0 / lengths[0],
-                                n1[a1] * d2[a2] * n3[a3] * 2.0 / lengths[1],
-                                n1[a1] * n2[a2] * d3[a3] * 2.0 / lengths[2],
-                            ]);
-                        }
-                    }
-                }
-            }
-        }
-    }
-    out
 }
 
 /// Adds `scale B^T K B` to the element matrix `out` (`l x l`, `l = 3 nen`) for the shape
@@ -141,7 +115,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// # Errors
     /// [`ElasticityError::InvalidParameter`] naming `grid.n1`, `grid.n2` or `grid.n3` if a
     /// direction is not a whole number of elements (Q2: odd node counts, even `n2` when
-    /// periodic); [`ElasticityError::InconsistentBoundary`] if grid and conditions disagree on
+    /// periodic; Qp: `n - 1`, periodic `n2`, multiples of `p`); [`ElasticityError::InconsistentBoundary`] if grid and conditions disagree on
     /// periodicity or a pinned node is outside the grid; [`ElasticityError::Geometry`] at the
     /// first point where the chart is degenerate (e.g. the focal surface inside the body:
     /// `sqrt(g) <= 0`); [`ElasticityError::NonFinite`] for non-finite boundary data or body
@@ -152,9 +126,10 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         grid: BoxGrid,
         boundary: &SolidBoundary,
         body_force: Option<&SolidForce>,
-        order: ElementOrder,
+        element: impl Into<HexElement>,
         volumetric: VolumetricIntegration,
     ) -> Result<Self, ElasticityError> {
+        let element = element.into();
         if grid.is_periodic() != boundary.periodic_x2 {
             return Err(ElasticityError::InconsistentBoundary {
                 what: "the grid and the x2 conditions must both be periodic or both not",
@@ -170,10 +145,13 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                 what: "a pinned node is outside the grid",
             });
         }
-        order.check_nodes("grid.n1", n1, false)?;
-        order.check_nodes("grid.n2", n2, grid.is_periodic())?;
-        order.check_nodes("grid.n3", n3, false)?;
-        let k = order.degree();
+        element.check_grid([n1, n2, n3], grid.is_periodic())?;
+        // the nodes at their true positions: GLL lines inside the Qp elements
+        let grid = match element {
+            HexElement::Gll(p) => grid.with_gll_lines(p)?,
+            HexElement::Uniform(_) => grid,
+        };
+        let k = element.degree();
         let elements = [
             (n1 - 1) / k,
             if grid.is_periodic() {
@@ -184,7 +162,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             (n3 - 1) / k,
         ];
         let dirichlet = dirichlet_values(&grid, boundary)?;
-        let np = order.nodes_per_direction();
+        let np = element.nodes_per_direction();
         let mut connectivity = Vec::with_capacity(elements.iter().product::<usize>() * np.pow(3));
         for e1 in 0..elements[0] {
             for e2 in 0..elements[1] {
@@ -214,7 +192,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             chart,
             material,
             grid,
-            order,
+            lines: LineTables::new(element),
             volumetric,
             elements,
             dirichlet,
@@ -245,9 +223,9 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         &self.grid
     }
 
-    /// The element order.
-    pub fn order(&self) -> ElementOrder {
-        self.order
+    /// The element.
+    pub fn element(&self) -> HexElement {
+        self.lines.element()
     }
 
     /// Number of unknowns, `3 n1 n2 n3`.
@@ -275,14 +253,14 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
 
     /// Element lengths `[L1, L2, L3]` in parameter space.
     fn element_size(&self) -> [f64; 3] {
-        let k = self.order.degree() as f64;
+        let k = self.element().degree() as f64;
         self.grid.spacing().map(|d| k * d)
     }
 
     /// Lower corner `(x1, x2, x3)` of element `e` (numbered `(e1 ne2 + e2) ne3 + e3`).
     fn element_origin(&self, e: usize) -> [f64; 3] {
         let [_, ne2, ne3] = self.elements;
-        let k = self.order.degree();
+        let k = self.element().degree();
         let (e1, e2, e3) = (e / (ne2 * ne3), (e / ne3) % ne2, e % ne3);
         self.grid.coordinates([k * e1, k * e2, k * e3])
     }
@@ -318,40 +296,32 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
 
     /// Every element matrix (row-major, `l x l` each, symmetric), in parallel.
     fn element_data(&self) -> Result<Vec<f64>, ElasticityError> {
-        let (gp, gw) = self.order.gauss_1d();
+        let element = self.element();
         let len = self.element_size();
-        let det = len.iter().product::<f64>() / 8.0;
-        let shape = shape_table(self.order, &gp, len);
-        let np = self.order.nodes_per_direction();
-        let nen = np.pow(3);
+        let full = ElementRule::new(element, element.gauss_1d(), len);
+        let nen = full.nen;
         let l = COMPONENTS * nen;
-        let reduced = (self.volumetric == VolumetricIntegration::Reduced).then(|| {
-            let (rp, rw) = gauss_rule(self.order.degree());
-            (shape_table(self.order, &rp, len), rp, rw)
-        });
+        let reduced = (self.volumetric == VolumetricIntegration::Reduced)
+            .then(|| ElementRule::new(element, element.reduced_1d(), len));
         let ne = self.assembly.element_count();
         let mut data = vec![0.0; ne * l * l];
         let (lambda, mu) = (self.material.lambda(), self.material.mu());
         let full_lambda = if reduced.is_some() { 0.0 } else { lambda };
         data.par_chunks_mut(l * l).enumerate().try_for_each(
             |(e, out)| -> Result<(), ElasticityError> {
-                let points = self.element_points(e, &gp)?;
-                let nq = gp.len();
+                let points = self.element_points(e, &full.points)?;
                 for (q, (p, _)) in points.iter().enumerate() {
-                    let w = gw[q / (nq * nq)] * gw[(q / nq) % nq] * gw[q % nq] * det;
-                    let kq = energy_matrix(p, &SOLID, full_lambda, mu, w);
-                    add_point(out, &kq, &shape[q * nen..(q + 1) * nen]);
+                    let kq = energy_matrix(p, &SOLID, full_lambda, mu, full.weight(q));
+                    add_point(out, &kq, full.shape_at(q));
                 }
-                if let Some((rshape, rp, rw)) = &reduced {
+                if let Some(rule) = &reduced {
                     // lambda (div v)(div w) sqrt(g): a rank-one update per reduced point
-                    let points = self.element_points(e, rp)?;
-                    let nr = rp.len();
+                    let points = self.element_points(e, &rule.points)?;
                     let mut d = vec![0.0; l];
                     for (r, (p, _)) in points.iter().enumerate() {
-                        let w = rw[r / (nr * nr)] * rw[(r / nr) % nr] * rw[r % nr] * det;
-                        let c = lambda * p.sqrt_g * w;
+                        let c = lambda * p.sqrt_g * rule.weight(r);
                         let t = divergence_coefficients(p, &SOLID);
-                        for (a, f) in rshape[r * nen..(r + 1) * nen].iter().enumerate() {
+                        for (a, f) in rule.shape_at(r).iter().enumerate() {
                             for comp in 0..COMPONENTS {
                                 d[COMPONENTS * a + comp] = t[comp] * f[0]
                                     + t[3 + comp] * f[1]
@@ -385,17 +355,14 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         let Some(force) = body_force else {
             return Ok(load);
         };
-        let (gp, gw) = self.order.gauss_1d();
-        let len = self.element_size();
-        let det = len.iter().product::<f64>() / 8.0;
-        let shape = shape_table(self.order, &gp, len);
-        let nen = self.order.nodes_per_direction().pow(3);
-        let nq = gp.len();
+        let element = self.element();
+        let rule = ElementRule::new(element, element.gauss_1d(), self.element_size());
+        let nen = rule.nen;
         let local: Vec<Vec<f64>> = (0..self.assembly.element_count())
             .into_par_iter()
             .map(|e| -> Result<Vec<f64>, ElasticityError> {
                 let mut out = vec![0.0; COMPONENTS * nen];
-                for (q, (p, x)) in self.element_points(e, &gp)?.iter().enumerate() {
+                for (q, (p, x)) in self.element_points(e, &rule.points)?.iter().enumerate() {
                     let f = force(*x);
                     if f.iter().any(|v| !v.is_finite()) {
                         return Err(ElasticityError::NonFinite {
@@ -403,8 +370,8 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                             at: [x[1], x[2]],
                         });
                     }
-                    let w = gw[q / (nq * nq)] * gw[(q / nq) % nq] * gw[q % nq] * det * p.sqrt_g;
-                    for (a, s) in shape[q * nen..(q + 1) * nen].iter().enumerate() {
+                    let w = rule.weight(q) * p.sqrt_g;
+                    for (a, s) in rule.shape_at(q).iter().enumerate() {
                         for c in 0..COMPONENTS {
                             out[COMPONENTS * a + c] += s[0] * w * f[c];
                         }
@@ -430,9 +397,9 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         boundary: &SolidBoundary,
         load: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        let (gp, gw) = self.order.gauss_1d();
-        let k = self.order.degree();
-        let np = self.order.nodes_per_direction();
+        let element = self.element();
+        let (gp, gw) = element.gauss_1d();
+        let k = element.degree();
         let len = self.element_size();
         let [n1, n2, n3] = self.grid.counts();
         let counts = [n1, n2, n3];
@@ -463,9 +430,9 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                     origin[c] = k * ec;
                     let o = self.grid.coordinates(origin);
                     for (qb, &xb) in gp.iter().enumerate() {
-                        let (sb, _) = self.order.shape_1d(xb);
+                        let (sb, _) = element.shape_1d(xb);
                         for (qc, &xc) in gp.iter().enumerate() {
-                            let (sc, _) = self.order.shape_1d(xc);
+                            let (sc, _) = element.shape_1d(xc);
                             let mut x = [0.0; 3];
                             x[a] = xa;
                             x[b] = o[b] + 0.5 * (xb + 1.0) * len[b];
@@ -473,21 +440,14 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                             let p = self.chart.shell_point(x)?;
                             let weight = gw[qb] * gw[qc] * 0.25 * len[b] * len[c];
                             for (comp, fc) in cond.0.iter().enumerate() {
-                                let flux = match fc {
+                                let data = match fc {
                                     FaceComponent::Displacement(_) => continue,
-                                    FaceComponent::Traction(f) => {
-                                        p.sqrt_g * p.inverse_metric[a][a].sqrt() * f.eval(x)
-                                    }
-                                    FaceComponent::Stress(f) => face.sign() * p.sqrt_g * f.eval(x),
+                                    FaceComponent::Traction(f) => FaceData::Traction(f.eval(x)),
+                                    FaceComponent::Stress(f) => FaceData::Stress(f.eval(x)),
                                 };
-                                if !flux.is_finite() {
-                                    return Err(ElasticityError::NonFinite {
-                                        what: "boundary traction",
-                                        at: [x[b], x[c]],
-                                    });
-                                }
-                                for (ab, nb) in sb.iter().enumerate().take(np) {
-                                    for (ac, nc) in sc.iter().enumerate().take(np) {
+                                let flux = face_flux(&p, a, face.sign(), data, [x[b], x[c]])?;
+                                for (ab, nb) in sb.iter().enumerate() {
+                                    for (ac, nc) in sc.iter().enumerate() {
                                         let mut node = origin;
                                         node[b] += ab;
                                         node[c] += ac;
@@ -522,20 +482,20 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         exact: &(dyn Fn([f64; 3]) -> [f64; 3] + Sync),
     ) -> Result<(f64, f64), ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let (gp, gw) = gauss_rule(self.order.nodes_per_direction() + 1);
-        let len = self.element_size();
-        let det = len.iter().product::<f64>() / 8.0;
-        let shape = shape_table(self.order, &gp, len);
-        let nen = self.order.nodes_per_direction().pow(3);
-        let nq = gp.len();
+        let element = self.element();
+        let rule = ElementRule::new(
+            element,
+            gauss_legendre(element.nodes_per_direction() + 1),
+            self.element_size(),
+        );
         let sums = (0..self.assembly.element_count())
             .into_par_iter()
             .map(|e| -> Result<[f64; 2], ElasticityError> {
                 let nodes = self.assembly.nodes(e);
                 let mut s = [0.0; 2];
-                for (q, (p, x)) in self.element_points(e, &gp)?.iter().enumerate() {
+                for (q, (p, x)) in self.element_points(e, &rule.points)?.iter().enumerate() {
                     let mut uh = [0.0; 3];
-                    for (a, f) in shape[q * nen..(q + 1) * nen].iter().enumerate() {
+                    for (a, f) in rule.shape_at(q).iter().enumerate() {
                         for (c, u) in uh.iter_mut().enumerate() {
                             *u += f[0] * v[COMPONENTS * nodes[a] + c];
                         }
@@ -546,7 +506,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                             .map(|i| (0..3).map(|j| p.metric[i][j] * e[i] * e[j]).sum::<f64>())
                             .sum()
                     };
-                    let w = gw[q / (nq * nq)] * gw[(q / nq) % nq] * gw[q % nq] * det * p.sqrt_g;
+                    let w = rule.weight(q) * p.sqrt_g;
                     s[0] += w * norm2([uh[0] - u[0], uh[1] - u[1], uh[2] - u[2]]);
                     s[1] += w * norm2(u);
                 }

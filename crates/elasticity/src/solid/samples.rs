@@ -192,11 +192,11 @@ impl SolidMms {
                 .expect("a valid profile");
         Self {
             obstacle: Obstacle::Prism(GeneralPrism::new(profile)),
-            material: Material::new(10.0, 0.3).expect("a valid material"),
             x1: [0.0, 0.5],
             x2: [-0.5, 0.5],
             thickness: 0.3,
             name: "expression prism",
+            ..Self::elliptical_cone()
         }
     }
 
@@ -216,7 +216,7 @@ impl SolidMms {
     pub fn operator(
         &self,
         n: [usize; 3],
-        order: ElementOrder,
+        order: impl Into<super::HexElement>,
     ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
         let exact = self.exact();
         let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
@@ -268,8 +268,9 @@ impl SolidMms {
     pub fn relative_error(
         &self,
         m: usize,
-        order: ElementOrder,
+        order: impl Into<super::HexElement>,
     ) -> Result<(f64, f64), ElasticityError> {
+        let order = order.into();
         let k = order.degree();
         let n = k * m + 1;
         let op = self.operator([n, n, n], order)?;

@@ -185,6 +185,29 @@ pub fn basis_tables(nodes: &[f64], at: &[f64]) -> (Vec<Vec<f64>>, Vec<Vec<f64>>)
     (b, d)
 }
 
+/// The elements of degree `p` along one direction of `count` elements that contain node
+/// line `i` (node lines `p e ... p e + p` belong to element `e`): `(element, local index)` —
+/// one element inside, two at a shared element boundary (one at an end of a bounded line;
+/// periodic lines wrap).
+pub fn elements_along(p: usize, i: usize, count: usize, periodic: bool) -> Vec<(usize, usize)> {
+    if !i.is_multiple_of(p) {
+        return vec![(i / p, i % p)];
+    }
+    let mut out = Vec::with_capacity(2);
+    if periodic {
+        out.push(((i / p) % count, 0));
+        out.push(((i / p + count - 1) % count, p));
+    } else {
+        if i / p < count {
+            out.push((i / p, 0));
+        }
+        if i > 0 {
+            out.push((i / p - 1, p));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

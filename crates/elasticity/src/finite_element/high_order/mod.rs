@@ -49,7 +49,7 @@ mod study;
 mod tests;
 
 pub use condensation::CondensedElement;
-pub use gll::{basis_tables, gauss_legendre, gll_rule, lagrange_basis};
+pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{ElementTables, add_element_matrix};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
 pub use solve::CondensedSystem;

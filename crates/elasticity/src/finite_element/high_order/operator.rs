@@ -518,23 +518,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         count: usize,
         periodic: bool,
     ) -> Vec<(usize, usize)> {
-        let p = self.degree;
-        if !i.is_multiple_of(p) {
-            return vec![(i / p, i % p)];
-        }
-        let mut out = Vec::with_capacity(2);
-        if periodic {
-            out.push(((i / p) % count, 0));
-            out.push(((i / p + count - 1) % count, p));
-        } else {
-            if i / p < count {
-                out.push((i / p, 0));
-            }
-            if i > 0 {
-                out.push((i / p - 1, p));
-            }
-        }
-        out
+        super::gll::elements_along(self.degree, i, count, periodic)
     }
 
     /// The nodal value and derivatives at grid node `node` as weights of nodal values:

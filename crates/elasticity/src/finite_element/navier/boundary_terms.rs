@@ -2,6 +2,7 @@
 
 use super::FiniteElementNavier;
 use crate::boundary::{Component, ComponentCondition, Side};
+use crate::continuum::{FaceData, face_flux};
 use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
 
@@ -45,19 +46,12 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                     let p = self.point(x[0], x[1])?;
                     let a = side.normal_index();
                     for c in Component::ALL {
-                        let flux = match cond.component(c) {
+                        let data = match cond.component(c) {
                             ComponentCondition::Displacement(_) => continue,
-                            ComponentCondition::Traction(f) => {
-                                p.sqrt_g * p.inverse_metric[a][a].sqrt() * f.eval(s)
-                            }
-                            ComponentCondition::Stress(f) => side.sign() * p.sqrt_g * f.eval(s),
+                            ComponentCondition::Traction(f) => FaceData::Traction(f.eval(s)),
+                            ComponentCondition::Stress(f) => FaceData::Stress(f.eval(s)),
                         };
-                        if !flux.is_finite() {
-                            return Err(ElasticityError::NonFinite {
-                                what: "boundary traction",
-                                at: x,
-                            });
-                        }
+                        let flux = face_flux(&p, a, side.sign(), data, x)?;
                         for (node, n) in nodes.iter().zip(shape) {
                             let d = 2 * self.grid.node_index(*node) + c.index();
                             self.load[d] += n * flux * w * 0.5 * length;
