@@ -117,14 +117,7 @@ impl<F: SolverScalar> RowMatrix<F> {
             return Err(SolverError::call_order("factor", "analyse"));
         }
         self.factored = false;
-        if values.len() != self.row_slot.len() {
-            return Err(SolverError::DimensionMismatch {
-                quantity: "values",
-                expected: self.row_slot.len(),
-                found: values.len(),
-            });
-        }
-        crate::scalar::check_finite("matrix value", values)?;
+        crate::linear_solver::check_value_count(values, self.row_slot.len())?;
         for (p, &s) in self.row_slot.iter().enumerate() {
             self.values[p] = values[s];
         }
