@@ -5,7 +5,7 @@ use capstan_geometry::Real;
 use crate::error::{FrictionError, check_non_negative, check_width};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
-use crate::slip_direction::{along, direction_kernel};
+use crate::slip_direction::{along, coulomb_traction, direction_kernel, slip_norm_squared};
 
 /// Regularised Coulomb friction (Kikuchi–Oden): Coulomb above a slip `eps`, linear below.
 ///
@@ -59,11 +59,8 @@ impl<F: Real> FrictionLaw<F> for RegularisedCoulomb {
     type Params = RegularisedCoulombParams<F>;
 
     fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
-        let [u1, u2] = c.slip;
-        let norm = (u1 * u1 + u2 * u2).sqrt();
         // t = mu p u / max(|u|, eps)
-        let scale = p.mu * c.normal_pressure / norm.max(p.eps);
-        [scale * u1, scale * u2]
+        coulomb_traction(c, p.mu, slip_norm_squared(c.slip).sqrt().max(p.eps))
     }
 
     fn traction_derivatives(

@@ -3,6 +3,20 @@
 
 use capstan_geometry::Real;
 
+use crate::friction_law::ContactState;
+
+/// `|u|^2 = u_1^2 + u_2^2`, the squared slip length.
+pub(crate) fn slip_norm_squared<F: Real>(u: [F; 2]) -> F {
+    u[0] * u[0] + u[1] * u[1]
+}
+
+/// `mu p u / rho`: the Coulomb traction with the regularised slip length `rho` (`max(|u|,
+/// eps)`, `sqrt(|u|^2 + eps^2)`), `p = sigma_n` the normal stress of `c`.
+pub(crate) fn coulomb_traction<F: Real>(c: &ContactState<F>, mu: F, rho: F) -> [F; 2] {
+    let s = mu * c.normal_pressure / rho;
+    [s * c.slip[0], s * c.slip[1]]
+}
+
 /// `k u r`: a vector along the slip `u`, scaled by `k` and the radial factor `r`.
 ///
 /// # Math
@@ -42,8 +56,7 @@ pub(crate) fn radial_tangent<F: Real>(u: [F; 2], s: F, r: F) -> [[F; 2]; 2] {
 /// ```
 /// Returns `(t, dt/du, r)`.
 pub(crate) fn direction_kernel<F: Real>(u: [F; 2], s: F, eps: F) -> ([F; 2], [[F; 2]; 2], F) {
-    let [u1, u2] = u;
-    let norm = (u1 * u1 + u2 * u2).sqrt();
+    let norm = slip_norm_squared(u).sqrt();
     if norm >= eps {
         let r = F::one() / norm;
         (along(u, s, r), radial_tangent(u, s, r), r)

@@ -5,7 +5,7 @@ use capstan_geometry::Real;
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
 use crate::regularised_coulomb::RegularisedCoulombParams;
-use crate::slip_direction::{along, radial_tangent};
+use crate::slip_direction::{along, coulomb_traction, radial_tangent, slip_norm_squared};
 
 /// Coulomb friction with a smooth (`C^infinity`) regularisation: no kink for Newton.
 ///
@@ -37,10 +37,7 @@ impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
     type Params = SmoothCoulombParams<F>;
 
     fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
-        let [u1, u2] = c.slip;
-        let r = (u1 * u1 + u2 * u2 + p.eps() * p.eps()).sqrt();
-        let s = p.mu() * c.normal_pressure / r;
-        [s * u1, s * u2]
+        coulomb_traction(c, p.mu(), smooth_length(c.slip, p.eps()))
     }
 
     fn traction_derivatives(
@@ -48,11 +45,15 @@ impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
         c: &ContactState<F>,
         p: &Self::Params,
     ) -> TractionDerivatives<F> {
-        let [u1, u2] = c.slip;
-        let r = (u1 * u1 + u2 * u2 + p.eps() * p.eps()).sqrt();
+        let r = smooth_length(c.slip, p.eps());
         let (inv, mp) = (F::one() / r, p.mu() * c.normal_pressure);
         TractionDerivatives::new(radial_tangent(c.slip, mp, inv), along(c.slip, p.mu(), inv))
     }
+}
+
+/// `r = sqrt(|u|^2 + eps^2)`, the smoothly regularised slip length.
+fn smooth_length<F: Real>(u: [F; 2], eps: F) -> F {
+    (slip_norm_squared(u) + eps * eps).sqrt()
 }
 
 /// `friction.law = "smooth-coulomb"`: [`SmoothCoulomb`] from `friction.mu`, `friction.eps`.
