@@ -41,12 +41,8 @@ impl IterativeParams {
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(SolverError::invalid("tolerance", self.tolerance, "(0, 1)"));
-        }
-        if self.max_iterations == 0 {
-            return Err(SolverError::invalid("max_iterations", 0.0, "[1, inf)"));
-        }
+        SolverError::check_fraction("tolerance", self.tolerance)?;
+        SolverError::check_count("max_iterations", self.max_iterations)?;
         if !(self.relaxation > 0.0 && self.relaxation < 2.0) {
             return Err(SolverError::invalid(
                 "relaxation",
