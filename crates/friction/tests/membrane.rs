@@ -500,7 +500,8 @@ fn heavy_membrane_lifts_off_the_bottom_of_a_cylinder() {
 fn invalid_parameters_name_their_scene_keys() {
     let obstacle = ReferenceEllipse::default().closed_form();
     // each case spoils one field of the default problem
-    let bad: [(&str, fn(&mut MembraneProblem)); 7] = [
+    type Spoil = fn(&mut MembraneProblem);
+    let bad: [(&str, Spoil); 7] = [
         ("friction.mu", |p| p.mu = -1.0),
         ("membrane.t0", |p| p.t0 = 0.0),
         ("membrane.theta_max", |p| p.theta_max = -2.0),

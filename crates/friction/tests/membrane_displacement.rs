@@ -104,7 +104,7 @@ fn capstan_error<C: ProfileCurve<f64>>(
 /// The `eps` study of a Coulomb-type `law` with `mu = MU`: `(eps, capstan_error)` for each
 /// width, on `nodes` nodes between the end conditions `[start, end]`; the capstan profile is
 /// anchored at the end held by a tension.
-fn eps_study<C: ProfileCurve<f64>, L: FrictionLaw<f64, Params = RegularisedCoulombParams<f64>>>(
+fn eps_study<C, L>(
     profile: &C,
     law: L,
     widths: [f64; 4],
@@ -112,7 +112,8 @@ fn eps_study<C: ProfileCurve<f64>, L: FrictionLaw<f64, Params = RegularisedCoulo
     [start, end]: [EndCondition; 2],
 ) -> Vec<(f64, f64)>
 where
-    L: Copy,
+    C: ProfileCurve<f64>,
+    L: FrictionLaw<f64, Params = RegularisedCoulombParams<f64>> + Copy,
 {
     let anchor_last = matches!(end, EndCondition::Tension(_));
     widths
