@@ -293,3 +293,9 @@ pub(crate) fn check_non_negative<F: Real>(
 pub(crate) fn check_width<F: Real>(eps: F) -> Result<(), FrictionError> {
     check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0).map(drop)
 }
+
+/// [`GeometryError::Degenerate`] of a profile point a membrane model integrates over: `what`
+/// fails at the chart point `at`.
+pub(crate) fn degenerate(what: &'static str, at: [f64; 3]) -> FrictionError {
+    FrictionError::Geometry(GeometryError::Degenerate { what, at })
+}

@@ -5,7 +5,7 @@ use capstan_geometry::Real;
 use crate::error::{FrictionError, check, check_non_negative, check_width, to_f64};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
-use crate::smooth_coulomb::direction_kernel;
+use crate::slip_direction::{along, direction_kernel};
 
 /// Howell's power law (fibres and yarns): the friction force grows like a power `n` of the
 /// normal force; `n = 1` is [`crate::RegularisedCoulomb`].
@@ -95,8 +95,7 @@ impl<F: Real> FrictionLaw<F> for Howell {
             (F::zero(), F::zero())
         };
         let (_, d, inv) = direction_kernel(c.slip, s, p.eps);
-        let [u1, u2] = c.slip;
-        TractionDerivatives::new(d, [ds_dp * u1 * inv, ds_dp * u2 * inv])
+        TractionDerivatives::new(d, along(c.slip, ds_dp, inv))
     }
 }
 

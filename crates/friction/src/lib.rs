@@ -48,6 +48,7 @@ pub mod registry;
 mod regularised_coulomb;
 pub mod root;
 pub mod samples;
+mod slip_direction;
 mod smooth_coulomb;
 mod tresca;
 

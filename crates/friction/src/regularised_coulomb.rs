@@ -5,6 +5,7 @@ use capstan_geometry::Real;
 use crate::error::{FrictionError, check_non_negative, check_width};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
+use crate::slip_direction::{along, coulomb_traction, direction_kernel, slip_norm_squared};
 
 /// Regularised Coulomb friction (Kikuchi–Oden): Coulomb above a slip `eps`, linear below.
 ///
@@ -58,11 +59,8 @@ impl<F: Real> FrictionLaw<F> for RegularisedCoulomb {
     type Params = RegularisedCoulombParams<F>;
 
     fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
-        let [u1, u2] = c.slip;
-        let norm = (u1 * u1 + u2 * u2).sqrt();
         // t = mu p u / max(|u|, eps)
-        let scale = p.mu * c.normal_pressure / norm.max(p.eps);
-        [scale * u1, scale * u2]
+        coulomb_traction(c, p.mu, slip_norm_squared(c.slip).sqrt().max(p.eps))
     }
 
     fn traction_derivatives(
@@ -70,27 +68,8 @@ impl<F: Real> FrictionLaw<F> for RegularisedCoulomb {
         c: &ContactState<F>,
         p: &Self::Params,
     ) -> TractionDerivatives<F> {
-        let [u1, u2] = c.slip;
-        let norm = (u1 * u1 + u2 * u2).sqrt();
-        let mp = p.mu * c.normal_pressure;
-        if norm >= p.eps {
-            // mu p (delta_ij/|u| - u_i u_j/|u|^3)
-            let inv = F::one() / norm;
-            let inv3 = inv * inv * inv;
-            TractionDerivatives::new(
-                [
-                    [mp * (inv - u1 * u1 * inv3), -mp * u1 * u2 * inv3],
-                    [-mp * u2 * u1 * inv3, mp * (inv - u2 * u2 * inv3)],
-                ],
-                [p.mu * u1 * inv, p.mu * u2 * inv],
-            )
-        } else {
-            let inv = F::one() / p.eps;
-            TractionDerivatives::new(
-                [[mp * inv, F::zero()], [F::zero(), mp * inv]],
-                [p.mu * u1 * inv, p.mu * u2 * inv],
-            )
-        }
+        let (_, d_slip, inv) = direction_kernel(c.slip, p.mu * c.normal_pressure, p.eps);
+        TractionDerivatives::new(d_slip, along(c.slip, p.mu, inv))
     }
 }
 

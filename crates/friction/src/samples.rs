@@ -130,3 +130,13 @@ pub fn heavy_fast_belt() -> MembraneLoads {
         speed: 2.0,
     }
 }
+
+/// A belt of density `density` and unit width and thickness (so `density` is also its mass
+/// per length) under standard gravity `g = 9.81`, at rest.
+pub fn weighted_belt(density: f64) -> MembraneLoads {
+    MembraneLoads {
+        gravity: 9.81,
+        density,
+        ..Default::default()
+    }
+}

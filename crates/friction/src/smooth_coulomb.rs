@@ -5,6 +5,7 @@ use capstan_geometry::Real;
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
 use crate::regularised_coulomb::RegularisedCoulombParams;
+use crate::slip_direction::{along, coulomb_traction, radial_tangent, slip_norm_squared};
 
 /// Coulomb friction with a smooth (`C^infinity`) regularisation: no kink for Newton.
 ///
@@ -36,10 +37,7 @@ impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
     type Params = SmoothCoulombParams<F>;
 
     fn traction(&self, c: &ContactState<F>, p: &Self::Params) -> [F; 2] {
-        let [u1, u2] = c.slip;
-        let r = (u1 * u1 + u2 * u2 + p.eps() * p.eps()).sqrt();
-        let s = p.mu() * c.normal_pressure / r;
-        [s * u1, s * u2]
+        coulomb_traction(c, p.mu(), smooth_length(c.slip, p.eps()))
     }
 
     fn traction_derivatives(
@@ -47,44 +45,15 @@ impl<F: Real> FrictionLaw<F> for SmoothCoulomb {
         c: &ContactState<F>,
         p: &Self::Params,
     ) -> TractionDerivatives<F> {
-        let [u1, u2] = c.slip;
-        let r = (u1 * u1 + u2 * u2 + p.eps() * p.eps()).sqrt();
+        let r = smooth_length(c.slip, p.eps());
         let (inv, mp) = (F::one() / r, p.mu() * c.normal_pressure);
-        let inv3 = inv * inv * inv;
-        TractionDerivatives::new(
-            [
-                [mp * (inv - u1 * u1 * inv3), -mp * u1 * u2 * inv3],
-                [-mp * u2 * u1 * inv3, mp * (inv - u2 * u2 * inv3)],
-            ],
-            [p.mu() * u1 * inv, p.mu() * u2 * inv],
-        )
+        TractionDerivatives::new(radial_tangent(c.slip, mp, inv), along(c.slip, p.mu(), inv))
     }
 }
 
-/// `s u / max(|u|, eps)` and its slip derivatives: the direction kernel shared by the
-/// isotropic laws whose magnitude `s` does not depend on the slip.
-pub(crate) fn direction_kernel<F: Real>(u: [F; 2], s: F, eps: F) -> ([F; 2], [[F; 2]; 2], F) {
-    let [u1, u2] = u;
-    let norm = (u1 * u1 + u2 * u2).sqrt();
-    if norm >= eps {
-        let inv = F::one() / norm;
-        let inv3 = inv * inv * inv;
-        (
-            [s * u1 * inv, s * u2 * inv],
-            [
-                [s * (inv - u1 * u1 * inv3), -s * u1 * u2 * inv3],
-                [-s * u2 * u1 * inv3, s * (inv - u2 * u2 * inv3)],
-            ],
-            inv,
-        )
-    } else {
-        let inv = F::one() / eps;
-        (
-            [s * u1 * inv, s * u2 * inv],
-            [[s * inv, F::zero()], [F::zero(), s * inv]],
-            inv,
-        )
-    }
+/// `r = sqrt(|u|^2 + eps^2)`, the smoothly regularised slip length.
+fn smooth_length<F: Real>(u: [F; 2], eps: F) -> F {
+    (slip_norm_squared(u) + eps * eps).sqrt()
 }
 
 /// `friction.law = "smooth-coulomb"`: [`SmoothCoulomb`] from `friction.mu`, `friction.eps`.

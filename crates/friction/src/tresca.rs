@@ -5,7 +5,7 @@ use capstan_geometry::Real;
 use crate::error::{FrictionError, check_non_negative, check_width};
 use crate::friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 use crate::registration::{RegisteredLaw, bind};
-use crate::smooth_coulomb::direction_kernel;
+use crate::slip_direction::direction_kernel;
 
 /// Tresca friction: the traction bound `g` does not depend on the normal stress.
 ///

@@ -10,7 +10,7 @@ use capstan_friction::membrane::{
     MembraneLoads, MembraneProblem, Method, closed_form, infer_mu, tension_profile,
 };
 use capstan_friction::quadrature::GaussKronrod;
-use capstan_friction::samples::{ReferenceEllipse, heavy_fast_belt, wobbly_prism};
+use capstan_friction::samples::{ReferenceEllipse, heavy_fast_belt, weighted_belt, wobbly_prism};
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, Obstacle, RightCircularCone,
     Surface, SurfaceGeometry,
@@ -32,6 +32,36 @@ fn problem(mu: f64, theta0: f64, theta_max: f64) -> MembraneProblem {
         samples: 41,
         ..Default::default()
     }
+}
+
+/// The problem `mu`, `t0` on `[theta0, theta_max]` with `samples` output samples under
+/// `loads`.
+fn loaded(
+    mu: f64,
+    t0: f64,
+    [theta0, theta_max]: [f64; 2],
+    samples: usize,
+    loads: MembraneLoads,
+) -> MembraneProblem {
+    MembraneProblem {
+        mu,
+        t0,
+        theta0,
+        theta_max,
+        samples,
+        loads,
+    }
+}
+
+/// The unit circle and the default problem on the half turn `[0, pi]`.
+fn half_turn_of_the_unit_circle() -> (Obstacle, MembraneProblem) {
+    let circle = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
+    let half = MembraneProblem {
+        theta0: 0.0,
+        theta_max: PI,
+        ..Default::default()
+    };
+    (circle, half)
 }
 
 /// The ODE built from `Surface::geometry` on `surface`, compared with `tension_profile`.
@@ -113,21 +143,12 @@ fn cylinder_with_gravity_is_cap_grav_and_matches_ode() {
     let cyl = CircularCylinder::new(radius).unwrap();
     let obstacle = Obstacle::Cylinder(cyl);
     let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 0.3,
         width: 0.5,
         thickness: 0.2,
-        ..Default::default()
+        ..weighted_belt(0.3)
     };
     let w = loads.weight_per_length();
-    let p = MembraneProblem {
-        mu: 0.35,
-        t0: 2.0,
-        theta0: 0.0,
-        theta_max: PI,
-        samples: 61,
-        loads,
-    };
+    let p = loaded(0.35, 2.0, [0.0, PI], 61, loads);
     let model = tension_profile(&obstacle, &p).unwrap();
     assert_eq!(model.method, Method::ClosedForm);
     // eq. capGrav as printed (theta0 = 0)
@@ -161,20 +182,12 @@ fn steady_speed_transform_is_closed_form_on_every_prism() {
     let e = EllipticalPrism::new(2.0, 1.0).unwrap();
     let loads = MembraneLoads {
         density: 0.5,
-        width: 1.0,
         thickness: 0.2,
         speed: 3.0,
         ..Default::default()
     };
     let c = loads.speed_tension();
-    let p = MembraneProblem {
-        mu: 0.6,
-        t0: 2.0,
-        theta0: -1.0,
-        theta_max: 2.5,
-        samples: 41,
-        loads,
-    };
+    let p = loaded(0.6, 2.0, [-1.0, 2.5], 41, loads);
     let (err, method) = ode_vs_model(&e, &Obstacle::Ellipse(e), &p);
     assert_eq!(method, Method::ClosedForm);
     assert!(err <= 1e-10, "{err:e}");
@@ -204,21 +217,12 @@ fn gravity_on_an_ellipse_matches_theorem_1_by_nested_quadrature() {
     let (a, b) = (2.0, 1.0);
     let e = EllipticalPrism::new(a, b).unwrap();
     let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 0.2,
         width: 1.0,
         thickness: 0.5,
-        ..Default::default()
+        ..weighted_belt(0.2)
     };
     let w = loads.weight_per_length();
-    let p = MembraneProblem {
-        mu: 0.4,
-        t0: 4.0,
-        theta0: -1.2,
-        theta_max: 2.4,
-        samples: 13,
-        loads,
-    };
+    let p = loaded(0.4, 4.0, [-1.2, 2.4], 13, loads);
     let ode = tension_profile(&Obstacle::Ellipse(e), &p).unwrap();
     assert_eq!(ode.method, Method::Ode);
     let psi = |t: f64| {
@@ -245,14 +249,7 @@ fn gravity_on_an_ellipse_matches_theorem_1_by_nested_quadrature() {
 #[test]
 fn expression_prism_with_gravity_and_speed_matches_the_ellipse() {
     let r = ReferenceEllipse::default();
-    let p = MembraneProblem {
-        mu: 0.3,
-        t0: 5.0,
-        theta0: -1.0,
-        theta_max: 2.0,
-        samples: 21,
-        loads: heavy_fast_belt(),
-    };
+    let p = loaded(0.3, 5.0, [-1.0, 2.0], 21, heavy_fast_belt());
     let exact = tension_profile(&r.closed_form(), &p).unwrap();
     let expr = tension_profile(&r.expressions(), &p).unwrap();
     assert_eq!(expr.method, Method::Ode);
@@ -270,14 +267,7 @@ fn corollary_1_is_theorem_1_divided_by_h_l() {
         thickness: h,
         speed: 1.5,
     };
-    let p = MembraneProblem {
-        mu: 0.3,
-        t0: 3.0,
-        theta0: -0.5,
-        theta_max: 2.0,
-        samples: 11,
-        loads,
-    };
+    let p = loaded(0.3, 3.0, [-0.5, 2.0], 11, loads);
     let force = tension_profile(&obstacle, &p).unwrap();
     let stress = InfiniteMembrane {
         mu: p.mu,
@@ -310,11 +300,8 @@ fn right_circular_cone_closed_form_matches_theorem_2_quadrature_and_3d_geodesics
     let general = cone_from_expressions(alpha);
     for (theta0, theta_max) in [(0.0, 2.0), (-1.5, 2.5), (0.7, 3.0)] {
         let p = MembraneProblem {
-            mu: 0.6,
-            theta0,
-            theta_max,
             samples: 9,
-            ..Default::default()
+            ..problem(0.6, theta0, theta_max)
         };
         let exact = tension_profile(&Obstacle::CircularCone(cone), &p).unwrap();
         assert_eq!(exact.method, Method::ClosedForm);
@@ -342,11 +329,8 @@ fn general_cone_quadrature_matches_3d_geodesics() {
     let profile = ExpressionProfile::parse("0.6*sin(t)", "0.3*cos(t)").unwrap();
     let cone = GeneralCone::new(profile.clone());
     let p = MembraneProblem {
-        mu: 0.5,
-        theta0: -0.8,
-        theta_max: 1.1,
         samples: 7,
-        ..Default::default()
+        ..problem(0.5, -0.8, 1.1)
     };
     let model = ConeMembrane::new(&profile).tension_profile(&p).unwrap();
     let strip = GeodesicStrip::new(&cone, p.mu);
@@ -361,11 +345,8 @@ fn general_cone_quadrature_matches_3d_geodesics() {
 #[test]
 fn cone_limits_are_the_capstan_equation_and_no_gain() {
     let p = MembraneProblem {
-        mu: 0.5,
-        theta0: 0.0,
-        theta_max: 3.0,
         samples: 5,
-        ..Default::default()
+        ..problem(0.5, 0.0, 3.0)
     };
     let narrow = tension_profile(
         &Obstacle::CircularCone(RightCircularCone::new(1e-6).unwrap()),
@@ -408,11 +389,8 @@ fn cone_past_the_development_limit_is_a_typed_error() {
     let alpha = FRAC_PI_4;
     let limit = FRAC_PI_2 / alpha.sin();
     let p = MembraneProblem {
-        mu: 0.5,
-        theta0: 0.0,
-        theta_max: limit + 0.1,
         samples: 5,
-        ..Default::default()
+        ..problem(0.5, 0.0, limit + 0.1)
     };
     let e = tension_profile(
         &Obstacle::CircularCone(RightCircularCone::new(alpha).unwrap()),
@@ -471,19 +449,8 @@ fn non_convex_prism_names_the_first_bad_angle() {
 fn heavy_membrane_lifts_off_the_bottom_of_a_cylinder() {
     // R = T/a + w cos(theta) < 0 once the light tension cannot hold the weight below the equator
     let obstacle = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
-    let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 1.0,
-        ..Default::default()
-    };
-    let p = MembraneProblem {
-        mu: 0.2,
-        t0: 12.0,
-        theta0: 0.0,
-        theta_max: PI,
-        samples: 11,
-        loads,
-    };
+    let loads = weighted_belt(1.0);
+    let p = loaded(0.2, 12.0, [0.0, PI], 11, loads);
     let e = tension_profile(&obstacle, &p).unwrap_err();
     let FrictionError::LiftOff { angle, .. } = e else {
         panic!("{e}")
@@ -532,64 +499,20 @@ fn heavy_membrane_lifts_off_the_bottom_of_a_cylinder() {
 #[test]
 fn invalid_parameters_name_their_scene_keys() {
     let obstacle = ReferenceEllipse::default().closed_form();
-    let bad = [
-        (
-            MembraneProblem {
-                mu: -1.0,
-                ..Default::default()
-            },
-            "friction.mu",
-        ),
-        (
-            MembraneProblem {
-                t0: 0.0,
-                ..Default::default()
-            },
-            "membrane.t0",
-        ),
-        (
-            MembraneProblem {
-                theta_max: -2.0,
-                ..Default::default()
-            },
-            "membrane.theta_max",
-        ),
-        (
-            MembraneProblem {
-                theta0: f64::NAN,
-                ..Default::default()
-            },
-            "membrane.theta0",
-        ),
-        (
-            MembraneProblem {
-                samples: 1,
-                ..Default::default()
-            },
-            "membrane.samples",
-        ),
-        (
-            MembraneProblem {
-                loads: MembraneLoads {
-                    density: -1.0,
-                    ..Default::default()
-                },
-                ..Default::default()
-            },
-            "loads.density",
-        ),
-        (
-            MembraneProblem {
-                loads: MembraneLoads {
-                    speed: f64::INFINITY,
-                    ..Default::default()
-                },
-                ..Default::default()
-            },
-            "loads.speed",
-        ),
+    // each case spoils one field of the default problem
+    type Spoil = fn(&mut MembraneProblem);
+    let bad: [(&str, Spoil); 7] = [
+        ("friction.mu", |p| p.mu = -1.0),
+        ("membrane.t0", |p| p.t0 = 0.0),
+        ("membrane.theta_max", |p| p.theta_max = -2.0),
+        ("membrane.theta0", |p| p.theta0 = f64::NAN),
+        ("membrane.samples", |p| p.samples = 1),
+        ("loads.density", |p| p.loads.density = -1.0),
+        ("loads.speed", |p| p.loads.speed = f64::INFINITY),
     ];
-    for (p, key) in bad {
+    for (key, spoil) in bad {
+        let mut p = MembraneProblem::default();
+        spoil(&mut p);
         match tension_profile(&obstacle, &p) {
             Err(FrictionError::InvalidParameter { field, .. }) => assert_eq!(field, key),
             other => panic!("{key}: {other:?}"),
@@ -611,12 +534,7 @@ fn invalid_parameters_name_their_scene_keys() {
 
 #[test]
 fn infer_mu_inverts_every_forward_model() {
-    let circle = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
-    let half = MembraneProblem {
-        theta0: 0.0,
-        theta_max: PI,
-        ..Default::default()
-    };
+    let (circle, half) = half_turn_of_the_unit_circle();
     let est = infer_mu(&circle, &half, 2.75).unwrap();
     assert_relative_eq!(est.mu, 2.75f64.ln() / PI, max_relative = 1e-15);
     assert_eq!(format!("{:.5}", est.mu), "0.32200");
@@ -656,14 +574,7 @@ fn infer_mu_inverts_every_forward_model() {
         ),
     ];
     for (obstacle, loads) in cases {
-        let p = MembraneProblem {
-            mu: 0.37,
-            t0: 3.0,
-            theta0: -0.6,
-            theta_max: 2.2,
-            samples: 3,
-            loads,
-        };
+        let p = loaded(0.37, 3.0, [-0.6, 2.2], 3, loads);
         let t_max = tension_profile(&obstacle, &p).unwrap().t_max();
         let est = infer_mu(&obstacle, &MembraneProblem { mu: 0.0, ..p }, t_max).unwrap();
         assert_relative_eq!(est.mu, 0.37, max_relative = 1e-9);
@@ -672,12 +583,7 @@ fn infer_mu_inverts_every_forward_model() {
 
 #[test]
 fn infer_mu_rejects_impossible_pairs() {
-    let circle = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
-    let half = MembraneProblem {
-        theta0: 0.0,
-        theta_max: PI,
-        ..Default::default()
-    };
+    let (circle, half) = half_turn_of_the_unit_circle();
     assert!(matches!(
         infer_mu(&circle, &half, 0.5),
         Err(FrictionError::TensionRatioBelowOne { .. })
@@ -690,11 +596,7 @@ fn infer_mu_rejects_impossible_pairs() {
         })
     ));
     // with weight: below what mu = 0 gives
-    let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 0.1,
-        ..Default::default()
-    };
+    let loads = weighted_belt(0.1);
     let p = MembraneProblem {
         t0: 5.0,
         theta0: -FRAC_PI_2,
@@ -716,19 +618,8 @@ fn infer_mu_rejects_impossible_pairs() {
 #[test]
 fn gravity_as_a_load_field_equals_gravity_as_loads() {
     let e = EllipticalPrism::new(1.5, 1.0).unwrap();
-    let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 0.1,
-        ..Default::default()
-    };
-    let p = MembraneProblem {
-        mu: 0.3,
-        t0: 2.0,
-        theta0: -1.0,
-        theta_max: 1.0,
-        samples: 9,
-        loads,
-    };
+    let loads = weighted_belt(0.1);
+    let p = loaded(0.3, 2.0, [-1.0, 1.0], 9, loads);
     let a = MembraneEquilibrium::new(&e, p).solve().unwrap();
     let field = Gravity {
         weight_per_length: loads.weight_per_length(),

@@ -7,9 +7,7 @@ use capstan_friction::membrane::{PrismMembrane, ProfilePoint};
 use capstan_friction::membrane_displacement::{
     EndCondition, MembraneDisplacement, MembraneDisplacementProblem, MembraneDisplacementSolution,
 };
-use capstan_friction::{
-    FrictionLaw, RegularisedCoulomb, RegularisedCoulombParams, SmoothCoulomb, SmoothCoulombParams,
-};
+use capstan_friction::{FrictionLaw, RegularisedCoulomb, RegularisedCoulombParams, SmoothCoulomb};
 use capstan_geometry::{CircularCylinder, EllipticalPrism, ExpressionProfile, ProfileCurve};
 
 const MU: f64 = 0.5;
@@ -103,6 +101,31 @@ fn capstan_error<C: ProfileCurve<f64>>(
         .fold(0.0, f64::max)
 }
 
+/// The `eps` study of a Coulomb-type `law` with `mu = MU`: `(eps, capstan_error)` for each
+/// width, on `nodes` nodes between the end conditions `[start, end]`; the capstan profile is
+/// anchored at the end held by a tension.
+fn eps_study<C, L>(
+    profile: &C,
+    law: L,
+    widths: [f64; 4],
+    nodes: usize,
+    [start, end]: [EndCondition; 2],
+) -> Vec<(f64, f64)>
+where
+    C: ProfileCurve<f64>,
+    L: FrictionLaw<f64, Params = RegularisedCoulombParams<f64>> + Copy,
+{
+    let anchor_last = matches!(end, EndCondition::Tension(_));
+    widths
+        .iter()
+        .map(|&eps| {
+            let params = RegularisedCoulombParams::new(MU, eps).unwrap();
+            let s = solve(profile, law, params, nodes, start, end);
+            (eps, capstan_error(profile, &s, anchor_last))
+        })
+        .collect()
+}
+
 /// Regularised Coulomb pulled far (displacement at `theta_max`, so `w >= eps` everywhere):
 /// the capstan profile for every `eps`; the error is the grid's, second order.
 #[test]
@@ -137,21 +160,13 @@ fn full_slip_coulomb_membrane_is_the_capstan_profile_to_second_order_in_the_grid
 #[test]
 fn full_slip_smooth_membrane_converges_to_capstan_at_second_order_in_eps() {
     fn run<C: ProfileCurve<f64>>(name: &str, profile: &C) {
-        let study: Vec<(f64, f64)> = [0.04, 0.02, 0.01, 0.005]
-            .iter()
-            .map(|&eps| {
-                let params = SmoothCoulombParams::new(MU, eps).unwrap();
-                let s = solve(
-                    profile,
-                    SmoothCoulomb,
-                    params,
-                    2001,
-                    EndCondition::Tension(1.0),
-                    EndCondition::Displacement(1.0),
-                );
-                (eps, capstan_error(profile, &s, false))
-            })
-            .collect();
+        let study = eps_study(
+            profile,
+            SmoothCoulomb,
+            [0.04, 0.02, 0.01, 0.005],
+            2001,
+            [EndCondition::Tension(1.0), EndCondition::Displacement(1.0)],
+        );
         assert_order(name, "smooth eps", &study, 2.0);
     }
     for_obstacles!(run);
@@ -162,21 +177,13 @@ fn full_slip_smooth_membrane_converges_to_capstan_at_second_order_in_eps() {
 #[test]
 fn anchored_coulomb_membrane_converges_to_capstan_at_first_order_in_eps() {
     fn run<C: ProfileCurve<f64>>(name: &str, profile: &C) {
-        let study: Vec<(f64, f64)> = [4e-5, 2e-5, 1e-5, 5e-6]
-            .iter()
-            .map(|&eps| {
-                let params = RegularisedCoulombParams::new(MU, eps).unwrap();
-                let s = solve(
-                    profile,
-                    RegularisedCoulomb,
-                    params,
-                    20001,
-                    EndCondition::Displacement(0.0),
-                    EndCondition::Tension(3.0),
-                );
-                (eps, capstan_error(profile, &s, true))
-            })
-            .collect();
+        let study = eps_study(
+            profile,
+            RegularisedCoulomb,
+            [4e-5, 2e-5, 1e-5, 5e-6],
+            20001,
+            [EndCondition::Displacement(0.0), EndCondition::Tension(3.0)],
+        );
         assert_order(name, "anchored eps", &study, 1.0);
         // the leading term mu kappa(theta0) delta / 2, delta = eps k / T(theta0)
         let kappa0 = {

@@ -9,7 +9,7 @@ use capstan_friction::membrane::{
     GeodesicStrip, MembraneEquilibrium, MembraneLoads, MembraneProblem, closed_form, infer_mu,
     tension_profile,
 };
-use capstan_friction::samples::{RatioVersusAspect, wobbly_prism};
+use capstan_friction::samples::{RatioVersusAspect, weighted_belt, wobbly_prism};
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, Obstacle, RightCircularCone, SurfaceGeometry,
 };
@@ -231,11 +231,7 @@ fn item_6_cone_tension_has_no_cos_phi_factors() {
 #[test]
 fn item_7_validity_numbers() {
     let cyl = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
-    let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 1.0,
-        ..Default::default()
-    };
+    let loads = weighted_belt(1.0);
     for t0 in [12.0, 1.0] {
         let p = MembraneProblem {
             mu: 0.2,
@@ -290,11 +286,9 @@ fn item_8_and_confirmations() {
     }
     // capGrav carries a h l rho g: the load per unit length is the line density times g
     let loads = MembraneLoads {
-        gravity: 9.81,
-        density: 2.0,
         width: 0.5,
         thickness: 0.1,
-        ..Default::default()
+        ..weighted_belt(2.0)
     };
     let p = MembraneProblem {
         mu: 0.3,

@@ -100,24 +100,29 @@ impl<F: Real> CircularCylinder<F> {
     pub fn radius(&self) -> F {
         self.radius
     }
+    /// The same surface as an [`EllipticalPrism`] with `a = b = r`, which evaluates it.
+    fn ellipse(&self) -> EllipticalPrism<F> {
+        EllipticalPrism {
+            a: self.radius,
+            b: self.radius,
+        }
+    }
 }
 
 impl<F: Real> ProfileCurve<F> for CircularCylinder<F> {
     fn profile<S: Scalar<F>>(&self, t: S) -> [S; 2] {
-        let (s, c) = t.sin_cos();
-        [s * self.radius, c * self.radius]
+        self.ellipse().profile(t)
     }
     fn profile_jet(&self, t: F) -> [[F; 4]; 2] {
-        ellipse_profile_jet(self.radius, self.radius, t)
+        self.ellipse().profile_jet(t)
     }
 }
 
 impl<F: Real> Surface<F> for CircularCylinder<F> {
-    fn sigma<S: Scalar<F>>(&self, [x1, x2]: [S; 2]) -> [S; 3] {
-        let [u, v] = self.profile(x2);
-        [x1, u, v]
+    fn sigma<S: Scalar<F>>(&self, x: [S; 2]) -> [S; 3] {
+        self.ellipse().sigma(x)
     }
     fn jet(&self, x: [F; 2]) -> SurfaceJet<F> {
-        prism_jet(x[0], ellipse_profile_jet(self.radius, self.radius, x[1]))
+        self.ellipse().jet(x)
     }
 }

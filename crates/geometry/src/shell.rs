@@ -112,6 +112,16 @@ impl<F: Real> ShellPoint<F> {
         crate::surface::check_regular(jet, point3([x[0], x[1]], x[2]))?;
         ShellFrame::unchecked(jet, [x[0], x[1]]).point(x[2])
     }
+
+    /// `max_kij |Gamma^k_ij|`, the scale of the Christoffel symbols (for relative
+    /// tolerances on them).
+    pub fn christoffel_scale(&self) -> F {
+        self.christoffel
+            .iter()
+            .flatten()
+            .flatten()
+            .fold(F::zero(), |m, x| m.max(x.abs()))
+    }
 }
 
 /// The part of the shell geometry that depends on the surface point `(x1, x2)` only: the jet
@@ -358,6 +368,15 @@ mod tests {
     use crate::elliptical_prism::{CircularCylinder, EllipticalPrism};
     use crate::expression_profile::ExpressionProfile;
     use crate::prism::GeneralPrism;
+
+    #[test]
+    fn christoffel_scale_of_a_cylinder_is_the_largest_symbol() {
+        // radius r + x3 = 2.5: Gamma^3_22 = -2.5, Gamma^2_23 = Gamma^2_32 = 1/2.5, the rest 0
+        let p = ShellChart::new(CircularCylinder::new(2.0).unwrap())
+            .point([0.3, 0.7, 0.5])
+            .unwrap();
+        assert!((p.christoffel_scale() - 2.5_f64).abs() < 1e-14); // closed form: round-off only
+    }
 
     /// `frame(x1, x2).point(x3)` is the same computation as `point([x1, x2, x3])`: equal bit
     /// for bit, errors included.

@@ -54,13 +54,7 @@ impl DirectParams {
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
-        if !(self.residual_tolerance > 0.0 && self.residual_tolerance < 1.0) {
-            return Err(SolverError::invalid(
-                "residual_tolerance",
-                self.residual_tolerance,
-                "(0, 1)",
-            ));
-        }
+        SolverError::check_fraction("residual_tolerance", self.residual_tolerance)?;
         if !(self.symmetry_tolerance >= 0.0 && self.symmetry_tolerance < 1.0) {
             return Err(SolverError::invalid(
                 "symmetry_tolerance",

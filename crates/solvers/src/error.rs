@@ -195,6 +195,30 @@ impl SolverError {
         }
     }
 
+    /// Checks a relative tolerance or fraction: `value` in the open interval `(0, 1)`.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] naming `field` otherwise (NaN included).
+    pub(crate) fn check_fraction(field: &'static str, value: f64) -> Result<(), Self> {
+        if value > 0.0 && value < 1.0 {
+            Ok(())
+        } else {
+            Err(Self::invalid(field, value, "(0, 1)"))
+        }
+    }
+
+    /// Checks a count or budget: `count >= 1`.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] naming `field` for `0`.
+    pub(crate) fn check_count(field: &'static str, count: usize) -> Result<(), Self> {
+        if count == 0 {
+            Err(Self::invalid(field, 0.0, "[1, inf)"))
+        } else {
+            Ok(())
+        }
+    }
+
     /// [`SolverError::CallOrder`]: `called` needs `requires` first.
     pub(crate) fn call_order(called: &'static str, requires: &'static str) -> Self {
         Self::CallOrder { called, requires }

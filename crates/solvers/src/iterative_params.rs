@@ -41,12 +41,8 @@ impl IterativeParams {
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(SolverError::invalid("tolerance", self.tolerance, "(0, 1)"));
-        }
-        if self.max_iterations == 0 {
-            return Err(SolverError::invalid("max_iterations", 0.0, "[1, inf)"));
-        }
+        SolverError::check_fraction("tolerance", self.tolerance)?;
+        SolverError::check_count("max_iterations", self.max_iterations)?;
         if !(self.relaxation > 0.0 && self.relaxation < 2.0) {
             return Err(SolverError::invalid(
                 "relaxation",
@@ -117,14 +113,7 @@ impl<F: SolverScalar> RowMatrix<F> {
             return Err(SolverError::call_order("factor", "analyse"));
         }
         self.factored = false;
-        if values.len() != self.row_slot.len() {
-            return Err(SolverError::DimensionMismatch {
-                quantity: "values",
-                expected: self.row_slot.len(),
-                found: values.len(),
-            });
-        }
-        crate::scalar::check_finite("matrix value", values)?;
+        crate::linear_solver::check_value_count(values, self.row_slot.len())?;
         for (p, &s) in self.row_slot.iter().enumerate() {
             self.values[p] = values[s];
         }

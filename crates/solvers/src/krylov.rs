@@ -63,19 +63,9 @@ impl KrylovParams {
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(SolverError::invalid(
-                "krylov.tolerance",
-                self.tolerance,
-                "(0, 1)",
-            ));
-        }
-        if self.max_iterations == 0 {
-            return Err(SolverError::invalid(KRYLOV_BUDGET_FIELD, 0.0, "[1, inf)"));
-        }
-        if self.restart == 0 {
-            return Err(SolverError::invalid("krylov.restart", 0.0, "[1, inf)"));
-        }
+        SolverError::check_fraction("krylov.tolerance", self.tolerance)?;
+        SolverError::check_count(KRYLOV_BUDGET_FIELD, self.max_iterations)?;
+        SolverError::check_count("krylov.restart", self.restart)?;
         Ok(())
     }
 }

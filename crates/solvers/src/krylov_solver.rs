@@ -116,14 +116,7 @@ impl LinearSolver<f64> for KrylovSolver {
             return Err(SolverError::call_order("factor", "analyse"));
         };
         self.factored = false;
-        if values.len() != self.slot.len() {
-            return Err(SolverError::DimensionMismatch {
-                quantity: "values",
-                expected: self.slot.len(),
-                found: values.len(),
-            });
-        }
-        crate::scalar::check_finite("matrix value", values)?;
+        crate::linear_solver::check_value_count(values, self.slot.len())?;
         for (v, &s) in matrix.values_mut().iter_mut().zip(&self.slot) {
             *v = values[s as usize];
         }

@@ -139,6 +139,21 @@ pub(crate) fn check_rhs<F: SolverScalar>(rhs: &[F], n: usize) -> Result<(), Solv
     crate::scalar::check_finite("right-hand side", rhs)
 }
 
+/// Checks matrix values against a value layout of `expected` entries: length and finiteness.
+pub(crate) fn check_value_count<F: SolverScalar>(
+    values: &[F],
+    expected: usize,
+) -> Result<(), SolverError> {
+    if values.len() != expected {
+        return Err(SolverError::DimensionMismatch {
+            quantity: "values",
+            expected,
+            found: values.len(),
+        });
+    }
+    crate::scalar::check_finite("matrix value", values)
+}
+
 /// Checks matrix values: length and finiteness.
 pub(crate) fn check_values<F: SolverScalar>(
     pattern: &SparsityPattern,

@@ -88,12 +88,8 @@ impl MultigridParams {
             }
             _ => {}
         }
-        if self.smoothing_steps == 0 {
-            return Err(SolverError::invalid("smoothing_steps", 0.0, "[1, inf)"));
-        }
-        if self.power_iterations == 0 {
-            return Err(SolverError::invalid("power_iterations", 0.0, "[1, inf)"));
-        }
+        SolverError::check_count("smoothing_steps", self.smoothing_steps)?;
+        SolverError::check_count("power_iterations", self.power_iterations)?;
         Ok(())
     }
 }

@@ -95,9 +95,7 @@ impl NewtonParams {
     /// [`SolverError::InvalidParameter`] naming the first field out of range.
     pub fn validate(&self) -> Result<(), SolverError> {
         let invalid = |field, value, allowed| Err(SolverError::invalid(field, value, allowed));
-        if self.max_iterations == 0 {
-            return invalid("max_iterations", 0.0, "[1, inf)");
-        }
+        SolverError::check_count("max_iterations", self.max_iterations)?;
         if !(self.absolute_tolerance >= 0.0 && self.absolute_tolerance.is_finite()) {
             return invalid("absolute_tolerance", self.absolute_tolerance, "[0, inf)");
         }
@@ -118,9 +116,7 @@ impl NewtonParams {
             if !(armijo > 0.0 && armijo < 0.5) {
                 return invalid("line_search.armijo", armijo, "(0, 0.5)");
             }
-            if !(min_step > 0.0 && min_step < 1.0) {
-                return invalid("line_search.min_step", min_step, "(0, 1)");
-            }
+            SolverError::check_fraction("line_search.min_step", min_step)?;
         }
         Ok(())
     }

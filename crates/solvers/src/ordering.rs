@@ -520,6 +520,19 @@ mod tests {
         }
     }
 
+    /// [`nested_dissection_grid`] of `grid`, checked to be a permutation of its unknowns.
+    #[track_caller]
+    fn dissected(grid: GridShape, separator_width: usize) -> Vec<usize> {
+        let perm = nested_dissection_grid(grid, separator_width);
+        assert!(is_permutation(&perm, grid.dof_count()));
+        perm
+    }
+
+    /// The grid line (`unknown / per_line`) of each unknown in `perm[from..]`.
+    fn lines_of(perm: &[usize], from: usize, per_line: usize) -> Vec<usize> {
+        perm[from..].iter().map(|&p| p / per_line).collect()
+    }
+
     #[test]
     fn small_grid_is_natural_order() {
         let grid = grid_shape(4, 3, 2, false);
@@ -528,11 +541,10 @@ mod tests {
 
     #[test]
     fn separator_splits_halves_numbered_first() {
-        let grid = grid_shape(40, 4, 1, false);
-        let perm = nested_dissection_grid(grid, 3);
-        assert!(is_permutation(&perm, 160));
+        let perm = dissected(grid_shape(40, 4, 1, false), 3);
+        assert_eq!(perm.len(), 160);
         // first cut: (40 - 3) / 2 = 18, strip = lines 18, 19, 20, last 12 unknowns
-        let strip: Vec<usize> = perm[148..].iter().map(|&p| p / 4).collect();
+        let strip = lines_of(&perm, 148, 4);
         assert!(strip.iter().all(|&i2| (18..21).contains(&i2)), "{strip:?}");
         // everything left of the strip comes before everything right of it
         let first_right = perm.iter().position(|&p| p / 4 > 20).unwrap();
@@ -541,11 +553,9 @@ mod tests {
 
     #[test]
     fn periodic_grid_is_cut_twice() {
-        let grid = grid_shape(20, 2, 1, true);
-        let perm = nested_dissection_grid(grid, 1);
-        assert!(is_permutation(&perm, 40));
-        let last: Vec<usize> = perm[36..].iter().map(|&p| p / 2).collect();
-        assert_eq!(last, vec![0, 0, 10, 10]);
+        let perm = dissected(grid_shape(20, 2, 1, true), 1);
+        assert_eq!(perm.len(), 40);
+        assert_eq!(lines_of(&perm, 36, 2), vec![0, 0, 10, 10]);
     }
 
     /// The symmetric pattern of a 5-point stencil on an `m x m` grid with `b` coupled unknowns
@@ -688,7 +698,7 @@ mod tests {
             let perm = nested_dissection_elements(grid, 2);
             assert!(is_permutation(&perm, grid.dof_count()));
             // the last line eliminated is a single element-boundary line
-            let last: Vec<usize> = perm[perm.len() - 18..].iter().map(|&p| p / 18).collect();
+            let last = lines_of(&perm, perm.len() - 18, 18);
             assert!(
                 last.iter().all(|&i2| i2 == last[0] && i2 % 2 == 0),
                 "{last:?}"

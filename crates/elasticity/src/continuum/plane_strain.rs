@@ -33,12 +33,7 @@ pub fn check_plane_strain(p: &ShellPoint<f64>, at: [f64; 3]) -> Result<(), Elast
             at,
         });
     }
-    let cscale = 1.0
-        + p.christoffel
-            .iter()
-            .flatten()
-            .flatten()
-            .fold(0.0f64, |m, x| m.max(x.abs()));
+    let cscale = 1.0 + p.christoffel_scale();
     let index_one = (0..3).any(|i| {
         (0..3).any(|j| {
             p.christoffel[0][i][j].abs() > PLANE_STRAIN_TOLERANCE * cscale

@@ -21,39 +21,34 @@ pub enum Input {
 /// The ordered scalar inputs a discretisation feeds the pointwise operator with.
 pub type InputLayout<const N: usize> = [Input; N];
 
-const fn derivative(direction: usize, component: usize) -> Input {
-    Input::Derivative {
-        direction,
-        component,
+/// The layout of the components and directions `first..3`: the values `v^c`, then the
+/// derivatives `d_p v^c` with `p` outer and `c` inner (`n = 3 - first` of each; `N = n + n^2`).
+const fn layout<const N: usize>(first: usize) -> InputLayout<N> {
+    let n = 3 - first;
+    assert!(N == n + n * n, "N must be n + n^2");
+    let mut out = [Input::Value(0); N];
+    let mut k = 0;
+    while k < n {
+        out[k] = Input::Value(first + k);
+        k += 1;
     }
+    let mut k = 0;
+    while k < n * n {
+        out[n + k] = Input::Derivative {
+            direction: first + k / n,
+            component: first + k % n,
+        };
+        k += 1;
+    }
+    out
 }
 
 /// Plane strain (`v^1 = 0`, `d_1 = 0`): `[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]`.
-pub const PLANE_STRAIN: InputLayout<6> = [
-    Input::Value(1),
-    Input::Value(2),
-    derivative(1, 1),
-    derivative(1, 2),
-    derivative(2, 1),
-    derivative(2, 2),
-];
+pub const PLANE_STRAIN: InputLayout<6> = layout(1);
 
 /// A 3-D body: `[v^1, v^2, v^3, d_1 v^1, d_1 v^2, d_1 v^3, d_2 v^1, ..., d_3 v^3]`
 /// (input `3 + 3 p + c` is `d_p v^c`).
-pub const SOLID: InputLayout<12> = [
-    Input::Value(0),
-    Input::Value(1),
-    Input::Value(2),
-    derivative(0, 0),
-    derivative(0, 1),
-    derivative(0, 2),
-    derivative(1, 0),
-    derivative(1, 1),
-    derivative(1, 2),
-    derivative(2, 0),
-    derivative(2, 1),
-    derivative(2, 2),
-];
+pub const SOLID: InputLayout<12> = layout(0);
 
 /// The mixed strains `M_k = g^-1 E_k` of the unit inputs of `layout`.
 ///
@@ -211,6 +206,23 @@ mod tests {
         ShellChart::new(EllipticalPrism::new(2.0, 1.0).unwrap())
             .point([0.0, 0.4, 0.3])
             .unwrap()
+    }
+
+    #[test]
+    fn layouts_are_the_documented_orders() {
+        let d = |direction, component| Input::Derivative {
+            direction,
+            component,
+        };
+        for c in 0..3 {
+            assert_eq!(SOLID[c], Input::Value(c));
+            for p in 0..3 {
+                assert_eq!(SOLID[3 + 3 * p + c], d(p, c));
+            }
+        }
+        let plane = [1, 2].map(Input::Value);
+        assert_eq!(PLANE_STRAIN[..2], plane);
+        assert_eq!(PLANE_STRAIN[2..], [d(1, 1), d(1, 2), d(2, 1), d(2, 2)]);
     }
 
     #[test]

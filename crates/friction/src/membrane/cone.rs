@@ -6,7 +6,7 @@ use capstan_geometry::ProfileCurve;
 
 use super::problem::{MembraneProblem, Method, TensionProfile, exp_tension};
 use super::validity::{first_failure, grid, merged};
-use crate::error::FrictionError;
+use crate::error::{FrictionError, degenerate};
 use crate::quadrature::{GaussKronrod, gauss_kronrod_15};
 
 /// Relative accuracy of a panel of the cone's nested quadrature (against `int|f|` over the
@@ -97,16 +97,9 @@ impl<'a, C: ProfileCurve<f64> + ?Sized> ConeMembrane<'a, C> {
 
     fn point(&self, t: f64) -> Result<ConePoint, FrictionError> {
         let p = ConePoint::from_jet(self.profile.profile_jet(t));
-        if p.phi_rate.is_finite() && p.exponent_rate.is_finite() && p.phi_rate > 0.0 {
-            Ok(p)
-        } else {
-            Err(FrictionError::Geometry(
-                capstan_geometry::GeometryError::Degenerate {
-                    what: "cone profile not regular or not finite",
-                    at: [1.0, t, 0.0],
-                },
-            ))
-        }
+        (p.phi_rate.is_finite() && p.exponent_rate.is_finite() && p.phi_rate > 0.0)
+            .then_some(p)
+            .ok_or_else(|| degenerate("cone profile not regular or not finite", [1.0, t, 0.0]))
     }
 
     /// `phi(t) = int_0^t phi'`.

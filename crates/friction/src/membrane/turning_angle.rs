@@ -5,7 +5,7 @@ use std::f64::consts::FRAC_PI_2;
 use capstan_geometry::ProfileCurve;
 
 use super::validity::{first_failure, grid, merged};
-use crate::error::FrictionError;
+use crate::error::{FrictionError, degenerate};
 use crate::quadrature::{DEFAULT_MAX_SUBDIVISIONS, GaussKronrod};
 
 /// Local quantities of a profile `(u(t), v(t))` from its jet.
@@ -53,16 +53,14 @@ fn point<C: ProfileCurve<f64> + ?Sized>(
     t: f64,
 ) -> Result<ProfilePoint, FrictionError> {
     let p = ProfilePoint::from_jet(profile.profile_jet(t));
-    if p.turning_rate.is_finite() && p.a22 > 0.0 {
-        Ok(p)
-    } else {
-        Err(FrictionError::Geometry(
-            capstan_geometry::GeometryError::Degenerate {
-                what: "profile not regular (u' = v' = 0) or not finite",
-                at: [0.0, t, 0.0],
-            },
-        ))
-    }
+    (p.turning_rate.is_finite() && p.a22 > 0.0)
+        .then_some(p)
+        .ok_or_else(|| {
+            degenerate(
+                "profile not regular (u' = v' = 0) or not finite",
+                [0.0, t, 0.0],
+            )
+        })
 }
 
 /// `Psi(theta_i) - Psi(theta0)` at sorted angles `thetas` (all `>= theta0`), checking that the

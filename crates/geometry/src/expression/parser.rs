@@ -102,36 +102,38 @@ impl Parser<'_> {
 
     /// `expression := term (('+' | '-') term)*`
     pub(super) fn expression(&mut self) -> Parsed {
-        self.peek();
-        let start = self.pos;
-        let mut left = self.term()?;
-        loop {
-            let op = match self.peek() {
-                Some(b'+') => Binary::Add,
-                Some(b'-') => Binary::Subtract,
-                _ => return Ok(left),
-            };
-            self.pos += 1;
-            let right = self.term()?;
-            left = self.binary(op, left, right, start)?;
-        }
+        self.left_associative(Self::term, |byte| match byte {
+            b'+' => Some(Binary::Add),
+            b'-' => Some(Binary::Subtract),
+            _ => None,
+        })
     }
 
     /// `term := unary (('*' | '/') unary)*`
     pub(super) fn term(&mut self) -> Parsed {
+        self.left_associative(Self::unary, |byte| match byte {
+            b'*' => Some(Binary::Multiply),
+            b'/' => Some(Binary::Divide),
+            _ => None,
+        })
+    }
+
+    /// `level := operand (op operand)*`, folded to the left, for the operators `op` names:
+    /// the grammar of [`Self::expression`] and [`Self::term`].
+    fn left_associative(
+        &mut self,
+        operand: fn(&mut Self) -> Parsed,
+        op: fn(u8) -> Option<Binary>,
+    ) -> Parsed {
         self.peek();
         let start = self.pos;
-        let mut left = self.unary()?;
-        loop {
-            let op = match self.peek() {
-                Some(b'*') => Binary::Multiply,
-                Some(b'/') => Binary::Divide,
-                _ => return Ok(left),
-            };
+        let mut left = operand(self)?;
+        while let Some(op) = self.peek().and_then(op) {
             self.pos += 1;
-            let right = self.unary()?;
+            let right = operand(self)?;
             left = self.binary(op, left, right, start)?;
         }
+        Ok(left)
     }
 
     /// `unary := ('+' | '-') unary | power`

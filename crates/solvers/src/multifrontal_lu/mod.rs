@@ -336,12 +336,13 @@ impl FrontalStructure {
                     }
                 }
             }
-            factor_panel(&mut front, m, ns, &mut factors.swaps[b..e], b, par).map_err(
-                |failure| match failure {
+            let swaps = &mut factors.swaps[b..e];
+            factor_panel(&mut front, m, ns, swaps, b, PANEL_BLOCK, par).map_err(|failure| {
+                match failure {
                     FrontFailure::Singular(k) => FrontFailure::Singular(self.perm_fwd[b + k]),
                     other => other,
-                },
-            )?;
+                }
+            })?;
             if nr > 0 {
                 let par = if nr * nr * ns >= PARALLEL_FLOPS {
                     par
@@ -395,4 +396,4 @@ struct Front<'a> {
 mod tests;
 
 pub(crate) use panel::FrontFailure;
-use panel::{PARALLEL_FLOPS, factor_panel};
+use panel::{PANEL_BLOCK, PARALLEL_FLOPS, factor_panel};

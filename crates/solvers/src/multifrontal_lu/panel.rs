@@ -31,23 +31,12 @@ pub(super) const PANEL_BLOCK: usize = 32;
 /// `offset + ` the row swapped with `k`.
 ///
 /// # Math
-/// Blocked by [`PANEL_BLOCK`] columns `[kb, ke)`: factor them (rows `kb..m`) by rank-1
-/// updates, then `U[kb..ke, ke..ns] = L[kb..ke, kb..ke]^-1 F[kb..ke, ke..ns]` and
+/// Blocked by `nb` columns `[kb, ke)` (the solver passes [`PANEL_BLOCK`]; `nb >= ns`:
+/// unblocked): factor them (rows `kb..m`) by rank-1 updates, then
+/// `U[kb..ke, ke..ns] = L[kb..ke, kb..ke]^-1 F[kb..ke, ke..ns]` and
 /// `F[ke..m, ke..ns] -= L[ke..m, kb..ke] U[kb..ke, ke..ns]`. Every column sees the same
 /// updates as in the unblocked order before its pivot is chosen, so the pivots agree.
 pub(super) fn factor_panel(
-    front: &mut [f64],
-    m: usize,
-    ns: usize,
-    swaps: &mut [u32],
-    offset: usize,
-    par: Par,
-) -> Result<(), FrontFailure> {
-    factor_panel_blocked(front, m, ns, swaps, offset, PANEL_BLOCK, par)
-}
-
-/// [`factor_panel`] with blocks of `nb` columns (`nb >= ns`: unblocked).
-pub(super) fn factor_panel_blocked(
     front: &mut [f64],
     m: usize,
     ns: usize,
@@ -91,7 +80,7 @@ pub(super) fn factor_panel_blocked(
     Ok(())
 }
 
-/// The unblocked step of [`factor_panel_blocked`]: columns `cols` (within `0..ns`), whose
+/// The unblocked step of [`factor_panel`]: columns `cols` (within `0..ns`), whose
 /// updates from the columns before them are done; rank-1 updates reach only `cols`.
 fn factor_columns(
     front: &mut [f64],

@@ -1,6 +1,6 @@
 //! Unit tests of the multifrontal kernels.
 
-use super::panel::{PANEL_BLOCK, factor_panel_blocked};
+use super::panel::{PANEL_BLOCK, factor_panel};
 use super::solve::{BlockWork, DENSE_SOLVE_COLUMNS};
 use super::*;
 use crate::samples::{
@@ -101,7 +101,7 @@ fn blocked_panel_equals_the_unblocked_panel() {
         let run = |nb: usize| {
             let mut f = front.clone();
             let mut swaps = vec![0u32; ns];
-            factor_panel_blocked(&mut f, m, ns, &mut swaps, 7, nb, Par::Seq).unwrap();
+            factor_panel(&mut f, m, ns, &mut swaps, 7, nb, Par::Seq).unwrap();
             (f, swaps)
         };
         let (reference, ref_swaps) = run(ns);
@@ -130,7 +130,7 @@ fn blocked_panel_equals_the_unblocked_panel() {
     for nb in [ns, PANEL_BLOCK] {
         let mut f = front.clone();
         assert_eq!(
-            factor_panel_blocked(&mut f, m, ns, &mut [0; 80], 0, nb, Par::Seq),
+            factor_panel(&mut f, m, ns, &mut [0; 80], 0, nb, Par::Seq),
             Err(FrontFailure::NeedsPivoting)
         );
     }
