@@ -45,6 +45,7 @@ mod operator;
 mod skeleton;
 mod solve;
 mod study;
+mod tensor_kernel;
 #[cfg(test)]
 mod tests;
 
