@@ -684,6 +684,10 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
         } else {
             targets::series_names(runs, problem)
         };
+        if keys.is_empty() {
+            // a problem left out by `--problems`
+            continue;
+        }
         for key in keys {
             let mut pts: Vec<(f64, f64)> = targets::series_runs(runs, problem, &key)
                 .into_iter()

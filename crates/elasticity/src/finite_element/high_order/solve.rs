@@ -8,7 +8,7 @@ use super::gll::{gauss_legendre, lagrange_basis};
 use super::kernel::{add_element_matrix, symmetrise};
 use super::operator::HighOrderNavier;
 use super::skeleton::Skeleton;
-use super::tensor_kernel::{LocalDof, TensorEntry, X3Factors};
+use super::tensor_kernel::{TensorIndex, X3Factors};
 use crate::continuum::kinematics::{
     LocalDisplacement, contravariant_stress, mixed_stress_coefficients,
 };
@@ -148,7 +148,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         };
         let (bd, id) = (local(&sk.boundary_local), local(&sk.interior_local));
         let np = self.np();
-        let dofs: Vec<LocalDof> = (0..l).map(|d| LocalDof::new(d, np)).collect();
+        let dofs: Vec<TensorIndex> = (0..l).map(|d| TensorIndex::new(d, np)).collect();
         let factors = self.x3_factors();
         let elements = (0..self.element_count())
             .into_par_iter()
@@ -159,14 +159,13 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                 },
                 |(tt, m, scratch), e| {
                     self.tensor_matrix(e, &factors, tt, m);
-                    let k = TensorEntry { m, n: np };
                     let nodes = self.element_nodes(e);
                     let f: Vec<f64> = id
                         .iter()
                         .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
                         .collect();
                     CondensedElement::from_entries(
-                        |i, j| k.get(dofs[i], dofs[j]),
+                        |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
                         &bd,
                         &id,
                         &f,

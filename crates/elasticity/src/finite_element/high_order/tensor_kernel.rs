@@ -83,7 +83,7 @@ impl X3Factors {
     /// M[(cd, a2, b2), (a3, b3)] = sum_(ab, q3) T[(cd, a2, b2), (ab, q3)] P[(ab, q3), (a3, b3)]
     /// K[(a2 a3 c), (b2 b3 d)] = M[(cd, a2, b2), (a3, b3)]
     /// ```
-    /// for `cd` in `(0,0), (0,1), (1,1)` ([`TensorEntry`] reads `(1,0)` by transposition):
+    /// for `cd` in `(0,0), (0,1), (1,1)` ([`TensorIndex`] reads `(1,0)` by transposition):
     /// `(27 + 18 n) n nq^2` multiply-adds by hand and four `3 n^2 x nq x n^2` GEMMs, one per
     /// `ab` and added in turn (as the reference kernel sums: one GEMM over all `4 nq` columns
     /// raised the round-off floor of the Lamé study at `p = 5` from 8e-12 to 1e-11).
@@ -141,57 +141,39 @@ impl X3Factors {
     }
 }
 
-/// A local dof `2 (a2 n + a3) + c` by its parts.
+/// Where local dof `2 (a2 n + a3) + c` of an element with `n` nodes per direction sits in the
+/// tensor form `M` ([`X3Factors::add_tensor_matrix`], column-major `3 n^2 x n^2`).
+///
+/// # Math
+/// `K[i, j] = M[(c_i + c_j) n^2 + a2_i n + a2_j, a3_i n + a3_j]` for `c_i <= c_j`, at the flat
+/// index `row(i) + col(j)` with `row = a3 n 3n^2 + c n^2 + a2 n`, `col = a3 3n^2 + c n^2 + a2`;
+/// for `c_i > c_j` the symmetric entry `K[j, i]`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LocalDof {
-    /// Component.
-    pub c: usize,
-    /// Node index in `x2`.
-    pub a2: usize,
-    /// Node index in `x3`.
-    pub a3: usize,
+pub struct TensorIndex {
+    c: usize,
+    row: usize,
+    col: usize,
 }
 
-impl LocalDof {
-    /// The parts of local dof `dof` of an element with `n` nodes per direction.
+impl TensorIndex {
+    /// The index parts of local dof `dof`.
     pub fn new(dof: usize, n: usize) -> Self {
-        let a = dof / 2;
+        let (c, a2, a3) = (dof % 2, dof / 2 / n, dof / 2 % n);
+        let rows = 3 * n * n;
         Self {
-            c: dof % 2,
-            a2: a / n,
-            a3: a % n,
+            c,
+            row: a3 * n * rows + c * n * n + a2 * n,
+            col: a3 * rows + c * n * n + a2,
         }
     }
-}
 
-/// An element matrix in tensor form ([`X3Factors::add_tensor_matrix`]), read entry by entry.
-#[derive(Debug, Clone, Copy)]
-pub struct TensorEntry<'a> {
-    /// The tensor form, column-major `3 n^2 x n^2`.
-    pub m: &'a [f64],
-    /// Nodes per direction.
-    pub n: usize,
-}
-
-impl TensorEntry<'_> {
-    /// `K[i, j]`: `M[(cd, a2, b2), (a3, b3)]`, for `(c, d) = (1, 0)` the `(0, 1)` entry of
-    /// `K[j, i]` (the element matrix is symmetric).
-    pub fn get(&self, i: LocalDof, j: LocalDof) -> f64 {
-        let n = self.n;
-        let rows = 3 * n * n;
-        let (i, j) = if i.c > j.c { (j, i) } else { (i, j) };
-        let cd = i.c + j.c;
-        self.m[(j.a3 + n * i.a3) * rows + cd * n * n + i.a2 * n + j.a2]
-    }
-
-    /// The whole `l x l` matrix (row-major, `l = 2 n^2`), added to `out`.
-    pub fn add_to(&self, out: &mut [f64]) {
-        let l = 2 * self.n * self.n;
-        let dofs: Vec<LocalDof> = (0..l).map(|d| LocalDof::new(d, self.n)).collect();
-        for (r, &i) in dofs.iter().enumerate() {
-            for (x, &j) in out[r * l..(r + 1) * l].iter_mut().zip(&dofs) {
-                *x += self.get(i, j);
-            }
+    /// `K[i, j]` from the tensor form `m`.
+    #[inline]
+    pub fn entry(m: &[f64], i: Self, j: Self) -> f64 {
+        if i.c <= j.c {
+            m[i.row + j.col]
+        } else {
+            m[j.row + i.col]
         }
     }
 }
@@ -228,12 +210,12 @@ mod tests {
                 let mut m = vec![0.0; f.rows() * f.cols()];
                 let out = MatMut::from_column_major_slice_mut(&mut m, f.rows(), f.cols());
                 f.add_tensor_matrix(&kq, &mut tt, out);
-                let mut fast = vec![0.0; l * l];
-                TensorEntry { m: &m, n: p + 1 }.add_to(&mut fast);
+                let dofs: Vec<TensorIndex> = (0..l).map(|d| TensorIndex::new(d, p + 1)).collect();
                 let scale = reference.iter().fold(0.0f64, |s, x| s.max(x.abs()));
                 for r in 0..l {
                     for c in 0..l {
-                        let (a, b) = (fast[r * l + c], reference[r * l + c]);
+                        let a = TensorIndex::entry(&m, dofs[r], dofs[c]);
+                        let b = reference[r * l + c];
                         // summation order only
                         assert!((a - b).abs() < 1e-13 * scale, "p {p} nq {nq} ({r},{c})");
                     }
