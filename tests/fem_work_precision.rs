@@ -40,6 +40,62 @@ fn work_precision_arguments_parse() {
 }
 
 #[test]
+fn work_precision_runs_can_be_restricted() {
+    let cli = Cli::try_parse_from([
+        "capstan",
+        "bench",
+        "work-precision",
+        "--problems",
+        "lame",
+        "--methods",
+        "fem-qp7,fem-qp8",
+        "--peers",
+        "ngsolve",
+        "--peer-orders",
+        "6,8",
+    ])
+    .unwrap();
+    let Some(Sub::Bench(b)) = cli.command else {
+        panic!("not bench")
+    };
+    let BenchCommand::WorkPrecision(a) = b.what;
+    assert_eq!(a.problems, ["lame"]);
+    assert_eq!(a.methods, ["fem-qp7", "fem-qp8"]);
+    assert_eq!(a.peers, ["ngsolve"]);
+    assert_eq!(a.peer_orders, [6, 8]);
+    for bad in [
+        ["--problems", "circle"],
+        ["--methods", "fem-qp9"],
+        ["--peers", "fenics"],
+        ["--peer-orders", "9"],
+    ] {
+        let e = Cli::try_parse_from(["capstan", "bench", "work-precision", bad[0], bad[1]]);
+        let msg = e.err().expect("rejected").to_string();
+        assert!(msg.contains(bad[0]), "{msg}"); // names the option
+    }
+    // one problem, one method: only those runs, and only that problem's plots
+    let dir = common::scratch_dir("wp-restricted");
+    let r = report(&WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        problems: vec!["lame".to_owned()],
+        methods: vec!["fem-qp2".to_owned()],
+        ..Default::default()
+    })
+    .unwrap();
+    assert!(!r.runs.is_empty());
+    assert!(
+        r.runs
+            .iter()
+            .all(|x| x.problem == "lame" && x.method == "fem-qp2")
+    );
+    assert!(dir.join("work-precision-lame.svg").exists());
+    assert!(!dir.join("work-precision-mms.svg").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 #[ignore = "runs every method on three grids per problem: several seconds"]
 fn quick_work_precision_writes_csv_and_plots() {
     let dir = common::scratch_dir("wp");
