@@ -70,7 +70,7 @@ fn work_precision_runs_can_be_restricted() {
         ["--peer-orders", "9"],
     ] {
         let e = Cli::try_parse_from(["capstan", "bench", "work-precision", bad[0], bad[1]]);
-        let msg = e.err().expect("rejected").to_string();
+        let msg = e.expect_err("rejected").to_string();
         assert!(msg.contains(bad[0]), "{msg}"); // names the option
     }
     // one problem, one method: only those runs, and only that problem's plots

@@ -468,9 +468,8 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
     if args.no_peer {
         eprintln!("work-precision: peers skipped (--no-peer)");
     } else {
-        let keep_order = |o: usize| {
-            args.peer_orders.is_empty() || args.peer_orders.iter().any(|&k| k == o as u64)
-        };
+        let keep_order =
+            |o: usize| args.peer_orders.is_empty() || args.peer_orders.contains(&(o as u64));
         for peer in PEERS
             .iter()
             .filter(|p| WorkPrecisionArgs::selects(&args.peers, p.name))
