@@ -11,40 +11,30 @@ use capstan::cli::{Cli, Command as Sub};
 use capstan::commands::bench::{BenchCommand, WorkPrecisionArgs, report};
 use clap::Parser;
 
-#[test]
-fn work_precision_arguments_parse() {
-    let cli = Cli::try_parse_from([
-        "capstan",
-        "bench",
-        "work-precision",
-        "--quick",
-        "--json",
-        "--out",
-        "x",
-    ])
-    .unwrap();
+/// `capstan bench work-precision ARGS`, parsed.
+fn parse(args: &[&str]) -> Result<WorkPrecisionArgs, clap::Error> {
+    let words = ["capstan", "bench", "work-precision"].iter().chain(args);
+    let cli = Cli::try_parse_from(words)?;
     let Some(Sub::Bench(b)) = cli.command else {
         panic!("not bench")
     };
     let BenchCommand::WorkPrecision(a) = b.what;
+    Ok(a)
+}
+
+#[test]
+fn work_precision_arguments_parse() {
+    let a = parse(&["--quick", "--json", "--out", "x"]).unwrap();
     assert!(a.quick && a.json && !a.no_peer);
     assert!(a.threads.is_empty()); // all cores
     assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
-    let cli =
-        Cli::try_parse_from(["capstan", "bench", "work-precision", "--threads", "1,2"]).unwrap();
-    let Some(Sub::Bench(b)) = cli.command else {
-        panic!("not bench")
-    };
-    let BenchCommand::WorkPrecision(a) = b.what;
+    let a = parse(&["--threads", "1,2"]).unwrap();
     assert_eq!(a.threads, [1, 2]);
 }
 
 #[test]
 fn work_precision_runs_can_be_restricted() {
-    let cli = Cli::try_parse_from([
-        "capstan",
-        "bench",
-        "work-precision",
+    let a = parse(&[
         "--problems",
         "lame",
         "--methods",
@@ -55,10 +45,6 @@ fn work_precision_runs_can_be_restricted() {
         "6,8",
     ])
     .unwrap();
-    let Some(Sub::Bench(b)) = cli.command else {
-        panic!("not bench")
-    };
-    let BenchCommand::WorkPrecision(a) = b.what;
     assert_eq!(a.problems, ["lame"]);
     assert_eq!(a.methods, ["fem-qp7", "fem-qp8"]);
     assert_eq!(a.peers, ["ngsolve"]);
@@ -69,8 +55,7 @@ fn work_precision_runs_can_be_restricted() {
         ["--peers", "fenics"],
         ["--peer-orders", "9"],
     ] {
-        let e = Cli::try_parse_from(["capstan", "bench", "work-precision", bad[0], bad[1]]);
-        let msg = e.expect_err("rejected").to_string();
+        let msg = parse(&bad).expect_err("rejected").to_string();
         assert!(msg.contains(bad[0]), "{msg}"); // names the option
     }
     // one problem, one method: only those runs, and only that problem's plots

@@ -183,6 +183,7 @@ mod tests {
     use super::*;
     use crate::finite_element::high_order::gll::{gauss_legendre, gll_rule};
     use crate::finite_element::high_order::kernel::add_element_matrix;
+    use crate::finite_element::high_order::kernel::tests::sample_point_matrices;
 
     #[test]
     fn tensor_form_equals_the_reference_kernel() {
@@ -191,17 +192,7 @@ mod tests {
                 let (x, _) = gll_rule(p);
                 let (g, _) = gauss_legendre(nq);
                 let t = ElementTables::new(&x, &g, [0.3, 0.7]);
-                // deterministic symmetric point matrices, no zeros
-                let kq: Vec<[[f64; 6]; 6]> = (0..nq * nq)
-                    .map(|q| {
-                        core::array::from_fn(|a| {
-                            core::array::from_fn(|b| {
-                                let (i, j) = (a.min(b) as f64, a.max(b) as f64);
-                                (1.0 + q as f64 * 0.1 + i * 0.7 + j * 0.3).sin()
-                            })
-                        })
-                    })
-                    .collect();
+                let kq = sample_point_matrices(nq * nq);
                 let l = 2 * (p + 1) * (p + 1);
                 let mut reference = vec![0.0; l * l];
                 add_element_matrix(&t, &kq, &mut reference);
