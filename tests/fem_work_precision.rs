@@ -12,32 +12,73 @@ use capstan::cli::{Cli, Command as Sub};
 use capstan::commands::bench::{BenchCommand, WorkPrecisionArgs, report};
 use clap::Parser;
 
-#[test]
-fn work_precision_arguments_parse() {
-    let cli = Cli::try_parse_from([
-        "capstan",
-        "bench",
-        "work-precision",
-        "--quick",
-        "--json",
-        "--out",
-        "x",
-    ])
-    .unwrap();
+/// `capstan bench work-precision ARGS`, parsed.
+fn parse(args: &[&str]) -> Result<WorkPrecisionArgs, clap::Error> {
+    let words = ["capstan", "bench", "work-precision"].iter().chain(args);
+    let cli = Cli::try_parse_from(words)?;
     let Some(Sub::Bench(b)) = cli.command else {
         panic!("not bench")
     };
     let BenchCommand::WorkPrecision(a) = b.what;
+    Ok(a)
+}
+
+#[test]
+fn work_precision_arguments_parse() {
+    let a = parse(&["--quick", "--json", "--out", "x"]).unwrap();
     assert!(a.quick && a.json && !a.no_peer);
     assert!(a.threads.is_empty()); // all cores
     assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
-    let cli =
-        Cli::try_parse_from(["capstan", "bench", "work-precision", "--threads", "1,2"]).unwrap();
-    let Some(Sub::Bench(b)) = cli.command else {
-        panic!("not bench")
-    };
-    let BenchCommand::WorkPrecision(a) = b.what;
+    let a = parse(&["--threads", "1,2"]).unwrap();
     assert_eq!(a.threads, [1, 2]);
+}
+
+#[test]
+fn work_precision_runs_can_be_restricted() {
+    let a = parse(&[
+        "--problems",
+        "lame",
+        "--methods",
+        "fem-qp7,fem-qp8",
+        "--peers",
+        "ngsolve",
+        "--peer-orders",
+        "6,8",
+    ])
+    .unwrap();
+    assert_eq!(a.problems, ["lame"]);
+    assert_eq!(a.methods, ["fem-qp7", "fem-qp8"]);
+    assert_eq!(a.peers, ["ngsolve"]);
+    assert_eq!(a.peer_orders, [6, 8]);
+    for bad in [
+        ["--problems", "circle"],
+        ["--methods", "fem-qp9"],
+        ["--peers", "fenics"],
+        ["--peer-orders", "9"],
+    ] {
+        let msg = parse(&bad).expect_err("rejected").to_string();
+        assert!(msg.contains(bad[0]), "{msg}"); // names the option
+    }
+    // one problem, one method: only those runs, and only that problem's plots
+    let dir = common::scratch_dir("wp-restricted");
+    let r = report(&WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        problems: vec!["lame".to_owned()],
+        methods: vec!["fem-qp2".to_owned()],
+        ..Default::default()
+    })
+    .unwrap();
+    assert!(!r.runs.is_empty());
+    assert!(
+        r.runs
+            .iter()
+            .all(|x| x.problem == "lame" && x.method == "fem-qp2")
+    );
+    assert!(dir.join("work-precision-lame.svg").exists());
+    assert!(!dir.join("work-precision-mms.svg").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

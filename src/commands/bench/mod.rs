@@ -95,6 +95,28 @@ pub struct WorkPrecisionArgs {
     /// all available cores (as does 0). The peers always run with one thread.
     #[arg(long, value_delimiter = ',')]
     pub threads: Vec<usize>,
+    /// Problems to run (e.g. `lame`); default: all.
+    #[arg(long, value_delimiter = ',', value_parser = ["lame", "mms", "paper"])]
+    pub problems: Vec<String>,
+    /// capstan methods to run (e.g. `fem-qp6,fem-qp7`); default: all.
+    #[arg(long, value_delimiter = ',', value_parser = [
+        "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
+        "fem-qp7", "fem-qp8",
+    ])]
+    pub methods: Vec<String>,
+    /// Peers to run (e.g. `ngsolve`); default: all (`--no-peer` skips them all).
+    #[arg(long, value_delimiter = ',', value_parser = ["scikit-fem", "ngsolve"])]
+    pub peers: Vec<String>,
+    /// Peer orders to run (e.g. `6,8`), 1 to 8; default: all.
+    #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u64).range(1..=8))]
+    pub peer_orders: Vec<u64>,
+}
+
+impl WorkPrecisionArgs {
+    /// Whether `name` is in `list` or `list` is empty (no restriction).
+    fn selects(list: &[String], name: &str) -> bool {
+        list.is_empty() || list.iter().any(|x| x == name)
+    }
 }
 
 /// The whole benchmark.
@@ -401,7 +423,10 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
     };
     // the paper's reference: Q2 on a grid twice as fine as the finest run
     let m_ref = 2 * levels.last().copied().unwrap_or(16);
-    let reference_values = {
+    // (unused, and not computed, when `--problems` leaves out `paper`)
+    let reference_values = if !WorkPrecisionArgs::selects(&args.problems, "paper") {
+        (0, 0, vec![])
+    } else {
         let level = Problem::Paper.level(m_ref);
         let op = Problem::Paper
             .parts(m_ref)?
@@ -437,14 +462,19 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 path: format!("rayon pool of --threads {n}"),
                 source: std::io::Error::other(e),
             })?;
-        runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm, args.quick))?);
+        runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm, args))?);
     }
     let mut statuses = vec![];
     if args.no_peer {
         eprintln!("work-precision: peers skipped (--no-peer)");
     } else {
-        for peer in &PEERS {
-            let (r, status) = peers::run_peer(peer, args.quick);
+        let keep_order =
+            |o: usize| args.peer_orders.is_empty() || args.peer_orders.contains(&(o as u64));
+        for peer in PEERS
+            .iter()
+            .filter(|p| WorkPrecisionArgs::selects(&args.peers, p.name))
+        {
+            let (r, status) = peers::run_peer(peer, args.quick, &keep_order);
             if status.status != "ran" {
                 eprintln!("work-precision: peer {}: {}", peer.name, status.status);
             }
@@ -498,17 +528,26 @@ fn backends(method: Option<ElementOrder>) -> Vec<Backend> {
     backends
 }
 
-/// Every capstan series of every problem, in the current rayon pool; `references` in the
-/// order of [`PROBLEMS`].
+/// Every capstan series of every problem selected by `args` (`--problems`, `--methods`), in
+/// the current rayon pool; `references` in the order of [`PROBLEMS`].
 fn capstan_pass(
     levels: &[usize],
     references: &[Reference<'_>; 3],
     use_vmhwm: bool,
-    quick: bool,
+    args: &WorkPrecisionArgs,
 ) -> Result<Vec<Run>, CliError> {
+    let quick = args.quick;
+    let selected = || {
+        PROBLEMS
+            .into_iter()
+            .zip(references)
+            .filter(|(p, _)| WorkPrecisionArgs::selects(&args.problems, p.name()))
+    };
     let mut runs = vec![];
-    for (problem, reference) in PROBLEMS.into_iter().zip(references) {
-        for method in METHODS {
+    for (problem, reference) in selected() {
+        for method in METHODS.into_iter().filter(|m| {
+            WorkPrecisionArgs::selects(&args.methods, m.map_or("fd", ElementOrder::method_name))
+        }) {
             for backend in backends(method) {
                 for &m in levels {
                     runs.push(run_one(problem, m, method, backend, reference, use_vmhwm)?);
@@ -534,8 +573,13 @@ fn capstan_pass(
         }
     }
     // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs
-    for (problem, reference) in PROBLEMS.into_iter().zip(references) {
-        for p in high_order::ORDERS {
+    for (problem, reference) in selected() {
+        for p in high_order::ORDERS.filter(|&p| {
+            WorkPrecisionArgs::selects(
+                &args.methods,
+                capstan_elasticity::finite_element::high_order::order_name(p),
+            )
+        }) {
             for k in high_order::element_levels(problem, p, quick) {
                 runs.push(high_order::run_qp(problem, k, p, reference, use_vmhwm)?);
             }
@@ -639,6 +683,10 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
         } else {
             targets::series_names(runs, problem)
         };
+        if keys.is_empty() {
+            // a problem left out by `--problems`
+            continue;
+        }
         for key in keys {
             let mut pts: Vec<(f64, f64)> = targets::series_runs(runs, problem, &key)
                 .into_iter()

@@ -120,9 +120,13 @@ fn version(python: &Path, peer: &Peer) -> Result<String, String> {
     }
 }
 
-/// Runs every order and backend of `peer` (the quick grids if `quick`); the runs and the
-/// peer's status. A failing series is reported in the status and skipped.
-pub fn run_peer(peer: &Peer, quick: bool) -> (Vec<Run>, PeerStatus) {
+/// Runs every order of `peer` that `keep_order` keeps, with each backend (the quick grids if
+/// `quick`); the runs and the peer's status. A failing series is reported in the status and skipped.
+pub fn run_peer(
+    peer: &Peer,
+    quick: bool,
+    keep_order: &dyn Fn(usize) -> bool,
+) -> (Vec<Run>, PeerStatus) {
     let mut status = PeerStatus {
         name: peer.name,
         version: None,
@@ -147,7 +151,7 @@ pub fn run_peer(peer: &Peer, quick: bool) -> (Vec<Run>, PeerStatus) {
         Some((flag, values)) => values.iter().map(|v| Some((flag, *v))).collect(),
     };
     let mut runs = vec![];
-    for o in peer.orders {
+    for o in peer.orders.iter().filter(|o| keep_order(o.order)) {
         for backend in &backends {
             let levels = if quick { o.quick_levels } else { o.levels };
             let mut command = Command::new(&python);

@@ -2,64 +2,36 @@
 //! element's interior block (a small dense Cholesky) and the back-substitution of the interior
 //! values after the global solve.
 
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::matmul::triangular::{BlockStructure, matmul};
+use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::{Accum, MatMut, MatRef, Par};
+
 use crate::error::ElasticityError;
 
-/// In-place Cholesky `A = L L^T` of a dense symmetric positive definite `n x n` matrix
-/// (row-major; the lower triangle receives `L`).
-///
-/// # Errors
-/// [`ElasticityError::Solver`] (`Singular`) at a pivot that is not positive and finite.
-pub fn cholesky_in_place(a: &mut [f64], n: usize) -> Result<(), ElasticityError> {
-    for j in 0..n {
-        let mut d = a[j * n + j];
-        for k in 0..j {
-            d -= a[j * n + k] * a[j * n + k];
-        }
-        if !(d > 0.0 && d.is_finite()) {
-            return Err(capstan_solvers::SolverError::Singular { pivot: Some(j) }.into());
-        }
-        let d = d.sqrt();
-        a[j * n + j] = d;
-        for i in j + 1..n {
-            let mut s = a[i * n + j];
-            for k in 0..j {
-                s -= a[i * n + k] * a[j * n + k];
-            }
-            a[i * n + j] = s / d;
-        }
-    }
-    Ok(())
+/// Per-worker scratch of [`CondensedElement::from_entries`]: faer's workspace of the
+/// Cholesky factorisation of an `ni x ni` block.
+pub struct CondensationScratch {
+    mem: MemBuffer,
 }
 
-/// Solves `L L^T x = b` in place for `m` right-hand sides stored as the columns of `b`
-/// (`n x m`, row-major), `L` from [`cholesky_in_place`].
-pub fn cholesky_solve(l: &[f64], n: usize, b: &mut [f64], m: usize) {
-    for i in 0..n {
-        for k in 0..i {
-            let lik = l[i * n + k];
-            if lik != 0.0 {
-                for c in 0..m {
-                    b[i * m + c] -= lik * b[k * m + c];
-                }
-            }
-        }
-        let d = l[i * n + i];
-        for c in 0..m {
-            b[i * m + c] /= d;
-        }
+impl core::fmt::Debug for CondensationScratch {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("CondensationScratch")
+            .finish_non_exhaustive()
     }
-    for i in (0..n).rev() {
-        for k in i + 1..n {
-            let lki = l[k * n + i];
-            if lki != 0.0 {
-                for c in 0..m {
-                    b[i * m + c] -= lki * b[k * m + c];
-                }
-            }
-        }
-        let d = l[i * n + i];
-        for c in 0..m {
-            b[i * m + c] /= d;
+}
+
+impl CondensationScratch {
+    /// Scratch for interior blocks of `ni` unknowns.
+    pub fn new(ni: usize) -> Self {
+        Self {
+            mem: MemBuffer::new(cholesky_in_place_scratch::<f64>(
+                ni,
+                Par::Seq,
+                Default::default(),
+            )),
         }
     }
 }
@@ -71,22 +43,25 @@ pub fn cholesky_solve(l: &[f64], n: usize, b: &mut [f64], m: usize) {
 /// ```text
 /// [K_BB K_BI] [u_B]   [f_B]
 /// [K_IB K_II] [u_I] = [f_I]
-/// S   = K_BB - K_BI K_II^-1 K_IB      (the element's Schur complement, symmetric)
-/// g   = - K_BI K_II^-1 f_I            (added to the skeleton load)
-/// u_I = y - X u_B,   X = K_II^-1 K_IB,   y = K_II^-1 f_I   (after the global solve)
+/// K_II = L L^T                       (Cholesky)
+/// W = L^-1 K_IB,   z = L^-1 f_I      (one forward substitution, nb + 1 right-hand sides)
+/// S = K_BB - W^T W = K_BB - K_BI K_II^-1 K_IB   (the element's Schur complement)
+/// g = - W^T z = - K_BI K_II^-1 f_I              (added to the skeleton load)
+/// u_I = L^-T (z - W u_B)             (after the global solve)
 /// ```
 /// `K_II` is positive definite for a positive definite element energy (interior functions
-/// vanish on the element's edges), so its Cholesky factor exists.
+/// vanish on the element's edges), so its Cholesky factor exists. Only the lower triangles of
+/// `K_II` and `K_BB` are read.
 #[derive(Debug, Clone)]
 pub struct CondensedElement {
-    /// `S`, `nb x nb` row-major (bitwise symmetric).
+    /// `S`, `nb x nb` (bitwise symmetric, so row- and column-major alike).
     pub schur: Vec<f64>,
     /// `g`, `nb`.
     pub load: Vec<f64>,
-    /// `X`, `ni x nb` row-major.
+    /// `L`, `ni x ni` column-major, lower triangle.
+    pub factor: Vec<f64>,
+    /// `[W | z]`, `ni x (nb + 1)` column-major.
     pub coupling: Vec<f64>,
-    /// `y`, `ni`.
-    pub interior: Vec<f64>,
 }
 
 impl CondensedElement {
@@ -102,76 +77,126 @@ impl CondensedElement {
         interior: &[usize],
         f_interior: &[f64],
     ) -> Result<Self, ElasticityError> {
+        let mut scratch = CondensationScratch::new(interior.len());
+        Self::from_entries(
+            |i, j| k[i * l + j],
+            boundary,
+            interior,
+            f_interior,
+            &mut scratch,
+        )
+    }
+
+    /// Condenses the element matrix whose entry `(i, j)` (local dofs) is `entry(i, j)`, as
+    /// [`Self::new`]; read are all of `K_IB` and the lower triangles of `K_II` and `K_BB`
+    /// (in the order of `interior` and `boundary`).
+    ///
+    /// # Errors
+    /// [`ElasticityError::Solver`] if `K_II` is not positive definite (or not finite).
+    pub fn from_entries(
+        entry: impl Fn(usize, usize) -> f64,
+        boundary: &[usize],
+        interior: &[usize],
+        f_interior: &[f64],
+        scratch: &mut CondensationScratch,
+    ) -> Result<Self, ElasticityError> {
         let (nb, ni) = (boundary.len(), interior.len());
-        let mut kii = vec![0.0; ni * ni];
-        for (r, &i) in interior.iter().enumerate() {
-            for (c, &j) in interior.iter().enumerate() {
-                kii[r * ni + c] = k[i * l + j];
+        let mut factor = vec![0.0; ni * ni];
+        for (c, &j) in interior.iter().enumerate() {
+            for (r, &i) in interior.iter().enumerate().skip(c) {
+                factor[c * ni + r] = entry(i, j);
             }
         }
-        cholesky_in_place(&mut kii, ni)?;
-        // [X | y] = K_II^-1 [K_IB | f_I]
         let m = nb + 1;
-        let mut rhs = vec![0.0; ni * m];
-        for (r, &i) in interior.iter().enumerate() {
-            for (c, &j) in boundary.iter().enumerate() {
-                rhs[r * m + c] = k[i * l + j];
+        let mut coupling = vec![0.0; ni * m];
+        for (c, &j) in boundary.iter().enumerate() {
+            for (x, &i) in coupling[c * ni..(c + 1) * ni].iter_mut().zip(interior) {
+                *x = entry(i, j);
             }
-            rhs[r * m + nb] = f_interior[r];
         }
-        cholesky_solve(&kii, ni, &mut rhs, m);
-        // S = K_BB - K_BI X, g = -K_BI y: rows of K_BI times rows of [X | y] (contiguous)
+        coupling[nb * ni..].copy_from_slice(f_interior);
         let mut schur = vec![0.0; nb * nb];
+        for (c, &j) in boundary.iter().enumerate() {
+            for (r, &i) in boundary.iter().enumerate().skip(c) {
+                schur[c * nb + r] = entry(i, j);
+            }
+        }
         let mut load = vec![0.0; nb];
-        let mut row = vec![0.0; m];
-        for (r, &i) in boundary.iter().enumerate() {
-            row.iter_mut().for_each(|x| *x = 0.0);
-            for (q, &iq) in interior.iter().enumerate() {
-                let kiq = k[i * l + iq];
-                if kiq != 0.0 {
-                    for (x, y) in row.iter_mut().zip(&rhs[q * m..(q + 1) * m]) {
-                        *x += kiq * y;
-                    }
+        if ni > 0 {
+            let singular = |j| -> ElasticityError {
+                capstan_solvers::SolverError::Singular { pivot: Some(j) }.into()
+            };
+            let stack = MemStack::new(&mut scratch.mem);
+            let mut l = MatMut::from_column_major_slice_mut(&mut factor, ni, ni);
+            cholesky_in_place(
+                l.as_mut(),
+                Default::default(),
+                Par::Seq,
+                stack,
+                Default::default(),
+            )
+            .map_err(|e| match e {
+                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
+                    singular(index)
                 }
+            })?;
+            if let Some(j) = (0..ni).find(|&j| !(l[(j, j)] > 0.0 && l[(j, j)].is_finite())) {
+                return Err(singular(j));
             }
-            for (c, &j) in boundary.iter().enumerate() {
-                schur[r * nb + c] = k[i * l + j] - row[c];
+            let mut wz = MatMut::from_column_major_slice_mut(&mut coupling, ni, m);
+            solve_lower_triangular_in_place(l.as_ref(), wz.as_mut(), Par::Seq);
+            let w = wz.as_ref().subcols(0, nb);
+            let s = MatMut::from_column_major_slice_mut(&mut schur, nb, nb);
+            matmul(
+                s,
+                BlockStructure::TriangularLower,
+                Accum::Add,
+                w.transpose(),
+                BlockStructure::Rectangular,
+                w,
+                BlockStructure::Rectangular,
+                -1.0,
+                Par::Seq,
+            );
+            let z = &coupling[nb * ni..];
+            for (g, col) in load.iter_mut().zip(coupling.chunks_exact(ni)) {
+                *g = -col.iter().zip(z).map(|(a, b)| a * b).sum::<f64>();
             }
-            load[r] = -row[nb];
         }
-        // bitwise symmetric (the assembly and the Cholesky backend rely on it)
-        for r in 0..nb {
-            for c in r + 1..nb {
-                let s = 0.5 * (schur[r * nb + c] + schur[c * nb + r]);
-                schur[r * nb + c] = s;
-                schur[c * nb + r] = s;
+        // the upper triangle mirrors the lower: bitwise symmetric (the assembly and the
+        // Cholesky backend rely on it)
+        for c in 0..nb {
+            for r in c + 1..nb {
+                schur[r * nb + c] = schur[c * nb + r];
             }
-        }
-        let mut coupling = vec![0.0; ni * nb];
-        let mut y = vec![0.0; ni];
-        for r in 0..ni {
-            coupling[r * nb..(r + 1) * nb].copy_from_slice(&rhs[r * m..r * m + nb]);
-            y[r] = rhs[r * m + nb];
         }
         Ok(Self {
             schur,
             load,
+            factor,
             coupling,
-            interior: y,
         })
     }
 
-    /// The interior values `u_I = y - X u_B` for the boundary values `u_b`.
+    /// The interior values `u_I = L^-T (z - W u_B)` for the boundary values `u_b`.
     pub fn recover(&self, u_b: &[f64]) -> Vec<f64> {
         let nb = u_b.len();
-        self.interior
-            .iter()
-            .enumerate()
-            .map(|(r, y)| {
-                let row = &self.coupling[r * nb..(r + 1) * nb];
-                y - row.iter().zip(u_b).map(|(x, u)| x * u).sum::<f64>()
-            })
-            .collect()
+        let ni = self.coupling.len() / (nb + 1);
+        if ni == 0 {
+            return vec![];
+        }
+        let mut x = self.coupling[nb * ni..].to_vec();
+        for (col, u) in self.coupling.chunks_exact(ni).zip(u_b) {
+            for (xi, w) in x.iter_mut().zip(col) {
+                *xi -= w * u;
+            }
+        }
+        let l = MatRef::from_column_major_slice(&self.factor, ni, ni);
+        for i in (0..ni).rev() {
+            let s: f64 = (i + 1..ni).map(|k| l[(k, i)] * x[k]).sum();
+            x[i] = (x[i] - s) / l[(i, i)];
+        }
+        x
     }
 }
 
@@ -209,8 +234,15 @@ mod tests {
     }
 
     #[test]
-    fn cholesky_rejects_an_indefinite_matrix() {
-        let mut a = vec![1.0, 2.0, 2.0, 1.0];
-        assert!(cholesky_in_place(&mut a, 2).is_err());
+    fn an_indefinite_interior_block_is_a_typed_error() {
+        // K_II = [[1, 2], [2, 1]] (eigenvalues 3, -1), boundary {0}
+        let k = [4.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.0, 2.0, 1.0];
+        let e = CondensedElement::new(&k, 3, &[0], &[1, 2], &[0.0, 0.0]);
+        assert!(matches!(
+            e,
+            Err(ElasticityError::Solver(
+                capstan_solvers::SolverError::Singular { .. }
+            ))
+        ));
     }
 }

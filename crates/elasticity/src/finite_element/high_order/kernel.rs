@@ -142,9 +142,26 @@ pub fn symmetrise(out: &mut [f64], l: usize) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::finite_element::high_order::gll::{gauss_legendre, gll_rule};
+
+    /// `count` deterministic symmetric point matrices without zero entries, for the kernel
+    /// tests.
+    pub(in crate::finite_element::high_order) fn sample_point_matrices(
+        count: usize,
+    ) -> Vec<[[f64; 6]; 6]> {
+        (0..count)
+            .map(|q| {
+                core::array::from_fn(|a| {
+                    core::array::from_fn(|b| {
+                        let (i, j) = (a.min(b) as f64, a.max(b) as f64);
+                        (1.0 + q as f64 * 0.1 + i * 0.7 + j * 0.3).sin()
+                    })
+                })
+            })
+            .collect()
+    }
 
     /// The dense `B^T K B` of the same tables: what the sum factorisation must reproduce.
     fn dense(t: &ElementTables, kq: &[[[f64; 6]; 6]]) -> Vec<f64> {
@@ -191,17 +208,7 @@ mod tests {
             let (x, _) = gll_rule(p);
             let (g, _) = gauss_legendre(p + 1);
             let t = ElementTables::new(&x, &g, [0.3, 0.7]);
-            // deterministic symmetric point matrices
-            let kq: Vec<[[f64; 6]; 6]> = (0..g.len() * g.len())
-                .map(|q| {
-                    core::array::from_fn(|a| {
-                        core::array::from_fn(|b| {
-                            let (i, j) = (a.min(b) as f64, a.max(b) as f64);
-                            (1.0 + q as f64 * 0.1 + i * 0.7 + j * 0.3).sin()
-                        })
-                    })
-                })
-                .collect();
+            let kq = sample_point_matrices(g.len() * g.len());
             let l = 2 * (p + 1) * (p + 1);
             let mut fast = vec![0.0; l * l];
             add_element_matrix(&t, &kq, &mut fast);

@@ -8,8 +8,11 @@
 //!   Lagrange basis and its derivative ([`gll_rule`], [`gauss_legendre`], [`lagrange_basis`]).
 //! - `kernel`: the element stiffness by sum factorisation ([`ElementTables`],
 //!   [`add_element_matrix`]).
-//! - `condensation`: the Schur complement of each element's interior block and the
-//!   back-substitution ([`CondensedElement`]).
+//! - `tensor_kernel`: the same element matrix in tensor form, its `x3` contraction as faer
+//!   GEMMs, read entry by entry by the condensation (tested against `kernel`).
+//! - `condensation`: the Schur complement of each element's interior block (faer Cholesky,
+//!   forward substitution, triangular product) and the back-substitution
+//!   ([`CondensedElement`]).
 //! - `skeleton`: numbering and pattern of the condensed system on the element edges.
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
 //! - `study`: the convergence studies of `capstan verify` ([`high_order_studies`]).
@@ -45,6 +48,7 @@ mod operator;
 mod skeleton;
 mod solve;
 mod study;
+mod tensor_kernel;
 #[cfg(test)]
 mod tests;
 

@@ -3,11 +3,12 @@
 
 use rayon::prelude::*;
 
-use super::condensation::CondensedElement;
+use super::condensation::{CondensationScratch, CondensedElement};
 use super::gll::{gauss_legendre, lagrange_basis};
 use super::kernel::{add_element_matrix, symmetrise};
 use super::operator::HighOrderNavier;
 use super::skeleton::Skeleton;
+use super::tensor_kernel::{TensorIndex, X3Factors};
 use crate::continuum::kinematics::{
     LocalDisplacement, contravariant_stress, mixed_stress_coefficients,
 };
@@ -45,6 +46,41 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             add_element_matrix(rt, &self.kv[e * nr2..(e + 1) * nr2], out);
         }
         symmetrise(out, self.local_dofs());
+    }
+
+    /// The `x3` factors of the full rule and of the reduced rule (SRI), for
+    /// [`Self::tensor_matrix`].
+    fn x3_factors(&self) -> (X3Factors, Option<X3Factors>) {
+        (
+            X3Factors::new(&self.tables),
+            self.reduced_tables.as_ref().map(X3Factors::new),
+        )
+    }
+
+    /// The stiffness matrix of element `e` in tensor form
+    /// ([`X3Factors::add_tensor_matrix`]) into `m` (overwritten), `tt` scratch.
+    fn tensor_matrix(
+        &self,
+        e: usize,
+        (full, reduced): &(X3Factors, Option<X3Factors>),
+        tt: &mut Vec<f64>,
+        m: &mut [f64],
+    ) {
+        m.fill(0.0);
+        let mut add = |f: &X3Factors, kq: &[[[f64; 6]; 6]]| {
+            let len = f.scratch_len();
+            if tt.len() < len {
+                tt.resize(len, 0.0);
+            }
+            let out = faer::MatMut::from_column_major_slice_mut(&mut *m, f.rows(), f.cols());
+            f.add_tensor_matrix(kq, &mut tt[..len], out);
+        };
+        let nq2 = self.tables.nq * self.tables.nq;
+        add(full, &self.kq[e * nq2..(e + 1) * nq2]);
+        if let (Some(r), Some(rt)) = (reduced, &self.reduced_tables) {
+            let nr2 = rt.nq * rt.nq;
+            add(r, &self.kv[e * nr2..(e + 1) * nr2]);
+        }
     }
 
     fn element_count(&self) -> usize {
@@ -111,18 +147,32 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             set.iter().flat_map(|&a| [2 * a, 2 * a + 1]).collect()
         };
         let (bd, id) = (local(&sk.boundary_local), local(&sk.interior_local));
+        let np = self.np();
+        let dofs: Vec<TensorIndex> = (0..l).map(|d| TensorIndex::new(d, np)).collect();
+        let factors = self.x3_factors();
         let elements = (0..self.element_count())
             .into_par_iter()
-            .map(|e| {
-                let mut k = vec![0.0; l * l];
-                self.element_matrix(e, &mut k);
-                let nodes = self.element_nodes(e);
-                let f: Vec<f64> = id
-                    .iter()
-                    .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
-                    .collect();
-                CondensedElement::new(&k, l, &bd, &id, &f)
-            })
+            .map_init(
+                || {
+                    let m = vec![0.0; factors.0.rows() * factors.0.cols()];
+                    (vec![], m, CondensationScratch::new(id.len()))
+                },
+                |(tt, m, scratch), e| {
+                    self.tensor_matrix(e, &factors, tt, m);
+                    let nodes = self.element_nodes(e);
+                    let f: Vec<f64> = id
+                        .iter()
+                        .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
+                        .collect();
+                    CondensedElement::from_entries(
+                        |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
+                        &bd,
+                        &id,
+                        &f,
+                        scratch,
+                    )
+                },
+            )
             .collect::<Result<Vec<_>, _>>()?;
         let mut load: Vec<f64> = sk
             .nodes
