@@ -40,7 +40,10 @@
 
 mod condensation;
 mod gll;
+#[cfg(test)]
+mod graded_tests;
 mod kernel;
+mod mesh;
 mod operator;
 mod skeleton;
 mod solve;
@@ -51,6 +54,7 @@ mod tests;
 pub use condensation::CondensedElement;
 pub use gll::{basis_tables, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{ElementTables, add_element_matrix};
+pub use mesh::{Grading, QpSettings};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
 pub use solve::CondensedSystem;
 pub use study::{HighOrderStudy, high_order_studies};
