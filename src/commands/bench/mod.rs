@@ -8,7 +8,9 @@
 //! - `mms`: the manufactured solution on the ellipse `b/a = 2` (traction-contact set),
 //!   `n2 = 2m + 1`, `n3 = m + 1`;
 //! - `paper`: the paper's default linear stand-in ([`PaperEllipse`]), `n2 = 4m + 1`,
-//!   `n3 = m + 1`, against a Q2 reference on a grid twice as fine as the finest run.
+//!   `n3 = m + 1`, against the graded `fem-qp` reference of `bench/high_order.rs`
+//!   ([`high_order::paper_reference`]: `p = 10`, 12 geometric layers per end, its change from
+//!   `p = 9`, 11 layers in the report), plus the graded `fem-qpP-graded` series.
 //!
 //! # Measures
 //! - time: wall clock of building the discretisation (geometry, data, pattern), assembling,
@@ -18,8 +20,9 @@
 //!   whose default parallelism is the current pool's), the peers with one thread;
 //! - error: relative physical L2 norm of the displacement error, `||U_h - U|| / ||U||`
 //!   (`dA = sqrt(g) dx2 dx3`): for the finite elements by Gauss quadrature of the
-//!   interpolant, for the finite differences (nodal values only) by the nodal trapezoid rule;
-//!   on `paper` the nodal trapezoid rule for every method, against the reference's nodes;
+//!   interpolant over the run's elements, for the finite differences (nodal values only) by
+//!   the nodal trapezoid rule; on `paper` the same, against the reference's element
+//!   polynomial evaluated at the quadrature points (or the FD nodes);
 //! - memory: growth of the peak resident set (VmHWM) over the run, after resetting the peak
 //!   through `/proc/self/clear_refs` (Linux); `estimate` (values + pattern + factor bound)
 //!   where that is unavailable.
@@ -29,6 +32,7 @@
 //! the fastest capstan series per thread count against the fastest peer at each target.
 
 mod high_order;
+use high_order::QpMesh;
 mod peers;
 mod run;
 mod targets;
@@ -95,6 +99,23 @@ pub struct WorkPrecisionArgs {
     /// all available cores (as does 0). The peers always run with one thread.
     #[arg(long, value_delimiter = ',')]
     pub threads: Vec<usize>,
+    /// Problems to run (e.g. `paper`); default: all three.
+    #[arg(long, value_delimiter = ',', value_enum)]
+    pub problems: Vec<Problem>,
+}
+
+/// The `paper` problem's reference: a graded `fem-qp` solve and its distance to the two graded
+/// solves before it (`p - 1`, `p - 2`, one and two layers fewer per end).
+#[derive(Debug, Clone, Serialize)]
+pub struct PaperReferenceReport {
+    /// `fem-qp10-graded, 12 layers, sigma 0.4`.
+    pub method: String,
+    /// Unknowns.
+    pub dofs: usize,
+    /// Relative L2 distance to the solve with `p - 1`, one layer fewer.
+    pub change: f64,
+    /// Relative L2 distance of that solve to the one with `p - 2`, two layers fewer.
+    pub previous_change: f64,
 }
 
 /// The whole benchmark.
@@ -109,6 +130,8 @@ pub struct WorkPrecisionReport {
     pub threads: usize,
     /// Thread counts of capstan's passes, one pass each.
     pub thread_counts: Vec<usize>,
+    /// The `paper` problem's reference and its self-convergence (`None` unless `paper` ran).
+    pub paper_reference: Option<PaperReferenceReport>,
     /// What happened to the scikit-fem peer (`ran`, or why it was skipped); kept from the first
     /// report version, see `peers`.
     pub peer: String,
@@ -124,10 +147,14 @@ pub struct WorkPrecisionReport {
     pub files: Vec<PathBuf>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Problem {
+/// The problems of the benchmark (`--problems`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Problem {
+    /// The Lamé thick cylinder (exact).
     Lame,
+    /// The manufactured solution on the ellipse `b/a = 2`.
     Mms,
+    /// The paper's default linear stand-in (graded `fem-qp` reference).
     Paper,
 }
 
@@ -184,13 +211,9 @@ fn status_kib(field: &str) -> Option<f64> {
         .and_then(|v| v.parse().ok())
 }
 
-/// What the error of a solution is measured against.
-enum Reference<'a> {
-    /// An exact field `x -> [v^2, v^3]`.
-    Exact(&'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync)),
-    /// Nodal values of a finer nested grid `(n2, n3, v)`, every `stride`-th node.
-    Nodal(&'a (usize, usize, Vec<f64>)),
-}
+/// What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
+/// the paper's graded reference).
+type Reference<'a> = &'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync);
 
 /// Relative nodal L2 error (trapezoid, `sqrt(g)` weights) of `v` on `op`'s grid.
 fn nodal_error(
@@ -204,15 +227,7 @@ fn nodal_error(
     for k in 0..g.node_count() {
         let node = g.node(k);
         let [x2, x3] = g.coordinates(node);
-        let u = match reference {
-            Reference::Exact(f) => f([x2, x3]),
-            Reference::Nodal((n2, n3, vr)) => {
-                let s2 = (n2 - 1) / (g.n2() - 1);
-                let s3 = (n3 - 1) / (g.n3() - 1);
-                let kr = node[0] * s2 * n3 + node[1] * s3;
-                [vr[2 * kr], vr[2 * kr + 1]]
-            }
-        };
+        let u = reference([x2, x3]);
         let p = chart.shell_point([0.0, x2, x3])?;
         let m = &p.metric;
         let e = [v[2 * k] - u[0], v[2 * k + 1] - u[1]];
@@ -353,13 +368,8 @@ fn run_one(
             }
             Some(order) => {
                 let t = solve_timed(|| parts.finite_element(order), solver, use_vmhwm)?;
-                let error = match reference {
-                    Reference::Exact(f) => {
-                        let e = t.op.displacement_errors(&t.v, *f)?;
-                        e.l2 / e.l2_exact
-                    }
-                    Reference::Nodal(_) => nodal_error(&t.op, &chart, &t.v, reference)?,
-                };
+                let e = t.op.displacement_errors(&t.v, *reference)?;
+                let error = e.l2 / e.l2_exact;
                 (*t.op.grid(), t.op.dof_count(), t.seconds, t.peak_mib, error)
             }
         };
@@ -399,24 +409,27 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             .displacement(x)
             .value
     };
-    // the paper's reference: Q2 on a grid twice as fine as the finest run
-    let m_ref = 2 * levels.last().copied().unwrap_or(16);
-    let reference_values = {
-        let level = Problem::Paper.level(m_ref);
-        let op = Problem::Paper
-            .parts(m_ref)?
-            .finite_element(ElementOrder::Q2)?;
-        let mut chol = LinearBackend::Cholesky
-            .build(&IterativeParams::default())
-            .map_err(ElasticityError::from)?;
-        let v = op.solve(chol.as_mut())?;
-        (level.n2, level.n3, v)
+    let selected = |p: Problem| args.problems.is_empty() || args.problems.contains(&p);
+    // the paper's reference: graded fem-qp, p = 10, 12 layers (quick: 8, 8)
+    let paper = if selected(Problem::Paper) {
+        let r = high_order::paper_reference(args.quick)?;
+        eprintln!(
+            "work-precision: paper reference {} ({} unknowns): change from the previous graded solve {:.2e} (before: {:.2e})",
+            r.name,
+            r.op.dof_count(),
+            r.change,
+            r.previous_change
+        );
+        Some(r)
+    } else {
+        None
     };
-    let references = [
-        Reference::Exact(&lame_f),
-        Reference::Exact(&mms_f),
-        Reference::Nodal(&reference_values),
-    ];
+    let paper_f = |x: [f64; 2]| {
+        paper
+            .as_ref()
+            .map_or([f64::NAN; 2], |r| r.op.displacement_at(&r.v, x)) // never read unselected
+    };
+    let references: [Reference<'_>; 3] = [&lame_f, &mms_f, &paper_f];
     let threads = if args.threads.is_empty() {
         vec![rayon_threads()]
     } else {
@@ -437,7 +450,9 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 path: format!("rayon pool of --threads {n}"),
                 source: std::io::Error::other(e),
             })?;
-        runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm, args.quick))?);
+        runs.extend(
+            pool.install(|| capstan_pass(&levels, &references, &selected, use_vmhwm, args.quick))?,
+        );
     }
     let mut statuses = vec![];
     if args.no_peer {
@@ -469,6 +484,12 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             .find(|p| p.name == "scikit-fem")
             .map_or_else(|| "skipped (--no-peer)".to_owned(), |p| p.status.clone()),
         thread_counts: threads,
+        paper_reference: paper.as_ref().map(|r| PaperReferenceReport {
+            method: r.name.clone(),
+            dofs: r.op.dof_count(),
+            change: r.change,
+            previous_change: r.previous_change,
+        }),
         peers: statuses,
         runs,
         series,
@@ -503,11 +524,18 @@ fn backends(method: Option<ElementOrder>) -> Vec<Backend> {
 fn capstan_pass(
     levels: &[usize],
     references: &[Reference<'_>; 3],
+    selected: &dyn Fn(Problem) -> bool,
     use_vmhwm: bool,
     quick: bool,
 ) -> Result<Vec<Run>, CliError> {
     let mut runs = vec![];
-    for (problem, reference) in PROBLEMS.into_iter().zip(references) {
+    let problems = || {
+        PROBLEMS
+            .into_iter()
+            .zip(references)
+            .filter(|(p, _)| selected(*p))
+    };
+    for (problem, reference) in problems() {
         for method in METHODS {
             for backend in backends(method) {
                 for &m in levels {
@@ -533,11 +561,23 @@ fn capstan_pass(
             }
         }
     }
-    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs
-    for (problem, reference) in PROBLEMS.into_iter().zip(references) {
+    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs;
+    // on `paper` also graded meshes
+    for (problem, reference) in problems() {
         for p in high_order::ORDERS {
-            for k in high_order::element_levels(problem, p, quick) {
-                runs.push(high_order::run_qp(problem, k, p, reference, use_vmhwm)?);
+            let mut meshes: Vec<QpMesh> = high_order::element_levels(problem, p, quick)
+                .into_iter()
+                .map(QpMesh::Uniform)
+                .collect();
+            if problem == Problem::Paper {
+                meshes.extend(
+                    high_order::graded_layers(p, quick)
+                        .into_iter()
+                        .map(QpMesh::Graded),
+                );
+            }
+            for mesh in meshes {
+                runs.push(high_order::run_qp(problem, mesh, p, *reference, use_vmhwm)?);
             }
         }
     }
@@ -624,7 +664,7 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
         ),
         (
             "paper",
-            "Paper's linear stand-in (Q2 reference): relative L2 error vs time",
+            "Paper's linear stand-in (graded fem-qp10 reference): relative L2 error vs time",
             false,
         ),
     ];
@@ -639,6 +679,9 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
         } else {
             targets::series_names(runs, problem)
         };
+        if keys.is_empty() {
+            continue; // a problem left out by `--problems`
+        }
         for key in keys {
             let mut pts: Vec<(f64, f64)> = targets::series_runs(runs, problem, &key)
                 .into_iter()

@@ -128,10 +128,7 @@ fn graded_paper_solutions_self_converge_with_p_and_layers() {
         .collect();
     let changes: Vec<f64> = runs.windows(2).map(|w| distance(&w[0], &w[1])).collect();
     println!("graded paper, successive changes: {changes:?}");
-    assert!(
-        changes.windows(2).all(|w| w[1] < 0.3 * w[0]),
-        "{changes:?}"
-    );
+    assert!(changes.windows(2).all(|w| w[1] < 0.3 * w[0]), "{changes:?}");
     assert!(changes[2] < 1e-5, "{changes:?}");
 }
 
@@ -148,5 +145,8 @@ fn graded_mesh_beats_the_uniform_one_on_the_paper_problem() {
     let v = op.solve(&mut SparseCholesky::default()).unwrap();
     let uniform = distance(&(op, v), &reference);
     println!("paper p = 4, 12 x 7 elements: graded {graded:e}, uniform {uniform:e}");
-    assert!(graded < 0.2 * uniform, "graded {graded:e}, uniform {uniform:e}");
+    assert!(
+        graded < 0.2 * uniform,
+        "graded {graded:e}, uniform {uniform:e}"
+    );
 }
