@@ -32,7 +32,6 @@
 //! the fastest capstan series per thread count against the fastest peer at each target.
 
 mod high_order;
-use high_order::QpMesh;
 mod peers;
 mod run;
 mod targets;
@@ -565,15 +564,15 @@ fn capstan_pass(
     // on `paper` also graded meshes
     for (problem, reference) in problems() {
         for p in high_order::ORDERS {
-            let mut meshes: Vec<QpMesh> = high_order::element_levels(problem, p, quick)
+            let mut meshes: Vec<high_order::QpMesh> = high_order::element_levels(problem, p, quick)
                 .into_iter()
-                .map(QpMesh::Uniform)
+                .map(high_order::QpMesh::Uniform)
                 .collect();
             if problem == Problem::Paper {
                 meshes.extend(
                     high_order::graded_layers(p, quick)
                         .into_iter()
-                        .map(QpMesh::Graded),
+                        .map(high_order::QpMesh::Graded),
                 );
             }
             for mesh in meshes {

@@ -115,7 +115,7 @@ impl ProblemParts {
     /// See [`HighOrderNavier::new`].
     pub fn high_order_with(
         self,
-        settings: crate::finite_element::QpSettings,
+        settings: crate::finite_element::high_order::QpSettings,
     ) -> Result<HighOrderNavier<SampleChart>, ElasticityError> {
         HighOrderNavier::with_settings(
             self.chart,

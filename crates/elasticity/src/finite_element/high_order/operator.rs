@@ -10,11 +10,12 @@ use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
 use super::mesh::{Grading, QpSettings};
 use super::skeleton::Skeleton;
-use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::boundary::{BoundaryConditions, Component, Side};
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
 use crate::error::ElasticityError;
 use crate::finite_difference::BodyForce;
 use crate::finite_element::assembly::ElementAssembly;
+use crate::finite_element::navier::boundary_terms::add_side_point_load;
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::grid::Grid;
 use crate::material::Material;
@@ -531,29 +532,16 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                             (0..np).map(|b| [i2, p * e + b]).collect(),
                         )
                     };
-                    let s = if along_x2 { x[0] } else { x[1] };
                     let at = [0.0, x[0], x[1]];
                     let pt = self.chart.shell_point(at)?;
                     check_plane_strain(&pt, at)?;
-                    for c in Component::ALL {
-                        let flux = match cond.component(c) {
-                            ComponentCondition::Displacement(_) => continue,
-                            ComponentCondition::Traction(f) => {
-                                pt.sqrt_g * pt.inverse_metric[a][a].sqrt() * f.eval(s)
-                            }
-                            ComponentCondition::Stress(f) => side.sign() * pt.sqrt_g * f.eval(s),
-                        };
-                        if !flux.is_finite() {
-                            return Err(ElasticityError::NonFinite {
-                                what: "boundary traction",
-                                at: x,
-                            });
-                        }
-                        for (node, n) in nodes.iter().zip(&shape) {
-                            let d = 2 * self.grid.node_index(*node) + c.index();
-                            self.load[d] += n * flux * w * 0.5 * length;
-                        }
-                    }
+                    let shape: Vec<(usize, f64)> = nodes
+                        .iter()
+                        .zip(&shape)
+                        .map(|(node, n)| (self.grid.node_index(*node), *n))
+                        .collect();
+                    let weight = w * 0.5 * length;
+                    add_side_point_load(&mut self.load, &cond, side, &pt, x, weight, &shape)?;
                 }
             }
         }
