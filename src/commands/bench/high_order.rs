@@ -6,10 +6,10 @@
 //! `fem-qpP-graded`: `n` geometric layers (ratio [`SIGMA`]) at each end of `x2` and `x3`
 //! around `6 x 1` middle elements ([`Grading`]), `n` growing along the series; the paper's
 //! reference is the graded `p = 10`, `n = 12` solve ([`paper_reference`]). Time: build
-//! (geometry at the quadrature points, loads), condensation + skeleton assembly, and analyse
-//! + factor + solve + interior recovery. Error: as for Q1/Q2, Gauss quadrature (`p + 2`
-//! points per direction) of the element polynomial against the exact field (`lame`, `mms`)
-//! or the reference's element polynomial (`paper`) over the run's elements.
+//! (geometry at the quadrature points, loads), condensation and skeleton assembly, and
+//! analyse, factor, solve and interior recovery. Error: as for Q1/Q2, Gauss quadrature
+//! (`p + 2` points per direction) of the element polynomial against the exact field (`lame`,
+//! `mms`) or the reference's element polynomial (`paper`) over the run's elements.
 
 use std::time::Instant;
 
