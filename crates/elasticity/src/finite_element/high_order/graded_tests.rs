@@ -21,14 +21,11 @@ fn settings(p: usize, sigma: f64, layers: usize, split: usize) -> QpSettings {
     }
 }
 
-/// Least-squares slope of `ln(error)` against `x`.
-fn log_slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let mx = points.iter().map(|e| e.0).sum::<f64>() / n;
-    let my = points.iter().map(|e| e.1.ln()).sum::<f64>() / n;
-    let sxy: f64 = points.iter().map(|e| (e.0 - mx) * (e.1.ln() - my)).sum();
-    let sxx: f64 = points.iter().map(|e| (e.0 - mx).powi(2)).sum();
-    sxy / sxx
+/// The rate `b` of `error ~ C exp(-b x)`: the observed order against `h = exp(-x)` (the
+/// least-squares slope of `ln(error)` against `ln h = -x`).
+fn exponential_rate(points: &[(f64, f64)]) -> f64 {
+    let as_h: Vec<(f64, f64)> = points.iter().map(|&(x, e)| ((-x).exp(), e)).collect();
+    observed_order(&as_h)
 }
 
 #[test]
@@ -109,7 +106,7 @@ fn graded_paper_problem_converges_exponentially_in_p() {
     let errors: Vec<(f64, f64)> = (2..=6)
         .map(|p| (p as f64, distance(&paper_graded(p, 8), &reference)))
         .collect();
-    let rate = -log_slope(&errors);
+    let rate = exponential_rate(&errors);
     println!("graded paper, 8 layers: rate {rate:.3}, {errors:?}");
     assert!(
         errors.windows(2).all(|w| w[1].1 < 0.3 * w[0].1),
