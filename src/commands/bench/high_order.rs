@@ -21,7 +21,7 @@ use capstan_elasticity::solvers::SparseCholesky;
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError};
 
-use super::{Problem, REPEAT_RULE, Reference, Run, reset_peak, status_kib};
+use super::{PaperReferenceReport, Problem, REPEAT_RULE, Reference, Run, reset_peak, status_kib};
 use crate::error::CliError;
 
 /// The orders of the bench.
@@ -102,19 +102,14 @@ fn build(
     }
 }
 
-/// The paper problem's reference and how it was checked.
+/// The paper problem's reference (operator, solution) and how it was checked.
 pub struct PaperReference {
-    /// `fem-qp10-graded, 12 layers, sigma 0.4`.
-    pub name: String,
     /// The reference operator (graded, `p = 10`, 12 layers; quick: `p = 8`, 8 layers).
     pub op: HighOrderNavier<SampleChart>,
     /// Its solution.
     pub v: Vec<f64>,
-    /// Relative L2 distance to the previous graded solve (`p - 1`, one layer fewer per end),
-    /// by quadrature over the previous solve's elements: the reference's self-convergence.
-    pub change: f64,
-    /// The previous solve's distance to its own predecessor (`p - 2`, two layers fewer).
-    pub previous_change: f64,
+    /// Name, unknowns and self-convergence, as the report gives them.
+    pub summary: PaperReferenceReport,
 }
 
 /// Solves the graded paper problem with `(p, n)`, `(p - 1, n - 1)`, `(p - 2, n - 2)` and
@@ -139,13 +134,13 @@ pub fn paper_reference(quick: bool) -> Result<PaperReference, CliError> {
     let change = distance(&previous, &reference)?;
     let previous_change = distance(&older, &previous)?;
     let (op, v) = reference;
-    Ok(PaperReference {
-        name: format!("fem-qp{p}-graded, {n} layers, sigma {SIGMA}"),
-        op,
-        v,
+    let summary = PaperReferenceReport {
+        method: format!("fem-qp{p}-graded, {n} layers, sigma {SIGMA}"),
+        dofs: op.dof_count(),
         change,
         previous_change,
-    })
+    };
+    Ok(PaperReference { op, v, summary })
 }
 
 /// One `fem-qp` run of order `p` on `mesh`, the fastest of [`REPEAT_RULE`].

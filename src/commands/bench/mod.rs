@@ -412,12 +412,14 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
     // the paper's reference: graded fem-qp, p = 10, 12 layers (quick: 8, 8)
     let paper = if selected(Problem::Paper) {
         let r = high_order::paper_reference(args.quick)?;
+        let PaperReferenceReport {
+            method,
+            dofs,
+            change,
+            previous_change,
+        } = &r.summary;
         eprintln!(
-            "work-precision: paper reference {} ({} unknowns): change from the previous graded solve {:.2e} (before: {:.2e})",
-            r.name,
-            r.op.dof_count(),
-            r.change,
-            r.previous_change
+            "work-precision: paper reference {method} ({dofs} unknowns): change from the previous graded solve {change:.2e} (before: {previous_change:.2e})"
         );
         Some(r)
     } else {
@@ -483,12 +485,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             .find(|p| p.name == "scikit-fem")
             .map_or_else(|| "skipped (--no-peer)".to_owned(), |p| p.status.clone()),
         thread_counts: threads,
-        paper_reference: paper.as_ref().map(|r| PaperReferenceReport {
-            method: r.name.clone(),
-            dofs: r.op.dof_count(),
-            change: r.change,
-            previous_change: r.previous_change,
-        }),
+        paper_reference: paper.as_ref().map(|r| r.summary.clone()),
         peers: statuses,
         runs,
         series,

@@ -535,13 +535,13 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                     let at = [0.0, x[0], x[1]];
                     let pt = self.chart.shell_point(at)?;
                     check_plane_strain(&pt, at)?;
-                    let shape: Vec<(usize, f64)> = nodes
+                    let grid = &self.grid;
+                    let shape = nodes
                         .iter()
                         .zip(&shape)
-                        .map(|(node, n)| (self.grid.node_index(*node), *n))
-                        .collect();
+                        .map(|(m, n)| (grid.node_index(*m), *n));
                     let weight = w * 0.5 * length;
-                    add_side_point_load(&mut self.load, &cond, side, &pt, x, weight, &shape)?;
+                    add_side_point_load(&mut self.load, &cond, side, &pt, x, weight, shape)?;
                 }
             }
         }

@@ -25,7 +25,7 @@ pub(crate) fn add_side_point_load(
     p: &ShellPoint<f64>,
     at: [f64; 2],
     weight: f64,
-    shape: &[(usize, f64)],
+    shape: impl Iterator<Item = (usize, f64)> + Clone,
 ) -> Result<(), ElasticityError> {
     let a = side.normal_index();
     let s = if a == 2 { at[0] } else { at[1] };
@@ -41,7 +41,7 @@ pub(crate) fn add_side_point_load(
                 at,
             });
         }
-        for &(node, n) in shape {
+        for (node, n) in shape.clone() {
             load[2 * node + c.index()] += n * flux * weight;
         }
     }
@@ -85,13 +85,13 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                         )
                     };
                     let p = self.point(x[0], x[1])?;
-                    let shape: Vec<(usize, f64)> = nodes
+                    let grid = &self.grid;
+                    let shape = nodes
                         .iter()
                         .zip(shape)
-                        .map(|(node, n)| (self.grid.node_index(*node), n))
-                        .collect();
+                        .map(|(m, n)| (grid.node_index(*m), n));
                     let weight = w * 0.5 * length;
-                    add_side_point_load(&mut self.load, &cond, side, &p, x, weight, &shape)?;
+                    add_side_point_load(&mut self.load, &cond, side, &p, x, weight, shape)?;
                 }
             }
         }
