@@ -8,7 +8,7 @@ mod common;
 use std::process::Command;
 
 use capstan::cli::{Cli, Command as Sub};
-use capstan::commands::bench::{BenchCommand, WorkPrecisionArgs, report};
+use capstan::commands::bench::{BenchCommand, Problem, WorkPrecisionArgs, report};
 use clap::Parser;
 
 #[test]
@@ -37,6 +37,23 @@ fn work_precision_arguments_parse() {
     };
     let BenchCommand::WorkPrecision(a) = b.what;
     assert_eq!(a.threads, [1, 2]);
+    assert!(a.problems.is_empty()); // all three
+    let cli = Cli::try_parse_from([
+        "capstan",
+        "bench",
+        "work-precision",
+        "--problems",
+        "paper,lame",
+    ])
+    .unwrap();
+    let Some(Sub::Bench(b)) = cli.command else {
+        panic!("not bench")
+    };
+    let BenchCommand::WorkPrecision(a) = b.what;
+    assert_eq!(a.problems, [Problem::Paper, Problem::Lame]);
+    assert!(
+        Cli::try_parse_from(["capstan", "bench", "work-precision", "--problems", "x"]).is_err()
+    );
 }
 
 #[test]
