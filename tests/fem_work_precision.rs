@@ -11,49 +11,28 @@ use capstan::cli::{Cli, Command as Sub};
 use capstan::commands::bench::{BenchCommand, Problem, WorkPrecisionArgs, report};
 use clap::Parser;
 
-#[test]
-fn work_precision_arguments_parse() {
-    let cli = Cli::try_parse_from([
-        "capstan",
-        "bench",
-        "work-precision",
-        "--quick",
-        "--json",
-        "--out",
-        "x",
-    ])
-    .unwrap();
-    let Some(Sub::Bench(b)) = cli.command else {
+/// `capstan bench work-precision ARGS`, parsed.
+fn parse(args: &[&str]) -> Result<WorkPrecisionArgs, clap::Error> {
+    let all = ["capstan", "bench", "work-precision"].iter().chain(args);
+    let Some(Sub::Bench(b)) = Cli::try_parse_from(all)?.command else {
         panic!("not bench")
     };
     let BenchCommand::WorkPrecision(a) = b.what;
+    Ok(a)
+}
+
+#[test]
+fn work_precision_arguments_parse() {
+    let a = parse(&["--quick", "--json", "--out", "x"]).unwrap();
     assert!(a.quick && a.json && !a.no_peer);
     assert!(a.threads.is_empty()); // all cores
     assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
-    let cli =
-        Cli::try_parse_from(["capstan", "bench", "work-precision", "--threads", "1,2"]).unwrap();
-    let Some(Sub::Bench(b)) = cli.command else {
-        panic!("not bench")
-    };
-    let BenchCommand::WorkPrecision(a) = b.what;
+    let a = parse(&["--threads", "1,2"]).unwrap();
     assert_eq!(a.threads, [1, 2]);
     assert!(a.problems.is_empty()); // all three
-    let cli = Cli::try_parse_from([
-        "capstan",
-        "bench",
-        "work-precision",
-        "--problems",
-        "paper,lame",
-    ])
-    .unwrap();
-    let Some(Sub::Bench(b)) = cli.command else {
-        panic!("not bench")
-    };
-    let BenchCommand::WorkPrecision(a) = b.what;
+    let a = parse(&["--problems", "paper,lame"]).unwrap();
     assert_eq!(a.problems, [Problem::Paper, Problem::Lame]);
-    assert!(
-        Cli::try_parse_from(["capstan", "bench", "work-precision", "--problems", "x"]).is_err()
-    );
+    assert!(parse(&["--problems", "x"]).is_err());
 }
 
 #[test]
