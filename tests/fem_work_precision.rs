@@ -9,14 +9,13 @@ use std::path::Path;
 use std::process::Command;
 
 use capstan::cli::{Cli, Command as Sub};
-use capstan::commands::bench::{BenchCommand, WorkPrecisionArgs, report};
+use capstan::commands::bench::{BenchCommand, Problem, WorkPrecisionArgs, report};
 use clap::Parser;
 
 /// `capstan bench work-precision ARGS`, parsed.
 fn parse(args: &[&str]) -> Result<WorkPrecisionArgs, clap::Error> {
-    let words = ["capstan", "bench", "work-precision"].iter().chain(args);
-    let cli = Cli::try_parse_from(words)?;
-    let Some(Sub::Bench(b)) = cli.command else {
+    let all = ["capstan", "bench", "work-precision"].iter().chain(args);
+    let Some(Sub::Bench(b)) = Cli::try_parse_from(all)?.command else {
         panic!("not bench")
     };
     let BenchCommand::WorkPrecision(a) = b.what;
@@ -31,6 +30,10 @@ fn work_precision_arguments_parse() {
     assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
     let a = parse(&["--threads", "1,2"]).unwrap();
     assert_eq!(a.threads, [1, 2]);
+    assert!(a.problems.is_empty()); // all three
+    let a = parse(&["--problems", "paper,lame"]).unwrap();
+    assert_eq!(a.problems, [Problem::Paper, Problem::Lame]);
+    assert!(parse(&["--problems", "x"]).is_err());
 }
 
 #[test]
@@ -46,7 +49,7 @@ fn work_precision_runs_can_be_restricted() {
         "6,8",
     ])
     .unwrap();
-    assert_eq!(a.problems, ["lame"]);
+    assert_eq!(a.problems, [Problem::Lame]);
     assert_eq!(a.methods, ["fem-qp7", "fem-qp8"]);
     assert_eq!(a.peers, ["ngsolve"]);
     assert_eq!(a.peer_orders, [6, 8]);
@@ -65,7 +68,7 @@ fn work_precision_runs_can_be_restricted() {
         quick: true,
         out: Some(dir.clone()),
         no_peer: true,
-        problems: vec!["lame".to_owned()],
+        problems: vec![Problem::Lame],
         methods: vec!["fem-qp2".to_owned()],
         ..Default::default()
     })

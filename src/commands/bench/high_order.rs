@@ -2,19 +2,26 @@
 //! `p = 2 ... 8` (GLL nodes, static condensation, sparse Cholesky of the skeleton system).
 //!
 //! Grids: `k` elements through the thickness and `4k` (`lame`, `paper`) or `2k` (`mms`)
-//! around, i.e. the problem's level `m = k p`. Time: build (geometry at the quadrature
-//! points, loads), condensation + skeleton assembly, and analyse + factor + solve + interior
-//! recovery. Error: as for Q1/Q2 (`lame`, `mms`: Gauss quadrature of the interpolant against
-//! the exact field); on `paper` the element polynomial sampled at the nodes of a
-//! `65 x 17` sub-grid of the Q2 reference, trapezoid rule with `sqrt(g)`.
+//! around, i.e. the problem's level `m = k p`. On `paper` also the graded series
+//! `fem-qpP-graded`: `n` geometric layers (ratio [`SIGMA`]) at each end of `x2` and `x3`
+//! around `6 x 1` middle elements ([`Grading`]), `n` growing along the series; the paper's
+//! reference is the graded `p = 10`, `n = 12` solve ([`paper_reference`]). Time: build
+//! (geometry at the quadrature points, loads), condensation and skeleton assembly, and
+//! analyse, factor, solve and interior recovery. Error: as for Q1/Q2, Gauss quadrature
+//! (`p + 2` points per direction) of the element polynomial against the exact field (`lame`,
+//! `mms`) or the reference's element polynomial (`paper`) over the run's elements.
 
 use std::time::Instant;
 
-use capstan_elasticity::finite_element::{HighOrderNavier, SampleChart, VolumetricIntegration};
+use capstan_elasticity::finite_element::{
+    Grading, HighOrderNavier, QpSettings, SampleChart, VolumetricIntegration, paper_parts,
+};
+use capstan_elasticity::samples::PaperEllipse;
 use capstan_elasticity::solvers::SparseCholesky;
-use capstan_elasticity::{Discretisation, ShellGeometry};
+use capstan_elasticity::verification::GridLevel;
+use capstan_elasticity::{Discretisation, ElasticityError};
 
-use super::{Problem, REPEAT_RULE, Reference, Run, reset_peak, status_kib};
+use super::{PaperReferenceReport, Problem, REPEAT_RULE, Reference, Run, reset_peak, status_kib};
 use crate::error::CliError;
 
 /// The orders of the bench.
@@ -39,58 +46,118 @@ pub(super) fn element_levels(problem: Problem, p: usize, quick: bool) -> Vec<usi
         .collect()
 }
 
-/// Relative L2 error of `v` against the reference's nodes on a `65 x 17` sub-grid.
-fn sampled_error(
-    op: &HighOrderNavier<SampleChart>,
-    v: &[f64],
-    (n2r, n3r, vr): &(usize, usize, Vec<f64>),
-) -> Result<f64, CliError> {
-    let g = *op.grid();
-    let [t0, t1] = g.theta();
-    let (m2, m3) = (64, 16);
-    let (s2, s3) = ((n2r - 1) / m2, (n3r - 1) / m3);
-    let (mut num, mut den) = (0.0, 0.0);
-    for i in 0..=m2 {
-        for j in 0..=m3 {
-            let x = [
-                t0 + (t1 - t0) * i as f64 / m2 as f64,
-                g.thickness() * j as f64 / m3 as f64,
-            ];
-            let kr = i * s2 * n3r + j * s3;
-            let u = [vr[2 * kr], vr[2 * kr + 1]];
-            let uh = op.displacement_at(v, x);
-            let p = op.chart().shell_point([0.0, x[0], x[1]])?;
-            let m = &p.metric;
-            let n2 = |a: [f64; 2]| {
-                m[1][1] * a[0] * a[0] + 2.0 * m[1][2] * a[0] * a[1] + m[2][2] * a[1] * a[1]
-            };
-            let w2 = if i == 0 || i == m2 { 0.5 } else { 1.0 };
-            let w3 = if j == 0 || j == m3 { 0.5 } else { 1.0 };
-            let w = w2 * w3 * p.sqrt_g;
-            num += w * n2([uh[0] - u[0], uh[1] - u[1]]);
-            den += w * n2(u);
-        }
-    }
-    Ok((num / den).sqrt())
+/// Grading ratio of the graded `paper` runs. With a fixed order the layer elements converge
+/// like `rho^-p`, `rho` growing with `sigma`; `0.15` (the hp-optimum for `p` growing with the
+/// layers) stalls near `1e-6` at `p = 8` (docs/high-order.md).
+pub const SIGMA: f64 = 0.4;
+
+/// Geometric layers per end along the graded series.
+const LAYERS: [usize; 8] = [1, 2, 3, 4, 6, 8, 10, 12];
+
+/// The mesh of one `fem-qp` run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum QpMesh {
+    /// `k` uniform elements through the thickness (the problem's level `m = k p`).
+    Uniform(usize),
+    /// `paper` only: `n` geometric layers at each end around `6 x 1` middle elements.
+    Graded(usize),
 }
 
-/// One `fem-qp` run of order `p` with `k` elements through the thickness, the fastest of
-/// [`REPEAT_RULE`].
+/// The graded series' layer counts of order `p` within [`MAX_DOFS`].
+pub(super) fn graded_layers(p: usize, quick: bool) -> Vec<usize> {
+    let layers = if quick { &LAYERS[..3] } else { &LAYERS[..] };
+    layers
+        .iter()
+        .copied()
+        .filter(|&n| {
+            let l = graded_level(p, n);
+            2 * l.n2 * l.n3 <= MAX_DOFS
+        })
+        .collect()
+}
+
+/// `(2n + 6) x (2n + 1)` elements of order `p`.
+fn graded_level(p: usize, n: usize) -> GridLevel {
+    GridLevel {
+        n2: (2 * n + 6) * p + 1,
+        n3: (2 * n + 1) * p + 1,
+    }
+}
+
+/// The operator of one run.
+fn build(
+    problem: Problem,
+    p: usize,
+    mesh: QpMesh,
+) -> Result<HighOrderNavier<SampleChart>, ElasticityError> {
+    match mesh {
+        QpMesh::Uniform(k) => problem
+            .parts(k * p)?
+            .high_order(p, VolumetricIntegration::Full),
+        QpMesh::Graded(n) => paper_parts(&PaperEllipse::default(), graded_level(p, n))?
+            .high_order_with(QpSettings {
+                grading: Grading::geometric(SIGMA, n)?,
+                ..QpSettings::order(p)
+            }),
+    }
+}
+
+/// The paper problem's reference (operator, solution) and how it was checked.
+pub struct PaperReference {
+    /// The reference operator (graded, `p = 10`, 12 layers; quick: `p = 8`, 8 layers).
+    pub op: HighOrderNavier<SampleChart>,
+    /// Its solution.
+    pub v: Vec<f64>,
+    /// Name, unknowns and self-convergence, as the report gives them.
+    pub summary: PaperReferenceReport,
+}
+
+/// Solves the graded paper problem with `(p, n)`, `(p - 1, n - 1)`, `(p - 2, n - 2)` and
+/// measures the successive changes.
+///
+/// # Errors
+/// Elasticity and solver errors.
+pub fn paper_reference(quick: bool) -> Result<PaperReference, CliError> {
+    let (p, n) = if quick { (8, 8) } else { (10, 12) };
+    let solve = |p: usize, n: usize| -> Result<_, CliError> {
+        let op = build(Problem::Paper, p, QpMesh::Graded(n))?;
+        let v = op.solve(&mut SparseCholesky::default())?;
+        Ok((op, v))
+    };
+    let distance = |(a, va): &(HighOrderNavier<SampleChart>, Vec<f64>),
+                    (b, vb): &(HighOrderNavier<SampleChart>, Vec<f64>)|
+     -> Result<f64, CliError> {
+        let e = a.displacement_errors(va, &|x| b.displacement_at(vb, x))?;
+        Ok(e.l2 / e.l2_exact)
+    };
+    let (older, previous, reference) = (solve(p - 2, n - 2)?, solve(p - 1, n - 1)?, solve(p, n)?);
+    let change = distance(&previous, &reference)?;
+    let previous_change = distance(&older, &previous)?;
+    let (op, v) = reference;
+    let summary = PaperReferenceReport {
+        method: format!("fem-qp{p}-graded, {n} layers, sigma {SIGMA}"),
+        dofs: op.dof_count(),
+        change,
+        previous_change,
+    };
+    Ok(PaperReference { op, v, summary })
+}
+
+/// One `fem-qp` run of order `p` on `mesh`, the fastest of [`REPEAT_RULE`].
 pub(super) fn run_qp(
     problem: Problem,
-    k: usize,
+    mesh: QpMesh,
     p: usize,
-    reference: &Reference<'_>,
+    reference: Reference<'_>,
     use_vmhwm: bool,
 ) -> Result<Run, CliError> {
     REPEAT_RULE.fastest(|| {
-        let parts = problem.parts(k * p)?;
         if use_vmhwm {
             reset_peak();
         }
         let base = status_kib("VmRSS:").unwrap_or(0.0);
         let start = Instant::now();
-        let op = parts.high_order(p, VolumetricIntegration::Full)?;
+        let op = build(problem, p, mesh)?;
         let t_setup = start.elapsed().as_secs_f64();
         let t = Instant::now();
         let condensed = op.condensed_system()?;
@@ -106,17 +173,16 @@ pub(super) fn run_qp(
             (12.0 * condensed.system.pattern.nnz() as f64 + 40.0 * op.dof_count() as f64)
                 / 1_048_576.0
         };
-        let error = match reference {
-            Reference::Exact(f) => {
-                let e = op.displacement_errors(&v, *f)?;
-                e.l2 / e.l2_exact
-            }
-            Reference::Nodal(r) => sampled_error(&op, &v, r)?,
-        };
+        let e = op.displacement_errors(&v, reference)?;
+        let error = e.l2 / e.l2_exact;
         let grid = op.grid();
+        let name = capstan_elasticity::finite_element::high_order::order_name(p);
         Ok(Run {
             problem: problem.name(),
-            method: capstan_elasticity::finite_element::high_order::order_name(p).to_owned(),
+            method: match mesh {
+                QpMesh::Uniform(_) => name.to_owned(),
+                QpMesh::Graded(_) => format!("{name}-graded"),
+            },
             backend: "cholesky".to_owned(),
             n2: grid.n2(),
             n3: grid.n3(),

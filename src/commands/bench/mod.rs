@@ -8,7 +8,9 @@
 //! - `mms`: the manufactured solution on the ellipse `b/a = 2` (traction-contact set),
 //!   `n2 = 2m + 1`, `n3 = m + 1`;
 //! - `paper`: the paper's default linear stand-in ([`PaperEllipse`]), `n2 = 4m + 1`,
-//!   `n3 = m + 1`, against a Q2 reference on a grid twice as fine as the finest run.
+//!   `n3 = m + 1`, against the graded `fem-qp` reference of `bench/high_order.rs`
+//!   ([`high_order::paper_reference`]: `p = 10`, 12 geometric layers per end, its change from
+//!   `p = 9`, 11 layers in the report), plus the graded `fem-qpP-graded` series.
 //!
 //! # Measures
 //! - time: wall clock of building the discretisation (geometry, data, pattern), assembling,
@@ -18,8 +20,9 @@
 //!   whose default parallelism is the current pool's), the peers with one thread;
 //! - error: relative physical L2 norm of the displacement error, `||U_h - U|| / ||U||`
 //!   (`dA = sqrt(g) dx2 dx3`): for the finite elements by Gauss quadrature of the
-//!   interpolant, for the finite differences (nodal values only) by the nodal trapezoid rule;
-//!   on `paper` the nodal trapezoid rule for every method, against the reference's nodes;
+//!   interpolant over the run's elements, for the finite differences (nodal values only) by
+//!   the nodal trapezoid rule; on `paper` the same, against the reference's element
+//!   polynomial evaluated at the quadrature points (or the FD nodes);
 //! - memory: growth of the peak resident set (VmHWM) over the run, after resetting the peak
 //!   through `/proc/self/clear_refs` (Linux); `estimate` (values + pattern + factor bound)
 //!   where that is unavailable.
@@ -95,10 +98,11 @@ pub struct WorkPrecisionArgs {
     /// all available cores (as does 0). The peers always run with one thread.
     #[arg(long, value_delimiter = ',')]
     pub threads: Vec<usize>,
-    /// Problems to run (e.g. `lame`); default: all.
-    #[arg(long, value_delimiter = ',', value_parser = ["lame", "mms", "paper"])]
-    pub problems: Vec<String>,
-    /// capstan methods to run (e.g. `fem-qp6,fem-qp7`); default: all.
+    /// Problems to run (e.g. `paper`); default: all three.
+    #[arg(long, value_delimiter = ',', value_enum)]
+    pub problems: Vec<Problem>,
+    /// capstan methods to run (e.g. `fem-qp6,fem-qp7`; `fem-qpP` also selects the graded
+    /// `fem-qpP-graded` series of `paper`); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
         "fem-qp7", "fem-qp8",
@@ -117,6 +121,25 @@ impl WorkPrecisionArgs {
     fn selects(list: &[String], name: &str) -> bool {
         list.is_empty() || list.iter().any(|x| x == name)
     }
+
+    /// Whether `problem` is run (`--problems`; empty: every problem).
+    fn selects_problem(&self, problem: Problem) -> bool {
+        self.problems.is_empty() || self.problems.contains(&problem)
+    }
+}
+
+/// The `paper` problem's reference: a graded `fem-qp` solve and its distance to the two graded
+/// solves before it (`p - 1`, `p - 2`, one and two layers fewer per end).
+#[derive(Debug, Clone, Serialize)]
+pub struct PaperReferenceReport {
+    /// `fem-qp10-graded, 12 layers, sigma 0.4`.
+    pub method: String,
+    /// Unknowns.
+    pub dofs: usize,
+    /// Relative L2 distance to the solve with `p - 1`, one layer fewer.
+    pub change: f64,
+    /// Relative L2 distance of that solve to the one with `p - 2`, two layers fewer.
+    pub previous_change: f64,
 }
 
 /// The whole benchmark.
@@ -131,6 +154,8 @@ pub struct WorkPrecisionReport {
     pub threads: usize,
     /// Thread counts of capstan's passes, one pass each.
     pub thread_counts: Vec<usize>,
+    /// The `paper` problem's reference and its self-convergence (`None` unless `paper` ran).
+    pub paper_reference: Option<PaperReferenceReport>,
     /// What happened to the scikit-fem peer (`ran`, or why it was skipped); kept from the first
     /// report version, see `peers`.
     pub peer: String,
@@ -146,10 +171,14 @@ pub struct WorkPrecisionReport {
     pub files: Vec<PathBuf>,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Problem {
+/// The problems of the benchmark (`--problems`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Problem {
+    /// The Lamé thick cylinder (exact).
     Lame,
+    /// The manufactured solution on the ellipse `b/a = 2`.
     Mms,
+    /// The paper's default linear stand-in (graded `fem-qp` reference).
     Paper,
 }
 
@@ -206,13 +235,9 @@ fn status_kib(field: &str) -> Option<f64> {
         .and_then(|v| v.parse().ok())
 }
 
-/// What the error of a solution is measured against.
-enum Reference<'a> {
-    /// An exact field `x -> [v^2, v^3]`.
-    Exact(&'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync)),
-    /// Nodal values of a finer nested grid `(n2, n3, v)`, every `stride`-th node.
-    Nodal(&'a (usize, usize, Vec<f64>)),
-}
+/// What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
+/// the paper's graded reference).
+type Reference<'a> = &'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync);
 
 /// Relative nodal L2 error (trapezoid, `sqrt(g)` weights) of `v` on `op`'s grid.
 fn nodal_error(
@@ -226,15 +251,7 @@ fn nodal_error(
     for k in 0..g.node_count() {
         let node = g.node(k);
         let [x2, x3] = g.coordinates(node);
-        let u = match reference {
-            Reference::Exact(f) => f([x2, x3]),
-            Reference::Nodal((n2, n3, vr)) => {
-                let s2 = (n2 - 1) / (g.n2() - 1);
-                let s3 = (n3 - 1) / (g.n3() - 1);
-                let kr = node[0] * s2 * n3 + node[1] * s3;
-                [vr[2 * kr], vr[2 * kr + 1]]
-            }
-        };
+        let u = reference([x2, x3]);
         let p = chart.shell_point([0.0, x2, x3])?;
         let m = &p.metric;
         let e = [v[2 * k] - u[0], v[2 * k + 1] - u[1]];
@@ -375,13 +392,8 @@ fn run_one(
             }
             Some(order) => {
                 let t = solve_timed(|| parts.finite_element(order), solver, use_vmhwm)?;
-                let error = match reference {
-                    Reference::Exact(f) => {
-                        let e = t.op.displacement_errors(&t.v, *f)?;
-                        e.l2 / e.l2_exact
-                    }
-                    Reference::Nodal(_) => nodal_error(&t.op, &chart, &t.v, reference)?,
-                };
+                let e = t.op.displacement_errors(&t.v, *reference)?;
+                let error = e.l2 / e.l2_exact;
                 (*t.op.grid(), t.op.dof_count(), t.seconds, t.peak_mib, error)
             }
         };
@@ -421,27 +433,28 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             .displacement(x)
             .value
     };
-    // the paper's reference: Q2 on a grid twice as fine as the finest run
-    let m_ref = 2 * levels.last().copied().unwrap_or(16);
-    // (unused, and not computed, when `--problems` leaves out `paper`)
-    let reference_values = if !WorkPrecisionArgs::selects(&args.problems, "paper") {
-        (0, 0, vec![])
+    // the paper's reference: graded fem-qp, p = 10, 12 layers (quick: 8, 8)
+    let paper = if args.selects_problem(Problem::Paper) {
+        let r = high_order::paper_reference(args.quick)?;
+        let PaperReferenceReport {
+            method,
+            dofs,
+            change,
+            previous_change,
+        } = &r.summary;
+        eprintln!(
+            "work-precision: paper reference {method} ({dofs} unknowns): change from the previous graded solve {change:.2e} (before: {previous_change:.2e})"
+        );
+        Some(r)
     } else {
-        let level = Problem::Paper.level(m_ref);
-        let op = Problem::Paper
-            .parts(m_ref)?
-            .finite_element(ElementOrder::Q2)?;
-        let mut chol = LinearBackend::Cholesky
-            .build(&IterativeParams::default())
-            .map_err(ElasticityError::from)?;
-        let v = op.solve(chol.as_mut())?;
-        (level.n2, level.n3, v)
+        None
     };
-    let references = [
-        Reference::Exact(&lame_f),
-        Reference::Exact(&mms_f),
-        Reference::Nodal(&reference_values),
-    ];
+    let paper_f = |x: [f64; 2]| {
+        paper
+            .as_ref()
+            .map_or([f64::NAN; 2], |r| r.op.displacement_at(&r.v, x)) // never read unselected
+    };
+    let references: [Reference<'_>; 3] = [&lame_f, &mms_f, &paper_f];
     let threads = if args.threads.is_empty() {
         vec![rayon_threads()]
     } else {
@@ -499,6 +512,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             .find(|p| p.name == "scikit-fem")
             .map_or_else(|| "skipped (--no-peer)".to_owned(), |p| p.status.clone()),
         thread_counts: threads,
+        paper_reference: paper.as_ref().map(|r| r.summary.clone()),
         peers: statuses,
         runs,
         series,
@@ -541,7 +555,7 @@ fn capstan_pass(
         PROBLEMS
             .into_iter()
             .zip(references)
-            .filter(|(p, _)| WorkPrecisionArgs::selects(&args.problems, p.name()))
+            .filter(|(p, _)| args.selects_problem(*p))
     };
     let mut runs = vec![];
     for (problem, reference) in selected() {
@@ -572,7 +586,8 @@ fn capstan_pass(
             }
         }
     }
-    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs
+    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs;
+    // on `paper` also graded meshes
     for (problem, reference) in selected() {
         for p in high_order::ORDERS.filter(|&p| {
             WorkPrecisionArgs::selects(
@@ -580,8 +595,19 @@ fn capstan_pass(
                 capstan_elasticity::finite_element::high_order::order_name(p),
             )
         }) {
-            for k in high_order::element_levels(problem, p, quick) {
-                runs.push(high_order::run_qp(problem, k, p, reference, use_vmhwm)?);
+            let mut meshes: Vec<high_order::QpMesh> = high_order::element_levels(problem, p, quick)
+                .into_iter()
+                .map(high_order::QpMesh::Uniform)
+                .collect();
+            if problem == Problem::Paper {
+                meshes.extend(
+                    high_order::graded_layers(p, quick)
+                        .into_iter()
+                        .map(high_order::QpMesh::Graded),
+                );
+            }
+            for mesh in meshes {
+                runs.push(high_order::run_qp(problem, mesh, p, *reference, use_vmhwm)?);
             }
         }
     }
@@ -668,7 +694,7 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
         ),
         (
             "paper",
-            "Paper's linear stand-in (Q2 reference): relative L2 error vs time",
+            "Paper's linear stand-in (graded fem-qp10 reference): relative L2 error vs time",
             false,
         ),
     ];
@@ -684,8 +710,7 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
             targets::series_names(runs, problem)
         };
         if keys.is_empty() {
-            // a problem left out by `--problems`
-            continue;
+            continue; // a problem left out by `--problems`
         }
         for key in keys {
             let mut pts: Vec<(f64, f64)> = targets::series_runs(runs, problem, &key)

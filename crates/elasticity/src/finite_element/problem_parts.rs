@@ -107,4 +107,23 @@ impl ProblemParts {
             volumetric,
         )
     }
+
+    /// The tensor-product elements with `settings` (order, volumetric integration, grading of
+    /// the element boundaries: [`HighOrderNavier::with_settings`]).
+    ///
+    /// # Errors
+    /// See [`HighOrderNavier::new`].
+    pub fn high_order_with(
+        self,
+        settings: crate::finite_element::high_order::QpSettings,
+    ) -> Result<HighOrderNavier<SampleChart>, ElasticityError> {
+        HighOrderNavier::with_settings(
+            self.chart,
+            self.material,
+            self.grid,
+            self.boundary,
+            self.body_force,
+            settings,
+        )
+    }
 }

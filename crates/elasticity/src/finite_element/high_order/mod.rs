@@ -14,13 +14,16 @@
 //!   forward substitution, triangular product) and the back-substitution
 //!   ([`CondensedElement`]).
 //! - `skeleton`: numbering and pattern of the condensed system on the element edges.
+//! - `mesh`: the element boundaries, uniform or geometrically graded ([`Grading`],
+//!   [`QpSettings`]).
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
 //! - `study`: the convergence studies of `capstan verify` ([`high_order_studies`]).
 //!
 //! # Nodes and the grid
 //! The operator takes a [`crate::Grid`] with `n2 = p e2 + 1` (periodic `p e2`) and
-//! `n3 = p e3 + 1` nodes: the element boundaries are every `p`-th line of that uniform grid,
-//! and inside each element the node lines sit at the GLL points, not uniformly. The node
+//! `n3 = p e3 + 1` nodes: the element boundaries are every `p`-th line of that uniform grid
+//! (or, with a geometric [`Grading`], layers shrinking toward the ends: `mesh`), and inside
+//! each element the node lines sit at the GLL points, not uniformly. The node
 //! numbering and the dofs are those of every other plane-strain operator (`2 node + c`,
 //! `x3` fastest), so contact, sweeps and outputs index nodes unchanged; positions come from
 //! [`HighOrderNavier::node_coordinates`] (contact entries carry the GLL `x2`, output fields are
@@ -43,7 +46,10 @@
 
 mod condensation;
 mod gll;
+#[cfg(test)]
+mod graded_tests;
 mod kernel;
+mod mesh;
 mod operator;
 mod skeleton;
 mod solve;
@@ -55,6 +61,7 @@ mod tests;
 pub use condensation::CondensedElement;
 pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{ElementTables, add_element_matrix};
+pub use mesh::{Grading, QpSettings};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
 pub use solve::CondensedSystem;
 pub use study::{HighOrderStudy, high_order_studies};

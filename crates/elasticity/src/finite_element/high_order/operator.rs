@@ -8,12 +8,14 @@ use rayon::prelude::*;
 
 use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
+use super::mesh::{Grading, QpSettings};
 use super::skeleton::Skeleton;
-use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::boundary::{BoundaryConditions, Component, Side};
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
 use crate::error::ElasticityError;
 use crate::finite_difference::BodyForce;
 use crate::finite_element::assembly::ElementAssembly;
+use crate::finite_element::navier::boundary_terms::add_side_point_load;
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::grid::Grid;
 use crate::material::Material;
@@ -117,8 +119,10 @@ pub struct HighOrderNavier<G> {
     pub(super) volumetric: VolumetricIntegration,
     /// Elements in `x2` and `x3`.
     pub(super) elements: [usize; 2],
-    /// Element size `[L2, L3]`.
-    pub(super) size: [f64; 2],
+    /// The element boundaries in `x2` (`e2 + 1`) and `x3` (`e3 + 1`).
+    pub(super) breaks: [Vec<f64>; 2],
+    /// How they are spaced.
+    pub(super) grading: Grading,
     /// GLL nodes on `[-1, 1]`.
     pub(super) gll: Vec<f64>,
     /// GLL weights.
@@ -126,13 +130,15 @@ pub struct HighOrderNavier<G> {
     /// `x2` of each node line `i2`, `x3` of each node line `i3`.
     pub(super) x2: Vec<f64>,
     pub(super) x3: Vec<f64>,
-    /// Basis tables at the full rule.
+    /// Basis tables at the full rule, on the reference element `[-1, 1]^2` (the element sizes
+    /// are in `kq`, see [`scale_to_element`]).
     pub(super) tables: ElementTables,
-    /// Basis tables at the reduced rule (SRI).
+    /// Basis tables at the reduced rule (SRI), reference element.
     pub(super) reduced_tables: Option<ElementTables>,
     /// `l_j'(xi_i)` at the GLL nodes, index `j n + i`.
     pub(super) derivative_at_nodes: Vec<f64>,
-    /// Pointwise energy matrix times weights, index `e nq^2 + q`.
+    /// Pointwise energy matrix times weights, scaled to the reference element, index
+    /// `e nq^2 + q`.
     pub(super) kq: Vec<[[f64; 6]; 6]>,
     /// Volumetric part at the reduced points (SRI), index `e nr^2 + r`.
     pub(super) kv: Vec<[[f64; 6]; 6]>,
@@ -198,6 +204,33 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         p: usize,
         volumetric: VolumetricIntegration,
     ) -> Result<Self, ElasticityError> {
+        let settings = QpSettings {
+            volumetric,
+            ..QpSettings::order(p)
+        };
+        Self::with_settings(chart, material, grid, boundary, body_force, settings)
+    }
+
+    /// As [`HighOrderNavier::with_volumetric`], with the element boundaries spaced as
+    /// `settings.grading` says ([`Grading`]: geometric layers toward both ends of `x2`, unless
+    /// periodic, and of `x3`). The grid still fixes the element counts (`n = p e + 1`); its
+    /// uniform positions are not the nodes' ([`HighOrderNavier::node_coordinates`]).
+    ///
+    /// # Errors
+    /// See [`HighOrderNavier::new`].
+    pub fn with_settings(
+        chart: G,
+        material: Material,
+        grid: Grid,
+        boundary: BoundaryConditions,
+        body_force: Option<BodyForce>,
+        settings: QpSettings,
+    ) -> Result<Self, ElasticityError> {
+        let QpSettings {
+            order: p,
+            volumetric,
+            grading,
+        } = settings;
         check_order(p)?;
         boundary.check_grid(&grid)?;
         let periodic = grid.is_periodic();
@@ -217,37 +250,39 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             count("grid.n2", grid.n2(), periodic)?,
             count("grid.n3", grid.n3(), false)?,
         ];
-        let [t0, t1] = grid.theta();
-        let size = [
-            (t1 - t0) / elements[0] as f64,
-            grid.thickness() / elements[1] as f64,
+        let breaks = [
+            grading.breaks("grid.n2", grid.theta(), elements[0], periodic, |j| {
+                grid.x2(p * j)
+            })?,
+            grading.breaks(
+                "grid.n3",
+                [0.0, grid.thickness()],
+                elements[1],
+                false,
+                |j| grid.x3(p * j),
+            )?,
         ];
         let (gll, gll_weights) = gll_rule(p);
-        let line = |origin: f64, length: f64, n: usize| -> Vec<f64> {
+        // element ends exactly on the boundaries, GLL points inside
+        let line = |breaks: &[f64], n: usize| -> Vec<f64> {
             (0..n)
                 .map(|i| {
                     let (e, a) = (i / p, i % p);
-                    origin + (e as f64 + 0.5 * (1.0 + gll[a])) * length
+                    if a == 0 {
+                        breaks[e]
+                    } else {
+                        breaks[e] + 0.5 * (1.0 + gll[a]) * (breaks[e + 1] - breaks[e])
+                    }
                 })
                 .collect()
         };
-        let mut x2 = line(t0, size[0], grid.n2());
-        let mut x3 = line(0.0, size[1], grid.n3());
-        // element ends exactly on the uniform grid's lines
-        for (i, x) in x2.iter_mut().enumerate() {
-            if i % p == 0 {
-                *x = grid.x2(i);
-            }
-        }
-        for (i, x) in x3.iter_mut().enumerate() {
-            if i % p == 0 {
-                *x = grid.x3(i);
-            }
-        }
+        let x2 = line(&breaks[0], grid.n2());
+        let x3 = line(&breaks[1], grid.n3());
         let (gq, _) = gauss_legendre(p + 1);
-        let tables = ElementTables::new(&gll, &gq, size);
+        let reference = [2.0, 2.0];
+        let tables = ElementTables::new(&gll, &gq, reference);
         let reduced_tables = (volumetric == VolumetricIntegration::Reduced)
-            .then(|| ElementTables::new(&gll, &gauss_legendre(p).0, size));
+            .then(|| ElementTables::new(&gll, &gauss_legendre(p).0, reference));
         let (_, dn) = super::gll::basis_tables(&gll, &gll);
         let mut op = Self {
             chart,
@@ -257,7 +292,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             degree: p,
             volumetric,
             elements,
-            size,
+            breaks,
+            grading,
             gll,
             gll_weights,
             x2,
@@ -335,38 +371,57 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         out
     }
 
-    /// Lower-left corner of element `e`.
-    pub(super) fn element_origin(&self, e: usize) -> [f64; 2] {
-        let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
-        let [t0, _] = self.grid.theta();
-        [t0 + e2 as f64 * self.size[0], e3 as f64 * self.size[1]]
+    /// How the element boundaries are spaced.
+    pub fn grading(&self) -> Grading {
+        self.grading
+    }
+
+    /// The element boundaries `[x2 (e2 + 1 values), x3 (e3 + 1 values)]`.
+    pub fn element_breaks(&self) -> &[Vec<f64>; 2] {
+        &self.breaks
+    }
+
+    /// Start and length of element `e` of direction `axis` (`0`: `x2` column, `1`: `x3` row).
+    pub(super) fn span(&self, axis: usize, e: usize) -> (f64, f64) {
+        let b = &self.breaks[axis];
+        (b[e], b[e + 1] - b[e])
+    }
+
+    /// Lower-left corner and size `[L2, L3]` of element `e = e2 e3count + e3`.
+    pub(super) fn element_box(&self, e: usize) -> ([f64; 2], [f64; 2]) {
+        let (x0, l2) = self.span(0, e / self.elements[1]);
+        let (y0, l3) = self.span(1, e % self.elements[1]);
+        ([x0, y0], [l2, l3])
     }
 
     /// Evaluates the chart at the tensor points `gp` of every element (one chart column per
-    /// `x2` abscissa, element columns in parallel) and calls `visit(e, q, point, x, weight)`
-    /// with `q = q2 nq + q3` and `weight = w_q2 w_q3 det J`; `out` has `nq^2` entries per
-    /// element.
+    /// `x2` abscissa, element columns in parallel) and calls `visit(point, x, weight, size)`
+    /// with `weight = w_q2 w_q3 det J`, `det J = L2 L3 / 4`, and the element's `[L2, L3]`;
+    /// the result has `nq^2` entries per element, index `e nq^2 + q2 nq + q3`.
     fn walk_points<T: Send + Clone + Default>(
         &self,
         gp: &[f64],
         gw: &[f64],
-        visit: impl Fn(&capstan_geometry::ShellPoint<f64>, [f64; 2], f64) -> Result<T, ElasticityError>
+        visit: impl Fn(
+            &capstan_geometry::ShellPoint<f64>,
+            [f64; 2],
+            f64,
+            [f64; 2],
+        ) -> Result<T, ElasticityError>
         + Sync,
     ) -> Result<Vec<T>, ElasticityError> {
         let [ne2, ne3] = self.elements;
         let nq = gp.len();
-        let [l2, l3] = self.size;
-        let det = 0.25 * l2 * l3;
         let heights: Vec<f64> = (0..ne3)
             .flat_map(|e3| {
-                gp.iter()
-                    .map(move |&eta| (e3 as f64 + 0.5 * (eta + 1.0)) * l3)
+                let (y0, l3) = self.span(1, e3);
+                gp.iter().map(move |&eta| y0 + 0.5 * (eta + 1.0) * l3)
             })
             .collect();
         let mut out = vec![T::default(); ne2 * ne3 * nq * nq];
         out.par_chunks_mut(ne3 * nq * nq).enumerate().try_for_each(
             |(e2, column)| -> Result<(), ElasticityError> {
-                let x0 = self.element_origin(e2 * ne3)[0];
+                let (x0, l2) = self.span(0, e2);
                 let mut points = Vec::with_capacity(heights.len());
                 for (q2, &xi) in gp.iter().enumerate() {
                     let x2 = x0 + 0.5 * (xi + 1.0) * l2;
@@ -375,8 +430,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                     for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
                         check_plane_strain(p, [0.0, x2, x3])?;
                         let (e3, q3) = (idx / nq, idx % nq);
-                        column[e3 * nq * nq + q2 * nq + q3] =
-                            visit(p, [x2, x3], gw[q2] * gw[q3] * det)?;
+                        let l3 = self.span(1, e3).1;
+                        let w = gw[q2] * gw[q3] * 0.25 * l2 * l3;
+                        column[e3 * nq * nq + q2 * nq + q3] = visit(p, [x2, x3], w, [l2, l3])?;
                     }
                 }
                 Ok(())
@@ -395,8 +451,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         } else {
             0.0
         };
-        let points = self.walk_points(&gp, &gw, |p, x, w| {
-            let k = energy_matrix(p, &PLANE_STRAIN, full_lambda, mu, w);
+        let points = self.walk_points(&gp, &gw, |p, x, w, size| {
+            let k = scale_to_element(energy_matrix(p, &PLANE_STRAIN, full_lambda, mu, w), size);
             let f = match body_force {
                 Some(f) => {
                     let fx = f(x);
@@ -435,12 +491,11 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         self.kq = points.into_iter().map(|(k, _)| k).collect();
         if self.volumetric == VolumetricIntegration::Reduced {
             let (rp, rw) = gauss_legendre(self.degree);
-            self.kv = self.walk_points(&rp, &rw, |p, _, w| {
+            self.kv = self.walk_points(&rp, &rw, |p, _, w, size| {
                 let t = divergence_coefficients(p, &PLANE_STRAIN);
                 let c = lambda * p.sqrt_g * w;
-                Ok(core::array::from_fn(|a| {
-                    core::array::from_fn(|b| c * t[a] * t[b])
-                }))
+                let k = core::array::from_fn(|a| core::array::from_fn(|b| c * t[a] * t[b]));
+                Ok(scale_to_element(k, size))
             })?;
         }
         Ok(())
@@ -458,53 +513,35 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             };
             let a = side.normal_index();
             let along_x2 = a == 2;
-            let (count, length) = if along_x2 {
-                (self.elements[0], self.size[0])
-            } else {
-                (self.elements[1], self.size[1])
-            };
-            for e in 0..count {
+            let axis = usize::from(!along_x2);
+            for e in 0..self.elements[axis] {
+                let (origin, length) = self.span(axis, e);
                 for (&xi, &w) in gp.iter().zip(&gw) {
                     let (shape, _) = super::gll::lagrange_basis(&self.gll, xi);
+                    let along = origin + 0.5 * (xi + 1.0) * length;
                     let (x, nodes): ([f64; 2], Vec<[usize; 2]>) = if along_x2 {
                         let i3 = if side == Side::X3Min { 0 } else { n3 - 1 };
-                        let x2 = self.element_origin(e * self.elements[1])[0]
-                            + 0.5 * (xi + 1.0) * length;
                         (
-                            [x2, self.x3[i3]],
+                            [along, self.x3[i3]],
                             (0..np).map(|b| [(p * e + b) % n2, i3]).collect(),
                         )
                     } else {
                         let i2 = if side == Side::X2Min { 0 } else { n2 - 1 };
-                        let x3 = (e as f64 + 0.5 * (xi + 1.0)) * length;
                         (
-                            [self.x2[i2], x3],
+                            [self.x2[i2], along],
                             (0..np).map(|b| [i2, p * e + b]).collect(),
                         )
                     };
-                    let s = if along_x2 { x[0] } else { x[1] };
                     let at = [0.0, x[0], x[1]];
                     let pt = self.chart.shell_point(at)?;
                     check_plane_strain(&pt, at)?;
-                    for c in Component::ALL {
-                        let flux = match cond.component(c) {
-                            ComponentCondition::Displacement(_) => continue,
-                            ComponentCondition::Traction(f) => {
-                                pt.sqrt_g * pt.inverse_metric[a][a].sqrt() * f.eval(s)
-                            }
-                            ComponentCondition::Stress(f) => side.sign() * pt.sqrt_g * f.eval(s),
-                        };
-                        if !flux.is_finite() {
-                            return Err(ElasticityError::NonFinite {
-                                what: "boundary traction",
-                                at: x,
-                            });
-                        }
-                        for (node, n) in nodes.iter().zip(&shape) {
-                            let d = 2 * self.grid.node_index(*node) + c.index();
-                            self.load[d] += n * flux * w * 0.5 * length;
-                        }
-                    }
+                    let grid = &self.grid;
+                    let shape = nodes
+                        .iter()
+                        .zip(&shape)
+                        .map(|(m, n)| (grid.node_index(*m), *n));
+                    let weight = [w, 0.5 * length];
+                    add_side_point_load(&mut self.load, &cond, side, &pt, x, weight, shape)?;
                 }
             }
         }
@@ -538,7 +575,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         let w2 = 1.0 / along2.len() as f64;
         for (e2, a2) in along2 {
             for b in 0..np {
-                let d = self.derivative_at_nodes[b * np + a2] * 2.0 / self.size[0] * w2;
+                let d = self.derivative_at_nodes[b * np + a2] * 2.0 / self.span(0, e2).1 * w2;
                 terms.push((self.grid.node_index([(p * e2 + b) % n2, i3]), [0.0, d, 0.0]));
             }
         }
@@ -546,10 +583,28 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         let w3 = 1.0 / along3.len() as f64;
         for (e3, a3) in along3 {
             for b in 0..np {
-                let d = self.derivative_at_nodes[b * np + a3] * 2.0 / self.size[1] * w3;
+                let d = self.derivative_at_nodes[b * np + a3] * 2.0 / self.span(1, e3).1 * w3;
                 terms.push((self.grid.node_index([i2, p * e3 + b]), [0.0, 0.0, d]));
             }
         }
         terms
     }
+}
+
+/// The energy matrix `k` of an element of size `[L2, L3]` on the reference element: the
+/// inputs `d_2` (`k = 2, 3`) and `d_3` (`k = 4, 5`) are the reference derivatives times
+/// `2 / L2` and `2 / L3`, so with reference tables (`d_xi`, `d_eta`)
+/// ```text
+/// k'[a][b] = s_a k[a][b] s_b,   s = (1, 1, 2 / L2, 2 / L2, 2 / L3, 2 / L3)
+/// ```
+/// reproduces the element matrix of tables scaled to the element; elements of any size then
+/// share one set of tables.
+fn scale_to_element(mut k: [[f64; 6]; 6], [l2, l3]: [f64; 2]) -> [[f64; 6]; 6] {
+    let s = [1.0, 1.0, 2.0 / l2, 2.0 / l2, 2.0 / l3, 2.0 / l3];
+    for (a, row) in k.iter_mut().enumerate() {
+        for (b, x) in row.iter_mut().enumerate() {
+            *x *= s[a] * s[b];
+        }
+    }
+    k
 }

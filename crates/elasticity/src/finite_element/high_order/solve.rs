@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use super::condensation::{CondensationScratch, CondensedElement};
 use super::gll::{gauss_legendre, lagrange_basis};
 use super::kernel::{add_element_matrix, symmetrise};
+use super::mesh::locate;
 use super::operator::HighOrderNavier;
 use super::skeleton::Skeleton;
 use super::tensor_kernel::{TensorIndex, X3Factors};
@@ -270,13 +271,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// The element containing `x` (clamped to the rectangle) and the reference coordinates
     /// there.
     fn locate(&self, [x2, x3]: [f64; 2]) -> (usize, [f64; 2]) {
-        let [t0, _] = self.grid.theta();
-        let locate1 = |t: f64, count: usize| -> (usize, f64) {
-            let e = (t.floor().max(0.0) as usize).min(count - 1);
-            (e, 2.0 * (t - e as f64) - 1.0)
-        };
-        let (e2, xi) = locate1((x2 - t0) / self.size[0], self.elements[0]);
-        let (e3, eta) = locate1(x3 / self.size[1], self.elements[1]);
+        let (e2, xi) = locate(&self.breaks[0], x2);
+        let (e3, eta) = locate(&self.breaks[1], x3);
         (e2 * self.elements[1] + e3, [xi, eta])
     }
 
@@ -314,10 +310,12 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let (gp, gw) = gauss_legendre(self.degree + 2);
         let basis: Vec<Vec<f64>> = gp.iter().map(|&x| lagrange_basis(&self.gll, x).0).collect();
-        let element = |e: usize| (self.element_origin(e), self.element_nodes(e));
+        let element = |e: usize| {
+            let (origin, size) = self.element_box(e);
+            (origin, size, self.element_nodes(e))
+        };
         let elements = TensorElements {
             count: self.element_count(),
-            size: self.size,
             rule: (&gp, &gw),
             basis: &basis,
             element: &element,
@@ -407,7 +405,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
                 let length: f64 = self
                     .elements_along(i, self.elements[0], self.grid.is_periodic())
                     .iter()
-                    .map(|&(_, a)| self.gll_weights[a] * 0.5 * self.size[0])
+                    .map(|&(e, a)| self.gll_weights[a] * 0.5 * self.span(0, e).1)
                     .sum();
                 let weight = p.sqrt_g * p.inverse_metric[2][2].sqrt() * length;
                 let mut node = ContactNode::at(

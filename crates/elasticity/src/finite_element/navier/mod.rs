@@ -4,7 +4,7 @@
 //! submodules.
 
 mod assembly;
-mod boundary_terms;
+pub(crate) mod boundary_terms;
 mod geometry_cache;
 pub(super) mod norms;
 mod recovery;

@@ -45,11 +45,11 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let element = |e: usize| {
             let mut nodes = [0; 9];
             self.element_nodes(e, &mut nodes);
-            (self.element_origin(e), nodes[..np * np].to_vec())
+            let size = self.element_size();
+            (self.element_origin(e), size, nodes[..np * np].to_vec())
         };
         let elements = TensorElements {
             count: self.elements[0] * self.elements[1],
-            size: self.element_size(),
             rule: (&gp, &gw),
             basis: &basis,
             element: &element,
@@ -64,14 +64,14 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
 pub(crate) struct TensorElements<'a> {
     /// Number of elements.
     pub count: usize,
-    /// Element size `[l2, l3]` in the parameters.
-    pub size: [f64; 2],
     /// Gauss points and weights on `[-1, 1]`.
     pub rule: (&'a [f64], &'a [f64]),
     /// The 1-D shape functions at Gauss point `i`: `basis[i][a]`, `a < np`.
     pub basis: &'a [Vec<f64>],
-    /// Origin `(x2, x3)` and the `np x np` node numbers (index `a2 np + a3`) of element `e`.
-    pub element: &'a (dyn Fn(usize) -> ([f64; 2], Vec<usize>) + Sync),
+    /// Origin `(x2, x3)`, size `[l2, l3]` in the parameters and the `np x np` node numbers
+    /// (index `a2 np + a3`) of element `e`.
+    #[allow(clippy::type_complexity)] // one closure type, read in one place
+    pub element: &'a (dyn Fn(usize) -> ([f64; 2], [f64; 2], Vec<usize>) + Sync),
 }
 
 /// The error norms of the discrete displacement `v = [v^2, v^3]` (per node) against `exact`:
@@ -107,13 +107,12 @@ pub(crate) fn tensor_displacement_errors<G: ShellGeometry + Sync>(
         })
         .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
     let (gp, gw) = elements.rule;
-    let [l2, l3] = elements.size;
-    let det = 0.25 * l2 * l3;
     let basis = elements.basis;
     let sums = (0..elements.count)
         .into_par_iter()
         .map(|e| -> Result<[f64; 3], ElasticityError> {
-            let ([x0, y0], nodes) = (elements.element)(e);
+            let ([x0, y0], [l2, l3], nodes) = (elements.element)(e);
+            let det = 0.25 * l2 * l3;
             let np = basis.first().map_or(0, Vec::len);
             let mut s = [0.0; 3];
             for (i, &xi) in gp.iter().enumerate() {
