@@ -154,25 +154,29 @@ fn qp_extrusion_limiting_ratios_are_the_two_dimensional_fem_qp_ones() {
     // SVD's rigid mode, against the interior sites (v^1, v^2) when the mode's slip came out
     // negative: measured before the fix Gll(4) 5 x 9 x 5: 2.6718 (2-D 3.3481), Gll(3)
     // 4 x 10 x 4: 2.2669 (2-D 3.3259). After: agreement to 1e-13 relative (measured).
-    for (p, [n2, n3], n1s) in [
-        (3, [10, 4], [4, 7]),
-        (4, [9, 5], [5, 9]),
-        (5, [11, 6], [6, 11]),
+    // Q2 3 x 21 x 5 was hit too (1.5130 before, 3.2708 after; n1 = 5: 2.2430 before).
+    let q2 = |n2, n3| ThickBody {
+        method: DiscretisationMethod::FemQ2,
+        ..circle_plane(2, n2, n3)
+    };
+    for (element, plane, [n2, n3], n1s) in [
+        (ElementOrder::Q2.into(), q2(21, 5), [21, 5], [3, 5]),
+        (HexElement::Gll(3), circle_plane(3, 10, 4), [10, 4], [4, 7]),
+        (HexElement::Gll(4), circle_plane(4, 9, 5), [9, 5], [5, 9]),
+        (HexElement::Gll(5), circle_plane(5, 11, 6), [11, 6], [6, 11]),
     ] {
-        let plane = circle_plane(p, n2, n3)
-            .model(RegularisedCoulomb, coulomb(), 1e-5)
-            .unwrap();
+        let plane = plane.model(RegularisedCoulomb, coulomb(), 1e-5).unwrap();
         let plane = limits(&BoundarySolver::new(&plane, ContactSettings::default()).unwrap());
         for n1 in n1s {
-            let solid = circle_body(HexElement::Gll(p), [n1, n2, n3])
+            let solid = circle_body(element, [n1, n2, n3])
                 .model(RegularisedCoulomb, coulomb(), 1e-5)
                 .unwrap();
             let solid = limits(&BoundarySolver::new(&solid, ContactSettings::default()).unwrap());
-            println!("Gll({p}) {n1} x {n2} x {n3}: {solid:?}, 2-D fem-qp{p}: {plane:?}");
+            println!("{element:?} {n1} x {n2} x {n3}: {solid:?}, 2-D: {plane:?}");
             for (a, b) in solid.iter().zip(&plane) {
                 assert!(
                     b.is_finite() && (a - b).abs() < 1e-8 * b,
-                    "Gll({p}) n1 = {n1}: {solid:?} against {plane:?}"
+                    "{element:?} n1 = {n1}: {solid:?} against {plane:?}"
                 );
             }
         }
