@@ -2,7 +2,9 @@
 //! `tests/solid.rs`): `p = 1, 2` against the Q1/Q2 hexahedra, and frictional contact against Q2
 //! and the 2-D fem-qp.
 
-use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
+use capstan_elasticity::contact::{
+    BoundarySolver, ContactOperator, ContactSettings, EndLoads, ThickBody,
+};
 use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::samples::SolidMms;
@@ -137,5 +139,46 @@ fn qp4_extrusion_contact_is_the_two_dimensional_fem_qp4_contact() {
         assert!((a.slip_fraction - b.slip_fraction).abs() < 1e-12);
         let v1 = &a.contact.solid.as_ref().unwrap().v1;
         assert!(v1.iter().all(|x| x.abs() < 1e-12 * scale));
+    }
+}
+
+/// The limiting ratios `(lower, upper)` of a sliding mode.
+fn limits(solver: &BoundarySolver<'_, impl ContactOperator, RegularisedCoulomb>) -> [f64; 2] {
+    let mode = solver.sliding().expect("a sliding mode");
+    [mode.lower_ratio, mode.upper_ratio]
+}
+
+#[test]
+fn qp_extrusion_limiting_ratios_are_the_two_dimensional_fem_qp_ones() {
+    // Issue 19: the side-face sites (one entry v^2) slid [0, +u] whatever the sign of the
+    // SVD's rigid mode, against the interior sites (v^1, v^2) when the mode's slip came out
+    // negative: measured before the fix Gll(4) 5 x 9 x 5: 2.6718 (2-D 3.3481), Gll(3)
+    // 4 x 10 x 4: 2.2669 (2-D 3.3259). After: agreement to 1e-13 relative (measured).
+    // Q2 3 x 21 x 5 was hit too (1.5130 before, 3.2708 after; n1 = 5: 2.2430 before).
+    let q2 = |n2, n3| ThickBody {
+        method: DiscretisationMethod::FemQ2,
+        ..circle_plane(2, n2, n3)
+    };
+    for (element, plane, [n2, n3], n1s) in [
+        (ElementOrder::Q2.into(), q2(21, 5), [21, 5], [3, 5]),
+        (HexElement::Gll(3), circle_plane(3, 10, 4), [10, 4], [4, 7]),
+        (HexElement::Gll(4), circle_plane(4, 9, 5), [9, 5], [5, 9]),
+        (HexElement::Gll(5), circle_plane(5, 11, 6), [11, 6], [6, 11]),
+    ] {
+        let plane = plane.model(RegularisedCoulomb, coulomb(), 1e-5).unwrap();
+        let plane = limits(&BoundarySolver::new(&plane, ContactSettings::default()).unwrap());
+        for n1 in n1s {
+            let solid = circle_body(element, [n1, n2, n3])
+                .model(RegularisedCoulomb, coulomb(), 1e-5)
+                .unwrap();
+            let solid = limits(&BoundarySolver::new(&solid, ContactSettings::default()).unwrap());
+            println!("{element:?} {n1} x {n2} x {n3}: {solid:?}, 2-D: {plane:?}");
+            for (a, b) in solid.iter().zip(&plane) {
+                assert!(
+                    b.is_finite() && (a - b).abs() < 1e-8 * b,
+                    "{element:?} n1 = {n1}: {solid:?} against {plane:?}"
+                );
+            }
+        }
     }
 }

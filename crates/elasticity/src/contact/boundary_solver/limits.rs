@@ -108,12 +108,14 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     }
 
     /// The physical slip of site `j` at full slip in `direction`, of size `size`: along the
-    /// rigid mode's slip at the site, `F x_r / |F x_r|` (plane strain: `[0, direction size]`).
+    /// rigid mode's slip at the site, `direction size F x_r / |F x_r|`, at every site (one
+    /// entry or two), so that the whole contact slides one way. The sign of the singular
+    /// vector `x_r` is arbitrary; `direction = -1, 1` covers both ways. (Issue 19: a site of
+    /// one entry `v^2` used to slide `[0, direction size]` whatever the sign of `x_r`, so on a
+    /// 3-D body with plane-strain sides the side-face sites slid against the interior ones
+    /// whenever the SVD returned `x_r` with negative slip.) A site the mode does not move
+    /// (`F x_r = 0`) slides along `x2`.
     fn full_slip(&self, j: usize, direction: f64, size: f64) -> [f64; 2] {
-        let members = self.model.site_members(j);
-        if members.len() == 1 && self.model.active_node(members[0]).frame[0] == 0.0 {
-            return [0.0, direction * size];
-        }
         let w = self.model.site_slip(j, 1.0, |k| self.rigid_shift[k]);
         let norm = (w[0] * w[0] + w[1] * w[1]).sqrt();
         if norm > 0.0 && norm.is_finite() {
