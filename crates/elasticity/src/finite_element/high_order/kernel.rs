@@ -148,7 +148,7 @@ pub(super) mod tests {
 
     /// `count` deterministic symmetric point matrices without zero entries, for the kernel
     /// tests.
-    pub(in crate::finite_element::high_order) fn sample_point_matrices(
+    pub(crate) fn sample_point_matrices(
         count: usize,
     ) -> Vec<[[f64; 6]; 6]> {
         (0..count)
