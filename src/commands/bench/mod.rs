@@ -9,7 +9,7 @@
 //!   `n2 = 2m + 1`, `n3 = m + 1`;
 //! - `paper`: the paper's default linear stand-in ([`PaperEllipse`]), `n2 = 4m + 1`,
 //!   `n3 = m + 1`, against the graded `fem-qp` reference of `bench/high_order.rs`
-//!   ([`high_order::paper_reference`]: `p = 10`, 12 geometric layers per end, its change from
+//!   (`high_order::paper_reference`: `p = 10`, 12 geometric layers per end, its change from
 //!   `p = 9`, 11 layers in the report), plus the graded `fem-qpP-graded` series.
 //!
 //! # Measures

@@ -37,7 +37,7 @@ const QP_NAMES: [&str; 11] = [
 /// Quadrature `(p + 1)^3` Gauss points (`p^3` for the volumetric part with selective reduced
 /// integration). For `p = 1, 2` the GLL points are the uniform ones, so `Gll(1)`, `Gll(2)`
 /// assemble the Q1/Q2 operator to round-off; they differ in the recovery of nodal
-/// derivatives ([`LineTables`]): second-order differences for Q1/Q2, the element polynomials
+/// derivatives (`LineTables`): second-order differences for Q1/Q2, the element polynomials
 /// for Qp.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum HexElement {

@@ -148,9 +148,7 @@ pub(super) mod tests {
 
     /// `count` deterministic symmetric point matrices without zero entries, for the kernel
     /// tests.
-    pub(crate) fn sample_point_matrices(
-        count: usize,
-    ) -> Vec<[[f64; 6]; 6]> {
+    pub(crate) fn sample_point_matrices(count: usize) -> Vec<[[f64; 6]; 6]> {
         (0..count)
             .map(|q| {
                 core::array::from_fn(|a| {
