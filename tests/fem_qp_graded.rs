@@ -34,8 +34,18 @@ fn solve(p: usize, n2: usize, n3: usize, grading: Grading) -> [f64; 3] {
     let gap = (1..n2)
         .map(|i| op.node_position([i, 0])[0] - op.node_position([i - 1, 0])[0])
         .fold(f64::INFINITY, f64::min);
+    // the fields the VTU and the figures are written from sit at the same nodes
+    let fields = op.fields(&sol.displacement).unwrap();
+    assert_eq!(min_gap(&fields.x2), gap);
     let limit = s.sliding().map_or(f64::NAN, |m| m.upper_ratio);
     [limit, outer, gap]
+}
+
+/// The smallest gap between successive entries of `x`.
+fn min_gap(x: &[f64]) -> f64 {
+    x.windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min)
 }
 
 #[test]
@@ -110,6 +120,31 @@ fn cli(sets: &[&str]) -> ([f64; 2], serde_json::Value) {
     assert_eq!(d["status"], "converged", "{d}");
     let ratio = d["limiting_ratios"][1].as_f64().unwrap();
     let v2 = d["max_azimuthal_displacement"]["value"].as_f64().unwrap();
+    let x2: Vec<f64> = d["contact"]["x2"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    let gll = (1.0 - (3.0f64 / 7.0).sqrt()) / 2.0; // first GLL gap of order 4 on [0, 1]
+    let (e2, graded) = (
+        (x2.len() - 1) / 4,
+        d["scene"]["discretisation"]["grading"].as_f64(),
+    );
+    // the contact profile's x2 are the operator's (graded) nodes: the smallest gap is the end
+    // layer H sigma^(n - 1), H = pi / (e - 2n + 2), times the GLL gap
+    let smallest = match graded {
+        None => core::f64::consts::PI / e2 as f64 * gll,
+        Some(sigma) => {
+            let n = d["scene"]["discretisation"]["layers"].as_u64().unwrap() as i32;
+            core::f64::consts::PI / (e2 as f64 - 2.0 * n as f64 + 2.0) * sigma.powi(n - 1) * gll
+        }
+    };
+    assert!(
+        (min_gap(&x2) / smallest - 1.0).abs() < 1e-12,
+        "{}",
+        min_gap(&x2)
+    );
     ([ratio, v2], d["scene"]["discretisation"].clone())
 }
 
