@@ -6,13 +6,9 @@
 
 mod common;
 
-use capstan_elasticity::Component;
 use capstan_elasticity::Discretisation;
-use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
+use capstan_elasticity::contact::ThickBody;
 use capstan_elasticity::finite_element::{DiscretisationMethod, Grading};
-use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-
-const EPS: f64 = 1e-5;
 
 /// `(limiting ratio, max |v^2| on the outer surface, smallest x2 node gap)` of the order-`p`
 /// body on `n2 x n3` nodes with `grading`.
@@ -23,21 +19,14 @@ fn solve(p: usize, n2: usize, n3: usize, grading: Grading) -> [f64; 3] {
         grading,
         ..ThickBody::paper(n2, n3).unwrap()
     };
-    let params = RegularisedCoulombParams::new(0.5, EPS).unwrap();
-    let model = body.model(RegularisedCoulomb, params, EPS).unwrap();
-    let s = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
-    let sol = s.solve(EndLoads::ratio(2.0)).unwrap();
+    let (model, sol, [_, limit, outer]) = common::default_contact(&body);
     let op = model.discretisation();
-    let outer = (0..n2)
-        .map(|i| sol.displacement[op.dof([i, n3 - 1], Component::X2)].abs())
-        .fold(0.0f64, f64::max);
     let gap = (1..n2)
         .map(|i| op.node_position([i, 0])[0] - op.node_position([i - 1, 0])[0])
         .fold(f64::INFINITY, f64::min);
     // the fields the VTU and the figures are written from sit at the same nodes
     let fields = op.fields(&sol.displacement).unwrap();
     assert_eq!(min_gap(&fields.x2), gap);
-    let limit = s.sliding().map_or(f64::NAN, |m| m.upper_ratio);
     [limit, outer, gap]
 }
 
