@@ -3,15 +3,13 @@
 //! solver, against Q2 on a fine grid: Slip, the limiting ratio and `max |v^2|` agree to
 //! discretisation accuracy.
 
+mod common;
+
 use std::time::Instant;
 
-use capstan_elasticity::Component;
 use capstan_elasticity::Discretisation;
-use capstan_elasticity::contact::{BoundarySolver, ContactSettings, EndLoads, ThickBody};
+use capstan_elasticity::contact::ThickBody;
 use capstan_elasticity::finite_element::DiscretisationMethod;
-use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-
-const EPS: f64 = 1e-5;
 
 /// `(slip fraction, limiting ratio, max |v^2| on the outer surface, seconds)` on an
 /// `n2 x n3` grid.
@@ -22,18 +20,10 @@ fn solve(method: DiscretisationMethod, order: usize, n2: usize, n3: usize) -> [f
         order,
         ..ThickBody::paper(n2, n3).unwrap()
     };
-    let params = RegularisedCoulombParams::new(0.5, EPS).unwrap();
-    let model = body.model(RegularisedCoulomb, params, EPS).unwrap();
-    let s = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
-    let sol = s.solve(EndLoads::ratio(2.0)).unwrap();
+    let (model, _, [slip, limit, outer]) = common::default_contact(&body);
     let seconds = start.elapsed().as_secs_f64();
-    let op = model.discretisation();
-    assert_eq!(op.method(), method.name());
-    let outer = (0..n2)
-        .map(|i| sol.displacement[op.dof([i, n3 - 1], Component::X2)].abs())
-        .fold(0.0f64, f64::max);
-    let limit = s.sliding().map_or(f64::NAN, |m| m.upper_ratio);
-    [sol.slip_fraction, limit, outer, seconds]
+    assert_eq!(model.discretisation().method(), method.name());
+    [slip, limit, outer, seconds]
 }
 
 #[test]

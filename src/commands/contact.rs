@@ -144,6 +144,7 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
         method: scene.discretisation.method,
         volumetric: scene.discretisation.volumetric,
         order: scene.discretisation.order,
+        grading: scene.discretisation.grading()?,
     })
 }
 

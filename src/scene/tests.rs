@@ -162,3 +162,98 @@ fn solid_memory_estimates_refuse_the_direct_path_at_a_million_unknowns() {
     assert!(gib(solid_memory_estimate(small, false)) > 2.59);
     assert!(gib(solid_multigrid_memory_estimate(small)) > 1.08);
 }
+
+#[test]
+fn grading_keys_are_read_defaulted_and_written_back_when_set() {
+    let known = known_keys();
+    for key in ["grading", "layers"] {
+        assert!(known.contains(&format!("discretisation.{key}")), "{key}");
+    }
+    let qp = ["discretisation.method=fem-qp", "grid.n2=241", "grid.n3=41"];
+    let uniform = load(&qp).discretisation;
+    assert_eq!(uniform.grading().unwrap(), Grading::UNIFORM);
+    let d = load(&[&qp[..], &["discretisation.grading=0.4"]].concat()).discretisation;
+    let g = Grading::geometric(0.4, DiscretisationSpec::DEFAULT_LAYERS).unwrap();
+    assert_eq!(d.grading().unwrap(), g);
+    let sets = [
+        &qp[..],
+        &["discretisation.grading=0.4", "discretisation.layers=3"],
+    ]
+    .concat();
+    let s = load(&sets);
+    assert_eq!(
+        s.discretisation.grading().unwrap(),
+        Grading::geometric(0.4, 3).unwrap()
+    );
+    // the resolved scene (--out, provenance) carries the keys only when set
+    let written = toml::to_string(&s).unwrap();
+    assert!(
+        written.contains("grading = 0.4") && written.contains("layers = 3"),
+        "{written}"
+    );
+    assert!(!toml::to_string(&load(&qp)).unwrap().contains("grading"));
+}
+
+#[test]
+fn grading_keys_are_refused_outside_their_range_and_off_fem_qp_2d() {
+    let qp = ["discretisation.method=fem-qp", "grid.n2=241", "grid.n3=41"];
+    let with = |extra: &[&'static str]| [&qp[..], extra].concat();
+    for (sets, expected) in [
+        (
+            with(&["discretisation.grading=0.01"]),
+            &[
+                "`discretisation.grading` = 0.01",
+                "0.05 <= discretisation.grading <= 1",
+            ][..],
+        ),
+        (
+            with(&["discretisation.grading=1.5"]),
+            &["`discretisation.grading` = 1.5", "0.05"],
+        ),
+        (
+            with(&["discretisation.grading=0.4", "discretisation.layers=13"]),
+            &[
+                "`discretisation.layers` = 13",
+                "1 <= discretisation.layers <= 12",
+            ],
+        ),
+        (
+            with(&["discretisation.grading=0.4", "discretisation.layers=0"]),
+            &[
+                "`discretisation.layers` = 0",
+                "1 <= discretisation.layers <= 12",
+            ],
+        ),
+        (
+            with(&["discretisation.layers=3"]),
+            &[
+                "`discretisation.layers` = 3",
+                "without discretisation.grading",
+            ],
+        ),
+        // 10 elements through the thickness hold at most 5 layers per end
+        (
+            with(&["discretisation.grading=0.4", "discretisation.layers=6"]),
+            &["`grid.n3` = 41", "e >= 2 discretisation.layers = 12"],
+        ),
+        (
+            vec!["discretisation.grading=0.4"],
+            &[
+                "`discretisation.grading` = 0.4",
+                "fem-qp",
+                "body.dimension = 2",
+            ],
+        ),
+        (
+            vec!["discretisation.method=fem-q1", "discretisation.layers=3"],
+            &["`discretisation.layers` = 3", "fem-qp"],
+        ),
+        (
+            with(&["body.dimension=3", "discretisation.grading=0.4"]),
+            &["`discretisation.grading` = 0.4", "body.dimension = 2"],
+        ),
+    ] {
+        let e = load_error(&sets);
+        assert!(expected.iter().all(|x| e.contains(x)), "{sets:?}: {e}");
+    }
+}

@@ -26,6 +26,62 @@ impl Scene {
         self.validate_with(&Origins::default())
     }
 
+    /// `discretisation.grading` in `[0.05, 1]` and `discretisation.layers` in `1..=12` (only
+    /// with a grading), both only with `fem-qp` on the plane-strain body, and at least two
+    /// layers' worth of elements (`e >= 2 n`) along `grid.n2` and `grid.n3`.
+    fn validate_grading(
+        &self,
+        bad: &dyn Fn(&str, String, &str) -> CliError,
+    ) -> Result<(), CliError> {
+        let d = &self.discretisation;
+        let set = [
+            ("discretisation.grading", d.grading.map(|r| r.to_string())),
+            ("discretisation.layers", d.layers.map(|n| n.to_string())),
+        ];
+        for (key, value) in set.iter().filter_map(|(k, v)| Some((*k, v.clone()?))) {
+            if d.method != DiscretisationMethod::FemQp || self.body.dimension != 2 {
+                return Err(bad(
+                    key,
+                    value,
+                    "unset unless discretisation.method = \"fem-qp\" and body.dimension = 2 (only the plane-strain fem-qp operator grades its elements)",
+                ));
+            }
+            if key == "discretisation.layers" && d.grading.is_none() {
+                return Err(bad(
+                    key,
+                    value,
+                    "unset without discretisation.grading (the layers of a geometric grading)",
+                ));
+            }
+        }
+        let grading = d.grading().map_err(|e| match e {
+            ElasticityError::InvalidParameter {
+                field,
+                value,
+                allowed,
+            } => bad(field, value.to_string(), allowed),
+            other => CliError::from(other),
+        })?;
+        if grading.is_uniform() {
+            return Ok(());
+        }
+        let layers = grading.layers();
+        for (key, n) in [("grid.n2", self.grid.n2), ("grid.n3", self.grid.n3)] {
+            if (n - 1) / d.order < 2 * layers {
+                return Err(bad(
+                    key,
+                    n.to_string(),
+                    &format!(
+                        "p e + 1 nodes with e >= 2 discretisation.layers = {} elements of order p = {} (the graded layers at both ends)",
+                        2 * layers,
+                        d.order
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     pub(super) fn validate_with(&self, at: &Origins) -> Result<(), CliError> {
         let bad = |key: &str, value: String, allowed: &str| CliError::Scene {
             origin: at.locate(key),
@@ -213,6 +269,7 @@ impl Scene {
                 }
             }
         }
+        self.validate_grading(&bad)?;
         if b.dimension == 3 && self.discretisation.method == DiscretisationMethod::Fd {
             return Err(bad(
                 "discretisation.method",

@@ -5,6 +5,34 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+use capstan_elasticity::contact::{
+    BoundarySolver, ContactModel, ContactSettings, ContactSolution, EndLoads, ThickBody,
+    ThickBodyOperator,
+};
+use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
+use capstan_elasticity::{Component, Discretisation};
+
+/// The model of the default contact case on `body`.
+pub type DefaultContact = ContactModel<ThickBodyOperator, RegularisedCoulomb>;
+
+/// The default contact case (regularised Coulomb `mu = 0.5`, `eps = 1e-5`,
+/// `tau_max / tau0 = 2`) on `body` through the boundary-only solver: its model, solution and
+/// `[slip fraction, limiting ratio (NaN without a sliding mode), max |v^2| on x3 = h]`.
+pub fn default_contact(body: &ThickBody) -> (DefaultContact, ContactSolution, [f64; 3]) {
+    const EPS: f64 = 1e-5;
+    let params = RegularisedCoulombParams::new(0.5, EPS).unwrap();
+    let model = body.model(RegularisedCoulomb, params, EPS).unwrap();
+    let s = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let sol = s.solve(EndLoads::ratio(2.0)).unwrap();
+    let limit = s.sliding().map_or(f64::NAN, |m| m.upper_ratio);
+    let op = model.discretisation();
+    let outer = (0..body.n2)
+        .map(|i| sol.displacement[op.dof([i, body.n3 - 1], Component::X2)].abs())
+        .fold(0.0f64, f64::max);
+    let slip = sol.slip_fraction;
+    (model, sol, [slip, limit, outer])
+}
+
 /// The `capstan` binary under test.
 pub const BIN: &str = env!("CARGO_BIN_EXE_capstan");
 

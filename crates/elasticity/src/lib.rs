@@ -21,6 +21,7 @@
 //!     method: DiscretisationMethod::default(),
 //!     volumetric: VolumetricIntegration::default(),
 //!     order: 4,
+//!     grading: capstan_elasticity::finite_element::Grading::UNIFORM,
 //! };
 //! let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
 //! let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();

@@ -13,7 +13,8 @@ use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_difference::FiniteDifferenceNavier;
 use crate::finite_element::{
-    DiscretisationMethod, FiniteElementNavier, HighOrderNavier, VolumetricIntegration,
+    DiscretisationMethod, FiniteElementNavier, Grading, HighOrderNavier, QpSettings,
+    VolumetricIntegration,
 };
 use crate::grid::Grid;
 use crate::material::Material;
@@ -51,6 +52,11 @@ pub struct ThickBody {
     /// The order `p` of `fem-qp` (`n2 - 1`, `n3 - 1` multiples of it); ignored by the other
     /// methods.
     pub order: usize,
+    /// The spacing of the `fem-qp` element boundaries (`discretisation.grading`,
+    /// `discretisation.layers`): [`Grading::UNIFORM`] (the default of [`ThickBody::paper`]) or
+    /// geometric layers toward both ends of `x2` and `x3` ([`Grading::geometric`]). The other
+    /// methods accept only the uniform one.
+    pub grading: Grading,
 }
 
 /// The discretisation [`ThickBody`] builds: finite differences or finite elements of the same
@@ -156,6 +162,7 @@ impl ThickBody {
             method: DiscretisationMethod::Fd,
             volumetric: VolumetricIntegration::Full,
             order: DiscretisationMethod::DEFAULT_ORDER,
+            grading: Grading::UNIFORM,
         })
     }
 
@@ -176,7 +183,8 @@ impl ThickBody {
     ///
     /// # Errors
     /// Grid, geometry or boundary errors; [`ElasticityError::InvalidParameter`] for a reduced
-    /// volumetric integration with finite differences.
+    /// volumetric integration with finite differences, or naming `discretisation.grading` for a
+    /// graded body of another method than `fem-qp`.
     pub fn discretisation(
         &self,
         tau0: f64,
@@ -186,17 +194,28 @@ impl ThickBody {
         let chart = ShellChart::new(self.obstacle.clone());
         let boundary = Self::boundary(tau0, tau_max);
         if self.method == DiscretisationMethod::FemQp {
+            let settings = QpSettings {
+                order: self.order,
+                volumetric: self.volumetric,
+                grading: self.grading,
+            };
             return Ok(ThickBodyOperator::HighOrder(Box::new(
-                HighOrderNavier::with_volumetric(
+                HighOrderNavier::with_settings(
                     chart,
                     self.material,
                     grid,
                     boundary,
                     None,
-                    self.order,
-                    self.volumetric,
+                    settings,
                 )?,
             )));
+        }
+        if !self.grading.is_uniform() {
+            return Err(ElasticityError::InvalidParameter {
+                field: "discretisation.grading",
+                value: self.grading.ratio(),
+                allowed: "1 (uniform) unless discretisation.method = fem-qp",
+            });
         }
         Ok(match self.method.element_order() {
             None if self.volumetric != VolumetricIntegration::Full => {
@@ -229,7 +248,17 @@ impl ThickBody {
     /// direction (every other node of an odd `n`), kept odd for `fem-q2`; `None` when a
     /// direction would fall below 5 nodes (9 for `fem-q2`). `fem-qp`: half the elements
     /// (`n = p e + 1 -> p e / 2 + 1`, `e` even, at least 2 elements left).
+    ///
+    /// A graded body ([`ThickBody::grading`] not uniform) has no coarser level, so grid
+    /// sequencing solves it on its own grid directly: halving the elements of a geometric mesh
+    /// keeps the layers but moves every middle boundary, and the level-to-level transfer
+    /// ([`crate::discretisation::interpolate_nodal`]) interpolates on the uniform grid lines,
+    /// not the graded node positions, so the start would be the coarse field at the wrong
+    /// places.
     pub fn coarser(&self) -> Option<ThickBody> {
+        if !self.grading.is_uniform() {
+            return None;
+        }
         if self.method == DiscretisationMethod::FemQp {
             let p = self.order.max(1);
             let halve = |n: usize| {
