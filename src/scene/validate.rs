@@ -43,14 +43,14 @@ impl Scene {
                 return Err(bad(
                     key,
                     value,
-                    "unset unless discretisation.method = \"fem-qp\" and body.dimension = 2 (only the plane-strain fem-qp operator grades its elements)",
+                    "what this scene allows: only discretisation.method = \"fem-qp\" with body.dimension = 2 grades its elements (leave the key unset otherwise)",
                 ));
             }
             if key == "discretisation.layers" && d.grading.is_none() {
                 return Err(bad(
                     key,
                     value,
-                    "unset without discretisation.grading (the layers of a geometric grading)",
+                    "what this scene allows: layers need discretisation.grading (they are the layers of a geometric grading; leave the key unset otherwise)",
                 ));
             }
         }

@@ -84,3 +84,19 @@ def test_example_scene_file_matches_cli(cli):
     import conftest
 
     same(capstan.tension(capstan.Scene.from_toml(conftest.ROOT / path)), cli("tension", path))
+
+
+def test_graded_fem_qp_contact_matches_cli(cli):
+    keys = {
+        "discretisation.method": "fem-qp",
+        "discretisation.order": 4,
+        "discretisation.grading": 0.4,
+        "discretisation.layers": 2,
+        "grid.n2": 65,
+        "grid.n3": 17,
+    }
+    r = capstan.contact(capstan.Scene(keys))
+    same(r, cli("contact", *[a for k, v in keys.items() for a in ("--set", f"{k}={v}")]))
+    # the resolved scene records the grading (provenance)
+    scene = r.to_dict()["scene"]["discretisation"]
+    assert scene["grading"] == 0.4 and scene["layers"] == 2

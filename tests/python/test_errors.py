@@ -72,3 +72,8 @@ def test_tension_without_limiting_equilibrium_is_no_equilibrium():
     )
     with pytest.raises(capstan.CapstanError):
         capstan.tension(scene)
+
+
+def test_grading_off_fem_qp_is_a_value_error_naming_the_key():
+    with pytest.raises(ValueError, match="discretisation.grading"):
+        capstan.contact(capstan.Scene({"discretisation.grading": 0.4}))
