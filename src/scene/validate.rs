@@ -50,7 +50,7 @@ impl Scene {
                 return Err(bad(
                     key,
                     value,
-                    "what this scene allows: layers need discretisation.grading (they are the layers of a geometric grading; leave the key unset otherwise)",
+                    "what this scene allows: no layers without discretisation.grading (they are the layers of a geometric grading)",
                 ));
             }
         }
