@@ -340,7 +340,7 @@ fn run(
     t: Instant,
 ) -> Result<SweepReport, CliError> {
     let (key, values) = (at.key, at.values);
-    capstan_elasticity::contact::sequential_linear_algebra();
+    let _sequential = capstan_elasticity::contact::sequential_linear_algebra_scope();
     let bar = crate::progress::bar(values.len(), key, false);
     let tick = || bar.inc(1);
     // Validate the key once (and that there is a point).

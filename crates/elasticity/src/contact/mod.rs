@@ -74,3 +74,25 @@ pub use threshold::{ThresholdResult, ThresholdSettings, threshold_ratio};
 pub fn sequential_linear_algebra() {
     faer::set_global_parallelism(faer::Par::Seq);
 }
+
+/// faer's global parallelism before [`sequential_linear_algebra_scope`], set back when this
+/// guard is dropped.
+#[must_use = "the previous parallelism is restored when the guard is dropped"]
+#[derive(Debug)]
+pub struct LinearAlgebraParallelism(faer::Par);
+
+impl Drop for LinearAlgebraParallelism {
+    fn drop(&mut self) {
+        faer::set_global_parallelism(self.0);
+    }
+}
+
+/// As [`sequential_linear_algebra`] for the lifetime of the returned guard only: a sweep in a
+/// long-lived process (the Python package) leaves later solves with the parallelism they had
+/// before. Parallel and sequential kernels sum in different orders, so without the guard a
+/// solve after a sweep could differ from the same solve in a fresh process in the last digits.
+pub fn sequential_linear_algebra_scope() -> LinearAlgebraParallelism {
+    let previous = faer::get_global_parallelism();
+    faer::set_global_parallelism(faer::Par::Seq);
+    LinearAlgebraParallelism(previous)
+}
