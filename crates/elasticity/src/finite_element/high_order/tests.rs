@@ -12,6 +12,25 @@ use crate::samples::{
 use crate::verification::{GridLevel, observed_order};
 use std::sync::Arc;
 
+/// The rate `b` of `error ~ C exp(-b x)`: the observed order against `h = exp(-x)` (the
+/// least-squares slope of `ln(error)` against `ln h = -x`).
+pub(super) fn exponential_rate(points: &[(f64, f64)]) -> f64 {
+    let as_h: Vec<(f64, f64)> = points.iter().map(|&(x, e)| ((-x).exp(), e)).collect();
+    observed_order(&as_h)
+}
+
+/// Asserts exponential convergence of `(x, error)`: every step at most `step` times the one
+/// before and the rate of [`exponential_rate`] above 1.5; returns the rate.
+pub(super) fn assert_exponential(errors: &[(f64, f64)], step: f64) -> f64 {
+    let rate = exponential_rate(errors);
+    assert!(
+        errors.windows(2).all(|w| w[1].1 < step * w[0].1),
+        "{errors:?}"
+    );
+    assert!(rate > 1.5, "rate {rate}: {errors:?}");
+    rate
+}
+
 fn mms() -> PrismMms {
     PrismMms::ellipse(0.5, MmsBoundaries::TractionContact)
 }
@@ -201,18 +220,7 @@ fn lame_cylinder_converges_exponentially_in_p() {
             (p as f64, e.l2 / e.l2_exact)
         })
         .collect();
-    // slope of ln(error) against p: the rate of exponential convergence
-    let n = errors.len() as f64;
-    let mx = errors.iter().map(|e| e.0).sum::<f64>() / n;
-    let my = errors.iter().map(|e| e.1.ln()).sum::<f64>() / n;
-    let sxy: f64 = errors.iter().map(|e| (e.0 - mx) * (e.1.ln() - my)).sum();
-    let sxx: f64 = errors.iter().map(|e| (e.0 - mx).powi(2)).sum();
-    let rate = -sxy / sxx;
-    assert!(
-        errors.windows(2).all(|w| w[1].1 < 0.5 * w[0].1),
-        "{errors:?}"
-    );
-    assert!(rate > 1.5, "rate {rate}: {errors:?}");
+    assert_exponential(&errors, 0.5);
 }
 
 #[test]
