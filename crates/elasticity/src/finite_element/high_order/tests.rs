@@ -132,27 +132,31 @@ fn mms_study(p: usize, ks: &[usize]) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The relative L2 error of the Lamé cylinder with `4 x e3` elements of order `p`.
+fn lame_error(p: usize, e3: usize) -> f64 {
+    let lame = LameCylinder::default();
+    let field = lame.field();
+    let level = GridLevel {
+        n2: 4 * p,
+        n3: p * e3 + 1,
+    };
+    let op = lame_parts(&lame, level)
+        .unwrap()
+        .high_order(p, VolumetricIntegration::Full)
+        .unwrap();
+    let v = op.solve(&mut SparseCholesky::default()).unwrap();
+    let e = op
+        .displacement_errors(&v, &|x| field.displacement(x).value)
+        .unwrap();
+    e.l2 / e.l2_exact
+}
+
 /// Relative L2 errors `(h, error)` of the Lamé cylinder with `4 x e3` elements of order `p`
 /// (the solution does not depend on `x2`: refined through the thickness only).
 fn lame_h_study(p: usize, e3s: &[usize]) -> Vec<(f64, f64)> {
-    let lame = LameCylinder::default();
-    let field = lame.field();
+    let thickness = LameCylinder::default().thickness;
     e3s.iter()
-        .map(|&e3| {
-            let level = GridLevel {
-                n2: 4 * p,
-                n3: p * e3 + 1,
-            };
-            let op = lame_parts(&lame, level)
-                .unwrap()
-                .high_order(p, VolumetricIntegration::Full)
-                .unwrap();
-            let v = op.solve(&mut SparseCholesky::default()).unwrap();
-            let e = op
-                .displacement_errors(&v, &|x| field.displacement(x).value)
-                .unwrap();
-            (lame.thickness / e3 as f64, e.l2 / e.l2_exact)
-        })
+        .map(|&e3| (thickness / e3 as f64, lame_error(p, e3)))
         .collect()
 }
 
@@ -200,26 +204,8 @@ fn lame_cylinder_converges_with_order_p_plus_1_for_p_5_and_approaches_it_for_p_6
 
 #[test]
 fn lame_cylinder_converges_exponentially_in_p() {
-    let lame = LameCylinder::default();
-    let field = lame.field();
-    let errors: Vec<(f64, f64)> = (2..=8)
-        .map(|p| {
-            // 4 x 1 elements
-            let level = GridLevel {
-                n2: 4 * p,
-                n3: p + 1,
-            };
-            let op = lame_parts(&lame, level)
-                .unwrap()
-                .high_order(p, VolumetricIntegration::Full)
-                .unwrap();
-            let v = op.solve(&mut SparseCholesky::default()).unwrap();
-            let e = op
-                .displacement_errors(&v, &|x| field.displacement(x).value)
-                .unwrap();
-            (p as f64, e.l2 / e.l2_exact)
-        })
-        .collect();
+    // 4 x 1 elements
+    let errors: Vec<(f64, f64)> = (2..=8).map(|p| (p as f64, lame_error(p, 1))).collect();
     assert_exponential(&errors, 0.5);
 }
 
