@@ -195,25 +195,25 @@ const TRANSPOSE_TILE: usize = 64;
 pub(crate) fn to_row_major(from: &[f64], n: usize, k: usize, to: &mut [f64]) {
     debug_assert_eq!(from.len(), n * k);
     debug_assert_eq!(to.len(), n * k);
-    for i0 in (0..n).step_by(TRANSPOSE_TILE) {
-        let i1 = (i0 + TRANSPOSE_TILE).min(n);
-        for (c, col) in from.chunks_exact(n).enumerate() {
-            for (i, v) in (i0..i1).zip(&col[i0..i1]) {
-                to[i * k + c] = *v;
-            }
-        }
-    }
+    for_tiles(n, k, |i, c| to[i * k + c] = from[c * n + i]);
 }
 
 /// `to[c n + i] = from[i k + c]`: the row-major `n x k` block `from` as a column-major one.
 pub(crate) fn to_column_major(from: &[f64], n: usize, k: usize, to: &mut [f64]) {
     debug_assert_eq!(from.len(), n * k);
     debug_assert_eq!(to.len(), n * k);
+    for_tiles(n, k, |i, c| to[c * n + i] = from[i * k + c]);
+}
+
+/// Calls `copy(i, c)` for every row `i < n` and column `c < k` of an `n x k` block, rows in
+/// tiles of [`TRANSPOSE_TILE`] and, inside a tile, a column at a time: the column-major side
+/// of a transpose is walked contiguously, the row-major side stays in cache.
+fn for_tiles(n: usize, k: usize, mut copy: impl FnMut(usize, usize)) {
     for i0 in (0..n).step_by(TRANSPOSE_TILE) {
         let i1 = (i0 + TRANSPOSE_TILE).min(n);
-        for (c, col) in to.chunks_exact_mut(n).enumerate() {
-            for (i, v) in (i0..i1).zip(&mut col[i0..i1]) {
-                *v = from[i * k + c];
+        for c in 0..k {
+            for i in i0..i1 {
+                copy(i, c);
             }
         }
     }

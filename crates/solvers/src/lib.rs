@@ -24,7 +24,7 @@
 //!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
 //!   [`CondensedSolver`] (static condensation when only a small interface block changes).
 //!   [`LinearBackend`] picks one by name.
-//! - Krylov methods ([`conjugate_gradient`], restarted right-preconditioned [`gmres`]) on a
+//! - Krylov methods ([`krylov_solve`]: conjugate gradients, restarted right-preconditioned GMRES) on a
 //!   [`CsrMatrix`], with a work budget and a typed [`SolverError::BudgetSpent`], and a
 //!   [`Multigrid`] V-cycle on a given hierarchy of prolongations (Galerkin coarse operators,
 //!   Chebyshev–Jacobi or damped-Jacobi smoothing, sparse LU on the coarsest level);
@@ -118,7 +118,7 @@ pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
 pub use krylov::{
     IdentityPreconditioner, KRYLOV_BUDGET_FIELD, KrylovMethod, KrylovParams, KrylovReport,
-    Preconditioner, conjugate_gradient, gmres, krylov_solve,
+    Preconditioner, krylov_solve,
 };
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
