@@ -36,82 +36,204 @@ pub struct Cli {
 
 const EXAMPLES: &str = "Examples:\n  capstan geometry --set obstacle.shape=ellipse --set obstacle.b=1 --json\n  capstan tension examples/scenes/capstan_ellipse.toml --out out/tension\n  capstan contact --set loads.tau_max=1 --out out/contact\n  capstan figure all --quick --out out/figures";
 
-/// The subcommands.
+/// The subcommands (their examples and the wording of shared arguments: [`SUBCOMMAND_HELP`]).
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Differential geometry of the obstacle on the contact interval.
-    #[command(
-        after_help = "Example:\n  capstan geometry --set obstacle.shape=prism --set 'obstacle.u=2*sin(t)+0.2*sin(2*t)' --json"
-    )]
     Geometry(OutSceneArgs),
     /// Convergence studies of the elasticity discretisations: errors and observed orders.
-    #[command(
-        after_help = "Examples:\n  capstan verify --quick\n  capstan verify --json",
-        mut_arg("quick", |a| a.help("Only the three coarsest grids of each study")),
-        mut_arg("out", |a| a.help("Also write `verify.json` into this directory"))
-    )]
     Verify(StudyArgs),
     /// Benchmarks: `work-precision` (run time against error, FD vs FEM vs scikit-fem and NGSolve).
-    #[command(after_help = "Example:\n  capstan bench work-precision --quick")]
     Bench(commands::bench::BenchArgs),
     /// Tension profile of a membrane at limiting equilibrium (generalised capstan equation).
-    #[command(
-        after_help = "Examples:\n  capstan tension --set obstacle.shape=ellipse --set obstacle.b=1 --set membrane.theta0=-0.785398 --set membrane.theta_max=0.785398 --json\n  capstan tension --set obstacle.shape=cylinder --set loads.gravity=9.81 --set loads.density=0.1 --set membrane.theta0=0"
-    )]
     Tension(OutSceneArgs),
     /// Coefficient of friction implied by a tension pair {membrane.t0, membrane.t_max}, under
     /// the capstan, membrane displacement or Kikuchi–Oden thick-body model.
-    #[command(
-        after_help = "Examples:\n  capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75\n  capstan infer-mu --model kikuchi-oden --set membrane.t_max=2.75 --set grid.n2=41 --set grid.n3=9 --json"
-    )]
     InferMu(commands::infer_mu::InferMuArgs),
     /// Thick body on a rough prism under regularised Coulomb friction (paper section 3).
-    #[command(
-        after_help = "Examples:\n  capstan contact --set loads.tau_max=1 --json\n  capstan contact --set grid.n2=80 --set grid.n3=17 --set solver.nonlinear=full-newton --out out/contact"
-    )]
     Contact(ContactArgs),
     /// One scene key swept over a range: Slip and the contact numbers per point (parallel).
-    #[command(
-        after_help = "Example:\n  capstan sweep --param loads.tau_max --from 1 --to 3.5 --steps 26 --json"
-    )]
     Sweep(SweepArgs),
     /// Tension ratio at which the whole contact slides, and the capstan mu it implies.
-    #[command(
-        after_help = "Example:\n  capstan threshold --set grid.n2=80 --set grid.n3=17 --json"
-    )]
     Threshold(OutSceneArgs),
     /// Implied coefficients of friction of the capstan, membrane and Kikuchi–Oden models
     /// against b/a, h and nu, with the thick body's threshold as h -> 0 (CSV, SVG/PNG plots).
-    #[command(
-        after_help = "Examples:\n  capstan compare --quick\n  capstan compare --json --out out/models",
-        mut_arg("out", |a| a.help("Write `compare.json`, `implied_mu.csv`, `thickness.csv` and the plots `implied_mu_vs_{b_over_a,thickness,poisson}.{svg,png}` into this directory")),
-        mut_arg("quick", |a| a.help("Grid 41 x 9, three values per axis, one grid in the thickness study (under a second in release; the full study takes about 40 s on 2 cores)"))
-    )]
     Compare(StudyArgs),
     /// Numerical stability under stress: each parameter toward its hard limit (contact and
     /// capstan models), with iterations, residuals, condition estimates, refinement changes.
-    #[command(
-        after_help = "Examples:\n  capstan stress --quick\n  capstan stress --json --out out/stress",
-        mut_arg("json", |a| a.help("Print one JSON object (`points`: one object per stressed point) instead of a table")),
-        mut_arg("out", |a| a.help("Write `stress.json` and `stress.md` into this directory")),
-        mut_arg("quick", |a| a.help("A representative subset: every axis at its extreme values (about a minute in release)"))
-    )]
     Stress(StudyArgs),
     /// The paper's figures and tables (sections 2 and 3) as PNG + SVG + CSV, with an index.
-    #[command(
-        after_help = "Examples:\n  capstan figure all --out figures\n  capstan figure slip-ratio --quick --out /tmp/fig"
-    )]
     Figure(commands::figure::FigureArgs),
     /// Sweep parts written by `capstan sweep --shard I/N`, checked and merged into one sweep.
-    #[command(
-        after_help = "Example:\n  capstan sweep --param body.poisson --from 0.1 --to 0.4 --steps 8 --shard 1/2 --out parts\n  capstan sweep --param body.poisson --from 0.1 --to 0.4 --steps 8 --shard 2/2 --out parts\n  capstan merge parts --out sweep"
-    )]
     Merge(commands::merge::MergeArgs),
     /// The contact problem's linear system (Newton Jacobian at a state) in Matrix Market.
-    #[command(
-        after_help = "Example:\n  capstan export-system --set grid.n2=40 --set grid.n3=9 --out system --state solution"
-    )]
     ExportSystem(commands::export_system::ExportSystemArgs),
+}
+
+/// What `--help` of one subcommand adds to its derived text: example command lines (shown
+/// after the options; every one is parsed in the tests) and the help of shared arguments that
+/// this subcommand words its own way (argument id, text).
+#[derive(Debug, Clone, Copy)]
+pub struct SubcommandHelp {
+    /// The subcommand's name on the command line.
+    pub name: &'static str,
+    /// Example command lines.
+    pub examples: &'static [&'static str],
+    /// `(argument id, help)` replacing the shared argument's help.
+    pub arguments: &'static [(&'static str, &'static str)],
+}
+
+/// The examples and reworded arguments of every subcommand, applied by [`Cli::command_with_help`].
+pub const SUBCOMMAND_HELP: &[SubcommandHelp] = &[
+    SubcommandHelp {
+        name: "geometry",
+        examples: &[
+            "capstan geometry --set obstacle.shape=prism --set 'obstacle.u=2*sin(t)+0.2*sin(2*t)' --json",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "verify",
+        examples: &["capstan verify --quick", "capstan verify --json"],
+        arguments: &[
+            ("quick", "Only the three coarsest grids of each study"),
+            ("out", "Also write `verify.json` into this directory"),
+        ],
+    },
+    SubcommandHelp {
+        name: "bench",
+        examples: &["capstan bench work-precision --quick"],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "tension",
+        examples: &[
+            "capstan tension --set obstacle.shape=ellipse --set obstacle.b=1 --set membrane.theta0=-0.785398 --set membrane.theta_max=0.785398 --json",
+            "capstan tension --set obstacle.shape=cylinder --set loads.gravity=9.81 --set loads.density=0.1 --set membrane.theta0=0",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "infer-mu",
+        examples: &[
+            "capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75",
+            "capstan infer-mu --model kikuchi-oden --set membrane.t_max=2.75 --set grid.n2=41 --set grid.n3=9 --json",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "contact",
+        examples: &[
+            "capstan contact --set loads.tau_max=1 --json",
+            "capstan contact --set grid.n2=80 --set grid.n3=17 --set solver.nonlinear=full-newton --out out/contact",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "sweep",
+        examples: &["capstan sweep --param loads.tau_max --from 1 --to 3.5 --steps 26 --json"],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "threshold",
+        examples: &["capstan threshold --set grid.n2=80 --set grid.n3=17 --json"],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "compare",
+        examples: &[
+            "capstan compare --quick",
+            "capstan compare --json --out out/models",
+        ],
+        arguments: &[
+            (
+                "out",
+                "Write `compare.json`, `implied_mu.csv`, `thickness.csv` and the plots `implied_mu_vs_{b_over_a,thickness,poisson}.{svg,png}` into this directory",
+            ),
+            (
+                "quick",
+                "Grid 41 x 9, three values per axis, one grid in the thickness study (under a second in release; the full study takes about 40 s on 2 cores)",
+            ),
+        ],
+    },
+    SubcommandHelp {
+        name: "stress",
+        examples: &[
+            "capstan stress --quick",
+            "capstan stress --json --out out/stress",
+        ],
+        arguments: &[
+            (
+                "json",
+                "Print one JSON object (`points`: one object per stressed point) instead of a table",
+            ),
+            (
+                "out",
+                "Write `stress.json` and `stress.md` into this directory",
+            ),
+            (
+                "quick",
+                "A representative subset: every axis at its extreme values (about a minute in release)",
+            ),
+        ],
+    },
+    SubcommandHelp {
+        name: "figure",
+        examples: &[
+            "capstan figure all --out figures",
+            "capstan figure slip-ratio --quick --out /tmp/fig",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "merge",
+        examples: &[
+            "capstan sweep --param body.poisson --from 0.1 --to 0.4 --steps 8 --shard 1/2 --out parts",
+            "capstan sweep --param body.poisson --from 0.1 --to 0.4 --steps 8 --shard 2/2 --out parts",
+            "capstan merge parts --out sweep",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "export-system",
+        examples: &[
+            "capstan export-system --set grid.n2=40 --set grid.n3=9 --out system --state solution",
+        ],
+        arguments: &[],
+    },
+];
+
+impl Cli {
+    /// The clap command with every subcommand's [`SUBCOMMAND_HELP`] applied: the command
+    /// line that `capstan` parses.
+    #[must_use]
+    pub fn command_with_help() -> clap::Command {
+        SUBCOMMAND_HELP
+            .iter()
+            .fold(<Self as clap::CommandFactory>::command(), |cli, help| {
+                cli.mut_subcommand(help.name, |sub| {
+                    let heading = if help.examples.len() == 1 {
+                        "Example:"
+                    } else {
+                        "Examples:"
+                    };
+                    let examples: String =
+                        help.examples.iter().map(|e| format!("\n  {e}")).collect();
+                    help.arguments.iter().fold(
+                        sub.after_help(format!("{heading}{examples}")),
+                        |sub, &(id, text)| sub.mut_arg(id, |a| a.help(text)),
+                    )
+                })
+            })
+    }
+
+    /// Parses the process's arguments with [`Cli::command_with_help`]; on `--help`,
+    /// `--version` or an error, prints and exits as clap does.
+    #[must_use]
+    pub fn parse_with_help() -> Self {
+        let matches = Self::command_with_help().get_matches();
+        <Self as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+    }
 }
 
 /// Arguments of `capstan contact`.

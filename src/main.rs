@@ -1,9 +1,7 @@
 use std::io::Write;
 
-use clap::Parser;
-
 fn main() {
-    let cli = capstan::cli::Cli::parse();
+    let cli = capstan::cli::Cli::parse_with_help();
     match capstan::cli::run(cli) {
         Ok(out) => {
             // A closed pipe (e.g. `| head`) is not an error worth a panic.

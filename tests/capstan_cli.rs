@@ -303,3 +303,68 @@ fn full_newton_reports_its_grid_sequence_and_agrees_with_the_condensed_solver() 
     assert!((v2(&full) / v2(&condensed) - 1.0).abs() < 1e-7);
     assert_eq!(full["slip_fraction"], condensed["slip_fraction"]);
 }
+
+/// The words of a command line as a POSIX shell splits it (single quotes only, which is all
+/// the examples use).
+fn shell_words(line: &str) -> Vec<String> {
+    let (mut words, mut word, mut quoted, mut open) = (Vec::new(), String::new(), false, false);
+    for c in line.chars() {
+        match c {
+            '\'' => (quoted, open) = (!quoted, true),
+            ' ' if !quoted => {
+                if open {
+                    words.push(std::mem::take(&mut word));
+                }
+                open = false;
+            }
+            _ => (word, open) = (word + &c.to_string(), true),
+        }
+    }
+    if open {
+        words.push(word);
+    }
+    words
+}
+
+#[test]
+fn every_help_example_parses_and_every_reworded_argument_exists() {
+    use capstan::cli::SUBCOMMAND_HELP;
+    assert_eq!(
+        shell_words("capstan geometry --set 'obstacle.u=2*sin(t) + 1' --json"),
+        [
+            "capstan",
+            "geometry",
+            "--set",
+            "obstacle.u=2*sin(t) + 1",
+            "--json"
+        ]
+    );
+    let cli = Cli::command_with_help();
+    let names: Vec<&str> = cli.get_subcommands().map(|c| c.get_name()).collect();
+    for help in SUBCOMMAND_HELP {
+        assert!(names.contains(&help.name), "no subcommand {}", help.name);
+        assert!(!help.examples.is_empty(), "{}: no example", help.name);
+        for example in help.examples {
+            let words = shell_words(example);
+            assert_eq!(words[0], "capstan", "{example}");
+            if let Err(e) = Cli::command_with_help().try_get_matches_from(&words) {
+                panic!("{example}: {e}");
+            }
+        }
+        // `mut_arg` on an unknown id panics at build time: the reworded arguments exist
+        let mut command = Cli::command_with_help();
+        let sub = command.find_subcommand_mut(help.name).expect("listed");
+        for (id, text) in help.arguments {
+            let arg = sub.get_arguments().find(|a| a.get_id() == id);
+            let shown = arg.and_then(|a| a.get_help()).map(ToString::to_string);
+            assert_eq!(shown.as_deref(), Some(*text), "{}: {id}", help.name);
+        }
+    }
+    // every subcommand but the defaults-only ones has examples
+    for name in names {
+        assert!(
+            name == "help" || SUBCOMMAND_HELP.iter().any(|h| h.name == name),
+            "{name} has no examples"
+        );
+    }
+}
