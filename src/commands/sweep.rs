@@ -4,7 +4,7 @@
 use std::time::Instant;
 
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactOperator, ContactSolution, EndLoads,
+    BoundarySolver, ContactErrorKind, ContactModel, ContactOperator, ContactSolution, EndLoads,
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
 use rayon::prelude::*;
@@ -17,13 +17,60 @@ use crate::output::{OutputDir, Table};
 use crate::provenance::{Stamped, write_scene};
 use crate::scene::Scene;
 
-/// One point of a sweep.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// How a sweep point ended (JSON: `converged`, `no-equilibrium`, `not-converged`,
+/// `invalid-input`, `interrupted`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PointStatus {
+    /// A solution was found.
+    Converged,
+    /// No static equilibrium exists (e.g. a tension ratio beyond limiting equilibrium).
+    NoEquilibrium,
+    /// The solver's budget was spent.
+    NotConverged,
+    /// The point's scene was refused.
+    InvalidInput,
+    /// The solve was stopped by its observer.
+    Interrupted,
+}
+
+impl PointStatus {
+    /// The status of a point whose solve failed with `error`.
+    #[must_use]
+    pub fn of_error(error: &CliError) -> Self {
+        match error {
+            CliError::Contact(c) => match c.kind() {
+                ContactErrorKind::InvalidInput => Self::InvalidInput,
+                ContactErrorKind::NoEquilibrium => Self::NoEquilibrium,
+                ContactErrorKind::NotConverged => Self::NotConverged,
+                ContactErrorKind::Interrupted => Self::Interrupted,
+            },
+            _ => Self::InvalidInput,
+        }
+    }
+
+    /// The JSON name.
+    #[must_use]
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Converged => "converged",
+            Self::NoEquilibrium => "no-equilibrium",
+            Self::NotConverged => "not-converged",
+            Self::InvalidInput => "invalid-input",
+            Self::Interrupted => "interrupted",
+        }
+    }
+}
+
+/// One point of a sweep; also what a sweep part (`capstan sweep --shard`) stores and the MPI
+/// workers send, read back exactly.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SweepPoint {
     /// The swept key's value.
     pub value: f64,
-    /// `converged`, `no-equilibrium`, `not-converged` or `invalid-input`.
-    pub status: &'static str,
+    /// How the point ended.
+    pub status: PointStatus,
     /// Whether a solution was found.
     pub converged: bool,
     /// Slip (mean state), `null` without a solution.
@@ -86,7 +133,7 @@ fn point(
     match result {
         Ok(sol) => SweepPoint {
             value,
-            status: "converged",
+            status: PointStatus::Converged,
             converged: true,
             slip_fraction: Some(sol.slip_fraction),
             newton_iterations: Some(sol.stats.newton_iterations),
@@ -98,10 +145,7 @@ fn point(
         },
         Err(e) => SweepPoint {
             value,
-            status: match &e {
-                CliError::Contact(c) => c.status(),
-                _ => "invalid-input",
-            },
+            status: PointStatus::of_error(&e),
             converged: false,
             slip_fraction: None,
             newton_iterations: None,
@@ -370,26 +414,27 @@ fn run(
     })
 }
 
-/// Plain text.
+/// Plain text: a title line, then one line per point under a header in the same columns.
 pub fn table(r: &SweepReport) -> String {
+    let line = |[value, status, slip, newton]: [&str; 4]| {
+        format!("{value:>12} {status:>16} {slip:>10} {newton:>8}\n")
+    };
     let mut s = format!(
-        "sweep of {} ({} points, {:.2} s)\n{:>12} {:>16} {:>10} {:>8}\n",
+        "sweep of {} ({} points, {:.2} s)\n",
         r.param,
         r.points.len(),
-        r.seconds,
-        r.param,
-        "status",
-        "Slip",
-        "Newton"
+        r.seconds
     );
+    s += &line([&r.param, "status", "Slip", "Newton"]);
     for p in &r.points {
-        s += &format!(
-            "{:>12.6} {:>16} {:>10} {:>8}\n",
-            p.value,
-            p.status,
-            p.slip_fraction.map_or("-".into(), |x| format!("{x:.4}")),
-            p.newton_iterations.map_or("-".into(), |x| x.to_string())
-        );
+        let slip = p.slip_fraction.map_or("-".into(), |x| format!("{x:.4}"));
+        let newton = p.newton_iterations.map_or("-".into(), |x| x.to_string());
+        s += &line([
+            &format!("{:.6}", p.value),
+            p.status.as_str(),
+            &slip,
+            &newton,
+        ]);
     }
     s
 }

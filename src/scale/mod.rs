@@ -22,7 +22,4 @@ mod shard;
 pub use error::ShardError;
 pub use matrix_market::{write_matrix_market_array, write_matrix_market_coordinate};
 pub use scene_hash::{Fnv1a64, sweep_hash};
-pub use shard::{
-    ShardFile, ShardSpec, StoredExtremum, StoredPoint, merge, read_parts, run_shard,
-    shard_file_name,
-};
+pub use shard::{ShardFile, ShardSpec, merge, read_parts, run_shard, shard_file_name};

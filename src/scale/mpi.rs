@@ -4,7 +4,7 @@
 //!
 //! # Protocol
 //! ```text
-//! worker -> 0 : bytes   empty (ready) or JSON {"index": k, "point": StoredPoint}
+//! worker -> 0 : bytes   empty (ready) or JSON {"index": k, "point": SweepPoint}
 //! 0 -> worker : u64     the next 0-based point k, or u64::MAX (stop)
 //! ```
 //! Rank 0 only dispatches: with `K` ranks, `K - 1` solve. Each point is one
@@ -15,7 +15,6 @@
 use mpi::traits::{Communicator, Destination, Source};
 use serde::{Deserialize, Serialize};
 
-use super::shard::StoredPoint;
 use crate::commands::sweep::{SweepPoint, SweepReport};
 use crate::error::CliError;
 
@@ -35,7 +34,7 @@ const STOP: u64 = u64::MAX;
 #[derive(Serialize, Deserialize)]
 struct Done {
     index: usize,
-    point: StoredPoint,
+    point: SweepPoint,
 }
 
 /// Runs the sweep across MPI ranks when there are at least two.
@@ -68,15 +67,13 @@ pub fn sweep(
         while stopped < world.size() - 1 {
             let (bytes, status) = world.any_process().receive_vec::<u8>();
             if !bytes.is_empty() {
-                let done: Done =
-                    serde_json::from_slice(&bytes).map_err(crate::output::OutputError::Json)?;
-                let p = done.point.to_sweep_point().map_err(|reason| {
+                let done: Done = serde_json::from_slice(&bytes).map_err(|e| {
                     crate::scale::ShardError::Malformed {
                         path: format!("MPI rank {}", status.source_rank()),
-                        reason,
+                        reason: e.to_string(),
                     }
                 })?;
-                points[done.index] = Some(p);
+                points[done.index] = Some(done.point);
             }
             let reply = if next < values.len() {
                 next += 1;
@@ -110,7 +107,7 @@ pub fn sweep(
             let r = crate::commands::sweep::report(path, sets, key, &values[k..=k])?;
             let done = Done {
                 index: k,
-                point: StoredPoint::from(&r.points[0]),
+                point: r.points[0].clone(),
             };
             message = serde_json::to_vec(&done).map_err(crate::output::OutputError::Json)?;
         }

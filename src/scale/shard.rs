@@ -59,104 +59,6 @@ pub fn shard_file_name(spec: ShardSpec) -> String {
     format!("shard-{}-of-{}.json", spec.index, spec.count)
 }
 
-/// A sweep point as stored in a part: [`SweepPoint`] with owned strings, read back exactly.
-///
-/// The fields and their order mirror [`SweepPoint`]; a unit test holds the two to the same
-/// JSON, so a new field in one and not the other fails loudly.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-#[allow(missing_docs)] // the fields are documented on `SweepPoint`
-pub struct StoredPoint {
-    pub value: f64,
-    pub status: String,
-    pub converged: bool,
-    pub slip_fraction: Option<f64>,
-    pub newton_iterations: Option<usize>,
-    pub stick_interval: Option<[f64; 2]>,
-    pub max_azimuthal_displacement: Option<StoredExtremum>,
-    pub max_radial_displacement: Option<StoredExtremum>,
-    pub tension_ratio: f64,
-    pub error: Option<String>,
-}
-
-/// [`capstan_elasticity::contact::Extremum`] as stored.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-#[allow(missing_docs)] // mirrors `Extremum`
-pub struct StoredExtremum {
-    pub value: f64,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub x1: Option<f64>,
-    pub x2: f64,
-    pub x3: f64,
-}
-
-type Extremum = capstan_elasticity::contact::Extremum;
-
-impl From<Extremum> for StoredExtremum {
-    fn from(e: Extremum) -> Self {
-        Self {
-            value: e.value,
-            x1: e.x1,
-            x2: e.x2,
-            x3: e.x3,
-        }
-    }
-}
-
-impl From<StoredExtremum> for Extremum {
-    fn from(e: StoredExtremum) -> Self {
-        Self {
-            value: e.value,
-            x1: e.x1,
-            x2: e.x2,
-            x3: e.x3,
-        }
-    }
-}
-
-impl From<&SweepPoint> for StoredPoint {
-    fn from(p: &SweepPoint) -> Self {
-        Self {
-            value: p.value,
-            status: p.status.to_owned(),
-            converged: p.converged,
-            slip_fraction: p.slip_fraction,
-            newton_iterations: p.newton_iterations,
-            stick_interval: p.stick_interval,
-            max_azimuthal_displacement: p.max_azimuthal_displacement.map(Into::into),
-            max_radial_displacement: p.max_radial_displacement.map(Into::into),
-            tension_ratio: p.tension_ratio,
-            error: p.error.clone(),
-        }
-    }
-}
-
-impl StoredPoint {
-    /// The sweep point, or what is wrong with it (an unknown status).
-    pub fn to_sweep_point(&self) -> Result<SweepPoint, String> {
-        let status = match self.status.as_str() {
-            "converged" => "converged",
-            "no-equilibrium" => "no-equilibrium",
-            "not-converged" => "not-converged",
-            "invalid-input" => "invalid-input",
-            other => return Err(format!("unknown point status `{other}`")),
-        };
-        Ok(SweepPoint {
-            value: self.value,
-            status,
-            converged: self.converged,
-            slip_fraction: self.slip_fraction,
-            newton_iterations: self.newton_iterations,
-            stick_interval: self.stick_interval,
-            max_azimuthal_displacement: self.max_azimuthal_displacement.map(Into::into),
-            max_radial_displacement: self.max_radial_displacement.map(Into::into),
-            tension_ratio: self.tension_ratio,
-            error: self.error.clone(),
-        })
-    }
-}
-
 /// The `format` of a part file.
 const FORMAT: &str = "capstan-sweep-part";
 /// Its version.
@@ -181,7 +83,7 @@ pub struct ShardFile {
     /// The 0-based grid points held here, ascending.
     pub indices: Vec<usize>,
     /// The results at `indices`, in the same order.
-    pub points: Vec<StoredPoint>,
+    pub points: Vec<SweepPoint>,
     /// As in [`SweepReport`].
     pub shared_factorisation: bool,
     /// Wall time of this part, seconds.
@@ -239,7 +141,7 @@ pub fn run_shard(
         values: values.to_vec(),
         shard: spec,
         indices,
-        points: points.iter().map(StoredPoint::from).collect(),
+        points,
         shared_factorisation: shared,
         seconds,
         scene: serde_json::to_value(&scene).map_err(crate::output::OutputError::Json)?,
@@ -419,12 +321,9 @@ pub fn merge(parts: &[(String, ShardFile)]) -> Result<SweepReport, ShardError> {
         });
     }
     let mut points: Vec<Option<SweepPoint>> = vec![None; steps];
-    for (name, part) in parts {
+    for (_, part) in parts {
         for (&k, p) in part.indices.iter().zip(&part.points) {
-            points[k] = Some(p.to_sweep_point().map_err(|reason| ShardError::Malformed {
-                path: name.clone(),
-                reason,
-            })?);
+            points[k] = Some(p.clone());
         }
     }
     Ok(SweepReport {
@@ -445,12 +344,12 @@ mod tests {
     fn point(value: f64) -> SweepPoint {
         SweepPoint {
             value,
-            status: "converged",
+            status: crate::commands::sweep::PointStatus::Converged,
             converged: true,
             slip_fraction: Some(0.25),
             newton_iterations: Some(4),
             stick_interval: Some([-0.5, 0.5]),
-            max_azimuthal_displacement: Some(Extremum {
+            max_azimuthal_displacement: Some(capstan_elasticity::contact::Extremum {
                 value: 1e-3,
                 x1: None,
                 x2: 0.1,
@@ -463,12 +362,16 @@ mod tests {
     }
 
     #[test]
-    fn stored_point_round_trips_sweep_point_json() {
+    fn a_sweep_point_round_trips_through_json_and_an_unknown_status_is_refused() {
         let p = point(0.3);
         let json = serde_json::to_string(&p).unwrap();
-        let stored: StoredPoint = serde_json::from_str(&json).unwrap();
-        assert_eq!(serde_json::to_string(&stored).unwrap(), json);
-        assert_eq!(stored.to_sweep_point().unwrap(), p);
+        let back: SweepPoint = serde_json::from_str(&json).unwrap();
+        assert_eq!(back, p);
+        assert_eq!(serde_json::to_string(&back).unwrap(), json);
+        let bad = json.replace("\"converged\",", "\"diverged\",");
+        assert_ne!(bad, json);
+        let e = serde_json::from_str::<SweepPoint>(&bad).unwrap_err();
+        assert!(e.to_string().contains("diverged"), "{e}");
     }
 
     #[test]
@@ -501,10 +404,7 @@ mod tests {
                 param: "body.poisson".into(),
                 values: values.to_vec(),
                 shard: spec,
-                points: indices
-                    .iter()
-                    .map(|&k| StoredPoint::from(&point(values[k])))
-                    .collect(),
+                points: indices.iter().map(|&k| point(values[k])).collect(),
                 indices,
                 shared_factorisation: false,
                 seconds: index as f64,

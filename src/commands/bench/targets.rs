@@ -175,15 +175,20 @@ mod tests {
         }
     }
 
+    /// One-thread runs of `method` at `times` whose errors follow `error = c t^-k`.
+    fn power_law_runs(method: &str, (c, k): (f64, f64), times: &[f64]) -> Vec<Run> {
+        times
+            .iter()
+            .map(|&t| run(method, 1, c * t.powf(-k), t))
+            .collect()
+    }
+
     #[test]
     fn time_to_error_interpolates_log_log_and_refuses_to_extrapolate() {
-        let runs = [
-            run("fem-q2", 1, 1e-3, 0.01),
-            run("fem-q2", 1, 1e-5, 0.1),
-            run("fem-q2", 1, 1e-7, 1.0),
-        ];
+        // error = 1e-7 t^-2: 1e-3, 1e-5, 1e-7 at 0.01, 0.1, 1 s; 1e-6 lies half way (in
+        // logs) between 0.1 s and 1 s
+        let runs = power_law_runs("fem-q2", (1e-7, 2.0), &[0.01, 0.1, 1.0]);
         let refs: Vec<&Run> = runs.iter().collect();
-        // error ~ t^-2 here: 1e-6 lies half way (in logs) between 0.1 s and 1 s
         let t = time_to_error(&refs, 1e-6).unwrap();
         assert!((t - 10f64.powf(-0.5)).abs() < 1e-12);
         assert!(time_to_error(&refs, 1e-8).is_none());
@@ -195,12 +200,8 @@ mod tests {
         // error = C t^-k with C = 1e-6, k = 1.7 (0.13 at 1 ms, 7.9e-12 at 1000 s), runs at
         // irregular times, given out of order
         let (c, k) = (1e-6, 1.7);
-        let law = |t: f64| c * t.powf(-k);
         let times = [0.001, 0.02, 0.0071, 0.4, 13.0, 90.0, 1000.0, 0.09];
-        let runs: Vec<Run> = times
-            .iter()
-            .map(|&t| run("ngsolve-p4", 1, law(t), t))
-            .collect();
+        let runs = power_law_runs("ngsolve-p4", (c, k), &times);
         let refs: Vec<&Run> = runs.iter().collect();
         for target in TARGETS {
             let expected = (c / target).powf(1.0 / k); // t = (C / e)^(1/k)

@@ -11,12 +11,13 @@ use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
 
 /// A signed extreme value and where it occurs.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Extremum {
     /// The value of largest magnitude (signed).
     pub value: f64,
     /// `x1` of the node (a 3-D body only).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x1: Option<f64>,
     /// `x2` of the node.
     pub x2: f64,
