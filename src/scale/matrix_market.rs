@@ -51,10 +51,7 @@ pub fn write_matrix_market_coordinate<W: Write + ?Sized>(
         });
     }
     finite("A", values)?;
-    writeln!(w, "%%MatrixMarket matrix coordinate real general")?;
-    for c in comment {
-        writeln!(w, "% {c}")?;
-    }
+    header(w, "coordinate", comment)?;
     writeln!(
         w,
         "{} {} {}",
@@ -64,6 +61,15 @@ pub fn write_matrix_market_coordinate<W: Write + ?Sized>(
     )?;
     for ((row, col), v) in pattern.entries().zip(values) {
         writeln!(w, "{} {} {v:e}", row + 1, col + 1)?;
+    }
+    Ok(())
+}
+
+/// The banner `%%MatrixMarket matrix <format> real general` and one `% ` line per comment.
+fn header<W: Write + ?Sized>(w: &mut W, format: &str, comment: &[&str]) -> std::io::Result<()> {
+    writeln!(w, "%%MatrixMarket matrix {format} real general")?;
+    for c in comment {
+        writeln!(w, "% {c}")?;
     }
     Ok(())
 }
@@ -79,10 +85,7 @@ pub fn write_matrix_market_array<W: Write + ?Sized>(
     comment: &[&str],
 ) -> Result<(), OutputError> {
     finite(name, values)?;
-    writeln!(w, "%%MatrixMarket matrix array real general")?;
-    for c in comment {
-        writeln!(w, "% {c}")?;
-    }
+    header(w, "array", comment)?;
     writeln!(w, "{} 1", values.len())?;
     for v in values {
         writeln!(w, "{v:e}")?;

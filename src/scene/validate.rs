@@ -349,22 +349,16 @@ impl Scene {
             return self.validate_solid_grid(at);
         }
         let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
-        if let Some(have) = available_memory()
-            && need > have
-        {
-            return Err(CliError::Scene {
-                origin: at.locate("grid.n2"),
-                message: format!(
-                    "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 4000 x 640), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
-                    g.n2,
-                    g.n3,
-                    human_bytes(need),
-                    2 * g.n2 * g.n3,
-                    human_bytes(have)
-                ),
-            });
-        }
-        Ok(())
+        check_memory(at, "grid.n2", need, |have| {
+            format!(
+                "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 4000 x 640), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
+                g.n2,
+                g.n3,
+                human_bytes(need),
+                2 * g.n2 * g.n3,
+                human_bytes(have)
+            )
+        })
     }
 
     /// `grid.n1` of a 3-D body (`[2, 10^5]`, odd for `fem-q2`, `p e + 1` for `fem-qp`) and its
@@ -406,35 +400,46 @@ impl Scene {
         } else {
             solid_memory_estimate([g.n1, g.n2, g.n3], condensed)
         };
-        if let Some(have) = available_memory()
-            && need > have
-        {
-            return Err(CliError::Scene {
-                origin: at.locate("grid.n1"),
-                message: format!(
-                    "3-D grid {} x {} x {} needs about {} ({}), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid{}",
-                    g.n1,
-                    g.n2,
-                    g.n3,
-                    human_bytes(need),
-                    if multigrid {
-                        "the sparse Jacobian, its multigrid hierarchy and the GMRES vectors"
-                    } else if condensed {
-                        "dense condensed contact matrices of 2 n1 n2 rows and the sparse LU"
-                    } else {
-                        "the sparse LU factors"
-                    },
-                    human_bytes(have),
-                    if multigrid {
-                        ""
-                    } else if condensed {
-                        " or solver.nonlinear = \"full-newton\" with solver.linear = \"multigrid\""
-                    } else {
-                        " or solver.linear = \"multigrid\" (no factorisation)"
-                    }
-                ),
-            });
-        }
-        Ok(())
+        check_memory(at, "grid.n1", need, |have| {
+            format!(
+                "3-D grid {} x {} x {} needs about {} ({}), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid{}",
+                g.n1,
+                g.n2,
+                g.n3,
+                human_bytes(need),
+                if multigrid {
+                    "the sparse Jacobian, its multigrid hierarchy and the GMRES vectors"
+                } else if condensed {
+                    "dense condensed contact matrices of 2 n1 n2 rows and the sparse LU"
+                } else {
+                    "the sparse LU factors"
+                },
+                human_bytes(have),
+                if multigrid {
+                    ""
+                } else if condensed {
+                    " or solver.nonlinear = \"full-newton\" with solver.linear = \"multigrid\""
+                } else {
+                    " or solver.linear = \"multigrid\" (no factorisation)"
+                }
+            )
+        })
+    }
+}
+
+/// Refuses, at `key`, a grid whose estimated need (bytes) exceeds the memory available
+/// ([`available_memory`]; nothing is refused where it cannot be read), with `message(have)`.
+fn check_memory(
+    at: &Origins,
+    key: &str,
+    need: f64,
+    message: impl FnOnce(f64) -> String,
+) -> Result<(), CliError> {
+    match available_memory() {
+        Some(have) if need > have => Err(CliError::Scene {
+            origin: at.locate(key),
+            message: message(have),
+        }),
+        _ => Ok(()),
     }
 }
