@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use capstan_elasticity::Discretisation;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactError, ContactModel, ContactSettings, EndLoads, ThickBody,
-    ThickBodyOperator,
+    BoundarySolver, ContactModel, ContactSettings, ThickBody, ThickBodyOperator,
+    solve_below_threshold,
 };
 use capstan_friction::FrictionError;
 use capstan_friction::membrane;
@@ -384,18 +384,7 @@ fn solver_slides<D: Discretisation, L: capstan_friction::FrictionLaw<f64>>(
     solver: &BoundarySolver<'_, D, L>,
     ratio: f64,
 ) -> Result<bool, CliError> {
-    match solver.solve(EndLoads::ratio(ratio)) {
-        Ok(sol) => Ok(sol.fully_slipping()),
-        Err(ContactError::NoEquilibrium { .. }) => Ok(true),
-        Err(ContactError::NotConverged { .. })
-            if solver
-                .sliding()
-                .is_some_and(|m| ratio >= m.upper_ratio * (1.0 - 1e-3)) =>
-        {
-            Ok(true)
-        }
-        Err(e) => Err(e.into()),
-    }
+    Ok(solve_below_threshold(solver, ratio, None)?.is_none())
 }
 
 /// The `mu_F` at which the thick body's Slip reaches 1 at end tractions `(1, ratio)`:

@@ -67,7 +67,7 @@ pub use solution::{
     ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,
     state_intervals,
 };
-pub use threshold::{ThresholdResult, ThresholdSettings, threshold_ratio};
+pub use threshold::{ThresholdResult, ThresholdSettings, solve_below_threshold, threshold_ratio};
 
 /// Makes faer's dense and sparse kernels sequential (`Par::Seq`), for callers that run many
 /// contact solves in parallel themselves (rayon sweeps): avoids oversubscription.

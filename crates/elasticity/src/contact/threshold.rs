@@ -6,6 +6,7 @@ use crate::contact::boundary_solver::BoundarySolver;
 use crate::contact::error::ContactError;
 use crate::contact::model::EndLoads;
 use crate::contact::operator::ContactOperator;
+use crate::contact::solution::ContactSolution;
 
 /// Settings of [`threshold_ratio`].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -45,6 +46,34 @@ pub struct ThresholdResult {
     pub limiting_ratio: Option<f64>,
 }
 
+/// The solve at `tau_max / tau0 = ratio` (`tau0 = 1`, from `warm` if given) when it lies below
+/// the threshold of whole sliding; `None` at or above it: a fully slipping solution
+/// ([`ContactSolution::fully_slipping`]), no static solution, or a solve that fails to converge
+/// within `1e-3` (relative) below the sliding mode's limiting ratio, where the full-slip
+/// solution is singular.
+///
+/// # Errors
+/// Any other failure of the solve.
+pub fn solve_below_threshold<D: ContactOperator, L: FrictionLaw<f64>>(
+    solver: &BoundarySolver<'_, D, L>,
+    ratio: f64,
+    warm: Option<&[f64]>,
+) -> Result<Option<ContactSolution>, ContactError> {
+    match solver.solve_from(EndLoads::ratio(ratio), warm) {
+        Ok(sol) if sol.fully_slipping() => Ok(None),
+        Ok(sol) => Ok(Some(sol)),
+        Err(ContactError::NoEquilibrium { .. }) => Ok(None),
+        Err(ContactError::NotConverged { .. })
+            if solver
+                .sliding()
+                .is_some_and(|m| ratio >= m.upper_ratio * (1.0 - 1e-3)) =>
+        {
+            Ok(None)
+        }
+        Err(e) => Err(e),
+    }
+}
+
 /// Finds the smallest `tau_max / tau0 >= 1` (with `tau0 = 1`) at which every contact node slides
 /// in the positive direction
 /// ([`ContactSolution::fully_slipping`](crate::contact::ContactSolution::fully_slipping)), or
@@ -63,24 +92,13 @@ pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
     let mut probe =
         |ratio: f64, warm: &mut Option<Vec<f64>>| -> Result<Option<(f64, bool)>, ContactError> {
             solves += 1;
-            match solver.solve_from(EndLoads::ratio(ratio), warm.as_deref()) {
-                Ok(sol) if sol.fully_slipping() => Ok(None),
-                Ok(sol) => {
-                    *warm = Some(sol.unknowns.clone());
-                    Ok(Some((sol.slip_fraction, false)))
-                }
-                Err(ContactError::NoEquilibrium { .. }) => Ok(None),
-                // At the limiting ratio of a sliding mode the full-slip solution is singular:
-                // failure within 1e-3 of it counts as reaching the threshold.
-                Err(ContactError::NotConverged { .. })
-                    if solver
-                        .sliding()
-                        .is_some_and(|m| ratio >= m.upper_ratio * (1.0 - 1e-3)) =>
-                {
-                    Ok(None)
-                }
-                Err(e) => Err(e),
-            }
+            Ok(
+                solve_below_threshold(solver, ratio, warm.as_deref())?.map(|sol| {
+                    let slip = sol.slip_fraction;
+                    *warm = Some(sol.unknowns);
+                    (slip, false)
+                }),
+            )
         };
     let limiting_ratio = solver
         .sliding()
