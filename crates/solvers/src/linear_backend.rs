@@ -39,23 +39,14 @@ pub enum LinearBackend {
     GaussSeidel,
 }
 
+crate::named_variants!(LinearBackend {
+    Lu => "lu",
+    Cholesky => "cholesky",
+    Jacobi => "jacobi",
+    GaussSeidel => "gauss-seidel",
+});
+
 impl LinearBackend {
-    /// Every backend, in declaration order.
-    pub const ALL: [Self; 4] = [Self::Lu, Self::Cholesky, Self::Jacobi, Self::GaussSeidel];
-
-    /// The accepted spellings, for messages.
-    pub const NAMES: &'static str = "`lu`, `cholesky`, `jacobi`, `gauss-seidel`";
-
-    /// The backend's name as used in files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Lu => "lu",
-            Self::Cholesky => "cholesky",
-            Self::Jacobi => "jacobi",
-            Self::GaussSeidel => "gauss-seidel",
-        }
-    }
-
     /// Whether the backend factorises (direct) rather than iterates.
     pub fn is_direct(self) -> bool {
         matches!(self, Self::Lu | Self::Cholesky)

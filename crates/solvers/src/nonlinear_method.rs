@@ -29,21 +29,12 @@ pub enum NonlinearMethod {
     JacobiNewton,
 }
 
+crate::named_variants!(NonlinearMethod {
+    Newton => "newton",
+    JacobiNewton => "jacobi-newton",
+});
+
 impl NonlinearMethod {
-    /// Every method, in declaration order.
-    pub const ALL: [Self; 2] = [Self::Newton, Self::JacobiNewton];
-
-    /// The accepted spellings, for messages.
-    pub const NAMES: &'static str = "`newton`, `jacobi-newton`";
-
-    /// The method's name as used in files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Newton => "newton",
-            Self::JacobiNewton => "jacobi-newton",
-        }
-    }
-
     /// Builds the solver.
     ///
     /// # Errors

@@ -31,26 +31,17 @@ pub enum SolveStage {
     Krylov,
 }
 
-impl SolveStage {
-    /// Lower-case name used in logs and in the Python package (`"condensed-newton"`, ...).
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Newton => "newton",
-            Self::JacobiNewton => "jacobi-newton",
-            Self::CondensedNewton => "condensed-newton",
-            Self::Continuation => "continuation",
-            Self::GridLevel => "grid-level",
-            Self::Membrane => "membrane",
-            Self::Krylov => "krylov",
-        }
-    }
-}
-
-impl core::fmt::Display for SolveStage {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.write_str(self.name())
-    }
-}
+// `name()`: the lower-case name used in logs and in the Python package
+// (`"condensed-newton"`, ...).
+crate::named_variants!(SolveStage {
+    Newton => "newton",
+    JacobiNewton => "jacobi-newton",
+    CondensedNewton => "condensed-newton",
+    Continuation => "continuation",
+    GridLevel => "grid-level",
+    Membrane => "membrane",
+    Krylov => "krylov",
+});
 
 /// Sizes of the contact active set after an iteration: nodes that stick and nodes that slip.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -1,7 +1,5 @@
 //! Choosing a discretisation by name (`discretisation.method` in scene files).
 
-use core::fmt;
-
 use super::element::ElementOrder;
 use super::high_order::HighOrderNavier;
 use super::navier::FiniteElementNavier;
@@ -50,30 +48,16 @@ pub enum DiscretisationMethod {
     FemQp,
 }
 
+capstan_solvers::named_variants!(DiscretisationMethod {
+    Fd => "fd",
+    FemQ1 => "fem-q1",
+    FemQ2 => "fem-q2",
+    FemQp => "fem-qp",
+});
+
 impl DiscretisationMethod {
-    /// Every method, in declaration order.
-    pub const ALL: [Self; 4] = [Self::Fd, Self::FemQ1, Self::FemQ2, Self::FemQp];
-
-    /// The accepted spellings, for messages.
-    pub const NAMES: &'static str = "`fd`, `fem-q1`, `fem-q2`, `fem-qp`";
-
     /// The order of `fem-qp` when none is given (`discretisation.order`).
     pub const DEFAULT_ORDER: usize = 4;
-
-    /// The name as used in files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Fd => "fd",
-            Self::FemQ1 => "fem-q1",
-            Self::FemQ2 => "fem-q2",
-            Self::FemQp => "fem-qp",
-        }
-    }
-
-    /// The method of a name, `None` if unknown.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
 
     /// The element order of a Q1/Q2 finite-element method (`None` for `fd` and `fem-qp`).
     pub fn element_order(self) -> Option<ElementOrder> {
@@ -139,11 +123,5 @@ impl DiscretisationMethod {
                 chart, material, grid, boundary, body_force, order,
             )?),
         })
-    }
-}
-
-impl fmt::Display for DiscretisationMethod {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
     }
 }

@@ -2,8 +2,6 @@
 //! element's full Gauss rule, or selectively with a rule one order lower (the remedy for
 //! volumetric locking as Poisson's ratio approaches 1/2).
 
-use core::fmt;
-
 /// The quadrature of the volumetric part of the stiffness (scene key
 /// `discretisation.volumetric`): `full` (default) or `reduced` (selective reduced
 /// integration, SRI).
@@ -58,32 +56,10 @@ pub enum VolumetricIntegration {
     Reduced,
 }
 
-impl VolumetricIntegration {
-    /// Every option, in declaration order.
-    pub const ALL: [Self; 2] = [Self::Full, Self::Reduced];
-
-    /// The accepted spellings, for messages.
-    pub const NAMES: &'static str = "`full`, `reduced`";
-
-    /// The name as used in files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Full => "full",
-            Self::Reduced => "reduced",
-        }
-    }
-
-    /// The option of a name, `None` if unknown.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
-
-impl fmt::Display for VolumetricIntegration {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
+capstan_solvers::named_variants!(VolumetricIntegration {
+    Full => "full",
+    Reduced => "reduced",
+});
 
 #[cfg(test)]
 mod tests {
