@@ -432,53 +432,84 @@ fn slip_stick(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
     ))
 }
 
-fn sweep_plot(
-    out: &OutputDir,
-    stem: &str,
-    r: &sweep::SweepReport,
-    x: impl Fn(f64) -> f64,
-    x_label: &str,
-    title: &str,
-) -> Result<Vec<String>, CliError> {
-    let ok: Vec<&sweep::SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
-    let xs: Vec<f64> = ok.iter().map(|p| x(p.value)).collect();
-    let ys: Vec<f64> = ok.iter().map(|p| p.slip_fraction.unwrap_or(0.0)).collect();
-    let table = Table::new()
-        .f64("value", ok.iter().map(|p| p.value).collect::<Vec<_>>())
-        .f64(x_label.split(' ').next().unwrap_or("x"), xs.clone())
-        .f64("slip_fraction", ys.clone())
-        .f64(
-            "max_v2",
-            ok.iter()
-                .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
-                .collect::<Vec<_>>(),
-        )
-        .text("status", ok.iter().map(|p| p.status.as_str()));
-    out.write_csv(&format!("{stem}.csv"), &table)?;
-    out.write_json(&format!("{stem}.json"), r)?;
-    let plot = LinePlot::new(title)
-        .x_label(x_label)
-        .y_label("Slip (mean of -1/0/+1 states)")
-        .series(Series::line("regularised Coulomb", xs, ys).with_markers());
-    out.write_plot(stem, &plot)?;
-    let mut files = vec![format!("{stem}.csv"), format!("{stem}.json")];
-    files.extend(plot_files(stem));
-    Ok(files)
+/// A figure of Slip against one scene key: the sweep, its table (`<stem>.csv`, `<stem>.json`)
+/// and its plot.
+struct SlipSweep<'a> {
+    /// File stem.
+    stem: &'a str,
+    /// The swept scene key.
+    key: &'a str,
+    /// First and last value.
+    range: (f64, f64),
+    /// Points of the full and of the quick figure.
+    steps: (usize, usize),
+    /// Plotted abscissa per unit of the swept value.
+    x_scale: f64,
+    /// Abscissa label (its first word names the CSV column).
+    x_label: &'a str,
+    /// Plot title.
+    title: &'a str,
+}
+
+impl SlipSweep<'_> {
+    /// Runs the sweep and writes its files: the report and the files' names.
+    fn run(
+        &self,
+        s: &FigureSettings,
+        out: &OutputDir,
+    ) -> Result<(sweep::SweepReport, Vec<String>), CliError> {
+        let values = sweep::values(
+            self.range.0,
+            self.range.1,
+            s.steps(self.steps.0, self.steps.1),
+        )?;
+        let r = sweep::report(None, &s.sets(), self.key, &values)?;
+        let files = self.write(out, &r)?;
+        Ok((r, files))
+    }
+
+    fn write(&self, out: &OutputDir, r: &sweep::SweepReport) -> Result<Vec<String>, CliError> {
+        let (stem, x_label) = (self.stem, self.x_label);
+        let ok: Vec<&sweep::SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
+        let xs: Vec<f64> = ok.iter().map(|p| p.value * self.x_scale).collect();
+        let ys: Vec<f64> = ok.iter().map(|p| p.slip_fraction.unwrap_or(0.0)).collect();
+        let table = Table::new()
+            .f64("value", ok.iter().map(|p| p.value).collect::<Vec<_>>())
+            .f64(x_label.split(' ').next().unwrap_or("x"), xs.clone())
+            .f64("slip_fraction", ys.clone())
+            .f64(
+                "max_v2",
+                ok.iter()
+                    .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
+                    .collect::<Vec<_>>(),
+            )
+            .text("status", ok.iter().map(|p| p.status.as_str()));
+        out.write_csv(&format!("{stem}.csv"), &table)?;
+        out.write_json(&format!("{stem}.json"), r)?;
+        let plot = LinePlot::new(self.title)
+            .x_label(x_label)
+            .y_label("Slip (mean of -1/0/+1 states)")
+            .series(Series::line("regularised Coulomb", xs, ys).with_markers());
+        out.write_plot(stem, &plot)?;
+        let mut files = vec![format!("{stem}.csv"), format!("{stem}.json")];
+        files.extend(plot_files(stem));
+        Ok(files)
+    }
 }
 
 /// Slip against the tension ratio (one factorisation for every ratio), the first ratio with
 /// Slip = 1 and the capstan mu it implies on `[-pi/2, pi/2]`.
 fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let values = sweep::values(1.0, 3.5, s.steps(51, 11))?;
-    let r = sweep::report(None, &s.sets(), "loads.tau_max", &values)?;
-    let files = sweep_plot(
-        out,
-        "slip-ratio",
-        &r,
-        |v| v,
-        "tension ratio tau_max / tau0",
-        "Slip against the tension ratio",
-    )?;
+    let (r, files) = SlipSweep {
+        stem: "slip-ratio",
+        key: "loads.tau_max",
+        range: (1.0, 3.5),
+        steps: (51, 11),
+        x_scale: 1.0,
+        x_label: "tension ratio tau_max / tau0",
+        title: "Slip against the tension ratio",
+    }
+    .run(s, out)?;
     let full = r
         .points
         .iter()
@@ -552,16 +583,16 @@ fn slip_param(
     x_label: &str,
     x_scale: f64,
 ) -> Result<Output, CliError> {
-    let values = sweep::values(range.0, range.1, s.steps(11, 5))?;
-    let r = sweep::report(None, &s.sets(), key, &values)?;
-    let files = sweep_plot(
-        out,
+    let (r, files) = SlipSweep {
         stem,
-        &r,
-        |v| v * x_scale,
+        key,
+        range,
+        steps: (11, 5),
+        x_scale,
         x_label,
-        &format!("Slip against {x_label}, tau_max = 2"),
-    )?;
+        title: &format!("Slip against {x_label}, tau_max = 2"),
+    }
+    .run(s, out)?;
     let ok: Vec<(f64, f64)> = r
         .points
         .iter()
@@ -597,16 +628,16 @@ fn slip_param(
 
 /// Slip for E in [500, 1500]: the paper finds a constant 71.2 %.
 fn young(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let values = sweep::values(500.0, 1500.0, s.steps(5, 3))?;
-    let r = sweep::report(None, &s.sets(), "body.young", &values)?;
-    let files = sweep_plot(
-        out,
-        "young",
-        &r,
-        |v| v,
-        "E (Pa)",
-        "Slip against Young's modulus, tau_max = 2",
-    )?;
+    let (r, files) = SlipSweep {
+        stem: "young",
+        key: "body.young",
+        range: (500.0, 1500.0),
+        steps: (5, 3),
+        x_scale: 1.0,
+        x_label: "E (Pa)",
+        title: "Slip against Young's modulus, tau_max = 2",
+    }
+    .run(s, out)?;
     let slips: Vec<f64> = r.points.iter().filter_map(|p| p.slip_fraction).collect();
     let (lo, hi) = slips
         .iter()
