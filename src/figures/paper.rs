@@ -451,7 +451,31 @@ struct SlipSweep<'a> {
     title: &'a str,
 }
 
-impl SlipSweep<'_> {
+impl<'a> SlipSweep<'a> {
+    /// `steps.0` (quick: `steps.1`) values of `key` from `range.0` to `range.1`, plotted
+    /// against the value itself with the key as label until [`SlipSweep::axis`] says otherwise.
+    fn new(stem: &'a str, key: &'a str, range: (f64, f64), steps: (usize, usize)) -> Self {
+        Self {
+            stem,
+            key,
+            range,
+            steps,
+            x_scale: 1.0,
+            x_label: key,
+            title: key,
+        }
+    }
+
+    /// The plotted abscissa `x_scale * value` with its label, and the plot's title.
+    fn axis(self, x_label: &'a str, x_scale: f64, title: &'a str) -> Self {
+        Self {
+            x_label,
+            x_scale,
+            title,
+            ..self
+        }
+    }
+
     /// Runs the sweep and writes its files: the report and the files' names.
     fn run(
         &self,
@@ -500,16 +524,13 @@ impl SlipSweep<'_> {
 /// Slip against the tension ratio (one factorisation for every ratio), the first ratio with
 /// Slip = 1 and the capstan mu it implies on `[-pi/2, pi/2]`.
 fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let (r, files) = SlipSweep {
-        stem: "slip-ratio",
-        key: "loads.tau_max",
-        range: (1.0, 3.5),
-        steps: (51, 11),
-        x_scale: 1.0,
-        x_label: "tension ratio tau_max / tau0",
-        title: "Slip against the tension ratio",
-    }
-    .run(s, out)?;
+    let (r, files) = SlipSweep::new("slip-ratio", "loads.tau_max", (1.0, 3.5), (51, 11))
+        .axis(
+            "tension ratio tau_max / tau0",
+            1.0,
+            "Slip against the tension ratio",
+        )
+        .run(s, out)?;
     let full = r
         .points
         .iter()
@@ -520,41 +541,37 @@ fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
         .filter(|p| p.converged)
         .map(|p| p.value)
         .fold(f64::NAN, f64::max);
-    let mut rows = vec![];
-    match full {
-        Some(p) => {
-            let why = if p.converged {
+    let (sweep_ratio, sweep_note) = match full {
+        Some(p) => (
+            format!("{:.3} (last converged {last_ok:.3})", p.value),
+            if p.converged {
                 "first sweep point with Slip = 1"
             } else {
                 "first sweep point without a static solution"
+            },
+        ),
+        None => ("not reached in [1, 3.5]".into(), ""),
+    };
+    let mut rows = vec![row(
+        "full slip above ratio (sweep)",
+        sweep_ratio,
+        "2.75",
+        sweep_note,
+    )];
+    // The bisected threshold and the capstan mu it implies.
+    let threshold = "full-slip threshold ratio (bisection)";
+    match crate::commands::threshold::report(&s.scene()) {
+        Ok(t) => {
+            let note = if t.no_equilibrium_beyond {
+                "no static equilibrium beyond"
+            } else {
+                "Slip reaches 1"
             };
             rows.push(row(
-                "full slip above ratio (sweep)",
-                format!("{:.3} (last converged {last_ok:.3})", p.value),
-                "2.75",
-                why,
-            ));
-        }
-        None => rows.push(row(
-            "full slip above ratio (sweep)",
-            "not reached in [1, 3.5]".into(),
-            "2.75",
-            "",
-        )),
-    }
-    // The bisected threshold and the capstan mu it implies.
-    let scene = s.scene();
-    match crate::commands::threshold::report(&scene) {
-        Ok(t) => {
-            rows.push(row(
-                "full-slip threshold ratio (bisection)",
+                threshold,
                 format!("{:.4}", t.threshold_ratio),
                 "2.75",
-                if t.no_equilibrium_beyond {
-                    "no static equilibrium beyond"
-                } else {
-                    "Slip reaches 1"
-                },
+                note,
             ));
             rows.push(row(
                 "implied capstan mu",
@@ -563,12 +580,10 @@ fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
                 "Corollary 1 on [-pi/2, pi/2] at the threshold ratio; thick-body mu = 0.5",
             ));
         }
-        Err(e) => rows.push(row(
-            "full-slip threshold ratio (bisection)",
-            "failed".into(),
-            "2.75",
-            &format!("capstan threshold: {e}"),
-        )),
+        Err(e) => {
+            let note = format!("capstan threshold: {e}");
+            rows.push(row(threshold, "failed".into(), "2.75", &note));
+        }
     }
     Ok((files, rows))
 }
@@ -583,16 +598,10 @@ fn slip_param(
     x_label: &str,
     x_scale: f64,
 ) -> Result<Output, CliError> {
-    let (r, files) = SlipSweep {
-        stem,
-        key,
-        range,
-        steps: (11, 5),
-        x_scale,
-        x_label,
-        title: &format!("Slip against {x_label}, tau_max = 2"),
-    }
-    .run(s, out)?;
+    let title = format!("Slip against {x_label}, tau_max = 2");
+    let (r, files) = SlipSweep::new(stem, key, range, (11, 5))
+        .axis(x_label, x_scale, &title)
+        .run(s, out)?;
     let ok: Vec<(f64, f64)> = r
         .points
         .iter()
@@ -615,42 +624,30 @@ fn slip_param(
         _ => "decreases slightly as nu increases",
     };
     let failed = r.points.iter().filter(|p| !p.converged).count();
-    Ok((
-        files,
-        vec![row(
-            "Slip trend",
-            trend,
-            paper,
-            &format!("{} points, {failed} without a solution", r.points.len()),
-        )],
-    ))
+    let note = format!("{} points, {failed} without a solution", r.points.len());
+    Ok((files, vec![row("Slip trend", trend, paper, &note)]))
 }
 
 /// Slip for E in [500, 1500]: the paper finds a constant 71.2 %.
 fn young(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let (r, files) = SlipSweep {
-        stem: "young",
-        key: "body.young",
-        range: (500.0, 1500.0),
-        steps: (5, 3),
-        x_scale: 1.0,
-        x_label: "E (Pa)",
-        title: "Slip against Young's modulus, tau_max = 2",
-    }
-    .run(s, out)?;
+    let (r, files) = SlipSweep::new("young", "body.young", (500.0, 1500.0), (5, 3))
+        .axis("E (Pa)", 1.0, "Slip against Young's modulus, tau_max = 2")
+        .run(s, out)?;
     let slips: Vec<f64> = r.points.iter().filter_map(|p| p.slip_fraction).collect();
     let (lo, hi) = slips
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
             (a.min(x), b.max(x))
         });
+    let ours = format!("{:.1} % .. {:.1} %", 100.0 * lo, 100.0 * hi);
+    let note = "Slip = mean of the -1/0/+1 node states";
     Ok((
         files,
         vec![row(
             "Slip for E in [500, 1500]",
-            format!("{:.1} % .. {:.1} %", 100.0 * lo, 100.0 * hi),
+            ours,
             "71.2 % (constant)",
-            "Slip = mean of the -1/0/+1 node states",
+            note,
         )],
     ))
 }
