@@ -377,13 +377,13 @@ fn huge_friction_approaches_the_stuck_linear_solution() {
     );
     let clamped = {
         let grid = body.discretisation(1.0, 2.0).unwrap();
-        capstan_elasticity::FiniteDifferenceNavier::new(
-            capstan_geometry::ShellChart::new(body.obstacle.clone()),
-            body.material,
-            *grid.grid(),
-            BoundaryConditions::paper_clamped(1.0, 2.0),
-            None,
-        )
+        capstan_elasticity::FiniteDifferenceNavier::new(capstan_elasticity::PlaneProblem {
+            chart: capstan_geometry::ShellChart::new(body.obstacle.clone()),
+            material: body.material,
+            grid: *grid.grid(),
+            boundary: BoundaryConditions::paper_clamped(1.0, 2.0),
+            body_force: None,
+        })
         .unwrap()
         .solve(&mut SparseLu::default())
         .unwrap()
