@@ -390,12 +390,11 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         Ok(entries)
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         let mut k = 0;
         self.visit(|d, terms, b| {
             for t in terms {

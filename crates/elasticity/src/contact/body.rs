@@ -113,12 +113,12 @@ impl Discretisation for ThickBodyOperator {
         forward!(self, op => op.entries())
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        forward!(self, op => op.fill(add, rhs))
+        forward!(self, op => op.fill_values(add, rhs))
     }
 
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {

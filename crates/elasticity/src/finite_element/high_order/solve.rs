@@ -350,12 +350,11 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
         Ok(self.full_assembly()?.pattern().entries().collect())
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         let system = self.full_system()?;
         for (k, x) in system.values.into_iter().enumerate() {
             add(k, x);

@@ -436,12 +436,11 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         Ok(self.pattern.entries().collect())
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         for (k, x) in self.assemble(rhs).into_iter().enumerate() {
             add(k, x);
         }
