@@ -4,7 +4,6 @@ use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::FiniteElementNavier;
-use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_element::element::gauss_rule;
 use crate::plane_problem::PlaneProblem;
@@ -36,7 +35,6 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         v: &[f64],
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
-        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let (gp, gw) = gauss_rule(self.order.nodes_per_direction() + 1);
         let np = self.order.nodes_per_direction();
         let basis: Vec<Vec<f64>> = gp
@@ -85,7 +83,8 @@ pub(crate) struct TensorElements<'a> {
 /// summed in element order (reproducible under parallelism).
 ///
 /// # Errors
-/// Geometry failures of the chart.
+/// [`ElasticityError::DimensionMismatch`] unless `v` has two values per node; geometry
+/// failures of the chart.
 pub(crate) fn tensor_displacement_errors<G: ShellGeometry + Sync>(
     problem: &PlaneProblem<G>,
     elements: &TensorElements<'_>,
@@ -94,6 +93,7 @@ pub(crate) fn tensor_displacement_errors<G: ShellGeometry + Sync>(
     exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
 ) -> Result<DisplacementErrors, ElasticityError> {
     let (chart, grid) = (&problem.chart, &problem.grid);
+    ElasticityError::check_length("displacement", 2 * grid.node_count(), v.len())?;
     let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
         let g = &p.metric;
         g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
