@@ -15,7 +15,9 @@ use capstan_elasticity::friction::{
 use capstan_elasticity::solvers::{
     Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu, max_abs, max_abs_difference,
 };
-use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Material};
+use capstan_elasticity::{
+    BoundaryConditions, Component, Discretisation, ElasticityError, Material,
+};
 use capstan_geometry::{EllipticalPrism, Obstacle};
 
 const EPS: f64 = 1e-5;
@@ -599,22 +601,28 @@ fn bad_inputs_are_typed_errors() {
     let body = ThickBody::paper(20, 5).unwrap();
     assert!(matches!(
         body.model(RegularisedCoulomb, coulomb(0.5, EPS), 0.0),
-        Err(ContactError::InvalidParameter {
-            field: "friction.eps",
-            ..
-        })
+        Err(ContactError::Elasticity(
+            ElasticityError::InvalidParameter {
+                field: "friction.eps",
+                ..
+            }
+        ))
     ));
     let model = coulomb_model(&body, 0.5, EPS);
     let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
     let err = solver.solve(EndLoads::new(f64::NAN, 1.0)).unwrap_err();
     assert!(matches!(
         err,
-        ContactError::InvalidParameter {
+        ContactError::Elasticity(ElasticityError::InvalidParameter {
             field: "loads.tau0",
             ..
-        }
+        })
     ));
     assert_eq!(err.status(), "invalid-input");
+    assert_eq!(
+        err.to_string(),
+        "`loads.tau0` = NaN is outside finite values"
+    );
     assert!(matches!(
         BoundarySolver::new(
             &model,
@@ -623,7 +631,9 @@ fn bad_inputs_are_typed_errors() {
                 ..Default::default()
             }
         ),
-        Err(ContactError::InvalidParameter { .. })
+        Err(ContactError::Elasticity(
+            ElasticityError::InvalidParameter { .. }
+        ))
     ));
     assert!(RegularisedCoulombParams::new(-1.0, EPS).is_err());
 }
