@@ -13,7 +13,8 @@ use capstan_elasticity::friction::{
     FrictionLaw, Frictionless, RegularisedCoulomb, RegularisedCoulombParams, Tresca, TrescaParams,
 };
 use capstan_elasticity::solvers::{
-    Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu, max_abs, max_abs_difference,
+    Jacobian, LinearBackend, NonlinearMethod, Residual, SilentObserver, SparseLu, max_abs,
+    max_abs_difference,
 };
 use capstan_elasticity::{
     BoundaryConditions, Component, Discretisation, ElasticityError, Material,
@@ -214,6 +215,7 @@ fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
             EPS,
             EndLoads::ratio(ratio),
             settings,
+            &mut SilentObserver,
         )
     };
     // The circle (a rigid sliding mode) and an ellipse, 161 x 33 from an 81 x 17 coarsest level

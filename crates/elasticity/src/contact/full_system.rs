@@ -444,34 +444,14 @@ pub struct Sequenced<L: FrictionLaw<f64>> {
 /// from its start falls back to [`FullSystemSolver::solve`]; every level's answer is the
 /// fine problem's (the sequence only chooses the start).
 ///
-/// # Errors
-/// Model and solver errors of any level; [`ContactError::NoEquilibrium`] from the coarsest.
-pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
-    body: &ThickBody,
-    law: L,
-    params: L::Params,
-    slip_threshold: f64,
-    loads: EndLoads,
-    settings: FullSystemSettings,
-) -> Result<Sequenced<L>, ContactError> {
-    solve_sequenced_observed(
-        body,
-        law,
-        params,
-        slip_threshold,
-        loads,
-        settings,
-        &mut SilentObserver,
-    )
-}
-
-/// [`solve_sequenced`] reporting to `observer`: the iterations of every level's solver, and
-/// one [`SolveStage::GridLevel`] event per solved level (`iteration` the level, coarsest 0;
+/// Every level reports to `observer` (a [`SilentObserver`] for none): the iterations of its
+/// solver, then one [`SolveStage::GridLevel`] event (`iteration` the level, coarsest 0;
 /// `residual_norm` the level's full-system residual; `step_length` its number of nodes).
 ///
 /// # Errors
-/// See [`solve_sequenced`]; an interrupted solve.
-pub fn solve_sequenced_observed<L: FrictionLaw<f64> + Clone>(
+/// Model and solver errors of any level; [`ContactError::NoEquilibrium`] from the coarsest;
+/// an interrupted solve.
+pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
     body: &ThickBody,
     law: L,
     params: L::Params,
