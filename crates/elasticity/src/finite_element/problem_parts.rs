@@ -39,19 +39,6 @@ impl<G: ShellGeometry + Sync> PlaneProblem<G> {
         FiniteElementNavier::new(self, order)
     }
 
-    /// The finite-element discretisation of `order` with the volumetric part integrated as
-    /// `volumetric` says.
-    ///
-    /// # Errors
-    /// See [`FiniteElementNavier::new`].
-    pub fn finite_element_with(
-        self,
-        order: ElementOrder,
-        volumetric: VolumetricIntegration,
-    ) -> Result<FiniteElementNavier<G>, ElasticityError> {
-        FiniteElementNavier::with_volumetric(self, order, volumetric)
-    }
-
     /// The tensor-product elements of order `p` ([`HighOrderNavier`]; the grid's `n - 1`
     /// a multiple of `p`) with the volumetric part integrated as `volumetric` says.
     ///
