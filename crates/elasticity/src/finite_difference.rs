@@ -161,24 +161,11 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
             contact,
             dirichlet: vec![],
         };
-        op.dirichlet = (0..op.dof_count())
-            .map(|d| op.dirichlet_value(grid.node(d / 2), Component::ALL[d % 2]))
-            .collect::<Result<_, _>>()?;
+        op.dirichlet = op.problem.dirichlet_values(|node| grid.coordinates(node))?;
         Ok(op)
     }
 
     setup_accessors!();
-
-    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
-    fn dirichlet_value(
-        &self,
-        node: [usize; 2],
-        c: Component,
-    ) -> Result<Option<f64>, ElasticityError> {
-        self.problem
-            .boundary
-            .dirichlet_value(&self.problem.grid, node, c)
-    }
 
     /// Face `(i + 1/2, j)` between nodes `i` and `ip`.
     fn east_stencil(&self, i: usize, ip: usize, j: usize, out: &mut Stencil) {

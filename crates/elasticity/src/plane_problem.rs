@@ -4,7 +4,8 @@
 use core::fmt;
 use std::sync::Arc;
 
-use crate::boundary::BoundaryConditions;
+use crate::boundary::{BoundaryConditions, Component};
+use crate::error::ElasticityError;
 use crate::grid::Grid;
 use crate::material::Material;
 
@@ -59,6 +60,27 @@ pub struct PlaneProblem<G> {
 }
 
 impl<G> PlaneProblem<G> {
+    /// The displacement prescribed at every unknown of the plane-strain numbering
+    /// (`2 node_index + c`), `None` for a balance row, with node `(i2, i3)` at
+    /// `position(node)` (the grid's uniform positions; the Gauss–Lobatto points of the
+    /// high-order elements): [`BoundaryConditions::dirichlet_value_at`], pinned dofs first.
+    ///
+    /// # Errors
+    /// [`ElasticityError::NonFinite`] where a prescribed function is not finite.
+    pub(crate) fn dirichlet_values(
+        &self,
+        position: impl Fn([usize; 2]) -> [f64; 2],
+    ) -> Result<Vec<Option<f64>>, ElasticityError> {
+        (0..2 * self.grid.node_count())
+            .map(|d| {
+                let node = self.grid.node(d / 2);
+                let c = Component::ALL[d % 2];
+                self.boundary
+                    .dirichlet_value_at(&self.grid, node, position(node), c)
+            })
+            .collect()
+    }
+
     /// Writes `name { order, material, grid, boundary, .. }`: the `Debug` of the problem and of
     /// every operator built from it (`order`: the field naming the operator's element order,
     /// `None` for none). Chart and body force stay out (`..`): neither need be `Debug`.

@@ -10,7 +10,7 @@ use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
 use super::mesh::{Grading, QpSettings};
 use super::skeleton::Skeleton;
-use crate::boundary::{Component, Side};
+use crate::boundary::Side;
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
 use crate::error::ElasticityError;
 use crate::finite_element::assembly::ElementAssembly;
@@ -280,17 +280,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             full: OnceLock::new(),
             skeleton: OnceLock::new(),
         };
-        op.dirichlet = (0..2 * grid.node_count())
-            .map(|d| {
-                let node = grid.node(d / 2);
-                op.problem.boundary.dirichlet_value_at(
-                    &grid,
-                    node,
-                    op.node_coordinates(node),
-                    Component::ALL[d % 2],
-                )
-            })
-            .collect::<Result<_, _>>()?;
+        op.dirichlet = op
+            .problem
+            .dirichlet_values(|node| op.node_coordinates(node))?;
         op.load = vec![0.0; 2 * grid.node_count()];
         op.cache_geometry(body_force.as_ref())?;
         op.add_boundary_loads()?;

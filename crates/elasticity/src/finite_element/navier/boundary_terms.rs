@@ -93,15 +93,4 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         }
         Ok(())
     }
-
-    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
-    pub(super) fn dirichlet_value(
-        &self,
-        node: [usize; 2],
-        c: Component,
-    ) -> Result<Option<f64>, ElasticityError> {
-        self.problem
-            .boundary
-            .dirichlet_value(&self.problem.grid, node, c)
-    }
 }

@@ -13,7 +13,6 @@ use capstan_geometry::ShellPoint;
 
 use super::element::{ElementOrder, lumped_weight};
 use super::volumetric::VolumetricIntegration;
-use crate::boundary::Component;
 use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficients};
 use crate::continuum::{
     PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix, mixed_strains,
@@ -276,9 +275,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             diagonal_slots: vec![],
             contact: vec![],
         };
-        op.dirichlet = (0..op.dof_count())
-            .map(|d| op.dirichlet_value(grid.node(d / 2), Component::ALL[d % 2]))
-            .collect::<Result<_, _>>()?;
+        op.dirichlet = op.problem.dirichlet_values(|node| grid.coordinates(node))?;
         op.shape = op.reference_shape();
         op.cache_geometry(body_force.as_ref())?;
         if volumetric == VolumetricIntegration::Reduced {

@@ -1,7 +1,7 @@
 //! Unit tests of the Q1/Q2 operator: stiffness, pattern, SRI recovery.
 
 use super::*;
-use crate::boundary::BoundaryConditions;
+use crate::boundary::{BoundaryConditions, Component};
 use crate::finite_element::element::{gauss_rule, lagrange_weights};
 use crate::grid::Grid;
 use capstan_geometry::{EllipticalPrism, ExpressionProfile, GeneralPrism, ShellChart};
