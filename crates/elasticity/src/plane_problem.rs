@@ -4,10 +4,14 @@
 use core::fmt;
 use std::sync::Arc;
 
+use capstan_geometry::ShellPoint;
+
 use crate::boundary::{BoundaryConditions, Component};
+use crate::continuum::check_plane_strain;
 use crate::error::ElasticityError;
 use crate::grid::Grid;
 use crate::material::Material;
+use crate::shell_geometry::ShellGeometry;
 
 /// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
 pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
@@ -98,6 +102,31 @@ impl<G> PlaneProblem<G> {
             .field("grid", &self.grid)
             .field("boundary", &self.boundary)
             .finish_non_exhaustive()
+    }
+}
+
+impl<G: ShellGeometry> PlaneProblem<G> {
+    /// The chart's column of points above `(x1, x2) = (0, x2)` at `heights`
+    /// ([`ShellGeometry::shell_column`], into `points`, cleared first), each checked for the
+    /// plane-strain reduction and then handed to `visit(index, point, x3)`, in order.
+    ///
+    /// # Errors
+    /// The chart's, then the first of [`ElasticityError::NotPlaneStrain`] and `visit`'s error
+    /// in height order.
+    pub(crate) fn visit_column(
+        &self,
+        x2: f64,
+        heights: &[f64],
+        points: &mut Vec<ShellPoint<f64>>,
+        mut visit: impl FnMut(usize, &ShellPoint<f64>, f64) -> Result<(), ElasticityError>,
+    ) -> Result<(), ElasticityError> {
+        points.clear();
+        self.chart.shell_column([0.0, x2], heights, points)?;
+        for (index, (p, &x3)) in points.iter().zip(heights).enumerate() {
+            check_plane_strain(p, [0.0, x2, x3])?;
+            visit(index, p, x3)?;
+        }
+        Ok(())
     }
 }
 

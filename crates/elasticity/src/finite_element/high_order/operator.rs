@@ -389,17 +389,14 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                 let mut points = Vec::with_capacity(heights.len());
                 for (q2, &xi) in gp.iter().enumerate() {
                     let x2 = x0 + 0.5 * (xi + 1.0) * l2;
-                    points.clear();
                     self.problem
-                        .chart
-                        .shell_column([0.0, x2], &heights, &mut points)?;
-                    for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
-                        check_plane_strain(p, [0.0, x2, x3])?;
-                        let (e3, q3) = (idx / nq, idx % nq);
-                        let l3 = self.span(1, e3).1;
-                        let w = gw[q2] * gw[q3] * 0.25 * l2 * l3;
-                        column[e3 * nq * nq + q2 * nq + q3] = visit(p, [x2, x3], w, [l2, l3])?;
-                    }
+                        .visit_column(x2, &heights, &mut points, |idx, p, x3| {
+                            let (e3, q3) = (idx / nq, idx % nq);
+                            let l3 = self.span(1, e3).1;
+                            let w = gw[q2] * gw[q3] * 0.25 * l2 * l3;
+                            column[e3 * nq * nq + q2 * nq + q3] = visit(p, [x2, x3], w, [l2, l3])?;
+                            Ok(())
+                        })?;
                 }
                 Ok(())
             },

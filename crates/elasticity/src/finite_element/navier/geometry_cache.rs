@@ -5,7 +5,7 @@ use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::{FiniteElementNavier, packed_energy, packed_stiffness};
-use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients};
+use crate::continuum::{PLANE_STRAIN, divergence_coefficients};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_element::element::gauss_rule;
@@ -50,14 +50,10 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let mut points = Vec::with_capacity(heights.len());
         for (i, &xi) in gp.iter().enumerate() {
             let x2 = x0 + 0.5 * (xi + 1.0) * l2;
-            points.clear();
             self.problem
-                .chart
-                .shell_column([0.0, x2], heights, &mut points)?;
-            for (idx, (p, &x3)) in points.iter().zip(heights).enumerate() {
-                check_plane_strain(p, [0.0, x2, x3])?;
-                visit(i, idx / nqd, idx % nqd, p, [x2, x3])?;
-            }
+                .visit_column(x2, heights, &mut points, |idx, p, x3| {
+                    visit(i, idx / nqd, idx % nqd, p, [x2, x3])
+                })?;
         }
         Ok(())
     }
