@@ -13,9 +13,12 @@ use capstan_elasticity::friction::{
     FrictionLaw, Frictionless, RegularisedCoulomb, RegularisedCoulombParams, Tresca, TrescaParams,
 };
 use capstan_elasticity::solvers::{
-    Jacobian, LinearBackend, NonlinearMethod, Residual, SparseLu, max_abs, max_abs_difference,
+    Jacobian, LinearBackend, NonlinearMethod, Residual, SilentObserver, SparseLu, max_abs,
+    max_abs_difference,
 };
-use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Material};
+use capstan_elasticity::{
+    BoundaryConditions, Component, Discretisation, ElasticityError, Material,
+};
 use capstan_geometry::{EllipticalPrism, Obstacle};
 
 const EPS: f64 = 1e-5;
@@ -212,6 +215,7 @@ fn grid_sequencing_reaches_the_direct_full_system_solution_in_fewer_steps() {
             EPS,
             EndLoads::ratio(ratio),
             settings,
+            &mut SilentObserver,
         )
     };
     // The circle (a rigid sliding mode) and an ellipse, 161 x 33 from an 81 x 17 coarsest level
@@ -377,13 +381,13 @@ fn huge_friction_approaches_the_stuck_linear_solution() {
     );
     let clamped = {
         let grid = body.discretisation(1.0, 2.0).unwrap();
-        capstan_elasticity::FiniteDifferenceNavier::new(
-            capstan_geometry::ShellChart::new(body.obstacle.clone()),
-            body.material,
-            *grid.grid(),
-            BoundaryConditions::paper_clamped(1.0, 2.0),
-            None,
-        )
+        capstan_elasticity::FiniteDifferenceNavier::new(capstan_elasticity::PlaneProblem {
+            chart: capstan_geometry::ShellChart::new(body.obstacle.clone()),
+            material: body.material,
+            grid: *grid.grid(),
+            boundary: BoundaryConditions::paper_clamped(1.0, 2.0),
+            body_force: None,
+        })
         .unwrap()
         .solve(&mut SparseLu::default())
         .unwrap()
@@ -599,22 +603,28 @@ fn bad_inputs_are_typed_errors() {
     let body = ThickBody::paper(20, 5).unwrap();
     assert!(matches!(
         body.model(RegularisedCoulomb, coulomb(0.5, EPS), 0.0),
-        Err(ContactError::InvalidParameter {
-            field: "friction.eps",
-            ..
-        })
+        Err(ContactError::Elasticity(
+            ElasticityError::InvalidParameter {
+                field: "friction.eps",
+                ..
+            }
+        ))
     ));
     let model = coulomb_model(&body, 0.5, EPS);
     let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
     let err = solver.solve(EndLoads::new(f64::NAN, 1.0)).unwrap_err();
     assert!(matches!(
         err,
-        ContactError::InvalidParameter {
+        ContactError::Elasticity(ElasticityError::InvalidParameter {
             field: "loads.tau0",
             ..
-        }
+        })
     ));
     assert_eq!(err.status(), "invalid-input");
+    assert_eq!(
+        err.to_string(),
+        "`loads.tau0` = NaN is outside finite values"
+    );
     assert!(matches!(
         BoundarySolver::new(
             &model,
@@ -623,7 +633,9 @@ fn bad_inputs_are_typed_errors() {
                 ..Default::default()
             }
         ),
-        Err(ContactError::InvalidParameter { .. })
+        Err(ContactError::Elasticity(
+            ElasticityError::InvalidParameter { .. }
+        ))
     ));
     assert!(RegularisedCoulombParams::new(-1.0, EPS).is_err());
 }

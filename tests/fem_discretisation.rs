@@ -3,12 +3,12 @@
 //! differences on the paper's linear stand-in.
 
 use capstan_elasticity::finite_element::{
-    DiscretisationMethod, ElementOrder, mms_parts, paper_parts,
+    DiscretisationMethod, ElementOrder, VolumetricIntegration, mms_parts, paper_parts,
 };
 use capstan_elasticity::samples::{ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms};
 use capstan_elasticity::solvers::{SparseCholesky, SparseLu};
 use capstan_elasticity::verification::GridLevel;
-use capstan_elasticity::{Component, Discretisation};
+use capstan_elasticity::{Component, Discretisation, ElasticityError};
 
 fn level(n2: usize, n3: usize) -> GridLevel {
     GridLevel { n2, n3 }
@@ -124,6 +124,55 @@ fn method_names_and_scene_spelling() {
     );
     assert_eq!(DiscretisationMethod::default(), DiscretisationMethod::Fd);
     assert!(DiscretisationMethod::FemQ1.is_symmetric() && !DiscretisationMethod::Fd.is_symmetric());
+}
+
+#[test]
+fn fill_checks_the_right_hand_side_length_for_every_method() {
+    let parts = paper_parts(&PaperEllipse::default(), level(25, 5)).unwrap();
+    for method in DiscretisationMethod::ALL {
+        let op = method.build(parts.clone()).unwrap();
+        let n = op.dof_count();
+        let mut rhs = vec![0.0; n - 1];
+        match op.fill(&mut |_, _| {}, &mut rhs) {
+            Err(ElasticityError::DimensionMismatch {
+                quantity: "rhs",
+                expected,
+                found,
+            }) => assert_eq!((expected, found), (n, n - 1), "{method}"),
+            other => panic!("{method}: {other:?}"),
+        }
+        let mut rhs = vec![0.0; n];
+        op.fill(&mut |_, _| {}, &mut rhs).unwrap();
+        assert_eq!(rhs, op.system().unwrap().rhs, "{method}"); // the same right-hand side
+    }
+}
+
+#[test]
+fn displacement_errors_check_the_length_for_q1_and_qp() {
+    let parts = paper_parts(&PaperEllipse::default(), level(25, 5)).unwrap();
+    let exact = |_: [f64; 2]| [0.0; 2];
+    let q1 = parts.clone().finite_element(ElementOrder::Q1).unwrap();
+    let qp = parts.high_order(4, VolumetricIntegration::Full).unwrap();
+    let short = vec![0.0; 2 * 25 * 5 - 1];
+    for result in [
+        q1.displacement_errors(&short, &exact),
+        qp.displacement_errors(&short, &exact),
+    ] {
+        assert!(
+            matches!(
+                result,
+                Err(ElasticityError::DimensionMismatch {
+                    quantity: "displacement",
+                    expected: 250,
+                    found: 249,
+                })
+            ),
+            "{result:?}"
+        );
+    }
+    let zero = vec![0.0; 2 * 25 * 5];
+    assert_eq!(q1.displacement_errors(&zero, &exact).unwrap().max, 0.0);
+    assert_eq!(qp.displacement_errors(&zero, &exact).unwrap().max, 0.0);
 }
 
 #[test]

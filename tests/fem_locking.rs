@@ -12,7 +12,7 @@
 
 use capstan_elasticity::Material;
 use capstan_elasticity::finite_element::{
-    ElementOrder, FemProblem, FemStudy, VolumetricIntegration,
+    ElementOrder, FemProblem, FemStudy, FiniteElementNavier, VolumetricIntegration,
 };
 use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PrismMms};
 use capstan_elasticity::verification::{GridLevel, Study, observed_order};
@@ -286,10 +286,7 @@ fn lame_contact_stress_errors(
     let mut levels = FemStudy::new(FemProblem::Lame(lame), order).levels();
     levels.truncate(count);
     let build = |l: GridLevel, v: VolumetricIntegration| {
-        lame_parts(&lame, l)
-            .unwrap()
-            .finite_element_with(order, v)
-            .unwrap()
+        FiniteElementNavier::with_volumetric(lame_parts(&lame, l).unwrap(), order, v).unwrap()
     };
     levels
         .into_iter()
@@ -390,7 +387,7 @@ fn mms_contact_normal_stress_with_sri_is_second_order() {
             .into_iter()
             .map(|(n2, n3)| {
                 let (p, exact) = mms_parts(&mms, GridLevel { n2, n3 }).unwrap();
-                let op = p.finite_element_with(order, volumetric).unwrap();
+                let op = FiniteElementNavier::with_volumetric(p, order, volumetric).unwrap();
                 let v = op.solve(&mut SparseLu::default()).unwrap();
                 let nodes = op.contact_nodes().unwrap();
                 let e = nodes[1..nodes.len() - 1].iter().fold(0.0f64, |e, n| {

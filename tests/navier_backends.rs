@@ -9,6 +9,7 @@ use capstan_elasticity::solvers::{
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{
     BoundaryFunction, Component, ComponentCondition, Discretisation, FiniteDifferenceNavier,
+    PlaneProblem,
 };
 
 #[test]
@@ -80,13 +81,13 @@ fn contact_rows_carry_the_traction_exactly() {
     let (op0, _) = study.operator(level).unwrap();
     let mut boundary = op0.boundary().clone();
     boundary.x3_min.0[0] = ComponentCondition::Traction(BoundaryFunction::zero());
-    let without = FiniteDifferenceNavier::new(
-        op0.chart().clone(),
-        *op0.material(),
-        *op0.grid(),
+    let without = FiniteDifferenceNavier::new(PlaneProblem {
+        chart: op0.chart().clone(),
+        material: *op0.material(),
+        grid: *op0.grid(),
         boundary,
-        Some(std::sync::Arc::new(move |x| exact.forcing(x).unwrap())),
-    )
+        body_force: Some(std::sync::Arc::new(move |x| exact.forcing(x).unwrap())),
+    })
     .unwrap();
     let mut system = without.system().unwrap();
     let (_, exact) = study.operator(level).unwrap();

@@ -8,7 +8,7 @@
 
 use capstan_elasticity::samples::{ExactSolution, ManufacturedField, TrigonometricField};
 use capstan_elasticity::{
-    BoundaryConditions, ElasticityError, FiniteDifferenceNavier, Grid, Material,
+    BoundaryConditions, ElasticityError, FiniteDifferenceNavier, Grid, Material, PlaneProblem,
 };
 use capstan_geometry::{EllipticalPrism, Obstacle, RightCircularCone, ShellChart, ShellPoint};
 
@@ -159,8 +159,15 @@ fn plane_strain_rejects_a_cone() {
     let chart = ShellChart::new(Obstacle::CircularCone(RightCircularCone::new(0.4).unwrap()));
     let grid = Grid::new([-0.5, 0.5], 0.2, 5, 3, false).unwrap();
     let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
-    let err = FiniteDifferenceNavier::new(chart, Material::new(1.0, 0.3).unwrap(), grid, bc, None)
-        .unwrap_err();
+    let material = Material::new(1.0, 0.3).unwrap();
+    let problem = PlaneProblem {
+        chart,
+        material,
+        grid,
+        boundary: bc,
+        body_force: None,
+    };
+    let err = FiniteDifferenceNavier::new(problem).unwrap_err();
     assert!(
         matches!(
             err,

@@ -6,8 +6,7 @@ use std::time::Instant;
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
     BoundarySolver, BulkMultigrid, ContactError, ContactModel, ContactSettings, ContactSolution,
-    EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
-    solve_sequenced_observed,
+    EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod, Observer};
@@ -449,7 +448,7 @@ fn solve_unnamed(
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();
             let settings = method.full_settings_for(scene);
-            match solve_sequenced_observed(&body, law, params, eps, loads, settings, observer) {
+            match solve_sequenced(&body, law, params, eps, loads, settings, observer) {
                 Ok(seq) => {
                     let report = ContactReport {
                         discretisation: capstan_elasticity::Discretisation::method(

@@ -21,7 +21,7 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-use capstan_elasticity::solvers::{LinearSolver, SparseLu};
+use capstan_elasticity::solvers::{LinearSolver, SilentObserver, SparseLu};
 use capstan_friction::membrane::{self, closed_form};
 use serde::Serialize;
 
@@ -141,6 +141,7 @@ fn solve_contact(scene: &Scene, condition: bool) -> Result<ContactOutcome, CliEr
             scene.friction.eps,
             loads,
             FullSystemSettings::default(),
+            &mut SilentObserver,
         )?;
         let condition = condition.then(|| condition_estimate(&seq.model)).flatten();
         let mut quantities = BTreeMap::new();

@@ -336,12 +336,33 @@ pub trait Discretisation {
     fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError>;
 
     /// Calls `add(k, value)` for every structural entry `k` in the order of
+    /// [`Discretisation::entries`] and writes the right-hand side into `rhs`, after checking
+    /// that `rhs` has [`Discretisation::dof_count`] entries ([`Discretisation::fill_values`]
+    /// does the rest).
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for `rhs` of the wrong length; those of
+    /// [`Discretisation::fill_values`].
+    fn fill(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
+        self.fill_values(add, rhs)
+    }
+
+    /// [`Discretisation::fill`] once `rhs` is known to have [`Discretisation::dof_count`]
+    /// entries: calls `add(k, value)` for every structural entry `k` in the order of
     /// [`Discretisation::entries`] and writes the right-hand side into `rhs`.
     ///
     /// # Errors
     /// Non-finite boundary or forcing data.
-    fn fill(&self, add: &mut dyn FnMut(usize, f64), rhs: &mut [f64])
-    -> Result<(), ElasticityError>;
+    fn fill_values(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError>;
 
     /// The nodes of the contact surface `x3 = 0`, in increasing `i2`.
     ///

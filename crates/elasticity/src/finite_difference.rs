@@ -1,11 +1,9 @@
 //! Second-order finite differences (vertex-centred finite volumes) for the plane-strain
 //! curvilinear Navier operator.
 
-use std::sync::Arc;
-
 use capstan_geometry::ShellPoint;
 
-use crate::boundary::{BoundaryConditions, Component, ComponentCondition, Side};
+use crate::boundary::{Component, ComponentCondition, Side};
 use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
@@ -13,13 +11,9 @@ use crate::continuum::kinematics::{
 use crate::discretisation::{ContactNode, Discretisation, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
-use crate::grid::Grid;
-use crate::material::Material;
+use crate::plane_problem::PlaneProblem;
 use crate::plane_strain_operator::{plane_strain_numbering, setup_accessors};
 use crate::shell_geometry::ShellGeometry;
-
-/// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
-pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
 
 /// Coefficients of two scalar linear functionals (one per equation `j = 2, 3`) of the six
 /// local inputs `[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]`.
@@ -59,24 +53,24 @@ type Stencil = Vec<([usize; 2], [f64; 3])>;
 ///
 /// # Example
 /// ```
-/// use capstan_elasticity::{BoundaryConditions, Discretisation, FiniteDifferenceNavier, Grid, Material};
+/// use capstan_elasticity::{BoundaryConditions, Discretisation, FiniteDifferenceNavier, Grid};
+/// use capstan_elasticity::{Material, PlaneProblem};
 /// use capstan_geometry::{EllipticalPrism, ShellChart};
 /// use capstan_solvers::SparseLu;
 /// let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
 /// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
 /// let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
-/// let op = FiniteDifferenceNavier::new(chart, Material::new(1e3, 0.25).unwrap(), grid, bc, None).unwrap();
+/// let material = Material::new(1e3, 0.25).unwrap();
+/// let problem = PlaneProblem { chart, material, grid, boundary: bc, body_force: None };
+/// let op = FiniteDifferenceNavier::new(problem).unwrap();
 /// let v = op.solve(&mut SparseLu::default()).unwrap();
 /// // equal end tensions: the tangential displacement is odd in x2
 /// let (left, right) = (v[op.dof([0, 4], capstan_elasticity::Component::X2)], v[op.dof([24, 4], capstan_elasticity::Component::X2)]);
 /// assert!(left < 0.0 && (left + right).abs() < 1e-10);
 /// ```
 pub struct FiniteDifferenceNavier<G> {
-    chart: G,
-    material: Material,
-    grid: Grid,
-    boundary: BoundaryConditions,
-    body_force: Option<BodyForce>,
+    /// The problem (its body force is evaluated row by row).
+    problem: PlaneProblem<G>,
     /// `sqrt(g) Gamma^k_ij T^i_k` coefficients at the nodes.
     source: Vec<Coefficients>,
     /// `[sqrt(g), sqrt(g^22), sqrt(g^33)]` at the nodes.
@@ -94,11 +88,7 @@ pub struct FiniteDifferenceNavier<G> {
 
 impl<G> core::fmt::Debug for FiniteDifferenceNavier<G> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("FiniteDifferenceNavier")
-            .field("material", &self.material)
-            .field("grid", &self.grid)
-            .field("boundary", &self.boundary)
-            .finish_non_exhaustive()
+        self.problem.debug_fields(f, "FiniteDifferenceNavier", None)
     }
 }
 
@@ -111,14 +101,9 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     /// be evaluated (e.g. past the focal surface); [`ElasticityError::NotPlaneStrain`] for a
     /// chart that is not `x1`-invariant; [`ElasticityError::NonFinite`] for non-finite
     /// Dirichlet data.
-    pub fn new(
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
-    ) -> Result<Self, ElasticityError> {
-        boundary.check_grid(&grid)?;
+    pub fn new(problem: PlaneProblem<G>) -> Result<Self, ElasticityError> {
+        problem.boundary.check_grid(&problem.grid)?;
+        let (chart, material, grid) = (&problem.chart, problem.material, problem.grid);
         let (n2, n3) = (grid.n2(), grid.n3());
         let (dx2, dx3) = (grid.dx2(), grid.dx3());
         let point = |x2: f64, x3: f64| -> Result<ShellPoint<f64>, ElasticityError> {
@@ -167,12 +152,8 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
             }
         }
         let mut op = Self {
-            chart,
             dirichlet_scale: (material.lambda() + 2.0 * material.mu()) / (dx3 * dx3),
-            material,
-            grid,
-            boundary,
-            body_force,
+            problem,
             source,
             node_scale,
             east,
@@ -180,30 +161,19 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
             contact,
             dirichlet: vec![],
         };
-        op.dirichlet = (0..op.dof_count())
-            .map(|d| op.dirichlet_value(grid.node(d / 2), Component::ALL[d % 2]))
-            .collect::<Result<_, _>>()?;
+        op.dirichlet = op.problem.dirichlet_values(|node| grid.coordinates(node))?;
         Ok(op)
     }
 
     setup_accessors!();
 
-    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
-    fn dirichlet_value(
-        &self,
-        node: [usize; 2],
-        c: Component,
-    ) -> Result<Option<f64>, ElasticityError> {
-        self.boundary.dirichlet_value(&self.grid, node, c)
-    }
-
     /// Face `(i + 1/2, j)` between nodes `i` and `ip`.
     fn east_stencil(&self, i: usize, ip: usize, j: usize, out: &mut Stencil) {
         out.clear();
-        let w = 1.0 / self.grid.dx2();
+        let w = 1.0 / self.problem.grid.dx2();
         out.push(([i, j], [0.5, -w, 0.0]));
         out.push(([ip, j], [0.5, w, 0.0]));
-        for (jj, w3) in self.grid.d3_stencil(j) {
+        for (jj, w3) in self.problem.grid.d3_stencil(j) {
             out.push(([i, jj], [0.0, 0.0, 0.5 * w3]));
             out.push(([ip, jj], [0.0, 0.0, 0.5 * w3]));
         }
@@ -212,10 +182,10 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     /// Face `(i, j + 1/2)`.
     fn north_stencil(&self, i: usize, j: usize, out: &mut Stencil) {
         out.clear();
-        let w = 1.0 / self.grid.dx3();
+        let w = 1.0 / self.problem.grid.dx3();
         out.push(([i, j], [0.5, 0.0, -w]));
         out.push(([i, j + 1], [0.5, 0.0, w]));
-        for (ii, w2) in self.grid.d2_stencil(i) {
+        for (ii, w2) in self.problem.grid.d2_stencil(i) {
             out.push(([ii, j], [0.0, 0.5 * w2, 0.0]));
             out.push(([ii, j + 1], [0.0, 0.5 * w2, 0.0]));
         }
@@ -244,11 +214,12 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         e: usize,
         node: [usize; 2],
     ) -> Result<f64, ElasticityError> {
-        let k = self.grid.node_index(node);
+        let k = self.problem.grid.node_index(node);
         let [sqrt_g, s22, s33] = self.node_scale[k];
-        let x = self.grid.coordinates(node);
+        let x = self.problem.grid.coordinates(node);
         let s = if side.normal_index() == 1 { x[1] } else { x[0] };
         let cond = self
+            .problem
             .boundary
             .side(side)
             .ok_or(ElasticityError::InconsistentBoundary {
@@ -288,10 +259,14 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
             terms.push((d, self.dirichlet_scale));
             return Ok(self.dirichlet_scale * value);
         }
-        let node @ [i, j] = self.grid.node(d / 2);
+        let node @ [i, j] = self.problem.grid.node(d / 2);
         let e = d % 2;
-        let (n2, n3, periodic) = (self.grid.n2(), self.grid.n3(), self.grid.is_periodic());
-        let (dx2, dx3) = (self.grid.dx2(), self.grid.dx3());
+        let (n2, n3, periodic) = (
+            self.problem.grid.n2(),
+            self.problem.grid.n3(),
+            self.problem.grid.is_periodic(),
+        );
+        let (dx2, dx3) = (self.problem.grid.dx2(), self.problem.grid.dx3());
         let h2 = if !periodic && (i == 0 || i == n2 - 1) {
             0.5 * dx2
         } else {
@@ -330,11 +305,11 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         } else {
             rhs += h2 / area * self.boundary_flux(Side::X3Min, e, node)?;
         }
-        self.grid.node_stencil(node, st);
-        let k = self.grid.node_index(node);
+        self.problem.grid.node_stencil(node, st);
+        let k = self.problem.grid.node_index(node);
         self.add_terms(terms, 1.0, &self.source[k], e, st);
-        if let Some(f) = &self.body_force {
-            let x = self.grid.coordinates(node);
+        if let Some(f) = &self.problem.body_force {
+            let x = self.problem.grid.coordinates(node);
             let fe = f(x)[e];
             if !fe.is_finite() {
                 return Err(ElasticityError::NonFinite {
@@ -373,7 +348,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     /// The local displacement at a node from nodal values `v`.
     fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
         let mut st = Vec::with_capacity(8);
-        self.grid.node_stencil(node, &mut st);
+        self.problem.grid.node_stencil(node, &mut st);
         LocalDisplacement::from_stencil(&st, |n, c| v[self.dof(n, Component::ALL[c])])
     }
 }
@@ -389,7 +364,7 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
     /// (1000 x 161: 5.74e7 against 6.41e7, 2.22 s against 2.44 s).
     fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
         capstan_solvers::ColumnOrdering::NestedDissection {
-            grid: self.grid.shape(),
+            grid: self.problem.grid.shape(),
             separator_width: 1,
         }
     }
@@ -402,12 +377,11 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         Ok(entries)
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         let mut k = 0;
         self.visit(|d, terms, b| {
             for t in terms {
@@ -420,14 +394,14 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
 
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
         let mut st = Vec::with_capacity(8);
-        let h3 = 0.5 * self.grid.dx3();
-        (0..self.grid.n2())
+        let h3 = 0.5 * self.problem.grid.dx3();
+        (0..self.problem.grid.n2())
             .map(|i| {
                 let node = [i, 0];
-                let k = self.grid.node_index(node);
+                let k = self.problem.grid.node_index(node);
                 let (coef, sqrt_g22) = &self.contact[i];
                 let [sqrt_g, _, s33] = self.node_scale[k];
-                self.grid.node_stencil(node, &mut st);
+                self.problem.grid.node_stencil(node, &mut st);
                 let rows = [0, 1].map(|e| {
                     let mut terms = Vec::with_capacity(16);
                     self.add_terms(&mut terms, 1.0, coef, e, &st);
@@ -447,9 +421,9 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
 
     fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        NodalFields::from_nodes(self.grid, &self.chart, |node, p| {
+        NodalFields::from_nodes(self.problem.grid, &self.problem.chart, |node, p| {
             let u = self.local(node, v);
-            Ok((u, contravariant_stress(p, &self.material, &u)))
+            Ok((u, contravariant_stress(p, &self.problem.material, &u)))
         })
     }
 }

@@ -17,10 +17,11 @@ use crate::continuum::kinematics::{LocalDisplacement, christoffel_contraction, m
 use crate::continuum::{InputLayout, PLANE_STRAIN, mixed_stress_of};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
+use crate::finite_difference::FiniteDifferenceNavier;
 use crate::finite_element::ProblemParts;
 use crate::grid::Grid;
 use crate::material::Material;
+use crate::plane_problem::BodyForce;
 use crate::shell_geometry::ShellGeometry;
 use crate::verification::{GridLevel, Study, StudyPoint};
 

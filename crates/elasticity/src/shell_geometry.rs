@@ -1,6 +1,6 @@
 //! What the elasticity code needs from a geometry: the shell chart at a point.
 
-use capstan_geometry::{GeometryError, ShellChart, ShellPoint, Surface};
+use capstan_geometry::{GeometryError, ShellChart, ShellFrame, ShellPoint, Surface};
 
 /// A 3-D chart that yields the shell geometry (metric, inverse metric, `sqrt(g)`,
 /// Christoffel symbols, bases) at a point `(x1, x2, x3)`.
@@ -14,11 +14,19 @@ pub trait ShellGeometry {
     /// The chart's [`GeometryError`].
     fn shell_point(&self, x: [f64; 3]) -> Result<ShellPoint<f64>, GeometryError>;
 
+    /// The frame of the surface point `x = (x1, x2)`, for a chart that has one: everything
+    /// [`ShellGeometry::shell_point`] needs that does not depend on `x3`, its
+    /// [`ShellFrame::point`] equal to `shell_point` bit for bit. The default, `None`, has
+    /// [`ShellGeometry::shell_column`] evaluate point by point; [`ShellChart`] gives
+    /// [`ShellChart::frame`] (one surface jet per column).
+    fn shell_frame(&self, _x: [f64; 2]) -> Option<Result<ShellFrame<f64>, GeometryError>> {
+        None
+    }
+
     /// The geometry at `(x[0], x[1], x3)` for every `x3` in `heights`, appended to `out` in
     /// order: a column of points above one surface point, as the quadrature points of a
-    /// column of elements. The default calls [`ShellGeometry::shell_point`] per height;
-    /// [`ShellChart`] overrides it with one surface jet per column ([`ShellChart::frame`]),
-    /// equal bit for bit.
+    /// column of elements. From the [`ShellGeometry::shell_frame`] when the chart has one,
+    /// else by [`ShellGeometry::shell_point`] per height; equal bit for bit.
     ///
     /// # Errors
     /// The chart's [`GeometryError`] at the first height that fails (`out` may then hold the
@@ -29,8 +37,22 @@ pub trait ShellGeometry {
         heights: &[f64],
         out: &mut Vec<ShellPoint<f64>>,
     ) -> Result<(), GeometryError> {
-        for &x3 in heights {
-            out.push(self.shell_point([x[0], x[1], x3])?);
+        if heights.is_empty() {
+            return Ok(());
+        }
+        match self.shell_frame(x) {
+            Some(Ok(frame)) => {
+                for &x3 in heights {
+                    out.push(frame.point(x3)?);
+                }
+            }
+            // the pointwise path reports the first height
+            Some(Err(_)) => return self.shell_point([x[0], x[1], heights[0]]).map(|_| ()),
+            None => {
+                for &x3 in heights {
+                    out.push(self.shell_point([x[0], x[1], x3])?);
+                }
+            }
         }
         Ok(())
     }
@@ -41,24 +63,8 @@ impl<S: Surface<f64>> ShellGeometry for ShellChart<S> {
         self.point(x)
     }
 
-    fn shell_column(
-        &self,
-        x: [f64; 2],
-        heights: &[f64],
-        out: &mut Vec<ShellPoint<f64>>,
-    ) -> Result<(), GeometryError> {
-        if heights.is_empty() {
-            return Ok(());
-        }
-        let frame = match self.frame(x) {
-            Ok(frame) => frame,
-            // the pointwise path reports the first height
-            Err(_) => return self.shell_point([x[0], x[1], heights[0]]).map(|_| ()),
-        };
-        for &x3 in heights {
-            out.push(frame.point(x3)?);
-        }
-        Ok(())
+    fn shell_frame(&self, x: [f64; 2]) -> Option<Result<ShellFrame<f64>, GeometryError>> {
+        Some(self.frame(x))
     }
 }
 
@@ -67,13 +73,8 @@ impl<T: ShellGeometry + ?Sized> ShellGeometry for &T {
         (**self).shell_point(x)
     }
 
-    fn shell_column(
-        &self,
-        x: [f64; 2],
-        heights: &[f64],
-        out: &mut Vec<ShellPoint<f64>>,
-    ) -> Result<(), GeometryError> {
-        (**self).shell_column(x, heights, out)
+    fn shell_frame(&self, x: [f64; 2]) -> Option<Result<ShellFrame<f64>, GeometryError>> {
+        (**self).shell_frame(x)
     }
 }
 
@@ -82,7 +83,7 @@ mod tests {
     use super::*;
     use capstan_geometry::{CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism};
 
-    /// The default `shell_column`, written against `shell_point` only.
+    /// A chart without a frame: `shell_column` point by point, against `shell_point` only.
     struct Pointwise<'a, G>(&'a G);
 
     impl<G: ShellGeometry> ShellGeometry for Pointwise<'_, G> {
@@ -91,7 +92,9 @@ mod tests {
         }
     }
 
-    fn column_override_equals_default<G: ShellGeometry>(chart: &G, heights: &[f64]) {
+    fn column_by_frame_equals_pointwise<G: ShellGeometry>(chart: &G, heights: &[f64]) {
+        assert!(<&G as ShellGeometry>::shell_frame(&chart, [0.0, 0.3]).is_some()); // forwarded
+        assert!(Pointwise(chart).shell_frame([0.0, 0.3]).is_none());
         for x2 in [-2.0, -0.4, 0.0, 0.3, 1.7] {
             let (mut fast, mut slow) = (vec![], vec![]);
             let a = chart.shell_column([0.0, x2], heights, &mut fast);
@@ -104,17 +107,17 @@ mod tests {
     #[test]
     fn chart_column_equals_pointwise_default() {
         let heights = [0.0, 0.05, 0.2, 0.5, 0.95];
-        column_override_equals_default(
+        column_by_frame_equals_pointwise(
             &ShellChart::new(EllipticalPrism::new(1.0, 2.0).unwrap()),
             &heights,
         );
         let profile =
             ExpressionProfile::parse("3 * sin(t) - 0.2 * sin(3 * t)", "2 * cos(t) + 0.1 * t^2")
                 .unwrap();
-        column_override_equals_default(&ShellChart::new(GeneralPrism::new(profile)), &heights);
+        column_by_frame_equals_pointwise(&ShellChart::new(GeneralPrism::new(profile)), &heights);
         // a column that crosses the focal surface of a unit cylinder fails at the same height
         let cylinder = ShellChart::new(CircularCylinder::new(1.0).unwrap());
-        column_override_equals_default(&cylinder, &[0.5, -0.5, -1.0, -2.0]);
+        column_by_frame_equals_pointwise(&cylinder, &[0.5, -0.5, -1.0, -2.0]);
         let mut out = vec![];
         assert!(
             cylinder

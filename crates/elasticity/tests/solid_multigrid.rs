@@ -3,6 +3,7 @@
 //! Newton with GMRES and multigrid reproduces the direct solution, and a spent Krylov budget
 //! is a typed error naming its key.
 
+use capstan_elasticity::ElasticityError;
 use capstan_elasticity::contact::{
     BulkMultigrid, ContactError, EndLoads, FullSystemSettings, FullSystemSolver,
 };
@@ -169,7 +170,9 @@ fn multigrid_is_refused_without_a_hierarchy() {
     let law = RegularisedCoulombParams::new(0.5, EPS).unwrap();
     let model = body.model(RegularisedCoulomb, law, EPS).unwrap();
     match FullSystemSolver::new(&model, settings(Some(BulkMultigrid::default()))) {
-        Err(ContactError::InvalidParameter { field, .. }) => assert_eq!(field, "solver.linear"),
+        Err(ContactError::Elasticity(ElasticityError::InvalidParameter { field, .. })) => {
+            assert_eq!(field, "solver.linear")
+        }
         other => panic!("{other:?}"),
     }
 }

@@ -18,6 +18,7 @@ use crate::finite_element::{
 };
 use crate::grid::Grid;
 use crate::material::Material;
+use crate::plane_problem::PlaneProblem;
 
 /// A plane-strain body of thickness `h` on `x2 in [theta0, theta1]` of a prism obstacle,
 /// bilateral contact on `x3 = 0` (`v^3 = 0`, including the corners), free outer surface, end
@@ -112,12 +113,12 @@ impl Discretisation for ThickBodyOperator {
         forward!(self, op => op.entries())
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        forward!(self, op => op.fill(add, rhs))
+        forward!(self, op => op.fill_values(add, rhs))
     }
 
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
@@ -190,9 +191,13 @@ impl ThickBody {
         tau0: f64,
         tau_max: f64,
     ) -> Result<ThickBodyOperator, ElasticityError> {
-        let grid = Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?;
-        let chart = ShellChart::new(self.obstacle.clone());
-        let boundary = Self::boundary(tau0, tau_max);
+        let problem = PlaneProblem {
+            chart: ShellChart::new(self.obstacle.clone()),
+            material: self.material,
+            grid: Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?,
+            boundary: Self::boundary(tau0, tau_max),
+            body_force: None,
+        };
         if self.method == DiscretisationMethod::FemQp {
             let settings = QpSettings {
                 order: self.order,
@@ -200,14 +205,7 @@ impl ThickBody {
                 grading: self.grading,
             };
             return Ok(ThickBodyOperator::HighOrder(Box::new(
-                HighOrderNavier::with_settings(
-                    chart,
-                    self.material,
-                    grid,
-                    boundary,
-                    None,
-                    settings,
-                )?,
+                HighOrderNavier::with_settings(problem, settings)?,
             )));
         }
         if !self.grading.is_uniform() {
@@ -225,19 +223,9 @@ impl ThickBody {
                     allowed: "full with finite differences (reduced needs fem-q1 or fem-q2)",
                 });
             }
-            None => ThickBodyOperator::FiniteDifference(FiniteDifferenceNavier::new(
-                chart,
-                self.material,
-                grid,
-                boundary,
-                None,
-            )?),
+            None => ThickBodyOperator::FiniteDifference(FiniteDifferenceNavier::new(problem)?),
             Some(order) => ThickBodyOperator::FiniteElement(FiniteElementNavier::with_volumetric(
-                chart,
-                self.material,
-                grid,
-                boundary,
-                None,
+                problem,
                 order,
                 self.volumetric,
             )?),

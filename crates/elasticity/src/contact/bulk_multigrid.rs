@@ -9,6 +9,7 @@ use capstan_solvers::{
 
 use crate::contact::error::ContactError;
 use crate::contact::operator::ContactOperator;
+use crate::error::ElasticityError;
 
 /// Settings of the iterative bulk solver of [`crate::contact::FullSystemSolver`]
 /// ([`crate::contact::FullSystemSettings::multigrid`]).
@@ -58,7 +59,7 @@ impl BulkMultigrid {
     /// `operator`, cached in `cache` after the first call.
     ///
     /// # Errors
-    /// [`ContactError::InvalidParameter`] naming `solver.linear` when the discretisation has
+    /// [`ElasticityError::InvalidParameter`] naming `solver.linear` when the discretisation has
     /// no multigrid hierarchy (the plane-strain bodies); invalid settings.
     pub(crate) fn build<D: ContactOperator + ?Sized>(
         &self,
@@ -71,11 +72,11 @@ impl BulkMultigrid {
             None => {
                 let p = operator
                     .multigrid_prolongations(self.coarsest_unknowns)
-                    .ok_or(ContactError::InvalidParameter {
+                    .ok_or(ContactError::from(ElasticityError::InvalidParameter {
                         field: "solver.linear",
                         value: f64::NAN,
                         allowed: "`multigrid` only for a discretisation with a multigrid hierarchy (the 3-D body, body.dimension = 3)",
-                    })?;
+                    }))?;
                 Arc::clone(cache.get_or_init(|| p))
             }
         };

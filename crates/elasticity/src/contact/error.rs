@@ -9,16 +9,6 @@ use crate::error::ElasticityError;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum ContactError {
-    /// A parameter (loads, settings) is outside its allowed range.
-    #[error("`{field}` = {value} is outside {allowed}")]
-    InvalidParameter {
-        /// The parameter, named as in a scene file where there is one.
-        field: &'static str,
-        /// The offending value.
-        value: f64,
-        /// The allowed range.
-        allowed: &'static str,
-    },
     /// The discretisations built for different end loads do not share one bulk operator.
     #[error(
         "the bulk operator depends on the loads ({what}); contact condensation needs it linear"
@@ -68,7 +58,9 @@ pub enum ContactError {
         /// Newton iterations spent before the stop.
         iterations: usize,
     },
-    /// The elasticity layer failed (assembly, geometry).
+    /// The elasticity layer failed (assembly, geometry), or a parameter of the contact problem
+    /// (loads, settings) is outside its allowed range: [`ElasticityError::InvalidParameter`],
+    /// the field named as in a scene file where there is one.
     #[error(transparent)]
     Elasticity(#[from] ElasticityError),
     /// A linear or nonlinear solver failed.

@@ -20,6 +20,7 @@ use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use crate::discretisation::interpolate_nodal;
+use crate::error::ElasticityError;
 
 /// Settings of [`FullSystemSolver`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,7 +128,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// the multigrid hierarchy when [`FullSystemSettings::multigrid`] is set.
     ///
     /// # Errors
-    /// Invalid settings; [`ContactError::InvalidParameter`] naming `solver.linear` for
+    /// Invalid settings; [`ElasticityError::InvalidParameter`] naming `solver.linear` for
     /// `multigrid` on a discretisation without a hierarchy.
     pub fn new(
         model: &'a ContactModel<D, L>,
@@ -261,7 +262,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// failed attempt counted in the statistics.
     ///
     /// # Errors
-    /// [`ContactError::InvalidParameter`] for a start of the wrong length; see
+    /// [`ElasticityError::InvalidParameter`] for a start of the wrong length; see
     /// [`FullSystemSolver::solve`].
     pub fn solve_from(
         &self,
@@ -284,11 +285,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     ) -> Result<ContactSolution, ContactError> {
         loads.check()?;
         if start.len() != self.model.dof_count() {
-            return Err(ContactError::InvalidParameter {
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
                 field: "start",
                 value: start.len() as f64,
                 allowed: "one value per unknown",
-            });
+            }));
         }
         let mut stats = self.fresh_stats(0);
         let mut v = start.to_vec();
@@ -443,34 +444,14 @@ pub struct Sequenced<L: FrictionLaw<f64>> {
 /// from its start falls back to [`FullSystemSolver::solve`]; every level's answer is the
 /// fine problem's (the sequence only chooses the start).
 ///
-/// # Errors
-/// Model and solver errors of any level; [`ContactError::NoEquilibrium`] from the coarsest.
-pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
-    body: &ThickBody,
-    law: L,
-    params: L::Params,
-    slip_threshold: f64,
-    loads: EndLoads,
-    settings: FullSystemSettings,
-) -> Result<Sequenced<L>, ContactError> {
-    solve_sequenced_observed(
-        body,
-        law,
-        params,
-        slip_threshold,
-        loads,
-        settings,
-        &mut SilentObserver,
-    )
-}
-
-/// [`solve_sequenced`] reporting to `observer`: the iterations of every level's solver, and
-/// one [`SolveStage::GridLevel`] event per solved level (`iteration` the level, coarsest 0;
+/// Every level reports to `observer` (a [`SilentObserver`] for none): the iterations of its
+/// solver, then one [`SolveStage::GridLevel`] event (`iteration` the level, coarsest 0;
 /// `residual_norm` the level's full-system residual; `step_length` its number of nodes).
 ///
 /// # Errors
-/// See [`solve_sequenced`]; an interrupted solve.
-pub fn solve_sequenced_observed<L: FrictionLaw<f64> + Clone>(
+/// Model and solver errors of any level; [`ContactError::NoEquilibrium`] from the coarsest;
+/// an interrupted solve.
+pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
     body: &ThickBody,
     law: L,
     params: L::Params,

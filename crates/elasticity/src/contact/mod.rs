@@ -58,7 +58,7 @@ pub use bulk_multigrid::BulkMultigrid;
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
-    solve_sequenced, solve_sequenced_observed,
+    solve_sequenced,
 };
 pub use model::{ContactModel, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;

@@ -7,6 +7,7 @@ use capstan_solvers::SparsityPattern;
 use crate::contact::error::ContactError;
 use crate::contact::operator::ContactOperator;
 use crate::discretisation::{ContactNode, LinearSystem};
+use crate::error::ElasticityError;
 
 /// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -46,11 +47,11 @@ impl EndLoads {
     pub(crate) fn check(&self) -> Result<(), ContactError> {
         for (field, value) in [("loads.tau0", self.tau0), ("loads.tau_max", self.tau_max)] {
             if !value.is_finite() {
-                return Err(ContactError::InvalidParameter {
+                return Err(ContactError::from(ElasticityError::InvalidParameter {
                     field,
                     value,
                     allowed: "finite values",
-                });
+                }));
             }
         }
         Ok(())
@@ -120,11 +121,11 @@ impl Sites {
                 members.len() - 1
             });
             if members[site].len() == 2 {
-                return Err(ContactError::InvalidParameter {
+                return Err(ContactError::from(ElasticityError::InvalidParameter {
                     field: "contact entries per site",
                     value: 3.0,
                     allowed: "1 or 2 (one per tangential direction)",
-                });
+                }));
             }
             of_active.push((site, members[site].len()));
             members[site].push(k);
@@ -201,7 +202,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     ///
     /// # Errors
     /// Errors of `build`; [`ContactError::InconsistentLoads`] if the two unit-load operators
-    /// differ; [`ContactError::NoContactNodes`]; [`ContactError::InvalidParameter`] for a
+    /// differ; [`ContactError::NoContactNodes`]; [`ElasticityError::InvalidParameter`] for a
     /// non-positive `slip_threshold`.
     pub fn new(
         build: impl Fn(f64, f64) -> Result<D, crate::error::ElasticityError>,
@@ -210,11 +211,11 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
         slip_threshold: f64,
     ) -> Result<Self, ContactError> {
         if !(slip_threshold.is_finite() && slip_threshold > 0.0) {
-            return Err(ContactError::InvalidParameter {
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
                 field: "friction.eps",
                 value: slip_threshold,
                 allowed: "(0, inf)",
-            });
+            }));
         }
         let disc = build(1.0, 0.0)?;
         let other = build(0.0, 1.0)?;

@@ -3,12 +3,10 @@
 use super::element::ElementOrder;
 use super::high_order::HighOrderNavier;
 use super::navier::FiniteElementNavier;
-use crate::boundary::BoundaryConditions;
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
-use crate::grid::Grid;
-use crate::material::Material;
+use crate::finite_difference::FiniteDifferenceNavier;
+use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 
 /// The discretisations of the Navier operator, by name: `fd`, `fem-q1`, `fem-q2`, `fem-qp`
@@ -18,16 +16,19 @@ use crate::shell_geometry::ShellGeometry;
 ///
 /// # Example
 /// ```
-/// use capstan_elasticity::{BoundaryConditions, Discretisation, Grid, Material};
+/// use capstan_elasticity::{BoundaryConditions, Discretisation, Grid, Material, PlaneProblem};
 /// use capstan_elasticity::finite_element::DiscretisationMethod;
 /// use capstan_geometry::{EllipticalPrism, ShellChart};
-/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
+/// let problem = PlaneProblem {
+///     chart: ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap()),
+///     material: Material::new(1e3, 0.25).unwrap(),
+///     grid: Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap(),
+///     boundary: BoundaryConditions::paper_clamped(1.0, 2.0),
+///     body_force: None,
+/// };
 /// for method in DiscretisationMethod::ALL {
 ///     assert_eq!(DiscretisationMethod::from_name(method.name()), Some(method));
-///     let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
-///     let op = method
-///         .build(chart, Material::new(1e3, 0.25).unwrap(), grid, BoundaryConditions::paper_clamped(1.0, 2.0), None)
-///         .unwrap();
+///     let op = method.build(problem.clone()).unwrap();
 ///     assert_eq!(op.method(), method.name());
 /// }
 /// ```
@@ -81,20 +82,9 @@ impl DiscretisationMethod {
     /// [`HighOrderNavier::new`]).
     pub fn build<G: ShellGeometry + Send + Sync + 'static>(
         self,
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
+        problem: PlaneProblem<G>,
     ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
-        self.build_with_order(
-            chart,
-            material,
-            grid,
-            boundary,
-            body_force,
-            Self::DEFAULT_ORDER,
-        )
+        self.build_with_order(problem, Self::DEFAULT_ORDER)
     }
 
     /// Builds the discretisation; `order` is the `p` of `fem-qp` (ignored by the others).
@@ -103,25 +93,15 @@ impl DiscretisationMethod {
     /// See [`Self::build`].
     pub fn build_with_order<G: ShellGeometry + Send + Sync + 'static>(
         self,
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
+        problem: PlaneProblem<G>,
         order: usize,
     ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
         if self == Self::FemQp {
-            return Ok(Box::new(HighOrderNavier::new(
-                chart, material, grid, boundary, body_force, order,
-            )?));
+            return Ok(Box::new(HighOrderNavier::new(problem, order)?));
         }
         Ok(match self.element_order() {
-            None => Box::new(FiniteDifferenceNavier::new(
-                chart, material, grid, boundary, body_force,
-            )?),
-            Some(order) => Box::new(FiniteElementNavier::new(
-                chart, material, grid, boundary, body_force, order,
-            )?),
+            None => Box::new(FiniteDifferenceNavier::new(problem)?),
+            Some(order) => Box::new(FiniteElementNavier::new(problem, order)?),
         })
     }
 }

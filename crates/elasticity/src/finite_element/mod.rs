@@ -34,6 +34,8 @@ mod problem_parts;
 mod problems;
 mod volumetric;
 
+/// The problem the operators here are built from (also at the crate root).
+pub use crate::plane_problem::PlaneProblem;
 pub use assembly::ElementAssembly;
 pub use element::{ElementOrder, gauss_rule};
 pub(crate) use element::{check_whole_elements, lumped_weight};

@@ -1,58 +1,31 @@
-//! The parts of a reference problem that every plane-strain discretisation takes: chart,
-//! material, grid, boundary conditions and body force, and the discretisations built from them.
+//! The parts of a reference problem that every plane-strain discretisation takes (a
+//! [`PlaneProblem`] on the samples' chart), and the discretisations built from a problem.
 
 use capstan_geometry::{Obstacle, ShellChart};
 
 use super::element::ElementOrder;
-use super::high_order::HighOrderNavier;
+use super::high_order::{HighOrderNavier, QpSettings};
 use super::navier::FiniteElementNavier;
 use super::volumetric::VolumetricIntegration;
-use crate::boundary::BoundaryConditions;
 use crate::error::ElasticityError;
-use crate::finite_difference::{BodyForce, FiniteDifferenceNavier};
-use crate::grid::Grid;
-use crate::material::Material;
+use crate::finite_difference::FiniteDifferenceNavier;
+use crate::plane_problem::PlaneProblem;
+use crate::shell_geometry::ShellGeometry;
 
 /// The chart of every sample problem: an obstacle from the geometry crate.
 pub type SampleChart = ShellChart<Obstacle>;
 
-/// Everything a discretisation constructor takes, for one reference problem on one grid.
-#[derive(Clone)]
-pub struct ProblemParts {
-    /// The chart.
-    pub chart: SampleChart,
-    /// The material.
-    pub material: Material,
-    /// The grid.
-    pub grid: Grid,
-    /// The boundary conditions.
-    pub boundary: BoundaryConditions,
-    /// The body force.
-    pub body_force: Option<BodyForce>,
-}
+/// Everything a discretisation constructor takes, for one reference problem on one grid: a
+/// [`PlaneProblem`] on the samples' chart.
+pub type ProblemParts = PlaneProblem<SampleChart>;
 
-impl core::fmt::Debug for ProblemParts {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("ProblemParts")
-            .field("grid", &self.grid)
-            .field("boundary", &self.boundary)
-            .finish_non_exhaustive()
-    }
-}
-
-impl ProblemParts {
+impl<G: ShellGeometry + Sync> PlaneProblem<G> {
     /// The finite-difference discretisation.
     ///
     /// # Errors
     /// See [`FiniteDifferenceNavier::new`].
-    pub fn finite_difference(self) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
-        FiniteDifferenceNavier::new(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-        )
+    pub fn finite_difference(self) -> Result<FiniteDifferenceNavier<G>, ElasticityError> {
+        FiniteDifferenceNavier::new(self)
     }
 
     /// The finite-element discretisation of `order`.
@@ -62,29 +35,8 @@ impl ProblemParts {
     pub fn finite_element(
         self,
         order: ElementOrder,
-    ) -> Result<FiniteElementNavier<SampleChart>, ElasticityError> {
-        self.finite_element_with(order, VolumetricIntegration::Full)
-    }
-
-    /// The finite-element discretisation of `order` with the volumetric part integrated as
-    /// `volumetric` says.
-    ///
-    /// # Errors
-    /// See [`FiniteElementNavier::new`].
-    pub fn finite_element_with(
-        self,
-        order: ElementOrder,
-        volumetric: VolumetricIntegration,
-    ) -> Result<FiniteElementNavier<SampleChart>, ElasticityError> {
-        FiniteElementNavier::with_volumetric(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-            order,
-            volumetric,
-        )
+    ) -> Result<FiniteElementNavier<G>, ElasticityError> {
+        FiniteElementNavier::new(self, order)
     }
 
     /// The tensor-product elements of order `p` ([`HighOrderNavier`]; the grid's `n - 1`
@@ -96,16 +48,8 @@ impl ProblemParts {
         self,
         p: usize,
         volumetric: VolumetricIntegration,
-    ) -> Result<HighOrderNavier<SampleChart>, ElasticityError> {
-        HighOrderNavier::with_volumetric(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-            p,
-            volumetric,
-        )
+    ) -> Result<HighOrderNavier<G>, ElasticityError> {
+        HighOrderNavier::with_volumetric(self, p, volumetric)
     }
 
     /// The tensor-product elements with `settings` (order, volumetric integration, grading of
@@ -115,15 +59,8 @@ impl ProblemParts {
     /// See [`HighOrderNavier::new`].
     pub fn high_order_with(
         self,
-        settings: crate::finite_element::high_order::QpSettings,
-    ) -> Result<HighOrderNavier<SampleChart>, ElasticityError> {
-        HighOrderNavier::with_settings(
-            self.chart,
-            self.material,
-            self.grid,
-            self.boundary,
-            self.body_force,
-            settings,
-        )
+        settings: QpSettings,
+    ) -> Result<HighOrderNavier<G>, ElasticityError> {
+        HighOrderNavier::with_settings(self, settings)
     }
 }

@@ -4,6 +4,7 @@
 use std::sync::Arc;
 
 use super::element::ElementOrder;
+use super::navier::FiniteElementNavier;
 use super::navier::norms::DisplacementErrors;
 use super::problem_parts::ProblemParts;
 use super::volumetric::VolumetricIntegration;
@@ -105,14 +106,15 @@ impl FemStudy {
         let (op, errors) = match &self.problem {
             FemProblem::Mms(m) => {
                 let (parts, exact) = mms_parts(m, level)?;
-                let op = parts.finite_element_with(self.order, self.volumetric)?;
+                let op = FiniteElementNavier::with_volumetric(parts, self.order, self.volumetric)?;
                 let v = solve_backward_stable(&op)?;
                 let f = |x: [f64; 2]| exact.field.displacement(x).value;
                 let e = op.displacement_errors(&v, &f)?;
                 (op, e)
             }
             FemProblem::Lame(l) => {
-                let op = lame_parts(l, level)?.finite_element_with(self.order, self.volumetric)?;
+                let parts = lame_parts(l, level)?;
+                let op = FiniteElementNavier::with_volumetric(parts, self.order, self.volumetric)?;
                 let v = solve_backward_stable(&op)?;
                 let field = l.field();
                 let f = |x: [f64; 2]| field.displacement(x).value;

@@ -1,6 +1,7 @@
 //! Settings of the contact Newton iterations and what the solver reports of its setup.
 
 use crate::contact::error::ContactError;
+use crate::error::ElasticityError;
 
 /// Settings of the contact Newton iterations (both solvers) and of the load continuation.
 ///
@@ -40,14 +41,14 @@ impl ContactSettings {
     /// Checks every field.
     ///
     /// # Errors
-    /// [`ContactError::InvalidParameter`] naming the first bad field.
+    /// [`ElasticityError::InvalidParameter`] naming the first bad field.
     pub fn validate(&self) -> Result<(), ContactError> {
         let bad = |field, value, allowed| {
-            Err(ContactError::InvalidParameter {
+            Err(ContactError::from(ElasticityError::InvalidParameter {
                 field,
                 value,
                 allowed,
-            })
+            }))
         };
         if self.max_iterations == 0 {
             return bad("max_iterations", 0.0, "[1, inf)");

@@ -10,15 +10,13 @@ use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
 use super::mesh::{Grading, QpSettings};
 use super::skeleton::Skeleton;
-use crate::boundary::{BoundaryConditions, Component, Side};
+use crate::boundary::Side;
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
 use crate::error::ElasticityError;
-use crate::finite_difference::BodyForce;
 use crate::finite_element::assembly::ElementAssembly;
 use crate::finite_element::navier::boundary_terms::add_side_point_load;
 use crate::finite_element::volumetric::VolumetricIntegration;
-use crate::grid::Grid;
-use crate::material::Material;
+use crate::plane_problem::{BodyForce, PlaneProblem};
 use crate::plane_strain_operator::setup_accessors;
 use crate::shell_geometry::ShellGeometry;
 
@@ -59,7 +57,7 @@ pub fn check_order(p: usize) -> Result<(), ElasticityError> {
 
 /// The plane-strain curvilinear Navier operator by tensor-product Lagrange elements of any
 /// order `p` (Qp) with Gauss–Lobatto–Legendre nodes, on the element partition of a
-/// [`Grid`]: `n2 = p e2 + 1` (periodic: `p e2`), `n3 = p e3 + 1` nodes.
+/// [`Grid`](crate::Grid): `n2 = p e2 + 1` (periodic: `p e2`), `n3 = p e3 + 1` nodes.
 ///
 /// # Math
 /// The weak form is that of [`crate::finite_element::FiniteElementNavier`]:
@@ -97,23 +95,25 @@ pub fn check_order(p: usize) -> Result<(), ElasticityError> {
 /// ```
 /// use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Grid, Material};
 /// use capstan_elasticity::finite_element::HighOrderNavier;
+/// use capstan_elasticity::PlaneProblem;
 /// use capstan_geometry::{EllipticalPrism, ShellChart};
 /// use capstan_solvers::SparseCholesky;
-/// let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
-/// // p = 4: 6 x 1 elements
-/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
-/// let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
-/// let m = Material::new(1e3, 0.25).unwrap();
-/// let op = HighOrderNavier::new(chart, m, grid, bc, None, 4).unwrap();
+/// let problem = PlaneProblem {
+///     chart: ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap()),
+///     material: Material::new(1e3, 0.25).unwrap(),
+///     // p = 4: 6 x 1 elements
+///     grid: Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap(),
+///     boundary: BoundaryConditions::paper_clamped(1.0, 1.0),
+///     body_force: None,
+/// };
+/// let op = HighOrderNavier::new(problem, 4).unwrap();
 /// let v = op.solve(&mut SparseCholesky::default()).unwrap(); // condensed
 /// let (left, right) = (v[op.dof([0, 4], Component::X2)], v[op.dof([24, 4], Component::X2)]);
 /// assert!(left < 0.0 && (left + right).abs() < 1e-10); // odd in x2
 /// ```
 pub struct HighOrderNavier<G> {
-    pub(super) chart: G,
-    pub(super) material: Material,
-    pub(super) grid: Grid,
-    pub(super) boundary: BoundaryConditions,
+    /// The problem, without its body force (integrated into `load`).
+    pub(super) problem: PlaneProblem<G>,
     /// The order `p`.
     pub(super) degree: usize,
     pub(super) volumetric: VolumetricIntegration,
@@ -152,12 +152,8 @@ pub struct HighOrderNavier<G> {
 
 impl<G> core::fmt::Debug for HighOrderNavier<G> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("HighOrderNavier")
-            .field("degree", &self.degree)
-            .field("material", &self.material)
-            .field("grid", &self.grid)
-            .field("boundary", &self.boundary)
-            .finish_non_exhaustive()
+        self.problem
+            .debug_fields(f, "HighOrderNavier", Some(("degree", &self.degree)))
     }
 }
 
@@ -171,23 +167,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// [`ElasticityError::InconsistentBoundary`], [`ElasticityError::Geometry`],
     /// [`ElasticityError::NotPlaneStrain`], [`ElasticityError::NonFinite`] as
     /// [`crate::finite_element::FiniteElementNavier::new`].
-    pub fn new(
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
-        p: usize,
-    ) -> Result<Self, ElasticityError> {
-        Self::with_volumetric(
-            chart,
-            material,
-            grid,
-            boundary,
-            body_force,
-            p,
-            VolumetricIntegration::Full,
-        )
+    pub fn new(problem: PlaneProblem<G>, p: usize) -> Result<Self, ElasticityError> {
+        Self::with_volumetric(problem, p, VolumetricIntegration::Full)
     }
 
     /// As [`HighOrderNavier::new`], with the volumetric part integrated as `volumetric` says
@@ -196,11 +177,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// # Errors
     /// See [`HighOrderNavier::new`].
     pub fn with_volumetric(
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
+        problem: PlaneProblem<G>,
         p: usize,
         volumetric: VolumetricIntegration,
     ) -> Result<Self, ElasticityError> {
@@ -208,7 +185,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             volumetric,
             ..QpSettings::order(p)
         };
-        Self::with_settings(chart, material, grid, boundary, body_force, settings)
+        Self::with_settings(problem, settings)
     }
 
     /// As [`HighOrderNavier::with_volumetric`], with the element boundaries spaced as
@@ -219,11 +196,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// # Errors
     /// See [`HighOrderNavier::new`].
     pub fn with_settings(
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
+        mut problem: PlaneProblem<G>,
         settings: QpSettings,
     ) -> Result<Self, ElasticityError> {
         let QpSettings {
@@ -232,7 +205,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             grading,
         } = settings;
         check_order(p)?;
-        boundary.check_grid(&grid)?;
+        let grid = problem.grid;
+        problem.boundary.check_grid(&grid)?;
         let periodic = grid.is_periodic();
         let count = |field: &'static str, n: usize, periodic: bool| {
             let intervals = if periodic { n } else { n - 1 };
@@ -284,11 +258,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         let reduced_tables = (volumetric == VolumetricIntegration::Reduced)
             .then(|| ElementTables::new(&gll, &gauss_legendre(p).0, reference));
         let (_, dn) = super::gll::basis_tables(&gll, &gll);
+        let body_force = problem.body_force.take();
         let mut op = Self {
-            chart,
-            material,
-            grid,
-            boundary,
+            problem,
             degree: p,
             volumetric,
             elements,
@@ -308,17 +280,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             full: OnceLock::new(),
             skeleton: OnceLock::new(),
         };
-        op.dirichlet = (0..2 * grid.node_count())
-            .map(|d| {
-                let node = grid.node(d / 2);
-                op.boundary.dirichlet_value_at(
-                    &grid,
-                    node,
-                    op.node_coordinates(node),
-                    Component::ALL[d % 2],
-                )
-            })
-            .collect::<Result<_, _>>()?;
+        op.dirichlet = op
+            .problem
+            .dirichlet_values(|node| op.node_coordinates(node))?;
         op.load = vec![0.0; 2 * grid.node_count()];
         op.cache_geometry(body_force.as_ref())?;
         op.add_boundary_loads()?;
@@ -360,12 +324,12 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     pub(super) fn element_nodes(&self, e: usize) -> Vec<usize> {
         let (p, np) = (self.degree, self.np());
         let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
-        let n2 = self.grid.n2();
+        let n2 = self.problem.grid.n2();
         let mut out = Vec::with_capacity(np * np);
         for a2 in 0..np {
             let i2 = (p * e2 + a2) % n2;
             for a3 in 0..np {
-                out.push(self.grid.node_index([i2, p * e3 + a3]));
+                out.push(self.problem.grid.node_index([i2, p * e3 + a3]));
             }
         }
         out
@@ -425,15 +389,14 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                 let mut points = Vec::with_capacity(heights.len());
                 for (q2, &xi) in gp.iter().enumerate() {
                     let x2 = x0 + 0.5 * (xi + 1.0) * l2;
-                    points.clear();
-                    self.chart.shell_column([0.0, x2], &heights, &mut points)?;
-                    for (idx, (p, &x3)) in points.iter().zip(&heights).enumerate() {
-                        check_plane_strain(p, [0.0, x2, x3])?;
-                        let (e3, q3) = (idx / nq, idx % nq);
-                        let l3 = self.span(1, e3).1;
-                        let w = gw[q2] * gw[q3] * 0.25 * l2 * l3;
-                        column[e3 * nq * nq + q2 * nq + q3] = visit(p, [x2, x3], w, [l2, l3])?;
-                    }
+                    self.problem
+                        .visit_column(x2, &heights, &mut points, |idx, p, x3| {
+                            let (e3, q3) = (idx / nq, idx % nq);
+                            let l3 = self.span(1, e3).1;
+                            let w = gw[q2] * gw[q3] * 0.25 * l2 * l3;
+                            column[e3 * nq * nq + q2 * nq + q3] = visit(p, [x2, x3], w, [l2, l3])?;
+                            Ok(())
+                        })?;
                 }
                 Ok(())
             },
@@ -445,7 +408,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// the body-force load `int f_j N_a sqrt(g) dA`.
     fn cache_geometry(&mut self, body_force: Option<&BodyForce>) -> Result<(), ElasticityError> {
         let (gp, gw) = gauss_legendre(self.degree + 1);
-        let (lambda, mu) = (self.material.lambda(), self.material.mu());
+        let (lambda, mu) = (self.problem.material.lambda(), self.problem.material.mu());
         let full_lambda = if self.volumetric == VolumetricIntegration::Full {
             lambda
         } else {
@@ -506,9 +469,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     fn add_boundary_loads(&mut self) -> Result<(), ElasticityError> {
         let (gp, gw) = gauss_legendre(self.degree + 1);
         let (p, np) = (self.degree, self.np());
-        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        let (n2, n3) = (self.problem.grid.n2(), self.problem.grid.n3());
         for side in Side::ALL {
-            let Some(cond) = self.boundary.side(side).cloned() else {
+            let Some(cond) = self.problem.boundary.side(side).cloned() else {
                 continue; // periodic x2
             };
             let a = side.normal_index();
@@ -533,9 +496,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                         )
                     };
                     let at = [0.0, x[0], x[1]];
-                    let pt = self.chart.shell_point(at)?;
+                    let pt = self.problem.chart.shell_point(at)?;
                     check_plane_strain(&pt, at)?;
-                    let grid = &self.grid;
+                    let grid = &self.problem.grid;
                     let shape = nodes
                         .iter()
                         .zip(&shape)
@@ -569,14 +532,17 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// and likewise in `x3`: exact for polynomials of degree `p` in the direction.
     pub(super) fn node_terms(&self, [i2, i3]: [usize; 2]) -> Vec<(usize, [f64; 3])> {
         let (p, np) = (self.degree, self.np());
-        let n2 = self.grid.n2();
-        let mut terms = vec![(self.grid.node_index([i2, i3]), [1.0, 0.0, 0.0])];
-        let along2 = self.elements_along(i2, self.elements[0], self.grid.is_periodic());
+        let n2 = self.problem.grid.n2();
+        let mut terms = vec![(self.problem.grid.node_index([i2, i3]), [1.0, 0.0, 0.0])];
+        let along2 = self.elements_along(i2, self.elements[0], self.problem.grid.is_periodic());
         let w2 = 1.0 / along2.len() as f64;
         for (e2, a2) in along2 {
             for b in 0..np {
                 let d = self.derivative_at_nodes[b * np + a2] * 2.0 / self.span(0, e2).1 * w2;
-                terms.push((self.grid.node_index([(p * e2 + b) % n2, i3]), [0.0, d, 0.0]));
+                terms.push((
+                    self.problem.grid.node_index([(p * e2 + b) % n2, i3]),
+                    [0.0, d, 0.0],
+                ));
             }
         }
         let along3 = self.elements_along(i3, self.elements[1], false);
@@ -584,7 +550,10 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         for (e3, a3) in along3 {
             for b in 0..np {
                 let d = self.derivative_at_nodes[b * np + a3] * 2.0 / self.span(1, e3).1 * w3;
-                terms.push((self.grid.node_index([i2, p * e3 + b]), [0.0, 0.0, d]));
+                terms.push((
+                    self.problem.grid.node_index([i2, p * e3 + b]),
+                    [0.0, 0.0, d],
+                ));
             }
         }
         terms

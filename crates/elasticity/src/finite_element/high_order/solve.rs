@@ -97,7 +97,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             .flat_map(|e| self.element_nodes(e))
             .collect();
         let a = ElementAssembly::new(
-            self.grid.node_count(),
+            self.problem.grid.node_count(),
             2,
             self.np() * self.np(),
             connectivity,
@@ -114,7 +114,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         }
         let s = Skeleton::new(
             self.degree,
-            [self.grid.n2(), self.grid.n3()],
+            [self.problem.grid.n2(), self.problem.grid.n3()],
             self.element_count(),
             |e| self.element_nodes(e),
             &self.dirichlet,
@@ -307,7 +307,6 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         v: &[f64],
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
-        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let (gp, gw) = gauss_legendre(self.degree + 2);
         let basis: Vec<Vec<f64>> = gp.iter().map(|&x| lagrange_basis(&self.gll, x).0).collect();
         let element = |e: usize| {
@@ -321,7 +320,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             element: &element,
         };
         let position = |node: [usize; 2]| self.node_coordinates(node);
-        tensor_displacement_errors(&self.chart, &self.grid, &elements, &position, v, exact)
+        tensor_displacement_errors(&self.problem, &elements, &position, v, exact)
     }
 }
 
@@ -334,7 +333,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     /// interiors first, the sparse-factorisation counterpart of static condensation.
     fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
         capstan_solvers::ColumnOrdering::ElementNestedDissection {
-            grid: self.grid.shape(),
+            grid: self.problem.grid.shape(),
             degree: self.degree,
         }
     }
@@ -350,12 +349,11 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
         Ok(self.full_assembly()?.pattern().entries().collect())
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         let system = self.full_system()?;
         for (k, x) in system.values.into_iter().enumerate() {
             add(k, x);
@@ -382,13 +380,13 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     /// node (`HighOrderNavier::node_terms`, averaged over the elements sharing it), with the
     /// pointwise stress also under SRI. The entry's `x2` is the node's GLL position.
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
-        (0..self.grid.n2())
+        (0..self.problem.grid.n2())
             .map(|i| {
                 let x2 = self.x2[i];
                 let at = [0.0, x2, 0.0];
-                let p = self.chart.shell_point(at)?;
+                let p = self.problem.chart.shell_point(at)?;
                 crate::continuum::check_plane_strain(&p, at)?;
-                let c = mixed_stress_coefficients(&p, &self.material);
+                let c = mixed_stress_coefficients(&p, &self.problem.material);
                 let terms = self.node_terms([i, 0]);
                 let row = |j: usize| {
                     let mut t: Vec<(usize, f64)> = terms
@@ -403,7 +401,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
                     SparseRow::from_terms(&mut t)
                 };
                 let length: f64 = self
-                    .elements_along(i, self.elements[0], self.grid.is_periodic())
+                    .elements_along(i, self.elements[0], self.problem.grid.is_periodic())
                     .iter()
                     .map(|&(e, a)| self.gll_weights[a] * 0.5 * self.span(0, e).1)
                     .sum();
@@ -428,12 +426,12 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         NodalFields::from_nodes_at(
-            self.grid,
+            self.problem.grid,
             |node| self.node_coordinates(node),
-            &self.chart,
+            &self.problem.chart,
             |node, p| {
                 let u = self.local(node, v);
-                Ok((u, contravariant_stress(p, &self.material, &u)))
+                Ok((u, contravariant_stress(p, &self.problem.material, &u)))
             },
         )
     }

@@ -5,7 +5,9 @@ use capstan_solvers::SparseCholesky;
 
 use super::HighOrderNavier;
 use crate::discretisation::Discretisation;
-use crate::finite_element::{ElementOrder, VolumetricIntegration, lame_parts, mms_parts};
+use crate::finite_element::{
+    ElementOrder, FiniteElementNavier, VolumetricIntegration, lame_parts, mms_parts,
+};
 use crate::samples::{
     LameCylinder, ManufacturedField, MmsBoundaries, PrismMms, TrigonometricExact,
 };
@@ -62,10 +64,7 @@ fn qp1_and_qp2_reproduce_fem_q1_and_fem_q2() {
         for (p, order) in [(1, ElementOrder::Q1), (2, ElementOrder::Q2)] {
             let level = GridLevel { n2: 9, n3: 5 };
             let (parts, _) = mms_parts(&mms(), level).unwrap();
-            let q = parts
-                .clone()
-                .finite_element_with(order, volumetric)
-                .unwrap();
+            let q = FiniteElementNavier::with_volumetric(parts.clone(), order, volumetric).unwrap();
             let qp = parts.high_order(p, volumetric).unwrap();
             let a = q.solve(&mut SparseCholesky::default()).unwrap();
             let b = qp

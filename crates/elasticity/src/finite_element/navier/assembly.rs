@@ -21,7 +21,7 @@ const BATCH: usize = 2048;
 impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// Builds the row-wise pattern and the slot of every local element entry.
     pub(super) fn build_pattern(&mut self) {
-        let g = self.grid;
+        let g = self.problem.grid;
         let n2 = g.n2();
         let ndof = self.dof_count();
         let nen = self.nodes_per_element();

@@ -51,9 +51,9 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let (gp, gw) = self.order.gauss_1d();
         let (k, np) = (self.order.degree(), self.order.nodes_per_direction());
         let [l2, l3] = self.element_size();
-        let (n2, n3) = (self.grid.n2(), self.grid.n3());
+        let (n2, n3) = (self.problem.grid.n2(), self.problem.grid.n3());
         for side in Side::ALL {
-            let Some(cond) = self.boundary.side(side).cloned() else {
+            let Some(cond) = self.problem.boundary.side(side).cloned() else {
                 continue; // periodic x2
             };
             let along_x2 = side.normal_index() == 2;
@@ -67,21 +67,21 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                     let (shape, _) = self.order.shape_1d(xi);
                     let (x, nodes): ([f64; 2], Vec<[usize; 2]>) = if along_x2 {
                         let i3 = if side == Side::X3Min { 0 } else { n3 - 1 };
-                        let x2 = self.grid.x2(k * e) + 0.5 * (xi + 1.0) * length;
+                        let x2 = self.problem.grid.x2(k * e) + 0.5 * (xi + 1.0) * length;
                         (
-                            [x2, self.grid.x3(i3)],
+                            [x2, self.problem.grid.x3(i3)],
                             (0..np).map(|a| [(k * e + a) % n2, i3]).collect(),
                         )
                     } else {
                         let i2 = if side == Side::X2Min { 0 } else { n2 - 1 };
-                        let x3 = self.grid.x3(k * e) + 0.5 * (xi + 1.0) * length;
+                        let x3 = self.problem.grid.x3(k * e) + 0.5 * (xi + 1.0) * length;
                         (
-                            [self.grid.x2(i2), x3],
+                            [self.problem.grid.x2(i2), x3],
                             (0..np).map(|a| [i2, k * e + a]).collect(),
                         )
                     };
                     let p = self.point(x[0], x[1])?;
-                    let grid = &self.grid;
+                    let grid = &self.problem.grid;
                     let shape = nodes
                         .iter()
                         .zip(shape)
@@ -92,14 +92,5 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             }
         }
         Ok(())
-    }
-
-    /// The value prescribed at a node and component, if any ([`BoundaryConditions::dirichlet_value`]).
-    pub(super) fn dirichlet_value(
-        &self,
-        node: [usize; 2],
-        c: Component,
-    ) -> Result<Option<f64>, ElasticityError> {
-        self.boundary.dirichlet_value(&self.grid, node, c)
     }
 }

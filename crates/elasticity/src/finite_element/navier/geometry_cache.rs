@@ -5,12 +5,12 @@ use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::{FiniteElementNavier, packed_energy, packed_stiffness};
-use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients};
+use crate::continuum::{PLANE_STRAIN, divergence_coefficients};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::finite_difference::BodyForce;
 use crate::finite_element::element::gauss_rule;
 use crate::finite_element::volumetric::VolumetricIntegration;
+use crate::plane_problem::BodyForce;
 use crate::shell_geometry::ShellGeometry;
 
 impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
@@ -21,7 +21,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let k = self.order.degree();
         (0..self.elements[1])
             .flat_map(|e3| {
-                let y0 = self.grid.x3(k * e3);
+                let y0 = self.problem.grid.x3(k * e3);
                 gp.iter().map(move |&eta| y0 + 0.5 * (eta + 1.0) * l3)
             })
             .collect()
@@ -45,17 +45,15 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         ) -> Result<(), ElasticityError>,
     ) -> Result<(), ElasticityError> {
         let [l2, _] = self.element_size();
-        let x0 = self.grid.x2(self.order.degree() * e2);
+        let x0 = self.problem.grid.x2(self.order.degree() * e2);
         let nqd = gp.len();
         let mut points = Vec::with_capacity(heights.len());
         for (i, &xi) in gp.iter().enumerate() {
             let x2 = x0 + 0.5 * (xi + 1.0) * l2;
-            points.clear();
-            self.chart.shell_column([0.0, x2], heights, &mut points)?;
-            for (idx, (p, &x3)) in points.iter().zip(heights).enumerate() {
-                check_plane_strain(p, [0.0, x2, x3])?;
-                visit(i, idx / nqd, idx % nqd, p, [x2, x3])?;
-            }
+            self.problem
+                .visit_column(x2, heights, &mut points, |idx, p, x3| {
+                    visit(i, idx / nqd, idx % nqd, p, [x2, x3])
+                })?;
         }
         Ok(())
     }
@@ -93,9 +91,11 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                 let q = i * nqd + j;
                 let w = gw[i] * gw[j] * det;
                 kq[e3 * nq + q] = match this.volumetric {
-                    VolumetricIntegration::Full => packed_stiffness(p, &this.material, w),
+                    VolumetricIntegration::Full => packed_stiffness(p, &this.problem.material, w),
                     // the shear part only: the volumetric part is at the reduced points
-                    VolumetricIntegration::Reduced => packed_energy(p, 0.0, this.material.mu(), w),
+                    VolumetricIntegration::Reduced => {
+                        packed_energy(p, 0.0, this.problem.material.mu(), w)
+                    }
                 };
                 if let (Some(f), Some(load)) = (body_force, load.as_deref_mut()) {
                     let x = [x2, x3];
@@ -157,7 +157,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         let nqd = gp.len();
         let nr = nqd * nqd;
         let heights = self.column_heights(&gp);
-        let lambda = self.material.lambda();
+        let lambda = self.problem.material.lambda();
         let mut out = vec![[0.0; 7]; ne2 * ne3 * nr];
         let this = &*self;
         out.par_chunks_mut(ne3 * nr)

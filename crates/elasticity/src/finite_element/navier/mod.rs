@@ -13,7 +13,6 @@ use capstan_geometry::ShellPoint;
 
 use super::element::{ElementOrder, lumped_weight};
 use super::volumetric::VolumetricIntegration;
-use crate::boundary::{BoundaryConditions, Component};
 use crate::continuum::kinematics::{contravariant_stress, mixed_stress_coefficients};
 use crate::continuum::{
     PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix, mixed_strains,
@@ -21,9 +20,8 @@ use crate::continuum::{
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
-use crate::finite_difference::BodyForce;
-use crate::grid::Grid;
 use crate::material::Material;
+use crate::plane_problem::PlaneProblem;
 use crate::plane_strain_operator::{plane_strain_numbering, setup_accessors};
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::SparsityPattern;
@@ -123,23 +121,25 @@ const PACK: [[usize; 6]; 6] = {
 /// ```
 /// use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Grid, Material};
 /// use capstan_elasticity::finite_element::{ElementOrder, FiniteElementNavier};
+/// use capstan_elasticity::PlaneProblem;
 /// use capstan_geometry::{EllipticalPrism, ShellChart};
 /// use capstan_solvers::SparseCholesky;
-/// let chart = ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap());
-/// let grid = Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap();
-/// let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
-/// let m = Material::new(1e3, 0.25).unwrap();
-/// let op = FiniteElementNavier::new(chart, m, grid, bc, None, ElementOrder::Q2).unwrap();
+/// let problem = PlaneProblem {
+///     chart: ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap()),
+///     material: Material::new(1e3, 0.25).unwrap(),
+///     grid: Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap(),
+///     boundary: BoundaryConditions::paper_clamped(1.0, 1.0),
+///     body_force: None,
+/// };
+/// let op = FiniteElementNavier::new(problem, ElementOrder::Q2).unwrap();
 /// let v = op.solve(&mut SparseCholesky::default()).unwrap(); // symmetric positive definite
 /// // equal end tensions: the tangential displacement is odd in x2
 /// let (left, right) = (v[op.dof([0, 4], Component::X2)], v[op.dof([24, 4], Component::X2)]);
 /// assert!(left < 0.0 && (left + right).abs() < 1e-10);
 /// ```
 pub struct FiniteElementNavier<G> {
-    chart: G,
-    material: Material,
-    grid: Grid,
-    boundary: BoundaryConditions,
+    /// The problem, without its body force (integrated into `load`).
+    problem: PlaneProblem<G>,
     order: ElementOrder,
     /// Elements in `x2` and `x3`.
     elements: [usize; 2],
@@ -171,12 +171,8 @@ pub struct FiniteElementNavier<G> {
 
 impl<G> core::fmt::Debug for FiniteElementNavier<G> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("FiniteElementNavier")
-            .field("order", &self.order)
-            .field("material", &self.material)
-            .field("grid", &self.grid)
-            .field("boundary", &self.boundary)
-            .finish_non_exhaustive()
+        self.problem
+            .debug_fields(f, "FiniteElementNavier", Some(("order", &self.order)))
     }
 }
 
@@ -210,23 +206,8 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// [`ElasticityError::Geometry`] where the chart cannot be evaluated;
     /// [`ElasticityError::NotPlaneStrain`] for a chart that is not `x1`-invariant;
     /// [`ElasticityError::NonFinite`] for non-finite boundary data or body force.
-    pub fn new(
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
-        order: ElementOrder,
-    ) -> Result<Self, ElasticityError> {
-        Self::with_volumetric(
-            chart,
-            material,
-            grid,
-            boundary,
-            body_force,
-            order,
-            VolumetricIntegration::Full,
-        )
+    pub fn new(problem: PlaneProblem<G>, order: ElementOrder) -> Result<Self, ElasticityError> {
+        Self::with_volumetric(problem, order, VolumetricIntegration::Full)
     }
 
     /// As [`FiniteElementNavier::new`], with the volumetric part of the stiffness integrated
@@ -250,10 +231,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// let exact = lame.field();
     /// let error = |volumetric| {
     ///     let p = lame_parts(&lame, GridLevel { n2: 32, n3: 9 }).unwrap();
-    ///     let op = FiniteElementNavier::with_volumetric(
-    ///         p.chart, p.material, p.grid, p.boundary, p.body_force, ElementOrder::Q1, volumetric,
-    ///     )
-    ///     .unwrap();
+    ///     let op = FiniteElementNavier::with_volumetric(p, ElementOrder::Q1, volumetric).unwrap();
     ///     let v = op.solve(&mut SparseCholesky::default()).unwrap();
     ///     let e = op.displacement_errors(&v, &|x| exact.displacement(x).value).unwrap();
     ///     e.l2 / e.l2_exact
@@ -262,15 +240,12 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// assert!(reduced < 1e-2 && full > 10.0 * reduced, "full {full}, reduced {reduced}");
     /// ```
     pub fn with_volumetric(
-        chart: G,
-        material: Material,
-        grid: Grid,
-        boundary: BoundaryConditions,
-        body_force: Option<BodyForce>,
+        mut problem: PlaneProblem<G>,
         order: ElementOrder,
         volumetric: VolumetricIntegration,
     ) -> Result<Self, ElasticityError> {
-        boundary.check_grid(&grid)?;
+        let grid = problem.grid;
+        problem.boundary.check_grid(&grid)?;
         order.check_nodes("grid.n2", grid.n2(), grid.is_periodic())?;
         order.check_nodes("grid.n3", grid.n3(), false)?;
         let k = order.degree();
@@ -282,11 +257,9 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             },
             (grid.n3() - 1) / k,
         ];
+        let body_force = problem.body_force.take();
         let mut op = Self {
-            chart,
-            material,
-            grid,
-            boundary,
+            problem,
             order,
             elements,
             shape: vec![],
@@ -302,9 +275,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             diagonal_slots: vec![],
             contact: vec![],
         };
-        op.dirichlet = (0..op.dof_count())
-            .map(|d| op.dirichlet_value(grid.node(d / 2), Component::ALL[d % 2]))
-            .collect::<Result<_, _>>()?;
+        op.dirichlet = op.problem.dirichlet_values(|node| grid.coordinates(node))?;
         op.shape = op.reference_shape();
         op.cache_geometry(body_force.as_ref())?;
         if volumetric == VolumetricIntegration::Reduced {
@@ -314,13 +285,13 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         op.contact = (0..grid.n2())
             .map(|i| {
                 let p = op.point(grid.x2(i), 0.0)?;
-                let c = mixed_stress_coefficients(&p, &op.material);
+                let c = mixed_stress_coefficients(&p, &op.problem.material);
                 let mut coef: Coefficients =
                     core::array::from_fn(|e| core::array::from_fn(|q| c[q][2][e + 1]));
                 if volumetric == VolumetricIntegration::Reduced {
                     // T^3_3 = lambda tr M + 2 mu M^3_3: only the shear part is pointwise, the
                     // divergence comes from the reduced points (see `contact_rows`)
-                    let two_mu = 2.0 * op.material.mu();
+                    let two_mu = 2.0 * op.problem.material.mu();
                     coef[1] = mixed_strains(&p, &PLANE_STRAIN).map(|m| two_mu * m[2][2]);
                 }
                 Ok((
@@ -356,7 +327,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
 
     fn point(&self, x2: f64, x3: f64) -> Result<ShellPoint<f64>, ElasticityError> {
         let at = [0.0, x2, x3];
-        let p = self.chart.shell_point(at)?;
+        let p = self.problem.chart.shell_point(at)?;
         check_plane_strain(&p, at)?;
         Ok(p)
     }
@@ -372,18 +343,18 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// Element lengths `[L2, L3]` in parameter space.
     fn element_size(&self) -> [f64; 2] {
         let k = self.order.degree() as f64;
-        [k * self.grid.dx2(), k * self.grid.dx3()]
+        [k * self.problem.grid.dx2(), k * self.problem.grid.dx3()]
     }
 
     /// Node numbers of element `e`, local node `a = a2 (k + 1) + a3`.
     fn element_nodes(&self, e: usize, out: &mut [usize; 9]) {
         let (k, np) = (self.order.degree(), self.order.nodes_per_direction());
         let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
-        let n2 = self.grid.n2();
+        let n2 = self.problem.grid.n2();
         for a2 in 0..np {
             let i2 = (k * e2 + a2) % n2; // wraps only on a periodic grid
             for a3 in 0..np {
-                out[a2 * np + a3] = self.grid.node_index([i2, k * e3 + a3]);
+                out[a2 * np + a3] = self.problem.grid.node_index([i2, k * e3 + a3]);
             }
         }
     }
@@ -392,7 +363,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     fn element_origin(&self, e: usize) -> [f64; 2] {
         let k = self.order.degree();
         let (e2, e3) = (e / self.elements[1], e % self.elements[1]);
-        [self.grid.x2(k * e2), self.grid.x3(k * e3)]
+        [self.problem.grid.x2(k * e2), self.problem.grid.x3(k * e3)]
     }
 
     fn reference_shape(&self) -> Vec<[f64; 3]> {
@@ -453,7 +424,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
 
     /// Nested dissection along element boundaries ([`ElementOrder::cholesky_ordering`]).
     fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
-        self.order.cholesky_ordering(&self.grid)
+        self.order.cholesky_ordering(&self.problem.grid)
     }
 
     plane_strain_numbering!();
@@ -462,12 +433,11 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
         Ok(self.pattern.entries().collect())
     }
 
-    fn fill(
+    fn fill_values(
         &self,
         add: &mut dyn FnMut(usize, f64),
         rhs: &mut [f64],
     ) -> Result<(), ElasticityError> {
-        ElasticityError::check_length("rhs", self.dof_count(), rhs.len())?;
         for (k, x) in self.assemble(rhs).into_iter().enumerate() {
             add(k, x);
         }
@@ -483,7 +453,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
     }
 
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
-        let g = &self.grid;
+        let g = &self.problem.grid;
         let n2 = g.n2();
         (0..n2)
             .map(|i| {
@@ -504,9 +474,9 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
 
     fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        NodalFields::from_nodes(self.grid, &self.chart, |node, p| {
+        NodalFields::from_nodes(self.problem.grid, &self.problem.chart, |node, p| {
             let u = self.local(node, v);
-            let mut stress = contravariant_stress(p, &self.material, &u);
+            let mut stress = contravariant_stress(p, &self.problem.material, &u);
             if self.volumetric == VolumetricIntegration::Reduced {
                 // T^ij = lambda g^ij div v + 2 mu E^ij: the divergence from the reduced points
                 let inputs = u.to_inputs();
@@ -517,7 +487,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteElementNavier<G> {
                     .iter()
                     .map(|&(d, w)| w * v[d])
                     .sum();
-                let jump = self.material.lambda() * (reduced - pointwise);
+                let jump = self.problem.material.lambda() * (reduced - pointwise);
                 for (row, gi) in stress.iter_mut().zip(&p.inverse_metric) {
                     for (x, g) in row.iter_mut().zip(gi) {
                         *x += jump * g;

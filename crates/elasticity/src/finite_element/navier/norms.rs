@@ -4,9 +4,9 @@ use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::FiniteElementNavier;
-use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_element::element::gauss_rule;
+use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 
 /// Errors of a discrete displacement against an exact one.
@@ -35,7 +35,6 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
         v: &[f64],
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
-        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let (gp, gw) = gauss_rule(self.order.nodes_per_direction() + 1);
         let np = self.order.nodes_per_direction();
         let basis: Vec<Vec<f64>> = gp
@@ -54,8 +53,8 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             basis: &basis,
             element: &element,
         };
-        let position = |node: [usize; 2]| self.grid.coordinates(node);
-        tensor_displacement_errors(&self.chart, &self.grid, &elements, &position, v, exact)
+        let position = |node: [usize; 2]| self.problem.grid.coordinates(node);
+        tensor_displacement_errors(&self.problem, &elements, &position, v, exact)
     }
 }
 
@@ -74,9 +73,9 @@ pub(crate) struct TensorElements<'a> {
     pub element: &'a (dyn Fn(usize) -> ([f64; 2], [f64; 2], Vec<usize>) + Sync),
 }
 
-/// The error norms of the discrete displacement `v = [v^2, v^3]` (per node) against `exact`:
-/// the max over the nodes (at `position(node)`) of `|U_h - U|`, and by the Gauss rule of
-/// `elements` over every element
+/// The error norms of the discrete displacement `v = [v^2, v^3]` (per node of `problem`'s
+/// grid, in `problem`'s chart) against `exact`: the max over the nodes (at `position(node)`)
+/// of `|U_h - U|`, and by the Gauss rule of `elements` over every element
 /// ```text
 /// rms^2 = int |U_h - U|^2 dx2 dx3 / area,  l2^2 = int |U_h - U|^2 sqrt(g) dx2 dx3,
 /// l2_exact^2 = int |U|^2 sqrt(g) dx2 dx3,  |e|^2 = g_22 e2 e2 + 2 g_23 e2 e3 + g_33 e3 e3
@@ -84,15 +83,17 @@ pub(crate) struct TensorElements<'a> {
 /// summed in element order (reproducible under parallelism).
 ///
 /// # Errors
-/// Geometry failures of the chart.
+/// [`ElasticityError::DimensionMismatch`] unless `v` has two values per node; geometry
+/// failures of the chart.
 pub(crate) fn tensor_displacement_errors<G: ShellGeometry + Sync>(
-    chart: &G,
-    grid: &crate::grid::Grid,
+    problem: &PlaneProblem<G>,
     elements: &TensorElements<'_>,
     position: &(dyn Fn([usize; 2]) -> [f64; 2] + Sync),
     v: &[f64],
     exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
 ) -> Result<DisplacementErrors, ElasticityError> {
+    let (chart, grid) = (&problem.chart, &problem.grid);
+    ElasticityError::check_length("displacement", 2 * grid.node_count(), v.len())?;
     let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
         let g = &p.metric;
         g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]

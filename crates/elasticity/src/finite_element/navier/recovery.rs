@@ -13,7 +13,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// The gradient-recovery stencil at a node: `(node, [value, d_2, d_3])` weights.
     pub(super) fn node_stencil(&self, node: [usize; 2]) -> Vec<([usize; 2], [f64; 3])> {
         let mut out = Vec::with_capacity(7);
-        self.grid.node_stencil(node, &mut out);
+        self.problem.grid.node_stencil(node, &mut out);
         out
     }
 
@@ -33,7 +33,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
                 }
             }
             if e == 1 && self.volumetric == VolumetricIntegration::Reduced {
-                let lambda = self.material.lambda();
+                let lambda = self.problem.material.lambda();
                 terms.extend(
                     self.reduced_divergence_terms([i, 0])
                         .into_iter()
@@ -86,7 +86,7 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
             VolumetricIntegration::Reduced,
             "reduced points are cached with selective reduced integration only"
         );
-        let g = &self.grid;
+        let g = &self.problem.grid;
         let (k, nen) = (self.order.degree(), self.nodes_per_element());
         let (gp, _) = gauss_rule(k);
         let nr = k * k;

@@ -1,7 +1,9 @@
 //! Unit tests of the Q1/Q2 operator: stiffness, pattern, SRI recovery.
 
 use super::*;
+use crate::boundary::{BoundaryConditions, Component};
 use crate::finite_element::element::{gauss_rule, lagrange_weights};
+use crate::grid::Grid;
 use capstan_geometry::{EllipticalPrism, ExpressionProfile, GeneralPrism, ShellChart};
 
 /// `K_q` by the definition: the mixed stress coefficients `C_k^i_j` contracted with
@@ -74,7 +76,7 @@ fn pattern_by_definition<G: ShellGeometry + Sync>(op: &FiniteElementNavier<G>) -
             }
         }
     }
-    for i in 0..op.grid.n2() {
+    for i in 0..op.problem.grid.n2() {
         let d = op.dof([i, 0], Component::X2);
         if op.dirichlet[d].is_none() {
             for row in op.contact_rows(i) {
@@ -212,16 +214,14 @@ fn contact_normal_stress_is_the_nodal_field_stress_for_both_volumetric_rules() {
         for volumetric in VolumetricIntegration::ALL {
             let grid = Grid::new([-1.2, 1.3], 0.4, 13, 5, false).unwrap();
             let bc = BoundaryConditions::paper_clamped(1.0, 1.0);
-            let op = FiniteElementNavier::with_volumetric(
-                chart.clone(),
+            let problem = PlaneProblem {
+                chart: chart.clone(),
                 material,
                 grid,
-                bc,
-                None,
-                order,
-                volumetric,
-            )
-            .unwrap();
+                boundary: bc,
+                body_force: None,
+            };
+            let op = FiniteElementNavier::with_volumetric(problem, order, volumetric).unwrap();
             let v = wavy(&op);
             let fields = op.fields(&v).unwrap();
             let mut row = vec![];
