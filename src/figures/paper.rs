@@ -260,8 +260,13 @@ pub fn index_markdown(index: &FigureIndex) -> String {
     s
 }
 
-fn plot_files(stem: &str) -> Vec<String> {
-    vec![format!("{stem}.svg"), format!("{stem}.png")]
+/// The names of the files a figure wrote: `files`, then each plot's `<stem>.svg` and
+/// `<stem>.png`.
+fn written(files: &[&str], plot_stems: &[&str]) -> Vec<String> {
+    let plots = plot_stems
+        .iter()
+        .flat_map(|stem| [format!("{stem}.svg"), format!("{stem}.png")]);
+    files.iter().map(|f| (*f).to_owned()).chain(plots).collect()
 }
 
 type Output = (Vec<String>, Vec<Comparison>);
@@ -308,8 +313,7 @@ fn tension_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError
         .zip(&closed)
         .map(|(x, y)| ((x - y) / y).abs())
         .fold(0.0f64, f64::max);
-    let mut files = vec!["tension-ratio.csv".into()];
-    files.extend(plot_files("tension-ratio"));
+    let files = written(&["tension-ratio.csv"], &["tension-ratio"]);
     Ok((
         files,
         vec![
@@ -359,9 +363,10 @@ fn displacement(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError>
     // The extreme of opposite sign of v^2 (the paper quotes +-).
     let v2min = n.v2.iter().copied().fold(f64::INFINITY, f64::min);
     let v2max = n.v2.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    let mut files = vec!["displacement.csv".into(), "displacement.vtu".into()];
-    files.extend(plot_files("displacement-v2"));
-    files.extend(plot_files("displacement-v3"));
+    let files = written(
+        &["displacement.csv", "displacement.vtu"],
+        &["displacement-v2", "displacement-v3"],
+    );
     Ok((
         files,
         vec![
@@ -405,8 +410,7 @@ fn slip_stick(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
             format!("{edge:+.4}")
         })
         .collect();
-    let mut files = vec!["slip-stick.csv".into()];
-    files.extend(plot_files("slip-stick"));
+    let files = written(&["slip-stick.csv"], &["slip-stick"]);
     Ok((
         files,
         vec![
@@ -515,9 +519,10 @@ impl<'a> SlipSweep<'a> {
             .y_label("Slip (mean of -1/0/+1 states)")
             .series(Series::line("regularised Coulomb", xs, ys).with_markers());
         out.write_plot(stem, &plot)?;
-        let mut files = vec![format!("{stem}.csv"), format!("{stem}.json")];
-        files.extend(plot_files(stem));
-        Ok(files)
+        Ok(written(
+            &[&format!("{stem}.csv"), &format!("{stem}.json")],
+            &[stem],
+        ))
     }
 }
 
