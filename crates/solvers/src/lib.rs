@@ -82,6 +82,10 @@
 //! ```
 #![warn(missing_docs)]
 
+// First, so that `named_variants!` is in textual scope in the modules below.
+#[macro_use]
+mod named;
+
 mod condensed_solver;
 mod csr_matrix;
 mod direct_params;
@@ -96,7 +100,6 @@ mod linear_solver;
 mod lu_kind;
 mod multifrontal_lu;
 mod multigrid;
-mod named;
 mod newton;
 mod nonlinear_method;
 mod nonlinear_solver;

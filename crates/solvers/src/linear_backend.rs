@@ -39,7 +39,7 @@ pub enum LinearBackend {
     GaussSeidel,
 }
 
-crate::named_variants!(LinearBackend {
+named_variants!(LinearBackend {
     Lu => "lu",
     Cholesky => "cholesky",
     Jacobi => "jacobi",

@@ -29,7 +29,7 @@ pub enum NonlinearMethod {
     JacobiNewton,
 }
 
-crate::named_variants!(NonlinearMethod {
+named_variants!(NonlinearMethod {
     Newton => "newton",
     JacobiNewton => "jacobi-newton",
 });

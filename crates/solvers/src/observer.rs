@@ -33,7 +33,7 @@ pub enum SolveStage {
 
 // `name()`: the lower-case name used in logs and in the Python package
 // (`"condensed-newton"`, ...).
-crate::named_variants!(SolveStage {
+named_variants!(SolveStage {
     Newton => "newton",
     JacobiNewton => "jacobi-newton",
     CondensedNewton => "condensed-newton",

@@ -12,7 +12,7 @@ use crate::shell_geometry::ShellGeometry;
 /// The discretisations of the Navier operator, by name: `fd`, `fem-q1`, `fem-q2`, `fem-qp`
 /// (with its order `p`, scene key `discretisation.order`, given separately).
 ///
-/// The same spelling is used by serde and [`fmt::Display`].
+/// The same spelling is used by serde and [`core::fmt::Display`].
 ///
 /// # Example
 /// ```
