@@ -375,3 +375,34 @@ fn fem_qp_solves_a_three_dimensional_body_and_refuses_bad_node_counts() {
     assert_eq!(code, Some(2), "{stderr}");
     assert!(stderr.contains("solver.linear"), "{stderr}");
 }
+
+/// Regression: the SVD returns the rigid sliding mode with either sign. On this grid it came
+/// toward -x2, and the limit that way (unbounded) was reported as +inf: the range
+/// [3.296875, inf] refused the default ratio 2 as "no static equilibrium". The mode is
+/// oriented toward +x2 (the tau_max end) before the limits are computed.
+#[test]
+fn limiting_range_does_not_depend_on_the_sign_the_svd_gives_the_sliding_mode() {
+    let r = capstan_json(&[
+        "contact",
+        "--set",
+        "body.dimension=3",
+        "--set",
+        "discretisation.method=fem-q2",
+        "--set",
+        "grid.n1=17",
+        "--set",
+        "grid.n2=41",
+        "--set",
+        "grid.n3=5",
+    ]);
+    assert_eq!(r["status"], "converged");
+    let limits = &r["limiting_ratios"];
+    let upper = limits[1].as_f64().unwrap();
+    assert!((upper - 3.296875).abs() < 1e-9, "upper {upper}");
+    // the other way: unbounded (null) or a ratio below 1
+    assert!(
+        limits[0].is_null() || limits[0].as_f64().unwrap() < 1.0,
+        "lower {}",
+        limits[0]
+    );
+}

@@ -45,15 +45,6 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         }
         let v = svd.V();
         self.rigid_mode = (0..m).map(|k| v[(k, m - 1)]).collect();
-        // oriented with y . z > 0, so that y . G increases with the rigid amplitude (friction
-        // resists the sliding)
-        let u = svd.U();
-        let orient = if (0..m).map(|k| u[(k, m - 1)] * v[(k, m - 1)]).sum::<f64>() < 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
-        self.rigid_balance = (0..m).map(|k| orient * u[(k, m - 1)]).collect();
         self.rigid_shift = (0..m)
             .map(|i| {
                 (0..m)
@@ -61,6 +52,25 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
                     .sum()
             })
             .collect();
+        // The singular vector's sign is arbitrary: orient the mode so that the contact slides
+        // toward +x2 (the tau_max end) along it, so that `direction = 1` of `limits_at` is the
+        // upper limit and an unbounded way is +inf there, -inf the other way. (Found on a 3-D
+        // Q1 body, 17 x 65 x 17, where the SVD returned the mode sliding toward -x2 and the
+        // unbounded lower limit was reported as +inf: the range [3.51, inf] refused the
+        // default ratio 2 as "no static equilibrium".)
+        let toward_x2: f64 = (0..self.model.sites().members.len())
+            .map(|j| self.model.site_slip(j, 1.0, |k| self.rigid_shift[k])[1])
+            .sum();
+        if toward_x2 < 0.0 {
+            self.rigid_mode.iter_mut().for_each(|z| *z = -*z);
+            self.rigid_shift.iter_mut().for_each(|z| *z = -*z);
+        }
+        // the balance oriented with y . z > 0, so that y . G increases with the rigid amplitude
+        // (friction resists the sliding)
+        let u = svd.U();
+        let y_dot_z: f64 = (0..m).map(|k| u[(k, m - 1)] * self.rigid_mode[k]).sum();
+        let orient = if y_dot_z < 0.0 { -1.0 } else { 1.0 };
+        self.rigid_balance = (0..m).map(|k| orient * u[(k, m - 1)]).collect();
         self.homogeneous = self.law_is_homogeneous();
         let limits = self.limits_at(1.0, relative);
         if self.model.sites().members.iter().any(|m| m.len() == 2) {
