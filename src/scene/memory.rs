@@ -71,22 +71,42 @@ pub fn human_bytes(bytes: f64) -> String {
     format!("{b:.1} {}", UNITS[unit])
 }
 
-/// Bytes of sparse LU factors per `N^(4/3)` of a 3-D contact solve (`N` unknowns), fitted
-/// above the measured peaks (bench_solid_contact, full-system Newton, Q1: 11 x 201 x 15,
-/// 99,495 unknowns, VmHWM 1.88 GB against 2.8 GB estimated; 17 x 129 x 17, 111,843
-/// unknowns, 2.59 GiB against 3.1 GiB). At 33 x 321 x 33 (1.05e6 unknowns) it is 59 GiB:
-/// refused on the 24 GiB benchmark machine.
-pub const SOLID_BYTES_PER_N_4_3: f64 = 600.0;
+/// Bytes of sparse LU factors per `N^(4/3)` of a 3-D contact solve (`N` unknowns) of trilinear
+/// (Q1) elements, fitted above the measured peaks (VmHWM, `capstan contact`, default scene,
+/// boundary-only Newton): 17 x 65 x 17, 56,355 unknowns, 1.76 GiB (738 bytes per `N^(4/3)`
+/// after the dense and fixed terms); bench_solid_contact, full-system Newton, 11 x 201 x 15,
+/// 99,495 unknowns, VmHWM 1.88 GB, and 17 x 129 x 17, 111,843 unknowns, 2.59 GiB. At
+/// 33 x 321 x 33 (1.05e6 unknowns) it is 77 GiB without the dense terms: refused on the 24 GiB
+/// benchmark machine.
+/// Elements of order `p` scale it by [`solid_fill_factor`].
+pub const SOLID_BYTES_PER_N_4_3: f64 = 780.0;
 
-/// The memory a 3-D contact solve on an `n1 x n2 x n3` grid needs, bytes: the sparse LU
-/// (`SOLID_BYTES_PER_N_4_3 N^(4/3)`, `N = 3 n1 n2 n3`) plus 128 MiB, and for the boundary-only
-/// solver (`condensed`) four dense `m x m` matrices (`P Z`, `N Z`, the Newton matrix and its
-/// LU), `m = 2 n1 n2` contact unknowns.
-pub fn solid_memory_estimate([n1, n2, n3]: [usize; 3], condensed: bool) -> f64 {
+/// How much more LU fill per `N^(4/3)` elements of order `p` make than Q1 (their wider
+/// coupling: `(p + 1)^3` nodes an element), fitted above the measured peaks of the default
+/// scene on 3-D bodies of about 60,000 unknowns (bytes per `N^(4/3)` of the LU term, with
+/// `factor * 780` beside it): Q1 17 x 65 x 17 738 (780), Q2 17 x 65 x 17 985 (1,014), Qp3
+/// 19 x 64 x 19 1,416 (1,560), Qp4 17 x 65 x 17 2,209 (2,418).
+///
+/// # Math
+/// ```text
+/// factor(p) = 1 + 0.1 (p - 1) + 0.2 (p - 1)^2
+/// ```
+pub fn solid_fill_factor(order: usize) -> f64 {
+    let q = order.max(1) as f64 - 1.0;
+    1.0 + 0.1 * q + 0.2 * q * q
+}
+
+/// The memory a 3-D contact solve on an `n1 x n2 x n3` grid of elements of order `order`
+/// (1: Q1, 2: Q2, `p`: Qp) needs, bytes: the sparse LU
+/// (`SOLID_BYTES_PER_N_4_3 solid_fill_factor(order) N^(4/3)`, `N = 3 n1 n2 n3`) plus 128 MiB,
+/// and for the boundary-only solver (`condensed`) four dense `m x m` matrices (`P Z`, `N Z`,
+/// the Newton matrix and its LU), `m = 2 n1 n2` contact unknowns.
+pub fn solid_memory_estimate([n1, n2, n3]: [usize; 3], condensed: bool, order: usize) -> f64 {
     let n = (3 * n1 * n2 * n3) as f64;
     let m = (2 * n1 * n2) as f64;
     let dense = if condensed { 4.0 * 8.0 * m * m } else { 0.0 };
-    SOLID_BYTES_PER_N_4_3 * n.powf(4.0 / 3.0) + dense + 128.0 * 1024.0 * 1024.0
+    let lu = SOLID_BYTES_PER_N_4_3 * solid_fill_factor(order) * n.powf(4.0 / 3.0);
+    lu + dense + 128.0 * 1024.0 * 1024.0
 }
 
 /// Bytes per unknown of a 3-D contact solve with the iterative bulk solver

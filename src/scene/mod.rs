@@ -498,5 +498,6 @@ pub use load::{Origins, known_keys};
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
     MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, SOLID_BYTES_PER_N_4_3, available_memory,
-    human_bytes, memory_estimate, solid_memory_estimate, solid_multigrid_memory_estimate,
+    human_bytes, memory_estimate, solid_fill_factor, solid_memory_estimate,
+    solid_multigrid_memory_estimate,
 };

@@ -156,11 +156,31 @@ fn solid_memory_estimates_refuse_the_direct_path_at_a_million_unknowns() {
     // peaks at 111,843 unknowns (17 x 129 x 17: LU 2.59 GiB, multigrid 1.08 GiB)
     let gib = |b: f64| b / (1u64 << 30) as f64;
     let million = [33, 321, 33];
-    assert!(gib(solid_memory_estimate(million, false)) > 24.0);
+    assert!(gib(solid_memory_estimate(million, false, 1)) > 24.0);
     assert!(gib(solid_multigrid_memory_estimate(million)) < 16.0);
     let small = [17, 129, 17];
-    assert!(gib(solid_memory_estimate(small, false)) > 2.59);
+    assert!(gib(solid_memory_estimate(small, false, 1)) > 2.59);
     assert!(gib(solid_multigrid_memory_estimate(small)) > 1.08);
+}
+
+#[test]
+fn solid_memory_estimate_lies_above_the_measured_peaks_of_every_element_order() {
+    // VmHWM of `capstan contact` (default scene, boundary-only Newton, release), KiB; the
+    // estimate within 25 % above each
+    let peaks = [
+        (1, [17, 65, 17], 1_840_980.0),
+        (2, [17, 65, 17], 2_361_740.0),
+        (3, [19, 64, 19], 4_253_296.0),
+        (4, [17, 65, 17], 4_945_652.0),
+    ];
+    for (order, grid, kib) in peaks {
+        let estimate = solid_memory_estimate(grid, true, order) / 1024.0;
+        let over = estimate / kib;
+        assert!((1.0..1.25).contains(&over), "order {order}: {over}");
+    }
+    // the fill grows with the order: Q2 and Qp2 alike, Qp4 about three times Q1
+    assert!((solid_fill_factor(2) - 1.3).abs() < 1e-12);
+    assert!((solid_fill_factor(4) - 3.1).abs() < 1e-12);
 }
 
 #[test]

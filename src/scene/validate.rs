@@ -398,7 +398,12 @@ impl Scene {
         let need = if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
         } else {
-            solid_memory_estimate([g.n1, g.n2, g.n3], condensed)
+            let degree = match self.discretisation.method {
+                DiscretisationMethod::FemQ2 => 2,
+                DiscretisationMethod::FemQp => order,
+                _ => 1,
+            };
+            solid_memory_estimate([g.n1, g.n2, g.n3], condensed, degree)
         };
         check_memory(at, "grid.n1", need, |have| {
             format!(
