@@ -48,19 +48,15 @@ impl PointStatus {
             _ => Self::InvalidInput,
         }
     }
-
-    /// The JSON name.
-    #[must_use]
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Self::Converged => "converged",
-            Self::NoEquilibrium => "no-equilibrium",
-            Self::NotConverged => "not-converged",
-            Self::InvalidInput => "invalid-input",
-            Self::Interrupted => "interrupted",
-        }
-    }
 }
+
+capstan_elasticity::solvers::named_variants!(PointStatus {
+    Converged => "converged",
+    NoEquilibrium => "no-equilibrium",
+    NotConverged => "not-converged",
+    InvalidInput => "invalid-input",
+    Interrupted => "interrupted",
+});
 
 /// One point of a sweep; also what a sweep part (`capstan sweep --shard`) stores and the MPI
 /// workers send, read back exactly.
@@ -429,12 +425,7 @@ pub fn table(r: &SweepReport) -> String {
     for p in &r.points {
         let slip = p.slip_fraction.map_or("-".into(), |x| format!("{x:.4}"));
         let newton = p.newton_iterations.map_or("-".into(), |x| x.to_string());
-        s += &line([
-            &format!("{:.6}", p.value),
-            p.status.as_str(),
-            &slip,
-            &newton,
-        ]);
+        s += &line([&format!("{:.6}", p.value), p.status.name(), &slip, &newton]);
     }
     s
 }

@@ -511,7 +511,7 @@ impl<'a> SlipSweep<'a> {
                     .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
                     .collect::<Vec<_>>(),
             )
-            .text("status", ok.iter().map(|p| p.status.as_str()));
+            .text("status", ok.iter().map(|p| p.status.name()));
         out.write_csv(&format!("{stem}.csv"), &table)?;
         out.write_json(&format!("{stem}.json"), r)?;
         let plot = LinePlot::new(self.title)

@@ -85,6 +85,13 @@ pub enum ContactErrorKind {
     Interrupted,
 }
 
+capstan_solvers::named_variants!(ContactErrorKind {
+    InvalidInput => "invalid-input",
+    NoEquilibrium => "no-equilibrium",
+    NotConverged => "not-converged",
+    Interrupted => "interrupted",
+});
+
 impl ContactError {
     /// Which kind of failure this is.
     pub fn kind(&self) -> ContactErrorKind {
@@ -107,11 +114,6 @@ impl ContactError {
     /// The status string of a failed run: `no-equilibrium`, `not-converged`, `interrupted` or
     /// `invalid-input`.
     pub fn status(&self) -> &'static str {
-        match self.kind() {
-            ContactErrorKind::InvalidInput => "invalid-input",
-            ContactErrorKind::NoEquilibrium => "no-equilibrium",
-            ContactErrorKind::NotConverged => "not-converged",
-            ContactErrorKind::Interrupted => "interrupted",
-        }
+        self.kind().name()
     }
 }
