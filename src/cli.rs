@@ -442,20 +442,10 @@ fn render<R: Serialize>(
 
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
-    let report = if scene.body.dimension == 3 {
-        let (report, solution, model) = commands::solid_contact::solve(&scene)?;
-        if let Some(dir) = &args.out {
-            let out = commands::solid_contact::write_out(dir, &report, &scene)?;
-            commands::solid_contact::write_body(&out, &scene, &model, &solution)?;
-        }
-        report
-    } else {
-        let (report, solved) = commands::contact::solve(&scene)?;
-        if let Some(dir) = &args.out {
-            commands::contact::write_out(dir, &report, &solved, &scene)?;
-        }
-        report
-    };
+    let (report, run) = commands::contact::solve(&scene)?;
+    if let Some(dir) = &args.out {
+        commands::contact::write_run(dir, &report, &run, &scene)?;
+    }
     render(
         args.scene.json,
         &Stamped::new(&report, Some(&scene)),

@@ -3,11 +3,9 @@
 
 use std::time::Instant;
 
-use capstan_elasticity::contact::{BoundarySolver, ThresholdSettings, threshold_ratio};
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
-use crate::commands::contact::model;
 use crate::error::CliError;
 use crate::scene::Scene;
 
@@ -48,15 +46,7 @@ pub struct ThresholdReport {
 /// Bad input (2); non-convergence (4).
 pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let t = Instant::now();
-    let r = if scene.body.dimension == 3 {
-        let model = crate::commands::solid_contact::model(scene)?;
-        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-        threshold_ratio(&solver, ThresholdSettings::default())?
-    } else {
-        let model = model(scene)?;
-        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-        threshold_ratio(&solver, ThresholdSettings::default())?
-    };
+    let r = scene.build()?.threshold()?;
     let obstacle = scene.obstacle.build()?;
     let problem = MembraneProblem {
         theta0: scene.membrane.theta0,

@@ -336,7 +336,13 @@ fn tension_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError
 fn solve_at(s: &FigureSettings, tau_max: f64) -> Result<contact::Solved, CliError> {
     let mut scene = s.scene();
     scene.loads.tau_max = tau_max;
-    Ok(contact::solve(&scene)?.1)
+    match contact::solve(&scene)?.1 {
+        contact::ContactRun::Plane(solved) => Ok(solved),
+        contact::ContactRun::Solid { .. } => Err(CliError::Scene {
+            origin: "body.dimension".into(),
+            message: "the paper's figures are of the plane-strain body (body.dimension = 2)".into(),
+        }),
+    }
 }
 
 /// Section 3, tau_max = 1: the displacement field on the body.

@@ -488,6 +488,7 @@ impl DiscretisationSpec {
     }
 }
 
+mod build;
 mod load;
 mod memory;
 #[cfg(test)]
