@@ -17,7 +17,8 @@ pub(super) const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 /// # Math
 /// ```text
 /// N     = 2 n2 n3                          unknowns (plane strain)
-/// bytes = 190 N log2(N)  (x2 for fem-q2)   sparse system, Jacobian and multifrontal LU
+/// bytes = 190 w N log2(N)                 sparse system (w: the method's memory_width,
+///                                          2 for fem-q2, 4 for fem-qp), Jacobian and multifrontal LU
 ///       + 2^27                             factors (nested dissection): fits the measured
 ///                                          VmHWM of `capstan contact` (fd, default scene)
 ///                                          from above: full-newton 1.12 GB / 4.70 GB /
@@ -33,12 +34,11 @@ pub(super) const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod, condensed: bool) -> f64 {
     let (n2, n3) = (n2 as f64, n3 as f64);
     let unknowns = 2.0 * n2 * n3;
-    let width = match method {
-        DiscretisationMethod::FemQ2 => 2.0,
-        // wider element couplings; the fill of the element nested dissection grows ~ p
-        DiscretisationMethod::FemQp => 4.0,
-        _ => 1.0,
-    };
+    // the method's own factor (fem-q2 2, fem-qp 4: wider element couplings, the fill of the
+    // element nested dissection grows ~ p); 1 for a method the registry no longer builds
+    let width = method
+        .scheme(&Default::default())
+        .map_or(1.0, |s| s.memory_width());
     let system =
         MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0) + 134_217_728.0;
     if condensed {

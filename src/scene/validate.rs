@@ -398,11 +398,16 @@ impl Scene {
         let need = if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
         } else {
-            let degree = match self.discretisation.method {
-                DiscretisationMethod::FemQ2 => 2,
-                DiscretisationMethod::FemQp => order,
-                _ => 1,
+            let settings = capstan_elasticity::registration::DiscretisationSettings {
+                order,
+                ..Default::default()
             };
+            let degree = self
+                .discretisation
+                .method
+                .scheme(&settings)
+                .and_then(|s| s.solid_element())
+                .map_or(1, |e| e.degree());
             solid_memory_estimate([g.n1, g.n2, g.n3], condensed, degree)
         };
         check_memory(at, "grid.n1", need, |have| {
