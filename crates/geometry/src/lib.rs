@@ -37,13 +37,17 @@
 pub mod ad;
 mod cone;
 mod elliptical_prism;
+mod erased;
 mod error;
 pub mod expression;
 mod expression_profile;
 mod nalgebra_views;
 mod obstacle;
+mod obstacles;
 mod prism;
 mod profile;
+mod registration;
+pub mod registry;
 pub mod scalar;
 mod shell;
 mod simple_surfaces;
@@ -53,13 +57,17 @@ mod vector;
 pub use ad::SurfaceJet;
 pub use cone::GeneralCone;
 pub use elliptical_prism::{CircularCylinder, EllipticalPrism};
+pub use erased::{
+    DynProfile, DynSurface, FourthDerivatives, SharedProfile, SharedSurface, TAYLOR_ORDER,
+};
 pub use error::GeometryError;
 pub use expression_profile::ExpressionProfile;
 /// The nalgebra the views (`SurfaceGeometry::first_form_matrix`, `ShellPoint::metric_matrix`, ...) return.
 pub use nalgebra;
-pub use obstacle::Obstacle;
+pub use obstacle::{Obstacle, ObstacleProfile};
 pub use prism::GeneralPrism;
 pub use profile::ProfileCurve;
+pub use registration::ObstacleSettings;
 pub use scalar::{Real, Scalar, real};
 pub use shell::{ShellChart, ShellFrame, ShellPoint, normal_derivatives};
 pub use simple_surfaces::{Plane, RightCircularCone, Sphere};

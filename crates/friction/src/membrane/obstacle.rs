@@ -26,6 +26,9 @@ use crate::root::Brent;
 /// - quadrature of the exponent (log-tension): expression prisms without weight, general cones;
 /// - ODE: ellipses and expression prisms with weight.
 ///
+/// A user prism or cone ([`Obstacle::prism_over`], [`Obstacle::cone_over`]) takes the general
+/// method of its class, as expression prisms and cones do; a general user surface is refused.
+///
 /// Steady speed without weight is closed form on every prism: `T = c + (T0 - c) exp(mu dPsi)`.
 ///
 /// # Errors
@@ -117,6 +120,21 @@ pub fn tension_profile_within(
         Obstacle::Cone(cone) => ConeMembrane::new(cone.profile_curve())
             .with_max_subdivisions(budget.max_subdivisions)
             .tension_profile(problem),
+        Obstacle::UserPrism(p) => {
+            PrismMembrane::new(p.profile_curve()).tension_profile_within(problem, budget)
+        }
+        Obstacle::UserCone(cone) => ConeMembrane::new(cone.profile_curve())
+            .with_max_subdivisions(budget.max_subdivisions)
+            .tension_profile(problem),
+        Obstacle::UserSurface(_) => Err(not_prism_or_cone()),
+    }
+}
+
+/// The membrane models (Theorems 1 and 2) need a prism or a cone.
+fn not_prism_or_cone() -> FrictionError {
+    FrictionError::MissingParameter {
+        field: "obstacle.shape",
+        why: "the membrane models need a prism or a cone; this obstacle is a general surface",
     }
 }
 
@@ -231,6 +249,17 @@ fn unit_exponent(
                 .exponents(t0, &[t1])?[0],
             Method::Quadrature,
         ),
+        Obstacle::UserPrism(p) => (
+            turning_angles_within(p.profile_curve(), t0, &[t1], budget.max_subdivisions)?[0],
+            Method::Quadrature,
+        ),
+        Obstacle::UserCone(cone) => (
+            ConeMembrane::new(cone.profile_curve())
+                .with_max_subdivisions(budget.max_subdivisions)
+                .exponents(t0, &[t1])?[0],
+            Method::Quadrature,
+        ),
+        Obstacle::UserSurface(_) => return Err(not_prism_or_cone()),
     })
 }
 
