@@ -333,12 +333,24 @@ fn run_command(cli: Cli) -> Result<String, CliError> {
             write_geometry,
             |r, scene| Ok(commands::geometry::table(r, &scene.obstacle.build()?)),
         ),
-        Some(Command::Verify(args)) => study(
-            &args,
-            commands::verify::report,
-            |dir, r| write_json_report(dir, "verify", r, None),
-            commands::verify::table,
-        ),
+        Some(Command::Verify(args)) => {
+            let report = commands::verify::report(args.quick)?;
+            let out = study(
+                &args,
+                |_| Ok(report.clone()),
+                |dir, r| write_json_report(dir, "verify", r, None),
+                commands::verify::table,
+            )?;
+            let missed = report.missed();
+            if missed.is_empty() {
+                Ok(out)
+            } else {
+                Err(CliError::VerificationFailed {
+                    output: out,
+                    missed,
+                })
+            }
+        }
         Some(Command::Bench(args)) => bench(&args),
         Some(Command::Tension(args)) => scene_command(
             &args.scene,

@@ -65,6 +65,15 @@ pub enum CliError {
     /// An output file could not be written (I/O, NaN refused, malformed data).
     #[error(transparent)]
     Output(#[from] crate::output::OutputError),
+    /// `capstan verify`: a study's observed L2 order fell short of its expected order (exit
+    /// code 6). `output` is the report (table or JSON), printed to stdout before the error.
+    #[error("{} of the studies missed the expected order of convergence: {}", missed.len(), missed.join("; "))]
+    VerificationFailed {
+        /// The whole report, as the command prints it on success.
+        output: String,
+        /// The studies that missed, with observed and expected orders.
+        missed: Vec<String>,
+    },
     /// Sweep parts that cannot be run or merged (bad `--shard`, parts that do not belong
     /// together, missing or duplicate points: exit code 2).
     #[error(transparent)]
@@ -72,14 +81,25 @@ pub enum CliError {
 }
 
 impl CliError {
+    /// What the command printed before it failed, for standard output (the report of a
+    /// `capstan verify` that missed an order); `None` for every other error.
+    pub fn stdout(&self) -> Option<&str> {
+        match self {
+            Self::VerificationFailed { output, .. } => Some(output),
+            _ => None,
+        }
+    }
+
     /// Process exit code: 2 for bad input, 3 when no limiting equilibrium exists, 4 for
     /// non-convergence (a work budget ran out), 5 when stopped (`--timeout`: `timed out`; an
-    /// observer's stop: `interrupted`), 1 otherwise.
+    /// observer's stop: `interrupted`), 6 when `capstan verify` finds a study below its
+    /// expected order, 1 otherwise.
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
             Self::ContactBudget { .. } => 4,
             Self::TimedOut { .. } => 5,
+            Self::VerificationFailed { .. } => 6,
             Self::Scene { .. }
             | Self::Set { .. }
             | Self::Geometry(_)

@@ -8,6 +8,9 @@ fn main() {
             let _ = writeln!(std::io::stdout().lock(), "{out}");
         }
         Err(e) => {
+            if let Some(out) = e.stdout() {
+                let _ = writeln!(std::io::stdout().lock(), "{out}");
+            }
             eprintln!("error: {e}");
             std::process::exit(e.exit_code());
         }

@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{ContactModel, ContactSolution, FullSystemSolver};
-use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::AnyFrictionLaw;
-use capstan_elasticity::solid::{HexElement, SolidBody, SolidFields, SolidNavier};
+use capstan_elasticity::registration::DiscretisationSettings;
+use capstan_elasticity::solid::{SolidBody, SolidFields, SolidNavier};
 use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::commands::contact::{ContactReport, SceneSolver, condensed, loads, scene_law};
@@ -43,17 +43,16 @@ pub fn solid_body(scene: &Scene) -> Result<SolidBody<Obstacle>, CliError> {
             ),
         });
     }
-    let order = match scene.discretisation.method {
-        DiscretisationMethod::FemQ1 => HexElement::Uniform(ElementOrder::Q1),
-        DiscretisationMethod::FemQ2 => HexElement::Uniform(ElementOrder::Q2),
-        DiscretisationMethod::FemQp => HexElement::gll(scene.discretisation.order)?,
-        DiscretisationMethod::Fd => {
-            return Err(CliError::Scene {
-                origin: "discretisation.method".into(),
-                message: "\"fd\" is plane strain only: use \"fem-q1\", \"fem-q2\" or \"fem-qp\" with body.dimension = 3".into(),
-            });
-        }
+    let settings = DiscretisationSettings {
+        order: scene.discretisation.order,
+        volumetric: scene.discretisation.volumetric,
+        ..Default::default()
     };
+    let order = scene
+        .discretisation
+        .method
+        .scheme(&settings)?
+        .solid_element()?;
     Ok(SolidBody {
         surface: obstacle,
         x1,

@@ -409,6 +409,83 @@ pub trait Discretisation {
     }
 }
 
+impl core::fmt::Debug for dyn Discretisation + Send + Sync {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Discretisation")
+            .field("method", &self.method())
+            .field("grid", self.grid())
+            .finish_non_exhaustive()
+    }
+}
+
+/// A boxed discretisation is one ([`crate::PlaneOperator`], what the registry builds).
+impl<T: Discretisation + ?Sized> Discretisation for Box<T> {
+    fn method(&self) -> &'static str {
+        (**self).method()
+    }
+
+    fn grid(&self) -> &crate::grid::Grid {
+        (**self).grid()
+    }
+
+    fn dof_count(&self) -> usize {
+        (**self).dof_count()
+    }
+
+    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
+        (**self).lu_ordering()
+    }
+
+    fn node_position(&self, node: [usize; 2]) -> [f64; 2] {
+        (**self).node_position(node)
+    }
+
+    #[track_caller]
+    fn dof(&self, node: [usize; 2], component: Component) -> usize {
+        (**self).dof(node, component)
+    }
+
+    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
+        (**self).entries()
+    }
+
+    fn fill(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        (**self).fill(add, rhs)
+    }
+
+    fn fill_values(
+        &self,
+        add: &mut dyn FnMut(usize, f64),
+        rhs: &mut [f64],
+    ) -> Result<(), ElasticityError> {
+        (**self).fill_values(add, rhs)
+    }
+
+    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        (**self).contact_nodes()
+    }
+
+    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
+        (**self).fields(v)
+    }
+
+    fn system(&self) -> Result<LinearSystem, ElasticityError> {
+        (**self).system()
+    }
+
+    fn refill(&self, system: &mut LinearSystem) -> Result<(), ElasticityError> {
+        (**self).refill(system)
+    }
+
+    fn solve(&self, solver: &mut dyn LinearSolver<f64>) -> Result<Vec<f64>, ElasticityError> {
+        (**self).solve(solver)
+    }
+}
+
 /// The nodal field `v` of `from` interpolated onto the nodes of `to` (both on grids of the same
 /// parameter rectangle): bilinear in `(x2, x3)` on `from`'s grid, each component apart.
 ///

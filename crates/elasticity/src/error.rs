@@ -58,6 +58,22 @@ pub enum ElasticityError {
     /// A linear or nonlinear solver failed.
     #[error(transparent)]
     Solver(#[from] SolverError),
+    /// `discretisation.method` names no registered discretisation.
+    #[error(
+        "`discretisation.method` = \"{name}\" is not a registered discretisation; expected one of {known}"
+    )]
+    UnknownDiscretisation {
+        /// The name asked for.
+        name: String,
+        /// The registered names, comma-separated.
+        known: String,
+    },
+    /// A discretisation of that name is registered already.
+    #[error("a discretisation named \"{name}\" is registered already")]
+    DuplicateDiscretisation {
+        /// The name.
+        name: &'static str,
+    },
 }
 
 impl ElasticityError {

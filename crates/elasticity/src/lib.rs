@@ -71,6 +71,8 @@ mod grid;
 mod material;
 mod plane_problem;
 mod plane_strain_operator;
+pub mod registration;
+pub mod registry;
 pub mod samples;
 mod shell_geometry;
 pub mod solid;
@@ -86,10 +88,12 @@ pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, i
 pub use error::ElasticityError;
 pub use fields::NodalFields;
 pub use finite_difference::FiniteDifferenceNavier;
+pub use finite_difference::FiniteDifferences;
 pub use grid::Grid;
 pub use material::Material;
 pub use plane_problem::{BodyForce, PlaneProblem};
-pub use shell_geometry::ShellGeometry;
+pub use registration::PlaneOperator;
+pub use shell_geometry::{SharedChart, ShellGeometry};
 pub use studies::studies;
 
 /// The friction crate, re-exported for users of [`contact`].

@@ -11,7 +11,7 @@ use crate::continuum::check_plane_strain;
 use crate::error::ElasticityError;
 use crate::grid::Grid;
 use crate::material::Material;
-use crate::shell_geometry::ShellGeometry;
+use crate::shell_geometry::{SharedChart, ShellGeometry};
 
 /// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
 pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
@@ -102,6 +102,21 @@ impl<G> PlaneProblem<G> {
             .field("grid", &self.grid)
             .field("boundary", &self.boundary)
             .finish_non_exhaustive()
+    }
+}
+
+impl<G: ShellGeometry + Send + Sync + 'static> PlaneProblem<G> {
+    /// The same problem over the chart shared as a [`SharedChart`] (what the registry's
+    /// discretisations are built over).
+    pub fn share_chart(self) -> PlaneProblem<SharedChart> {
+        let chart: SharedChart = std::sync::Arc::new(self.chart);
+        PlaneProblem {
+            chart,
+            material: self.material,
+            grid: self.grid,
+            boundary: self.boundary,
+            body_force: self.body_force,
+        }
     }
 }
 

@@ -473,6 +473,9 @@ impl Study for PrismMms {
     fn discretisation(&self) -> &'static str {
         "fd"
     }
+    fn expected_order(&self) -> f64 {
+        2.0 // the second-order central differences
+    }
     fn levels(&self) -> Vec<GridLevel> {
         [12, 24, 48, 96]
             .map(|m| GridLevel {
@@ -603,6 +606,9 @@ impl Study for LameCylinder {
     }
     fn discretisation(&self) -> &'static str {
         "fd"
+    }
+    fn expected_order(&self) -> f64 {
+        2.0 // the second-order central differences
     }
     fn levels(&self) -> Vec<GridLevel> {
         [8, 16, 32, 64]

@@ -78,6 +78,30 @@ impl<T: ShellGeometry + ?Sized> ShellGeometry for &T {
     }
 }
 
+/// A chart shared by the operators of every registered discretisation, whatever the surface:
+/// the registry builds plane-strain operators over it, so a user surface reaches every
+/// discretisation without a type of its own.
+pub type SharedChart = std::sync::Arc<dyn ShellGeometry + Send + Sync>;
+
+impl<T: ShellGeometry + ?Sized> ShellGeometry for std::sync::Arc<T> {
+    fn shell_point(&self, x: [f64; 3]) -> Result<ShellPoint<f64>, GeometryError> {
+        (**self).shell_point(x)
+    }
+
+    fn shell_frame(&self, x: [f64; 2]) -> Option<Result<ShellFrame<f64>, GeometryError>> {
+        (**self).shell_frame(x)
+    }
+
+    fn shell_column(
+        &self,
+        x: [f64; 2],
+        heights: &[f64],
+        out: &mut Vec<ShellPoint<f64>>,
+    ) -> Result<(), GeometryError> {
+        (**self).shell_column(x, heights, out)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -25,6 +25,9 @@ pub struct StudyPoint {
     pub l2_error: f64,
 }
 
+/// The default [`Study::order_tolerance`]: an observed L2 order at least `expected - 0.3`.
+pub const DEFAULT_ORDER_TOLERANCE: f64 = 0.3;
+
 /// A convergence study: a problem with a known solution, solved on a sequence of grids.
 pub trait Study {
     /// Name of the study.
@@ -35,6 +38,17 @@ pub trait Study {
     fn discretisation(&self) -> &'static str;
     /// The grids, coarsest first.
     fn levels(&self) -> Vec<GridLevel>;
+    /// The order of convergence of the L2 error the method must show on this problem:
+    /// `p + 1` for elements of order `p` (Q1: 2, Q2: 3), 2 for the second-order finite
+    /// differences. [`Study::run`] compares the observed order with it.
+    fn expected_order(&self) -> f64;
+    /// How far the observed L2 order may fall below [`Study::expected_order`] before the study
+    /// counts as missed (pre-asymptotic coarse grids, round-off on the finest):
+    /// [`DEFAULT_ORDER_TOLERANCE`] unless a study says otherwise. Superconvergence (an order
+    /// above the expected one) is never a miss.
+    fn order_tolerance(&self) -> f64 {
+        DEFAULT_ORDER_TOLERANCE
+    }
     /// Solves on one grid and measures the errors.
     ///
     /// # Errors
@@ -57,12 +71,17 @@ pub trait Study {
         let order = |f: fn(&StudyPoint) -> f64| {
             observed_order(&points.iter().map(|p| (p.h, f(p))).collect::<Vec<_>>())
         };
+        let order_l2 = order(|p| p.l2_error);
+        let (expected_order, order_tolerance) = (self.expected_order(), self.order_tolerance());
         Ok(StudyReport {
             name: self.name(),
             discretisation: self.discretisation(),
             geometry: self.geometry(),
             order_max: order(|p| p.max_error),
-            order_l2: order(|p| p.l2_error),
+            order_l2,
+            expected_order,
+            order_tolerance,
+            meets_expected_order: order_l2 >= expected_order - order_tolerance,
             points,
         })
     }
@@ -83,6 +102,12 @@ pub struct StudyReport {
     pub order_max: f64,
     /// Observed order in the L2 norm.
     pub order_l2: f64,
+    /// The L2 order the method must show ([`Study::expected_order`]).
+    pub expected_order: f64,
+    /// How far below `expected_order` the observed L2 order may fall ([`Study::order_tolerance`]).
+    pub order_tolerance: f64,
+    /// `order_l2 >= expected_order - order_tolerance` (false also when the order is NaN).
+    pub meets_expected_order: bool,
 }
 
 impl StudyReport {
@@ -99,8 +124,16 @@ impl StudyReport {
             );
         }
         s += &format!(
-            "observed order: max {:.3}, L2 {:.3}\n",
-            self.order_max, self.order_l2
+            "observed order: max {:.3}, L2 {:.3} (expected L2 {} - {}: {})\n",
+            self.order_max,
+            self.order_l2,
+            self.expected_order,
+            self.order_tolerance,
+            if self.meets_expected_order {
+                "ok"
+            } else {
+                "MISSED"
+            }
         );
         s
     }

@@ -1,26 +1,24 @@
-//! The paper's thick body on a prism, discretised by finite differences or finite elements
-//! (`discretisation.method`): the convenience builder of contact models.
+//! The paper's thick body on a prism, discretised by any registered discretisation
+//! (`discretisation.method`): the convenience builder of plane-strain contact models.
+
+use std::sync::Arc;
 
 use capstan_friction::FrictionLaw;
-use capstan_geometry::{Obstacle, ShellChart};
+use capstan_geometry::{Obstacle, ShellChart, Surface};
 
-use crate::boundary::Component;
 use crate::boundary::{BoundaryConditions, BoundaryFunction, SideCondition, X2Ends};
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
-use crate::fields::NodalFields;
-use crate::finite_difference::FiniteDifferenceNavier;
-use crate::finite_element::{
-    DiscretisationMethod, FiniteElementNavier, Grading, HighOrderNavier, QpSettings,
-    VolumetricIntegration,
-};
+use crate::finite_element::{DiscretisationMethod, Grading, VolumetricIntegration};
 use crate::grid::Grid;
 use crate::material::Material;
 use crate::plane_problem::PlaneProblem;
+use crate::registration::{DiscretisationScheme, DiscretisationSettings, PlaneOperator};
+use crate::shell_geometry::SharedChart;
 
-/// A plane-strain body of thickness `h` on `x2 in [theta0, theta1]` of a prism obstacle,
+/// A plane-strain body of thickness `h` on `x2 in [theta0, theta1]` of a prism surface `S`
+/// (the closed [`Obstacle`] by default, any [`Surface`] that is `x1`-invariant),
 /// bilateral contact on `x3 = 0` (`v^3 = 0`, including the corners), free outer surface, end
 /// tensions `T^2_2 = tau0` at `theta0` and `tau_max` at `theta1` with zero end shear.
 ///
@@ -32,10 +30,27 @@ use crate::plane_problem::PlaneProblem;
 /// let op = body.discretisation(1.0, 2.0).unwrap();
 /// assert_eq!(op.dof_count(), 2 * 20 * 5);
 /// ```
+///
+/// A user surface reaches 2-D contact the same way as 3-D ([`crate::solid::SolidBody::new`]):
+/// ```
+/// use capstan_elasticity::contact::ThickBody;
+/// use capstan_elasticity::Discretisation;
+/// use capstan_geometry::{Scalar, Surface};
+/// /// A circular prism of radius 2, written once as sigma(x1, x2).
+/// #[derive(Debug, Clone)]
+/// struct Round;
+/// impl Surface<f64> for Round {
+///     fn sigma<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 3] {
+///         [x[0], x[1].cos() * 2.0, x[1].sin() * 2.0]
+///     }
+/// }
+/// let op = ThickBody::on(Round, 21, 5).unwrap().discretisation(1.0, 2.0).unwrap();
+/// assert_eq!(op.dof_count(), 2 * 21 * 5);
+/// ```
 #[derive(Debug, Clone)]
-pub struct ThickBody {
-    /// The obstacle (a prism).
-    pub obstacle: Obstacle,
+pub struct ThickBody<S = Obstacle> {
+    /// The obstacle surface (a prism).
+    pub obstacle: S,
     /// `[theta0, theta1]`.
     pub theta: [f64; 2],
     /// Thickness `h`.
@@ -46,7 +61,8 @@ pub struct ThickBody {
     pub n2: usize,
     /// Nodes through the thickness.
     pub n3: usize,
-    /// The discretisation (`fd` by default; `fem-q2` needs odd `n2`, `n3`).
+    /// The discretisation (`fd` by default; `fem-q2` needs odd `n2`, `n3`), any registered
+    /// one ([`crate::registry`]).
     pub method: DiscretisationMethod,
     /// How the finite elements integrate the volumetric part (`Full` for `fd`).
     pub volumetric: VolumetricIntegration,
@@ -60,90 +76,9 @@ pub struct ThickBody {
     pub grading: Grading,
 }
 
-/// The discretisation [`ThickBody`] builds: finite differences or finite elements of the same
-/// operator on the same nodes, behind [`Discretisation`].
-#[derive(Debug)]
-pub enum ThickBodyOperator {
-    /// `discretisation.method = fd`.
-    FiniteDifference(FiniteDifferenceNavier<ShellChart<Obstacle>>),
-    /// `discretisation.method = fem-q1 | fem-q2`.
-    FiniteElement(FiniteElementNavier<ShellChart<Obstacle>>),
-    /// `discretisation.method = fem-qp`.
-    HighOrder(Box<HighOrderNavier<ShellChart<Obstacle>>>),
-}
-
-/// Forwards a [`Discretisation`] call to the operator inside.
-macro_rules! forward {
-    ($self:ident, $op:ident => $call:expr) => {
-        match $self {
-            ThickBodyOperator::FiniteDifference($op) => $call,
-            ThickBodyOperator::FiniteElement($op) => $call,
-            ThickBodyOperator::HighOrder($op) => $call,
-        }
-    };
-}
-
-impl Discretisation for ThickBodyOperator {
-    fn method(&self) -> &'static str {
-        forward!(self, op => op.method())
-    }
-
-    fn grid(&self) -> &Grid {
-        forward!(self, op => op.grid())
-    }
-
-    fn dof_count(&self) -> usize {
-        forward!(self, op => op.dof_count())
-    }
-
-    fn lu_ordering(&self) -> capstan_solvers::ColumnOrdering {
-        forward!(self, op => op.lu_ordering())
-    }
-
-    #[track_caller]
-    fn dof(&self, node: [usize; 2], component: Component) -> usize {
-        forward!(self, op => op.dof(node, component))
-    }
-
-    fn node_position(&self, node: [usize; 2]) -> [f64; 2] {
-        forward!(self, op => op.node_position(node))
-    }
-
-    fn entries(&self) -> Result<Vec<(usize, usize)>, ElasticityError> {
-        forward!(self, op => op.entries())
-    }
-
-    fn fill_values(
-        &self,
-        add: &mut dyn FnMut(usize, f64),
-        rhs: &mut [f64],
-    ) -> Result<(), ElasticityError> {
-        forward!(self, op => op.fill_values(add, rhs))
-    }
-
-    fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
-        forward!(self, op => op.contact_nodes())
-    }
-
-    fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
-        forward!(self, op => op.fields(v))
-    }
-
-    fn system(&self) -> Result<LinearSystem, ElasticityError> {
-        forward!(self, op => op.system())
-    }
-
-    fn refill(&self, system: &mut LinearSystem) -> Result<(), ElasticityError> {
-        forward!(self, op => op.refill(system))
-    }
-
-    fn solve(
-        &self,
-        solver: &mut dyn capstan_solvers::LinearSolver<f64>,
-    ) -> Result<Vec<f64>, ElasticityError> {
-        forward!(self, op => op.solve(solver))
-    }
-}
+/// The operator [`ThickBody`] builds: any registered discretisation, boxed (the name is kept
+/// for callers that spelled the type).
+pub type ThickBodyOperator = PlaneOperator;
 
 impl ThickBody {
     /// The paper's body: ellipse `a = b = 2` (a circle), `h = 1`, `E = 1e3`, `nu = 1/4`,
@@ -152,19 +87,8 @@ impl ThickBody {
     /// # Errors
     /// Invalid parameters.
     pub fn paper(n2: usize, n3: usize) -> Result<Self, ElasticityError> {
-        let half = core::f64::consts::FRAC_PI_2;
-        Ok(Self {
-            obstacle: Obstacle::Ellipse(capstan_geometry::EllipticalPrism::new(2.0, 2.0)?),
-            theta: [-half, half],
-            thickness: 1.0,
-            material: Material::new(1e3, 0.25)?,
-            n2,
-            n3,
-            method: DiscretisationMethod::Fd,
-            volumetric: VolumetricIntegration::Full,
-            order: DiscretisationMethod::DEFAULT_ORDER,
-            grading: Grading::UNIFORM,
-        })
+        let circle = Obstacle::Ellipse(capstan_geometry::EllipticalPrism::new(2.0, 2.0)?);
+        ThickBody::on(circle, n2, n3)
     }
 
     /// The boundary conditions for the end loads.
@@ -179,61 +103,87 @@ impl ThickBody {
             pinned: vec![],
         }
     }
+}
+
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
+    /// The paper's section-3 body (`h = 1`, `E = 1e3`, `nu = 1/4`, `x2 in [-pi/2, pi/2]`)
+    /// on the prism `surface`, finite differences on an `n2 x n3` grid.
+    ///
+    /// # Errors
+    /// Never for the paper's material; kept fallible like [`ThickBody::paper`].
+    pub fn on(surface: S, n2: usize, n3: usize) -> Result<Self, ElasticityError> {
+        let half = core::f64::consts::FRAC_PI_2;
+        Ok(Self {
+            obstacle: surface,
+            theta: [-half, half],
+            thickness: 1.0,
+            material: Material::new(1e3, 0.25)?,
+            n2,
+            n3,
+            method: DiscretisationMethod::Fd,
+            volumetric: VolumetricIntegration::Full,
+            order: DiscretisationMethod::DEFAULT_ORDER,
+            grading: Grading::UNIFORM,
+        })
+    }
+
+    /// The settings the discretisation is built from (`order`, `volumetric`, `grading`).
+    pub fn settings(&self) -> DiscretisationSettings {
+        DiscretisationSettings {
+            order: self.order,
+            volumetric: self.volumetric,
+            grading: self.grading,
+            ..Default::default()
+        }
+    }
+
+    /// The discretisation variant with its data, from the registry.
+    ///
+    /// # Errors
+    /// The registered builder's errors (naming `discretisation.volumetric`,
+    /// `discretisation.grading`, `discretisation.order`).
+    pub fn scheme(&self) -> Result<Arc<dyn DiscretisationScheme>, ElasticityError> {
+        self.method.scheme(&self.settings())
+    }
+
+    /// The problem of the body with end loads `tau0`, `tau_max`, over the shared chart.
+    ///
+    /// # Errors
+    /// Grid errors.
+    pub fn problem(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+    ) -> Result<PlaneProblem<SharedChart>, ElasticityError> {
+        let chart: SharedChart = Arc::new(ShellChart::new(self.obstacle.clone()));
+        Ok(PlaneProblem {
+            chart,
+            material: self.material,
+            grid: Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?,
+            boundary: ThickBody::boundary(tau0, tau_max),
+            body_force: None,
+        })
+    }
 
     /// The operator of [`ThickBody::method`] with end loads `tau0`, `tau_max`.
     ///
     /// # Errors
-    /// Grid, geometry or boundary errors; [`ElasticityError::InvalidParameter`] for a reduced
-    /// volumetric integration with finite differences, or naming `discretisation.grading` for a
-    /// graded body of another method than `fem-qp`.
+    /// Grid, geometry or boundary errors; the registered builder's errors
+    /// ([`ElasticityError::InvalidParameter`] for a reduced volumetric integration with finite
+    /// differences, or naming `discretisation.grading` for a graded body of another method
+    /// than `fem-qp`).
     pub fn discretisation(
         &self,
         tau0: f64,
         tau_max: f64,
-    ) -> Result<ThickBodyOperator, ElasticityError> {
-        let problem = PlaneProblem {
-            chart: ShellChart::new(self.obstacle.clone()),
-            material: self.material,
-            grid: Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?,
-            boundary: Self::boundary(tau0, tau_max),
-            body_force: None,
-        };
-        if self.method == DiscretisationMethod::FemQp {
-            let settings = QpSettings {
-                order: self.order,
-                volumetric: self.volumetric,
-                grading: self.grading,
-            };
-            return Ok(ThickBodyOperator::HighOrder(Box::new(
-                HighOrderNavier::with_settings(problem, settings)?,
-            )));
-        }
-        if !self.grading.is_uniform() {
-            return Err(ElasticityError::InvalidParameter {
-                field: "discretisation.grading",
-                value: self.grading.ratio(),
-                allowed: "1 (uniform) unless discretisation.method = fem-qp",
-            });
-        }
-        Ok(match self.method.element_order() {
-            None if self.volumetric != VolumetricIntegration::Full => {
-                return Err(ElasticityError::InvalidParameter {
-                    field: "discretisation.volumetric",
-                    value: f64::NAN,
-                    allowed: "full with finite differences (reduced needs fem-q1 or fem-q2)",
-                });
-            }
-            None => ThickBodyOperator::FiniteDifference(FiniteDifferenceNavier::new(problem)?),
-            Some(order) => ThickBodyOperator::FiniteElement(FiniteElementNavier::with_volumetric(
-                problem,
-                order,
-                self.volumetric,
-            )?),
-        })
+    ) -> Result<PlaneOperator, ElasticityError> {
+        let scheme = self.scheme()?;
+        scheme.build(self.problem(tau0, tau_max)?)
     }
 
-    /// The body on the next coarser grid of grid sequencing: `n -> (n + 1) / 2` nodes per
-    /// direction (every other node of an odd `n`), kept odd for `fem-q2`; `None` when a
+    /// The body on the next coarser grid of grid sequencing
+    /// ([`DiscretisationScheme::coarser_nodes`] in both directions): `n -> (n + 1) / 2` nodes
+    /// per direction (every other node of an odd `n`), kept odd for `fem-q2`; `None` when a
     /// direction would fall below 5 nodes (9 for `fem-q2`). `fem-qp`: half the elements
     /// (`n = p e + 1 -> p e / 2 + 1`, `e` even, at least 2 elements left).
     ///
@@ -243,32 +193,11 @@ impl ThickBody {
     /// ([`crate::discretisation::interpolate_nodal`]) interpolates on the uniform grid lines,
     /// not the graded node positions, so the start would be the coarse field at the wrong
     /// places.
-    pub fn coarser(&self) -> Option<ThickBody> {
-        if !self.grading.is_uniform() {
-            return None;
-        }
-        if self.method == DiscretisationMethod::FemQp {
-            let p = self.order.max(1);
-            let halve = |n: usize| {
-                let e = (n - 1) / p;
-                (e.is_multiple_of(2) && e >= 4 && (n - 1).is_multiple_of(p))
-                    .then_some(p * e / 2 + 1)
-            };
-            return Some(ThickBody {
-                n2: halve(self.n2)?,
-                n3: halve(self.n3)?,
-                ..self.clone()
-            });
-        }
-        let q2 = self.method == DiscretisationMethod::FemQ2;
-        let halve = |n: usize| {
-            let c = n.div_ceil(2);
-            let c = if q2 && c.is_multiple_of(2) { c + 1 } else { c };
-            (c >= if q2 { 9 } else { 5 } && c < n).then_some(c)
-        };
+    pub fn coarser(&self) -> Option<Self> {
+        let scheme = self.scheme().ok()?;
         Some(ThickBody {
-            n2: halve(self.n2)?,
-            n3: halve(self.n3)?,
+            n2: scheme.coarser_nodes(self.n2)?,
+            n3: scheme.coarser_nodes(self.n3)?,
             ..self.clone()
         })
     }
@@ -282,7 +211,7 @@ impl ThickBody {
         law: L,
         params: L::Params,
         slip_threshold: f64,
-    ) -> Result<ContactModel<ThickBodyOperator, L>, ContactError> {
+    ) -> Result<ContactModel<PlaneOperator, L>, ContactError> {
         ContactModel::new(
             |tau0, tau_max| self.discretisation(tau0, tau_max),
             law,

@@ -12,7 +12,7 @@ use capstan_solvers::{
     SolveStage, SolverError, SparseLu, SparsityPattern,
 };
 
-use crate::contact::body::{ThickBody, ThickBodyOperator};
+use crate::contact::body::ThickBody;
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
 use crate::contact::bulk_multigrid::BulkMultigrid;
 use crate::contact::error::{ContactError, ContactErrorKind};
@@ -21,6 +21,7 @@ use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use crate::discretisation::interpolate_nodal;
 use crate::error::ElasticityError;
+use crate::registration::PlaneOperator;
 
 /// Settings of [`FullSystemSolver`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -424,7 +425,7 @@ pub const SEQUENCING_COARSEST_NODES: usize = 20_000;
 /// The result of [`solve_sequenced`]: the finest level's model and solution, and the grids.
 pub struct Sequenced<L: FrictionLaw<f64>> {
     /// The contact model on the body's own grid.
-    pub model: ContactModel<ThickBodyOperator, L>,
+    pub model: ContactModel<PlaneOperator, L>,
     /// Its solution (statistics of the finest level; see `levels` for the others).
     pub solution: ContactSolution,
     /// `(n2, n3, newton iterations)` of every level, coarsest first.
@@ -451,15 +452,19 @@ pub struct Sequenced<L: FrictionLaw<f64>> {
 /// # Errors
 /// Model and solver errors of any level; [`ContactError::NoEquilibrium`] from the coarsest;
 /// an interrupted solve.
-pub fn solve_sequenced<L: FrictionLaw<f64> + Clone>(
-    body: &ThickBody,
+pub fn solve_sequenced<L, S>(
+    body: &ThickBody<S>,
     law: L,
     params: L::Params,
     slip_threshold: f64,
     loads: EndLoads,
     settings: FullSystemSettings,
     observer: &mut dyn Observer<f64>,
-) -> Result<Sequenced<L>, ContactError> {
+) -> Result<Sequenced<L>, ContactError>
+where
+    L: FrictionLaw<f64> + Clone,
+    S: capstan_geometry::Surface<f64> + Clone + Send + Sync + 'static,
+{
     let level_done = |level: usize, n2: usize, n3: usize, solution: &ContactSolution| {
         Progress::new(
             SolveStage::GridLevel,

@@ -42,6 +42,7 @@
 //! handled: a circular cylinder of finite width with free sides (rotation and axial
 //! translation) is not supported yet.
 
+mod any_body;
 mod body;
 mod boundary_solver;
 mod bulk_multigrid;
@@ -52,6 +53,7 @@ mod operator;
 mod solution;
 mod threshold;
 
+pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
 pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
 pub use bulk_multigrid::BulkMultigrid;
@@ -62,7 +64,7 @@ pub use full_system::{
 };
 pub use model::{ContactModel, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
-pub use operator::{ContactOperator, Extremum};
+pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use solution::{
     ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,
     state_intervals,

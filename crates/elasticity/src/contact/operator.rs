@@ -70,6 +70,58 @@ pub trait ContactOperator {
     /// # Panics
     /// If `v` has the wrong length.
     fn extremes(&self, v: &[f64]) -> [Extremum; 2];
+
+    /// The plane-strain discretisation behind the operator (its grid, nodal fields and
+    /// numbering, for outputs), `None` (the default) for a 3-D body.
+    fn plane(&self) -> Option<&dyn Discretisation> {
+        None
+    }
+}
+
+/// A contact operator of either dimension, as [`crate::contact::Body::operator`] builds it.
+pub type BodyOperator = Box<dyn ContactOperator + Send + Sync>;
+
+impl core::fmt::Debug for dyn ContactOperator + Send + Sync {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("ContactOperator")
+            .field("method", &self.method())
+            .field("dofs", &self.dof_count())
+            .finish_non_exhaustive()
+    }
+}
+
+impl ContactOperator for BodyOperator {
+    fn method(&self) -> &'static str {
+        (**self).method()
+    }
+
+    fn dof_count(&self) -> usize {
+        (**self).dof_count()
+    }
+
+    fn lu_ordering(&self) -> ColumnOrdering {
+        (**self).lu_ordering()
+    }
+
+    fn multigrid_prolongations(&self, coarsest_unknowns: usize) -> Option<Arc<[CsrMatrix]>> {
+        (**self).multigrid_prolongations(coarsest_unknowns)
+    }
+
+    fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
+        (**self).contact_system()
+    }
+
+    fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        (**self).contact_entries()
+    }
+
+    fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
+        (**self).extremes(v)
+    }
+
+    fn plane(&self) -> Option<&dyn Discretisation> {
+        (**self).plane()
+    }
 }
 
 /// The signed value of largest magnitude of `value(node)` over the nodes, with the node's
@@ -100,7 +152,7 @@ pub(crate) fn extremum(
     best
 }
 
-impl<D: Discretisation + ?Sized> ContactOperator for D {
+impl<D: Discretisation> ContactOperator for D {
     fn method(&self) -> &'static str {
         Discretisation::method(self)
     }
@@ -119,6 +171,10 @@ impl<D: Discretisation + ?Sized> ContactOperator for D {
 
     fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
         self.contact_nodes()
+    }
+
+    fn plane(&self) -> Option<&dyn Discretisation> {
+        Some(self)
     }
 
     fn extremes(&self, v: &[f64]) -> [Extremum; 2] {

@@ -1,18 +1,28 @@
-//! Choosing a discretisation by name (`discretisation.method` in scene files).
+//! Choosing a discretisation by name (`discretisation.method` in scene files), and the Q1/Q2
+//! elements' registrations.
+
+use std::sync::Arc;
 
 use super::element::ElementOrder;
-use super::high_order::HighOrderNavier;
 use super::navier::FiniteElementNavier;
-use crate::discretisation::Discretisation;
+use super::volumetric::VolumetricIntegration;
 use crate::error::ElasticityError;
-use crate::finite_difference::FiniteDifferenceNavier;
 use crate::plane_problem::PlaneProblem;
-use crate::shell_geometry::ShellGeometry;
+use crate::registration::{
+    DiscretisationScheme, DiscretisationSettings, PlaneOperator, RegisteredDiscretisation,
+    SchemeParameter, nearest_element_nodes,
+};
+use crate::registry;
+use crate::shell_geometry::{SharedChart, ShellGeometry};
+use crate::solid::HexElement;
 
-/// The discretisations of the Navier operator, by name: `fd`, `fem-q1`, `fem-q2`, `fem-qp`
-/// (with its order `p`, scene key `discretisation.order`, given separately).
+/// A discretisation of the Navier operator, by its registered name: `fd`, `fem-q1`,
+/// `fem-q2`, `fem-qp` (with its order `p`, scene key `discretisation.order`, given
+/// separately), or any discretisation added with [`crate::registry::register`].
 ///
-/// The same spelling is used by serde and [`core::fmt::Display`].
+/// The same spelling is used by serde and [`core::fmt::Display`]; reading an unregistered
+/// name fails, listing the registered ones. The variant with its data is built by
+/// [`DiscretisationMethod::scheme`].
 ///
 /// # Example
 /// ```
@@ -32,58 +42,66 @@ use crate::shell_geometry::ShellGeometry;
 ///     assert_eq!(op.method(), method.name());
 /// }
 /// ```
-#[derive(
-    Debug, Clone, Copy, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
-)]
-#[serde(rename_all = "kebab-case")]
-pub enum DiscretisationMethod {
-    /// [`FiniteDifferenceNavier`]: second-order finite differences (finite volumes).
-    #[default]
-    Fd,
-    /// [`FiniteElementNavier`] with bilinear (Q1) elements.
-    FemQ1,
-    /// [`FiniteElementNavier`] with biquadratic (Q2) elements (odd `n2`, `n3`).
-    FemQ2,
-    /// [`HighOrderNavier`]: tensor-product elements of order `p` with GLL nodes (`n - 1` a
-    /// multiple of `p`), statically condensed.
-    FemQp,
-}
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct DiscretisationMethod(&'static str);
 
-capstan_solvers::named_variants!(DiscretisationMethod {
-    Fd => "fd",
-    FemQ1 => "fem-q1",
-    FemQ2 => "fem-q2",
-    FemQp => "fem-qp",
-});
-
+#[allow(non_upper_case_globals)] // spelled as the variants they were, so call sites read the same
 impl DiscretisationMethod {
+    /// `fd`: [`crate::FiniteDifferenceNavier`], second-order finite differences (finite volumes).
+    pub const Fd: Self = Self("fd");
+    /// `fem-q1`: bilinear (Q1) elements.
+    pub const FemQ1: Self = Self("fem-q1");
+    /// `fem-q2`: biquadratic (Q2) elements (odd `n2`, `n3`).
+    pub const FemQ2: Self = Self("fem-q2");
+    /// `fem-qp`: [`super::HighOrderNavier`], tensor-product elements of order `p` with GLL
+    /// nodes (`n - 1` a multiple of `p`), statically condensed.
+    pub const FemQp: Self = Self("fem-qp");
+
+    /// The built-in methods, in registry order.
+    pub const ALL: [Self; 4] = [Self::Fd, Self::FemQ1, Self::FemQ2, Self::FemQp];
+
     /// The order of `fem-qp` when none is given (`discretisation.order`).
     pub const DEFAULT_ORDER: usize = 4;
 
-    /// The element order of a Q1/Q2 finite-element method (`None` for `fd` and `fem-qp`).
-    pub fn element_order(self) -> Option<ElementOrder> {
-        match self {
-            Self::Fd | Self::FemQp => None,
-            Self::FemQ1 => Some(ElementOrder::Q1),
-            Self::FemQ2 => Some(ElementOrder::Q2),
-        }
+    /// The name as used in files.
+    pub fn name(self) -> &'static str {
+        self.0
+    }
+
+    /// The registered method of a name, `None` if none is registered under it.
+    pub fn from_name(name: &str) -> Option<Self> {
+        registry::find(name).map(|entry| Self(entry.name))
+    }
+
+    /// The variant with its data, built from `settings` by the registry (which validates
+    /// them).
+    ///
+    /// # Errors
+    /// The builder's errors, naming the scene key; [`ElasticityError::UnknownDiscretisation`]
+    /// for a method no longer registered.
+    pub fn scheme(
+        self,
+        settings: &DiscretisationSettings,
+    ) -> Result<Arc<dyn DiscretisationScheme>, ElasticityError> {
+        registry::build(self.0, settings)
     }
 
     /// Whether the assembled matrix is symmetric (and, with enough Dirichlet conditions,
-    /// positive definite): the Cholesky backend applies.
+    /// positive definite): the Cholesky backend applies. See
+    /// [`DiscretisationScheme::is_symmetric`] (default settings).
     pub fn is_symmetric(self) -> bool {
-        self != Self::Fd
+        self.scheme(&DiscretisationSettings::default())
+            .is_ok_and(|s| s.is_symmetric())
     }
 
     /// Builds the discretisation (`fem-qp` of order [`Self::DEFAULT_ORDER`]).
     ///
     /// # Errors
-    /// The constructor's errors ([`FiniteDifferenceNavier::new`], [`FiniteElementNavier::new`],
-    /// [`HighOrderNavier::new`]).
+    /// The constructor's errors.
     pub fn build<G: ShellGeometry + Send + Sync + 'static>(
         self,
         problem: PlaneProblem<G>,
-    ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
+    ) -> Result<PlaneOperator, ElasticityError> {
         self.build_with_order(problem, Self::DEFAULT_ORDER)
     }
 
@@ -95,13 +113,177 @@ impl DiscretisationMethod {
         self,
         problem: PlaneProblem<G>,
         order: usize,
-    ) -> Result<Box<dyn Discretisation + Send + Sync>, ElasticityError> {
-        if self == Self::FemQp {
-            return Ok(Box::new(HighOrderNavier::new(problem, order)?));
-        }
-        Ok(match self.element_order() {
-            None => Box::new(FiniteDifferenceNavier::new(problem)?),
-            Some(order) => Box::new(FiniteElementNavier::new(problem, order)?),
+    ) -> Result<PlaneOperator, ElasticityError> {
+        let settings = DiscretisationSettings {
+            order,
+            ..Default::default()
+        };
+        self.scheme(&settings)?.build(problem.share_chart())
+    }
+}
+
+impl Default for DiscretisationMethod {
+    fn default() -> Self {
+        Self::Fd
+    }
+}
+
+impl core::fmt::Display for DiscretisationMethod {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.0)
+    }
+}
+
+impl core::str::FromStr for DiscretisationMethod {
+    type Err = ElasticityError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::from_name(s).ok_or_else(|| ElasticityError::UnknownDiscretisation {
+            name: s.to_owned(),
+            known: registry::names(),
         })
+    }
+}
+
+impl serde::Serialize for DiscretisationMethod {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.0)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for DiscretisationMethod {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
+
+/// `fem-q1`, `fem-q2`: [`FiniteElementNavier`] of `order` with the volumetric part integrated
+/// as `volumetric` says, on the grid's uniform nodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FemQk {
+    /// Q1 or Q2.
+    pub order: ElementOrder,
+    /// `discretisation.volumetric`.
+    pub volumetric: VolumetricIntegration,
+}
+
+impl FemQk {
+    fn from_settings(
+        order: ElementOrder,
+        s: &DiscretisationSettings,
+    ) -> Result<Arc<dyn DiscretisationScheme>, ElasticityError> {
+        if !s.grading.is_uniform() {
+            return Err(ElasticityError::InvalidParameter {
+                field: "discretisation.grading",
+                value: s.grading.ratio(),
+                allowed: "1 (uniform) unless discretisation.method = fem-qp",
+            });
+        }
+        Ok(Arc::new(Self {
+            order,
+            volumetric: s.volumetric,
+        }))
+    }
+}
+
+impl DiscretisationScheme for FemQk {
+    fn name(&self) -> &'static str {
+        match self.order {
+            ElementOrder::Q1 => "fem-q1",
+            ElementOrder::Q2 => "fem-q2",
+        }
+    }
+
+    fn build(&self, problem: PlaneProblem<SharedChart>) -> Result<PlaneOperator, ElasticityError> {
+        Ok(Box::new(FiniteElementNavier::with_volumetric(
+            problem,
+            self.order,
+            self.volumetric,
+        )?))
+    }
+
+    fn is_symmetric(&self) -> bool {
+        true
+    }
+
+    fn check_nodes(&self, field: &'static str, n: usize) -> Result<(), ElasticityError> {
+        self.order.check_nodes(field, n, false)
+    }
+
+    fn admissible_nodes(&self, n: usize) -> usize {
+        nearest_element_nodes(n, self.order.degree()).max(3)
+    }
+
+    /// Every other node, kept odd for Q2 (whole elements); at least 5 nodes (9 for Q2).
+    fn coarser_nodes(&self, n: usize) -> Option<usize> {
+        let q2 = self.order == ElementOrder::Q2;
+        let c = n.div_ceil(2);
+        let c = if q2 && c.is_multiple_of(2) { c + 1 } else { c };
+        (c >= if q2 { 9 } else { 5 } && c < n).then_some(c)
+    }
+
+    fn memory_width(&self) -> f64 {
+        self.order.degree() as f64
+    }
+
+    fn solid_element(&self) -> Result<HexElement, ElasticityError> {
+        Ok(HexElement::Uniform(self.order))
+    }
+}
+
+const VOLUMETRIC: SchemeParameter = SchemeParameter {
+    key: "volumetric",
+    default: "full",
+    allowed: "full, reduced",
+};
+
+/// `fem-q1` in the registry.
+pub(crate) const Q1_REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisation {
+    name: "fem-q1",
+    summary: "bilinear (Q1) finite elements on the grid's nodes",
+    parameters: &[VOLUMETRIC],
+    build: |s| FemQk::from_settings(ElementOrder::Q1, s),
+};
+
+/// `fem-q2` in the registry.
+pub(crate) const Q2_REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisation {
+    name: "fem-q2",
+    summary: "biquadratic (Q2) finite elements on the grid's nodes (odd n2, n3)",
+    parameters: &[VOLUMETRIC],
+    build: |s| FemQk::from_settings(ElementOrder::Q2, s),
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_through_serde_and_unknown_names_list_the_registry() {
+        use serde::Deserialize;
+        use serde::de::value::{Error, StrDeserializer};
+        let read =
+            |name: &str| DiscretisationMethod::deserialize(StrDeserializer::<Error>::new(name));
+        for m in DiscretisationMethod::ALL {
+            assert_eq!(read(m.name()).unwrap(), m);
+            assert_eq!(m.to_string(), m.name());
+        }
+        let err = read("fem-q3").unwrap_err();
+        assert!(err.to_string().contains("fem-q1"), "{err}");
+    }
+
+    #[test]
+    fn q2_coarsens_to_odd_counts_and_checks_odd_nodes() {
+        let s = DiscretisationSettings::default();
+        let q2 = DiscretisationMethod::FemQ2.scheme(&s).unwrap();
+        assert_eq!(q2.coarser_nodes(257), Some(129));
+        assert_eq!(q2.coarser_nodes(35), Some(19)); // 18 -> 19
+        assert_eq!(q2.coarser_nodes(13), None); // 7 nodes: under 9
+        assert!(q2.check_nodes("grid.n2", 250).is_err());
+        assert_eq!(q2.admissible_nodes(250), 249);
+        let q1 = DiscretisationMethod::FemQ1.scheme(&s).unwrap();
+        assert_eq!(q1.coarser_nodes(250), Some(125));
+        assert_eq!(q1.coarser_nodes(8), None);
+        assert_eq!(q1.admissible_nodes(250), 250);
     }
 }

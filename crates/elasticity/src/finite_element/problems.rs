@@ -150,6 +150,9 @@ impl Study for FemStudy {
     fn levels(&self) -> Vec<GridLevel> {
         self.inner().levels()
     }
+    fn expected_order(&self) -> f64 {
+        (self.order.degree() + 1) as f64
+    }
     fn run_level(&self, level: GridLevel) -> Result<StudyPoint, ElasticityError> {
         let (h, errors) = self.errors(level)?;
         Ok(StudyPoint {

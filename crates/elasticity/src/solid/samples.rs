@@ -307,6 +307,9 @@ impl Study for SolidStudy {
             ElementOrder::Q2 => "solid-q2",
         }
     }
+    fn expected_order(&self) -> f64 {
+        (self.order.degree() + 1) as f64
+    }
     fn levels(&self) -> Vec<GridLevel> {
         let k = self.order.degree();
         [2, 4, 8, 16]

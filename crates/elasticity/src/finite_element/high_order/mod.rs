@@ -51,6 +51,7 @@ mod graded_tests;
 mod kernel;
 mod mesh;
 mod operator;
+mod scheme;
 mod skeleton;
 mod solve;
 mod study;
@@ -63,5 +64,7 @@ pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_b
 pub use kernel::{ElementTables, add_element_matrix};
 pub use mesh::{Grading, QpSettings};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
+pub use scheme::FemQp;
+pub(crate) use scheme::REGISTRATION;
 pub use solve::CondensedSystem;
 pub use study::{HighOrderStudy, high_order_studies};
