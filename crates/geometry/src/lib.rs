@@ -25,13 +25,18 @@
 //! forward-mode automatic differentiation, the shell chart `Theta = sigma + x3 N`
 //! ([`ShellChart`]), the paper's obstacles (plane, circular cylinder, elliptical prism, general
 //! prism, right circular cone, general cone), a test sphere, and profiles defined by math
-//! expressions in `t` ([`ExpressionProfile`]).
+//! expressions in `t` ([`ExpressionProfile`]). [`Obstacle`] is the run-time choice among them
+//! and user obstacles ([`Obstacle::prism_over`], [`Obstacle::cone_over`],
+//! [`Obstacle::surface`]); [`registry`] makes any of them nameable in scenes
+//! (`obstacle.shape`), including obstacles registered at run time.
 //!
 //! # Limitations
 //! Charts must be `C^3` where they are evaluated (the shell chart's Christoffel symbols use
 //! third derivatives of `sigma`), `C^4` for the derivatives of the shell geometry
 //! ([`ShellChart::point_over`] on dual coordinates). Expression profiles are evaluated by an interpreter, several
-//! times slower than a compiled `sigma`.
+//! times slower than a compiled `sigma`. A user obstacle behind a pointer ([`SharedSurface`],
+//! [`SharedProfile`]) is exact at scalars carrying up to [`TAYLOR_ORDER`] = 4 derivatives
+//! (every evaluation in the workspace) and refuses more.
 #![warn(missing_docs)]
 
 pub mod ad;
