@@ -14,7 +14,7 @@
 //!
 //! Run: `cargo run --release --example extend_obstacle`
 //! Look at: the membrane ratio equal to the quadrature (to ~1e-12), and both contact solves
-//! converged with part of the contact sliding (`0 < slip fraction <= 1`).
+//! converged with part of the contact sliding (`0 < slip fraction < 1`).
 
 use capstan::geometry::registry::{self, ObstacleParameter, ParameterDefault, RegisteredObstacle};
 use capstan::geometry::{Obstacle, ProfileCurve, Scalar};
@@ -115,6 +115,7 @@ fn contact_3d(sag: f64) -> Result<(bool, f64), CliError> {
     let scene = trough_scene(
         sag,
         &[
+            ("discretisation.method", "\"fem-q1\""), // before the dimension: FD is 2-D only
             ("body.dimension", "3"),
             ("body.width", "0.4"),
             ("body.thickness", "0.1"),
@@ -122,7 +123,6 @@ fn contact_3d(sag: f64) -> Result<(bool, f64), CliError> {
             ("grid.n1", "3"),
             ("grid.n2", "33"),
             ("grid.n3", "3"),
-            ("discretisation.method", "\"fem-q1\""),
             ("loads.tau_max", "1.3"),
         ],
     )?;
@@ -150,9 +150,9 @@ mod tests {
     fn membrane_on_the_trough_matches_the_quadrature() {
         for sag in [0.0, 0.3, 0.6] {
             let (capstan, quadrature) = membrane_ratio(sag).unwrap();
-            // capstan's adaptive quadrature against Simpson with 4000 intervals
+            // capstan's adaptive quadrature against Simpson with 4000 intervals (error ~1e-15)
             assert!(
-                (capstan - quadrature).abs() < 1e-11 * quadrature,
+                (capstan - quadrature).abs() < 1e-12 * quadrature,
                 "{sag}: {capstan} {quadrature}"
             );
         }
@@ -179,7 +179,7 @@ mod tests {
             ("3-D", contact_3d(0.3).unwrap()),
         ] {
             assert!(converged, "{what}");
-            assert!(slip > 0.0 && slip <= 1.0, "{what}: slip fraction {slip}");
+            assert!(slip > 0.0 && slip < 1.0, "{what}: slip fraction {slip}");
         }
     }
 }
