@@ -3,21 +3,9 @@
 //! validated, and the paper's keys unchanged.
 
 use capstan::geometry::registry::{self, ObstacleParameter, ParameterDefault, RegisteredObstacle};
+use capstan::geometry::samples::TROUGH;
 use capstan::geometry::{Obstacle, ProfileCurve, Scalar, Surface};
 use capstan::{Scene, commands};
-
-/// `(2 sin t, 2 cos t - sag sin^2 t)`, the profile of `obstacle.shape = "trough"`.
-#[derive(Debug, Clone, Copy)]
-struct Trough {
-    sag: f64,
-}
-
-impl ProfileCurve<f64> for Trough {
-    fn profile<S: Scalar<f64>>(&self, t: S) -> [S; 2] {
-        let s = t.sin();
-        [s * 2.0, t.cos() * 2.0 - s * s * self.sag]
-    }
-}
 
 /// `(0.25 sin t + w sin 2t, 0.25 cos t)`: the cross-section of `obstacle.shape = "wobbly-cone"`.
 #[derive(Debug, Clone, Copy)]
@@ -47,22 +35,7 @@ impl Surface<f64> for Parabolic {
 fn register() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
-        registry::register(RegisteredObstacle {
-            name: "trough",
-            summary: "a circle of radius 2 whose top sags by obstacle.sag",
-            parameters: &[ObstacleParameter {
-                key: "sag",
-                default: ParameterDefault::Number(0.3),
-                allowed: "[0, 1)",
-            }],
-            build: |s| {
-                let sag = registry::check("obstacle.sag", s.number("sag")?, "[0, 1)", |c| {
-                    (0.0..1.0).contains(&c)
-                })?;
-                Ok(Obstacle::prism_over(Trough { sag }))
-            },
-        })
-        .unwrap();
+        registry::register(TROUGH).unwrap();
         registry::register(RegisteredObstacle {
             name: "wobbly-cone",
             summary: "a cone whose cross-section wobbles by obstacle.wobble",
@@ -96,81 +69,60 @@ fn scene(sets: &[&str]) -> Result<Scene, capstan::CliError> {
     Scene::from_toml_str("", "test", &sets)
 }
 
-fn same_profile(a: &commands::tension::TensionReport, b: &commands::tension::TensionReport) {
-    assert_eq!(a.method, b.method);
+/// The trough with sag 0.4 and the expression prism of the same curve, with `common` settings.
+fn trough_and_prism(common: &[&str]) -> (Scene, Scene) {
+    let both = [
+        vec!["obstacle.shape=trough", "obstacle.sag=0.4"],
+        vec![
+            "obstacle.shape=prism",
+            "obstacle.u=2*sin(t)",
+            "obstacle.v=2*cos(t) - 0.4*sin(t)^2",
+        ],
+    ]
+    .map(|mut sets| {
+        sets.extend(common);
+        scene(&sets).unwrap()
+    });
+    let [a, b] = both;
+    (a, b)
+}
+
+/// Both tension profiles: the same method on the same curve, compiled against interpreted,
+/// so equal to round-off.
+fn same_tension(a: &Scene, b: &Scene, method: &str) {
+    let (a, b) = (
+        commands::tension::report(a).unwrap(),
+        commands::tension::report(b).unwrap(),
+    );
+    assert_eq!((a.method, b.method), (method, method));
     assert_eq!(a.theta, b.theta);
     for (x, y) in a.tension.iter().zip(&b.tension) {
-        // the same method on the same curve, compiled against interpreted: round-off only
         assert!((x - y).abs() <= 1e-12 * y, "{x} against {y}");
     }
 }
 
 #[test]
 fn a_registered_trough_gives_the_tension_of_the_equivalent_expression_prism() {
-    let wrap = ["membrane.theta0=-0.6", "membrane.theta_max=1.0"];
-    let trough =
-        scene(&[&["obstacle.shape=trough", "obstacle.sag=0.4"][..], &wrap].concat()).unwrap();
-    let prism = scene(
-        &[
-            &[
-                "obstacle.shape=prism",
-                "obstacle.u=2*sin(t)",
-                "obstacle.v=2*cos(t) - 0.4*sin(t)^2",
-            ][..],
-            &wrap,
-        ]
-        .concat(),
-    )
-    .unwrap();
-    let (a, b) = (
-        commands::tension::report(&trough).unwrap(),
-        commands::tension::report(&prism).unwrap(),
-    );
-    assert_eq!(a.method, "quadrature");
-    same_profile(&a, &b);
+    let (trough, prism) = trough_and_prism(&["membrane.theta0=-0.6", "membrane.theta_max=1.0"]);
+    same_tension(&trough, &prism, "quadrature");
     // with weight: the ODE of Theorem 1, the same steps on both
-    let (trough, prism) = (
-        trough
-            .with_raw("loads.gravity", "9.81", "t")
+    let weighted = |s: Scene| {
+        s.with_raw("loads.gravity", "9.81", "t")
+            .and_then(|s| s.with_raw("loads.density", "0.05", "t"))
             .unwrap()
-            .with_raw("loads.density", "0.05", "t")
-            .unwrap(),
-        prism
-            .with_raw("loads.gravity", "9.81", "t")
-            .unwrap()
-            .with_raw("loads.density", "0.05", "t")
-            .unwrap(),
-    );
-    let (a, b) = (
-        commands::tension::report(&trough).unwrap(),
-        commands::tension::report(&prism).unwrap(),
-    );
-    assert_eq!(a.method, "ode");
-    same_profile(&a, &b);
+    };
+    same_tension(&weighted(trough), &weighted(prism), "ode");
 }
 
 #[test]
 fn a_registered_trough_gives_the_implied_mu_of_the_equivalent_expression_prism() {
     use commands::infer_mu::{FrictionModel, report_for};
-    let common = [
+    let wrap = [
         "membrane.theta0=-0.6",
         "membrane.theta_max=1.0",
         "membrane.t_max=1.6",
     ];
-    let trough =
-        scene(&[&["obstacle.shape=trough", "obstacle.sag=0.4"][..], &common].concat()).unwrap();
-    let prism = scene(
-        &[
-            &[
-                "obstacle.shape=prism",
-                "obstacle.u=2*sin(t)",
-                "obstacle.v=2*cos(t) - 0.4*sin(t)^2",
-            ][..],
-            &common,
-        ]
-        .concat(),
-    )
-    .unwrap();
+    let (trough, prism) = trough_and_prism(&wrap);
     for model in [FrictionModel::Capstan, FrictionModel::Membrane] {
         let (a, b) = (
             report_for(&trough, model).unwrap(),
@@ -188,32 +140,20 @@ fn a_registered_trough_gives_the_implied_mu_of_the_equivalent_expression_prism()
 
 #[test]
 fn a_registered_cone_gives_the_tension_of_the_equivalent_expression_cone() {
-    let wrap = ["membrane.theta0=-1.0", "membrane.theta_max=1.5"];
-    let user = scene(
-        &[
-            &["obstacle.shape=wobbly-cone", "obstacle.wobble=0.03"][..],
-            &wrap,
-        ]
-        .concat(),
-    )
-    .unwrap();
-    let expression = scene(
-        &[
-            &[
-                "obstacle.shape=cone",
-                "obstacle.ubar=0.25*sin(t) + 0.03*sin(2*t)",
-                "obstacle.vbar=0.25*cos(t)",
-            ][..],
-            &wrap,
-        ]
-        .concat(),
-    )
-    .unwrap();
-    let (a, b) = (
-        commands::tension::report(&user).unwrap(),
-        commands::tension::report(&expression).unwrap(),
-    );
-    same_profile(&a, &b);
+    let user = scene(&[
+        "obstacle.shape=wobbly-cone",
+        "obstacle.wobble=0.03",
+        "membrane.theta0=-1.0",
+        "membrane.theta_max=1.5",
+    ]);
+    let expression = scene(&[
+        "obstacle.shape=cone",
+        "obstacle.ubar=0.25*sin(t) + 0.03*sin(2*t)",
+        "obstacle.vbar=0.25*cos(t)",
+        "membrane.theta0=-1.0",
+        "membrane.theta_max=1.5",
+    ]);
+    same_tension(&user.unwrap(), &expression.unwrap(), "quadrature");
 }
 
 #[test]

@@ -5,8 +5,10 @@ use super::*;
 impl Scene {
     /// Checks every field against its allowed range (see [`Scene::load`], which calls it).
     ///
-    /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
-    /// shape's expressions parse and are finite with finite first and second derivatives on
+    /// Ranges: `obstacle.shape` is a registered obstacle ([`capstan_geometry::registry`]),
+    /// whose builder checks its own keys (`obstacle.radius, a, b > 0`; `obstacle.half_angle`
+    /// in `(0, pi/2)`; a registered obstacle's ranges); the four expressions parse, and the
+    /// shape's expressions are finite with finite first and second derivatives on
     /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is one of
     /// [`FrictionLawKind::names`],
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,

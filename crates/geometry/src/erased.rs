@@ -92,6 +92,31 @@ fn taylor_order<S: Scalar<f64>>() -> usize {
 /// `1/k!` for `k <= 4`.
 const INVERSE_FACTORIAL: [f64; 5] = [1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0];
 
+/// A user profile curve or surface behind a shared pointer (cloning shares it).
+///
+/// Two are equal when they share the same curve or surface.
+#[derive(Debug)]
+pub struct Shared<T: ?Sized>(Arc<T>);
+
+impl<T: ?Sized> Shared<T> {
+    /// The wrapped curve or surface.
+    pub fn inner(&self) -> &T {
+        &self.0
+    }
+}
+
+impl<T: ?Sized> Clone for Shared<T> {
+    fn clone(&self) -> Self {
+        Self(Arc::clone(&self.0))
+    }
+}
+
+impl<T: ?Sized> PartialEq for Shared<T> {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
 /// A profile curve behind a shared pointer; a [`ProfileCurve`] again, exactly.
 ///
 /// `profile_jet` is the wrapped curve's own (bit for bit); `profile` at a dual number is the
@@ -99,24 +124,12 @@ const INVERSE_FACTORIAL: [f64; 5] = [1.0, 1.0, 0.5, 1.0 / 6.0, 1.0 / 24.0];
 ///
 /// # Panics
 /// `profile` panics on a scalar carrying more than [`TAYLOR_ORDER`] derivatives.
-#[derive(Debug, Clone)]
-pub struct SharedProfile(Arc<dyn DynProfile>);
+pub type SharedProfile = Shared<dyn DynProfile>;
 
 impl SharedProfile {
     /// Wraps `profile`.
     pub fn new<P: ProfileCurve<f64> + Send + Sync + Debug + 'static>(profile: P) -> Self {
         Self(Arc::new(profile))
-    }
-    /// The wrapped curve.
-    pub fn inner(&self) -> &dyn DynProfile {
-        &*self.0
-    }
-}
-
-/// Two shared profiles are equal when they share the curve.
-impl PartialEq for SharedProfile {
-    fn eq(&self, other: &Self) -> bool {
-        Arc::ptr_eq(&self.0, &other.0)
     }
 }
 
@@ -155,24 +168,12 @@ impl ProfileCurve<f64> for SharedProfile {
 ///
 /// # Panics
 /// `sigma` panics on a scalar carrying more than [`TAYLOR_ORDER`] derivatives.
-#[derive(Debug, Clone)]
-pub struct SharedSurface(Arc<dyn DynSurface>);
+pub type SharedSurface = Shared<dyn DynSurface>;
 
 impl SharedSurface {
     /// Wraps `surface`.
     pub fn new<S: Surface<f64> + Send + Sync + Debug + 'static>(surface: S) -> Self {
         Self(Arc::new(surface))
-    }
-    /// The wrapped surface.
-    pub fn inner(&self) -> &dyn DynSurface {
-        &*self.0
-    }
-}
-
-/// Two shared surfaces are equal when they share the surface.
-impl PartialEq for SharedSurface {
-    fn eq(&self, other: &Self) -> bool {
-        Arc::ptr_eq(&self.0, &other.0)
     }
 }
 

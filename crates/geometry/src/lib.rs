@@ -53,6 +53,7 @@ mod prism;
 mod profile;
 mod registration;
 pub mod registry;
+pub mod samples;
 pub mod scalar;
 mod shell;
 mod simple_surfaces;
