@@ -59,7 +59,7 @@ pub fn report(scene: &Scene) -> Result<TensionReport, CliError> {
 pub fn table(r: &TensionReport, scene: &Scene) -> String {
     let m = &scene.membrane;
     let mut s = format!(
-        "membrane on {:?}, mu = {}, T0 = {} on [{:.6}, {:.6}] ({})\n  T_max = {:.12}   T_max/T0 = {:.12}\n\n{:>14} {:>20}\n",
+        "membrane on {}, mu = {}, T0 = {} on [{:.6}, {:.6}] ({})\n  T_max = {:.12}   T_max/T0 = {:.12}\n\n{:>14} {:>20}\n",
         scene.obstacle.shape,
         scene.friction.mu,
         m.t0,

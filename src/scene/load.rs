@@ -227,6 +227,14 @@ pub fn known_keys() -> Vec<String> {
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
     }
+    for obstacle in capstan_geometry::registry::registry() {
+        keys.extend(
+            obstacle
+                .parameters
+                .iter()
+                .map(|p| format!("obstacle.{}", p.key)),
+        );
+    }
     for (section, value) in &table {
         if let toml::Value::Table(t) = value {
             keys.extend(t.keys().map(|k| format!("{section}.{k}")));

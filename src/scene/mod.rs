@@ -15,11 +15,9 @@ use capstan_elasticity::solid::SideFaces;
 use capstan_elasticity::solvers::LinearBackend;
 use capstan_friction::membrane::MembraneLoads;
 use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
+use capstan_geometry::GeometryError;
 use capstan_geometry::expression::Expression;
-use capstan_geometry::{
-    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
-    RightCircularCone,
-};
+use capstan_geometry::{Obstacle, ObstacleSettings};
 use serde::{Deserialize, Serialize};
 
 use crate::error::CliError;
@@ -61,28 +59,18 @@ pub struct OutputSpec {
     pub vtu_obstacle: bool,
 }
 
-/// The obstacle's shape (`obstacle.shape`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Shape {
-    /// Circular cylinder of `obstacle.radius`.
-    Cylinder,
-    /// Elliptical prism `(x1, a sin x2, b cos x2)` with `obstacle.a`, `obstacle.b`.
-    Ellipse,
-    /// General prism `(x1, u(x2), v(x2))` from expressions `obstacle.u`, `obstacle.v`.
-    Prism,
-    /// Right circular cone of half-aperture `obstacle.half_angle`.
-    CircularCone,
-    /// General cone `x1 (1, ubar(x2), vbar(x2))` from `obstacle.ubar`, `obstacle.vbar`.
-    Cone,
-}
-
 /// `[obstacle]`.
+///
+/// `shape` names a registered obstacle ([`capstan_geometry::registry`]); the fields below are
+/// the parameters of the paper's obstacles, and any other key of the table (a parameter of an
+/// obstacle registered elsewhere, a number or an expression) is in `extra`. Unknown keys are
+/// refused by the scene's key check ([`known_keys`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct ObstacleSpec {
-    /// `cylinder | ellipse | prism | circular-cone | cone`.
-    pub shape: Shape,
+    /// A registered obstacle: `cylinder | ellipse | prism | circular-cone | cone` or one
+    /// registered at run time.
+    pub shape: String,
     /// Cylinder radius.
     pub radius: f64,
     /// Ellipse horizontal semi-axis.
@@ -99,12 +87,15 @@ pub struct ObstacleSpec {
     pub ubar: String,
     /// Cone profile `vbar(t)`.
     pub vbar: String,
+    /// Parameters of other registered obstacles, by key (numbers or expressions).
+    #[serde(flatten)]
+    pub extra: std::collections::BTreeMap<String, toml::Value>,
 }
 
 impl Default for ObstacleSpec {
     fn default() -> Self {
         Self {
-            shape: Shape::Ellipse,
+            shape: "ellipse".into(),
             radius: 2.0,
             a: 2.0,
             b: 2.0,
@@ -113,31 +104,55 @@ impl Default for ObstacleSpec {
             v: "2*cos(t)".into(),
             ubar: "0.5*sin(t)".into(),
             vbar: "0.5*cos(t)".into(),
+            extra: Default::default(),
         }
     }
 }
 
 impl ObstacleSpec {
-    /// Builds the obstacle, validating its parameters.
+    /// The values every registered obstacle draws its parameters from.
     ///
     /// # Errors
-    /// [`CliError::Geometry`] naming the bad field.
+    /// [`CliError::Scene`] naming an `extra` key that is neither a number nor a string.
+    pub fn settings(&self) -> Result<ObstacleSettings, CliError> {
+        use capstan_geometry::registry::ParameterValue::{Expression, Number};
+        let mut s = ObstacleSettings::new()
+            .with("radius", Number(self.radius))
+            .with("a", Number(self.a))
+            .with("b", Number(self.b))
+            .with("half_angle", Number(self.half_angle))
+            .with("u", Expression(self.u.clone()))
+            .with("v", Expression(self.v.clone()))
+            .with("ubar", Expression(self.ubar.clone()))
+            .with("vbar", Expression(self.vbar.clone()));
+        for (key, value) in &self.extra {
+            let value = match value {
+                toml::Value::Float(x) => Number(*x),
+                toml::Value::Integer(i) => Number(*i as f64),
+                toml::Value::String(e) => Expression(e.clone()),
+                other => {
+                    return Err(CliError::Scene {
+                        origin: format!("obstacle.{key}"),
+                        message: format!(
+                            "`obstacle.{key}` = {other} must be a number or an expression (a string)"
+                        ),
+                    });
+                }
+            };
+            s.insert(key, value);
+        }
+        Ok(s)
+    }
+
+    /// Builds the obstacle `shape` names, validating its parameters.
+    ///
+    /// # Errors
+    /// [`CliError::Geometry`] naming the bad field (or listing the registered shapes).
     pub fn build(&self) -> Result<Obstacle, CliError> {
-        Ok(match self.shape {
-            Shape::Cylinder => Obstacle::Cylinder(CircularCylinder::new(self.radius)?),
-            Shape::Ellipse => Obstacle::Ellipse(EllipticalPrism::new(self.a, self.b)?),
-            Shape::Prism => Obstacle::Prism(GeneralPrism::new(ExpressionProfile::parse_named(
-                &self.u,
-                &self.v,
-                ["obstacle.u", "obstacle.v"],
-            )?)),
-            Shape::CircularCone => Obstacle::CircularCone(RightCircularCone::new(self.half_angle)?),
-            Shape::Cone => Obstacle::Cone(GeneralCone::new(ExpressionProfile::parse_named(
-                &self.ubar,
-                &self.vbar,
-                ["obstacle.ubar", "obstacle.vbar"],
-            )?)),
-        })
+        Ok(capstan_geometry::registry::build(
+            &self.shape,
+            &self.settings()?,
+        )?)
     }
 }
 

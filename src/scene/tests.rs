@@ -30,7 +30,7 @@ fn set_overrides_numbers_and_strings() {
         "obstacle.u=2*sin(t) + 0.2*sin(2*t)",
         "friction.mu=0.3",
     ]);
-    assert_eq!(s.obstacle.shape, Shape::Prism);
+    assert_eq!(s.obstacle.shape, "prism");
     assert_eq!(s.obstacle.u, "2*sin(t) + 0.2*sin(2*t)");
     assert_eq!(s.friction.mu, 0.3);
 }

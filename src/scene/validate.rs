@@ -5,8 +5,10 @@ use super::*;
 impl Scene {
     /// Checks every field against its allowed range (see [`Scene::load`], which calls it).
     ///
-    /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
-    /// shape's expressions parse and are finite with finite first and second derivatives on
+    /// Ranges: `obstacle.shape` is a registered obstacle ([`capstan_geometry::registry`]),
+    /// whose builder checks its own keys (`obstacle.radius, a, b > 0`; `obstacle.half_angle`
+    /// in `(0, pi/2)`; a registered obstacle's ranges); the four expressions parse, and the
+    /// shape's expressions are finite with finite first and second derivatives on
     /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is one of
     /// [`FrictionLawKind::names`],
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
@@ -103,40 +105,48 @@ impl Scene {
             "(membrane.theta0, inf)",
             m.theta_max > m.theta0,
         )?;
-        match o.shape {
-            Shape::Cylinder => real("obstacle.radius", o.radius, "(0, inf)", o.radius > 0.0)?,
-            Shape::Ellipse => {
-                real("obstacle.a", o.a, "(0, inf)", o.a > 0.0)?;
-                real("obstacle.b", o.b, "(0, inf)", o.b > 0.0)?;
-            }
-            Shape::CircularCone => real(
-                "obstacle.half_angle",
-                o.half_angle,
-                "(0, pi/2)",
-                o.half_angle > 0.0 && o.half_angle < FRAC_PI_2,
-            )?,
-            Shape::Prism | Shape::Cone => {}
-        }
-        for (key, src) in [
-            ("obstacle.u", &o.u),
-            ("obstacle.v", &o.v),
-            ("obstacle.ubar", &o.ubar),
-            ("obstacle.vbar", &o.vbar),
-        ] {
-            let used = matches!(
-                (o.shape, key),
-                (Shape::Prism, "obstacle.u" | "obstacle.v")
-                    | (Shape::Cone, "obstacle.ubar" | "obstacle.vbar")
-            );
+        let registered = capstan_geometry::registry::find(&o.shape).ok_or_else(|| {
+            bad(
+                "obstacle.shape",
+                format!("{:?}", o.shape),
+                &capstan_geometry::registry::names(),
+            )
+        })?;
+        let settings = o.settings()?;
+        let is_expression = |key: &str| {
+            registered.parameter(key).is_some_and(|p| {
+                matches!(
+                    p.default,
+                    capstan_geometry::registry::ParameterDefault::Expression(_)
+                )
+            })
+        };
+        // The paper's four expressions always parse; the shape's own are C^2 on the wrap.
+        let fixed = [
+            ("u", &o.u),
+            ("v", &o.v),
+            ("ubar", &o.ubar),
+            ("vbar", &o.vbar),
+        ];
+        let extra = registered
+            .parameters
+            .iter()
+            .filter(|p| !fixed.iter().any(|(k, _)| *k == p.key) && is_expression(p.key))
+            .filter_map(|p| match settings.get(p.key) {
+                Some(capstan_geometry::registry::ParameterValue::Expression(e)) => Some((p.key, e)),
+                _ => None,
+            });
+        for (name, src) in fixed.into_iter().chain(extra) {
+            let key = format!("obstacle.{name}");
             let expression = Expression::parse(src).map_err(|e| CliError::Scene {
-                origin: at.locate(key),
+                origin: at.locate(&key),
                 message: format!("`{key}` = {src:?}: {e}"),
             })?;
-            if used {
+            if is_expression(name) {
                 expression
                     .check_finite_on(m.theta0, m.theta_max, EXPRESSION_CHECK_SAMPLES)
                     .map_err(|e| CliError::Scene {
-                        origin: at.locate(key),
+                        origin: at.locate(&key),
                         message: format!(
                             "`{key}` = {src:?} must be finite with finite first and second derivatives on [membrane.theta0, membrane.theta_max] = [{}, {}]: {e}",
                             m.theta0, m.theta_max
@@ -144,6 +154,22 @@ impl Scene {
                     })?;
             }
         }
+        // The obstacle's own ranges: validated by building it.
+        registered.build_from(&settings).map_err(|e| match e {
+            GeometryError::InvalidParameter {
+                field,
+                value,
+                allowed,
+            } => bad(field, value.to_string(), allowed),
+            GeometryError::Expression { field, .. } => CliError::Scene {
+                origin: at.locate(field),
+                message: e.to_string(),
+            },
+            other => CliError::Scene {
+                origin: at.locate("obstacle.shape"),
+                message: other.to_string(),
+            },
+        })?;
         let f = &self.friction;
         if FrictionLawKind::parse(&f.law).is_none() {
             return Err(bad(

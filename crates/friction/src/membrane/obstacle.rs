@@ -26,6 +26,9 @@ use crate::root::Brent;
 /// - quadrature of the exponent (log-tension): expression prisms without weight, general cones;
 /// - ODE: ellipses and expression prisms with weight.
 ///
+/// A user prism or cone ([`Obstacle::prism_over`], [`Obstacle::cone_over`]) takes the general
+/// method of its class, as expression prisms and cones do; a general user surface is refused.
+///
 /// Steady speed without weight is closed form on every prism: `T = c + (T0 - c) exp(mu dPsi)`.
 ///
 /// # Errors
@@ -94,9 +97,6 @@ pub fn tension_profile_within(
         Obstacle::Ellipse(e) => MembraneEquilibrium::new(e, *problem)
             .with_budget(budget)
             .solve(),
-        Obstacle::Prism(p) => {
-            PrismMembrane::new(p.profile_curve()).tension_profile_within(problem, budget)
-        }
         Obstacle::CircularCone(cone) => {
             validate_cone_problem(problem)?;
             let alpha = cone.half_angle();
@@ -114,9 +114,36 @@ pub fn tension_profile_within(
                 method: Method::ClosedForm,
             })
         }
-        Obstacle::Cone(cone) => ConeMembrane::new(cone.profile_curve())
+        Obstacle::Prism(_)
+        | Obstacle::Cone(_)
+        | Obstacle::UserPrism(_)
+        | Obstacle::UserCone(_)
+        | Obstacle::UserSurface(_) => general_method(obstacle, problem, budget),
+    }
+}
+
+/// Theorem 1 on a prism (quadrature of the exponent, or the ODE with weight) or Theorem 2 on
+/// a cone, over the obstacle's profile curve: the general method of its class.
+fn general_method(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    budget: &MembraneBudget,
+) -> Result<TensionProfile, FrictionError> {
+    let profile = obstacle.profile().ok_or_else(not_prism_or_cone)?;
+    if obstacle.is_prism() {
+        PrismMembrane::new(&profile).tension_profile_within(problem, budget)
+    } else {
+        ConeMembrane::new(&profile)
             .with_max_subdivisions(budget.max_subdivisions)
-            .tension_profile(problem),
+            .tension_profile(problem)
+    }
+}
+
+/// The membrane models (Theorems 1 and 2) need a prism or a cone.
+fn not_prism_or_cone() -> FrictionError {
+    FrictionError::MissingParameter {
+        field: "obstacle.shape",
+        why: "the membrane models need a prism or a cone; this obstacle is a general surface",
     }
 }
 
@@ -214,10 +241,6 @@ fn unit_exponent(
             ellipse_turning_angle(e.a(), e.b(), t1) - ellipse_turning_angle(e.a(), e.b(), t0),
             Method::ClosedForm,
         ),
-        Obstacle::Prism(p) => (
-            turning_angles_within(p.profile_curve(), t0, &[t1], budget.max_subdivisions)?[0],
-            Method::Quadrature,
-        ),
         Obstacle::CircularCone(cone) => {
             check_cone_development(cone.half_angle(), t0, t1)?;
             (
@@ -225,12 +248,21 @@ fn unit_exponent(
                 Method::ClosedForm,
             )
         }
-        Obstacle::Cone(cone) => (
-            ConeMembrane::new(cone.profile_curve())
-                .with_max_subdivisions(budget.max_subdivisions)
-                .exponents(t0, &[t1])?[0],
-            Method::Quadrature,
-        ),
+        Obstacle::Prism(_)
+        | Obstacle::Cone(_)
+        | Obstacle::UserPrism(_)
+        | Obstacle::UserCone(_)
+        | Obstacle::UserSurface(_) => {
+            let profile = obstacle.profile().ok_or_else(not_prism_or_cone)?;
+            let e = if obstacle.is_prism() {
+                turning_angles_within(&profile, t0, &[t1], budget.max_subdivisions)?[0]
+            } else {
+                ConeMembrane::new(&profile)
+                    .with_max_subdivisions(budget.max_subdivisions)
+                    .exponents(t0, &[t1])?[0]
+            };
+            (e, Method::Quadrature)
+        }
     })
 }
 
