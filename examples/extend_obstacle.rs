@@ -126,7 +126,7 @@ fn contact_3d(sag: f64) -> Result<(bool, f64), CliError> {
             ("loads.tau_max", "1.3"),
         ],
     )?;
-    let (report, _, _) = commands::solid_contact::solve_observed(&scene, &mut SilentObserver)?;
+    let (report, _) = commands::contact::solve_observed(&scene, &mut SilentObserver)?;
     Ok((report.converged, report.slip_fraction))
 }
 
