@@ -388,7 +388,9 @@ pub fn write_run(
     match run {
         ContactRun::Plane(solved) => write_out(dir, report, solved, scene),
         ContactRun::Solid { solution, model } => {
-            let out = crate::commands::solid_contact::write_out(dir, report, scene)?;
+            // contact.csv: `x1` and `x2` per node with both tangential components
+            let out = report_dir(dir, "contact", report, Some(scene))?;
+            out.write_csv("contact.csv", &contact_table(report))?;
             if let Some(solid) = model.solid() {
                 crate::commands::solid_contact::write_body(&out, scene, solid, solution)?;
             }

@@ -6,27 +6,10 @@
 use capstan_elasticity::contact::ContactSolution;
 use capstan_elasticity::solid::{SolidFields, SolidOutput};
 
-use crate::commands::contact::ContactReport;
 use crate::error::CliError;
 use crate::figures::solid_body::{solid_grid, write_solid_body};
 use crate::output::QuadGrid;
 use crate::scene::Scene;
-
-/// Writes `contact.json` (stamped), `scene.toml` and `contact.csv` (the contact surface,
-/// `x1` and `x2` per node with both tangential components).
-///
-/// # Errors
-/// Output errors.
-pub fn write_out(
-    dir: &std::path::Path,
-    report: &ContactReport,
-    scene: &Scene,
-) -> Result<crate::output::OutputDir, CliError> {
-    let out = crate::figures::reports::report_dir(dir, "contact", report, Some(scene))?;
-    let table = crate::commands::contact::contact_table(report);
-    out.write_csv("contact.csv", &table)?;
-    Ok(out)
-}
 
 /// The 3-D body's hexahedra, nodal fields and node coordinates `(x1, x2, x3)` for the
 /// solution.

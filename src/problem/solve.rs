@@ -15,7 +15,10 @@ use capstan_elasticity::{Discretisation, ElasticityError};
 use capstan_friction::FrictionError;
 use capstan_geometry::Surface;
 
-use super::{Dimension, Problem, SolveMethod};
+use capstan_elasticity::contact::Dimension;
+
+use super::builder::Problem;
+use super::solver::SolveMethod;
 
 /// The contact model of a [`Problem`] (either dimension, any registered friction law).
 pub type Model = ContactModel<BodyOperator, AnyFrictionLaw>;
