@@ -44,9 +44,10 @@ pub use cone::{ConeMembrane, ConePoint};
 pub use equilibrium::{LocalEquilibrium, MembraneEquilibrium};
 pub use geodesic_strip::GeodesicStrip;
 pub use infinite::InfiniteMembrane;
-pub use load_field::{Gravity, LoadField, NoLoad};
+pub use load_field::{ExpressionLoad, Gravity, LoadField, LoadSum, NoLoad, PaperSpeedTransform};
 pub use obstacle::{
-    FrictionEstimate, infer_mu, infer_mu_within, tension_profile, tension_profile_within,
+    FrictionEstimate, infer_mu, infer_mu_within, tension_profile, tension_profile_with_load,
+    tension_profile_within,
 };
 pub use prism::PrismMembrane;
 pub use problem::{MembraneLoads, MembraneProblem, Method, TensionProfile};
