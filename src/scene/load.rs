@@ -223,6 +223,8 @@ pub fn known_keys() -> Vec<String> {
         "solver.max_sweeps".to_string(),
         "discretisation.grading".to_string(),
         "discretisation.layers".to_string(),
+        "loads.f_t".to_string(),
+        "loads.f_n".to_string(),
     ];
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
