@@ -188,3 +188,59 @@ fn bad_load_expressions_and_rules_name_their_key() {
     assert!(err.to_string().contains("loads.f_t"), "{err}");
     assert_eq!(err.exit_code(), 2, "{err}");
 }
+
+#[test]
+fn geometry_of_the_circular_cone_gives_forms_and_development_in_closed_form() {
+    // sigma = (x, x tan(alpha) sin t, x tan(alpha) cos t) at x1 = 1:
+    // a = diag(sec^2 alpha, tan^2 alpha), b_22 = -sin(alpha) (paper: -x1 (v'u'' - u'v'')/|w' x w|),
+    // phi = sin(alpha) t, rbar = sec(alpha), J = [[sec c, -tan s], [sec s, tan c]].
+    let alpha: f64 = 0.4;
+    let v = json(&[
+        "geometry",
+        "--set",
+        "obstacle.shape=circular-cone",
+        "--set",
+        "obstacle.half_angle=0.4",
+        "--set",
+        "membrane.theta0=-1.5",
+        "--set",
+        "membrane.theta_max=2",
+        "--set",
+        "membrane.samples=8",
+    ]);
+    assert_eq!(v["x1"].as_f64(), Some(1.0));
+    let x2 = array(&v, "x2");
+    let (sec, tan, sin) = (1.0 / alpha.cos(), alpha.tan(), alpha.sin());
+    let close = |a: &Value, b: f64, what: &str| {
+        let a = a.as_f64().unwrap();
+        assert!(
+            (a - b).abs() <= 1e-12 * b.abs().max(1.0),
+            "{what}: {a} vs {b}"
+        );
+    };
+    let d = &v["development"];
+    for (i, t) in x2.iter().enumerate() {
+        let a = &v["first_form"][i];
+        close(&a[0][0], sec * sec, "a11");
+        close(&a[0][1], 0.0, "a12");
+        close(&a[1][0], 0.0, "a21");
+        close(&a[1][1], tan * tan, "a22");
+        let b = &v["second_form"][i];
+        close(&b[0][0], 0.0, "b11");
+        close(&b[0][1], 0.0, "b12");
+        close(&b[1][1], -sin, "b22");
+        let phi = sin * t;
+        let (s, c) = phi.sin_cos();
+        close(&d["phi"][i], phi, "phi");
+        close(&d["radius"][i], sec, "rbar");
+        close(&d["chi"][i][0], sec * c, "chi1");
+        close(&d["chi"][i][1], sec * s, "chi2");
+        let j = &d["jacobian"][i];
+        close(&j[0][0], sec * c, "J11");
+        close(&j[0][1], -tan * s, "J12");
+        close(&j[1][0], sec * s, "J21");
+        close(&j[1][1], tan * c, "J22");
+    }
+    // Prisms have no development.
+    assert!(json(&["geometry"]).get("development").is_none());
+}

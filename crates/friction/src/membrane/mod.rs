@@ -29,6 +29,7 @@
 mod budget;
 pub mod closed_form;
 mod cone;
+mod development;
 mod equilibrium;
 mod geodesic_strip;
 mod infinite;
@@ -41,6 +42,7 @@ mod validity;
 
 pub use budget::MembraneBudget;
 pub use cone::{ConeMembrane, ConePoint};
+pub use development::{DevelopmentPoint, development};
 pub use equilibrium::{LocalEquilibrium, MembraneEquilibrium};
 pub use geodesic_strip::GeodesicStrip;
 pub use infinite::InfiniteMembrane;
