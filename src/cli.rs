@@ -438,6 +438,7 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
         }
         report
     } else {
+        commands::contact::warn_grid_condition(&scene)?;
         let (report, solved) = commands::contact::solve(&scene)?;
         if let Some(dir) = &args.out {
             commands::contact::write_out(dir, &report, &solved, &scene)?;

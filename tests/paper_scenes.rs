@@ -244,3 +244,46 @@ fn geometry_of_the_circular_cone_gives_forms_and_development_in_closed_form() {
     // Prisms have no development.
     assert!(json(&["geometry"]).get("development").is_none());
 }
+
+#[test]
+fn shell_chart_of_the_ellipse_is_the_papers_psi2bar() {
+    // On the semi-prism body the paper's psi2bar = phi + x3 a b / phi^2 is sqrt(g_22), and
+    // sqrt(g) = sqrt(g_22) there (g_11 = g_33 = 1, orthogonal): `sqrt_g_outer` at x3 = h.
+    let v = json(&[
+        "geometry",
+        "--set",
+        "obstacle.b=1.3",
+        "--set",
+        "body.thickness=0.7",
+        "--set",
+        "membrane.samples=9",
+    ]);
+    let (a, b, h) = (2.0_f64, 1.3_f64, 0.7);
+    for (t, g) in array(&v, "x2").iter().zip(array(&v, "sqrt_g_outer")) {
+        let phi = (b * b * t.sin().powi(2) + a * a * t.cos().powi(2)).sqrt();
+        let psi = phi + h * a * b / (phi * phi);
+        assert!((g - psi).abs() < 1e-12 * psi, "{t}: {g} vs {psi}");
+    }
+}
+
+#[test]
+fn circular_cone_limits_are_the_capstan_equation_and_no_friction() {
+    // alpha -> 0: T0 exp(mu theta); alpha -> pi/2: T0 (cot(alpha) -> 0).
+    let ratio = |alpha: &str, theta_max: &str| {
+        tension(&[
+            "obstacle.shape=circular-cone",
+            alpha,
+            "membrane.theta0=0",
+            theta_max,
+        ])["tension_ratio"]
+            .as_f64()
+            .unwrap()
+    };
+    let small = ratio("obstacle.half_angle=1e-6", "membrane.theta_max=2");
+    // the exponent is theta - alpha^2 (theta^3/6 + theta/3) + ...: 1.1e-12 below at alpha = 1e-6
+    assert!((small / 1f64.exp() - 1.0).abs() < 3e-12, "{small}");
+    // near pi/2 the development limit pi/(2 sin(alpha)) is about pi/2: stay inside it
+    let flat = ratio("obstacle.half_angle=1.5707", "membrane.theta_max=1.5");
+    let exact = (0.5 / 1.5707f64.tan() * (1.5707f64.sin() * 1.5).sin()).exp();
+    assert!((flat - exact).abs() < 1e-14 && flat - 1.0 < 5e-5, "{flat}");
+}

@@ -453,6 +453,12 @@ pub struct SolverSpec {
     /// `"multigrid"`; unset: 10,000 (10^7 for `jacobi-newton`, 500 for `multigrid`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_sweeps: Option<usize>,
+    /// The relaxation weight `w` in `(0, 2)` of the Jacobi / Gauss–Seidel iterations
+    /// (`x += w D^-1 (b - A x)`; `w < 1` damps Jacobi, `w > 1` is SOR): the library's
+    /// `IterativeParams::relaxation`. Unset: 1, and 1/2 for `jacobi-newton`; `1` is the
+    /// paper's undamped Jacobi.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relaxation: Option<f64>,
 }
 
 impl Default for SolverSpec {
@@ -465,6 +471,7 @@ impl Default for SolverSpec {
             max_continuation_steps: contact.max_continuation_steps,
             min_load_step: contact.min_load_step,
             max_sweeps: None,
+            relaxation: None,
         }
     }
 }

@@ -217,6 +217,9 @@ impl Scene {
         real("loads.speed", l.speed, "finite values", true)?;
         real("loads.tau0", l.tau0, "finite values", true)?;
         real("loads.tau_max", l.tau_max, "finite values", true)?;
+        if let Some(w) = self.solver.relaxation {
+            real("solver.relaxation", w, "(0, 2)", w > 0.0 && w < 2.0)?;
+        }
         for (key, src) in [("loads.f_t", &l.f_t), ("loads.f_n", &l.f_n)] {
             let Some(src) = src else { continue };
             let expression = Expression::parse(src).map_err(|e| CliError::Scene {

@@ -78,3 +78,47 @@ fn development_needs_a_positive_x1() {
         "{err}"
     );
 }
+
+#[test]
+fn developed_second_form_is_the_printed_matrix() {
+    // F_II^phi = J^-T b J^-1 = -(rbar^2 D / (x1 |w' x w|^3)) [[s^2, -s c], [-s c, c^2]],
+    // D = vbar' ubar'' - ubar' vbar'' (paper section 2.2).
+    let (u, v) = ("0.5*sin(t) + 0.1*sin(2*t)", "0.4*cos(t)");
+    let profile = ExpressionProfile::parse(u, v).unwrap();
+    let cone = GeneralCone::new(profile.clone());
+    let x1 = 1.7;
+    let d = development(&profile, x1, &THETAS, 1 << 16).unwrap();
+    for (t, p) in THETAS.iter().zip(&d) {
+        let b = Surface::<f64>::geometry(&cone, [x1, *t])
+            .unwrap()
+            .second_form;
+        let j = p.jacobian;
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        let inv = [
+            [j[1][1] / det, -j[0][1] / det],
+            [-j[1][0] / det, j[0][0] / det],
+        ];
+        let jet = capstan_geometry::ProfileCurve::<f64>::profile_jet(&profile, *t);
+        let (ub, dub, ddub) = (jet[0][0], jet[0][1], jet[0][2]);
+        let (vb, dvb, ddvb) = (jet[1][0], jet[1][1], jet[1][2]);
+        let c2 = dub * dub + dvb * dvb + (vb * dub - ub * dvb).powi(2);
+        let scale = -(1.0 + ub * ub + vb * vb) * (dvb * ddub - dub * ddvb) / (x1 * c2.powf(1.5));
+        let (s, c) = p.phi.sin_cos();
+        let printed = [[s * s, -s * c], [-s * c, c * c]].map(|r| r.map(|x| scale * x));
+        for i in 0..2 {
+            for k in 0..2 {
+                let mut f = 0.0;
+                for a in 0..2 {
+                    for e in 0..2 {
+                        f += inv[a][i] * b[a][e] * inv[e][k];
+                    }
+                }
+                assert!(
+                    (f - printed[i][k]).abs() <= 1e-12 * scale.abs().max(1.0),
+                    "theta {t}: F_II^phi[{i}][{k}] = {f}, printed {}",
+                    printed[i][k]
+                );
+            }
+        }
+    }
+}
