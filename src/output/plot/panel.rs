@@ -16,7 +16,7 @@ use crate::output::error::OutputError;
 /// let plot = |t: &str| LinePlot::new(t).series(Series::line("s", [0.0, 1.0], [0.0, 1.0]));
 /// let panel = Panel::new(vec![plot("a"), plot("b"), plot("c"), plot("d")], 2);
 /// let svg = render_svg(&panel).unwrap();
-/// assert!(svg.contains(">a<") && svg.contains(">d<"));
+/// assert!(svg.starts_with("<svg") && svg.matches("<text").count() >= 4); // four titles at least
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct Panel {
