@@ -442,6 +442,7 @@ fn render<R: Serialize>(
 
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
+    commands::contact::warn_grid_condition(&scene)?;
     let (report, run) = commands::contact::solve(&scene)?;
     if let Some(dir) = &args.out {
         commands::contact::write_run(dir, &report, &run, &scene)?;

@@ -15,6 +15,61 @@ use crate::scene::Scene;
 /// The contact model a scene describes (either dimension).
 pub type SceneModel = crate::problem::Model;
 
+/// The paper's grid condition for its Jacobi iteration (section 3): `psi0 dx2 <= dx3` for every
+/// `psi0 = sqrt(g_22)` on the body, with `dx2 = (theta_max - theta0)/(n2 - 1)` and
+/// `dx3 = h/(n3 - 1)`. Returns `(max psi0 dx2, dx3)` over the grid's nodes on `x3 = 0` and
+/// `x3 = h` (`sqrt(g_22)` is largest on a face of a convex body), or `None` for a body that
+/// is not plane strain on a prism.
+///
+/// # Errors
+/// A geometry error at a grid node.
+pub fn paper_grid_condition(scene: &Scene) -> Result<Option<(f64, f64)>, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    if scene.body.dimension != 2 || !obstacle.is_prism() {
+        return Ok(None);
+    }
+    let (m, g, h) = (&scene.membrane, &scene.grid, scene.body.thickness);
+    let dx2 = (m.theta_max - m.theta0) / (g.n2 - 1) as f64;
+    let dx3 = h / (g.n3 - 1) as f64;
+    let chart = capstan_geometry::ShellChart::new(&obstacle);
+    let mut psi0 = 0.0f64;
+    for i in 0..g.n2 {
+        let x2 = m.theta0 + dx2 * i as f64;
+        for x3 in [0.0, h] {
+            psi0 = psi0.max(chart.point([0.0, x2, x3])?.metric[1][1].sqrt());
+        }
+    }
+    Ok(Some((psi0 * dx2, dx3)))
+}
+
+/// Warns on stderr (unless `--quiet`) when the paper's grid condition is violated and the
+/// scene iterates with Jacobi (`solver.nonlinear = "jacobi-newton"` or `solver.linear =
+/// "jacobi"`), the method the condition is stated for; with other solvers a note at `-v`.
+///
+/// # Errors
+/// As [`paper_grid_condition`].
+pub fn warn_grid_condition(scene: &Scene) -> Result<(), CliError> {
+    let Some((lhs, dx3)) = paper_grid_condition(scene)? else {
+        return Ok(());
+    };
+    if lhs <= dx3 {
+        return Ok(());
+    }
+    let jacobi = scene.solver.nonlinear == "jacobi-newton" || scene.solver.linear == "jacobi";
+    let message = format!(
+        "warning: the paper's grid condition psi0 dx2 <= dx3 is violated: max psi0 dx2 = {lhs:.4e} > dx3 = {dx3:.4e} (grid.n2 = {}, grid.n3 = {}){}",
+        scene.grid.n2,
+        scene.grid.n3,
+        if jacobi {
+            "; the paper states it for its Jacobi iteration"
+        } else {
+            "; the direct solvers converge without it (docs/verification.md)"
+        }
+    );
+    crate::progress::note(u8::from(!jacobi), &message);
+    Ok(())
+}
+
 /// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`,
 /// `discretisation.*`, and the contact interval `membrane.theta0`, `membrane.theta_max`
 /// (default `[-pi/2, pi/2]`).

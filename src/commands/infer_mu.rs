@@ -115,6 +115,21 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
         field: "membrane.t_max",
         why: "infer-mu needs the measured tension at theta_max (e.g. --set membrane.t_max=2.75)",
     })?;
+    if crate::commands::tension::has_extra_loads(scene) {
+        let key = if scene.loads.f_t.is_some() {
+            "loads.f_t"
+        } else if scene.loads.f_n.is_some() {
+            "loads.f_n"
+        } else {
+            "membrane.belt_speed_rule"
+        };
+        return Err(CliError::Scene {
+            origin: key.into(),
+            message: format!(
+                "`{key}` is set: infer-mu inverts the built-in loads (gravity, speed with the corrected rule) only; `capstan tension` computes the profile under these loads"
+            ),
+        });
+    }
     let obstacle = scene.obstacle.build()?;
     let t0 = scene.membrane.t0;
     let ratio = t_max / t0;

@@ -31,6 +31,10 @@ pub struct Solver {
     /// Linear iterations per solve of the iterative backends (`solver.max_sweeps`); `None`:
     /// each backend's default.
     pub max_sweeps: Option<usize>,
+    /// The relaxation weight `w` of the Jacobi / Gauss–Seidel iterations
+    /// (`solver.relaxation`); `None`: 1, and 1/2 for `jacobi-newton` (the paper's own Jacobi is
+    /// undamped, `w = 1`, and diverges on the paper's body).
+    pub relaxation: Option<f64>,
 }
 
 impl Solver {
@@ -62,6 +66,9 @@ impl Solver {
             tolerance: s.continuation.tolerance,
             ..self.budgets
         };
+        if let Some(w) = self.relaxation {
+            s.newton.iterative.relaxation = w;
+        }
         if let Some(sweeps) = self.max_sweeps {
             s.newton.iterative.max_iterations = sweeps;
             if let Some(m) = s.multigrid.as_mut() {

@@ -72,6 +72,7 @@ impl Scene {
                 method: self.solve_method()?,
                 budgets: self.solver.contact_settings(),
                 max_sweeps: self.solver.max_sweeps,
+                relaxation: self.solver.relaxation,
             },
         })
     }

@@ -242,6 +242,37 @@ pub struct MembraneSpec {
     /// Work budget: Newton iterations of the membrane displacement model
     /// (`infer-mu --model membrane`), default 100.
     pub max_newton_iterations: usize,
+    /// `finite` (default: Theorem 1, tension `T` of a membrane of width `loads.width` and
+    /// thickness `loads.thickness`) | `infinite` (Corollary 1: the tensile stress `tau` of a
+    /// membrane infinitely long in `x1`, any Poisson's ratio; `membrane.t0` is `tau0`, the loads
+    /// are volume densities, `loads.width` and `loads.thickness` are not used).
+    pub model: MembraneModel,
+    /// How a steady belt speed `loads.speed` enters: `corrected` (default: the acceleration is
+    /// normal to the path, only the normal load changes) | `paper` (the printed transform, which
+    /// also adds `g_r2 = -rho_l Gamma^2_22 V^2`; erratum 4).
+    pub belt_speed_rule: BeltSpeedRule,
+}
+
+/// `membrane.model`: which of the paper's membrane results a scene computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MembraneModel {
+    /// Theorem 1: a membrane of finite width with zero Poisson's ratio; tension `T` (force).
+    #[default]
+    Finite,
+    /// Corollary 1: infinitely long in `x1`, any Poisson's ratio; tensile stress `tau`.
+    Infinite,
+}
+
+/// `membrane.belt_speed_rule`: the steady-speed transform (erratum 4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BeltSpeedRule {
+    /// Only the normal load changes: `g_r3 -> g_r3 + 2 rho_l H V^2`.
+    #[default]
+    Corrected,
+    /// The paper's printed rule: also `g_r2 -> g_r2 - rho_l Gamma^2_22 V^2`.
+    Paper,
 }
 
 impl MembraneSpec {
@@ -272,6 +303,8 @@ impl Default for MembraneSpec {
             max_root_iterations: capstan_friction::membrane::MembraneBudget::default()
                 .max_root_iterations,
             max_newton_iterations: 100,
+            model: MembraneModel::default(),
+            belt_speed_rule: BeltSpeedRule::default(),
         }
     }
 }
@@ -294,6 +327,15 @@ pub struct LoadsSpec {
     pub tau0: f64,
     /// End traction at `x2 = theta_max` of the thick body.
     pub tau_max: f64,
+    /// Tangential force density `f_t(t)` on the membrane, an expression in `t = x2 = theta`:
+    /// force per unit length along the unit tangent (towards `theta_max`); a volume density
+    /// with `membrane.model = "infinite"`. Adds to gravity and speed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f_t: Option<String>,
+    /// Normal force density `f_n(t)` on the membrane, an expression in `t`: force per unit
+    /// length along the outward normal (away from the obstacle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f_n: Option<String>,
 }
 
 impl Default for LoadsSpec {
@@ -315,11 +357,24 @@ impl Default for LoadsSpec {
             speed,
             tau0: 1.0,
             tau_max: 2.0,
+            f_t: None,
+            f_n: None,
         }
     }
 }
 
 impl LoadsSpec {
+    /// The load expressions `loads.f_t`, `loads.f_n` (none given: an empty load).
+    ///
+    /// # Errors
+    /// [`capstan_friction::FrictionError::Geometry`] naming `loads.f_t` or `loads.f_n` for
+    /// text that does not parse.
+    pub fn expression_load(
+        &self,
+    ) -> Result<capstan_friction::membrane::ExpressionLoad, capstan_friction::FrictionError> {
+        capstan_friction::membrane::ExpressionLoad::parse(self.f_t.as_deref(), self.f_n.as_deref())
+    }
+
     /// The body forces on the membrane (every key but the thick body's end tractions).
     pub fn membrane(&self) -> MembraneLoads {
         MembraneLoads {
@@ -413,6 +468,12 @@ pub struct SolverSpec {
     /// `"multigrid"`; unset: 10,000 (10^7 for `jacobi-newton`, 500 for `multigrid`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_sweeps: Option<usize>,
+    /// The relaxation weight `w` in `(0, 2)` of the Jacobi / Gauss–Seidel iterations
+    /// (`x += w D^-1 (b - A x)`; `w < 1` damps Jacobi, `w > 1` is SOR): the library's
+    /// `IterativeParams::relaxation`. Unset: 1, and 1/2 for `jacobi-newton`; `1` is the
+    /// paper's undamped Jacobi.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relaxation: Option<f64>,
 }
 
 impl Default for SolverSpec {
@@ -425,6 +486,7 @@ impl Default for SolverSpec {
             max_continuation_steps: contact.max_continuation_steps,
             min_load_step: contact.min_load_step,
             max_sweeps: None,
+            relaxation: None,
         }
     }
 }

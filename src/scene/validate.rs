@@ -243,6 +243,25 @@ impl Scene {
         real("loads.speed", l.speed, "finite values", true)?;
         real("loads.tau0", l.tau0, "finite values", true)?;
         real("loads.tau_max", l.tau_max, "finite values", true)?;
+        if let Some(w) = self.solver.relaxation {
+            real("solver.relaxation", w, "(0, 2)", w > 0.0 && w < 2.0)?;
+        }
+        for (key, src) in [("loads.f_t", &l.f_t), ("loads.f_n", &l.f_n)] {
+            let Some(src) = src else { continue };
+            let expression = Expression::parse(src).map_err(|e| CliError::Scene {
+                origin: at.locate(key),
+                message: format!("`{key}` = {src:?}: {e}"),
+            })?;
+            expression
+                .check_finite_on(m.theta0, m.theta_max, EXPRESSION_CHECK_SAMPLES)
+                .map_err(|e| CliError::Scene {
+                    origin: at.locate(key),
+                    message: format!(
+                        "`{key}` = {src:?} must be finite with finite first and second derivatives on [membrane.theta0, membrane.theta_max] = [{}, {}]: {e}",
+                        m.theta0, m.theta_max
+                    ),
+                })?;
+        }
         let b = &self.body;
         real("body.thickness", b.thickness, "(0, inf)", b.thickness > 0.0)?;
         real("body.young", b.young, "(0, inf)", b.young > 0.0)?;

@@ -11,6 +11,7 @@ use super::closed_form::{
 };
 use super::cone::{ConeMembrane, validate_cone_problem};
 use super::equilibrium::MembraneEquilibrium;
+use super::load_field::LoadField;
 use super::prism::{PrismMembrane, check_speed};
 use super::problem::{MembraneProblem, Method, TensionProfile, exp_tension};
 use super::turning_angle::{ProfilePoint, turning_angles_within};
@@ -144,6 +145,47 @@ fn not_prism_or_cone() -> FrictionError {
     FrictionError::MissingParameter {
         field: "obstacle.shape",
         why: "the membrane models need a prism or a cone; this obstacle is a general surface",
+    }
+}
+
+/// [`tension_profile_within`] with an extra load field along the membrane (Theorem 1 with
+/// any `(0, g_r2, g_r3)`, e.g. [`ExpressionLoad`](super::ExpressionLoad)), on prisms.
+///
+/// # Math
+/// The equilibrium ODE of [`MembraneEquilibrium`] with the problem's weight and steady speed
+/// plus `extra`, integrated by Dormand–Prince 8(5,3) to `1e-13`:
+/// `dT/dx2 = mu sqrt(a_22) (kappa (T - rho_l V^2) - g_r3) - g_r2`.
+///
+/// # Errors
+/// As [`tension_profile_within`]; [`FrictionError::Unsupported`] on a cone (Theorem 2 has no
+/// external load: the strip follows a geodesic, not an `x2` line) and on the plane.
+pub fn tension_profile_with_load<L: LoadField + ?Sized>(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    budget: &MembraneBudget,
+    extra: &L,
+) -> Result<TensionProfile, FrictionError> {
+    problem.validate()?;
+    budget.validate()?;
+    if obstacle.is_prism() {
+        return MembraneEquilibrium::new(obstacle, *problem)
+            .with_budget(budget)
+            .solve_with(extra)
+            .map(|(profile, _)| profile);
+    }
+    match obstacle {
+        Obstacle::Plane(_) => Err(FrictionError::NonPositiveCurvature {
+            angle: problem.theta0,
+            mean_curvature: 0.0,
+        }),
+        _ if obstacle.is_cone() => Err(FrictionError::Unsupported {
+            field: "loads.f_t, loads.f_n, membrane.belt_speed_rule",
+            why: "Theorem 2 (cones) takes no external load or steady speed: the strip follows a geodesic, not an x2 line; use a prism obstacle",
+        }),
+        _ => Err(FrictionError::Unsupported {
+            field: "obstacle.shape",
+            why: "a general surface has no profile curve: the membrane models need a prism or a cone",
+        }),
     }
 }
 
