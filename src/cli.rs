@@ -430,8 +430,16 @@ fn render<R: Serialize>(
 
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
+    // `solver.linear = "petsc"`: PETSc (and MPI) for this command; ranks other than 0 end
+    // after the solve, rank 0 writes and ends PETSc when `_petsc` drops.
+    #[cfg(feature = "petsc")]
+    let mut _petsc = crate::scale::petsc::PetscRun::start(&scene)?;
     let report = if scene.body.dimension == 3 {
         let (report, solution, model) = commands::solid_contact::solve(&scene)?;
+        #[cfg(feature = "petsc")]
+        {
+            _petsc = _petsc.map(crate::scale::petsc::PetscRun::end_unless_root);
+        }
         if let Some(dir) = &args.out {
             let out = commands::solid_contact::write_out(dir, &report, &scene)?;
             commands::solid_contact::write_body(&out, &scene, &model, &solution)?;
@@ -439,6 +447,10 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
         report
     } else {
         let (report, solved) = commands::contact::solve(&scene)?;
+        #[cfg(feature = "petsc")]
+        {
+            _petsc = _petsc.map(crate::scale::petsc::PetscRun::end_unless_root);
+        }
         if let Some(dir) = &args.out {
             commands::contact::write_out(dir, &report, &solved, &scene)?;
         }

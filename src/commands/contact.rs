@@ -34,6 +34,10 @@ pub enum SceneSolver {
     /// `full-newton` with `solver.linear = "multigrid"`: each Newton step by GMRES with the
     /// geometric multigrid of the 3-D body ([`BulkMultigrid`]).
     FullNewtonMultigrid,
+    /// `full-newton` with `solver.linear = "petsc"` (feature `petsc`): each Newton step by
+    /// PETSc's KSP over the MPI ranks, Newton replicated on every rank
+    /// ([`FullSystemSettings::external`]).
+    FullNewtonPetsc,
 }
 
 impl SceneSolver {
@@ -49,6 +53,21 @@ impl SceneSolver {
                     origin: "solver.linear".into(),
                     message: format!(
                         "`solver.linear` = \"multigrid\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
+                    ),
+                }),
+            };
+        }
+        if scene.solver.linear == "petsc" {
+            return match scene.solver.nonlinear.as_str() {
+                "full-newton" if crate::scale::PETSC_ENABLED => Ok(Self::FullNewtonPetsc),
+                "full-newton" => Err(CliError::Scene {
+                    origin: "solver.linear".into(),
+                    message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
+                }),
+                other => Err(CliError::Scene {
+                    origin: "solver.linear".into(),
+                    message: format!(
+                        "`solver.linear` = \"petsc\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
                     ),
                 }),
             };
@@ -78,6 +97,7 @@ impl SceneSolver {
         match self {
             Self::FullNewton(linear) => s.newton.linear = linear,
             Self::FullNewtonMultigrid => s.multigrid = Some(BulkMultigrid::default()),
+            Self::FullNewtonPetsc => s.external = crate::scale::petsc_backend(),
             Self::JacobiNewton => {
                 s.method = NonlinearMethod::JacobiNewton;
                 s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here
@@ -441,7 +461,9 @@ fn solve_unnamed(
             };
             Ok((report, solved(scene, &model, sol)?))
         }
-        SceneSolver::FullNewton(_) | SceneSolver::FullNewtonMultigrid => {
+        SceneSolver::FullNewton(_)
+        | SceneSolver::FullNewtonMultigrid
+        | SceneSolver::FullNewtonPetsc => {
             // Grid sequencing: the model is assembled level by level inside.
             let (law, params, eps) = scene_law(scene)?;
             let body = thick_body(scene)?;
@@ -520,6 +542,15 @@ pub(crate) fn contact_budget(
             } else {
                 ""
             }
+        }
+        ContactError::Solver(SolverError::BudgetSpent { iterations, .. })
+            if solver.linear == "petsc" =>
+        {
+            format!(
+                "{iterations} Krylov iterations spent: `-ksp_max_it` in `solver.petsc_options` = {:?} (default 2000) bounds each linear solve of `solver.linear` = \"petsc\"; raise it (--set solver.petsc_options='\"-ksp_max_it {}\"') or choose a stronger preconditioner",
+                solver.petsc_options.as_deref().unwrap_or(""),
+                iterations.saturating_mul(4)
+            )
         }
         ContactError::Solver(SolverError::BudgetSpent { iterations, .. }) => format!(
             "{iterations} Krylov iterations spent: `solver.max_sweeps` = {} GMRES / CG iterations per linear solve of `solver.linear` = \"multigrid\" (unset: {}); raise it (--set solver.max_sweeps={})",

@@ -141,6 +141,7 @@ fn solve_unnamed(
         }
         SceneSolver::FullNewton(_)
         | SceneSolver::FullNewtonMultigrid
+        | SceneSolver::FullNewtonPetsc
         | SceneSolver::JacobiNewton => {
             let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
             let setup = t0.elapsed().as_secs_f64();

@@ -221,6 +221,7 @@ pub fn known_keys() -> Vec<String> {
     let mut keys = vec![
         "membrane.t_max".to_string(),
         "solver.max_sweeps".to_string(),
+        "solver.petsc_options".to_string(),
         "discretisation.grading".to_string(),
         "discretisation.layers".to_string(),
     ];

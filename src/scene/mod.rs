@@ -381,8 +381,9 @@ impl Default for GridSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// `lu | cholesky | jacobi | gauss-seidel | multigrid` (`multigrid`: GMRES with the
-    /// geometric multigrid of the 3-D body, `full-newton` only).
+    /// `lu | cholesky | jacobi | gauss-seidel | multigrid | petsc` (`multigrid`: GMRES with the
+    /// geometric multigrid of the 3-D body, `full-newton` only; `petsc`: PETSc's KSP over the
+    /// MPI ranks of `mpirun`, `full-newton` only, builds with the feature `petsc`).
     pub linear: String,
     /// `newton | jacobi-newton`.
     pub nonlinear: String,
@@ -398,6 +399,12 @@ pub struct SolverSpec {
     /// `"multigrid"`; unset: 10,000 (10^7 for `jacobi-newton`, 500 for `multigrid`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_sweeps: Option<usize>,
+    /// PETSc options for `solver.linear = "petsc"`, in PETSc's command-line syntax, over the
+    /// defaults `-ksp_type gmres -ksp_gmres_restart 100 -pc_type gamg -ksp_rtol 1e-10
+    /// -ksp_max_it 2000` (e.g. `"-ksp_type cg -pc_type gamg"`, or MUMPS:
+    /// `"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps"`); unset: the defaults.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub petsc_options: Option<String>,
 }
 
 impl Default for SolverSpec {
@@ -410,6 +417,7 @@ impl Default for SolverSpec {
             max_continuation_steps: contact.max_continuation_steps,
             min_load_step: contact.min_load_step,
             max_sweeps: None,
+            petsc_options: None,
         }
     }
 }

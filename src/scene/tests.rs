@@ -277,3 +277,24 @@ fn grading_keys_are_refused_outside_their_range_and_off_fem_qp_2d() {
         assert!(expected.iter().all(|x| e.contains(x)), "{sets:?}: {e}");
     }
 }
+
+#[test]
+fn petsc_is_refused_outside_full_newton_and_without_the_feature() {
+    assert!(known_keys().contains(&"solver.petsc_options".to_string()));
+    let e = load_error(&["solver.linear=petsc"]); // with the default `newton`
+    assert!(
+        e.contains("`solver.linear`") && e.contains("full-newton"),
+        "{e}"
+    );
+    let full = ["solver.linear=petsc", "solver.nonlinear=full-newton"];
+    if crate::scale::PETSC_ENABLED {
+        let s = load(&[&full[..], &["solver.petsc_options=\"-ksp_type cg\""]].concat());
+        assert_eq!(s.solver.petsc_options.as_deref(), Some("-ksp_type cg"));
+    } else {
+        let e = load_error(&full);
+        assert!(e.contains("--features petsc"), "{e}");
+    }
+    // unset options are not written back
+    let text = toml::to_string(&Scene::default()).unwrap();
+    assert!(!text.contains("petsc_options"));
+}

@@ -295,11 +295,26 @@ impl Scene {
                     "`multigrid` only with body.dimension = 3 and solver.nonlinear = \"full-newton\" (the geometric multigrid of the 3-D box); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`",
                 ));
             }
+        } else if self.solver.linear == "petsc" {
+            if self.solver.nonlinear != "full-newton" {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`petsc` only with solver.nonlinear = \"full-newton\" (PETSc solves the full-system Newton steps)",
+                ));
+            }
+            if !crate::scale::PETSC_ENABLED {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`petsc` only in a build with the cargo feature `petsc` (cargo build --release --features petsc; needs petsc-dev); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid`",
+                ));
+            }
         } else if self.solver.linear.parse::<LinearBackend>().is_err() {
             return Err(bad(
                 "solver.linear",
                 format!("{:?}", self.solver.linear),
-                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton)",
+                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton), `petsc` (full-newton, feature `petsc`)",
             ));
         }
         if !matches!(
