@@ -298,3 +298,19 @@ fn petsc_is_refused_outside_full_newton_and_without_the_feature() {
     let text = toml::to_string(&Scene::default()).unwrap();
     assert!(!text.contains("petsc_options"));
 }
+
+#[test]
+fn petsc_memory_per_rank_shrinks_only_in_its_distributed_part() {
+    let n = 1_048_707;
+    let one = petsc_memory_estimate_per_rank(n, 1);
+    let two = petsc_memory_estimate_per_rank(n, 2);
+    // halving the distributed part only
+    let half = PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN * n as f64 / 2.0;
+    assert!((one - two - half).abs() < 1e-6 * one);
+    // many ranks: the replicated model is the floor
+    let floor = PETSC_REPLICATED_BYTES_PER_UNKNOWN * n as f64;
+    assert!(petsc_memory_estimate_per_rank(n, 1 << 20) > floor);
+    assert!(petsc_memory_estimate_per_rank(n, 0) == one); // no ranks: one
+    let (ranks, local) = mpi_ranks();
+    assert!(ranks >= 1 && (1..=ranks).contains(&local));
+}

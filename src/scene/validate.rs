@@ -330,6 +330,23 @@ impl Scene {
         Ok(())
     }
 
+    /// `solver.linear = "petsc"`: the ranks of this node together
+    /// ([`petsc_memory_estimate_per_rank`] times the local ranks of [`mpi_ranks`]) against the
+    /// memory available, so a scene is refused only when it does not fit on its ranks.
+    fn check_petsc_memory(&self, at: &Origins, key: &str, unknowns: usize) -> Result<(), CliError> {
+        let (ranks, local) = mpi_ranks();
+        let per_rank = petsc_memory_estimate_per_rank(unknowns, ranks);
+        let need = per_rank * local as f64;
+        check_memory(at, key, need, |have| {
+            format!(
+                "{unknowns} unknowns on {ranks} MPI rank(s), {local} of them on this node, need about {} per rank ({} on this node: the replicated model and Newton, and PETSc's share of the matrix, GAMG and GMRES), more than the {} available (MemAvailable in /proc/meminfo); spread the ranks over more nodes or use a coarser grid",
+                human_bytes(per_rank),
+                human_bytes(need),
+                human_bytes(have)
+            )
+        })
+    }
+
     fn validate_grid(&self, at: &Origins) -> Result<(), CliError> {
         let g = &self.grid;
         let method = self.discretisation.method;
@@ -362,6 +379,9 @@ impl Scene {
         }
         if self.body.dimension == 3 {
             return self.validate_solid_grid(at);
+        }
+        if self.solver.linear == "petsc" {
+            return self.check_petsc_memory(at, "grid.n2", 2 * g.n2 * g.n3);
         }
         let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
         check_memory(at, "grid.n2", need, |have| {
@@ -407,6 +427,9 @@ impl Scene {
                     g.n1
                 ),
             });
+        }
+        if self.solver.linear == "petsc" {
+            return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
         }
         let condensed = self.solver.nonlinear == "newton";
         let multigrid = self.solver.linear == "multigrid";
