@@ -443,7 +443,15 @@ fn render<R: Serialize>(
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
     commands::contact::warn_grid_condition(&scene)?;
+    // `solver.linear = "petsc"`: PETSc (and MPI) for this command; ranks other than 0 end
+    // after the solve, rank 0 writes and ends PETSc when `_petsc` drops.
+    #[cfg(feature = "petsc")]
+    let mut _petsc = crate::scale::petsc::PetscRun::start(&scene)?;
     let (report, run) = commands::contact::solve(&scene)?;
+    #[cfg(feature = "petsc")]
+    {
+        _petsc = _petsc.map(crate::scale::petsc::PetscRun::end_unless_root);
+    }
     if let Some(dir) = &args.out {
         commands::contact::write_run(dir, &report, &run, &scene)?;
     }

@@ -479,6 +479,15 @@ pub(crate) fn contact_budget(
                 ""
             }
         }
+        ContactError::Solver(SolverError::BudgetSpent { iterations, .. })
+            if solver.linear == "petsc" =>
+        {
+            format!(
+                "{iterations} Krylov iterations spent: `-ksp_max_it` in `solver.petsc_options` = {:?} (default 2000) bounds each linear solve of `solver.linear` = \"petsc\"; raise it (--set solver.petsc_options='\"-ksp_max_it {}\"') or choose a stronger preconditioner",
+                solver.petsc_options.as_deref().unwrap_or(""),
+                iterations.saturating_mul(4)
+            )
+        }
         ContactError::Solver(SolverError::BudgetSpent { iterations, .. }) => format!(
             "{iterations} Krylov iterations spent: `solver.max_sweeps` = {} GMRES / CG iterations per linear solve of `solver.linear` = \"multigrid\" (unset: {}); raise it (--set solver.max_sweeps={})",
             solver

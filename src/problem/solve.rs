@@ -153,7 +153,11 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     times,
                 })
             }
-            SolveMethod::FullNewton(_) | SolveMethod::FullNewtonMultigrid if plane => {
+            SolveMethod::FullNewton(_)
+            | SolveMethod::FullNewtonMultigrid
+            | SolveMethod::FullNewtonPetsc
+                if plane =>
+            {
                 // Grid sequencing: the model is assembled level by level inside.
                 let (law, params, eps) = self.friction.build()?;
                 let body = self.body.plane();
@@ -178,6 +182,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             }
             SolveMethod::FullNewton(_)
             | SolveMethod::FullNewtonMultigrid
+            | SolveMethod::FullNewtonPetsc
             | SolveMethod::JacobiNewton => {
                 let model = self.model()?;
                 let solver = FullSystemSolver::new(&model, self.solver.full_settings())?;

@@ -18,6 +18,10 @@ pub enum SolveMethod {
     /// `full-newton` with `solver.linear = "multigrid"`: each Newton step by GMRES with the
     /// geometric multigrid of the 3-D body ([`BulkMultigrid`]).
     FullNewtonMultigrid,
+    /// `full-newton` with `solver.linear = "petsc"` (feature `petsc`): each Newton step by
+    /// PETSc's KSP over the MPI ranks, Newton replicated on every rank
+    /// ([`FullSystemSettings::external`]).
+    FullNewtonPetsc,
 }
 
 /// The contact solver with its work budgets.
@@ -53,6 +57,7 @@ impl Solver {
         match self.method {
             SolveMethod::FullNewton(linear) => s.newton.linear = linear,
             SolveMethod::FullNewtonMultigrid => s.multigrid = Some(BulkMultigrid::default()),
+            SolveMethod::FullNewtonPetsc => s.external = crate::scale::petsc_backend(),
             SolveMethod::JacobiNewton => {
                 s.method = NonlinearMethod::JacobiNewton;
                 s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here

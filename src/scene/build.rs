@@ -95,6 +95,21 @@ impl Scene {
                 }),
             };
         }
+        if s.linear == "petsc" {
+            return match s.nonlinear.as_str() {
+                "full-newton" if crate::scale::PETSC_ENABLED => Ok(SolveMethod::FullNewtonPetsc),
+                "full-newton" => Err(CliError::Scene {
+                    origin: "solver.linear".into(),
+                    message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
+                }),
+                other => Err(CliError::Scene {
+                    origin: "solver.linear".into(),
+                    message: format!(
+                        "`solver.linear` = \"petsc\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
+                    ),
+                }),
+            };
+        }
         let linear = s
             .linear
             .parse()

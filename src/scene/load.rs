@@ -222,6 +222,7 @@ pub fn known_keys() -> Vec<String> {
         "membrane.t_max".to_string(),
         "solver.max_sweeps".to_string(),
         "solver.relaxation".to_string(),
+        "solver.petsc_options".to_string(),
         "discretisation.grading".to_string(),
         "discretisation.layers".to_string(),
         "loads.f_t".to_string(),

@@ -451,8 +451,9 @@ impl Default for GridSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// `lu | cholesky | jacobi | gauss-seidel | multigrid` (`multigrid`: GMRES with the
-    /// geometric multigrid of the 3-D body, `full-newton` only).
+    /// `lu | cholesky | jacobi | gauss-seidel | multigrid | petsc` (`multigrid`: GMRES with the
+    /// geometric multigrid of the 3-D body, `full-newton` only; `petsc`: PETSc's KSP over the
+    /// MPI ranks of `mpirun`, `full-newton` only, builds with the feature `petsc`).
     pub linear: String,
     /// `newton | jacobi-newton`.
     pub nonlinear: String,
@@ -474,6 +475,12 @@ pub struct SolverSpec {
     /// paper's undamped Jacobi.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub relaxation: Option<f64>,
+    /// PETSc options for `solver.linear = "petsc"`, in PETSc's command-line syntax, over the
+    /// defaults `-ksp_type gmres -ksp_gmres_restart 100 -pc_type gamg -mg_levels_ksp_type
+    /// chebyshev -mg_levels_pc_type sor -ksp_rtol 1e-8 -ksp_max_it 2000` (e.g. `"-ksp_type cg -pc_type gamg"`, or MUMPS:
+    /// `"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps"`); unset: the defaults.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub petsc_options: Option<String>,
 }
 
 impl Default for SolverSpec {
@@ -487,6 +494,7 @@ impl Default for SolverSpec {
             min_load_step: contact.min_load_step,
             max_sweeps: None,
             relaxation: None,
+            petsc_options: None,
         }
     }
 }
@@ -575,7 +583,8 @@ mod validate;
 pub use load::{Origins, known_keys};
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
-    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, SOLID_BYTES_PER_N_4_3, available_memory,
-    human_bytes, memory_estimate, solid_fill_factor, solid_memory_estimate,
-    solid_multigrid_memory_estimate,
+    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN,
+    PETSC_REPLICATED_BYTES_PER_UNKNOWN, SOLID_BYTES_PER_N_4_3, available_memory, human_bytes,
+    memory_estimate, mpi_ranks, petsc_memory_estimate_per_rank, solid_fill_factor,
+    solid_memory_estimate, solid_multigrid_memory_estimate,
 };

@@ -340,11 +340,26 @@ impl Scene {
                     "`multigrid` only with body.dimension = 3 and solver.nonlinear = \"full-newton\" (the geometric multigrid of the 3-D box); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`",
                 ));
             }
+        } else if self.solver.linear == "petsc" {
+            if self.solver.nonlinear != "full-newton" {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`petsc` only with solver.nonlinear = \"full-newton\" (PETSc solves the full-system Newton steps)",
+                ));
+            }
+            if !crate::scale::PETSC_ENABLED {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`petsc` only in a build with the cargo feature `petsc` (cargo build --release --features petsc; needs petsc-dev); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid`",
+                ));
+            }
         } else if self.solver.linear.parse::<LinearBackend>().is_err() {
             return Err(bad(
                 "solver.linear",
                 format!("{:?}", self.solver.linear),
-                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton)",
+                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton), `petsc` (full-newton, feature `petsc`)",
             ));
         }
         if !matches!(
@@ -358,6 +373,23 @@ impl Scene {
             ));
         }
         Ok(())
+    }
+
+    /// `solver.linear = "petsc"`: the ranks of this node together
+    /// ([`petsc_memory_estimate_per_rank`] times the local ranks of [`mpi_ranks`]) against the
+    /// memory available, so a scene is refused only when it does not fit on its ranks.
+    fn check_petsc_memory(&self, at: &Origins, key: &str, unknowns: usize) -> Result<(), CliError> {
+        let (ranks, local) = mpi_ranks();
+        let per_rank = petsc_memory_estimate_per_rank(unknowns, ranks);
+        let need = per_rank * local as f64;
+        check_memory(at, key, need, |have| {
+            format!(
+                "{unknowns} unknowns on {ranks} MPI rank(s), {local} of them on this node, need about {} per rank ({} on this node: the replicated model and Newton, and PETSc's share of the matrix, GAMG and GMRES), more than the {} available (MemAvailable in /proc/meminfo); spread the ranks over more nodes or use a coarser grid",
+                human_bytes(per_rank),
+                human_bytes(need),
+                human_bytes(have)
+            )
+        })
     }
 
     fn validate_grid(&self, at: &Origins) -> Result<(), CliError> {
@@ -392,6 +424,9 @@ impl Scene {
         }
         if self.body.dimension == 3 {
             return self.validate_solid_grid(at);
+        }
+        if self.solver.linear == "petsc" {
+            return self.check_petsc_memory(at, "grid.n2", 2 * g.n2 * g.n3);
         }
         let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
         check_memory(at, "grid.n2", need, |have| {
@@ -437,6 +472,9 @@ impl Scene {
                     g.n1
                 ),
             });
+        }
+        if self.solver.linear == "petsc" {
+            return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
         }
         let condensed = self.solver.nonlinear == "newton";
         let multigrid = self.solver.linear == "multigrid";
