@@ -1,10 +1,13 @@
 //! Paper items reached from a scene alone (issue 32): load expressions, Corollary 1
 //! (`membrane.model = "infinite"`), the paper's belt-speed rule, the cone's development map.
 
+mod common;
+
 use std::f64::consts::FRAC_PI_2;
 
 use capstan::cli::{Cli, run};
 use clap::Parser;
+use common::json_array as array;
 use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
@@ -22,15 +25,6 @@ fn tension(sets: &[&str]) -> Value {
         args.push(s);
     }
     json(&args)
-}
-
-fn array(v: &Value, key: &str) -> Vec<f64> {
-    v[key]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 /// Eq. capGrav with `theta0 = 0`: `(T0 - w a k) e^{mu t} + w a (k cos t + s sin t)`,
