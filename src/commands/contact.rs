@@ -106,6 +106,7 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
         volumetric: scene.discretisation.volumetric,
         order: scene.discretisation.order,
         grading: scene.discretisation.grading()?,
+        body_force: scene.loads.body_force_field(2)?,
     })
 }
 

@@ -20,7 +20,7 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 
 use crate::commands::SceneArgs;
-use crate::commands::tension::membrane_problem;
+use crate::commands::tension::{extra_loads, has_extra_loads, membrane_problem};
 use crate::error::CliError;
 use crate::scene::Scene;
 
@@ -98,7 +98,9 @@ pub fn report(scene: &Scene) -> Result<InferMuReport, CliError> {
 
 /// Computes the report of `model` (`friction.mu` is ignored).
 ///
-/// - `capstan`: [`capstan_friction::membrane::infer_mu`].
+/// - `capstan`: [`capstan_friction::membrane::infer_mu`]; with `loads.f_t`, `loads.f_n` or the
+///   paper's belt-speed rule, [`capstan_friction::membrane::infer_mu_with_load`] (Brent on
+///   the equilibrium ODE).
 /// - `membrane`: the `mu` at which the membrane displacement model (stiffness
 ///   `E h/(1 - nu^2)` from `body.*`, [`MEMBRANE_NODES`] nodes, `friction.eps`), pulled at
 ///   `theta_max` until every node slides, carries the ratio `T_max / T0` ([`membrane_mu`]).
@@ -115,30 +117,29 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
         field: "membrane.t_max",
         why: "infer-mu needs the measured tension at theta_max (e.g. --set membrane.t_max=2.75)",
     })?;
-    if crate::commands::tension::has_extra_loads(scene) {
-        let key = if scene.loads.f_t.is_some() {
-            "loads.f_t"
-        } else if scene.loads.f_n.is_some() {
-            "loads.f_n"
-        } else {
-            "membrane.belt_speed_rule"
-        };
-        return Err(CliError::Scene {
-            origin: key.into(),
-            message: format!(
-                "`{key}` is set: infer-mu inverts the built-in loads (gravity, speed with the corrected rule) only; `capstan tension` computes the profile under these loads"
-            ),
-        });
-    }
     let obstacle = scene.obstacle.build()?;
     let t0 = scene.membrane.t0;
     let ratio = t_max / t0;
-    let capstan = membrane::infer_mu_within(
-        &obstacle,
-        &membrane_problem(scene),
-        t_max,
-        &scene.membrane.budget(),
-    )?;
+    let extra = has_extra_loads(scene);
+    if extra && model != FrictionModel::Capstan {
+        return Err(loads_not_in_model(scene));
+    }
+    let capstan = if extra {
+        membrane::infer_mu_with_load(
+            &obstacle,
+            &membrane_problem(scene),
+            t_max,
+            &scene.membrane.budget(),
+            &extra_loads(scene)?,
+        )?
+    } else {
+        membrane::infer_mu_within(
+            &obstacle,
+            &membrane_problem(scene),
+            t_max,
+            &scene.membrane.budget(),
+        )?
+    };
     let mut r = InferMuReport {
         mu: capstan.mu,
         model: model.as_str(),
@@ -195,6 +196,24 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
         }
     }
     Ok(r)
+}
+
+/// `loads.f_t`, `loads.f_n` or the paper's belt-speed rule with `--model membrane` or
+/// `kikuchi-oden`: only the capstan model carries them.
+fn loads_not_in_model(scene: &Scene) -> CliError {
+    let key = if scene.loads.f_t.is_some() {
+        "loads.f_t"
+    } else if scene.loads.f_n.is_some() {
+        "loads.f_n"
+    } else {
+        "membrane.belt_speed_rule"
+    };
+    CliError::Scene {
+        origin: key.into(),
+        message: format!(
+            "`{key}` is set; only the capstan model (--model capstan) has membrane loads"
+        ),
+    }
 }
 
 /// The membrane and thick-body models carry no body forces and no belt speed.

@@ -54,16 +54,29 @@ pub fn membrane_profile(scene: &Scene) -> Result<TensionProfile, CliError> {
             &obstacle, &problem, &budget,
         )?);
     }
+    Ok(membrane::tension_profile_with_load(
+        &obstacle,
+        &problem,
+        &budget,
+        &extra_loads(scene)?,
+    )?)
+}
+
+/// The loads beyond the built-in ones ([`has_extra_loads`]): `loads.f_t`, `loads.f_n` and the
+/// paper's speed term (`membrane.belt_speed_rule = "paper"`, zero with the corrected rule).
+///
+/// # Errors
+/// [`CliError`] naming `loads.f_t` or `loads.f_n` for text that does not parse.
+pub fn extra_loads(
+    scene: &Scene,
+) -> Result<LoadSum<membrane::ExpressionLoad, PaperSpeedTransform>, CliError> {
     let paper = PaperSpeedTransform {
         speed_tension: match scene.membrane.belt_speed_rule {
-            BeltSpeedRule::Paper => problem.loads.speed_tension(),
+            BeltSpeedRule::Paper => membrane_problem(scene).loads.speed_tension(),
             BeltSpeedRule::Corrected => 0.0,
         },
     };
-    let extra = LoadSum(scene.loads.expression_load()?, paper);
-    Ok(membrane::tension_profile_with_load(
-        &obstacle, &problem, &budget, &extra,
-    )?)
+    Ok(LoadSum(scene.loads.expression_load()?, paper))
 }
 
 /// The tension profile `T(theta)` of the scene's membrane.

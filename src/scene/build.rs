@@ -10,7 +10,8 @@ use crate::problem::{Body, Dimension, EndLoads, Friction, Problem, SolveMethod, 
 impl Scene {
     /// The thick-body contact problem the scene describes: `obstacle.*`, `body.*`, `grid.*`,
     /// `discretisation.*`, the contact interval `[membrane.theta0, membrane.theta_max]`,
-    /// `friction.*`, the end tractions `loads.tau0`, `loads.tau_max` and `solver.*`.
+    /// `friction.*`, the end tractions `loads.tau0`, `loads.tau_max`, the body force
+    /// `loads.body_force` and `solver.*`.
     ///
     /// # Errors
     /// [`CliError::Scene`] naming the key: a cone under a plane-strain body
@@ -63,6 +64,7 @@ impl Scene {
                 grading: d.grading()?,
                 ..Default::default()
             },
+            body_force: self.loads.body_force_field(b.dimension)?,
         };
         Ok(Problem {
             body,

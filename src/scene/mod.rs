@@ -336,6 +336,13 @@ pub struct LoadsSpec {
     /// length along the outward normal (away from the obstacle).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub f_n: Option<String>,
+    /// A body force on the thick body (force per unit volume): its physical components along
+    /// the body's coordinate lines as expressions, `[f<2>, f<3>]` in `x2`, `x3` for
+    /// `body.dimension = 2`, `[f<1>, f<2>, f<3>]` in `x1`, `x2`, `x3` for 3 (see
+    /// [`capstan_elasticity::contact::BodyForceField`]). Held at its full value while the
+    /// solvers drive the end tractions.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_force: Option<Vec<String>>,
 }
 
 impl Default for LoadsSpec {
@@ -359,6 +366,7 @@ impl Default for LoadsSpec {
             tau_max: 2.0,
             f_t: None,
             f_n: None,
+            body_force: None,
         }
     }
 }
@@ -373,6 +381,57 @@ impl LoadsSpec {
         &self,
     ) -> Result<capstan_friction::membrane::ExpressionLoad, capstan_friction::FrictionError> {
         capstan_friction::membrane::ExpressionLoad::parse(self.f_t.as_deref(), self.f_n.as_deref())
+    }
+
+    /// The parsed `loads.body_force` of a body of `dimension` 2 or 3 (`None` when unset).
+    ///
+    /// # Errors
+    /// [`CliError::Scene`] naming `loads.body_force`: not one expression per component
+    /// (2 for `body.dimension = 2`, 3 for 3), or an expression that does not parse (its
+    /// variables are `x2`, `x3`, and `x1` in 3-D).
+    pub fn body_force_field(
+        &self,
+        dimension: u8,
+    ) -> Result<Option<capstan_elasticity::contact::BodyForceField>, CliError> {
+        let Some(sources) = &self.body_force else {
+            return Ok(None);
+        };
+        let key = "loads.body_force";
+        let (count, variables): (usize, &[&str]) = if dimension == 3 {
+            (3, &["x1", "x2", "x3"])
+        } else {
+            (2, &["x2", "x3"])
+        };
+        if sources.len() != count {
+            return Err(CliError::Scene {
+                origin: key.into(),
+                message: format!(
+                    "`{key}` has {} expressions; body.dimension = {dimension} takes {count}: {}",
+                    sources.len(),
+                    if count == 3 {
+                        "[f<1>, f<2>, f<3>] in x1, x2, x3"
+                    } else {
+                        "[f<2>, f<3>] in x2, x3"
+                    }
+                ),
+            });
+        }
+        let parsed = sources
+            .iter()
+            .map(|src| {
+                Expression::parse_in(src, variables).map_err(|e| CliError::Scene {
+                    origin: key.into(),
+                    message: format!("`{key}` = {src:?}: {e}"),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Some(capstan_elasticity::contact::BodyForceField::physical(
+            move |x| match &parsed[..] {
+                [f2, f3] => [0.0, f2.eval_at(&x[1..]), f3.eval_at(&x[1..])],
+                [f1, f2, f3] => [f1.eval_at(&x), f2.eval_at(&x), f3.eval_at(&x)],
+                _ => [f64::NAN; 3],
+            },
+        )))
     }
 
     /// The body forces on the membrane (every key but the thick body's end tractions).

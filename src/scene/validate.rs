@@ -13,7 +13,8 @@ impl Scene {
     /// [`FrictionLawKind::names`],
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
     /// `samples` in `[2, 10^7]`, `t_max > 0` when given; `loads.gravity, density >= 0`,
-    /// `loads.width, thickness > 0`; `body.thickness > 0`, `body.young > 0`, `body.poisson`
+    /// `loads.width, thickness > 0`; `loads.body_force` one expression per component, finite on
+    /// the body; `body.thickness > 0`, `body.young > 0`, `body.poisson`
     /// in `(-1, 1/2)`; `discretisation.volumetric = "reduced"` only with `fem-q1`, `fem-q2`;
     /// `grid.n2, n3 >= 3` (odd for `fem-q2`), at most [`MAX_N2`], [`MAX_N3`],
     /// and a thick-body solve that fits in the available memory ([`memory_estimate`]); known
@@ -26,6 +27,39 @@ impl Scene {
     /// [`CliError::Scene`] naming the key, the value and the allowed range.
     pub fn validate(&self) -> Result<(), CliError> {
         self.validate_with(&Origins::default())
+    }
+
+    /// `loads.body_force`: one expression per component of the body's dimension, each finite
+    /// at a 9 x 5 (x 5 across a 3-D body's width) lattice of points of the body.
+    fn validate_body_force(&self) -> Result<(), CliError> {
+        let Some(force) = self.loads.body_force_field(self.body.dimension)? else {
+            return Ok(());
+        };
+        let (m, b) = (&self.membrane, &self.body);
+        let lattice =
+            |a: f64, z: f64, n: usize| (0..n).map(move |i| a + (z - a) * i as f64 / (n - 1) as f64);
+        let x1s: Vec<f64> = if b.dimension == 3 {
+            lattice(b.x1 - 0.5 * b.width, b.x1 + 0.5 * b.width, 5).collect()
+        } else {
+            vec![0.0]
+        };
+        for x1 in x1s {
+            for x2 in lattice(m.theta0, m.theta_max, 9) {
+                for x3 in lattice(0.0, b.thickness, 5) {
+                    let f = force.components([x1, x2, x3]);
+                    if f.iter().any(|v| !v.is_finite()) {
+                        return Err(CliError::Scene {
+                            origin: "loads.body_force".into(),
+                            message: format!(
+                                "`loads.body_force` = {:?} is not finite at (x1, x2, x3) = ({x1}, {x2}, {x3}): {f:?}; it must be finite on the body",
+                                self.loads.body_force.as_deref().unwrap_or_default()
+                            ),
+                        });
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// `discretisation.grading` in `[0.05, 1]` and `discretisation.layers` in `1..=12` (only
@@ -280,6 +314,7 @@ impl Scene {
         }
         real("body.width", b.width, "(0, inf)", b.width > 0.0)?;
         real("body.x1", b.x1, "finite values", true)?;
+        self.validate_body_force()?;
         let qp = self.discretisation.method == DiscretisationMethod::FemQp;
         let order = self.discretisation.order;
         if qp && !capstan_elasticity::finite_element::high_order::ORDERS.contains(&order) {

@@ -24,6 +24,7 @@
 //!     volumetric: VolumetricIntegration::default(),
 //!     order: 4,
 //!     grading: capstan_elasticity::finite_element::Grading::UNIFORM,
+//!     body_force: None,
 //! };
 //! let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
 //! let model = body.model(RegularisedCoulomb, params, 1e-5).unwrap();

@@ -1,14 +1,16 @@
 //! Theorem 1 with general loads given as expressions (`loads.f_t`, `loads.f_n`): the
 //! production ODE against Theorem 1's integral formula, the observed order of a reference
 //! integrator, constant loads against today's gravity and belt-speed closed forms, and the
-//! paper's printed steady-speed transform (erratum 4).
+//! paper's printed steady-speed transform (erratum 4); the implied `mu` under these loads
+//! (`capstan infer-mu` with `loads.f_t`, `loads.f_n`) by a round trip.
 
 use std::f64::consts::FRAC_PI_2;
 
 use capstan_friction::FrictionError;
 use capstan_friction::membrane::{
     ExpressionLoad, MembraneBudget, MembraneEquilibrium, MembraneLoads, MembraneProblem,
-    PaperSpeedTransform, closed_form, tension_profile, tension_profile_with_load,
+    PaperSpeedTransform, closed_form, infer_mu_with_load, tension_profile,
+    tension_profile_with_load,
 };
 use capstan_geometry::{
     CircularCylinder, EllipticalPrism, GeometryError, Obstacle, RightCircularCone,
@@ -281,4 +283,80 @@ fn a_load_that_pulls_the_membrane_off_is_a_lift_off() {
     )
     .unwrap_err();
     assert!(matches!(err, FrictionError::LiftOff { .. }), "{err}");
+}
+
+/// `T_max` of the non-constant-load study at `mu`.
+fn loaded_t_max(mu: f64) -> f64 {
+    let load = ExpressionLoad::parse(Some(F_T), Some(F_N)).unwrap();
+    tension_profile_with_load(
+        &ellipse(),
+        &problem(mu, T0, THETA0, THETA_MAX),
+        &MembraneBudget::default(),
+        &load,
+    )
+    .unwrap()
+    .t_max()
+}
+
+#[test]
+fn implied_mu_under_expression_loads_round_trips() {
+    let load = ExpressionLoad::parse(Some(F_T), Some(F_N)).unwrap();
+    let budget = MembraneBudget::default();
+    for mu in [0.05, 0.4, 0.9, 2.5] {
+        let t_max = loaded_t_max(mu);
+        // the problem's own mu is ignored by the inversion
+        let p = problem(7.0, T0, THETA0, THETA_MAX);
+        let inferred = infer_mu_with_load(&ellipse(), &p, t_max, &budget, &load).unwrap();
+        // Brent to 1e-14 on an ODE solved to 1e-13: the forward model's accuracy bounds it
+        assert!(
+            (inferred.mu - mu).abs() < 1e-10,
+            "mu {mu}: inferred {} (difference {:.2e})",
+            inferred.mu,
+            (inferred.mu - mu).abs()
+        );
+        assert_eq!(inferred.method, capstan_friction::membrane::Method::Ode);
+    }
+    // the loads matter: the unloaded inversion of the same pair is another mu
+    let t_max = loaded_t_max(0.4);
+    let unloaded = capstan_friction::membrane::infer_mu(
+        &ellipse(),
+        &problem(0.4, T0, THETA0, THETA_MAX),
+        t_max,
+    )
+    .unwrap();
+    assert!((unloaded.mu - 0.4).abs() > 1e-2, "{}", unloaded.mu);
+}
+
+#[test]
+fn implied_mu_under_loads_reports_unreachable_pairs_and_spent_budgets() {
+    let load = ExpressionLoad::parse(Some(F_T), Some(F_N)).unwrap();
+    let p = problem(0.4, T0, THETA0, THETA_MAX);
+    let budget = MembraneBudget::default();
+    // below the frictionless end tension: no mu >= 0 reproduces the pair
+    let frictionless = loaded_t_max(0.0);
+    let err = infer_mu_with_load(&ellipse(), &p, 0.5 * frictionless, &budget, &load).unwrap_err();
+    match err {
+        FrictionError::NoFrictionCoefficient { reachable_min, .. } => {
+            assert!((reachable_min - frictionless).abs() < 1e-12 * frictionless)
+        }
+        other => panic!("{other}"),
+    }
+    // a root-finder budget of two iterations is spent before 1e-14
+    let tight = MembraneBudget {
+        max_root_iterations: 2,
+        ..budget
+    };
+    let err = infer_mu_with_load(&ellipse(), &p, loaded_t_max(0.4), &tight, &load).unwrap_err();
+    assert!(
+        matches!(err, FrictionError::RootNotConverged { .. }),
+        "{err}"
+    );
+    // a cone takes no load
+    let cone = Obstacle::CircularCone(RightCircularCone::new(0.5).unwrap());
+    let err =
+        infer_mu_with_load(&cone, &problem(0.5, 1.0, 0.0, 1.0), 2.0, &budget, &load).unwrap_err();
+    assert!(matches!(err, FrictionError::Unsupported { .. }), "{err}");
+    // a bad pair names its key
+    let err = infer_mu_with_load(&ellipse(), &p, -1.0, &budget, &load).unwrap_err();
+    assert!(err.to_string().contains("membrane.t_max"), "{err}");
 }

@@ -93,7 +93,8 @@ fn unknown_identifiers_list_the_allowed_names() {
         err,
         ExpressionError::UnknownIdentifier {
             position: 6,
-            name: "x".into()
+            name: "x".into(),
+            variables: "`t`".into()
         }
     );
     let message = err.to_string();

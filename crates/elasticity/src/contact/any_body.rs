@@ -6,6 +6,7 @@ use capstan_friction::FrictionLaw;
 use capstan_geometry::{Obstacle, Surface};
 
 use crate::contact::body::ThickBody;
+use crate::contact::body_force::BodyForceField;
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::BodyOperator;
@@ -95,6 +96,9 @@ pub struct Body<S = Obstacle> {
     pub method: DiscretisationMethod,
     /// Its settings (order, volumetric integration, grading, extra keys).
     pub settings: DiscretisationSettings,
+    /// A body force (`loads.body_force`), `None` for none: held at its full value while the
+    /// solvers drive the end loads ([`ContactModel::with_fixed_loads`]).
+    pub body_force: Option<BodyForceField>,
 }
 
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
@@ -115,6 +119,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
             n3,
             method: DiscretisationMethod::Fd,
             settings: DiscretisationSettings::default(),
+            body_force: None,
         }
     }
 
@@ -139,6 +144,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
             volumetric: self.settings.volumetric,
             order: self.settings.order,
             grading: self.settings.grading,
+            body_force: self.body_force.clone(),
         }
     }
 
@@ -178,9 +184,25 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
     /// Those of [`Body::solid`], [`ThickBody::discretisation`] and
     /// [`SolidBody::operator`].
     pub fn operator(&self, tau0: f64, tau_max: f64) -> Result<BodyOperator, ElasticityError> {
+        self.loaded_operator(&[tau0, tau_max, 1.0])
+    }
+
+    /// The assembled operator with the loads of [`ThickBody::loads`] at `magnitudes`
+    /// (`[tau0, tau_max]`, then the body force's scale; a missing scale is 0).
+    ///
+    /// # Errors
+    /// As [`Body::operator`].
+    pub fn loaded_operator(&self, magnitudes: &[f64]) -> Result<BodyOperator, ElasticityError> {
+        let force_scale = magnitudes.get(2).copied().unwrap_or(0.0);
+        let force = match &self.body_force {
+            Some(f) if force_scale != 0.0 => Some(f.scaled(force_scale)),
+            _ => None,
+        };
         Ok(match self.solid()? {
-            Some(solid) => Box::new(solid.operator(tau0, tau_max)?),
-            None => Box::new(self.plane().discretisation(tau0, tau_max)?),
+            Some(solid) => {
+                Box::new(solid.operator_with_force(magnitudes[0], magnitudes[1], force.as_ref())?)
+            }
+            None => Box::new(self.plane().loaded_discretisation(magnitudes)?),
         })
     }
 
@@ -196,12 +218,22 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         slip_threshold: f64,
     ) -> Result<ContactModel<BodyOperator, L>, ContactError> {
         self.solid()?; // the 3-D body's own errors before any assembly
-        ContactModel::new(
-            |tau0, tau_max| self.operator(tau0, tau_max),
+        if self.body_force.is_none() {
+            return ContactModel::new(
+                |tau0, tau_max| self.operator(tau0, tau_max),
+                law,
+                params,
+                slip_threshold,
+            );
+        }
+        Ok(ContactModel::with_loads(
+            |m: &[f64]| self.loaded_operator(m),
+            &self.plane().loads(),
             law,
             params,
             slip_threshold,
-        )
+        )?
+        .with_fixed_loads(&[1.0]))
     }
 }
 

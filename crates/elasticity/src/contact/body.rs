@@ -7,8 +7,9 @@ use capstan_friction::FrictionLaw;
 use capstan_geometry::{Obstacle, ShellChart, Surface};
 
 use crate::boundary::{BoundaryConditions, BoundaryFunction, SideCondition, X2Ends};
+use crate::contact::body_force::BodyForceField;
 use crate::contact::error::ContactError;
-use crate::contact::model::ContactModel;
+use crate::contact::model::{BODY_FORCE, ContactModel, END_LOADS};
 use crate::error::ElasticityError;
 use crate::finite_element::{DiscretisationMethod, Grading, VolumetricIntegration};
 use crate::grid::Grid;
@@ -74,6 +75,9 @@ pub struct ThickBody<S = Obstacle> {
     /// geometric layers toward both ends of `x2` and `x3` ([`Grading::geometric`]). The other
     /// methods accept only the uniform one.
     pub grading: Grading,
+    /// A body force (`loads.body_force`), `None` for none: a load of the contact model beside
+    /// the end tractions, always at its full value ([`ContactModel::with_fixed_loads`]).
+    pub body_force: Option<BodyForceField>,
 }
 
 /// The operator [`ThickBody`] builds: any registered discretisation, boxed (the name is kept
@@ -124,6 +128,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
             volumetric: VolumetricIntegration::Full,
             order: DiscretisationMethod::DEFAULT_ORDER,
             grading: Grading::UNIFORM,
+            body_force: None,
         })
     }
 
@@ -146,7 +151,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
         self.method.scheme(&self.settings())
     }
 
-    /// The problem of the body with end loads `tau0`, `tau_max`, over the shared chart.
+    /// The problem of the body with end loads `tau0`, `tau_max` (and its body force, if any),
+    /// over the shared chart.
     ///
     /// # Errors
     /// Grid errors.
@@ -155,13 +161,30 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
         tau0: f64,
         tau_max: f64,
     ) -> Result<PlaneProblem<SharedChart>, ElasticityError> {
+        self.problem_scaled(tau0, tau_max, 1.0)
+    }
+
+    /// [`ThickBody::problem`] with the body force times `force_scale` (`0`: none).
+    ///
+    /// # Errors
+    /// Grid errors.
+    pub fn problem_scaled(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+        force_scale: f64,
+    ) -> Result<PlaneProblem<SharedChart>, ElasticityError> {
         let chart: SharedChart = Arc::new(ShellChart::new(self.obstacle.clone()));
+        let body_force = match &self.body_force {
+            Some(f) if force_scale != 0.0 => Some(f.scaled(force_scale).plane(chart.clone())),
+            _ => None,
+        };
         Ok(PlaneProblem {
             chart,
             material: self.material,
             grid: Grid::new(self.theta, self.thickness, self.n2, self.n3, false)?,
             boundary: ThickBody::boundary(tau0, tau_max),
-            body_force: None,
+            body_force,
         })
     }
 
@@ -179,6 +202,30 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
     ) -> Result<PlaneOperator, ElasticityError> {
         let scheme = self.scheme()?;
         scheme.build(self.problem(tau0, tau_max)?)
+    }
+
+    /// The operator with the loads of [`ThickBody::loads`] at `magnitudes` (`[tau0, tau_max]`,
+    /// then the body force's scale when there is one).
+    ///
+    /// # Errors
+    /// As [`ThickBody::discretisation`].
+    pub fn loaded_discretisation(
+        &self,
+        magnitudes: &[f64],
+    ) -> Result<PlaneOperator, ElasticityError> {
+        let force_scale = magnitudes.get(2).copied().unwrap_or(0.0);
+        self.scheme()?
+            .build(self.problem_scaled(magnitudes[0], magnitudes[1], force_scale)?)
+    }
+
+    /// The loads of the body's contact model, by scene key: [`END_LOADS`], then
+    /// [`BODY_FORCE`] when the body has one.
+    pub fn loads(&self) -> Vec<&'static str> {
+        let mut loads = END_LOADS.to_vec();
+        if self.body_force.is_some() {
+            loads.push(BODY_FORCE);
+        }
+        loads
     }
 
     /// The body on the next coarser grid of grid sequencing
@@ -212,11 +259,21 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
         params: L::Params,
         slip_threshold: f64,
     ) -> Result<ContactModel<PlaneOperator, L>, ContactError> {
-        ContactModel::new(
-            |tau0, tau_max| self.discretisation(tau0, tau_max),
+        if self.body_force.is_none() {
+            return ContactModel::new(
+                |tau0, tau_max| self.discretisation(tau0, tau_max),
+                law,
+                params,
+                slip_threshold,
+            );
+        }
+        Ok(ContactModel::with_loads(
+            |m: &[f64]| self.loaded_discretisation(m),
+            &self.loads(),
             law,
             params,
             slip_threshold,
-        )
+        )?
+        .with_fixed_loads(&[1.0]))
     }
 }

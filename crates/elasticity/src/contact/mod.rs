@@ -44,6 +44,7 @@
 
 mod any_body;
 mod body;
+mod body_force;
 mod boundary_solver;
 mod bulk_multigrid;
 mod error;
@@ -55,6 +56,7 @@ mod threshold;
 
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
+pub use body_force::BodyForceField;
 pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
 pub use bulk_multigrid::BulkMultigrid;
 pub use error::{ContactError, ContactErrorKind};
@@ -62,7 +64,7 @@ pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
     solve_sequenced,
 };
-pub use model::{ContactModel, END_LOADS, EndLoads, SiteTraction};
+pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use solution::{

@@ -68,6 +68,10 @@ impl EndLoads {
 /// and `tau_max` at `x2 = theta1` ([`EndLoads`]).
 pub const END_LOADS: [&str; 2] = ["loads.tau0", "loads.tau_max"];
 
+/// The name (scene key) of a body's body force in its contact model's load list
+/// ([`crate::contact::BodyForceField`]), after [`END_LOADS`].
+pub const BODY_FORCE: &str = "loads.body_force";
+
 /// The friction law at one contact site (a contact node; one or two tangential entries, see
 /// [`ContactNode`]): the physical slip and traction, and for each entry of the site the
 /// covariant traction and its derivatives, which enter the discrete balance rows.
@@ -190,6 +194,9 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     /// The names of the loads (scene keys), one per right-hand side of `rhs_basis`.
     loads: Vec<&'static str>,
     rhs_basis: Vec<Vec<f64>>,
+    /// The magnitudes of the loads after the end loads that every solve applies
+    /// ([`ContactModel::with_fixed_loads`]; empty: zero).
+    fixed: Vec<f64>,
     nodes: Vec<ContactNode>,
     active: Vec<usize>,
     sites: Sites,
@@ -319,6 +326,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             system,
             loads: loads.to_vec(),
             rhs_basis,
+            fixed: Vec::new(),
             nodes,
             active,
             sites,
@@ -328,6 +336,47 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
 }
 
 impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
+    /// The model with the loads after the end loads held at `magnitudes` in every solve (a
+    /// body force at its full value: `&[1.0]`), while the solvers drive the end loads.
+    ///
+    /// # Math
+    /// ```text
+    /// b(tau) = tau0 b_0 + tau_max b_1 + sum_k m_k b_{k+2}      (m = magnitudes)
+    /// ```
+    /// The right-hand side is then affine in the end loads: a load continuation scales only
+    /// `tau0`, `tau_max`, and the condensed solver's limiting ratios (which assume
+    /// `b` linear in them) are not computed.
+    ///
+    /// # Panics
+    /// If there are more magnitudes than loads after the end loads.
+    #[must_use]
+    #[track_caller]
+    pub fn with_fixed_loads(mut self, magnitudes: &[f64]) -> Self {
+        assert!(
+            magnitudes.len() + 2 <= self.rhs_basis.len(),
+            "{} fixed magnitudes for {} loads after the end loads",
+            magnitudes.len(),
+            self.rhs_basis.len() - 2
+        );
+        self.fixed = magnitudes.to_vec();
+        self
+    }
+
+    /// `sum_k m_k b_{k+2}`, the right-hand side of the fixed loads
+    /// ([`ContactModel::with_fixed_loads`]); `None` without any (or all at zero).
+    pub fn fixed_rhs(&self) -> Option<Vec<f64>> {
+        if self.fixed.iter().all(|&m| m == 0.0) {
+            return None;
+        }
+        let mut b = vec![0.0; self.system.dimension()];
+        for (m, basis) in self.fixed.iter().zip(&self.rhs_basis[2..]) {
+            for (bi, x) in b.iter_mut().zip(basis) {
+                *bi += m * x;
+            }
+        }
+        Some(b)
+    }
+
     /// The same body and contact surface with other parameters of the law (`mu`, `eps`; the
     /// stick/slip threshold is kept): nothing is assembled again (the discretisation is shared, the assembled operator
     /// copied). Its [`crate::contact::BoundarySolver`] can reuse this model's factorisation
@@ -344,6 +393,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             system: self.system.clone(),
             loads: self.loads.clone(),
             rhs_basis: self.rhs_basis.clone(),
+            fixed: self.fixed.clone(),
             nodes: self.nodes.clone(),
             active: self.active.clone(),
             sites: self.sites.clone(),
@@ -403,9 +453,15 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         &self.ext
     }
 
-    /// `b(tau) = tau0 b_0 + tau_max b_1` (further loads at zero).
+    /// `b(tau) = tau0 b_0 + tau_max b_1`, plus the fixed loads
+    /// ([`ContactModel::with_fixed_loads`]; further loads at zero).
     pub fn rhs(&self, loads: EndLoads) -> Vec<f64> {
-        self.rhs_of(&loads.magnitudes())
+        if self.fixed.is_empty() {
+            return self.rhs_of(&loads.magnitudes());
+        }
+        let mut m = loads.magnitudes().to_vec();
+        m.extend_from_slice(&self.fixed);
+        self.rhs_of(&m)
     }
 
     /// `b(m) = sum_k m_k b_k` over the first `magnitudes.len()` loads (the others at zero).

@@ -218,6 +218,21 @@ impl SolidMms {
         n: [usize; 3],
         order: impl Into<super::HexElement>,
     ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
+        self.operator_with_force(n, order, |f| f)
+    }
+
+    /// [`SolidMms::operator`] with the exact covariant forcing handed through `force` first
+    /// (e.g. to a physical-component [`crate::contact::BodyForceField`] and back: a test of
+    /// that path against the manufactured solution).
+    ///
+    /// # Errors
+    /// As [`SolidMms::operator`].
+    pub fn operator_with_force(
+        &self,
+        n: [usize; 3],
+        order: impl Into<super::HexElement>,
+        force: impl FnOnce(SolidForce) -> SolidForce,
+    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
         let exact = self.exact();
         let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
         let dirichlet = || {
@@ -249,7 +264,7 @@ impl SolidMms {
             pinned: vec![],
         };
         let ex = exact.clone();
-        let force: SolidForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 3]));
+        let force = force(Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 3])));
         SolidNavier::new(
             ShellChart::new(self.obstacle.clone()),
             self.material,

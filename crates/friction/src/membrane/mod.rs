@@ -48,8 +48,8 @@ pub use geodesic_strip::GeodesicStrip;
 pub use infinite::InfiniteMembrane;
 pub use load_field::{ExpressionLoad, Gravity, LoadField, LoadSum, NoLoad, PaperSpeedTransform};
 pub use obstacle::{
-    FrictionEstimate, infer_mu, infer_mu_within, tension_profile, tension_profile_with_load,
-    tension_profile_within,
+    FrictionEstimate, infer_mu, infer_mu_with_load, infer_mu_within, tension_profile,
+    tension_profile_with_load, tension_profile_within,
 };
 pub use prism::PrismMembrane;
 pub use problem::{MembraneLoads, MembraneProblem, Method, TensionProfile};

@@ -387,7 +387,7 @@ pub fn infer_mu_within(
         return Ok(FrictionEstimate { mu, method });
     }
     // With weight: bracket and solve T_max(mu) = t_max.
-    let end = |mu: f64| -> Result<(f64, Method), FrictionError> {
+    bracketed_mu(problem, t_max, budget, |mu| {
         let p = tension_profile_within(
             obstacle,
             &MembraneProblem {
@@ -398,7 +398,72 @@ pub fn infer_mu_within(
             budget,
         )?;
         Ok((p.t_max(), p.method))
-    };
+    })
+}
+
+/// [`infer_mu_within`] under the problem's loads plus `extra` (Theorem 1 with any load
+/// `(0, g_r2, g_r3)`, e.g. the scene's `loads.f_t`, `loads.f_n`), on prisms: the `mu` at which
+/// [`tension_profile_with_load`] ends at `t_max` (`problem.mu` is ignored).
+///
+/// # Math
+/// `T_max(mu)` solves `dT/dx2 = mu sqrt(a_22) R - g_r2`, `R = kappa (T - c) - g_r3 >= 0`
+/// (no lift-off, checked by the forward model), so `dT_max/dmu >= 0`: the root of
+/// `T_max(mu) = t_max` is bracketed from `mu = 0` by doubling (at most until
+/// `mu |theta_max - theta0| > 300`, monotonicity checked on the way) and found by Brent's
+/// method to `|d mu| <= 1e-14` within `budget.max_root_iterations`.
+///
+/// # Errors
+/// As [`infer_mu_within`]: [`FrictionError::NoFrictionCoefficient`] when no `mu >= 0` in the
+/// bracket reproduces the pair (with the reachable range), [`FrictionError::NotMonotone`],
+/// [`FrictionError::RootNotConverged`] when the budget is spent; the forward model's errors
+/// ([`FrictionError::Unsupported`] on a cone, lift-off, slack membrane).
+///
+/// # Example
+/// ```
+/// use capstan_friction::membrane::{ExpressionLoad, MembraneProblem, infer_mu_with_load};
+/// use capstan_friction::membrane::{MembraneBudget, tension_profile_with_load};
+/// use capstan_geometry::{CircularCylinder, Obstacle};
+/// let circle = Obstacle::Cylinder(CircularCylinder::new(1.0).unwrap());
+/// let load = ExpressionLoad::parse(Some("0.2*sin(t)"), Some("-0.1")).unwrap();
+/// let problem = MembraneProblem { mu: 0.3, theta0: 0.0, theta_max: 2.0, ..Default::default() };
+/// let budget = MembraneBudget::default();
+/// let t_max = tension_profile_with_load(&circle, &problem, &budget, &load).unwrap().t_max();
+/// let mu = infer_mu_with_load(&circle, &problem, t_max, &budget, &load).unwrap().mu;
+/// assert!((mu - 0.3).abs() < 1e-10);
+/// ```
+pub fn infer_mu_with_load<L: LoadField + ?Sized>(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    t_max: f64,
+    budget: &MembraneBudget,
+    extra: &L,
+) -> Result<FrictionEstimate, FrictionError> {
+    problem.validate()?;
+    budget.validate()?;
+    check("membrane.t_max", t_max, "(0, inf)", |v| v > 0.0)?;
+    bracketed_mu(problem, t_max, budget, |mu| {
+        let p = tension_profile_with_load(
+            obstacle,
+            &MembraneProblem {
+                mu,
+                samples: 2,
+                ..*problem
+            },
+            budget,
+            extra,
+        )?;
+        Ok((p.t_max(), p.method))
+    })
+}
+
+/// The root of `end(mu).0 = t_max` for a non-decreasing `end`: bracketed from `mu = 0` by
+/// doubling (`0.25, 0.5, ...` until `mu |theta_max - theta0| > 300`), then Brent's method.
+fn bracketed_mu(
+    problem: &MembraneProblem,
+    t_max: f64,
+    budget: &MembraneBudget,
+    end: impl Fn(f64) -> Result<(f64, Method), FrictionError>,
+) -> Result<FrictionEstimate, FrictionError> {
     let (f0, method) = end(0.0)?;
     if t_max < f0 {
         return Err(FrictionError::NoFrictionCoefficient {

@@ -12,8 +12,8 @@ const MAX_POWI: f64 = 1024.0;
 /// and `a` the value below it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) enum Op {
-    /// Push `t`.
-    Variable,
+    /// Push variable number `i` (`t` alone is number 0).
+    Variable(u8),
     /// Push `c` (only when the whole expression is constant).
     Constant(f64),
     /// `a + x`.
@@ -53,7 +53,7 @@ pub(super) fn max_stack(code: &[Op]) -> usize {
     let (mut depth, mut max) = (0_usize, 0_usize);
     for op in code {
         match op {
-            Op::Variable | Op::Constant(_) => depth += 1,
+            Op::Variable(_) | Op::Constant(_) => depth += 1,
             Op::Add | Op::Subtract | Op::Multiply | Op::Divide | Op::Power => depth -= 1,
             _ => {}
         }

@@ -40,16 +40,18 @@ pub enum ExpressionError {
         /// What was found instead (`None` at the end of the input).
         found: Option<char>,
     },
-    /// A name that is neither the variable nor a constant.
+    /// A name that is neither a variable nor a constant.
     #[error(
-        "unknown identifier `{name}` at byte {position}; the variable is `t` and the constants \
-         are `pi` and `e`"
+        "unknown identifier `{name}` at byte {position}; the variables are {variables} and the \
+         constants are `pi` and `e`"
     )]
     UnknownIdentifier {
         /// Byte offset of the name.
         position: usize,
         /// The name.
         name: String,
+        /// The variables of the expression, quoted (`` `t` `` for a profile).
+        variables: String,
     },
     /// A call of a function that does not exist.
     #[error("unknown function `{name}` at byte {position}; the functions are {FUNCTION_NAMES}")]

@@ -1,4 +1,5 @@
-//! Math expressions in one variable `t`, evaluated exactly on dual numbers.
+//! Math expressions in one variable `t` (or several named ones, [`Expression::parse_in`]),
+//! evaluated exactly on dual numbers.
 //!
 //! Scene files describe obstacle profiles as text, e.g. `u = "2*sin(t) + 0.2*sin(2*t)"`.
 //! [`Expression::parse`] compiles such a string once into a short program for a small stack
@@ -23,7 +24,8 @@
 //!   `-t^2 = -(t^2)`. Its exponent may carry a sign: `t^-2 = t^(-2)`.
 //! - Whitespace (ASCII) is ignored. There is no implicit multiplication: write `2*t`, not `2t`.
 //! - Names are case-sensitive. `t` is the variable, `pi` and `e` are the constants; `2e3` is
-//!   the number 2000, while `2*e` is twice Euler's number.
+//!   the number 2000, while `2*e` is twice Euler's number. [`Expression::parse_in`] takes
+//!   other variable names in place of `t` (e.g. `x1`, `x2`, `x3` for a field on a body).
 //!
 //! # Evaluation
 //! Constant sub-expressions (`2*pi`, `sqrt(2)/2`, `-1`) are folded at parse time, in `f64`
@@ -103,12 +105,14 @@ pub struct Expression {
     code: Vec<Op>,
     /// The largest number of values alive at once while `code` runs.
     stack_len: usize,
+    /// The variable names, `Op::Variable(i)` for `variables[i]`.
+    variables: Vec<String>,
 }
 
 impl PartialEq for Expression {
-    /// Equal source texts (the program is a function of the source text).
+    /// Equal source texts and variables (the program is a function of both).
     fn eq(&self, other: &Self) -> bool {
-        self.source == other.source
+        self.source == other.source && self.variables == other.variables
     }
 }
 
@@ -149,13 +153,51 @@ impl Expression {
     /// assert!(matches!(err, ExpressionError::UnknownIdentifier { position: 6, .. }));
     /// ```
     pub fn parse(src: &str) -> Result<Self, ExpressionError> {
+        Self::parse_in(src, &["t"])
+    }
+
+    /// Parses and compiles `src` as an expression in the named `variables` (in place of `t`;
+    /// evaluate with [`Expression::eval_at`], values in the same order).
+    ///
+    /// # Errors
+    /// As [`Expression::parse`]; an unknown name lists `variables`.
+    ///
+    /// # Panics
+    /// If a name in `variables` is not an ASCII identifier (letters, digits, `_`, not starting
+    /// with a digit), is a function or a constant name, or if there are more than 256: a
+    /// programmer error.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_geometry::expression::Expression;
+    ///
+    /// let f = Expression::parse_in("x2 * sin(x3) - x1^2", &["x1", "x2", "x3"]).unwrap();
+    /// assert_eq!(f.eval_at(&[1.0_f64, 2.0, 0.0]), -1.0);
+    /// assert!(Expression::parse_in("t", &["x1", "x2"]).is_err());
+    /// ```
+    #[track_caller]
+    pub fn parse_in(src: &str, variables: &[&str]) -> Result<Self, ExpressionError> {
+        assert!(variables.len() <= 256, "at most 256 variables");
+        for v in variables {
+            let bytes = v.as_bytes();
+            assert!(
+                !bytes.is_empty()
+                    && !bytes[0].is_ascii_digit()
+                    && bytes
+                        .iter()
+                        .all(|b| b.is_ascii_alphanumeric() || *b == b'_')
+                    && !matches!(*v, "pi" | "e")
+                    && code::Function::from_name(v).is_none(),
+                "`{v}` cannot name a variable"
+            );
+        }
         if src.len() > MAX_LENGTH {
             return Err(ExpressionError::TooLong {
                 length: src.len(),
                 limit: MAX_LENGTH,
             });
         }
-        let mut parser = Parser::new(src);
+        let mut parser = Parser::new(src, variables);
         if parser.peek().is_none() {
             return Err(ExpressionError::Empty);
         }
@@ -173,7 +215,13 @@ impl Expression {
             source: src.to_owned(),
             code,
             stack_len,
+            variables: variables.iter().map(|v| (*v).to_owned()).collect(),
         })
+    }
+
+    /// The variable names (`["t"]` from [`Expression::parse`]).
+    pub fn variables(&self) -> &[String] {
+        &self.variables
     }
 
     /// The source text, as given to [`Expression::parse`].
@@ -201,12 +249,20 @@ impl Expression {
     /// ```
     #[inline]
     pub fn eval<F: Real, S: Scalar<F>>(&self, t: S) -> S {
+        self.eval_at(&[t])
+    }
+
+    /// Evaluates the expression at the values `x` of its variables, in the order given to
+    /// [`Expression::parse_in`] (on dual numbers: exact derivatives, as [`Expression::eval`]).
+    /// A variable without a value (`x` too short) is NaN; never panics.
+    #[inline]
+    pub fn eval_at<F: Real, S: Scalar<F>>(&self, x: &[S]) -> S {
         if self.stack_len <= INLINE_STACK {
             let mut stack = [S::zero(); INLINE_STACK];
-            self.run(t, &mut stack)
+            self.run(x, &mut stack)
         } else {
             let mut stack = vec![S::zero(); self.stack_len];
-            self.run(t, &mut stack)
+            self.run(x, &mut stack)
         }
     }
 
@@ -215,15 +271,17 @@ impl Expression {
     /// The top of the stack lives in `top`, so unary operations and operations with a constant
     /// touch no memory. Indices stay in bounds because `stack_len` was computed from `code`.
     #[inline(always)]
-    fn run<F: Real, S: Scalar<F>>(&self, t: S, stack: &mut [S]) -> S {
+    fn run<F: Real, S: Scalar<F>>(&self, x: &[S], stack: &mut [S]) -> S {
         let mut top = S::zero();
         let mut sp = 0;
         for op in &self.code {
             top = match *op {
-                Op::Variable => {
+                Op::Variable(i) => {
                     stack[sp] = top;
                     sp += 1;
-                    t
+                    x.get(usize::from(i))
+                        .copied()
+                        .unwrap_or_else(|| S::from(F::nan()))
                 }
                 Op::Constant(c) => {
                     stack[sp] = top;

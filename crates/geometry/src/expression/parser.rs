@@ -21,18 +21,21 @@ pub(super) struct Parser<'a> {
     pos: usize,
     /// Current nesting depth, limited by [`MAX_DEPTH`].
     depth: usize,
+    /// The names of the variables, `Op::Variable(i)` for `variables[i]`.
+    variables: &'a [&'a str],
     pub(super) code: Vec<Op>,
 }
 
 type Parsed = Result<Operand, ExpressionError>;
 
 impl<'a> Parser<'a> {
-    /// A parser at the start of `src`.
-    pub(super) fn new(src: &'a str) -> Self {
+    /// A parser at the start of `src` for an expression in `variables` (at most 256 names).
+    pub(super) fn new(src: &'a str, variables: &'a [&'a str]) -> Self {
         Self {
             src,
             pos: 0,
             depth: 0,
+            variables,
             code: Vec::new(),
         }
     }
@@ -252,11 +255,11 @@ impl Parser<'_> {
         if let Some(function) = Function::from_name(name) {
             return self.call(function, start);
         }
+        if let Some(i) = self.variables.iter().position(|v| *v == name) {
+            self.code.push(Op::Variable(i as u8));
+            return Ok(Operand::Code);
+        }
         match name {
-            "t" => {
-                self.code.push(Op::Variable);
-                Ok(Operand::Code)
-            }
             "pi" => Ok(Operand::Constant(core::f64::consts::PI)),
             "e" => Ok(Operand::Constant(core::f64::consts::E)),
             _ if self.peek() == Some(b'(') => Err(ExpressionError::UnknownFunction {
@@ -266,6 +269,12 @@ impl Parser<'_> {
             _ => Err(ExpressionError::UnknownIdentifier {
                 position: start,
                 name: name.to_owned(),
+                variables: self
+                    .variables
+                    .iter()
+                    .map(|v| format!("`{v}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
             }),
         }
     }

@@ -12,10 +12,10 @@ fn constants_are_folded_into_single_instructions() {
     assert_eq!(
         code("2*sin(t) + 0.2*sin(2*t)"),
         [
-            Op::Variable,
+            Op::Variable(0),
             Op::Call(Function::Sin),
             Op::Times(2.0),
-            Op::Variable,
+            Op::Variable(0),
             Op::Times(2.0),
             Op::Call(Function::Sin),
             Op::Times(0.2),
@@ -26,22 +26,22 @@ fn constants_are_folded_into_single_instructions() {
         code("2*pi/4 - sqrt(4)"),
         [Op::Constant(0.5 * core::f64::consts::PI - 2.0)]
     );
-    assert_eq!(code("t - 1"), [Op::Variable, Op::Plus(-1.0)]);
-    assert_eq!(code("1 - t"), [Op::Variable, Op::ConstantMinus(1.0)]);
-    assert_eq!(code("1 / t"), [Op::Variable, Op::ConstantOver(1.0)]);
-    assert_eq!(code("t / 4"), [Op::Variable, Op::Over(4.0)]);
+    assert_eq!(code("t - 1"), [Op::Variable(0), Op::Plus(-1.0)]);
+    assert_eq!(code("1 - t"), [Op::Variable(0), Op::ConstantMinus(1.0)]);
+    assert_eq!(code("1 / t"), [Op::Variable(0), Op::ConstantOver(1.0)]);
+    assert_eq!(code("t / 4"), [Op::Variable(0), Op::Over(4.0)]);
 }
 
 #[test]
 fn powers_choose_powi_powf_or_exp_ln() {
-    assert_eq!(code("t^3"), [Op::Variable, Op::PowI(3)]);
-    assert_eq!(code("t^-2"), [Op::Variable, Op::PowI(-2)]);
-    assert_eq!(code("t^1024"), [Op::Variable, Op::PowI(1024)]);
-    assert_eq!(code("t^1025"), [Op::Variable, Op::PowF(1025.0)]);
-    assert_eq!(code("t^2.5"), [Op::Variable, Op::PowF(2.5)]);
-    assert_eq!(code("t^t"), [Op::Variable, Op::Variable, Op::Power]);
-    assert_eq!(code("e^t"), [Op::Variable, Op::ExpTimes(1.0)]);
-    assert_eq!(code("-t^2"), [Op::Variable, Op::PowI(2), Op::Negate]);
+    assert_eq!(code("t^3"), [Op::Variable(0), Op::PowI(3)]);
+    assert_eq!(code("t^-2"), [Op::Variable(0), Op::PowI(-2)]);
+    assert_eq!(code("t^1024"), [Op::Variable(0), Op::PowI(1024)]);
+    assert_eq!(code("t^1025"), [Op::Variable(0), Op::PowF(1025.0)]);
+    assert_eq!(code("t^2.5"), [Op::Variable(0), Op::PowF(2.5)]);
+    assert_eq!(code("t^t"), [Op::Variable(0), Op::Variable(0), Op::Power]);
+    assert_eq!(code("e^t"), [Op::Variable(0), Op::ExpTimes(1.0)]);
+    assert_eq!(code("-t^2"), [Op::Variable(0), Op::PowI(2), Op::Negate]);
 }
 
 #[test]

@@ -17,6 +17,9 @@ pub(super) const SINGULAR_VALUE_ITERATIONS: usize = 30;
 /// Workspace (doubles) of one block of condensation solves: 2^24 (128 MiB).
 pub(super) const CONDENSATION_BLOCK_ENTRIES: usize = 1 << 24;
 
+/// `(P v, N v)`: the tangential contact displacements and normal stresses of a load state.
+pub(super) type ContactState = (Vec<f64>, Vec<f64>);
+
 /// The law-independent part of [`BoundarySolver`]: the factorised stabilised bulk and the
 /// condensed matrices (cheap to clone: the large parts are shared).
 #[derive(Clone)]
@@ -29,6 +32,9 @@ pub(super) struct Condensation {
     pub(super) base: [(Vec<f64>, Vec<f64>); 2],
     /// The stuck state (`v^2 = 0` at every contact node) for the unit loads: Newton's start.
     pub(super) stuck: [Vec<f64>; 2],
+    /// `((P v_f, N v_f), stuck state)` of the fixed loads (a body force at its full value,
+    /// [`ContactModel::with_fixed_loads`]), which every load state adds; `None` without.
+    pub(super) fixed: Option<(ContactState, Vec<f64>)>,
 }
 
 /// Factorises the stabilised bulk `A + sum_k w_k c_k e_row_k e_tdof_k^T` (`values` holds `A` on

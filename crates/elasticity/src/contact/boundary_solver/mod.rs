@@ -164,21 +164,31 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             (pz, nz) = condense(model, ext, &values, &spring, &mut lu)?;
             factorisations += 1;
         }
-        let base = [0, 1].map(|i| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
-            let mut v = model.rhs_basis(i).to_vec();
+        let mut unit_state = |mut v: Vec<f64>| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
             lu.solve_in_place(&mut v)?;
             Ok(project(model, &v))
-        });
-        let [b0, b1] = base;
-        let (b0, b1) = (b0?, b1?);
+        };
+        let b0 = unit_state(model.rhs_basis(0).to_vec())?;
+        let b1 = unit_state(model.rhs_basis(1).to_vec())?;
+        let fixed_state = model.fixed_rhs().map(&mut unit_state).transpose()?;
         // P Z s = -x_i: the contact tractions that hold every contact node in place.
         let lu_pz = pz.partial_piv_lu();
-        let stuck = [&b0.0, &b1.0].map(|x| {
+        let hold = |x: &[f64]| {
             let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -x[i]);
             let s = lu_pz.solve(&rhs);
             (0..m).map(|i| s[(i, 0)]).collect::<Vec<f64>>()
+        };
+        let stuck = [hold(&b0.0), hold(&b1.0)];
+        let fixed = fixed_state.map(|f| {
+            let s = hold(&f.0);
+            (f, s)
         });
-        if stuck.iter().flatten().any(|x| !x.is_finite()) {
+        if stuck
+            .iter()
+            .chain(fixed.iter().map(|f| &f.1))
+            .flatten()
+            .any(|x| !x.is_finite())
+        {
             return Err(capstan_solvers::SolverError::Singular { pivot: None }.into());
         }
         let bulk = Condensation {
@@ -188,12 +198,13 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             nz: Arc::new(nz),
             base: [b0, b1],
             stuck,
+            fixed,
         };
         let setup = SetupStats {
             contact_unknowns: m,
             bulk_unknowns: n,
             factorisations,
-            bulk_solves: factorisations * m + 2,
+            bulk_solves: factorisations * m + 2 + usize::from(model.fixed_rhs().is_some()),
         };
         Self::with_condensation(model, bulk, setup, settings)
     }
@@ -216,7 +227,15 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             setup,
             settings,
         };
-        solver.sliding = solver.sliding_mode()?;
+        let sliding = solver.sliding_mode();
+        // Fixed loads (a body force) make the right-hand side affine in the end loads: the
+        // limiting ratios, computed for `b` linear in them, do not apply (the rigid mode and
+        // its balance, set above, still do).
+        solver.sliding = if solver.bulk.fixed.is_some() {
+            None
+        } else {
+            sliding?
+        };
         Ok(solver)
     }
 
@@ -243,7 +262,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             Some("sparsity patterns")
         } else if old.system().values != new.system().values {
             Some("bulk operators")
-        } else if (0..2).any(|i| old.rhs_basis(i) != new.rhs_basis(i)) {
+        } else if old.loads().len() != new.loads().len()
+            || (0..old.loads().len()).any(|i| old.rhs_basis(i) != new.rhs_basis(i))
+            || old.fixed_rhs() != new.fixed_rhs()
+        {
             Some("unit-load right-hand sides")
         } else if old.contact_nodes() != new.contact_nodes() || old.active() != new.active() {
             Some("contact nodes")
@@ -319,11 +341,15 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
 
     /// The stuck contact unknowns for the loads (every contact node held in place).
     pub fn stuck_unknowns(&self, loads: EndLoads) -> Vec<f64> {
-        self.bulk.stuck[0]
+        let mut s: Vec<f64> = self.bulk.stuck[0]
             .iter()
             .zip(&self.bulk.stuck[1])
             .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
-            .collect()
+            .collect();
+        if let Some((_, fixed)) = &self.bulk.fixed {
+            s.iter_mut().zip(fixed).for_each(|(s, f)| *s += f);
+        }
+        s
     }
 
     /// Solves for the loads: plain Newton from the stuck state, then load continuation if

@@ -303,19 +303,23 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         (stick, sites - stick)
     }
 
-    /// `(x0, n0)` for the loads.
+    /// `(x0, n0)` for the loads (plus the fixed loads, if any).
     pub(super) fn loaded_base(&self, loads: EndLoads) -> (Vec<f64>, Vec<f64>) {
         let [(xa, na), (xb, nb)] = &self.bulk.base;
-        let x = xa
+        let mut x: Vec<f64> = xa
             .iter()
             .zip(xb)
             .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
             .collect();
-        let s = na
+        let mut s: Vec<f64> = na
             .iter()
             .zip(nb)
             .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
             .collect();
+        if let Some(((xf, nf), _)) = &self.bulk.fixed {
+            x.iter_mut().zip(xf).for_each(|(x, f)| *x += f);
+            s.iter_mut().zip(nf).for_each(|(s, f)| *s += f);
+        }
         (x, s)
     }
 
