@@ -363,7 +363,9 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     }
 
     /// `sum_k m_k b_{k+2}`, the right-hand side of the fixed loads
-    /// ([`ContactModel::with_fixed_loads`]); `None` without any (or all at zero).
+    /// ([`ContactModel::with_fixed_loads`]); `None` without any, or when it is exactly zero
+    /// (a zero body force: the model then behaves as one without it, limiting ratios
+    /// included).
     pub fn fixed_rhs(&self) -> Option<Vec<f64>> {
         if self.fixed.iter().all(|&m| m == 0.0) {
             return None;
@@ -374,7 +376,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
                 *bi += m * x;
             }
         }
-        Some(b)
+        b.iter().any(|&x| x != 0.0).then_some(b)
     }
 
     /// The same body and contact surface with other parameters of the law (`mu`, `eps`; the
