@@ -283,3 +283,52 @@ fn every_parse_error_has_a_position() {
         assert!(position <= src.len(), "`{src}`: {err}");
     }
 }
+
+#[test]
+fn named_variables_evaluate_in_order_with_exact_derivatives() {
+    use num_dual::Dual64;
+    let f = Expression::parse_in("x2 * sin(x3) - x1^2 + 0*t_", &["x1", "x2", "x3", "t_"]).unwrap();
+    let x = [0.3_f64, -1.2, 0.7, 9.0];
+    let exact = x[1] * x[2].sin() - x[0] * x[0];
+    assert!((f.eval_at(&x) - exact).abs() < 1e-15);
+    assert_eq!(f.variables(), ["x1", "x2", "x3", "t_"]);
+    // d/dx3 by a dual number in the third slot
+    let d = f.eval_at(&[
+        Dual64::from(x[0]),
+        Dual64::from(x[1]),
+        Dual64::from(x[2]).derivative(),
+        Dual64::from(x[3]),
+    ]);
+    assert!((d.eps - x[1] * x[2].cos()).abs() < 1e-15);
+    // a variable without a value is NaN, not a panic
+    assert!(f.eval_at(&[1.0_f64, 2.0]).is_nan());
+    // `t` is not a variable here, and the error lists the ones there are
+    let err = Expression::parse_in("t + x2", &["x2", "x3"]).unwrap_err();
+    assert_eq!(
+        err,
+        ExpressionError::UnknownIdentifier {
+            position: 0,
+            name: "t".into(),
+            variables: "`x2`, `x3`".into()
+        }
+    );
+    assert!(
+        err.to_string().contains("the variables are `x2`, `x3`"),
+        "{err}"
+    );
+    // one-variable parsing is the same program as before
+    assert_eq!(
+        Expression::parse_in("2*t", &["t"]).unwrap(),
+        Expression::parse("2*t").unwrap()
+    );
+    assert_ne!(
+        Expression::parse_in("2", &["x"]).unwrap(),
+        Expression::parse("2").unwrap()
+    );
+}
+
+#[test]
+#[should_panic(expected = "cannot name a variable")]
+fn a_function_name_cannot_be_a_variable() {
+    let _ = Expression::parse_in("sin", &["sin"]);
+}
