@@ -7,8 +7,8 @@ use faer::linalg::lu::partial_pivoting::{
 };
 
 use crate::direct_params::DirectParams;
-use crate::direct_solve::{check_and_refine, scratch};
-use crate::error::SolverError;
+use crate::direct_solve::check_and_refine;
+use crate::error::{SolverError, scratch};
 use crate::linear_solver::{LinearSolver, check_rhs, check_square, check_values};
 use crate::sparse_lu::SparseLu;
 use crate::sparsity_pattern::SparsityPattern;

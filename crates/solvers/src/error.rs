@@ -225,6 +225,14 @@ impl SolverError {
     }
 }
 
+/// A scratch buffer for faer, with allocation failure as a typed error.
+pub(crate) fn scratch(
+    req: faer::dyn_stack::StackReq,
+) -> Result<faer::dyn_stack::MemBuffer, SolverError> {
+    faer::dyn_stack::MemBuffer::try_new(req)
+        .map_err(|_| SolverError::Backend(faer::sparse::FaerError::OutOfMemory))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -8,9 +8,9 @@ use faer::sparse::linalg::cholesky::{
 
 use crate::direct_params::DirectParams;
 use crate::direct_solve::{
-    analysed_values, check_no_empty_line, checked_solve, direct_solves, finite_rhs, scratch,
+    analysed_values, check_no_empty_line, checked_solve, direct_solves, finite_rhs,
 };
-use crate::error::SolverError;
+use crate::error::{SolverError, scratch};
 use crate::linear_solver::{LinearSolver, check_square};
 use crate::ordering::ColumnOrdering;
 use crate::scalar::max_abs;
