@@ -5,11 +5,11 @@ use std::time::Instant;
 
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
-    BoundarySolver, BulkMultigrid, ContactError, ContactModel, ContactSettings, ContactSolution,
-    EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced,
+    BoundarySolver, ContactError, ContactModel, ContactSettings, ContactSolution, EndLoads,
+    FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
-use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod, Observer};
+use capstan_elasticity::solvers::{KrylovParams, LinearBackend, NonlinearMethod, Observer};
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -27,13 +27,12 @@ pub enum SceneSolver {
     /// `newton` (default): boundary-only Newton on the condensed contact tractions, bulk
     /// factorised once.
     Condensed,
-    /// `full-newton`: Newton on the full residual with `solver.linear`, refactorised each step.
+    /// `full-newton`: Newton on the full residual with `solver.linear` (any registered
+    /// backend: refactorised each step, or `multigrid`: GMRES with the geometric multigrid of
+    /// the 3-D body).
     FullNewton(LinearBackend),
     /// `jacobi-newton`: the paper's Jacobi–Newton (damped Jacobi, relaxation 1/2).
     JacobiNewton,
-    /// `full-newton` with `solver.linear = "multigrid"`: each Newton step by GMRES with the
-    /// geometric multigrid of the 3-D body ([`BulkMultigrid`]).
-    FullNewtonMultigrid,
 }
 
 impl SceneSolver {
@@ -42,17 +41,6 @@ impl SceneSolver {
     /// # Errors
     /// [`CliError::Scene`] for an unknown name.
     pub fn from_scene(scene: &Scene) -> Result<Self, CliError> {
-        if scene.solver.linear == "multigrid" {
-            return match scene.solver.nonlinear.as_str() {
-                "full-newton" => Ok(Self::FullNewtonMultigrid),
-                other => Err(CliError::Scene {
-                    origin: "solver.linear".into(),
-                    message: format!(
-                        "`solver.linear` = \"multigrid\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
-                    ),
-                }),
-            };
-        }
         let linear: LinearBackend = scene.solver.linear.parse().map_err(
             |e: capstan_elasticity::solvers::SolverError| CliError::Scene {
                 origin: "solver.linear".into(),
@@ -77,7 +65,6 @@ impl SceneSolver {
         let mut s = FullSystemSettings::default();
         match self {
             Self::FullNewton(linear) => s.newton.linear = linear,
-            Self::FullNewtonMultigrid => s.multigrid = Some(BulkMultigrid::default()),
             Self::JacobiNewton => {
                 s.method = NonlinearMethod::JacobiNewton;
                 s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here
@@ -99,10 +86,9 @@ impl SceneSolver {
             ..scene.solver.contact_settings()
         };
         if let Some(sweeps) = scene.solver.max_sweeps {
+            // the budget of whichever family `solver.linear` is
             s.newton.iterative.max_iterations = sweeps;
-            if let Some(m) = s.multigrid.as_mut() {
-                m.krylov.max_iterations = sweeps;
-            }
+            s.newton.krylov.max_iterations = sweeps;
         }
         s
     }
@@ -441,7 +427,7 @@ fn solve_unnamed(
             };
             Ok((report, solved(scene, &model, sol)?))
         }
-        SceneSolver::FullNewton(_) | SceneSolver::FullNewtonMultigrid => {
+        SceneSolver::FullNewton(_) => {
             // Grid sequencing: the model is assembled level by level inside.
             let (law, params, eps) = scene_law(scene)?;
             let body = thick_body(scene)?;
@@ -526,7 +512,7 @@ pub(crate) fn contact_budget(
             solver
                 .max_sweeps
                 .map_or_else(|| "unset".into(), |n| n.to_string()),
-            BulkMultigrid::default().krylov.max_iterations,
+            KrylovParams::default().max_iterations,
             iterations.saturating_mul(4)
         ),
         ContactError::Solver(SolverError::NotConverged { iterations, .. }) => format!(

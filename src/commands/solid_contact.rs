@@ -139,9 +139,7 @@ fn solve_unnamed(
             let run = condensed(&model, scene, loads, observer, t0)?;
             (run.sol, run.limiting, run.times)
         }
-        SceneSolver::FullNewton(_)
-        | SceneSolver::FullNewtonMultigrid
-        | SceneSolver::JacobiNewton => {
+        SceneSolver::FullNewton(_) | SceneSolver::JacobiNewton => {
             let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
             let setup = t0.elapsed().as_secs_f64();
             let t1 = Instant::now();

@@ -296,10 +296,17 @@ impl Scene {
                 ));
             }
         } else if self.solver.linear.parse::<LinearBackend>().is_err() {
+            let registered: Vec<String> = LinearBackend::all()
+                .iter()
+                .map(|b| format!("`{b}`"))
+                .collect();
             return Err(bad(
                 "solver.linear",
                 format!("{:?}", self.solver.linear),
-                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton)",
+                &format!(
+                    "{} (`multigrid`: 3-D body, full-newton)",
+                    registered.join(", ")
+                ),
             ));
         }
         if !matches!(

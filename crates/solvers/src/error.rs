@@ -26,7 +26,15 @@ pub enum SolverError {
         /// The name that was given.
         name: String,
         /// The accepted spellings.
-        allowed: &'static str,
+        allowed: String,
+    },
+    /// A registration under a name that is taken.
+    #[error("a {kind} named `{name}` is registered already")]
+    DuplicateName {
+        /// What was being registered, e.g. `"linear backend"`.
+        kind: &'static str,
+        /// The name.
+        name: &'static str,
     },
     /// Newton's residual grew beyond the divergence limit.
     #[error("Newton diverged at iteration {iteration}: residual {residual:.3e}")]

@@ -23,7 +23,9 @@
 //!   for many right-hand sides. Backends: [`SparseLu`] and [`SparseCholesky`] (faer, symbolic
 //!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
 //!   [`CondensedSolver`] (static condensation when only a small interface block changes).
-//!   [`LinearBackend`] picks one by name.
+//!   Each is registered once in [`linear_registry`] (name, summary, parameters, builder);
+//!   [`LinearBackend`] picks a registered one by name, and a crate that embeds capstan
+//!   registers its own the same way.
 //! - Krylov methods ([`krylov_solve`]: conjugate gradients, restarted right-preconditioned GMRES) on a
 //!   [`CsrMatrix`], with a work budget and a typed [`SolverError::BudgetSpent`], and a
 //!   [`Multigrid`] V-cycle on a given hierarchy of prolongations (Galerkin coarse operators,
@@ -69,8 +71,9 @@
 //! use capstan_solvers::{LinearBackend, samples::Poisson2d};
 //! let system = Poisson2d::new(16).system();
 //! let mut solutions = Vec::new();
-//! for backend in LinearBackend::ALL {
-//!     let mut solver = backend.build(&Default::default()).unwrap();
+//! // every registered backend that needs nothing from the caller (`multigrid` needs a hierarchy)
+//! for backend in LinearBackend::all().into_iter().filter(|b| b.name() != "multigrid") {
+//!     let mut solver = backend.build(&Default::default(), &()).unwrap();
 //!     solver.analyse(&system.pattern).unwrap();
 //!     solver.factor(&system.values).unwrap();
 //!     let mut x = system.rhs.clone();
@@ -96,6 +99,8 @@ mod jacobi_newton;
 mod krylov;
 mod krylov_solver;
 mod linear_backend;
+mod linear_registration;
+pub mod linear_registry;
 mod linear_solver;
 mod lu_kind;
 mod multifrontal_lu;
@@ -125,6 +130,10 @@ pub use krylov::{
 };
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
+pub use linear_registration::{
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
+    RegisteredLinearSolver,
+};
 pub use linear_solver::LinearSolver;
 pub use lu_kind::LuKind;
 pub use multigrid::{Multigrid, MultigridParams, MultigridPreconditioner, Smoother};
