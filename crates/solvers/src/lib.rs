@@ -21,9 +21,8 @@
 //!   every entry so assembly is `values[slot[k]] += v`; views for faer and `sprs`.
 //! - [`LinearSolver`]: `analyse` once per pattern, `factor` per set of values, `solve_in_place`
 //!   for many right-hand sides. Backends: [`SparseLu`] and [`SparseCholesky`] (faer, symbolic
-//!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
-//!   [`CondensedSolver`] (static condensation when only a small interface block changes).
-//!   Each is registered once in [`linear_registry`] (name, summary, parameters, builder);
+//!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline),
+//!   [`KrylovSolver`] (`multigrid`). Each is registered once in [`linear_registry`] (name, summary, parameters, builder);
 //!   [`LinearBackend`] picks a registered one by name, and a crate that embeds capstan
 //!   registers its own the same way.
 //! - Krylov methods ([`krylov_solve`]: conjugate gradients, restarted right-preconditioned GMRES) on a
@@ -47,7 +46,7 @@
 //! problems against each other and against the residual `|b - A x|`.
 //!
 //! # Limitations
-//! - The faer backends, [`CondensedSolver`] and the nonlinear solvers are implemented for
+//! - The faer backends and the nonlinear solvers are implemented for
 //!   `f64` only; the pattern helpers and the iterative backends are generic over
 //!   [`SolverScalar`].
 //! - [`Jacobi`] and [`GaussSeidel`] are stationary methods without preconditioning or Krylov
@@ -89,7 +88,6 @@
 #[macro_use]
 mod named;
 
-mod condensed_solver;
 mod csr_matrix;
 mod direct_params;
 mod direct_solve;
@@ -118,7 +116,6 @@ mod sparse_cholesky;
 mod sparse_lu;
 mod sparsity_pattern;
 
-pub use condensed_solver::CondensedSolver;
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;

@@ -203,7 +203,7 @@ impl Newton {
         })
     }
 
-    /// Newton with a caller-supplied linear solver (e.g. a [`crate::CondensedSolver`]);
+    /// Newton with a caller-supplied linear solver (e.g. one built with a [`crate::LinearContext`]);
     /// `params.linear` is ignored.
     ///
     /// # Errors
