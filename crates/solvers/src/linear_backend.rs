@@ -32,7 +32,7 @@ pub struct LinearBackend(&'static RegisteredLinearSolver);
 
 impl LinearBackend {
     /// [`crate::SparseLu`]: general matrices (the default).
-    pub const LU: Self = Self(&crate::sparse_lu::REGISTRATION);
+    pub const LU: Self = Self(&linear_registry::LU_REGISTRATION);
     /// [`crate::SparseCholesky`]: symmetric positive definite matrices.
     pub const CHOLESKY: Self = Self(&crate::sparse_cholesky::REGISTRATION);
     /// [`crate::Jacobi`]: the paper's iterative baseline.

@@ -25,15 +25,48 @@ use std::sync::{LazyLock, RwLock};
 
 use crate::error::SolverError;
 
+use crate::sparse_lu::SparseLu;
+
 pub use crate::linear_registration::{
     BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
     RegisteredLinearSolver,
 };
 
+/// The `lu` entry ([`SparseLu`]; here rather than in `sparse_lu.rs`, which the multigrid
+/// coarse solve imports: no import cycle through the settings).
+pub(crate) const LU_REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
+    name: "lu",
+    summary: "sparse LU (faer; multifrontal with supernodal fallback): any nonsingular matrix",
+    parameters: &[
+        Parameter {
+            key: "direct.ordering",
+            default: "auto",
+            allowed: "auto, colamd, amd, nested-dissection",
+        },
+        Parameter {
+            key: "direct.residual_tolerance",
+            default: "1e-8",
+            allowed: "(0, 1)",
+        },
+        Parameter {
+            key: "direct.refinement_steps",
+            default: "2",
+            allowed: "[0, inf)",
+        },
+        Parameter {
+            key: "direct.lu_kind",
+            default: "auto",
+            allowed: "auto, multifrontal, supernodal",
+        },
+    ],
+    kind: BackendKind::Direct,
+    build: |s, _| Ok(Box::new(SparseLu::new(s.direct)?)),
+};
+
 /// The built-in backends, in the order of [`names`].
 fn builtin() -> Vec<&'static RegisteredLinearSolver> {
     vec![
-        &crate::sparse_lu::REGISTRATION,
+        &LU_REGISTRATION,
         &crate::sparse_cholesky::REGISTRATION,
         &crate::relaxation::JACOBI_REGISTRATION,
         &crate::relaxation::GAUSS_SEIDEL_REGISTRATION,
@@ -99,7 +132,7 @@ mod tests {
         // (tests of this binary may register more after them)
         assert!(names().starts_with("lu, cholesky, jacobi, gauss-seidel, multigrid"));
         assert!(find("superlu").is_none());
-        let err = register(crate::sparse_lu::REGISTRATION).unwrap_err();
+        let err = register(LU_REGISTRATION).unwrap_err();
         assert!(matches!(err, SolverError::DuplicateName { name: "lu", .. }));
         for r in builtin() {
             assert!(

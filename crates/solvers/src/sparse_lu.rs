@@ -21,7 +21,6 @@ use crate::direct_solve::{
     checked_solve, direct_solves, finite_rhs, to_column_major, to_row_major,
 };
 use crate::error::{SolverError, scratch};
-use crate::linear_registration::{BackendKind, Parameter, RegisteredLinearSolver};
 use crate::linear_solver::{LinearSolver, check_square};
 use crate::lu_kind::LuKind;
 use crate::multifrontal_lu::solve::{BlockWork, SOLVE_BLOCK_WIDTH};
@@ -471,36 +470,6 @@ impl SparseLu {
         })
     }
 }
-
-/// The `lu` entry of [`crate::linear_registry`].
-pub(crate) const REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
-    name: "lu",
-    summary: "sparse LU (faer; multifrontal with supernodal fallback): any nonsingular matrix",
-    parameters: &[
-        Parameter {
-            key: "direct.ordering",
-            default: "auto",
-            allowed: "auto, colamd, amd, nested-dissection",
-        },
-        Parameter {
-            key: "direct.residual_tolerance",
-            default: "1e-8",
-            allowed: "(0, 1)",
-        },
-        Parameter {
-            key: "direct.refinement_steps",
-            default: "2",
-            allowed: "[0, inf)",
-        },
-        Parameter {
-            key: "direct.lu_kind",
-            default: "auto",
-            allowed: "auto, multifrontal, supernodal",
-        },
-    ],
-    kind: BackendKind::Direct,
-    build: |s, _| Ok(Box::new(SparseLu::new(s.direct)?)),
-};
 
 impl LinearSolver<f64> for SparseLu {
     fn analyse(&mut self, pattern: &SparsityPattern) -> Result<(), SolverError> {
