@@ -193,6 +193,34 @@ impl LinePlot {
         self
     }
 
+    /// The y-axis range: the padded data range, widened about its centre to at least
+    /// [`LinePlot::y_min_span`] on a linear axis.
+    fn y_range(&self) -> (f64, f64) {
+        let (y0, y1) = self.range(
+            self.series.iter().flat_map(|s| s.y.iter().copied()),
+            self.y_scale,
+        );
+        if self.y_scale == Scale::Linear && y1 - y0 < self.y_min_span {
+            let centre = 0.5 * (y0 + y1);
+            return (
+                centre - 0.5 * self.y_min_span,
+                centre + 0.5 * self.y_min_span,
+            );
+        }
+        (y0, y1)
+    }
+
+    /// The title's font size on an area `width` pixels wide: [`font::TITLE`], shrunk so the
+    /// title fits (Plotters centres the caption and clips it at the edges; sans-serif runs
+    /// about 0.43 em a character, measured; 0.47 keeps a margin), at least 10.
+    fn title_size(&self, width: f64) -> f64 {
+        let chars = self.title.chars().count().max(1) as f64;
+        f64::from(font::TITLE)
+            .min(0.95 * width / (0.47 * chars))
+            .floor()
+            .max(10.0)
+    }
+
     /// Data range of one axis, padded: 4 % of the span (linear) or of the decades (log).
     fn range(&self, values: impl Iterator<Item = f64>, scale: Scale) -> (f64, f64) {
         match scale {
@@ -269,15 +297,8 @@ impl LinePlot {
         X::CoordDescType: ValueFormatter<f64>,
         Y::CoordDescType: ValueFormatter<f64>,
     {
-        // Plotters centres the caption and clips it at the area's edges: a title longer than
-        // the width (a panel's "(a) Slip against tension ratio ..." at 700 px) shrinks to fit,
-        // at about 0.43 em a character of sans-serif (measured; 0.47 keeps a margin).
-        let width = f64::from(root.dim_in_pixel().0);
-        let chars = self.title.chars().count().max(1) as f64;
-        let title_size = f64::from(font::TITLE)
-            .min(0.95 * width / (0.47 * chars))
-            .floor()
-            .max(10.0);
+        // a panel's "(a) Slip against tension ratio ..." at 700 px was clipped
+        let title_size = self.title_size(f64::from(root.dim_in_pixel().0));
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, ("sans-serif", title_size))
             .margin(18)
@@ -455,17 +476,7 @@ impl Plot for LinePlot {
             self.series.iter().flat_map(|s| s.x.iter().copied()),
             self.x_scale,
         );
-        let (mut y0, mut y1) = self.range(
-            self.series.iter().flat_map(|s| s.y.iter().copied()),
-            self.y_scale,
-        );
-        if self.y_scale == Scale::Linear && y1 - y0 < self.y_min_span {
-            let centre = 0.5 * (y0 + y1);
-            (y0, y1) = (
-                centre - 0.5 * self.y_min_span,
-                centre + 0.5 * self.y_min_span,
-            );
-        }
+        let (y0, y1) = self.y_range();
         let ranges = (
             Range {
                 lo: x0,
@@ -486,5 +497,43 @@ impl Plot for LinePlot {
                 self.draw_in(root, (x0..x1).log_scale(), (y0..y1).log_scale(), ranges)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn y_axis_spans_at_least_the_minimum_about_the_data() {
+        // slip-poisson at 250 x 41: 0.576 -> 0.580 is one contact node (1/250); 25 nodes = 0.1
+        let plot = LinePlot::new("Slip")
+            .series(Series::line("s", vec![0.0, 0.45], vec![0.576, 0.58]))
+            .y_min_span(25.0 / 250.0);
+        let (lo, hi) = plot.y_range();
+        assert!((hi - lo - 0.1).abs() < 1e-15, "{lo} .. {hi}");
+        assert!((0.5 * (lo + hi) - 0.578).abs() < 1e-15);
+        // a wider data range is kept, padded by 4 % each side
+        let wide = LinePlot::new("Slip")
+            .series(Series::line("s", vec![0.0, 1.0], vec![0.0, 1.0]))
+            .y_min_span(0.1);
+        assert_eq!(wide.y_range(), (-0.04, 1.04));
+    }
+
+    #[test]
+    fn long_titles_shrink_to_fit_the_width() {
+        let short = LinePlot::new("Slip against b/a");
+        assert_eq!(short.title_size(700.0), f64::from(font::TITLE));
+        let long = LinePlot::new(
+            "(a) Slip against tension ratio tau_max / tau0 (one contact node = 0.0040)",
+        );
+        let size = long.title_size(700.0);
+        // at 0.43 em a character (measured) the title now fits in the 700 px panel
+        let width = 0.43 * size * long.title.chars().count() as f64;
+        assert!(
+            size < f64::from(font::TITLE) && width < 700.0,
+            "{size} px, {width} px"
+        );
+        assert_eq!(long.title_size(10.0), 10.0);
     }
 }
