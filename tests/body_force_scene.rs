@@ -141,4 +141,22 @@ fn bad_body_forces_name_the_key() {
     ]);
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("takes 3"), "{err}");
+    // the threshold and the thick-body implied mu need loads linear in the end tractions
+    let force = "loads.body_force=[\"0\", \"-0.1\"]";
+    for args in [
+        &["threshold", "--set", force][..],
+        &[
+            "infer-mu",
+            "--model",
+            "kikuchi-oden",
+            "--set",
+            "membrane.t_max=2",
+            "--set",
+            force,
+        ],
+    ] {
+        let (code, _, err) = common::capstan_status(args);
+        assert_eq!(code, Some(2), "{args:?}: {err}");
+        assert!(err.contains("loads.body_force"), "{args:?}: {err}");
+    }
 }

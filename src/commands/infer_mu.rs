@@ -219,6 +219,12 @@ fn loads_not_in_model(scene: &Scene) -> CliError {
 /// The membrane and thick-body models carry no body forces and no belt speed.
 fn check_no_loads(scene: &Scene) -> Result<(), CliError> {
     let l = &scene.loads;
+    if l.body_force.is_some() {
+        return Err(CliError::Scene {
+            origin: "loads.body_force".into(),
+            message: "`loads.body_force` is set; the membrane and kikuchi-oden models invert end tensions alone".into(),
+        });
+    }
     for (key, v) in [
         ("loads.gravity", l.gravity * l.density),
         ("loads.speed", l.speed),

@@ -43,8 +43,15 @@ pub struct ThresholdReport {
 /// Computes the report.
 ///
 /// # Errors
-/// Bad input (2); non-convergence (4).
+/// Bad input (2), including `loads.body_force` (the threshold is a tension ratio of loads
+/// linear in the end tractions; a fixed body force makes them affine); non-convergence (4).
 pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
+    if scene.loads.body_force.is_some() {
+        return Err(CliError::Scene {
+            origin: "loads.body_force".into(),
+            message: "`loads.body_force` is set: the full-slip threshold is a tension ratio of loads linear in the end tractions, and a body force held fixed is not; use `capstan sweep --param loads.tau_max` to follow Slip under the force".into(),
+        });
+    }
     let t = Instant::now();
     let r = scene.build()?.threshold()?;
     let obstacle = scene.obstacle.build()?;
