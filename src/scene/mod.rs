@@ -636,6 +636,7 @@ impl DiscretisationSpec {
 }
 
 mod build;
+mod follow;
 mod load;
 mod memory;
 #[cfg(test)]
