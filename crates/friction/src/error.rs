@@ -213,6 +213,17 @@ pub enum FrictionError {
         /// What solves it instead.
         hint: &'static str,
     },
+    /// Every node of a membrane held by two end tensions slides: no static equilibrium (the
+    /// tension ratio exceeds what friction can hold, the capstan ratio of the interval).
+    #[error(
+        "the membrane slides as a whole on [{theta0:.9}, {theta1:.9}]: no static equilibrium for these end tensions (their ratio exceeds the capstan ratio)"
+    )]
+    RigidSliding {
+        /// Start of the contact interval.
+        theta0: f64,
+        /// End of the contact interval.
+        theta1: f64,
+    },
     /// The semismooth Newton iteration of the membrane displacement model did not converge
     /// within `membrane.max_newton_iterations`.
     #[error(
@@ -258,7 +269,8 @@ impl FrictionError {
             | Self::DevelopmentLimit { .. }
             | Self::TensionRatioBelowOne { .. }
             | Self::NoFrictionCoefficient { .. }
-            | Self::NotMonotone { .. } => ErrorCategory::NoEquilibrium,
+            | Self::NotMonotone { .. }
+            | Self::RigidSliding { .. } => ErrorCategory::NoEquilibrium,
             Self::NonFinite { .. }
             | Self::StepSizeTooSmall { .. }
             | Self::TooManySteps { .. }

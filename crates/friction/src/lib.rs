@@ -45,6 +45,7 @@ mod frictionless;
 mod howell;
 pub mod membrane;
 pub mod membrane_displacement;
+pub mod membrane_path;
 pub mod nonsmooth_law;
 pub mod ode;
 mod orthotropic_coulomb;
