@@ -242,6 +242,9 @@ pub struct MembraneSpec {
     /// Work budget: Newton iterations of the membrane displacement model
     /// (`infer-mu --model membrane`), default 100.
     pub max_newton_iterations: usize,
+    /// Nodes of the membrane displacement model on `[theta0, theta_max]` (`capstan
+    /// membrane-path`), default 801.
+    pub nodes: usize,
     /// `finite` (default: Theorem 1, tension `T` of a membrane of width `loads.width` and
     /// thickness `loads.thickness`) | `infinite` (Corollary 1: the tensile stress `tau` of a
     /// membrane infinitely long in `x1`, any Poisson's ratio; `membrane.t0` is `tau0`, the loads
@@ -303,6 +306,7 @@ impl Default for MembraneSpec {
             max_root_iterations: capstan_friction::membrane::MembraneBudget::default()
                 .max_root_iterations,
             max_newton_iterations: 100,
+            nodes: 801,
             model: MembraneModel::default(),
             belt_speed_rule: BeltSpeedRule::default(),
         }
@@ -336,6 +340,12 @@ pub struct LoadsSpec {
     /// length along the outward normal (away from the obstacle).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub f_n: Option<String>,
+    /// A load path: the end load at `theta_max` in successive states, each solved from the
+    /// previous one with friction on the slip increment (`capstan membrane-path`: the
+    /// membrane's tension at `theta_max`, starting from the membrane wrapped at the uniform
+    /// tension `membrane.t0`), e.g. `[2.0, 1.0, 2.0]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<Vec<f64>>,
 }
 
 impl Default for LoadsSpec {
@@ -359,6 +369,7 @@ impl Default for LoadsSpec {
             tau_max: 2.0,
             f_t: None,
             f_n: None,
+            path: None,
         }
     }
 }

@@ -14,7 +14,7 @@ use crate::nonsmooth_law::{
 /// With `g = mu max(-sigma_n, 0)` (no friction without compression) and the trial `t*`
 /// (see [`crate::nonsmooth_law`]):
 /// ```text
-/// stick      |t*| <= g:   t = t*,            dt/dt* = I,                        dt/dsigma_n = 0
+/// stick      |t*| <= g:   t = t*,   (also within 8 round-off units outside: the limit itself)            dt/dt* = I,                        dt/dsigma_n = 0
 /// slip       |t*| >  g:   t = g n,  n = t*/|t*|,
 ///                         dt/dt* = (g/|t*|) (I - n n^T),                      dt/dsigma_n = -mu n
 /// separated  sigma_n >= 0: t = 0,           dt/dt* = 0,                        dt/dsigma_n = 0
@@ -66,7 +66,11 @@ impl<F: Real> NonsmoothFrictionLaw<F> for ExactCoulomb {
         }
         let g = -params.mu * normal_pressure;
         let norm = (trial[0] * trial[0] + trial[1] * trial[1]).sqrt();
-        if norm <= g {
+        // within round-off of the circle counts as on it (a traction left on the limit by a
+        // previous slip, with no new slip, sticks)
+        let eight = F::one() + F::one() + F::one() + F::one();
+        let eight = eight + eight;
+        if norm <= g * (F::one() + eight * F::epsilon()) {
             return Ok(Projection::stick(trial));
         }
         let n = [trial[0] / norm, trial[1] / norm];

@@ -97,7 +97,9 @@ type AxisProjection<F> = ([F; 2], [[F; 2]; 2], FrictionState);
 fn project_ellipse<F: Real>(s: [F; 2], a: [F; 2]) -> Result<AxisProjection<F>, FrictionError> {
     let (zero, one) = (F::zero(), F::one());
     let a2 = [a[0] * a[0], a[1] * a[1]];
-    if s[0] * s[0] / a2[0] + s[1] * s[1] / a2[1] <= one {
+    let two = one + one;
+    // within round-off of the ellipse counts as on it (as for the disc)
+    if s[0] * s[0] / a2[0] + s[1] * s[1] / a2[1] <= one + two * two * two * F::epsilon() {
         let p = Projection::stick(s);
         return Ok((p.traction, p.d_trial, FrictionState::Stick));
     }
@@ -112,7 +114,6 @@ fn project_ellipse<F: Real>(s: [F; 2], a: [F; 2]) -> Result<AxisProjection<F>, F
         .max(zero);
     let mut converged = false;
     let mut residual = zero;
-    let two = one + one;
     let tolerance = F::epsilon() * two * two * two;
     for _ in 0..ELLIPSE_MAX_ITERATIONS {
         let (f, df) = phi(lambda);

@@ -436,6 +436,16 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
             tension[n - 1] = 1.5 * half[n - 2] - 0.5 * half[n - 3];
         }
         let slip: Vec<f64> = w.iter().zip(previous).map(|(a, b)| a - b).collect();
+        // A node left on the limit by an earlier slip and not moving now sticks: its trial is
+        // on the limit to the round-off of the tensions (differences of w), which the
+        // projection may read either way; the step's own slip increment decides.
+        let noise = 64.0 * f64::EPSILON * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let mut states = ev.states;
+        for (state, du) in states.iter_mut().zip(&slip) {
+            if *state == FrictionState::Slip && du.abs() <= noise {
+                *state = FrictionState::Stick;
+            }
+        }
         let dissipation = (0..n)
             .filter(|&i| !self.is_fixed(i))
             .map(|i| -self.cell(i) * t[i] * slip[i])
@@ -452,7 +462,7 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
             friction: t,
             tension,
             reaction,
-            states: ev.states,
+            states,
             iterations,
             residual: ev.norm,
             dissipation,
