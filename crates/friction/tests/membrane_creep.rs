@@ -402,7 +402,7 @@ fn the_sweep_changes_the_work_not_the_answer() {
     // on the ellipse the loaded end's slip zone obeys the capstan equation: the tension ratio
     // across it is exp(mu (Psi(theta1) - Psi(theta_k))), Psi the turning angle
     let s = &one.steps[0];
-    assert!(s.states.iter().any(|x| *x == FrictionState::Stick));
+    assert!(s.states.contains(&FrictionState::Stick));
     let k = (1..s.states.len())
         .find(|&i| s.states[i] == FrictionState::Slip)
         .unwrap();
