@@ -164,7 +164,8 @@ impl ObstacleSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct FrictionSpec {
-    /// The friction law (`coulomb`: regularised Coulomb of Kikuchi–Oden).
+    /// The friction law (`coulomb`: regularised Coulomb of Kikuchi–Oden; the nonsmooth
+    /// `exact-coulomb` for `capstan membrane-path`).
     pub law: String,
     /// Coefficient of friction `mu` (the paper's `mu_F`, `nu_F`).
     pub mu: f64,
