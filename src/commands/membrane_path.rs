@@ -70,6 +70,19 @@ pub struct MembranePathReport {
 /// (exit code 2); the membrane sliding as a whole (3); a spent budget
 /// `membrane.max_newton_iterations` (4).
 pub fn report(scene: &Scene) -> Result<MembranePathReport, CliError> {
+    // -v prints every semismooth iteration with its active set (stage `membrane`)
+    report_observed(scene, &mut crate::progress::CliObserver::new())
+}
+
+/// As [`report`], every semismooth iteration of every step going to `observer` (stage
+/// `membrane`, with the stick/slip counts).
+///
+/// # Errors
+/// As [`report`].
+pub fn report_observed(
+    scene: &Scene,
+    observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
+) -> Result<MembranePathReport, CliError> {
     let path = scene.loads.path.clone().ok_or(FrictionError::MissingParameter {
         field: "loads.path",
         why: "membrane-path needs the end tensions at theta_max, e.g. --set 'loads.path=[2.0, 1.0, 2.0]'",
@@ -107,10 +120,8 @@ pub fn report(scene: &Scene) -> Result<MembranePathReport, CliError> {
         max_iterations: m.max_newton_iterations,
         ..Default::default()
     };
-    // -v prints every semismooth iteration with its active set (stage `membrane`)
-    let mut observer = crate::progress::CliObserver::new();
     let mut report_iteration = |_: usize, it: &SemismoothIteration| {
-        use capstan_elasticity::solvers::{Observer, Progress, SolveStage};
+        use capstan_elasticity::solvers::{Progress, SolveStage};
         observer.iteration(
             &Progress::new(SolveStage::Membrane, it.iteration, it.residual, it.step)
                 .with_active(it.stick, it.slip),

@@ -37,6 +37,7 @@
 #![warn(missing_docs)]
 
 mod any_friction_law;
+mod any_nonsmooth_law;
 mod error;
 mod exact_coulomb;
 pub mod exact_orthotropic_coulomb;
@@ -60,15 +61,14 @@ mod smooth_coulomb;
 mod tresca;
 
 pub use any_friction_law::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
+pub use any_nonsmooth_law::{AnyNonsmoothLaw, AnyNonsmoothParams};
 pub use error::{ErrorCategory, FrictionError};
 pub use exact_coulomb::{ExactCoulomb, ExactCoulombParams};
 pub use exact_orthotropic_coulomb::{ExactOrthotropicCoulomb, ExactOrthotropicCoulombParams};
 pub use friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 pub use frictionless::Frictionless;
 pub use howell::{Howell, HowellParams};
-pub use nonsmooth_law::{
-    AnyNonsmoothLaw, AnyNonsmoothParams, FrictionState, NonsmoothFrictionLaw, Projection,
-};
+pub use nonsmooth_law::{FrictionState, NonsmoothFrictionLaw, Projection};
 pub use orthotropic_coulomb::{OrthotropicCoulomb, OrthotropicCoulombParams};
 pub use registration::FrictionSettings;
 pub use regularised_coulomb::{RegularisedCoulomb, RegularisedCoulombParams};

@@ -277,15 +277,26 @@ fn threshold(py: Python<'_>, scene: &PyScene) -> PyResult<String> {
 /// `capstan membrane-path --json`, with the node angles and the per-step node profiles
 /// (`displacement`, `slip_increment`, `tension`, `friction`, `state`: each steps x nodes,
 /// row-major).
+/// `callback(progress: dict)` sees every semismooth iteration (stage `membrane`, with the
+/// stick/slip counts).
 #[pyfunction]
+#[pyo3(signature = (scene, callback = None))]
 #[allow(clippy::type_complexity)] // (json, theta, [(name, values)]) as Python receives them
 fn membrane_path(
     py: Python<'_>,
     scene: &PyScene,
+    callback: Option<Py<PyAny>>,
 ) -> PyResult<(String, Vec<f64>, Vec<(String, Vec<f64>)>)> {
     let s = scene.scene.clone();
-    run(py, move |_| {
-        let r = commands::membrane_path::report(&s)?;
+    let error = Arc::new(Mutex::new(None));
+    let seen = Arc::clone(&error);
+    let result = run(py, move |stop| {
+        let mut observer = PyObserver {
+            callback,
+            error: seen,
+            stop,
+        };
+        let r = commands::membrane_path::report_observed(&s, &mut observer)?;
         let names = [
             "displacement",
             "slip_increment",
@@ -306,7 +317,11 @@ fn membrane_path(
             })
             .collect();
         Ok((stamped(&r, &s)?, r.theta.clone(), profiles))
-    })
+    });
+    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
+        return Err(e);
+    }
+    result
 }
 
 /// The geometry at the points `x2`: the keys of `capstan geometry --json` and the tensors.

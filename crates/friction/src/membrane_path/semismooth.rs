@@ -9,7 +9,7 @@ use crate::membrane_displacement::{
 };
 use crate::nonsmooth_law::{FrictionState, NonsmoothFrictionLaw};
 
-use super::{MembraneState, MembraneStep, SemismoothIteration, SemismoothSettings};
+use super::step::{MembraneState, MembraneStep, SemismoothIteration, SemismoothSettings};
 
 /// Iterations in a row with every free node sliding (and no convergence) after which the
 /// membrane is taken to slide as a whole: no static equilibrium.
@@ -179,12 +179,12 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
         progress: &mut dyn FnMut(&SemismoothIteration),
     ) -> Result<MembraneStep, FrictionError> {
         check(
-            "solver.max_iterations",
+            "max_iterations",
             settings.max_iterations as f64,
             "[1, inf)",
             |v| v >= 1.0,
         )?;
-        check("solver.tolerance", settings.tolerance, "(0, 1)", |v| {
+        check("tolerance", settings.tolerance, "(0, 1)", |v| {
             v > 0.0 && v < 1.0
         })?;
         if let Some(r) = settings.augmentation {

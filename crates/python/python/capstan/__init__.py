@@ -217,17 +217,21 @@ class MembranePathResult(Result):
         }
 
 
-def membrane_path(scene: Scene) -> MembranePathResult:
+def membrane_path(
+    scene: Scene, callback: Optional[Callable[[dict], Any]] = None
+) -> MembranePathResult:
     """The membrane along the load path ``loads.path`` (end tensions at ``theta_max``) with a
     nonsmooth law (``friction.law = "exact-coulomb"``), each state from the previous one with
     friction on the slip increment (``capstan membrane-path --json``): belt creep, hysteresis.
+    ``callback(progress)`` sees every semismooth iteration as for ``contact`` (stage
+    ``"membrane"``, ``stick`` and ``slip`` counts); an exception in it is raised here.
 
     >>> s = capstan.Scene({"friction.law": "exact-coulomb", "obstacle.shape": "cylinder",
     ...                    "loads.path": [2.0, 1.2, 2.0]})                   # doctest: +SKIP
     >>> r = capstan.membrane_path(s)                                          # doctest: +SKIP
     >>> [step.end_displacement for step in r.steps]                           # doctest: +SKIP
     """
-    return MembranePathResult(*_capstan.membrane_path(scene))
+    return MembranePathResult(*_capstan.membrane_path(scene, callback))
 
 
 def contact(
