@@ -1,6 +1,7 @@
 //! The studies a researcher runs on a scene, as library calls: each takes a [`Scene`] and
 //! returns a typed, serialisable report (the JSON of the command of the same name). The
-//! command line (`capstan tension`, `infer-mu`, `threshold`, `geometry`, `sweep`, `contact`)
+//! command line (`capstan tension`, `infer-mu`, `threshold`, `geometry`, `sweep`, `contact`,
+//! `membrane-path`)
 //! and the Python package are thin layers over these functions; [`crate::Problem`] is the
 //! contact problem itself, built in code or by [`Scene::build`].
 //!
@@ -35,6 +36,7 @@ pub use crate::commands::compare::{CompareReport, CompareRow};
 pub use crate::commands::contact::{ContactReport, ContactRun, Solved as PlaneSolved};
 pub use crate::commands::geometry::{GeometryDetail, GeometryReport};
 pub use crate::commands::infer_mu::{FrictionModel, InferMuReport};
+pub use crate::commands::membrane_path::{MembranePathReport, PathStepReport};
 pub use crate::commands::sweep::{PointStatus, SweepPoint, SweepPoints, SweepReport};
 pub use crate::commands::tension::TensionReport;
 pub use crate::commands::threshold::ThresholdReport;
@@ -59,6 +61,44 @@ pub fn tension(scene: &Scene) -> Result<TensionReport, CliError> {
 /// reproduces the pair; a spent work budget.
 pub fn infer_mu(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, CliError> {
     commands::infer_mu::report_for(scene, model)
+}
+
+/// The membrane displacement model along the load path `loads.path` (the tensions at
+/// `theta_max` in turn, from the membrane wrapped at `membrane.t0`) with the nonsmooth law
+/// `friction.law` (`exact-coulomb`) on each step's slip increment, by semismooth Newton:
+/// per-step end displacement, stick/slip zones and dissipated energy (belt creep, hysteresis).
+///
+/// # Errors
+/// No `loads.path`, a smooth `friction.law`, a non-prism obstacle or membrane loads (bad
+/// input); the membrane sliding as a whole (no equilibrium); a spent
+/// `membrane.max_newton_iterations`.
+pub fn membrane_path(scene: &Scene) -> Result<MembranePathReport, CliError> {
+    commands::membrane_path::report(scene)
+}
+
+/// [`membrane_path`] reporting every semismooth iteration to `observer` (stage `membrane`,
+/// with the stick/slip counts).
+///
+/// # Errors
+/// As [`membrane_path`].
+pub fn membrane_path_observed(
+    scene: &Scene,
+    observer: &mut dyn Observer<f64>,
+) -> Result<MembranePathReport, CliError> {
+    commands::membrane_path::report_observed(scene, observer)
+}
+
+/// Writes a load path's `membrane-path.json`, `scene.toml`, `path.csv`, `profiles.csv` and the
+/// hysteresis plot into `dir`.
+///
+/// # Errors
+/// Output errors.
+pub fn write_membrane_path(
+    dir: &Path,
+    report: &MembranePathReport,
+    scene: &Scene,
+) -> Result<(), CliError> {
+    commands::membrane_path::write_out(dir, report, scene)
 }
 
 /// The threshold tension ratio `tau_max / tau0` beyond which the thick body has no static

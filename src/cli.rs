@@ -50,6 +50,10 @@ pub enum Command {
     /// Coefficient of friction implied by a tension pair {membrane.t0, membrane.t_max}, under
     /// the capstan, membrane displacement or Kikuchi–Oden thick-body model.
     InferMu(commands::infer_mu::InferMuArgs),
+    /// The membrane displacement model along a load path `loads.path` (end tensions at
+    /// theta_max) with exact Coulomb friction on each step's slip increment: belt creep and
+    /// its hysteresis loop.
+    MembranePath(OutSceneArgs),
     /// Thick body on a rough prism under regularised Coulomb friction (paper section 3).
     Contact(ContactArgs),
     /// One scene key swept over a range: Slip and the contact numbers per point (parallel).
@@ -118,6 +122,14 @@ pub const SUBCOMMAND_HELP: &[SubcommandHelp] = &[
         examples: &[
             "capstan infer-mu --set obstacle.shape=cylinder --set membrane.theta0=0 --set membrane.theta_max=3.14159265358979 --set membrane.t_max=2.75",
             "capstan infer-mu --model kikuchi-oden --set membrane.t_max=2.75 --set grid.n2=41 --set grid.n3=9 --json",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "membrane-path",
+        examples: &[
+            "capstan membrane-path examples/scenes/belt_creep.toml --out out/belt-creep",
+            "capstan membrane-path --set friction.law=exact-coulomb --set obstacle.shape=cylinder --set 'loads.path=[2.0, 1.0, 2.0]' --json",
         ],
         arguments: &[],
     },
@@ -365,6 +377,13 @@ fn run_command(cli: Cli) -> Result<String, CliError> {
             |scene| commands::infer_mu::report_for(scene, args.model),
             |dir, r, scene| write_json_report(dir, "infer-mu", r, Some(scene)),
             |r, scene| Ok(commands::infer_mu::table(r, scene)),
+        ),
+        Some(Command::MembranePath(args)) => scene_command(
+            &args.scene,
+            args.out.as_deref(),
+            commands::membrane_path::report,
+            commands::membrane_path::write_out,
+            |r, _| Ok(commands::membrane_path::table(r)),
         ),
         Some(Command::Contact(args)) => contact(&args),
         Some(Command::Sweep(args)) => sweep(&args),

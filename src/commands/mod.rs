@@ -7,6 +7,7 @@ pub mod export_system;
 pub mod figure;
 pub mod geometry;
 pub mod infer_mu;
+pub mod membrane_path;
 pub mod merge;
 mod scene_args;
 pub mod solid_contact;

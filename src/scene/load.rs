@@ -229,8 +229,12 @@ pub fn known_keys() -> Vec<String> {
         "loads.f_t".to_string(),
         "loads.f_n".to_string(),
         "loads.body_force".to_string(),
+        "loads.path".to_string(),
     ];
     for law in capstan_friction::registry::registry() {
+        keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
+    }
+    for law in capstan_friction::registry::nonsmooth_registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
     }
     for obstacle in capstan_geometry::registry::registry() {

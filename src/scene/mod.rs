@@ -164,7 +164,8 @@ impl ObstacleSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct FrictionSpec {
-    /// The friction law (`coulomb`: regularised Coulomb of Kikuchi–Oden).
+    /// The friction law (`coulomb`: regularised Coulomb of Kikuchi–Oden; the nonsmooth
+    /// `exact-coulomb` for `capstan membrane-path`).
     pub law: String,
     /// Coefficient of friction `mu` (the paper's `mu_F`, `nu_F`).
     pub mu: f64,
@@ -242,6 +243,9 @@ pub struct MembraneSpec {
     /// Work budget: Newton iterations of the membrane displacement model
     /// (`infer-mu --model membrane`), default 100.
     pub max_newton_iterations: usize,
+    /// Nodes of the membrane displacement model on `[theta0, theta_max]` (`capstan
+    /// membrane-path`), default 801.
+    pub nodes: usize,
     /// `finite` (default: Theorem 1, tension `T` of a membrane of width `loads.width` and
     /// thickness `loads.thickness`) | `infinite` (Corollary 1: the tensile stress `tau` of a
     /// membrane infinitely long in `x1`, any Poisson's ratio; `membrane.t0` is `tau0`, the loads
@@ -303,6 +307,7 @@ impl Default for MembraneSpec {
             max_root_iterations: capstan_friction::membrane::MembraneBudget::default()
                 .max_root_iterations,
             max_newton_iterations: 100,
+            nodes: 801,
             model: MembraneModel::default(),
             belt_speed_rule: BeltSpeedRule::default(),
         }
@@ -343,6 +348,12 @@ pub struct LoadsSpec {
     /// solvers drive the end tractions.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub body_force: Option<Vec<String>>,
+    /// A load path: the end load at `theta_max` in successive states, each solved from the
+    /// previous one with friction on the slip increment (`capstan membrane-path`: the
+    /// membrane's tension at `theta_max`, starting from the membrane wrapped at the uniform
+    /// tension `membrane.t0`), e.g. `[2.0, 1.0, 2.0]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<Vec<f64>>,
 }
 
 impl Default for LoadsSpec {
@@ -367,6 +378,7 @@ impl Default for LoadsSpec {
             f_t: None,
             f_n: None,
             body_force: None,
+            path: None,
         }
     }
 }

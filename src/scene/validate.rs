@@ -205,11 +205,11 @@ impl Scene {
             },
         })?;
         let f = &self.friction;
-        if FrictionLawKind::parse(&f.law).is_none() {
+        if !capstan_friction::registry::is_registered(&f.law) {
             return Err(bad(
                 "friction.law",
                 format!("{:?}", f.law),
-                &FrictionLawKind::names(),
+                &capstan_friction::registry::all_names(),
             ));
         }
         real("friction.mu", f.mu, "[0, inf)", f.mu >= 0.0)?;
@@ -229,6 +229,29 @@ impl Scene {
                 origin: at.locate("friction.law"),
                 message: e.to_string(),
             })?;
+        } else {
+            // a nonsmooth law (exact Coulomb): its own checks
+            capstan_friction::AnyNonsmoothParams::new(&f.law, &f.settings()).map_err(|e| {
+                CliError::Scene {
+                    origin: at.locate("friction.law"),
+                    message: e.to_string(),
+                }
+            })?;
+        }
+        if let Some(path) = &self.loads.path {
+            if path.is_empty() {
+                return Err(bad(
+                    "loads.path",
+                    "[]".into(),
+                    "a non-empty list of end loads",
+                ));
+            }
+            for &v in path {
+                real("loads.path", v, "(0, inf) for every value", v > 0.0)?;
+            }
+        }
+        if !(3..=MAX_SAMPLES).contains(&m.nodes) {
+            return Err(bad("membrane.nodes", m.nodes.to_string(), "[3, 10^7]"));
         }
         real("membrane.t0", m.t0, "(0, inf)", m.t0 > 0.0)?;
         if !(2..=MAX_SAMPLES).contains(&m.samples) {

@@ -100,3 +100,31 @@ def test_graded_fem_qp_contact_matches_cli(cli):
     # the resolved scene records the grading (provenance)
     scene = r.to_dict()["scene"]["discretisation"]
     assert scene["grading"] == 0.4 and scene["layers"] == 2
+
+
+def test_membrane_path_matches_cli(cli):
+    keys = {
+        "friction.law": "exact-coulomb",
+        "obstacle.shape": "cylinder",
+        "membrane.theta0": 0.0,
+        "membrane.nodes": 201,
+        "loads.path": [2.0, 1.2, 2.0],
+    }
+    r = capstan.membrane_path(capstan.Scene(keys))
+    same(
+        r,
+        cli(
+            "membrane-path",
+            "--set", "friction.law=exact-coulomb",
+            "--set", "obstacle.shape=cylinder",
+            "--set", "membrane.theta0=0",
+            "--set", "membrane.nodes=201",
+            "--set", "loads.path=[2.0, 1.2, 2.0]",
+        ),
+    )
+    assert r.profiles["tension"].shape == (3, 201)
+    assert r.theta.shape == (201,)
+    # the loop closes: reloading to 2 restores the loaded state
+    assert r.steps[2].end_displacement == r.steps[0].end_displacement
+    np.testing.assert_allclose(r.profiles["displacement"][2], r.profiles["displacement"][0], rtol=1e-12)
+    assert set(np.unique(r.profiles["state"])) <= {0.0, 1.0}

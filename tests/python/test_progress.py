@@ -82,3 +82,27 @@ def test_solve_releases_the_gil():
         done.set()
         th.join()
     assert len(ticks) > 20
+
+
+def test_membrane_path_reports_every_semismooth_iteration():
+    scene = capstan.Scene(
+        {
+            "friction.law": "exact-coulomb",
+            "obstacle.shape": "cylinder",
+            "membrane.theta0": 0.0,
+            "membrane.nodes": 101,
+            "loads.path": [2.0, 1.5],
+        }
+    )
+    seen = []
+    r = capstan.membrane_path(scene, callback=seen.append)
+    # the start of each step and every iteration, with the active set of the 101 nodes
+    assert len(seen) == len(r.steps) + sum(step.iterations for step in r.steps)
+    assert all(p["stage"] == "membrane" for p in seen)
+    assert all(p["stick"] + p["slip"] <= 101 for p in seen)
+
+    def fail(_):
+        raise RuntimeError("stop")
+
+    with pytest.raises(RuntimeError):
+        capstan.membrane_path(scene, callback=fail)

@@ -59,12 +59,23 @@ impl AnyFrictionParams {
     ///
     /// # Errors
     /// [`FrictionError::UnknownLaw`] if no law of that name is registered;
+    /// [`FrictionError::WrongLawKind`] if it names a nonsmooth law;
     /// [`FrictionError::InvalidParameter`] naming the scene key of the first bad value the law
     /// uses (values it does not use are not checked).
     pub fn new(name: &str, settings: &FrictionSettings) -> Result<Self, FrictionError> {
-        let kind = FrictionLawKind::parse(name).ok_or_else(|| FrictionError::UnknownLaw {
-            name: name.to_string(),
-            allowed: registry::names(),
+        let kind = FrictionLawKind::parse(name).ok_or_else(|| {
+            if registry::find_nonsmooth(name).is_some() {
+                FrictionError::WrongLawKind {
+                    name: name.to_string(),
+                    kind: "a nonsmooth law (a projection, no eps)",
+                    hint: "it has no pointwise traction of the slip; solve it with a semismooth method (the membrane displacement model's `solve_semismooth`)",
+                }
+            } else {
+                FrictionError::UnknownLaw {
+                    name: name.to_string(),
+                    allowed: registry::all_names(),
+                }
+            }
         })?;
         Self::of_kind(kind, settings)
     }

@@ -190,6 +190,53 @@ pub enum FrictionError {
         /// The residual then (max norm).
         residual: f64,
     },
+    /// The return map onto an orthotropic friction ellipse did not converge (its multiplier's
+    /// Newton iteration, budget
+    /// [`crate::exact_orthotropic_coulomb::ELLIPSE_MAX_ITERATIONS`]).
+    #[error(
+        "the projection onto the friction ellipse did not converge in {iterations} iterations (residual {residual:.3e})"
+    )]
+    ProjectionNotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// The residual then.
+        residual: f64,
+    },
+    /// `friction.law` names a nonsmooth law where only smooth (pointwise traction) laws are
+    /// solved, or a smooth law where a nonsmooth one is needed.
+    #[error("`friction.law` = \"{name}\" is {kind}: {hint}")]
+    WrongLawKind {
+        /// The law asked for.
+        name: String,
+        /// `"a nonsmooth law (a projection, no eps)"` or `"a smooth law"`.
+        kind: &'static str,
+        /// What solves it instead.
+        hint: &'static str,
+    },
+    /// Every node of a membrane held by two end tensions slides: no static equilibrium (the
+    /// tension ratio exceeds what friction can hold, the capstan ratio of the interval).
+    #[error(
+        "the membrane slides as a whole on [{theta0:.9}, {theta1:.9}]: no static equilibrium for these end tensions (their ratio exceeds the capstan ratio)"
+    )]
+    RigidSliding {
+        /// Start of the contact interval.
+        theta0: f64,
+        /// End of the contact interval.
+        theta1: f64,
+    },
+    /// The semismooth Newton iteration of the membrane displacement model did not converge
+    /// within `membrane.max_newton_iterations`.
+    #[error(
+        "membrane semismooth Newton ran out of its work budget: `membrane.max_newton_iterations` = {iterations} iterations reached at residual {residual:.3e} ({changes} stick/slip changes in the last step); raise `membrane.max_newton_iterations`"
+    )]
+    SemismoothNotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// The residual then (max norm).
+        residual: f64,
+        /// Nodes whose stick/slip state changed in the last step.
+        changes: usize,
+    },
 }
 
 /// The three kinds of failure, for callers that map errors to exit codes.
@@ -214,6 +261,7 @@ impl FrictionError {
             | Self::Unsupported { .. }
             | Self::DuplicateLaw { .. }
             | Self::UnknownLaw { .. }
+            | Self::WrongLawKind { .. }
             | Self::Geometry(_) => ErrorCategory::InvalidInput,
             Self::NonPositiveCurvature { .. }
             | Self::LiftOff { .. }
@@ -221,13 +269,16 @@ impl FrictionError {
             | Self::DevelopmentLimit { .. }
             | Self::TensionRatioBelowOne { .. }
             | Self::NoFrictionCoefficient { .. }
-            | Self::NotMonotone { .. } => ErrorCategory::NoEquilibrium,
+            | Self::NotMonotone { .. }
+            | Self::RigidSliding { .. } => ErrorCategory::NoEquilibrium,
             Self::NonFinite { .. }
             | Self::StepSizeTooSmall { .. }
             | Self::TooManySteps { .. }
             | Self::QuadratureNotConverged { .. }
             | Self::RootNotConverged { .. }
-            | Self::NewtonNotConverged { .. } => ErrorCategory::NotConverged,
+            | Self::NewtonNotConverged { .. }
+            | Self::ProjectionNotConverged { .. }
+            | Self::SemismoothNotConverged { .. } => ErrorCategory::NotConverged,
         }
     }
 }

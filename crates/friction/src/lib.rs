@@ -17,6 +17,9 @@
 //!   [`Tresca`], [`Howell`]'s power law, [`OrthotropicCoulomb`] and [`Frictionless`], with
 //!   consistent Newton tangents; [`AnyFrictionLaw`] selects among them at run time
 //!   (`friction.law`) through the [`registry`], where a new law registers once.
+//! - [`nonsmooth_law`]: exact Coulomb ([`ExactCoulomb`], `exact-coulomb`) and the exact
+//!   orthotropic cone ([`ExactOrthotropicCoulomb`]) as return maps onto their friction sets,
+//!   with generalised Jacobians for semismooth Newton methods ([`NonsmoothFrictionLaw`]).
 //! - [`membrane_displacement`]: the membrane as a 1-D displacement problem with a pointwise
 //!   friction law and bilateral contact, solved by Newton; its full-slip limit is the capstan
 //!   profile.
@@ -34,12 +37,17 @@
 #![warn(missing_docs)]
 
 mod any_friction_law;
+mod any_nonsmooth_law;
 mod error;
+mod exact_coulomb;
+pub mod exact_orthotropic_coulomb;
 mod friction_law;
 mod frictionless;
 mod howell;
 pub mod membrane;
 pub mod membrane_displacement;
+pub mod membrane_path;
+pub mod nonsmooth_law;
 pub mod ode;
 mod orthotropic_coulomb;
 pub mod quadrature;
@@ -53,10 +61,14 @@ mod smooth_coulomb;
 mod tresca;
 
 pub use any_friction_law::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
+pub use any_nonsmooth_law::{AnyNonsmoothLaw, AnyNonsmoothParams};
 pub use error::{ErrorCategory, FrictionError};
+pub use exact_coulomb::{ExactCoulomb, ExactCoulombParams};
+pub use exact_orthotropic_coulomb::{ExactOrthotropicCoulomb, ExactOrthotropicCoulombParams};
 pub use friction_law::{ContactState, FrictionLaw, TractionDerivatives};
 pub use frictionless::Frictionless;
 pub use howell::{Howell, HowellParams};
+pub use nonsmooth_law::{FrictionState, NonsmoothFrictionLaw, Projection};
 pub use orthotropic_coulomb::{OrthotropicCoulomb, OrthotropicCoulombParams};
 pub use registration::FrictionSettings;
 pub use regularised_coulomb::{RegularisedCoulomb, RegularisedCoulombParams};

@@ -167,7 +167,10 @@ pub struct MembraneDisplacement<'a, C: ?Sized, L: FrictionLaw<f64>> {
 }
 
 /// Geometry at one point: `J = sqrt(a_22)` and `kappa`.
-fn local<C: ProfileCurve<f64> + ?Sized>(profile: &C, t: f64) -> Result<(f64, f64), FrictionError> {
+pub(crate) fn local<C: ProfileCurve<f64> + ?Sized>(
+    profile: &C,
+    t: f64,
+) -> Result<(f64, f64), FrictionError> {
     let p = ProfilePoint::from_jet(profile.profile_jet(t));
     let j = p.a22.sqrt();
     let kappa = p.turning_rate / j;
@@ -184,6 +187,72 @@ fn local<C: ProfileCurve<f64> + ?Sized>(profile: &C, t: f64) -> Result<(f64, f64
         });
     }
     Ok((j, kappa))
+}
+
+/// The discrete membrane of a problem: node angles, geometry, half-cell stiffnesses.
+#[derive(Debug, Clone)]
+pub(crate) struct MembraneGrid {
+    /// Node angles.
+    pub theta: Vec<f64>,
+    /// `(J, kappa)` at the nodes.
+    pub nodes: Vec<(f64, f64)>,
+    /// `c_{i+1/2} = k / (d J_{i+1/2})`.
+    pub c: Vec<f64>,
+    /// The angle step `d`.
+    pub d: f64,
+    /// The residual scale: the largest end tension, or `k |W| / length` for displacement ends
+    /// (1 when all are zero).
+    pub scale: f64,
+}
+
+impl MembraneGrid {
+    /// Validates `pr` and builds its grid on `profile`.
+    pub(crate) fn new<C: ProfileCurve<f64> + ?Sized>(
+        profile: &C,
+        pr: &MembraneDisplacementProblem,
+    ) -> Result<Self, FrictionError> {
+        check_wrap(pr.theta0, pr.theta1, pr.nodes, (3.0, 1e8, "[3, 10^8]"))?;
+        check("membrane.stiffness", pr.stiffness, "(0, inf)", |v| v > 0.0)?;
+        for e in [pr.start, pr.end] {
+            let (EndCondition::Tension(x) | EndCondition::Displacement(x)) = e;
+            check("membrane.t0", x, "finite values", |_| true)?;
+        }
+        let n = pr.nodes;
+        let d = (pr.theta1 - pr.theta0) / (n - 1) as f64;
+        let theta: Vec<f64> = (0..n)
+            .map(|i| {
+                if i + 1 == n {
+                    pr.theta1
+                } else {
+                    pr.theta0 + d * i as f64
+                }
+            })
+            .collect();
+        let nodes: Vec<(f64, f64)> = theta
+            .iter()
+            .map(|&t| local(profile, t))
+            .collect::<Result<_, _>>()?;
+        // c_{i+1/2} = k / (d J_{i+1/2})
+        let c: Vec<f64> = (0..n - 1)
+            .map(|i| Ok(pr.stiffness / (d * local(profile, theta[i] + 0.5 * d)?.0)))
+            .collect::<Result<_, FrictionError>>()?;
+        let length: f64 = c.iter().map(|ci| pr.stiffness / ci).sum();
+        let mut scale: f64 = 0.0;
+        for e in [pr.start, pr.end] {
+            scale = scale.max(match e {
+                EndCondition::Tension(t) => t.abs(),
+                EndCondition::Displacement(w) => pr.stiffness * w.abs() / length,
+            });
+        }
+        let scale = if scale > 0.0 { scale } else { 1.0 };
+        Ok(Self {
+            theta,
+            nodes,
+            c,
+            d,
+            scale,
+        })
+    }
 }
 
 impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacement<'a, C, L> {
@@ -229,49 +298,50 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         newton: MembraneNewton,
         progress: &mut dyn FnMut(usize, f64, f64),
     ) -> Result<MembraneDisplacementSolution, FrictionError> {
-        let pr = problem;
-        check_wrap(pr.theta0, pr.theta1, pr.nodes, (3.0, 1e8, "[3, 10^8]"))?;
-        check("membrane.stiffness", pr.stiffness, "(0, inf)", |v| v > 0.0)?;
-        for e in [pr.start, pr.end] {
-            let (EndCondition::Tension(x) | EndCondition::Displacement(x)) = e;
-            check("membrane.t0", x, "finite values", |_| true)?;
-        }
-        let n = pr.nodes;
-        let d = (pr.theta1 - pr.theta0) / (n - 1) as f64;
-        let theta: Vec<f64> = (0..n)
-            .map(|i| {
-                if i + 1 == n {
-                    pr.theta1
-                } else {
-                    pr.theta0 + d * i as f64
-                }
-            })
-            .collect();
-        let nodes: Vec<(f64, f64)> = theta
-            .iter()
-            .map(|&t| local(self.profile, t))
-            .collect::<Result<_, _>>()?;
-        // c_{i+1/2} = k / (d J_{i+1/2})
-        let c: Vec<f64> = (0..n - 1)
-            .map(|i| Ok(pr.stiffness / (d * local(self.profile, theta[i] + 0.5 * d)?.0)))
-            .collect::<Result<_, FrictionError>>()?;
-        let length: f64 = c.iter().map(|ci| pr.stiffness / ci).sum();
-        let mut scale: f64 = 0.0;
-        for e in [pr.start, pr.end] {
-            scale = scale.max(match e {
-                EndCondition::Tension(t) => t.abs(),
-                EndCondition::Displacement(w) => pr.stiffness * w.abs() / length,
-            });
-        }
-        let scale = if scale > 0.0 { scale } else { 1.0 };
+        self.solve_from(problem, None, initial, newton, progress)
+    }
 
+    /// As [`MembraneDisplacement::solve_observed`], with the friction law acting on the slip
+    /// measured from `reference` (`u = w - w_ref`; a load step from a state in which the
+    /// friction traction vanishes, e.g. the membrane wrapped at a uniform tension). `None`:
+    /// from `w = 0`.
+    ///
+    /// # Errors
+    /// As [`MembraneDisplacement::solve`]; [`FrictionError::InvalidParameter`] naming
+    /// `reference` if its length is not `problem.nodes`.
+    pub fn solve_from(
+        &self,
+        problem: &MembraneDisplacementProblem,
+        reference: Option<&[f64]>,
+        initial: Option<&[f64]>,
+        newton: MembraneNewton,
+        progress: &mut dyn FnMut(usize, f64, f64),
+    ) -> Result<MembraneDisplacementSolution, FrictionError> {
+        let pr = problem;
+        let MembraneGrid {
+            theta,
+            nodes,
+            c,
+            d,
+            scale,
+        } = MembraneGrid::new(self.profile, pr)?;
+        let n = pr.nodes;
+        let origin = match reference {
+            Some(w) => {
+                check("reference", w.len() as f64, "problem.nodes values", |v| {
+                    v == pr.nodes as f64
+                })?;
+                w.to_vec()
+            }
+            None => vec![0.0; n],
+        };
         let mut w = match initial {
             Some(w0) if w0.len() == n => w0.to_vec(),
             _ => self.initial_guess(pr, &c),
         };
         let mut r = vec![0.0; n];
         let mut jac = vec![[0.0; 3]; n];
-        let mut norm = self.assemble(pr, &nodes, &c, d, &w, &mut r, Some(&mut jac));
+        let mut norm = self.assemble(pr, &nodes, &c, d, &origin, &w, &mut r, Some(&mut jac));
         let mut iterations = 0;
         progress(0, norm, 0.0);
         // Round-off floor of the residual: differences c (w_{i+1} - w_i) of large terms.
@@ -297,14 +367,14 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
                 for i in 0..n {
                     trial[i] = w[i] + step * dw[i];
                 }
-                let tn = self.assemble(pr, &nodes, &c, d, &trial, &mut r, None);
+                let tn = self.assemble(pr, &nodes, &c, d, &origin, &trial, &mut r, None);
                 if tn < (1.0 - 1e-4 * step) * norm || step < 1e-10 {
                     break;
                 }
                 step *= 0.5;
             }
             w.copy_from_slice(&trial);
-            norm = self.assemble(pr, &nodes, &c, d, &w, &mut r, Some(&mut jac));
+            norm = self.assemble(pr, &nodes, &c, d, &origin, &w, &mut r, Some(&mut jac));
             progress(iterations, norm, step);
         }
         // Node tensions and reactions.
@@ -369,6 +439,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         nodes: &[(f64, f64)],
         c: &[f64],
         d: f64,
+        origin: &[f64],
         w: &[f64],
         r: &mut [f64],
         mut jac: Option<&mut [[f64; 3]]>,
@@ -396,7 +467,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
                     }
                     EndCondition::Tension(te) => {
                         // start: T_{1/2} - T_e + (d/2) J t = 0; end: T_e - T_{n-3/2} + (d/2) J t = 0
-                        let (t, dtw, _) = friction(w[i], kappa * te);
+                        let (t, dtw, _) = friction(w[i] - origin[i], kappa * te);
                         if i == 0 {
                             di = -c[0] + 0.5 * d * j * dtw;
                             up = c[0];
@@ -411,7 +482,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
             } else {
                 let (tm, tp) = (half(i - 1), half(i));
                 let ti = 0.5 * (tm + tp);
-                let (t, dtw, dts) = friction(w[i], kappa * ti);
+                let (t, dtw, dts) = friction(w[i] - origin[i], kappa * ti);
                 // sigma = -kappa T_i, T_i = (T_{i-1/2} + T_{i+1/2})/2
                 let g = d * j * dts * (-kappa) * 0.5;
                 lo = c[i - 1] + g * (-c[i - 1]);
@@ -435,7 +506,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
 
 /// Thomas elimination of the tridiagonal system `[lower, diag, upper]` in place; `None` on a
 /// zero or non-finite pivot.
-fn thomas(jac: &[[f64; 3]], rhs: &mut [f64]) -> Option<()> {
+pub(crate) fn thomas(jac: &[[f64; 3]], rhs: &mut [f64]) -> Option<()> {
     let n = rhs.len();
     let mut cp = vec![0.0; n];
     let mut denom = jac[0][1];

@@ -53,6 +53,7 @@ use std::sync::{LazyLock, RwLock};
 use crate::error::FrictionError;
 
 pub use crate::error::check;
+pub use crate::nonsmooth_law::{DynNonsmoothLaw, RegisteredNonsmoothLaw, bind_nonsmooth};
 pub use crate::registration::{DynFrictionLaw, FrictionSettings, RegisteredLaw, bind};
 
 /// The built-in laws, in the order of [`names`].
@@ -65,6 +66,23 @@ fn builtin() -> Vec<&'static RegisteredLaw> {
         &crate::orthotropic_coulomb::REGISTRATION,
         &crate::frictionless::REGISTRATION,
     ]
+}
+
+/// The built-in nonsmooth laws, in the order of [`nonsmooth_names`].
+fn builtin_nonsmooth() -> Vec<&'static RegisteredNonsmoothLaw> {
+    vec![
+        &crate::exact_coulomb::REGISTRATION,
+        &crate::exact_orthotropic_coulomb::REGISTRATION,
+    ]
+}
+
+static NONSMOOTH: LazyLock<RwLock<Vec<&'static RegisteredNonsmoothLaw>>> =
+    LazyLock::new(|| RwLock::new(builtin_nonsmooth()));
+
+fn nonsmooth_laws() -> std::sync::RwLockReadGuard<'static, Vec<&'static RegisteredNonsmoothLaw>> {
+    NONSMOOTH
+        .read()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 static REGISTRY: LazyLock<RwLock<Vec<&'static RegisteredLaw>>> =
@@ -91,9 +109,63 @@ pub fn names() -> String {
     laws().iter().map(|l| l.name).collect::<Vec<_>>().join(", ")
 }
 
-/// Whether `key` (without the `friction.` prefix) is a parameter of some registered law.
+/// Whether `key` (without the `friction.` prefix) is a parameter of some registered law,
+/// smooth or nonsmooth.
 pub fn is_parameter(key: &str) -> bool {
     laws().iter().any(|l| l.parameters.contains(&key))
+        || nonsmooth_laws().iter().any(|l| l.parameters.contains(&key))
+}
+
+/// Every registered nonsmooth law (exact Coulomb, ...), built-ins first.
+pub fn nonsmooth_registry() -> Vec<&'static RegisteredNonsmoothLaw> {
+    nonsmooth_laws().clone()
+}
+
+/// The nonsmooth law named `name`, if registered.
+pub fn find_nonsmooth(name: &str) -> Option<&'static RegisteredNonsmoothLaw> {
+    nonsmooth_laws().iter().copied().find(|l| l.name == name)
+}
+
+/// The registered nonsmooth names, comma-separated.
+pub fn nonsmooth_names() -> String {
+    nonsmooth_laws()
+        .iter()
+        .map(|l| l.name)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Every registered name, smooth then nonsmooth, comma-separated (the values of
+/// `friction.law`).
+pub fn all_names() -> String {
+    let mut names = names();
+    for l in nonsmooth_laws().iter() {
+        names.push_str(", ");
+        names.push_str(l.name);
+    }
+    names
+}
+
+/// Whether `name` is a registered law of either kind.
+pub fn is_registered(name: &str) -> bool {
+    find(name).is_some() || find_nonsmooth(name).is_some()
+}
+
+/// Adds the nonsmooth `law` to the registry, so that scenes can name it.
+///
+/// # Errors
+/// [`FrictionError::DuplicateLaw`] if a law of that name (smooth or nonsmooth) is registered
+/// already.
+pub fn register_nonsmooth(law: RegisteredNonsmoothLaw) -> Result<(), FrictionError> {
+    let smooth_taken = find(law.name).is_some();
+    let mut all = NONSMOOTH
+        .write()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if smooth_taken || all.iter().any(|l| l.name == law.name) {
+        return Err(FrictionError::DuplicateLaw { name: law.name });
+    }
+    all.push(Box::leak(Box::new(law)));
+    Ok(())
 }
 
 /// Adds `law` to the registry, so that scenes can name it.
@@ -104,7 +176,7 @@ pub fn register(law: RegisteredLaw) -> Result<(), FrictionError> {
     let mut all = REGISTRY
         .write()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
-    if all.iter().any(|l| l.name == law.name) {
+    if all.iter().any(|l| l.name == law.name) || find_nonsmooth(law.name).is_some() {
         return Err(FrictionError::DuplicateLaw { name: law.name });
     }
     all.push(Box::leak(Box::new(law)));
@@ -128,6 +200,25 @@ mod tests {
             err,
             FrictionError::DuplicateLaw { name: "tresca" }
         ));
+    }
+
+    #[test]
+    fn nonsmooth_builtins_are_registered_and_names_are_unique() {
+        assert_eq!(
+            nonsmooth_names(),
+            "exact-coulomb, exact-orthotropic-coulomb"
+        );
+        assert!(is_registered("exact-coulomb") && is_registered("coulomb"));
+        assert!(find("exact-coulomb").is_none() && find_nonsmooth("coulomb").is_none());
+        assert!(all_names().ends_with("frictionless, exact-coulomb, exact-orthotropic-coulomb"));
+        // a name is taken across both kinds
+        let mut clash = crate::exact_coulomb::REGISTRATION;
+        clash.name = "tresca";
+        assert!(matches!(
+            register_nonsmooth(clash),
+            Err(FrictionError::DuplicateLaw { name: "tresca" })
+        ));
+        assert!(register_nonsmooth(crate::exact_coulomb::REGISTRATION).is_err());
     }
 
     #[test]

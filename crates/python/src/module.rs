@@ -274,6 +274,56 @@ fn threshold(py: Python<'_>, scene: &PyScene) -> PyResult<String> {
     run(py, move |_| stamped(&commands::threshold::report(&s)?, &s))
 }
 
+/// `capstan membrane-path --json`, with the node angles and the per-step node profiles
+/// (`displacement`, `slip_increment`, `tension`, `friction`, `state`: each steps x nodes,
+/// row-major).
+/// `callback(progress: dict)` sees every semismooth iteration (stage `membrane`, with the
+/// stick/slip counts).
+#[pyfunction]
+#[pyo3(signature = (scene, callback = None))]
+#[allow(clippy::type_complexity)] // (json, theta, [(name, values)]) as Python receives them
+fn membrane_path(
+    py: Python<'_>,
+    scene: &PyScene,
+    callback: Option<Py<PyAny>>,
+) -> PyResult<(String, Vec<f64>, Vec<(String, Vec<f64>)>)> {
+    let s = scene.scene.clone();
+    let error = Arc::new(Mutex::new(None));
+    let seen = Arc::clone(&error);
+    let result = run(py, move |stop| {
+        let mut observer = PyObserver {
+            callback,
+            error: seen,
+            stop,
+        };
+        let r = commands::membrane_path::report_observed(&s, &mut observer)?;
+        let names = [
+            "displacement",
+            "slip_increment",
+            "tension",
+            "friction",
+            "state",
+        ];
+        let profiles = names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| {
+                let values = r
+                    .profiles
+                    .iter()
+                    .flat_map(|p| p[k].iter().copied())
+                    .collect();
+                ((*name).to_string(), values)
+            })
+            .collect();
+        Ok((stamped(&r, &s)?, r.theta.clone(), profiles))
+    });
+    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
+        return Err(e);
+    }
+    result
+}
+
 /// The geometry at the points `x2`: the keys of `capstan geometry --json` and the tensors.
 #[pyfunction]
 fn geometry(py: Python<'_>, scene: &PyScene, x2: Vec<f64>) -> PyResult<String> {
@@ -462,6 +512,7 @@ fn _capstan(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(geometry, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(contact, m)?)?;
+    m.add_function(wrap_pyfunction!(membrane_path, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

@@ -1,7 +1,7 @@
 """capstan from Python: friction between elastic bodies and rough rigid curved obstacles.
 
-The functions mirror the command line (``capstan tension|infer-mu|contact|threshold|sweep|geometry
---json``): the same scene keys, the same result keys, the same digits. Results are objects whose
+The functions mirror the command line (``capstan tension|infer-mu|contact|threshold|sweep|geometry|
+membrane-path --json``): the same scene keys, the same result keys, the same digits. Results are objects whose
 arrays are numpy arrays; ``result.to_dict()`` and ``result.to_json()`` give what ``--json`` prints.
 
 >>> import capstan
@@ -31,12 +31,14 @@ __all__ = [
     "Scene",
     "Result",
     "ContactResult",
+    "MembranePathResult",
     "tension",
     "infer_mu",
     "contact",
     "threshold",
     "sweep",
     "geometry",
+    "membrane_path",
     "CapstanError",
     "InvalidInputError",
     "NoEquilibriumError",
@@ -198,6 +200,38 @@ def geometry(scene: Scene, x2: "Iterable[float] | float") -> Result:
     ``radius`` (``rbar``), ``chi`` (``(chi1, chi2)``) and ``jacobian`` (``d chi / d x``)."""
     x = np.atleast_1d(np.asarray(x2, dtype=float)).tolist()
     return Result(_capstan.geometry(scene, x))
+
+
+class MembranePathResult(Result):
+    """``capstan membrane-path --json`` (``steps``: one result per load state, ``dissipation``),
+    plus the node angles ``theta`` and ``profiles[name]``, a ``(steps, nodes)`` array for each of
+    ``displacement``, ``slip_increment``, ``tension``, ``friction`` (force per unit length) and
+    ``state`` (0 stick, 1 slip, 2 separated)."""
+
+    def __init__(self, text: str, theta: list, profiles: list):
+        super().__init__(text)
+        self.theta = np.asarray(theta, dtype=float)
+        n = len(self.theta)
+        self.profiles = {
+            name: np.asarray(values, dtype=float).reshape(-1, n) for name, values in profiles
+        }
+
+
+def membrane_path(
+    scene: Scene, callback: Optional[Callable[[dict], Any]] = None
+) -> MembranePathResult:
+    """The membrane along the load path ``loads.path`` (end tensions at ``theta_max``) with a
+    nonsmooth law (``friction.law = "exact-coulomb"``), each state from the previous one with
+    friction on the slip increment (``capstan membrane-path --json``): belt creep, hysteresis.
+    ``callback(progress)`` sees every semismooth iteration as for ``contact`` (stage
+    ``"membrane"``, ``stick`` and ``slip`` counts); an exception in it is raised here.
+
+    >>> s = capstan.Scene({"friction.law": "exact-coulomb", "obstacle.shape": "cylinder",
+    ...                    "loads.path": [2.0, 1.2, 2.0]})                   # doctest: +SKIP
+    >>> r = capstan.membrane_path(s)                                          # doctest: +SKIP
+    >>> [step.end_displacement for step in r.steps]                           # doctest: +SKIP
+    """
+    return MembranePathResult(*_capstan.membrane_path(scene, callback))
 
 
 def contact(
