@@ -63,6 +63,7 @@ impl Scene {
                 grading: d.grading()?,
                 ..Default::default()
             },
+            contact: self.contact.kind()?,
         };
         Ok(Problem {
             body,

@@ -9,6 +9,7 @@ use crate::contact::body::ThickBody;
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::BodyOperator;
+use crate::contact::unilateral::ContactKind;
 use crate::error::ElasticityError;
 use crate::finite_element::DiscretisationMethod;
 use crate::material::Material;
@@ -95,6 +96,8 @@ pub struct Body<S = Obstacle> {
     pub method: DiscretisationMethod,
     /// Its settings (order, volumetric integration, grading, extra keys).
     pub settings: DiscretisationSettings,
+    /// Bilateral (default) or unilateral contact on `x3 = 0` (`contact.kind`, `contact.gap`).
+    pub contact: ContactKind,
 }
 
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
@@ -115,6 +118,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
             n3,
             method: DiscretisationMethod::Fd,
             settings: DiscretisationSettings::default(),
+            contact: ContactKind::Bilateral,
         }
     }
 
@@ -184,11 +188,28 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         })
     }
 
-    /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`),
-    /// of either dimension: every contact solver takes it.
+    /// The assembled contact operator with end loads `tau0`, `tau_max` and a traction-free
+    /// contact face (the body of unilateral contact), of either dimension.
     ///
     /// # Errors
-    /// See [`Body::operator`] and [`ContactModel::new`].
+    /// See [`Body::operator`].
+    pub fn operator_free_face(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+    ) -> Result<BodyOperator, ElasticityError> {
+        Ok(match self.solid()? {
+            Some(solid) => Box::new(solid.operator_free_face(tau0, tau_max)?),
+            None => Box::new(self.plane().discretisation_free_face(tau0, tau_max)?),
+        })
+    }
+
+    /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`),
+    /// of either dimension and either [`ContactKind`]: every contact solver takes a bilateral
+    /// one, the full-system solvers a unilateral one ([`ContactModel::into_unilateral`]).
+    ///
+    /// # Errors
+    /// See [`Body::operator`], [`ContactModel::new`] and [`ContactModel::into_unilateral`].
     pub fn model<L: FrictionLaw<f64>>(
         &self,
         law: L,
@@ -196,12 +217,21 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         slip_threshold: f64,
     ) -> Result<ContactModel<BodyOperator, L>, ContactError> {
         self.solid()?; // the 3-D body's own errors before any assembly
-        ContactModel::new(
-            |tau0, tau_max| self.operator(tau0, tau_max),
-            law,
-            params,
-            slip_threshold,
-        )
+        match &self.contact {
+            ContactKind::Bilateral => ContactModel::new(
+                |tau0, tau_max| self.operator(tau0, tau_max),
+                law,
+                params,
+                slip_threshold,
+            ),
+            ContactKind::Unilateral { gap } => ContactModel::new(
+                |tau0, tau_max| self.operator_free_face(tau0, tau_max),
+                law,
+                params,
+                slip_threshold,
+            )?
+            .into_unilateral(gap),
+        }
     }
 }
 

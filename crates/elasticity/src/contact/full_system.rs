@@ -95,7 +95,7 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
         &self.model.extended().pattern
     }
     fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.jacobian_into(u, values);
+        self.model.jacobian_into(&self.rhs, u, values);
         Ok(())
     }
 }
@@ -108,8 +108,10 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
 pub struct FullSystemSolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     settings: FullSystemSettings,
-    /// The stuck solution for unit `tau0` and unit `tau_max` (one sparse LU, on first use).
-    stuck: OnceLock<[Vec<f64>; 2]>,
+    /// The stuck solution for unit `tau0` and unit `tau_max`, and for the gap alone (zero
+    /// but under unilateral contact: the body closed onto the obstacle, `v^3 = -g`); one
+    /// sparse LU, on first use.
+    stuck: OnceLock<[Vec<f64>; 3]>,
     /// The discretisation's multigrid prolongations (for backends that ask, on first use).
     prolongations: OnceLock<Arc<[CsrMatrix]>>,
 }
@@ -179,7 +181,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// tangential contact rows, by the Newton backend (by `lu` if that is a stationary
     /// iteration: the stiff spring is what sweeps are slowest on), told the matrix is
     /// symmetric positive definite when `A` is symmetric (CG for `multigrid`).
-    fn stuck_basis(&self) -> Result<&[Vec<f64>; 2], ContactError> {
+    fn stuck_basis(&self) -> Result<&[Vec<f64>; 3], ContactError> {
         if let Some(s) = self.stuck.get() {
             return Ok(s);
         }
@@ -200,20 +202,31 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         };
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
+        // unilateral contact: the closed start, v^3 = -g on the contact face
+        let unilateral = model.unilateral();
         let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
-            let mut v = model.rhs_basis(i).to_vec();
+            let mut v = match i {
+                2 => vec![0.0; model.dof_count()],
+                _ => model.rhs_basis(i).to_vec(),
+            };
+            if let Some(u) = unilateral {
+                u.closed_rows(&mut v, i == 2);
+            } else if i == 2 {
+                return Ok(v);
+            }
             lu.solve_in_place(&mut v)?;
             Ok(v)
         };
-        let basis = [unit(0)?, unit(1)?];
+        let basis = [unit(0)?, unit(1)?, unit(2)?];
         Ok(self.stuck.get_or_init(|| basis))
     }
 
     fn stuck(&self, loads: EndLoads) -> Result<Vec<f64>, ContactError> {
-        let [a, b] = self.stuck_basis()?;
+        let [a, b, c] = self.stuck_basis()?;
         Ok(a.iter()
             .zip(b)
-            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .zip(c)
+            .map(|((a, b), c)| loads.tau0 * a + loads.tau_max * b + c)
             .collect())
     }
 

@@ -52,6 +52,7 @@ mod model;
 mod operator;
 mod solution;
 mod threshold;
+mod unilateral;
 
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
@@ -65,10 +66,11 @@ pub use model::{ContactModel, END_LOADS, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use solution::{
-    ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,
-    state_intervals,
+    ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
+    classify, state_intervals,
 };
 pub use threshold::{ThresholdResult, ThresholdSettings, solve_below_threshold, threshold_ratio};
+pub use unilateral::{ContactKind, Gap};
 
 /// Makes faer's dense and sparse kernels sequential (`Par::Seq`), for callers that run many
 /// contact solves in parallel themselves (rayon sweeps): avoids oversubscription.
