@@ -145,3 +145,61 @@ fn a_negative_gap_is_refused_naming_contact_gap() {
         "{err}"
     );
 }
+
+#[test]
+fn a_3d_body_of_finite_width_lifts_off_and_its_zones_converge() {
+    use capstan_elasticity::contact::Dimension;
+    use capstan_elasticity::solid::SideFaces;
+    let loads = EndLoads::new(1.0, 1.5);
+    let ends: Vec<[f64; 2]> = [(21, 5), (41, 9), (81, 17)]
+        .into_iter()
+        .map(|(n2, n3)| {
+            let mut b = falling_away(n2);
+            b.n3 = n3;
+            b.dimension = Dimension::Solid {
+                x1: [-0.5, 0.5],
+                n1: 3,
+                sides: SideFaces::Free,
+            };
+            let s = solve_unilateral(&b, loads);
+            let zones = s.lift_off_intervals.clone().unwrap();
+            assert_eq!(zones.len(), 2, "n2 = {n2}: {zones:?}");
+            let separated = s.contact.separated.as_ref().unwrap();
+            assert_eq!(separated.len(), s.contact.x2.len());
+            [zones[0].to, zones[1].from]
+        })
+        .collect();
+    for side in 0..2 {
+        let d1 = (ends[1][side] - ends[0][side]).abs();
+        let d2 = (ends[2][side] - ends[1][side]).abs();
+        assert!(d2 < d1, "side {side}: {ends:?}");
+    }
+}
+
+#[test]
+fn every_newton_iterate_reports_its_contact_set_to_the_observer() {
+    use capstan_elasticity::solvers::{Progress, SolveStage};
+    let b = falling_away(41);
+    let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
+    let model = b.model(RegularisedCoulomb, params, 1e-5).unwrap();
+    let mut sets = Vec::new();
+    let mut observer = |p: &Progress<f64>| {
+        if p.stage == SolveStage::Newton {
+            sets.push(
+                p.active
+                    .expect("the full-system Newton reports its active set"),
+            );
+        }
+    };
+    let s = FullSystemSolver::new(&model, FullSystemSettings::default())
+        .unwrap()
+        .solve_observed(EndLoads::new(1.0, 1.5), &mut observer)
+        .unwrap();
+    let last = sets.last().unwrap();
+    assert_eq!(last.stick + last.slip + last.separated, s.contact.x2.len());
+    let separated = s.contact.state.iter().filter(|&&x| x == SEPARATED).count();
+    assert_eq!(last.separated, separated);
+    assert!(separated > 0);
+    // the semismooth Newton moves the active set from the closed start to the solution's
+    assert!(sets.windows(2).any(|w| w[0] != w[1]), "{sets:?}");
+}

@@ -7,9 +7,9 @@ use std::sync::{Arc, OnceLock};
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    BackendKind, BoxedLinearSolver, CsrMatrix, Jacobian, LinearBackend, Newton, NewtonParams,
-    NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage,
-    SolverError, SparsityPattern,
+    ActiveSet, BackendKind, BoxedLinearSolver, CsrMatrix, Jacobian, LinearBackend, Newton,
+    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
+    SolveStage, SolverError, SparsityPattern,
 };
 
 use crate::contact::body::ThickBody;
@@ -65,6 +65,9 @@ impl Default for FullSystemSettings {
 pub struct FullSystemProblem<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     rhs: Vec<f64>,
+    /// The contact active set at the last residual evaluation (the accepted iterate when an
+    /// observer hears of it).
+    last_set: std::cell::Cell<Option<ActiveSet>>,
 }
 
 impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
@@ -73,7 +76,13 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
         Self {
             rhs: model.rhs(loads),
             model,
+            last_set: std::cell::Cell::new(None),
         }
+    }
+
+    /// The contact active set at the last residual evaluation.
+    pub fn last_active_set(&self) -> Option<ActiveSet> {
+        self.last_set.get()
     }
 
     /// The right-hand side `b`.
@@ -86,6 +95,7 @@ impl<D, L: FrictionLaw<f64>> Residual<f64> for FullSystemProblem<'_, D, L> {
     type Error = core::convert::Infallible;
     fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
         self.model.residual_into(&self.rhs, u, r);
+        self.last_set.set(Some(self.model.active_set(&self.rhs, u)));
         Ok(())
     }
 }
@@ -245,6 +255,12 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             max_iterations: self.settings.continuation.max_iterations,
             ..self.settings.newton
         };
+        // every Newton iterate reported with the active set it ended on
+        let mut observer = WithActiveSet {
+            inner: observer,
+            problem: &problem,
+        };
+        let observer: &mut dyn Observer<f64> = &mut observer;
         let result = match self.settings.method {
             NonlinearMethod::Newton => {
                 let linear = self.backend(params.linear, false).map_err(|e| match e {
@@ -431,6 +447,30 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             v = current;
         }
         Ok(ContactSolution::new(self.model, loads, v, stats))
+    }
+}
+
+/// Passes every event on, the full-system Newton iterates with the contact active set of the
+/// last residual evaluation (the accepted iterate).
+struct WithActiveSet<'o, 'p, 'a, D, L: FrictionLaw<f64>> {
+    inner: &'o mut dyn Observer<f64>,
+    problem: &'p FullSystemProblem<'a, D, L>,
+}
+
+impl<D, L: FrictionLaw<f64>> Observer<f64> for WithActiveSet<'_, '_, '_, D, L> {
+    fn iteration(&mut self, progress: &Progress<f64>) {
+        match (progress.stage, self.problem.last_active_set()) {
+            (SolveStage::Newton | SolveStage::JacobiNewton, Some(set))
+                if progress.active.is_none() =>
+            {
+                self.inner.iteration(&progress.with_contact_set(set));
+            }
+            _ => self.inner.iteration(progress),
+        }
+    }
+
+    fn interrupted(&mut self) -> bool {
+        self.inner.interrupted()
     }
 }
 

@@ -403,6 +403,26 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.unilateral.as_ref()
     }
 
+    /// The contact active set at `v`: sites that stick (`|u| < eps`), slip, and have lifted
+    /// off (unilateral contact) under the loads' right-hand side `rhs`.
+    pub fn active_set(&self, rhs: &[f64], v: &[f64]) -> capstan_solvers::ActiveSet {
+        let separated = self.separated_sites(rhs, v);
+        let mut set = capstan_solvers::ActiveSet::default();
+        for j in 0..self.sites.members.len() {
+            if separated.as_ref().is_some_and(|s| s[j]) {
+                set.separated += 1;
+                continue;
+            }
+            let u = self.site_slip(j, 1.0, |k| v[self.active_node(k).tangential_dof]);
+            if (u[0] * u[0] + u[1] * u[1]).sqrt() < self.slip_threshold {
+                set.stick += 1;
+            } else {
+                set.slip += 1;
+            }
+        }
+        set
+    }
+
     /// Whether the model has unilateral (Signorini) contact.
     pub fn is_unilateral(&self) -> bool {
         self.unilateral.is_some()
