@@ -558,6 +558,9 @@ pub fn table(r: &ContactReport) -> String {
     for i in &r.slip_intervals {
         s += &format!("  slip {:+} [{:.6}, {:.6}]\n", i.state, i.from, i.to);
     }
+    for [a, b] in r.lift_off_intervals.iter().flatten() {
+        s += &format!("  lifted off [{a:.6}, {b:.6}]\n");
+    }
     if let Some([lo, hi]) = r.limiting_ratios {
         let f =
             |x: Option<f64>, unbounded: &str| x.map_or(unbounded.to_owned(), |x| format!("{x:.6}"));

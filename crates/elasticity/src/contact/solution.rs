@@ -302,7 +302,9 @@ impl ContactSolution {
 
     /// The slip intervals (runs with state `+-1`).
     pub fn slip_intervals(&self) -> impl Iterator<Item = &StateInterval> {
-        self.intervals.iter().filter(|i| i.state != 0)
+        self.intervals
+            .iter()
+            .filter(|i| i.state == 1 || i.state == -1)
     }
 
     /// Whether every contact node slides in the positive direction (state `+1`; on a 3-D body
