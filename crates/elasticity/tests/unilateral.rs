@@ -115,13 +115,14 @@ fn the_condensed_solver_refuses_unilateral_contact_naming_the_solver_key() {
     assert!(
         matches!(
             err,
-            ContactError::Elasticity(ElasticityError::InvalidParameter {
+            ContactError::Unsupported {
                 field: "solver.nonlinear",
                 ..
-            })
+            }
         ),
         "{err}"
     );
+    assert_eq!(err.status(), "invalid-input");
 }
 
 #[test]

@@ -469,13 +469,10 @@ fn refuse_unilateral<D, L: FrictionLaw<f64>>(
     model: &ContactModel<D, L>,
 ) -> Result<(), ContactError> {
     if model.is_unilateral() {
-        return Err(ContactError::from(
-            crate::error::ElasticityError::InvalidParameter {
-                field: "solver.nonlinear",
-                value: 0.0,
-                allowed: "full-newton or jacobi-newton with contact.kind = unilateral (the condensed newton keeps v^3 = 0 on the contact face)",
-            },
-        ));
+        return Err(ContactError::Unsupported {
+            field: "solver.nonlinear",
+            message: "the condensed `newton` keeps v^3 = 0 on the contact face; unilateral contact (`contact.kind = \"unilateral\"`) needs `full-newton` or `jacobi-newton`",
+        });
     }
     Ok(())
 }
