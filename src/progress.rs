@@ -65,6 +65,9 @@ pub fn progress_line(p: &Progress<f64>) -> String {
     );
     if let Some(a) = p.active {
         line += &format!("  stick {}  slip {}", a.stick, a.slip);
+        if a.separated > 0 {
+            line += &format!("  separated {}", a.separated);
+        }
     }
     line
 }

@@ -193,7 +193,7 @@ fn bad_plot_data_writes_nothing() {
         out.write_plot("log", &log),
         Err(OutputError::InvalidParameter { value: 0.0, .. })
     ));
-    let strip = StateStrip::new("x", [0.0, 1.0], [0, 2]);
+    let strip = StateStrip::new("x", [0.0, 1.0], [0, 3]); // 2 is a lifted-off node
     assert!(out.write_plot("strip", &strip).is_err());
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
 }

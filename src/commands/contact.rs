@@ -153,12 +153,16 @@ pub struct ContactArrays {
     pub normal_stress: Vec<f64>,
     /// `T^3_2`.
     pub shear_stress: Vec<f64>,
-    /// `+1`, `-1`, `0`.
+    /// `+1`, `-1`, `0`; `2` lifted off (unilateral contact).
     pub state: Vec<i8>,
     /// Physical tangential displacement `sqrt(g_22) v^2`.
     pub slip: Vec<f64>,
     /// Physical friction traction on the body.
     pub friction_traction: Vec<f64>,
+    /// `contact.kind = "unilateral"`: whether each node has lifted off (its `state` is then
+    /// 2); absent for bilateral contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separated: Option<Vec<bool>>,
 }
 
 /// `capstan contact --json` (keys are a public contract).
@@ -202,8 +206,14 @@ pub struct ContactReport {
     /// `[lower, upper]` tension ratios friction can hold, when the body can slide rigidly (circle);
     /// an entry is `null` when friction holds every ratio in that direction (no finite limit).
     pub limiting_ratios: Option<[Option<f64>; 2]>,
-    /// Contact nodes under tension (`sigma_n > 0`).
+    /// Contact nodes under tension (`sigma_n > 0`; unilateral contact: of the nodes in
+    /// contact).
     pub tensile_contact_nodes: usize,
+    /// `contact.kind = "unilateral"`: the runs of lifted-off nodes, `[from, to]` in `x2`
+    /// (ends midway to the neighbouring node in contact; a 3-D body: along its middle `x1`
+    /// line); absent for bilateral contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lift_off_intervals: Option<Vec<[f64; 2]>>,
     /// `[n2, n3]`.
     pub grid: [usize; 2],
     /// Wall time of the setup (bulk factorisation and condensation), seconds; for
@@ -259,6 +269,7 @@ impl ContactReport {
                 state: c.state.clone(),
                 slip: c.slip.clone(),
                 friction_traction: c.friction_traction.clone(),
+                separated: c.separated.clone(),
             },
             tau0: sol.loads.tau0,
             tau_max: sol.loads.tau_max,
@@ -269,6 +280,10 @@ impl ContactReport {
             linear_iterations: sol.stats.linear_iterations,
             limiting_ratios: limiting.map(|r| r.map(|x| Some(x).filter(|x| x.is_finite()))),
             tensile_contact_nodes: sol.tensile_contact_nodes,
+            lift_off_intervals: sol
+                .lift_off_intervals
+                .as_ref()
+                .map(|zones| zones.iter().map(|i| [i.from, i.to]).collect()),
             grid,
             setup_seconds: times[0],
             solve_seconds: times[1],
@@ -544,6 +559,9 @@ pub fn table(r: &ContactReport) -> String {
     for i in &r.slip_intervals {
         s += &format!("  slip {:+} [{:.6}, {:.6}]\n", i.state, i.from, i.to);
     }
+    for [a, b] in r.lift_off_intervals.iter().flatten() {
+        s += &format!("  lifted off [{a:.6}, {b:.6}]\n");
+    }
     if let Some([lo, hi]) = r.limiting_ratios {
         let f =
             |x: Option<f64>, unbounded: &str| x.map_or(unbounded.to_owned(), |x| format!("{x:.6}"));
@@ -594,7 +612,7 @@ pub fn write_out(
 }
 
 /// The contact surface as a table (`contact.csv`): `x2, v2, v3, normal_stress, shear_stress,
-/// slip, friction_traction, state`; a 3-D body adds `x1`, `v1`, `shear_stress_1`, `slip_1`,
+/// slip, friction_traction, state` (and `separated`, 0 or 1, under unilateral contact); a 3-D body adds `x1`, `v1`, `shear_stress_1`, `slip_1`,
 /// `friction_traction_1` beside their `x2` counterparts.
 pub fn contact_table(report: &ContactReport) -> Table {
     let c = &report.contact;
@@ -629,8 +647,15 @@ pub fn contact_table(report: &ContactReport) -> Table {
         }
         table = table.f64(name, plane.clone());
     }
-    table.i32(
+    table = table.i32(
         "state",
         c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
-    )
+    );
+    if let Some(separated) = &c.separated {
+        table = table.i32(
+            "separated",
+            separated.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
+        );
+    }
+    table
 }

@@ -13,7 +13,9 @@
 //! end tensions `T^2_2 = tau0`, `tau_max` on the `x2` ends, a free outer face, and on the
 //! contact face `x3 = 0` bilateral contact `v^3 = 0` with the friction traction `t(u, sigma_n)`
 //! of the chosen law on the physical slip `u` (regularised Coulomb by default:
-//! `t = mu |sigma_n| u / max(|u|, eps)`, Kikuchi–Oden).
+//! `t = mu |sigma_n| u / max(|u|, eps)`, Kikuchi–Oden), or unilateral (Signorini) contact
+//! `v^3 + g >= 0`, `lambda >= 0`, `(v^3 + g) lambda = 0` with friction where in contact
+//! (`body.contact`, [`ContactKind`]; the full-system solvers).
 //!
 //! # Example
 //! The paper's body on a coarse grid, then the same body in 3-D, without a scene file:
@@ -38,7 +40,7 @@ mod solve;
 mod solver;
 
 pub use builder::Problem;
-pub use capstan_elasticity::contact::{Body, Dimension, EndLoads};
+pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
 pub use friction::Friction;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{SolveMethod, Solver};

@@ -133,6 +133,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let t0 = Instant::now();
         let loads = self.loads;
         let plane = matches!(self.body.dimension, Dimension::Plane);
+        // grid sequencing starts from the condensed solver, which keeps v^3 = 0
+        let sequenced = plane && !self.body.contact.is_unilateral();
         match self.solver.method {
             SolveMethod::Condensed => {
                 let model = self.model()?;
@@ -153,7 +155,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     times,
                 })
             }
-            SolveMethod::FullNewton(_) if plane => {
+            SolveMethod::FullNewton(_) if sequenced => {
                 // Grid sequencing: the model is assembled level by level inside.
                 let (law, params, eps) = self.friction.build()?;
                 let body = self.body.plane();

@@ -65,6 +65,7 @@ impl Scene {
                 ..Default::default()
             },
             body_force: self.loads.body_force_field(b.dimension)?,
+            contact: self.contact.kind()?,
         };
         Ok(Problem {
             body,

@@ -44,6 +44,67 @@ pub struct Scene {
     pub discretisation: DiscretisationSpec,
     /// `[output]`: how files are written.
     pub output: OutputSpec,
+    /// `[contact]`: the kind of contact on the thick body's face `x3 = 0`.
+    pub contact: ContactSpec,
+}
+
+/// `[contact]`: bilateral (the paper's `v^3 = 0`, default) or unilateral (Signorini) contact
+/// on the thick body's face `x3 = 0`, with an initial gap.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ContactSpec {
+    /// `bilateral` (default) or `unilateral`.
+    pub kind: String,
+    /// The initial gap `g >= 0` between the face and the obstacle (unilateral only): an
+    /// expression in `t = x2` (the angle on a circle), the same for every `x1`; default `"0"`
+    /// (a conforming body).
+    pub gap: String,
+}
+
+impl Default for ContactSpec {
+    fn default() -> Self {
+        Self {
+            kind: "bilateral".into(),
+            gap: "0".into(),
+        }
+    }
+}
+
+impl ContactSpec {
+    /// The contact kind the keys describe.
+    ///
+    /// # Errors
+    /// [`CliError::Scene`] naming `contact.kind` for an unknown kind, `contact.gap` for a gap
+    /// that does not parse or is given with bilateral contact.
+    pub fn kind(&self) -> Result<capstan_elasticity::contact::ContactKind, CliError> {
+        use capstan_elasticity::contact::{ContactKind, Gap};
+        match self.kind.as_str() {
+            "bilateral" => match self.gap.trim() {
+                "0" => Ok(ContactKind::Bilateral),
+                _ => Err(CliError::Scene {
+                    origin: "contact.gap".into(),
+                    message: "`contact.gap` needs `contact.kind = \"unilateral\"` (bilateral contact keeps v^3 = 0)".into(),
+                }),
+            },
+            "unilateral" => {
+                let text = &self.gap;
+                let gap = Expression::parse(text).map_err(|e| CliError::Scene {
+                    origin: "contact.gap".into(),
+                    message: format!("`contact.gap` = {text:?}: {e}"),
+                })?;
+                Ok(ContactKind::Unilateral {
+                    gap: Gap::new(move |x: [f64; 2]| gap.eval(x[1])),
+                })
+            }
+            other => Err(CliError::Scene {
+                origin: "contact.kind".into(),
+                message: format!(
+                    "`contact.kind` = {other:?} is not a contact kind; allowed: {}",
+                    ContactKind::NAMES.join(", ")
+                ),
+            }),
+        }
+    }
 }
 
 /// `[output]`: how `--out` writes its files (the numbers are the same either way).

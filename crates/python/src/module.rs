@@ -391,6 +391,7 @@ impl Observer<f64> for PyObserver<'_> {
                 d.set_item("step_length", p.step_length)?;
                 d.set_item("stick", p.active.map(|a| a.stick))?;
                 d.set_item("slip", p.active.map(|a| a.slip))?;
+                d.set_item("separated", p.active.map(|a| a.separated))?;
                 callback.call1(py, (d,))?;
                 Ok(())
             };

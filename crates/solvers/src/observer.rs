@@ -50,6 +50,8 @@ pub struct ActiveSet {
     pub stick: usize,
     /// Contact nodes that slip.
     pub slip: usize,
+    /// Contact nodes that have lifted off the obstacle (unilateral contact; 0 otherwise).
+    pub separated: usize,
 }
 
 /// One accepted iteration of an iterative solve.
@@ -88,7 +90,18 @@ impl<F> Progress<F> {
     /// The same event with the contact active-set counts.
     #[must_use]
     pub fn with_active(mut self, stick: usize, slip: usize) -> Self {
-        self.active = Some(ActiveSet { stick, slip });
+        self.active = Some(ActiveSet {
+            stick,
+            slip,
+            separated: 0,
+        });
+        self
+    }
+
+    /// The same event with the contact active set: nodes that stick, slip and have lifted off.
+    #[must_use]
+    pub fn with_contact_set(mut self, active: ActiveSet) -> Self {
+        self.active = Some(active);
         self
     }
 }

@@ -1,4 +1,5 @@
-//! A categorical strip: the stick/slip state (-1, 0, +1) along the contact surface.
+//! A categorical strip: the stick/slip state (-1, 0, +1, and 2 lifted off) along the
+//! contact surface.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -7,15 +8,21 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use super::style::{Plot, extent, font, label_axes};
 use crate::output::error::{OutputError, check_all_finite, check_length, check_not_empty};
 
-/// Band colours of the states -1, 0, +1 (blue, grey, vermillion).
-const STATE_COLOURS: [RGBColor; 3] = [
+/// Band colours of the states -1, 0, +1, 2 (blue, grey, vermillion, bluish green).
+const STATE_COLOURS: [RGBColor; 4] = [
     RGBColor(0, 114, 178),
     RGBColor(170, 170, 170),
     RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
 ];
 
-/// The state of each contact point (`-1`, `0`, `+1`) drawn as coloured bands on three rows,
-/// joined by a step line.
+/// The row name of state 2 (a node lifted off the obstacle, unilateral contact); the row is
+/// drawn only when some node has that state.
+const SEPARATED_NAME: &str = "lifted off";
+
+/// The state of each contact point (`-1`, `0`, `+1`, and `2` where it has lifted off under
+/// unilateral contact) drawn as coloured bands on three rows (four with `2`), joined by a
+/// step line.
 ///
 /// Each sample `x[i]` owns the interval between the midpoints to its neighbours. The rows
 /// are labelled by [`StateStrip::names`] (default `slip -`, `stick`, `slip +`).
@@ -112,8 +119,12 @@ impl Plot for StateStrip {
                 "greater than the previous sample",
             ));
         }
-        if let Some(&s) = self.states.iter().find(|s| !(-1..=1).contains(*s)) {
-            return Err(OutputError::invalid("states", f64::from(s), "{-1, 0, 1}"));
+        if let Some(&s) = self.states.iter().find(|s| !(-1..=2).contains(*s)) {
+            return Err(OutputError::invalid(
+                "states",
+                f64::from(s),
+                "{-1, 0, 1, 2}",
+            ));
         }
         Ok(())
     }
@@ -123,6 +134,7 @@ impl Plot for StateStrip {
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
         let n = self.x.len();
+        let lifted = self.states.contains(&2);
         let (x0, x1) = extent((0..n).flat_map(|i| {
             let (lo, hi) = self.cell(i);
             [lo, hi]
@@ -132,7 +144,7 @@ impl Plot for StateStrip {
             .margin(18)
             .x_label_area_size(56)
             .y_label_area_size(84)
-            .build_cartesian_2d(x0..x1, -1.6..1.6)?;
+            .build_cartesian_2d(x0..x1, -1.6..if lifted { 2.6 } else { 1.6 })?;
         let mut mesh = chart.configure_mesh();
         label_axes(&mut mesh, Some(&self.x_label), None);
         mesh.disable_y_mesh()
@@ -163,9 +175,11 @@ impl Plot for StateStrip {
         )))?;
         let style = TextStyle::from(("sans-serif", font::TICK).into_font())
             .pos(Pos::new(HPos::Right, VPos::Center));
-        for (k, name) in self.names.iter().enumerate() {
+        let names = self.names.iter().map(String::as_str);
+        let rows = if lifted { 4 } else { 3 };
+        for (k, name) in names.chain([SEPARATED_NAME]).take(rows).enumerate() {
             let (px, py) = chart.backend_coord(&(x0, k as f64 - 1.0));
-            root.draw(&Text::new(name.as_str(), (px - 8, py), style.clone()))?;
+            root.draw(&Text::new(name, (px - 8, py), style.clone()))?;
         }
         Ok(())
     }

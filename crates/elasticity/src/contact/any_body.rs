@@ -10,6 +10,7 @@ use crate::contact::body_force::BodyForceField;
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::BodyOperator;
+use crate::contact::unilateral::ContactKind;
 use crate::error::ElasticityError;
 use crate::finite_element::DiscretisationMethod;
 use crate::material::Material;
@@ -99,6 +100,8 @@ pub struct Body<S = Obstacle> {
     /// A body force (`loads.body_force`), `None` for none: held at its full value while the
     /// solvers drive the end loads ([`ContactModel::with_fixed_loads`]).
     pub body_force: Option<BodyForceField>,
+    /// Bilateral (default) or unilateral contact on `x3 = 0` (`contact.kind`, `contact.gap`).
+    pub contact: ContactKind,
 }
 
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
@@ -120,6 +123,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
             method: DiscretisationMethod::Fd,
             settings: DiscretisationSettings::default(),
             body_force: None,
+            contact: ContactKind::Bilateral,
         }
     }
 
@@ -206,11 +210,28 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         })
     }
 
-    /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`),
-    /// of either dimension: every contact solver takes it.
+    /// The assembled contact operator with end loads `tau0`, `tau_max` and a traction-free
+    /// contact face (the body of unilateral contact), of either dimension.
     ///
     /// # Errors
-    /// See [`Body::operator`] and [`ContactModel::new`].
+    /// See [`Body::operator`].
+    pub fn operator_free_face(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+    ) -> Result<BodyOperator, ElasticityError> {
+        Ok(match self.solid()? {
+            Some(solid) => Box::new(solid.operator_free_face(tau0, tau_max)?),
+            None => Box::new(self.plane().discretisation_free_face(tau0, tau_max)?),
+        })
+    }
+
+    /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`),
+    /// of either dimension and either [`ContactKind`]: every contact solver takes a bilateral
+    /// one, the full-system solvers a unilateral one ([`ContactModel::into_unilateral`]).
+    ///
+    /// # Errors
+    /// See [`Body::operator`], [`ContactModel::new`] and [`ContactModel::into_unilateral`].
     pub fn model<L: FrictionLaw<f64>>(
         &self,
         law: L,
@@ -218,22 +239,35 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         slip_threshold: f64,
     ) -> Result<ContactModel<BodyOperator, L>, ContactError> {
         self.solid()?; // the 3-D body's own errors before any assembly
-        if self.body_force.is_none() {
-            return ContactModel::new(
+        match &self.contact {
+            ContactKind::Bilateral if self.body_force.is_none() => ContactModel::new(
                 |tau0, tau_max| self.operator(tau0, tau_max),
                 law,
                 params,
                 slip_threshold,
-            );
+            ),
+            ContactKind::Bilateral => Ok(ContactModel::with_loads(
+                |m: &[f64]| self.loaded_operator(m),
+                &self.plane().loads(),
+                law,
+                params,
+                slip_threshold,
+            )?
+            .with_fixed_loads(&[1.0])),
+            ContactKind::Unilateral { .. } if self.body_force.is_some() => {
+                Err(ContactError::Unsupported {
+                    field: "loads.body_force",
+                    message: "a body force with unilateral contact (contact.kind = \"unilateral\") is not supported yet; remove the body force or use bilateral contact",
+                })
+            }
+            ContactKind::Unilateral { gap } => ContactModel::new(
+                |tau0, tau_max| self.operator_free_face(tau0, tau_max),
+                law,
+                params,
+                slip_threshold,
+            )?
+            .into_unilateral(gap),
         }
-        Ok(ContactModel::with_loads(
-            |m: &[f64]| self.loaded_operator(m),
-            &self.plane().loads(),
-            law,
-            params,
-            slip_threshold,
-        )?
-        .with_fixed_loads(&[1.0]))
     }
 }
 

@@ -95,6 +95,15 @@ impl ThickBody {
         ThickBody::on(circle, n2, n3)
     }
 
+    /// The boundary conditions for the end loads with a traction-free contact face (both
+    /// components; the body of unilateral contact, whose normal rows are then its free rows).
+    pub fn boundary_free_face(tau0: f64, tau_max: f64) -> BoundaryConditions {
+        BoundaryConditions {
+            x3_min: SideCondition::free(),
+            ..ThickBody::boundary(tau0, tau_max)
+        }
+    }
+
     /// The boundary conditions for the end loads.
     pub fn boundary(tau0: f64, tau_max: f64) -> BoundaryConditions {
         BoundaryConditions {
@@ -186,6 +195,23 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> ThickBody<S> {
             boundary: ThickBody::boundary(tau0, tau_max),
             body_force,
         })
+    }
+
+    /// The operator of [`ThickBody::method`] with end loads `tau0`, `tau_max` and a
+    /// traction-free contact face ([`ThickBody::boundary_free_face`]): what unilateral
+    /// contact is built from.
+    ///
+    /// # Errors
+    /// See [`ThickBody::discretisation`].
+    pub fn discretisation_free_face(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+    ) -> Result<PlaneOperator, ElasticityError> {
+        let scheme = self.scheme()?;
+        let mut problem = self.problem(tau0, tau_max)?;
+        problem.boundary = ThickBody::boundary_free_face(tau0, tau_max);
+        scheme.build(problem)
     }
 
     /// The operator of [`ThickBody::method`] with end loads `tau0`, `tau_max`.

@@ -52,6 +52,15 @@ pub enum ContactError {
         /// The last load factor in `[0, 1]` that converged.
         load_factor: f64,
     },
+    /// The chosen solver does not handle this contact model (e.g. the condensed solver and
+    /// unilateral contact); `field` names the key that picks another.
+    #[error("`{field}`: {message}")]
+    Unsupported {
+        /// The scene key (API parameter) to change.
+        field: &'static str,
+        /// What is not supported and what to use instead.
+        message: &'static str,
+    },
     /// The observer asked the solve to stop ([`capstan_solvers::Observer::interrupted`]).
     #[error("interrupted after {iterations} contact Newton iterations")]
     Interrupted {

@@ -7,9 +7,9 @@ use std::sync::{Arc, OnceLock};
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    BackendKind, BoxedLinearSolver, CsrMatrix, Jacobian, LinearBackend, Newton, NewtonParams,
-    NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage,
-    SolverError, SparsityPattern,
+    ActiveSet, BackendKind, BoxedLinearSolver, CsrMatrix, Jacobian, LinearBackend, Newton,
+    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
+    SolveStage, SolverError, SparsityPattern,
 };
 
 use crate::contact::body::ThickBody;
@@ -65,6 +65,9 @@ impl Default for FullSystemSettings {
 pub struct FullSystemProblem<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     rhs: Vec<f64>,
+    /// The contact active set at the last residual evaluation (the accepted iterate when an
+    /// observer hears of it).
+    last_set: std::cell::Cell<Option<ActiveSet>>,
 }
 
 impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
@@ -73,7 +76,13 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
         Self {
             rhs: model.rhs(loads),
             model,
+            last_set: std::cell::Cell::new(None),
         }
+    }
+
+    /// The contact active set at the last residual evaluation.
+    pub fn last_active_set(&self) -> Option<ActiveSet> {
+        self.last_set.get()
     }
 
     /// The right-hand side `b`.
@@ -86,6 +95,7 @@ impl<D, L: FrictionLaw<f64>> Residual<f64> for FullSystemProblem<'_, D, L> {
     type Error = core::convert::Infallible;
     fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
         self.model.residual_into(&self.rhs, u, r);
+        self.last_set.set(Some(self.model.active_set(&self.rhs, u)));
         Ok(())
     }
 }
@@ -95,7 +105,7 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
         &self.model.extended().pattern
     }
     fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.jacobian_into(u, values);
+        self.model.jacobian_into(&self.rhs, u, values);
         Ok(())
     }
 }
@@ -108,8 +118,10 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
 pub struct FullSystemSolver<'a, D, L: FrictionLaw<f64>> {
     model: &'a ContactModel<D, L>,
     settings: FullSystemSettings,
-    /// The stuck solution for unit `tau0` and unit `tau_max` (one sparse LU, on first use).
-    stuck: OnceLock<[Vec<f64>; 2]>,
+    /// The stuck solution for unit `tau0` and unit `tau_max`, and for the gap alone (zero
+    /// but under unilateral contact: the body closed onto the obstacle, `v^3 = -g`); one
+    /// sparse LU, on first use.
+    stuck: OnceLock<[Vec<f64>; 3]>,
     /// The discretisation's multigrid prolongations (for backends that ask, on first use).
     prolongations: OnceLock<Arc<[CsrMatrix]>>,
 }
@@ -179,7 +191,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// tangential contact rows, by the Newton backend (by `lu` if that is a stationary
     /// iteration: the stiff spring is what sweeps are slowest on), told the matrix is
     /// symmetric positive definite when `A` is symmetric (CG for `multigrid`).
-    fn stuck_basis(&self) -> Result<&[Vec<f64>; 2], ContactError> {
+    fn stuck_basis(&self) -> Result<&[Vec<f64>; 3], ContactError> {
         if let Some(s) = self.stuck.get() {
             return Ok(s);
         }
@@ -200,20 +212,31 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         };
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
+        // unilateral contact: the closed start, v^3 = -g on the contact face
+        let unilateral = model.unilateral();
         let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
-            let mut v = model.rhs_basis(i).to_vec();
+            let mut v = match i {
+                2 => vec![0.0; model.dof_count()],
+                _ => model.rhs_basis(i).to_vec(),
+            };
+            if let Some(u) = unilateral {
+                u.closed_rows(&mut v, i == 2);
+            } else if i == 2 {
+                return Ok(v);
+            }
             lu.solve_in_place(&mut v)?;
             Ok(v)
         };
-        let basis = [unit(0)?, unit(1)?];
+        let basis = [unit(0)?, unit(1)?, unit(2)?];
         Ok(self.stuck.get_or_init(|| basis))
     }
 
     fn stuck(&self, loads: EndLoads) -> Result<Vec<f64>, ContactError> {
-        let [a, b] = self.stuck_basis()?;
+        let [a, b, c] = self.stuck_basis()?;
         Ok(a.iter()
             .zip(b)
-            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
+            .zip(c)
+            .map(|((a, b), c)| loads.tau0 * a + loads.tau_max * b + c)
             .collect())
     }
 
@@ -232,6 +255,12 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             max_iterations: self.settings.continuation.max_iterations,
             ..self.settings.newton
         };
+        // every Newton iterate reported with the active set it ended on
+        let mut observer = WithActiveSet {
+            inner: observer,
+            problem: &problem,
+        };
+        let observer: &mut dyn Observer<f64> = &mut observer;
         let result = match self.settings.method {
             NonlinearMethod::Newton => {
                 let linear = self.backend(params.linear, false).map_err(|e| match e {
@@ -418,6 +447,30 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             v = current;
         }
         Ok(ContactSolution::new(self.model, loads, v, stats))
+    }
+}
+
+/// Passes every event on, the full-system Newton iterates with the contact active set of the
+/// last residual evaluation (the accepted iterate).
+struct WithActiveSet<'o, 'p, 'a, D, L: FrictionLaw<f64>> {
+    inner: &'o mut dyn Observer<f64>,
+    problem: &'p FullSystemProblem<'a, D, L>,
+}
+
+impl<D, L: FrictionLaw<f64>> Observer<f64> for WithActiveSet<'_, '_, '_, D, L> {
+    fn iteration(&mut self, progress: &Progress<f64>) {
+        match (progress.stage, self.problem.last_active_set()) {
+            (SolveStage::Newton | SolveStage::JacobiNewton, Some(set))
+                if progress.active.is_none() =>
+            {
+                self.inner.iteration(&progress.with_contact_set(set));
+            }
+            _ => self.inner.iteration(progress),
+        }
+    }
+
+    fn interrupted(&mut self) -> bool {
+        self.inner.interrupted()
     }
 }
 

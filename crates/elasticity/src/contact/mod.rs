@@ -32,10 +32,17 @@
 //! two tangential entries (`v^1`, `v^2`) that the law sees as one 2-component physical slip in
 //! the tangent plane (the condensed system is `2m x 2m` for `m` contact nodes).
 //!
+//! # Unilateral contact
+//! [`ContactKind::Unilateral`] (Signorini, with a [`Gap`]) replaces `v^3 = 0` by the rows
+//! `d_k min(v^3_k + g_k, lambda_k)` (`lambda_k` the contact reaction from the free normal
+//! balance row; see [`ContactModel::into_unilateral`]); [`FullSystemSolver`] solves it as a
+//! semismooth Newton method and reports each iterate's active set (stick, slip, separated);
+//! [`BoundarySolver`] refuses it.
+//!
 //! # Limitations
 //! One friction law with one parameter set for the whole contact surface; tensile normal
 //! stress on the bilateral contact is not excluded (counted in
-//! [`ContactSolution::tensile_contact_nodes`]). The limiting ratios assume that at full slip
+//! [`ContactSolution::tensile_contact_nodes`]; unilateral contact excludes it). The limiting ratios assume that at full slip
 //! every contact point slides along the rigid mode (true in plane strain); on a 3-D body whose
 //! full slip is not rigid (a band on a cone also slides towards the apex) the full-slip
 //! balance has no positive ratio and the limits are reported unbounded. One rigid mode is
@@ -53,6 +60,7 @@ mod model;
 mod operator;
 mod solution;
 mod threshold;
+mod unilateral;
 
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
@@ -67,10 +75,11 @@ pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use solution::{
-    ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,
-    state_intervals,
+    ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
+    classify, state_intervals,
 };
 pub use threshold::{ThresholdResult, ThresholdSettings, solve_below_threshold, threshold_ratio};
+pub use unilateral::{ContactKind, Gap};
 
 /// Makes faer's dense and sparse kernels sequential (`Par::Seq`), for callers that run many
 /// contact solves in parallel themselves (rayon sweeps): avoids oversubscription.

@@ -6,6 +6,7 @@ use capstan_solvers::SparsityPattern;
 
 use crate::contact::error::ContactError;
 use crate::contact::operator::ContactOperator;
+use crate::contact::unilateral::{Gap, Unilateral};
 use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
 
@@ -201,6 +202,8 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     active: Vec<usize>,
     sites: Sites,
     ext: ExtendedPattern,
+    /// The Signorini rows of unilateral contact (`None`: bilateral, `v^3 = 0`).
+    unilateral: Option<Unilateral>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -331,7 +334,51 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             active,
             sites,
             ext,
+            unilateral: None,
         })
+    }
+
+    /// The model with unilateral (Signorini) contact on `x3 = 0`: `self` must be built from
+    /// the body with a **traction-free** contact face (both components free, e.g.
+    /// [`crate::contact::Body::model`] with [`crate::contact::ContactKind::Unilateral`]), so
+    /// that the normal balance row of every contact node is its free row.
+    ///
+    /// # Math
+    /// With `a_k . v = b_k` the free normal row of contact node `k` (`s_k = sign(a_kk)`,
+    /// `d_k = |a_kk|`) and `g_k` the gap, the contact reaction (compression positive, in
+    /// units of displacement) and the row of the residual are
+    /// ```text
+    /// lambda_k(v) = s_k (a_k . v - b_k) / d_k
+    /// R_k(v)      = d_k min(v^3_k + g_k, lambda_k(v))      (NCP function of Signorini)
+    /// ```
+    /// `R_k = 0` iff `v^3_k + g_k >= 0`, `lambda_k >= 0`, `(v^3_k + g_k) lambda_k = 0`. Its
+    /// generalised Jacobian is `d_k e_k` where the node is in contact
+    /// (`v^3_k + g_k <= lambda_k`) and `s_k a_k` where it has separated, so Newton on `R` is
+    /// the semismooth Newton (primal-dual active set) method. The friction traction acts only
+    /// on sites in contact, with `sigma_n -> min(sigma_n, 0)`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `contact.gap` for a negative gap, naming
+    /// `contact.kind` for a contact node without a free normal row.
+    pub fn into_unilateral(mut self, gap: &Gap) -> Result<Self, ContactError> {
+        let active_of: std::collections::HashMap<usize, usize> = self
+            .active
+            .iter()
+            .enumerate()
+            .map(|(k, &a)| (a, k))
+            .collect();
+        let sites = &self.sites;
+        let index_of =
+            |a: usize| -> Option<usize> { active_of.get(&a).map(|&k| sites.of_active[k].0) };
+        let unilateral = Unilateral::new(
+            &mut self.system,
+            &self.nodes,
+            index_of,
+            self.sites.members.len(),
+            gap,
+        )?;
+        self.unilateral = Some(unilateral);
+        Ok(self)
     }
 }
 
@@ -400,7 +447,63 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             active: self.active.clone(),
             sites: self.sites.clone(),
             ext: self.ext.clone(),
+            unilateral: self.unilateral.clone(),
         }
+    }
+
+    pub(crate) fn unilateral(&self) -> Option<&Unilateral> {
+        self.unilateral.as_ref()
+    }
+
+    /// The contact active set at `v`: sites that stick (`|u| < eps`), slip, and have lifted
+    /// off (unilateral contact) under the loads' right-hand side `rhs`.
+    pub fn active_set(&self, rhs: &[f64], v: &[f64]) -> capstan_solvers::ActiveSet {
+        let separated = self.separated_sites(rhs, v);
+        let mut set = capstan_solvers::ActiveSet::default();
+        for j in 0..self.sites.members.len() {
+            if separated.as_ref().is_some_and(|s| s[j]) {
+                set.separated += 1;
+                continue;
+            }
+            let u = self.site_slip(j, 1.0, |k| v[self.active_node(k).tangential_dof]);
+            if (u[0] * u[0] + u[1] * u[1]).sqrt() < self.slip_threshold {
+                set.stick += 1;
+            } else {
+                set.slip += 1;
+            }
+        }
+        set
+    }
+
+    /// Whether the model has unilateral (Signorini) contact.
+    pub fn is_unilateral(&self) -> bool {
+        self.unilateral.is_some()
+    }
+
+    /// Per contact site (in site order), whether it has separated from the obstacle at `v`
+    /// under the loads' right-hand side `rhs` (`None` for bilateral contact).
+    pub fn separated_sites(&self, rhs: &[f64], v: &[f64]) -> Option<Vec<bool>> {
+        let u = self.unilateral.as_ref()?;
+        let contact = u.contact_set(v, rhs);
+        Some(
+            u.site_row
+                .iter()
+                .map(|row| row.is_some_and(|k| !contact[k]))
+                .collect(),
+        )
+    }
+
+    /// Per contact node (one entry per distinct normal dof, in the order of
+    /// [`ContactModel::contact_nodes`]): its normal dof and whether it has separated at `v`
+    /// (`None` for bilateral contact).
+    pub fn separated_nodes(&self, rhs: &[f64], v: &[f64]) -> Option<Vec<(usize, bool)>> {
+        let u = self.unilateral.as_ref()?;
+        Some(
+            u.rows
+                .iter()
+                .map(|r| (r.dof, !r.in_contact(v, rhs)))
+                .collect(),
+        )
     }
 
     /// The discretisation (built with unit load `tau0 = 1`, `tau_max = 0`; only its operator,
@@ -620,14 +723,48 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         for (ri, bi) in r.iter_mut().zip(rhs) {
             *ri -= bi;
         }
+        let contact = self.unilateral.as_ref().map(|u| u.contact_set(v, rhs));
         for (j, members) in self.sites.members.iter().enumerate() {
-            let st = self.site_traction(j, v);
+            let Some(st) = self.site_traction_in_contact(j, v, contact.as_deref()) else {
+                continue;
+            };
             for (e, &k) in members.iter().enumerate() {
                 let node = self.active_node(k);
                 let row = node.tangential_row.expect("active nodes have a row");
                 r[row] -= node.traction_weight * st.covariant[e];
             }
         }
+        if let Some(u) = &self.unilateral {
+            u.residual_into(v, rhs, r);
+        }
+    }
+
+    /// The law at site `j` for `v` where the site is in contact: `None` where it has
+    /// separated (unilateral contact, `contact` the contact set of the normal rows); the
+    /// normal stress seen by the law is `min(sigma_n, 0)` under unilateral contact (its
+    /// derivative zero where `sigma_n > 0`).
+    fn site_traction_in_contact(
+        &self,
+        j: usize,
+        v: &[f64],
+        contact: Option<&[bool]>,
+    ) -> Option<SiteTraction> {
+        let (Some(contact), Some(u)) = (contact, &self.unilateral) else {
+            return Some(self.site_traction(j, v));
+        };
+        if let Some(row) = u.site_row[j]
+            && !contact[row]
+        {
+            return None;
+        }
+        let first = self.active_node(self.sites.members[j][0]);
+        let slip = self.site_slip(j, 1.0, |k| v[self.active_node(k).tangential_dof]);
+        let sigma = first.normal_stress.dot(v);
+        let mut st = self.site_traction_at_slip(j, slip, sigma.min(0.0));
+        if sigma > 0.0 {
+            st.d_normal_stress = [0.0; 2];
+        }
+        Some(st)
     }
 
     /// `max_i |R(v)_i| / max(1, max_i |b_i|)`.
@@ -639,18 +776,25 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         r.iter().fold(0.0f64, |m, x| m.max(x.abs())) / b
     }
 
-    /// Values of the full Jacobian `dR/dv` on the extended pattern.
+    /// Values of the full Jacobian `dR/dv` on the extended pattern, for the loads'
+    /// right-hand side `rhs` (which the unilateral rows read).
     ///
     /// # Panics
     /// If `v` or `values` have the wrong length.
     #[track_caller]
-    pub(crate) fn jacobian_into(&self, v: &[f64], values: &mut [f64]) {
+    pub(crate) fn jacobian_into(&self, rhs: &[f64], v: &[f64], values: &mut [f64]) {
         values.iter_mut().for_each(|x| *x = 0.0);
         for (k, &a) in self.system.values.iter().enumerate() {
             values[self.ext.a_slot[k]] += a;
         }
+        let contact = self.unilateral.as_ref().map(|u| u.contact_set(v, rhs));
+        if let Some(u) = &self.unilateral {
+            u.jacobian_into(v, rhs, &self.ext.a_slot, values);
+        }
         for (j, members) in self.sites.members.iter().enumerate() {
-            let st = self.site_traction(j, v);
+            let Some(st) = self.site_traction_in_contact(j, v, contact.as_deref()) else {
+                continue;
+            };
             for (e, &k) in members.iter().enumerate() {
                 let node = self.active_node(k);
                 let w = node.traction_weight;

@@ -6,6 +6,10 @@ use crate::contact::model::{ContactModel, EndLoads, add_slip};
 use crate::contact::operator::{ContactOperator, Extremum};
 use crate::discretisation::ContactNode;
 
+/// The state of a contact node that has lifted off the obstacle (unilateral contact): neither
+/// stick (`0`) nor slip (`+-1`).
+pub const SEPARATED: i8 = 2;
+
 /// A maximal run of contact nodes in one state, with interpolated ends.
 ///
 /// # Math
@@ -14,7 +18,7 @@ use crate::discretisation::ContactNode;
 /// itself at an end of the contact surface): a grid-independent description of the region.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StateInterval {
-    /// `+1` positive slip, `-1` negative slip, `0` stick.
+    /// `+1` positive slip, `-1` negative slip, `0` stick, [`SEPARATED`] lifted off.
     pub state: i8,
     /// Interpolated start.
     pub from: f64,
@@ -44,8 +48,13 @@ pub struct ContactProfile {
     /// Physical friction traction on the body, `t_2 / sqrt(g_22)`, from the law.
     pub friction_traction: Vec<f64>,
     /// `+1` where `u >= eps`, `-1` where `u <= -eps`, `0` otherwise (a 3-D body: `0` where
-    /// `|u| < eps`, else the sign of the `e_2` component of the slip, `+1` when it is zero).
+    /// `|u| < eps`, else the sign of the `e_2` component of the slip, `+1` when it is zero);
+    /// [`SEPARATED`] where the node has lifted off (unilateral contact).
     pub state: Vec<i8>,
+    /// Unilateral contact: whether each node has lifted off the obstacle (`None`, and absent
+    /// from JSON, for bilateral contact).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separated: Option<Vec<bool>>,
     /// The `x1` components of a 3-D body (`None` in plane strain).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solid: Option<SolidContactProfile>,
@@ -111,8 +120,14 @@ pub struct ContactSolution {
     /// `v^3` of largest magnitude over the body.
     pub max_radial_displacement: Extremum,
     /// Contact nodes with `sigma_n > 0` (tension on a bilateral contact: the regularised law
-    /// then drives rather than resists the slip).
+    /// then drives rather than resists the slip; under unilateral contact only the nodes in
+    /// contact are counted).
     pub tensile_contact_nodes: usize,
+    /// Unilateral contact: the runs of lifted-off nodes (along the middle `x1` line of a 3-D
+    /// body), ends midway to the neighbouring node in contact; `None` (absent from JSON) for
+    /// bilateral contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lift_off_intervals: Option<Vec<StateInterval>>,
     /// Solver statistics.
     pub stats: SolveStats,
 }
@@ -147,6 +162,7 @@ impl ContactSolution {
             slip: Vec::with_capacity(n),
             friction_traction: Vec::with_capacity(n),
             state: Vec::with_capacity(n),
+            separated: None,
             solid: solid.then(|| SolidContactProfile {
                 x1: Vec::with_capacity(n),
                 v1: Vec::with_capacity(n),
@@ -155,13 +171,40 @@ impl ContactSolution {
                 friction_traction_1: Vec::with_capacity(n),
             }),
         };
+        let rhs = model.rhs(loads);
+        let separated_dof: Option<std::collections::HashMap<usize, bool>> = model
+            .separated_nodes(&rhs, &v)
+            .map(|rows| rows.into_iter().collect());
+        let mut separated = separated_dof.as_ref().map(|_| Vec::with_capacity(n));
         for entries in &sites {
+            let lifted = separated_dof
+                .as_ref()
+                .and_then(|m| m.get(&entries[0].normal_dof).copied())
+                .unwrap_or(false);
+            if let Some(s) = separated.as_mut() {
+                s.push(lifted);
+            }
             let mut u = [0.0; 2];
             for e in entries {
                 add_slip(&mut u, 1.0, e.frame, v[e.tangential_dof]);
             }
             let first = entries[0];
-            let st = model.entries_traction(entries, u, first.normal_stress.dot(&v));
+            let sigma = first.normal_stress.dot(&v);
+            let mut st = model.entries_traction(
+                entries,
+                u,
+                if separated_dof.is_some() {
+                    sigma.min(0.0)
+                } else {
+                    sigma
+                },
+            );
+            st.normal_stress = sigma;
+            if lifted {
+                // friction acts only where the node is in contact
+                st.traction = [0.0; 2];
+                st.covariant = [0.0; 2];
+            }
             let along = entries.iter().position(|e| e.component == 2).unwrap_or(0);
             let x2_entry = entries[along];
             p.x2.push(first.x2);
@@ -186,6 +229,9 @@ impl ContactSolution {
                     -1
                 });
             }
+            if lifted {
+                *p.state.last_mut().expect("pushed above") = SEPARATED;
+            }
             if let Some(sp) = p.solid.as_mut() {
                 let x1_entry = entries.iter().find(|e| e.component == 1);
                 sp.x1.push(first.x1);
@@ -196,7 +242,16 @@ impl ContactSolution {
                 sp.friction_traction_1.push(st.traction[0]);
             }
         }
-        let slip_fraction = p.state.iter().map(|&s| f64::from(s)).sum::<f64>() / n as f64;
+        p.separated = separated;
+        // the paper's Slip over the nodes in contact
+        let touching = p.state.iter().filter(|&&s| s != SEPARATED).count();
+        let slip_fraction = p
+            .state
+            .iter()
+            .filter(|&&s| s != SEPARATED)
+            .map(|&s| f64::from(s))
+            .sum::<f64>()
+            / touching.max(1) as f64;
         // a 3-D body: the runs along the middle x1 line of the contact face
         let line: Vec<usize> = if solid {
             let mut rows: Vec<usize> = sites.iter().map(|s| s[0].i1).collect();
@@ -216,7 +271,19 @@ impl ContactSolution {
             .copied();
         let [max_azimuthal_displacement, max_radial_displacement] = disc.extremes(&v);
         stats.residual = model.relative_residual(loads, &v);
-        let tensile_contact_nodes = p.normal_stress.iter().filter(|&&s| s > 0.0).count();
+        let tensile_contact_nodes = p
+            .normal_stress
+            .iter()
+            .zip(&p.state)
+            .filter(|&(&s, &state)| s > 0.0 && state != SEPARATED)
+            .count();
+        let lift_off_intervals = p.separated.as_ref().map(|_| {
+            intervals
+                .iter()
+                .filter(|i| i.state == SEPARATED)
+                .copied()
+                .collect()
+        });
         Self {
             loads,
             displacement: v,
@@ -228,19 +295,22 @@ impl ContactSolution {
             max_azimuthal_displacement,
             max_radial_displacement,
             tensile_contact_nodes,
+            lift_off_intervals,
             stats,
         }
     }
 
     /// The slip intervals (runs with state `+-1`).
     pub fn slip_intervals(&self) -> impl Iterator<Item = &StateInterval> {
-        self.intervals.iter().filter(|i| i.state != 0)
+        self.intervals
+            .iter()
+            .filter(|i| i.state == 1 || i.state == -1)
     }
 
     /// Whether every contact node slides in the positive direction (state `+1`; on a 3-D body
     /// the sign of the slip's `e_2` component).
     pub fn fully_slipping(&self) -> bool {
-        self.contact.state.iter().all(|&s| s == 1)
+        self.contact.state.iter().all(|&s| s == 1 || s == SEPARATED)
     }
 
     /// Whether every contact node slides (`|u| >= eps`, state `+-1`), in any direction. On a
@@ -279,6 +349,10 @@ pub fn state_intervals(x2: &[f64], slip: &[f64], state: &[i8], eps: f64) -> Vec<
         // separates their states.
         let crossing = |a: usize, b: usize| -> f64 {
             let (sa, sb) = (state[a], state[b]);
+            if sa == SEPARATED || sb == SEPARATED {
+                // lift-off: no slip level separates the states
+                return 0.5 * (x2[a] + x2[b]);
+            }
             let level = if sa == 1 || sb == 1 {
                 eps
             } else if sa == -1 || sb == -1 {

@@ -115,6 +115,35 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
         }
     }
 
+    /// [`SolidBody::boundary`] with a traction-free contact face (all three components):
+    /// the body of unilateral contact.
+    pub fn boundary_free_face(&self, tau0: f64, tau_max: f64) -> SolidBoundary {
+        let mut b = self.boundary(tau0, tau_max);
+        b.faces[4] = FaceCondition::free();
+        b
+    }
+
+    /// The assembled operator with end loads `tau0`, `tau_max` and a traction-free contact
+    /// face ([`SolidBody::boundary_free_face`]).
+    ///
+    /// # Errors
+    /// See [`SolidBody::operator`].
+    pub fn operator_free_face(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+    ) -> Result<SolidNavier<ShellChart<S>>, ElasticityError> {
+        SolidNavier::new(
+            ShellChart::new(self.surface.clone()),
+            self.material,
+            self.grid()?,
+            &self.boundary_free_face(tau0, tau_max),
+            None,
+            self.order,
+            self.volumetric,
+        )
+    }
+
     /// The grid of the body.
     ///
     /// # Errors

@@ -128,6 +128,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         settings: ContactSettings,
     ) -> Result<Self, ContactError> {
         settings.validate()?;
+        refuse_unilateral(model)?;
         let ext = model.extended();
         let m = model.active().len();
         let n = model.dof_count();
@@ -261,6 +262,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         &self,
         model: &'b ContactModel<D, L2>,
     ) -> Result<BoundarySolver<'b, D, L2>, ContactError> {
+        refuse_unilateral(model)?;
         let (old, new) = (self.model, model);
         let differs = if old.system().pattern != new.system().pattern {
             Some("sparsity patterns")
@@ -485,4 +487,18 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         sol.unknowns = s.to_vec();
         Ok(sol)
     }
+}
+
+/// The condensed solver keeps `v^3 = 0` on the contact face (it condenses onto the tangential
+/// tractions only): a unilateral model is refused, naming the key that picks another solver.
+fn refuse_unilateral<D, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+) -> Result<(), ContactError> {
+    if model.is_unilateral() {
+        return Err(ContactError::Unsupported {
+            field: "solver.nonlinear",
+            message: "the condensed `newton` keeps v^3 = 0 on the contact face; unilateral contact (`contact.kind = \"unilateral\"`) needs `full-newton` or `jacobi-newton`",
+        });
+    }
+    Ok(())
 }
