@@ -50,6 +50,7 @@ mod error;
 mod full_system;
 mod model;
 mod operator;
+mod quantities;
 mod solution;
 mod threshold;
 
@@ -65,6 +66,7 @@ pub use full_system::{
 pub use model::{ContactModel, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
+pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
 pub use solution::{
     ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,
     state_intervals,
