@@ -5,13 +5,15 @@ use std::time::Instant;
 
 use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
-    BoundarySolver, BulkMultigrid, ContactError, ContactModel, ContactSettings, ContactSolution,
-    EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator, solve_sequenced,
+    BoundarySolver, BulkMultigrid, ContactError, ContactModel, ContactQuantities, ContactSettings,
+    ContactSolution, EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
+    solve_sequenced,
 };
 use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod, Observer};
 use serde::Serialize;
 
+use crate::commands::accuracy::{self, ErrorEstimate};
 use crate::error::CliError;
 use crate::figures::reports::report_dir;
 use crate::output::Table;
@@ -277,6 +279,15 @@ pub struct ContactReport {
     /// surface; absent in plane strain.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solid: Option<crate::commands::solid_report::SolidReport>,
+    /// The converging quantities (keys `slip_measure`, `slip_physical_measure`,
+    /// `contact_measure`, `normal_stress_probes`: [`ContactQuantities`]).
+    #[serde(flatten)]
+    pub quantities: Option<ContactQuantities>,
+    /// The estimated discretisation error of every converging quantity
+    /// ([`crate::commands::accuracy`]); absent with `output.error_estimate = false` or when the
+    /// method has no coarser level.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated_error: Option<ErrorEstimate>,
 }
 
 impl ContactReport {
@@ -331,6 +342,8 @@ impl ContactReport {
             discretisation: "fd",
             grid_sequence: None,
             solid: None,
+            quantities: None,
+            estimated_error: None,
         }
     }
 }
@@ -359,6 +372,8 @@ pub struct Solved {
     pub fields: capstan_elasticity::NodalFields,
     /// The obstacle (for the body's points in E^3).
     pub obstacle: capstan_geometry::Obstacle,
+    /// The converging quantities of the solution (probes at `output.probe_x2`).
+    pub quantities: ContactQuantities,
 }
 
 /// The nodal fields of a solution of `model`, with the scene's obstacle.
@@ -387,11 +402,13 @@ pub fn solved(
         }
     }
     let fields = disc.fields(&solution.displacement)?;
+    let quantities = ContactQuantities::new(model, &solution, &accuracy::probes(scene))?;
     Ok(Solved {
         solution,
         nodes,
         fields,
         obstacle: scene.obstacle.build()?,
+        quantities,
     })
 }
 
@@ -413,10 +430,24 @@ pub fn solve_observed(
     scene: &Scene,
     observer: &mut dyn Observer<f64>,
 ) -> Result<(ContactReport, Solved), CliError> {
-    solve_unnamed(scene, observer).map_err(|e| match e {
+    let named = |e| match e {
         CliError::Contact(e) => contact_budget(e, &scene.solver),
         e => e,
-    })
+    };
+    let (mut report, solved) = solve_unnamed(scene, observer).map_err(named)?;
+    report.quantities = Some(solved.quantities.clone());
+    if scene.output.error_estimate
+        && let Some(coarse) = accuracy::coarser_scene(scene)?
+    {
+        let (_, coarse_solved) = solve_unnamed(&coarse, observer).map_err(named)?;
+        let scalars = |s: &Solved| s.quantities.scalars(&s.solution);
+        report.estimated_error = Some(ErrorEstimate::from_levels(
+            &scalars(&solved),
+            &scalars(&coarse_solved),
+            accuracy::grid_of(&coarse),
+        ));
+    }
+    Ok((report, solved))
 }
 
 fn solve_unnamed(

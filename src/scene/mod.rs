@@ -49,7 +49,7 @@ pub struct Scene {
 }
 
 /// `[output]`: how `--out` writes its files (the numbers are the same either way).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSpec {
     /// `none` (default) | `zlib`: VTU arrays compressed with zlib (VTK's
@@ -59,6 +59,26 @@ pub struct OutputSpec {
     /// interval) as a second piece, so ParaView shows body and obstacle together. Off by
     /// default: a reader that merges pieces (meshio) then sees both meshes as one.
     pub vtu_obstacle: bool,
+    /// Where `capstan contact` reports the normal stress `sigma_n` of the contact face
+    /// (`normal_stress_probes`): `x2` values inside `[membrane.theta0, membrane.theta_max]`
+    /// (a 3-D body: on the middle `x1` line). Unset: the quarter points of the interval.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probe_x2: Option<Vec<f64>>,
+    /// `true` (default): `capstan contact` and `capstan threshold` solve again one grid level
+    /// coarser and report `estimated_error` for every converging quantity
+    /// (`src/commands/accuracy.rs`); `false` skips that solve.
+    pub error_estimate: bool,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            vtu_compression: crate::output::VtuCompression::default(),
+            vtu_obstacle: false,
+            probe_x2: None,
+            error_estimate: true,
+        }
+    }
 }
 
 /// The obstacle's shape (`obstacle.shape`).
