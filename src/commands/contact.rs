@@ -612,6 +612,7 @@ pub fn table(r: &ContactReport) -> String {
     s += &format!("  max |v2| {}\n", e(&r.max_azimuthal_displacement));
     s += &format!("  max |v3| {}\n", e(&r.max_radial_displacement));
     s += &format!("  Slip {:.6}\n", r.slip_fraction);
+    s += &quantities_table(r);
     match r.stick_interval {
         Some([a, b]) => s += &format!("  stick ({a:.6}, {b:.6})\n"),
         None => s += "  stick: none\n",
@@ -626,6 +627,52 @@ pub fn table(r: &ContactReport) -> String {
             "  limiting tension ratios (rigid sliding): [{}, {}]\n",
             f(lo, "-inf (none)"),
             f(hi, "inf (none)")
+        );
+    }
+    s
+}
+
+/// The converging quantities with their estimated errors (`+- e`), as [`table`] prints them.
+fn quantities_table(r: &ContactReport) -> String {
+    let Some(q) = &r.quantities else {
+        return String::new();
+    };
+    let estimate = |name: &str| {
+        r.estimated_error
+            .as_ref()
+            .and_then(|e| e.quantities.get(name).copied().flatten())
+            .map_or_else(String::new, |e| format!(" +- {e:.1e}"))
+    };
+    let mut s = format!(
+        "  slip measure {:.6}{} of {:.6} (physical {:.6}{})\n",
+        q.slip_measure,
+        estimate("slip_measure"),
+        q.contact_measure,
+        q.slip_physical_measure,
+        estimate("slip_physical_measure")
+    );
+    for (i, p) in q.normal_stress_probes.iter().enumerate() {
+        s += &format!(
+            "  sigma_n({:.6}) = {:+.6e}{}\n",
+            p.x2,
+            p.value,
+            estimate(&format!("normal_stress_probe_{i}"))
+        );
+    }
+    if let Some(e) = &r.estimated_error {
+        let named = ["stick_from", "stick_to", "max_abs_v2", "max_abs_v3"]
+            .iter()
+            .filter_map(|n| {
+                Some(format!(
+                    "{n} {:.1e}",
+                    e.quantities.get(*n).copied().flatten()?
+                ))
+            })
+            .collect::<Vec<_>>();
+        s += &format!(
+            "  estimated errors (vs grid {:?}): {}\n",
+            e.coarser_grid,
+            named.join(", ")
         );
     }
     s

@@ -3,10 +3,15 @@
 
 use std::time::Instant;
 
-use capstan_elasticity::contact::{BoundarySolver, ThresholdSettings, threshold_ratio};
+use std::collections::BTreeMap;
+
+use capstan_elasticity::contact::{
+    BoundarySolver, ThresholdResult, ThresholdSettings, threshold_ratio,
+};
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
+use crate::commands::accuracy::{self, ErrorEstimate};
 use crate::commands::contact::model;
 use crate::error::CliError;
 use crate::scene::Scene;
@@ -40,6 +45,36 @@ pub struct ThresholdReport {
     /// `grid.n1` of a 3-D body (`body.dimension = 3`); absent in plane strain.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid_n1: Option<usize>,
+    /// The estimated discretisation error of `threshold_ratio` and `implied_mu`: the difference
+    /// to the threshold one grid level coarser ([`crate::commands::accuracy`]); absent with
+    /// `output.error_estimate = false` or when the method has no coarser level.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated_error: Option<ErrorEstimate>,
+}
+
+/// The threshold search on the scene's body (plane strain or 3-D).
+fn search(scene: &Scene) -> Result<ThresholdResult, CliError> {
+    Ok(if scene.body.dimension == 3 {
+        let model = crate::commands::solid_contact::model(scene)?;
+        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
+        threshold_ratio(&solver, ThresholdSettings::default())?
+    } else {
+        let model = model(scene)?;
+        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
+        threshold_ratio(&solver, ThresholdSettings::default())?
+    })
+}
+
+/// The capstan coefficient implied by a threshold ratio.
+fn implied_mu(scene: &Scene, ratio: f64) -> Result<f64, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    let problem = MembraneProblem {
+        theta0: scene.membrane.theta0,
+        theta_max: scene.membrane.theta_max,
+        t0: 1.0,
+        ..Default::default()
+    };
+    Ok(membrane::infer_mu(&obstacle, &problem, ratio)?.mu)
 }
 
 /// Computes the report.
@@ -48,23 +83,25 @@ pub struct ThresholdReport {
 /// Bad input (2); non-convergence (4).
 pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let t = Instant::now();
-    let r = if scene.body.dimension == 3 {
-        let model = crate::commands::solid_contact::model(scene)?;
-        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-        threshold_ratio(&solver, ThresholdSettings::default())?
-    } else {
-        let model = model(scene)?;
-        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-        threshold_ratio(&solver, ThresholdSettings::default())?
+    let r = search(scene)?;
+    let implied_mu = implied_mu(scene, r.ratio)?;
+    let estimated_error = match accuracy::coarser_scene(scene)? {
+        Some(coarse) if scene.output.error_estimate => {
+            let rc = search(&coarse)?;
+            let level = |ratio: f64, mu: f64| {
+                BTreeMap::from([
+                    ("threshold_ratio".to_owned(), ratio),
+                    ("implied_mu".to_owned(), mu),
+                ])
+            };
+            Some(ErrorEstimate::from_levels(
+                &level(r.ratio, implied_mu),
+                &level(rc.ratio, self::implied_mu(&coarse, rc.ratio)?),
+                accuracy::grid_of(&coarse),
+            ))
+        }
+        _ => None,
     };
-    let obstacle = scene.obstacle.build()?;
-    let problem = MembraneProblem {
-        theta0: scene.membrane.theta0,
-        theta_max: scene.membrane.theta_max,
-        t0: 1.0,
-        ..Default::default()
-    };
-    let implied_mu = membrane::infer_mu(&obstacle, &problem, r.ratio)?.mu;
     Ok(ThresholdReport {
         status: "converged",
         threshold_ratio: r.ratio,
@@ -78,14 +115,22 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         grid: [scene.grid.n2, scene.grid.n3],
         seconds: t.elapsed().as_secs_f64(),
         grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
+        estimated_error,
     })
 }
 
 /// Plain text.
 pub fn table(r: &ThresholdReport) -> String {
+    let estimate = |name: &str| {
+        r.estimated_error
+            .as_ref()
+            .and_then(|e| e.quantities.get(name).copied().flatten())
+            .map_or_else(String::new, |e| format!(" +- {e:.1e}"))
+    };
     format!(
-        "threshold tension ratio {:.6} (Slip = 1{}), grid {} x {}\n  implied capstan mu {:.6} (thick-body mu {})\n  last ratio with a stick node {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
+        "threshold tension ratio {:.6}{} (Slip = 1{}), grid {} x {}\n  implied capstan mu {:.6}{} (thick-body mu {})\n  last ratio with a stick node {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
         r.threshold_ratio,
+        estimate("threshold_ratio"),
         if r.no_equilibrium_beyond {
             "; no static equilibrium beyond"
         } else {
@@ -94,6 +139,7 @@ pub fn table(r: &ThresholdReport) -> String {
         r.grid[0],
         r.grid[1],
         r.implied_mu,
+        estimate("implied_mu"),
         r.mu,
         r.below,
         r.slip_fraction_below,
