@@ -6,12 +6,15 @@
 use std::time::Instant;
 
 use capstan_elasticity::Material;
-use capstan_elasticity::contact::{ContactModel, ContactSolution, FullSystemSolver};
+use capstan_elasticity::contact::{
+    ContactModel, ContactQuantities, ContactSolution, FullSystemSolver,
+};
 use capstan_elasticity::friction::AnyFrictionLaw;
 use capstan_elasticity::registration::DiscretisationSettings;
 use capstan_elasticity::solid::{SolidBody, SolidFields, SolidNavier};
 use capstan_geometry::{Obstacle, ShellChart};
 
+use crate::commands::accuracy::{self, ErrorEstimate};
 use crate::commands::contact::{ContactReport, SceneSolver, condensed, loads, scene_law};
 use crate::commands::solid_report::SolidReport;
 use crate::error::CliError;
@@ -119,10 +122,26 @@ pub fn solve_observed(
     scene: &Scene,
     observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
 ) -> Result<(ContactReport, ContactSolution, SolidSceneModel), CliError> {
-    solve_unnamed(scene, observer).map_err(|e| match e {
+    let named = |e| match e {
         CliError::Contact(e) => crate::commands::contact::contact_budget(e, &scene.solver),
         e => e,
-    })
+    };
+    let (mut report, sol, model) = solve_unnamed(scene, observer).map_err(named)?;
+    let probes = accuracy::probes(scene);
+    let quantities = ContactQuantities::new(&model, &sol, &probes)?;
+    if scene.output.error_estimate
+        && let Some(coarse) = accuracy::coarser_scene(scene)?
+    {
+        let (_, coarse_sol, coarse_model) = solve_unnamed(&coarse, observer).map_err(named)?;
+        let coarse_quantities = ContactQuantities::new(&coarse_model, &coarse_sol, &probes)?;
+        report.estimated_error = Some(ErrorEstimate::from_levels(
+            &quantities.scalars(&sol),
+            &coarse_quantities.scalars(&coarse_sol),
+            accuracy::grid_of(&coarse),
+        ));
+    }
+    report.quantities = Some(quantities);
+    Ok((report, sol, model))
 }
 
 fn solve_unnamed(
