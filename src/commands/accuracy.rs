@@ -112,3 +112,16 @@ pub fn probes(scene: &Scene) -> Vec<f64> {
         ])
     })
 }
+
+/// The observer of the coarser solve of an estimate: forwards only the stop request of the
+/// run's observer (Ctrl-C, `--timeout`, a Python callback's stop), so progress lines and
+/// callbacks describe the scene's own solve.
+pub struct StopOnly<'a>(pub &'a mut dyn capstan_elasticity::solvers::Observer<f64>);
+
+impl capstan_elasticity::solvers::Observer<f64> for StopOnly<'_> {
+    fn iteration(&mut self, _progress: &capstan_elasticity::solvers::Progress<f64>) {}
+
+    fn interrupted(&mut self) -> bool {
+        self.0.interrupted()
+    }
+}

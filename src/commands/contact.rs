@@ -439,7 +439,8 @@ pub fn solve_observed(
     if scene.output.error_estimate
         && let Some(coarse) = accuracy::coarser_scene(scene)?
     {
-        let (_, coarse_solved) = solve_unnamed(&coarse, observer).map_err(named)?;
+        let (_, coarse_solved) =
+            solve_unnamed(&coarse, &mut accuracy::StopOnly(observer)).map_err(named)?;
         let scalars = |s: &Solved| s.quantities.scalars(&s.solution);
         report.estimated_error = Some(ErrorEstimate::from_levels(
             &scalars(&solved),

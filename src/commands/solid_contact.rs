@@ -132,7 +132,8 @@ pub fn solve_observed(
     if scene.output.error_estimate
         && let Some(coarse) = accuracy::coarser_scene(scene)?
     {
-        let (_, coarse_sol, coarse_model) = solve_unnamed(&coarse, observer).map_err(named)?;
+        let (_, coarse_sol, coarse_model) =
+            solve_unnamed(&coarse, &mut accuracy::StopOnly(observer)).map_err(named)?;
         let coarse_quantities = ContactQuantities::new(&coarse_model, &coarse_sol, &probes)?;
         report.estimated_error = Some(ErrorEstimate::from_levels(
             &quantities.scalars(&sol),
