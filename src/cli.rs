@@ -442,20 +442,19 @@ fn render<R: Serialize>(
 
 fn contact(args: &ContactArgs) -> Result<String, CliError> {
     let scene = args.scene.load()?;
-    let report = if scene.body.dimension == 3 {
-        let (report, solution, model) = commands::solid_contact::solve(&scene)?;
-        if let Some(dir) = &args.out {
-            let out = commands::solid_contact::write_out(dir, &report, &scene)?;
-            commands::solid_contact::write_body(&out, &scene, &model, &solution)?;
-        }
-        report
-    } else {
-        let (report, solved) = commands::contact::solve(&scene)?;
-        if let Some(dir) = &args.out {
-            commands::contact::write_out(dir, &report, &solved, &scene)?;
-        }
-        report
-    };
+    commands::contact::warn_grid_condition(&scene)?;
+    // `solver.linear = "petsc"`: PETSc (and MPI) for this command; ranks other than 0 end
+    // after the solve, rank 0 writes and ends PETSc when `_petsc` drops.
+    #[cfg(feature = "petsc")]
+    let mut _petsc = crate::scale::petsc::PetscRun::start(&scene)?;
+    let (report, run) = commands::contact::solve(&scene)?;
+    #[cfg(feature = "petsc")]
+    {
+        _petsc = _petsc.map(crate::scale::petsc::PetscRun::end_unless_root);
+    }
+    if let Some(dir) = &args.out {
+        commands::contact::write_run(dir, &report, &run, &scene)?;
+    }
     render(
         args.scene.json,
         &Stamped::new(&report, Some(&scene)),

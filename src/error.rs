@@ -80,6 +80,17 @@ pub enum CliError {
     Shard(#[from] crate::scale::ShardError),
 }
 
+impl From<crate::problem::ProblemError> for CliError {
+    fn from(e: crate::problem::ProblemError) -> Self {
+        use crate::problem::ProblemError;
+        match e {
+            ProblemError::Friction(e) => e.into(),
+            ProblemError::Elasticity(e) => e.into(),
+            ProblemError::Contact(e) => e.into(),
+        }
+    }
+}
+
 impl CliError {
     /// What the command printed before it failed, for standard output (the report of a
     /// `capstan verify` that missed an order); `None` for every other error.

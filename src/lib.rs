@@ -1,6 +1,25 @@
 //! capstan: friction between elastic bodies and rough rigid curved obstacles.
 //!
 //! # Quick start
+//! A contact problem in code ([`Problem`]: body, friction, loads, solver; the same for 2-D and
+//! 3-D bodies), or from a scene file ([`Scene::build`] is the one place scene values become a
+//! `Problem`):
+//! ```
+//! use capstan::{Problem, Scene};
+//! use capstan::problem::{EndLoads, Friction};
+//! let problem = Problem::paper()
+//!     .with_grid(41, 9)
+//!     .with_friction(Friction::coulomb(0.5, 1e-5))
+//!     .with_loads(EndLoads::new(1.0, 2.0));
+//! let solved = problem.solve().unwrap();
+//! assert!(solved.solution.slip_fraction > 0.0 && solved.solution.slip_fraction < 1.0);
+//! // the same problem from scene keys
+//! let scene = Scene::default().with_raw("grid.n2", "41", "set").unwrap().with_raw("grid.n3", "9", "set").unwrap();
+//! let from_scene = scene.build().unwrap().solve().unwrap();
+//! assert_eq!(from_scene.solution.slip_fraction, solved.solution.slip_fraction);
+//! ```
+//!
+//! The command line's commands over scenes:
 //! ```
 //! use capstan::{Scene, commands};
 //! // the default scene: a membrane over a semi-elliptical prism a = b = 2, mu = 1/2, half a turn
@@ -22,6 +41,7 @@ pub mod commands;
 pub mod error;
 pub mod figures;
 pub mod output;
+pub mod problem;
 pub mod progress;
 pub mod provenance;
 pub mod scale;
@@ -32,4 +52,5 @@ pub use capstan_elasticity::solvers;
 pub use capstan_friction as friction;
 pub use capstan_geometry as geometry;
 pub use error::CliError;
+pub use problem::Problem;
 pub use scene::Scene;

@@ -6,6 +6,7 @@ use std::f64::consts::{FRAC_PI_4, PI};
 
 use capstan::cli::{Cli, run};
 use clap::Parser;
+use common::json_array as array;
 use serde_json::Value;
 
 fn json(args: &[&str]) -> Value {
@@ -14,15 +15,6 @@ fn json(args: &[&str]) -> Value {
     argv.push("--json");
     let out = run(Cli::parse_from(argv)).unwrap();
     serde_json::from_str(&out).unwrap()
-}
-
-fn array(v: &Value, key: &str) -> Vec<f64> {
-    v[key]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
 }
 
 #[test]

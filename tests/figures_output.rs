@@ -178,3 +178,84 @@ fn figure_rejects_an_unknown_name() {
     assert_eq!(code, Some(2));
     assert!(stderr.contains("slip-ratio"));
 }
+
+#[test]
+fn figure_with_a_scene_and_a_range_writes_the_expected_table() {
+    let dir = scratch("figures_scene_range");
+    let scene = dir.join("belt.toml");
+    std::fs::write(
+        &scene,
+        "[body]\nthickness = 0.5\n[grid]\nn2 = 21\nn3 = 5\n[loads]\ntau_max = 2.2\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
+    let out = capstan(&[
+        "figure",
+        "slip-poisson",
+        scene.to_str().unwrap(),
+        "--set",
+        "body.young=800",
+        "--range",
+        "body.poisson=0:0.4:3",
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let index: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(index["grid"], serde_json::json!([21, 5]));
+    assert_eq!(index["range"], "body.poisson=0:0.4:3");
+    let t = csv(&out_dir.join("slip-poisson.csv"));
+    assert_eq!(t["value"], vec![0.0, 0.2, 0.4]);
+    // Each point is the scene's own contact solve at that Poisson's ratio.
+    for (nu, slip) in t["value"].iter().zip(&t["slip_fraction"]) {
+        let one = capstan(&[
+            "contact",
+            scene.to_str().unwrap(),
+            "--set",
+            "body.young=800",
+            "--set",
+            &format!("body.poisson={nu}"),
+            "--json",
+        ]);
+        let v: serde_json::Value = serde_json::from_slice(&one.stdout).unwrap();
+        let expected = v["slip_fraction"].as_f64().unwrap();
+        assert!(
+            (slip - expected).abs() < 1e-12,
+            "nu {nu}: {slip} vs {expected}"
+        );
+    }
+    // The membrane figure re-aimed at mu on the scene's ellipse: exp(2 mu atan(b/a)).
+    let scene = dir.join("ellipse.toml");
+    std::fs::write(
+        &scene,
+        "[obstacle]\nshape = \"ellipse\"\na = 2\nb = 1\n[membrane]\ntheta0 = -0.7853981633974483\ntheta_max = 0.7853981633974483\n",
+    )
+    .unwrap();
+    let out_dir = dir.join("mu");
+    capstan(&[
+        "figure",
+        "tension-ratio",
+        scene.to_str().unwrap(),
+        "--range",
+        "friction.mu=0.1:0.5:5",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    let t = csv(&out_dir.join("tension-ratio.csv"));
+    assert_eq!(t["value"].len(), 5);
+    for (mu, r) in t["value"].iter().zip(&t["tension_ratio"]) {
+        let exact = (2.0 * mu * 0.5f64.atan()).exp();
+        assert!((r - exact).abs() < 1e-12 * exact, "mu {mu}: {r} vs {exact}");
+    }
+    // A range on a one-solve figure is refused, naming --range.
+    let (code, _, stderr) = common::capstan_status(&[
+        "figure",
+        "slip-stick",
+        "--range",
+        "body.poisson=0:0.4:3",
+        "--out",
+        out_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(stderr.contains("--range"), "{stderr}");
+}

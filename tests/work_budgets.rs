@@ -4,7 +4,7 @@
 
 use capstan::CliError;
 use capstan::commands::infer_mu::{FrictionModel, report_for};
-use capstan::commands::{contact, solid_contact, tension};
+use capstan::commands::{contact, tension};
 use capstan::scene::Scene;
 use capstan_friction::FrictionError;
 
@@ -178,7 +178,7 @@ fn multigrid_krylov_iterations_run_out_naming_max_sweeps() {
         "solver.linear=multigrid",
         "solver.max_sweeps=1",
     ]);
-    let e = solid_contact::solve(&s).unwrap_err();
+    let e = contact::solve(&s).unwrap_err();
     names(&e, "solver.max_sweeps");
 }
 

@@ -25,7 +25,6 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::error::CliError;
 use crate::scene::Scene;
 
 /// `estimated_error` of a report: the estimate of every converging quantity, by name, and the
@@ -60,45 +59,6 @@ impl ErrorEstimate {
             coarser_grid,
             method: "one-level-coarser",
         }
-    }
-}
-
-/// The scene one grid level coarser (`grid.n2`, `grid.n3`, and `grid.n1` of a 3-D body when
-/// its method has a coarser level there), or `None` when the method has none (a graded
-/// `fem-qp` body, or a grid already at the coarsest level).
-///
-/// # Errors
-/// An unknown discretisation setting (the scene's own errors, naming its key).
-pub fn coarser_scene(scene: &Scene) -> Result<Option<Scene>, CliError> {
-    let d = &scene.discretisation;
-    let settings = capstan_elasticity::registration::DiscretisationSettings {
-        order: d.order,
-        volumetric: d.volumetric,
-        grading: d.grading()?,
-        ..Default::default()
-    };
-    let scheme = d.method.scheme(&settings)?;
-    let (Some(n2), Some(n3)) = (
-        scheme.coarser_nodes(scene.grid.n2),
-        scheme.coarser_nodes(scene.grid.n3),
-    ) else {
-        return Ok(None);
-    };
-    let mut coarse = scene.clone();
-    coarse.grid.n2 = n2;
-    coarse.grid.n3 = n3;
-    if scene.body.dimension == 3 {
-        coarse.grid.n1 = scheme.coarser_nodes(scene.grid.n1).unwrap_or(scene.grid.n1);
-    }
-    Ok(Some(coarse))
-}
-
-/// The grid of a scene as the estimate reports it: `[n2, n3]`, or `[n1, n2, n3]` in 3-D.
-pub fn grid_of(scene: &Scene) -> Vec<usize> {
-    if scene.body.dimension == 3 {
-        vec![scene.grid.n1, scene.grid.n2, scene.grid.n3]
-    } else {
-        vec![scene.grid.n2, scene.grid.n3]
     }
 }
 

@@ -1,16 +1,11 @@
 //! `capstan contact`: the thick body on a rough prism under the scene's friction law
 //! (`friction.law` through `AnyFrictionLaw`; regularised Coulomb by default, paper section 3).
 
-use std::time::Instant;
-
-use capstan_elasticity::Material;
 use capstan_elasticity::contact::{
-    BoundarySolver, BulkMultigrid, ContactError, ContactModel, ContactQuantities, ContactSettings,
-    ContactSolution, EndLoads, FullSystemSettings, FullSystemSolver, ThickBody, ThickBodyOperator,
-    solve_sequenced,
+    BulkMultigrid, ContactQuantities, ContactSolution, EndLoads, ThickBody,
 };
-use capstan_elasticity::friction::{AnyFrictionLaw, AnyFrictionParams, FrictionLawKind};
-use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod, Observer};
+use capstan_elasticity::solvers::Observer;
+use capstan_elasticity::{Discretisation, Material};
 use serde::Serialize;
 
 use crate::commands::accuracy::{self, ErrorEstimate};
@@ -20,94 +15,62 @@ use crate::output::Table;
 use crate::progress::CliObserver;
 use crate::scene::Scene;
 
-/// The contact model a scene describes.
-pub type SceneModel = ContactModel<ThickBodyOperator, AnyFrictionLaw>;
+/// The contact model a scene describes (either dimension).
+pub type SceneModel = crate::problem::Model;
 
-/// The solver a scene selects (`solver.nonlinear`, `solver.linear`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum SceneSolver {
-    /// `newton` (default): boundary-only Newton on the condensed contact tractions, bulk
-    /// factorised once.
-    Condensed,
-    /// `full-newton`: Newton on the full residual with `solver.linear`, refactorised each step.
-    FullNewton(LinearBackend),
-    /// `jacobi-newton`: the paper's Jacobi–Newton (damped Jacobi, relaxation 1/2).
-    JacobiNewton,
-    /// `full-newton` with `solver.linear = "multigrid"`: each Newton step by GMRES with the
-    /// geometric multigrid of the 3-D body ([`BulkMultigrid`]).
-    FullNewtonMultigrid,
+/// The paper's grid condition for its Jacobi iteration (section 3): `psi0 dx2 <= dx3` for every
+/// `psi0 = sqrt(g_22)` on the body, with `dx2 = (theta_max - theta0)/(n2 - 1)` and
+/// `dx3 = h/(n3 - 1)`. Returns `(max psi0 dx2, dx3)` over the grid's nodes on `x3 = 0` and
+/// `x3 = h` (`sqrt(g_22)` is largest on a face of a convex body), or `None` for a body that
+/// is not plane strain on a prism.
+///
+/// # Errors
+/// A geometry error at a grid node.
+pub fn paper_grid_condition(scene: &Scene) -> Result<Option<(f64, f64)>, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    if scene.body.dimension != 2 || !obstacle.is_prism() {
+        return Ok(None);
+    }
+    let (m, g, h) = (&scene.membrane, &scene.grid, scene.body.thickness);
+    let dx2 = (m.theta_max - m.theta0) / (g.n2 - 1) as f64;
+    let dx3 = h / (g.n3 - 1) as f64;
+    let chart = capstan_geometry::ShellChart::new(&obstacle);
+    let mut psi0 = 0.0f64;
+    for i in 0..g.n2 {
+        let x2 = m.theta0 + dx2 * i as f64;
+        for x3 in [0.0, h] {
+            psi0 = psi0.max(chart.point([0.0, x2, x3])?.metric[1][1].sqrt());
+        }
+    }
+    Ok(Some((psi0 * dx2, dx3)))
 }
 
-impl SceneSolver {
-    /// Reads the scene's solver keys.
-    ///
-    /// # Errors
-    /// [`CliError::Scene`] for an unknown name.
-    pub fn from_scene(scene: &Scene) -> Result<Self, CliError> {
-        if scene.solver.linear == "multigrid" {
-            return match scene.solver.nonlinear.as_str() {
-                "full-newton" => Ok(Self::FullNewtonMultigrid),
-                other => Err(CliError::Scene {
-                    origin: "solver.linear".into(),
-                    message: format!(
-                        "`solver.linear` = \"multigrid\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
-                    ),
-                }),
-            };
-        }
-        let linear: LinearBackend = scene.solver.linear.parse().map_err(
-            |e: capstan_elasticity::solvers::SolverError| CliError::Scene {
-                origin: "solver.linear".into(),
-                message: e.to_string(),
-            },
-        )?;
-        match scene.solver.nonlinear.as_str() {
-            "newton" => Ok(Self::Condensed),
-            "full-newton" => Ok(Self::FullNewton(linear)),
-            "jacobi-newton" => Ok(Self::JacobiNewton),
-            other => Err(CliError::Scene {
-                origin: "solver.nonlinear".into(),
-                message: format!(
-                    "unknown contact solver `{other}`; expected `newton` (boundary-only), `full-newton` or `jacobi-newton`"
-                ),
-            }),
-        }
+/// Warns on stderr (unless `--quiet`) when the paper's grid condition is violated and the
+/// scene iterates with Jacobi (`solver.nonlinear = "jacobi-newton"` or `solver.linear =
+/// "jacobi"`), the method the condition is stated for; with other solvers a note at `-v`.
+///
+/// # Errors
+/// As [`paper_grid_condition`].
+pub fn warn_grid_condition(scene: &Scene) -> Result<(), CliError> {
+    let Some((lhs, dx3)) = paper_grid_condition(scene)? else {
+        return Ok(());
+    };
+    if lhs <= dx3 {
+        return Ok(());
     }
-
-    /// The settings of the full-system solvers.
-    pub fn full_settings(self) -> FullSystemSettings {
-        let mut s = FullSystemSettings::default();
-        match self {
-            Self::FullNewton(linear) => s.newton.linear = linear,
-            Self::FullNewtonMultigrid => s.multigrid = Some(BulkMultigrid::default()),
-            Self::JacobiNewton => {
-                s.method = NonlinearMethod::JacobiNewton;
-                s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here
-                s.newton.iterative.max_iterations = 10_000_000;
-                s.newton.iterative.tolerance = 1e-12;
-                s.continuation.tolerance = 1e-9;
-            }
-            Self::Condensed => {}
+    let jacobi = scene.solver.nonlinear == "jacobi-newton" || scene.solver.linear == "jacobi";
+    let message = format!(
+        "warning: the paper's grid condition psi0 dx2 <= dx3 is violated: max psi0 dx2 = {lhs:.4e} > dx3 = {dx3:.4e} (grid.n2 = {}, grid.n3 = {}){}",
+        scene.grid.n2,
+        scene.grid.n3,
+        if jacobi {
+            "; the paper states it for its Jacobi iteration"
+        } else {
+            "; the direct solvers converge without it (docs/verification.md)"
         }
-        s
-    }
-
-    /// [`SceneSolver::full_settings`] with the scene's work budgets (`solver.max_iterations`,
-    /// `max_continuation_steps`, `min_load_step`, `max_sweeps`).
-    pub fn full_settings_for(self, scene: &Scene) -> FullSystemSettings {
-        let mut s = self.full_settings();
-        s.continuation = ContactSettings {
-            tolerance: s.continuation.tolerance,
-            ..scene.solver.contact_settings()
-        };
-        if let Some(sweeps) = scene.solver.max_sweeps {
-            s.newton.iterative.max_iterations = sweeps;
-            if let Some(m) = s.multigrid.as_mut() {
-                m.krylov.max_iterations = sweeps;
-            }
-        }
-        s
-    }
+    );
+    crate::progress::note(u8::from(!jacobi), &message);
+    Ok(())
 }
 
 /// The thick body a scene describes: `obstacle.*` (a prism), `body.*`, `grid.*`,
@@ -149,32 +112,13 @@ pub fn thick_body(scene: &Scene) -> Result<ThickBody, CliError> {
     })
 }
 
-/// The contact model of a scene.
+/// The contact model of a scene, plane strain or 3-D ([`Scene::build`], then
+/// [`crate::Problem::model`]).
 ///
 /// # Errors
-/// See [`thick_body`]; bad friction values; assembly errors.
+/// See [`Scene::build`]; bad friction values; assembly errors.
 pub fn model(scene: &Scene) -> Result<SceneModel, CliError> {
-    let (law, params, eps) = scene_law(scene)?;
-    let body = thick_body(scene)?;
-    Ok(body.model(law, params, eps)?)
-}
-
-/// The scene's friction law, its parameters and the stick/slip threshold `friction.eps`.
-///
-/// # Errors
-/// An unknown `friction.law`; bad friction values.
-pub fn scene_law(scene: &Scene) -> Result<(AnyFrictionLaw, AnyFrictionParams, f64), CliError> {
-    let f = &scene.friction;
-    let kind = FrictionLawKind::parse(&f.law).ok_or_else(|| CliError::Scene {
-        origin: "friction.law".into(),
-        message: format!(
-            "unknown friction law `{}`; expected one of {}",
-            f.law,
-            FrictionLawKind::names()
-        ),
-    })?;
-    let params = AnyFrictionParams::of_kind(kind, &f.settings())?;
-    Ok((AnyFrictionLaw, params, f.eps))
+    Ok(scene.build()?.model()?)
 }
 
 /// The scene's loads.
@@ -372,21 +316,19 @@ pub struct Solved {
     pub fields: capstan_elasticity::NodalFields,
     /// The obstacle (for the body's points in E^3).
     pub obstacle: capstan_geometry::Obstacle,
-    /// The converging quantities of the solution (probes at `output.probe_x2`).
-    pub quantities: ContactQuantities,
 }
 
-/// The nodal fields of a solution of `model`, with the scene's obstacle.
+/// The nodal fields of a solution on the plane-strain discretisation `disc`, with the scene's
+/// obstacle.
 ///
 /// # Errors
 /// Geometry failures; bad obstacle values.
 pub fn solved(
     scene: &Scene,
-    model: &SceneModel,
+    disc: &dyn Discretisation,
     solution: ContactSolution,
 ) -> Result<Solved, CliError> {
-    use capstan_elasticity::{Component, Discretisation};
-    let disc = model.discretisation();
+    use capstan_elasticity::Component;
     let grid = disc.grid();
     let mut nodes = NodalDisplacement::default();
     for i in 0..grid.n2() {
@@ -402,128 +344,140 @@ pub fn solved(
         }
     }
     let fields = disc.fields(&solution.displacement)?;
-    let quantities = ContactQuantities::new(model, &solution, &accuracy::probes(scene))?;
     Ok(Solved {
         solution,
         nodes,
         fields,
         obstacle: scene.obstacle.build()?,
-        quantities,
     })
 }
 
-/// Solves a scene's contact problem with its solver, reporting progress as the command line
-/// does ([`CliObserver`]: `-v` lines, a spinner on a terminal).
+/// What `capstan contact` solved, for its outputs: the plane-strain body with its nodal
+/// fields, or the 3-D body.
+#[derive(Debug)]
+pub enum ContactRun {
+    /// Plane strain: the solution with its nodal displacement and fields.
+    Plane(Solved),
+    /// The 3-D body: the solution and the model it belongs to (box grid and fields through
+    /// [`crate::problem::SolvedModel::solid`]).
+    Solid {
+        /// The solution.
+        solution: ContactSolution,
+        /// The model.
+        model: crate::problem::SolvedModel,
+    },
+}
+
+impl ContactRun {
+    /// The solution, whichever body.
+    pub fn solution(&self) -> &ContactSolution {
+        match self {
+            Self::Plane(solved) => &solved.solution,
+            Self::Solid { solution, .. } => solution,
+        }
+    }
+}
+
+/// Solves a scene's contact problem (either dimension) with its solver, reporting progress
+/// as the command line does ([`CliObserver`]: `-v` lines, a spinner on a terminal).
 ///
 /// # Errors
 /// Bad input (exit 2), no equilibrium (3), non-convergence (4).
-pub fn solve(scene: &Scene) -> Result<(ContactReport, Solved), CliError> {
+pub fn solve(scene: &Scene) -> Result<(ContactReport, ContactRun), CliError> {
     solve_observed(scene, &mut CliObserver::new())
 }
 
 /// As [`solve`], with every iteration of the solve reported to `observer` (which may stop it:
-/// [`ContactError::Interrupted`]). The Python package passes its callback and Ctrl-C check here.
+/// [`capstan_elasticity::contact::ContactError::Interrupted`]). The Python package passes its callback and Ctrl-C check
+/// here. The scene becomes a [`crate::Problem`] ([`Scene::build`]) and is solved by it; a
+/// budget error names the scene keys that set the budget.
 ///
 /// # Errors
-/// As [`solve`]; [`ContactError::Interrupted`] when `observer` asks to stop.
+/// As [`solve`]; [`capstan_elasticity::contact::ContactError::Interrupted`] when `observer` asks to stop.
 pub fn solve_observed(
     scene: &Scene,
     observer: &mut dyn Observer<f64>,
-) -> Result<(ContactReport, Solved), CliError> {
-    let named = |e| match e {
+) -> Result<(ContactReport, ContactRun), CliError> {
+    let named = |e| match CliError::from(e) {
         CliError::Contact(e) => contact_budget(e, &scene.solver),
         e => e,
     };
-    let (mut report, solved) = solve_unnamed(scene, observer).map_err(named)?;
-    report.quantities = Some(solved.quantities.clone());
+    let problem = scene.build()?;
+    let solved = problem.solve_observed(observer).map_err(named)?;
+    let mut report = report_of(scene, &solved);
+    let probes = accuracy::probes(scene);
+    let scalars = solved.scalars(&probes)?;
+    report.quantities = Some(solved.quantities(&probes)?);
     if scene.output.error_estimate
-        && let Some(coarse) = accuracy::coarser_scene(scene)?
+        && let Some(coarse) = problem.coarser()?
     {
-        let (_, coarse_solved) =
-            solve_unnamed(&coarse, &mut accuracy::StopOnly(observer)).map_err(named)?;
-        let scalars = |s: &Solved| s.quantities.scalars(&s.solution);
+        let coarse_solved = coarse
+            .solve_observed(&mut accuracy::StopOnly(observer))
+            .map_err(named)?;
         report.estimated_error = Some(ErrorEstimate::from_levels(
-            &scalars(&solved),
-            &scalars(&coarse_solved),
-            accuracy::grid_of(&coarse),
+            &scalars,
+            &coarse_solved.scalars(&probes)?,
+            coarse.grid(),
         ));
     }
-    Ok((report, solved))
+    let run = match solved.model.plane() {
+        Some(disc) => ContactRun::Plane(self::solved(scene, disc, solved.solution)?),
+        None => ContactRun::Solid {
+            solution: solved.solution,
+            model: solved.model,
+        },
+    };
+    Ok((report, run))
 }
 
-fn solve_unnamed(
+/// The report of a solved scene (the 3-D body adds `solid`).
+fn report_of(scene: &Scene, solved: &crate::problem::Solved) -> ContactReport {
+    let body = &scene.body;
+    ContactReport {
+        discretisation: solved.model.method(),
+        grid_sequence: solved.grid_sequence.clone(),
+        solid: solved
+            .model
+            .solid()
+            .map(|_| crate::commands::solid_report::SolidReport {
+                dimension: 3,
+                grid: [scene.grid.n1, scene.grid.n2, scene.grid.n3],
+                x1: [body.x1 - 0.5 * body.width, body.x1 + 0.5 * body.width],
+                sides: body.sides,
+                contact_unknowns: solved.model.contact_unknowns(),
+                contact: solved.solution.contact.solid.clone().unwrap_or_default(),
+            }),
+        ..ContactReport::new(
+            &solved.solution,
+            solved.limiting,
+            [scene.grid.n2, scene.grid.n3],
+            solved.times,
+        )
+    }
+}
+
+/// Writes the outputs of a solved scene into `dir`: `contact.json`, `scene.toml`,
+/// `contact.csv`, and the body (plane strain: `displacement.csv`, `body.vtu` and plots;
+/// 3-D: `body.vtu` on hexahedra).
+///
+/// # Errors
+/// Geometry or output errors.
+pub fn write_run(
+    dir: &std::path::Path,
+    report: &ContactReport,
+    run: &ContactRun,
     scene: &Scene,
-    observer: &mut dyn Observer<f64>,
-) -> Result<(ContactReport, Solved), CliError> {
-    let method = SceneSolver::from_scene(scene)?;
-    let loads = loads(scene);
-    let t0 = Instant::now();
-    let grid = [scene.grid.n2, scene.grid.n3];
-    match method {
-        SceneSolver::Condensed => {
-            let model = model(scene)?;
-            let CondensedRun {
-                sol,
-                limiting,
-                times,
-            } = condensed(&model, scene, loads, observer, t0)?;
-            let report = ContactReport {
-                discretisation: capstan_elasticity::Discretisation::method(model.discretisation()),
-                ..ContactReport::new(&sol, limiting, grid, times)
-            };
-            Ok((report, solved(scene, &model, sol)?))
-        }
-        SceneSolver::FullNewton(_) | SceneSolver::FullNewtonMultigrid => {
-            // Grid sequencing: the model is assembled level by level inside.
-            let (law, params, eps) = scene_law(scene)?;
-            let body = thick_body(scene)?;
-            let setup = t0.elapsed().as_secs_f64();
-            let t1 = Instant::now();
-            let settings = method.full_settings_for(scene);
-            match solve_sequenced(&body, law, params, eps, loads, settings, observer) {
-                Ok(seq) => {
-                    let report = ContactReport {
-                        discretisation: capstan_elasticity::Discretisation::method(
-                            seq.model.discretisation(),
-                        ),
-                        grid_sequence: Some(
-                            seq.levels.iter().map(|&(a, b, c)| [a, b, c]).collect(),
-                        ),
-                        ..ContactReport::new(
-                            &seq.solution,
-                            None,
-                            grid,
-                            [setup, t1.elapsed().as_secs_f64()],
-                        )
-                    };
-                    Ok((report, solved(scene, &seq.model, seq.solution)?))
-                }
-                Err(e @ ContactError::NotConverged { .. }) => {
-                    Err(explain_not_converged(&model(scene)?, loads, e))
-                }
-                Err(e) => Err(e.into()),
+) -> Result<(), CliError> {
+    match run {
+        ContactRun::Plane(solved) => write_out(dir, report, solved, scene),
+        ContactRun::Solid { solution, model } => {
+            // contact.csv: `x1` and `x2` per node with both tangential components
+            let out = report_dir(dir, "contact", report, Some(scene))?;
+            out.write_csv("contact.csv", &contact_table(report))?;
+            if let Some(solid) = model.solid() {
+                crate::commands::solid_contact::write_body(&out, scene, solid, solution)?;
             }
-        }
-        SceneSolver::JacobiNewton => {
-            let model = model(scene)?;
-            let solver = FullSystemSolver::new(&model, method.full_settings_for(scene))?;
-            let setup = t0.elapsed().as_secs_f64();
-            let t1 = Instant::now();
-            match solver.solve_observed(loads, observer) {
-                Ok(sol) => {
-                    let report = ContactReport {
-                        discretisation: capstan_elasticity::Discretisation::method(
-                            model.discretisation(),
-                        ),
-                        ..ContactReport::new(&sol, None, grid, [setup, t1.elapsed().as_secs_f64()])
-                    };
-                    Ok((report, solved(scene, &model, sol)?))
-                }
-                Err(e @ ContactError::NotConverged { .. }) => {
-                    Err(explain_not_converged(&model, loads, e))
-                }
-                Err(e) => Err(e.into()),
-            }
+            Ok(())
         }
     }
 }
@@ -553,6 +507,15 @@ pub(crate) fn contact_budget(
                 ""
             }
         }
+        ContactError::Solver(SolverError::BudgetSpent { iterations, .. })
+            if solver.linear == "petsc" =>
+        {
+            format!(
+                "{iterations} Krylov iterations spent: `-ksp_max_it` in `solver.petsc_options` = {:?} (default 2000) bounds each linear solve of `solver.linear` = \"petsc\"; raise it (--set solver.petsc_options='\"-ksp_max_it {}\"') or choose a stronger preconditioner",
+                solver.petsc_options.as_deref().unwrap_or(""),
+                iterations.saturating_mul(4)
+            )
+        }
         ContactError::Solver(SolverError::BudgetSpent { iterations, .. }) => format!(
             "{iterations} Krylov iterations spent: `solver.max_sweeps` = {} GMRES / CG iterations per linear solve of `solver.linear` = \"multigrid\" (unset: {}); raise it (--set solver.max_sweeps={})",
             solver
@@ -573,18 +536,6 @@ pub(crate) fn contact_budget(
         _ => return e.into(),
     };
     CliError::ContactBudget { source: e, budget }
-}
-
-/// A full-system non-convergence, told apart: no equilibrium (checked by the boundary-only
-/// solver's limiting ratios of `model`) rather than a solver failure.
-fn explain_not_converged(model: &SceneModel, loads: EndLoads, e: ContactError) -> CliError {
-    let check = || -> Result<(), ContactError> {
-        BoundarySolver::new(model, ContactSettings::default())?.check_equilibrium(loads)
-    };
-    match check() {
-        Err(no_equilibrium @ ContactError::NoEquilibrium { .. }) => no_equilibrium.into(),
-        _ => e.into(),
-    }
 }
 
 /// A plain-text summary.
@@ -756,40 +707,4 @@ pub fn contact_table(report: &ContactReport) -> Table {
         "state",
         c.state.iter().map(|&s| i32::from(s)).collect::<Vec<_>>(),
     )
-}
-
-/// A boundary-only solve as the commands report it.
-pub(crate) struct CondensedRun {
-    /// The contact solution.
-    pub sol: ContactSolution,
-    /// Limiting ratios `[lower, upper]` when the body can slide rigidly.
-    pub limiting: Option<[f64; 2]>,
-    /// Wall times `[set-up since t0, solve]`, seconds.
-    pub times: [f64; 2],
-}
-
-/// The boundary-only solve of `model` with the scene's budgets (`solver.*`). Shared by the
-/// plane-strain and the 3-D body.
-///
-/// # Errors
-/// Solver errors; [`ContactError::Interrupted`] when `observer` stops the solve.
-pub(crate) fn condensed<D: capstan_elasticity::contact::ContactOperator>(
-    model: &ContactModel<D, AnyFrictionLaw>,
-    scene: &Scene,
-    loads: EndLoads,
-    observer: &mut dyn Observer<f64>,
-    t0: Instant,
-) -> Result<CondensedRun, CliError> {
-    let solver = BoundarySolver::new(model, scene.solver.contact_settings())?;
-    let setup = t0.elapsed().as_secs_f64();
-    let t1 = Instant::now();
-    let sol = solver.solve_observed(loads, observer)?;
-    let limiting = solver
-        .sliding_at(sol.loads.tau0)?
-        .map(|m| [m.lower_ratio, m.upper_ratio]);
-    Ok(CondensedRun {
-        sol,
-        limiting,
-        times: [setup, t1.elapsed().as_secs_f64()],
-    })
 }

@@ -14,9 +14,9 @@
 
 use std::path::PathBuf;
 
+use capstan_elasticity::Component;
 use capstan_elasticity::contact::FullSystemProblem;
 use capstan_elasticity::solvers::{Jacobian, LinearSolver, Residual, SparseLu};
-use capstan_elasticity::{Component, Discretisation};
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 
@@ -107,11 +107,20 @@ pub struct SystemReport {
 pub fn run(args: &ExportSystemArgs) -> Result<SystemReport, CliError> {
     let scene = args.scene.load()?;
     let model = contact::model(&scene)?;
+    let Some(disc) = model.discretisation().plane() else {
+        return Err(CliError::Scene {
+            origin: "body.dimension".into(),
+            message: format!(
+                "`body.dimension` = {}: export-system writes the plane-strain body only (allowed: 2)",
+                scene.body.dimension
+            ),
+        });
+    };
     let loads = contact::loads(&scene);
     let n = model.dof_count();
     let v = match args.state {
         State::Zero => vec![0.0; n],
-        State::Solution => contact::solve(&scene)?.1.solution.displacement,
+        State::Solution => contact::solve(&scene)?.1.solution().displacement.clone(),
     };
     let problem = FullSystemProblem::new(&model, loads);
     let pattern = problem.pattern();
@@ -156,7 +165,6 @@ pub fn run(args: &ExportSystemArgs) -> Result<SystemReport, CliError> {
         ),
     };
 
-    let disc = model.discretisation();
     let grid = disc.grid();
     let mut dofs = DofNumbering {
         node_order: "i2 major: node (i2, i3) at position i2 * n3 + i3",

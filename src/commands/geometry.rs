@@ -1,5 +1,6 @@
 //! `capstan geometry`: a report of the obstacle's differential geometry on the contact interval.
 
+use capstan_friction::membrane::development;
 use capstan_geometry::{Obstacle, ShellChart, Surface};
 use serde::Serialize;
 
@@ -27,6 +28,36 @@ pub struct GeometryReport {
     pub christoffel_222: Vec<f64>,
     /// `sqrt(g)` of the shell chart at `x3 = body.thickness`.
     pub sqrt_g_outer: Vec<f64>,
+    /// `a_ab`, the whole first fundamental form (the metric of the surface).
+    pub first_form: Vec<[[f64; 2]; 2]>,
+    /// `b_ab`, the whole second fundamental form.
+    pub second_form: Vec<[[f64; 2]; 2]>,
+    /// On a cone: the development map onto the plane at `x1` (Theorem 2's coordinates).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub development: Option<DevelopmentReport>,
+}
+
+/// The development map `(x1, x2) -> (chi1, chi2)` of a cone at each sample point
+/// ([`capstan_friction::membrane::DevelopmentPoint`]).
+///
+/// # Math
+/// ```text
+/// rbar = sqrt(1 + ubar^2 + vbar^2),  phi(x2) = int_0^{x2} |w' x w| / |w|^2 dt
+/// chi1 = x1 rbar cos(phi),  chi2 = x1 rbar sin(phi),  J = d(chi1, chi2)/d(x1, x2)
+/// ```
+/// with `J^T J = a_ab` (an isometry).
+#[derive(Debug, Clone, Serialize)]
+pub struct DevelopmentReport {
+    /// `phi(x2)`, the angle of the developed generator, measured from `x2 = 0`.
+    pub phi: Vec<f64>,
+    /// `phi'(x2)`.
+    pub phi_rate: Vec<f64>,
+    /// `rbar(x2)`.
+    pub radius: Vec<f64>,
+    /// `(chi1, chi2)`.
+    pub chi: Vec<[f64; 2]>,
+    /// `jacobian[i][j] = d chi_(i+1) / d x_(j+1)`.
+    pub jacobian: Vec<[[f64; 2]; 2]>,
 }
 
 /// Evenly spaced samples on `[a, b]`, both ends included.
@@ -60,12 +91,8 @@ pub struct GeometryDetail {
     pub point: Vec<[f64; 3]>,
     /// Unit normal `N`.
     pub normal: Vec<[f64; 3]>,
-    /// `a_ab`, the metric of the surface (first fundamental form).
-    pub first_form: Vec<[[f64; 2]; 2]>,
     /// `a^ab`.
     pub first_form_inverse: Vec<[[f64; 2]; 2]>,
-    /// `b_ab` (second fundamental form).
-    pub second_form: Vec<[[f64; 2]; 2]>,
     /// `b^a_b`.
     pub mixed_second_form: Vec<[[f64; 2]; 2]>,
     /// `christoffel[c][a][b] = Gamma^c_ab` of the surface.
@@ -96,12 +123,13 @@ pub fn report_at(scene: &Scene, x2: &[f64]) -> Result<GeometryDetail, CliError> 
             b22: vec![],
             christoffel_222: vec![],
             sqrt_g_outer: vec![],
+            first_form: vec![],
+            second_form: vec![],
+            development: None,
         },
         point: vec![],
         normal: vec![],
-        first_form: vec![],
         first_form_inverse: vec![],
-        second_form: vec![],
         mixed_second_form: vec![],
         christoffel: vec![],
         shell_metric: vec![],
@@ -119,14 +147,27 @@ pub fn report_at(scene: &Scene, x2: &[f64]) -> Result<GeometryDetail, CliError> 
         r.sqrt_g_outer.push(outer.sqrt_g);
         d.point.push(g.point);
         d.normal.push(g.normal);
-        d.first_form.push(g.first_form);
+        r.first_form.push(g.first_form);
+        r.second_form.push(g.second_form);
         d.first_form_inverse.push(g.first_form_inverse);
-        d.second_form.push(g.second_form);
         d.mixed_second_form.push(g.mixed_second_form);
         d.christoffel.push(g.christoffel);
         d.shell_metric.push(chart.point([x1, t, 0.0])?.metric);
         d.shell_metric_outer.push(outer.metric);
     }
+    let budget = scene.membrane.max_subdivisions;
+    let points = match &obstacle {
+        Obstacle::CircularCone(c) => Some(development(c, x1, &x2, budget)?),
+        Obstacle::Cone(c) => Some(development(c.profile_curve(), x1, &x2, budget)?),
+        _ => None,
+    };
+    d.report.development = points.map(|p| DevelopmentReport {
+        phi: p.iter().map(|q| q.phi).collect(),
+        phi_rate: p.iter().map(|q| q.phi_rate).collect(),
+        radius: p.iter().map(|q| q.radius).collect(),
+        chi: p.iter().map(|q| q.chi).collect(),
+        jacobian: p.iter().map(|q| q.jacobian).collect(),
+    });
     Ok(d)
 }
 
@@ -147,6 +188,18 @@ pub fn table(r: &GeometryReport, obstacle: &Obstacle) -> String {
             r.b22[i],
             r.sqrt_g_outer[i]
         ));
+    }
+    if let Some(d) = &r.development {
+        s.push_str(&format!(
+            "\ndevelopment at x1 = {}: chi = x1 rbar (cos phi, sin phi)\n{:>10} {:>12} {:>12} {:>12} {:>12}\n",
+            r.x1, "x2", "phi", "rbar", "chi1", "chi2"
+        ));
+        for i in (0..r.x2.len()).step_by(step) {
+            s.push_str(&format!(
+                "{:>10.5} {:>12.8} {:>12.8} {:>12.8} {:>12.8}\n",
+                r.x2[i], d.phi[i], d.radius[i], d.chi[i][0], d.chi[i][1]
+            ));
+        }
     }
     s
 }

@@ -15,10 +15,7 @@ use capstan_friction::membrane_displacement::{
 };
 use capstan_friction::root::Brent;
 use capstan_friction::{RegularisedCoulomb, RegularisedCoulombParams};
-use capstan_geometry::{
-    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralPrism, Obstacle, ProfileCurve,
-    Scalar,
-};
+use capstan_geometry::ProfileCurve;
 use clap::{Args, ValueEnum};
 use serde::Serialize;
 
@@ -118,6 +115,21 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
         field: "membrane.t_max",
         why: "infer-mu needs the measured tension at theta_max (e.g. --set membrane.t_max=2.75)",
     })?;
+    if crate::commands::tension::has_extra_loads(scene) {
+        let key = if scene.loads.f_t.is_some() {
+            "loads.f_t"
+        } else if scene.loads.f_n.is_some() {
+            "loads.f_n"
+        } else {
+            "membrane.belt_speed_rule"
+        };
+        return Err(CliError::Scene {
+            origin: key.into(),
+            message: format!(
+                "`{key}` is set: infer-mu inverts the built-in loads (gravity, speed with the corrected rule) only; `capstan tension` computes the profile under these loads"
+            ),
+        });
+    }
     let obstacle = scene.obstacle.build()?;
     let t0 = scene.membrane.t0;
     let ratio = t_max / t0;
@@ -148,10 +160,14 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
     match model {
         FrictionModel::Capstan => {}
         FrictionModel::Membrane => {
-            let profile = PrismProfile::new(&obstacle).ok_or_else(|| CliError::Scene {
+            let profile = obstacle
+                .is_prism()
+                .then(|| obstacle.profile())
+                .flatten()
+                .ok_or_else(|| CliError::Scene {
                 origin: "obstacle.shape".into(),
                 message:
-                    "the membrane displacement model needs a prism (cylinder, ellipse or prism)"
+                    "the membrane displacement model needs a prism (cylinder, ellipse, prism or a registered prism)"
                         .into(),
             })?;
             let b = &scene.body;
@@ -198,46 +214,6 @@ fn check_no_loads(scene: &Scene) -> Result<(), CliError> {
         }
     }
     Ok(())
-}
-
-/// The profile curve of a prism obstacle, for the membrane displacement model.
-#[derive(Debug, Clone, Copy)]
-pub enum PrismProfile<'a> {
-    /// A circular cylinder.
-    Cylinder(&'a CircularCylinder<f64>),
-    /// An elliptical prism.
-    Ellipse(&'a EllipticalPrism<f64>),
-    /// A general prism.
-    Prism(&'a GeneralPrism<ExpressionProfile>),
-}
-
-impl<'a> PrismProfile<'a> {
-    /// The profile of `obstacle`, `None` unless it is a prism.
-    pub fn new(obstacle: &'a Obstacle) -> Option<Self> {
-        match obstacle {
-            Obstacle::Cylinder(c) => Some(Self::Cylinder(c)),
-            Obstacle::Ellipse(e) => Some(Self::Ellipse(e)),
-            Obstacle::Prism(p) => Some(Self::Prism(p)),
-            _ => None,
-        }
-    }
-}
-
-impl ProfileCurve<f64> for PrismProfile<'_> {
-    fn profile<S: Scalar<f64>>(&self, t: S) -> [S; 2] {
-        match self {
-            Self::Cylinder(c) => c.profile(t),
-            Self::Ellipse(e) => e.profile(t),
-            Self::Prism(p) => p.profile(t),
-        }
-    }
-    fn profile_jet(&self, t: f64) -> [[f64; 4]; 2] {
-        match self {
-            Self::Cylinder(c) => c.profile_jet(t),
-            Self::Ellipse(e) => e.profile_jet(t),
-            Self::Prism(p) => p.profile_jet(t),
-        }
-    }
 }
 
 /// The membrane displacement model's data apart from the friction coefficient.
@@ -472,7 +448,7 @@ pub fn table(r: &InferMuReport, scene: &Scene) -> String {
         _ => "membrane".to_string(),
     };
     format!(
-        "{what} on {:?} over [{:.6}, {:.6}]: T0 = {}, T_max = {} (ratio {:.9})\n  mu = {:.12}   ({}, model {})\n",
+        "{what} on {} over [{:.6}, {:.6}]: T0 = {}, T_max = {} (ratio {:.9})\n  mu = {:.12}   ({}, model {})\n",
         scene.obstacle.shape,
         scene.membrane.theta0,
         scene.membrane.theta_max,

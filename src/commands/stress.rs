@@ -22,7 +22,7 @@ use capstan_elasticity::contact::{
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solvers::{LinearSolver, SilentObserver, SparseLu};
-use capstan_friction::membrane::{self, closed_form};
+use capstan_friction::membrane::closed_form;
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -521,14 +521,8 @@ pub fn capstan_point(
         })
         .collect();
     let mut point = StressPoint::unsolved(axis, "capstan", parameters);
-    let result = Scene::load(None, &all).and_then(|scene| {
-        let obstacle = scene.obstacle.build()?;
-        let p = membrane::tension_profile(
-            &obstacle,
-            &crate::commands::tension::membrane_problem(&scene),
-        )?;
-        Ok(p)
-    });
+    let result = Scene::load(None, &all)
+        .and_then(|scene| crate::commands::tension::membrane_profile(&scene));
     match result {
         Ok(p) => {
             let t_max = p.t_max();

@@ -11,7 +11,6 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::commands::contact::{loads, model};
-use crate::commands::solid_contact::{SolidSceneModel, model as solid_model};
 use crate::error::CliError;
 use crate::output::{OutputDir, Table};
 use crate::provenance::{Stamped, write_scene};
@@ -168,7 +167,8 @@ pub fn report(
     report_indexed(path, sets, SweepPoints::new(key, values))
 }
 
-/// The VTU of sweep point `index` (`points/point_NNNN.vtu`, `TimeValue` = the swept value).
+/// The VTU of sweep point `index` (`points/point_NNNN.vtu`, `TimeValue` = the swept value):
+/// the plane-strain body's quadrilaterals or the 3-D body's hexahedra.
 fn point_vtu(
     out: &OutputDir,
     index: usize,
@@ -177,7 +177,13 @@ fn point_vtu(
     model: &crate::commands::contact::SceneModel,
     sol: &capstan_elasticity::contact::ContactSolution,
 ) -> Result<(), CliError> {
-    let solved = crate::commands::contact::solved(scene, model, sol.clone())?;
+    let Some(disc) = model.discretisation().plane() else {
+        return match model.discretisation().solid() {
+            Some(solid) => solid_point_vtu(out, index, value, scene, solid, sol),
+            None => Ok(()),
+        };
+    };
+    let solved = crate::commands::contact::solved(scene, disc, sol.clone())?;
     crate::figures::body::write_body(
         out,
         &point_vtu_name(index),
@@ -360,11 +366,11 @@ fn solid_point_vtu(
     index: usize,
     value: f64,
     scene: &Scene,
-    model: &SolidSceneModel,
+    body: &dyn capstan_elasticity::solid::SolidOutput,
     sol: &ContactSolution,
 ) -> Result<(), CliError> {
     let (grid, fields, coordinates) =
-        crate::commands::solid_contact::body_fields(scene, model, sol)?;
+        crate::commands::solid_contact::body_fields(scene, body, sol)?;
     let vtu = crate::figures::solid_body::solid_vtu(&grid, &fields, &coordinates, &sol.contact)
         .encoding(scene.output.vtu_compression.encoding())
         .time(value);
@@ -389,18 +395,7 @@ fn run(
         message: "no points".into(),
     })?)?;
     let shared = key == "loads.tau_max" || key == "loads.tau0";
-    let points = if scene.body.dimension == 3 {
-        let vtu =
-            |out: &OutputDir,
-             i: usize,
-             v: f64,
-             sc: &Scene,
-             m: &SolidSceneModel,
-             sol: &ContactSolution| { solid_point_vtu(out, i, v, sc, m, sol) };
-        points(scene, with, at, &tick, &solid_model, &vtu)
-    } else {
-        points(scene, with, at, &tick, &model, &point_vtu)
-    }?;
+    let points = points(scene, with, at, &tick, &model, &point_vtu)?;
     bar.finish_and_clear();
     Ok(SweepReport {
         param: key.to_owned(),

@@ -1,18 +1,13 @@
 //! `capstan threshold`: the tension ratio at which the whole contact slides (Slip = 1), and the
 //! capstan coefficient of friction it implies.
 
+use std::collections::BTreeMap;
 use std::time::Instant;
 
-use std::collections::BTreeMap;
-
-use capstan_elasticity::contact::{
-    BoundarySolver, ThresholdResult, ThresholdSettings, threshold_ratio,
-};
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
-use crate::commands::accuracy::{self, ErrorEstimate};
-use crate::commands::contact::model;
+use crate::commands::accuracy::ErrorEstimate;
 use crate::error::CliError;
 use crate::scene::Scene;
 
@@ -52,42 +47,18 @@ pub struct ThresholdReport {
     pub estimated_error: Option<ErrorEstimate>,
 }
 
-/// The threshold search on the scene's body (plane strain or 3-D).
-fn search(scene: &Scene) -> Result<ThresholdResult, CliError> {
-    Ok(if scene.body.dimension == 3 {
-        let model = crate::commands::solid_contact::model(scene)?;
-        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-        threshold_ratio(&solver, ThresholdSettings::default())?
-    } else {
-        let model = model(scene)?;
-        let solver = BoundarySolver::new(&model, scene.solver.contact_settings())?;
-        threshold_ratio(&solver, ThresholdSettings::default())?
-    })
-}
-
-/// The capstan coefficient implied by a threshold ratio.
-fn implied_mu(scene: &Scene, ratio: f64) -> Result<f64, CliError> {
-    let obstacle = scene.obstacle.build()?;
-    let problem = MembraneProblem {
-        theta0: scene.membrane.theta0,
-        theta_max: scene.membrane.theta_max,
-        t0: 1.0,
-        ..Default::default()
-    };
-    Ok(membrane::infer_mu(&obstacle, &problem, ratio)?.mu)
-}
-
 /// Computes the report.
 ///
 /// # Errors
 /// Bad input (2); non-convergence (4).
 pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let t = Instant::now();
-    let r = search(scene)?;
+    let problem = scene.build()?;
+    let r = problem.threshold()?;
     let implied_mu = implied_mu(scene, r.ratio)?;
-    let estimated_error = match accuracy::coarser_scene(scene)? {
+    let estimated_error = match problem.coarser()? {
         Some(coarse) if scene.output.error_estimate => {
-            let rc = search(&coarse)?;
+            let ratio = coarse.threshold()?.ratio;
             let level = |ratio: f64, mu: f64| {
                 BTreeMap::from([
                     ("threshold_ratio".to_owned(), ratio),
@@ -96,8 +67,8 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
             };
             Some(ErrorEstimate::from_levels(
                 &level(r.ratio, implied_mu),
-                &level(rc.ratio, self::implied_mu(&coarse, rc.ratio)?),
-                accuracy::grid_of(&coarse),
+                &level(ratio, self::implied_mu(scene, ratio)?),
+                coarse.grid(),
             ))
         }
         _ => None,
@@ -117,6 +88,19 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
         estimated_error,
     })
+}
+
+/// The capstan coefficient a threshold ratio implies on the scene's obstacle and contact
+/// interval (membrane model, Corollary 1).
+fn implied_mu(scene: &Scene, ratio: f64) -> Result<f64, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    let problem = MembraneProblem {
+        theta0: scene.membrane.theta0,
+        theta_max: scene.membrane.theta_max,
+        t0: 1.0,
+        ..Default::default()
+    };
+    Ok(membrane::infer_mu(&obstacle, &problem, ratio)?.mu)
 }
 
 /// Plain text.

@@ -4,4 +4,5 @@
 pub mod body;
 pub mod paper;
 pub mod reports;
+pub mod settings;
 pub mod solid_body;

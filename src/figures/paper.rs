@@ -18,11 +18,11 @@ use serde::Serialize;
 
 use crate::commands::{contact, sweep, tension};
 use crate::error::CliError;
-use crate::output::{LinePlot, OutputDir, Series, Table};
-use crate::scene::Scene;
+pub use crate::figures::settings::{FigureRange, FigureSettings};
+use crate::output::{LinePlot, OutputDir, Panel, Series, Table};
 
 /// The figures, in the order of the paper.
-pub const FIGURES: [(&str, &str); 8] = [
+pub const FIGURES: [(&str, &str); 9] = [
     (
         "tension-ratio",
         "Section 2, Fig. PrismEqnPlot2: membrane tension ratio against b/a on [-pi/4, pi/4]",
@@ -52,55 +52,26 @@ pub const FIGURES: [(&str, &str); 8] = [
         "young",
         "Section 3, text: Slip for Young's modulus E in [500, 1500]",
     ),
+    (
+        "slip-panel",
+        "Section 3, Fig. fullset: Slip against the ratio, b/a, h and nu as one 2 x 2 panel",
+    ),
 ];
 
-/// How to run the figures.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FigureSettings {
-    /// Grid points along `x2` (the paper: 250).
-    pub n2: usize,
-    /// Grid points along `x3` (the paper: 41).
-    pub n3: usize,
-    /// Fewer sweep points (for tests and a first look).
-    pub quick: bool,
-}
+/// The four sweeps of the paper's Fig. fullset, in its panel order (a)-(d).
+const PANEL: [&str; 4] = ["slip-ratio", "slip-ba", "slip-thickness", "slip-poisson"];
 
-impl FigureSettings {
-    /// The paper's grid, 250 x 41, full sweeps.
-    pub fn paper() -> Self {
-        Self {
-            n2: 250,
-            n3: 41,
-            quick: false,
-        }
-    }
+/// Slip plots drawn so far in a run: `slip-panel` reuses the four Slip plots when
+/// `capstan figure all` has just drawn them (same settings), instead of solving again.
+pub type PlotCache = Vec<SlipPlot>;
 
-    /// A coarse grid (40 x 9) and short sweeps: seconds, for tests.
-    pub fn quick() -> Self {
-        Self {
-            n2: 40,
-            n3: 9,
-            quick: true,
-        }
-    }
-
-    fn steps(&self, full: usize, quick: usize) -> usize {
-        if self.quick { quick } else { full }
-    }
-
-    fn sets(&self) -> Vec<String> {
-        vec![
-            format!("grid.n2={}", self.n2),
-            format!("grid.n3={}", self.n3),
-        ]
-    }
-
-    fn scene(&self) -> Scene {
-        let mut s = Scene::default();
-        s.grid.n2 = self.n2;
-        s.grid.n3 = self.n3;
-        s
-    }
+/// One drawn Slip figure: its name, plot and plotted points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SlipPlot {
+    name: &'static str,
+    plot: LinePlot,
+    x: Vec<f64>,
+    slip: Vec<f64>,
 }
 
 /// One number of a figure beside the paper's.
@@ -143,8 +114,17 @@ pub struct FigureReport {
 /// `index.json`: every figure of a run.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FigureIndex {
-    /// `[n2, n3]`.
+    /// `[n2, n3]` of the scene (the paper's 250 x 41 unless re-aimed).
     pub grid: [usize; 2],
+    /// The scene file, if any.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scene: Option<String>,
+    /// `--set` overrides.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sets: Vec<String>,
+    /// `--range KEY=A:B:N`, if given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub range: Option<String>,
     /// Whether `--quick` sweeps were used.
     pub quick: bool,
     /// The figures in order.
@@ -177,7 +157,12 @@ pub fn names(name: &str) -> Result<Vec<&'static str>, CliError> {
 /// # Errors
 /// Bad names, solver failures of the single solves, output errors. Failed sweep points are
 /// left out of plots and listed in the CSV-less JSON of the sweep.
-pub fn run(name: &str, s: &FigureSettings, out: &OutputDir) -> Result<FigureReport, CliError> {
+pub fn run(
+    name: &str,
+    s: &FigureSettings,
+    out: &OutputDir,
+    cache: &mut PlotCache,
+) -> Result<FigureReport, CliError> {
     let t = Instant::now();
     let title = FIGURES
         .iter()
@@ -186,13 +171,10 @@ pub fn run(name: &str, s: &FigureSettings, out: &OutputDir) -> Result<FigureRepo
         .ok_or_else(|| names(name).unwrap_err())?;
     let (files, comparisons) = match name {
         "tension-ratio" => tension_ratio(s, out)?,
-        "displacement" => displacement(s, out)?,
-        "slip-stick" => slip_stick(s, out)?,
-        "slip-ratio" => slip_ratio(s, out)?,
-        "slip-ba" => slip_param(s, out, name, "obstacle.b", (1.0, 3.0), "b/a", 0.5)?,
-        "slip-thickness" => slip_param(s, out, name, "body.thickness", (0.5, 1.5), "h (m)", 1.0)?,
-        "slip-poisson" => slip_param(s, out, name, "body.poisson", (0.0, 0.45), "nu", 1.0)?,
-        _ => young(s, out)?,
+        "displacement" => single_solve(name, s).and_then(|_| displacement(s, out))?,
+        "slip-stick" => single_solve(name, s).and_then(|_| slip_stick(s, out))?,
+        "slip-panel" => slip_panel(s, out, cache)?,
+        _ => slip_figure(name, s, out, cache)?,
     };
     Ok(FigureReport {
         name: name.into(),
@@ -227,6 +209,14 @@ pub fn index_markdown(index: &FigureIndex) -> String {
         index.grid[1],
         if index.quick { " (quick sweeps)" } else { "" }
     );
+    if index.scene.is_some() || !index.sets.is_empty() || index.range.is_some() {
+        s += &format!(
+            "Re-aimed: scene `{}`, --set `{}`, --range `{}`.\n\n",
+            index.scene.as_deref().unwrap_or("(paper)"),
+            index.sets.join(" "),
+            index.range.as_deref().unwrap_or("-")
+        );
+    }
     s += "| figure | quantity | ours | paper | note |\n|---|---|---|---|---|\n";
     for f in &index.figures {
         for c in &f.comparisons {
@@ -272,71 +262,137 @@ fn written(files: &[&str], plot_stems: &[&str]) -> Vec<String> {
 type Output = (Vec<String>, Vec<Comparison>);
 
 /// Section 2: `T_max / T0` against `b/a` on `[-pi/4, pi/4]`, `mu = 1/2`, by the membrane
-/// solver, beside the closed form `exp(2 mu atan(b/a))` (eq. PrismEqnPlot).
+/// solver, beside the closed form `exp(2 mu atan(b/a))` (eq. PrismEqnPlot). Re-aimed by a scene
+/// (any obstacle, loads, model) and by `--range` (any key: the ratio against that key).
 fn tension_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let n = s.steps(41, 11);
-    let mut scene = Scene::default();
-    scene.friction.mu = 0.5;
-    scene.membrane.theta0 = -FRAC_PI_4;
-    scene.membrane.theta_max = FRAC_PI_4;
-    let a = scene.obstacle.a;
-    let (mut ba, mut ratio, mut closed) = (vec![], vec![], vec![]);
-    for i in 0..n {
-        let r = 0.5 + i as f64 / (n - 1) as f64;
-        scene.obstacle.b = r * a;
-        ba.push(r);
+    let defaults = [
+        "friction.mu=0.5".to_owned(),
+        format!("membrane.theta0={}", -FRAC_PI_4),
+        format!("membrane.theta_max={FRAC_PI_4}"),
+    ];
+    let base = s.scene_with(&defaults)?;
+    let a = base.obstacle.a;
+    let steps = s.steps(41, 11);
+    let (key, values) = s.sweep("obstacle.b", (0.5 * a, 1.5 * a), steps);
+    // The paper's axis b/a and closed form hold on the ellipse over [-pi/4, pi/4] only.
+    let paper_axis = key == "obstacle.b"
+        && base.obstacle.shape == "ellipse"
+        && base.membrane.theta0 == -FRAC_PI_4
+        && base.membrane.theta_max == FRAC_PI_4
+        && !tension::has_extra_loads(&base)
+        && base.loads.membrane().weight_per_length() == 0.0
+        && base.loads.membrane().speed_tension() == 0.0;
+    let (x_label, x_scale) = if key == "obstacle.b" {
+        ("b/a", 1.0 / a)
+    } else {
+        (key.as_str(), 1.0)
+    };
+    let (mut xs, mut ratio) = (vec![], vec![]);
+    for &v in &values {
+        let scene = base.with_raw(&key, &v.to_string(), "--range")?;
+        xs.push(v * x_scale);
         ratio.push(tension::report(&scene)?.tension_ratio);
-        closed.push((2.0 * 0.5 * r.atan()).exp());
     }
-    let table = Table::new()
-        .f64("b_over_a", ba.clone())
-        .f64("tension_ratio", ratio.clone())
-        .f64("closed_form", closed.clone());
-    out.write_csv("tension-ratio.csv", &table)?;
-    let plot = LinePlot::new("Membrane tension ratio on [-pi/4, pi/4], mu = 1/2")
-        .x_label("b/a")
-        .y_label("T_max / T0")
-        .series(Series::line(
-            "capstan tension (solver)",
-            ba.clone(),
-            ratio.clone(),
-        ))
-        .series(Series::markers(
+    let mu = base.friction.mu;
+    let closed: Vec<f64> = xs.iter().map(|r| (2.0 * mu * r.atan()).exp()).collect();
+    let mut table = Table::new()
+        .f64("value", values.clone())
+        .f64(
+            if key == "obstacle.b" { "b_over_a" } else { "x" },
+            xs.clone(),
+        )
+        .f64("tension_ratio", ratio.clone());
+    let mut plot = LinePlot::new(format!(
+        "Membrane tension ratio on [{:.4}, {:.4}], mu = {mu}",
+        base.membrane.theta0, base.membrane.theta_max
+    ))
+    .x_label(x_label)
+    .y_label("T_max / T0")
+    .series(Series::line(
+        "capstan tension (solver)",
+        xs.clone(),
+        ratio.clone(),
+    ));
+    if paper_axis {
+        table = table.f64("closed_form", closed.clone());
+        plot = plot.series(Series::markers(
             "exp(2 mu atan(b/a))",
-            ba.clone(),
+            xs.clone(),
             closed.clone(),
         ));
+    }
+    out.write_csv("tension-ratio.csv", &table)?;
     out.write_plot("tension-ratio", &plot)?;
-    let mid = n / 2;
+    let files = written(&["tension-ratio.csv"], &["tension-ratio"]);
+    let n = xs.len();
+    let span = row(
+        &format!(
+            "tension ratio over {x_label} in [{:.4}, {:.4}]",
+            xs[0],
+            xs[n - 1]
+        ),
+        format!("{:.4} .. {:.4}", ratio[0], ratio[n - 1]),
+        if paper_axis {
+            "increasing (plot only)"
+        } else {
+            "-"
+        },
+        "membrane solver",
+    );
+    if !paper_axis {
+        return Ok((files, vec![span]));
+    }
     let err = ratio
         .iter()
         .zip(&closed)
         .map(|(x, y)| ((x - y) / y).abs())
         .fold(0.0f64, f64::max);
-    let files = written(&["tension-ratio.csv"], &["tension-ratio"]);
+    let at_one = xs
+        .iter()
+        .position(|&x| (x - 1.0).abs() < 1e-12)
+        .map_or("-".to_owned(), |i| format!("{:.6}", ratio[i]));
     Ok((
         files,
         vec![
             row(
                 "tension ratio at b/a = 1",
-                format!("{:.6}", ratio[mid]),
+                at_one,
                 "exp(pi/4) = 2.193",
                 "membrane solver",
             ),
-            row(
-                "tension ratio over b/a in [0.5, 1.5]",
-                format!("{:.4} .. {:.4}", ratio[0], ratio[n - 1]),
-                "increasing (plot only)",
-                &format!("max relative difference to the closed form {err:.1e}"),
-            ),
+            Comparison {
+                note: format!("max relative difference to the closed form {err:.1e}"),
+                ..span
+            },
         ],
     ))
 }
 
+/// `--range` has no meaning for a figure of one solve.
+fn single_solve(name: &str, s: &FigureSettings) -> Result<(), CliError> {
+    match &s.range {
+        Some(r) => Err(CliError::Scene {
+            origin: "--range".into(),
+            message: format!(
+                "figure `{name}` draws one solve; `--range {}` applies to tension-ratio, slip-ratio, slip-ba, slip-thickness, slip-poisson, young and slip-panel (use --set {}=VALUE here)",
+                r.key, r.key
+            ),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The scene's solve at `loads.tau_max = tau_max` (the paper's Figs. Oden1Eg1, Oden1Eg2;
+/// a scene file keeps its own `loads.tau_max`).
 fn solve_at(s: &FigureSettings, tau_max: f64) -> Result<contact::Solved, CliError> {
-    let mut scene = s.scene();
-    scene.loads.tau_max = tau_max;
-    Ok(contact::solve(&scene)?.1)
+    let scene = s.scene_with(&[format!("loads.tau_max={tau_max}")])?;
+    match contact::solve(&scene)?.1 {
+        contact::ContactRun::Plane(solved) => Ok(solved),
+        contact::ContactRun::Solid { .. } => Err(CliError::Scene {
+            origin: "body.dimension".into(),
+            message: "the paper's figures are of the plane-strain body (body.dimension = 2)".into(),
+        }),
+    }
 }
 
 /// Section 3, tau_max = 1: the displacement field on the body.
@@ -436,106 +492,205 @@ fn slip_stick(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
     ))
 }
 
-/// A figure of Slip against one scene key: the sweep, its table (`<stem>.csv`, `<stem>.json`)
-/// and its plot.
-struct SlipSweep<'a> {
-    /// File stem.
-    stem: &'a str,
-    /// The swept scene key.
-    key: &'a str,
-    /// First and last value.
+/// One Slip figure of the paper: its swept key, range, points (full, quick), plotted
+/// abscissa per unit of the key, label, and the paper's statement.
+struct SlipFigure {
+    key: &'static str,
     range: (f64, f64),
-    /// Points of the full and of the quick figure.
     steps: (usize, usize),
-    /// Plotted abscissa per unit of the swept value.
     x_scale: f64,
-    /// Abscissa label (its first word names the CSV column).
-    x_label: &'a str,
-    /// Plot title.
-    title: &'a str,
+    x_label: &'static str,
+    paper: &'static str,
 }
 
-impl<'a> SlipSweep<'a> {
-    /// `steps.0` (quick: `steps.1`) values of `key` from `range.0` to `range.1`, plotted
-    /// against the value itself with the key as label until [`SlipSweep::axis`] says otherwise.
-    fn new(stem: &'a str, key: &'a str, range: (f64, f64), steps: (usize, usize)) -> Self {
-        Self {
-            stem,
-            key,
-            range,
-            steps,
-            x_scale: 1.0,
-            x_label: key,
-            title: key,
-        }
-    }
-
-    /// The plotted abscissa `x_scale * value` with its label, and the plot's title.
-    fn axis(self, x_label: &'a str, x_scale: f64, title: &'a str) -> Self {
-        Self {
-            x_label,
-            x_scale,
-            title,
-            ..self
-        }
-    }
-
-    /// Runs the sweep and writes its files: the report and the files' names.
-    fn run(
-        &self,
-        s: &FigureSettings,
-        out: &OutputDir,
-    ) -> Result<(sweep::SweepReport, Vec<String>), CliError> {
-        let values = sweep::values(
-            self.range.0,
-            self.range.1,
-            s.steps(self.steps.0, self.steps.1),
-        )?;
-        let r = sweep::report(None, &s.sets(), self.key, &values)?;
-        let files = self.write(out, &r)?;
-        Ok((r, files))
-    }
-
-    fn write(&self, out: &OutputDir, r: &sweep::SweepReport) -> Result<Vec<String>, CliError> {
-        let (stem, x_label) = (self.stem, self.x_label);
-        let ok: Vec<&sweep::SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
-        let xs: Vec<f64> = ok.iter().map(|p| p.value * self.x_scale).collect();
-        let ys: Vec<f64> = ok.iter().map(|p| p.slip_fraction.unwrap_or(0.0)).collect();
-        let table = Table::new()
-            .f64("value", ok.iter().map(|p| p.value).collect::<Vec<_>>())
-            .f64(x_label.split(' ').next().unwrap_or("x"), xs.clone())
-            .f64("slip_fraction", ys.clone())
-            .f64(
-                "max_v2",
-                ok.iter()
-                    .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
-                    .collect::<Vec<_>>(),
-            )
-            .text("status", ok.iter().map(|p| p.status.name()));
-        out.write_csv(&format!("{stem}.csv"), &table)?;
-        out.write_json(&format!("{stem}.json"), r)?;
-        let plot = LinePlot::new(self.title)
-            .x_label(x_label)
-            .y_label("Slip (mean of -1/0/+1 states)")
-            .series(Series::line("regularised Coulomb", xs, ys).with_markers());
-        out.write_plot(stem, &plot)?;
-        Ok(written(
-            &[&format!("{stem}.csv"), &format!("{stem}.json")],
-            &[stem],
-        ))
-    }
-}
-
-/// Slip against the tension ratio (one factorisation for every ratio), the first ratio with
-/// Slip = 1 and the capstan mu it implies on `[-pi/2, pi/2]`.
-fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let (r, files) = SlipSweep::new("slip-ratio", "loads.tau_max", (1.0, 3.5), (51, 11))
-        .axis(
-            "tension ratio tau_max / tau0",
+/// The paper's Slip figures by name.
+fn slip_figure_of(name: &str) -> SlipFigure {
+    let f = |key, range, steps, x_scale, x_label, paper| SlipFigure {
+        key,
+        range,
+        steps,
+        x_scale,
+        x_label,
+        paper,
+    };
+    match name {
+        "slip-ratio" => f(
+            "loads.tau_max",
+            (1.0, 3.5),
+            (51, 11),
             1.0,
-            "Slip against the tension ratio",
+            "tension ratio tau_max / tau0",
+            "2.75",
+        ),
+        "slip-ba" => f(
+            "obstacle.b",
+            (1.0, 3.0),
+            (11, 5),
+            0.5,
+            "b/a",
+            "decreases as b/a increases",
+        ),
+        "slip-thickness" => f(
+            "body.thickness",
+            (0.5, 1.5),
+            (11, 5),
+            1.0,
+            "h (m)",
+            "decreases as h decreases",
+        ),
+        "slip-poisson" => f(
+            "body.poisson",
+            (0.0, 0.45),
+            (11, 5),
+            1.0,
+            "nu",
+            "decreases slightly as nu increases",
+        ),
+        _ => f(
+            "body.young",
+            (500.0, 1500.0),
+            (5, 3),
+            1.0,
+            "E (Pa)",
+            "71.2 % (constant)",
+        ),
+    }
+}
+
+/// Runs the Slip sweep of figure `name` (re-aimed by the scene and `--range`), writes
+/// `<name>.csv`, `<name>.json` and the plot; returns the report, the plot and the files.
+fn slip_sweep(
+    name: &'static str,
+    s: &FigureSettings,
+    out: &OutputDir,
+) -> Result<(sweep::SweepReport, SlipPlot, Vec<String>), CliError> {
+    let f = slip_figure_of(name);
+    let (key, values) = s.sweep(f.key, f.range, s.steps(f.steps.0, f.steps.1));
+    let (x_label, x_scale) = if s.re_aimed(f.key) {
+        (key.as_str(), 1.0)
+    } else {
+        (f.x_label, f.x_scale)
+    };
+    let sets = s.sets_with(&[]);
+    let r = sweep::report(s.scene.as_deref(), &sets, &key, &values)?;
+    let scene = s.scene_with(&[])?;
+    let ok: Vec<&sweep::SweepPoint> = r.points.iter().filter(|p| p.converged).collect();
+    let xs: Vec<f64> = ok.iter().map(|p| p.value * x_scale).collect();
+    let ys: Vec<f64> = ok.iter().map(|p| p.slip_fraction.unwrap_or(0.0)).collect();
+    let table = Table::new()
+        .f64("value", ok.iter().map(|p| p.value).collect::<Vec<_>>())
+        .f64(x_label.split(' ').next().unwrap_or("x"), xs.clone())
+        .f64("slip_fraction", ys.clone())
+        .f64(
+            "max_v2",
+            ok.iter()
+                .map(|p| p.max_azimuthal_displacement.map_or(0.0, |e| e.value))
+                .collect::<Vec<_>>(),
         )
-        .run(s, out)?;
+        .text("status", ok.iter().map(|p| p.status.name()));
+    out.write_csv(&format!("{name}.csv"), &table)?;
+    out.write_json(&format!("{name}.json"), &r)?;
+    // Slip is a mean over the contact nodes: one node changing state moves it by 1/n2. The
+    // y-axis spans at least 25 such steps, so a one-node change is not drawn as a jump.
+    let quantum = 1.0 / scene.grid.n2 as f64;
+    let plot = LinePlot::new(format!(
+        "Slip against {x_label} (one contact node = {quantum:.4})"
+    ))
+    .x_label(x_label)
+    .y_label("Slip (mean of -1/0/+1 states)")
+    .y_min_span(25.0 * quantum)
+    .series(Series::line("regularised Coulomb", xs.clone(), ys.clone()).with_markers());
+    out.write_plot(name, &plot)?;
+    let files = written(&[&format!("{name}.csv"), &format!("{name}.json")], &[name]);
+    let drawn = SlipPlot {
+        name,
+        plot,
+        x: xs,
+        slip: ys,
+    };
+    Ok((r, drawn, files))
+}
+
+/// A Slip figure: the sweep, and our numbers beside the paper's.
+fn slip_figure(
+    name: &str,
+    s: &FigureSettings,
+    out: &OutputDir,
+    cache: &mut PlotCache,
+) -> Result<Output, CliError> {
+    let name = FIGURES
+        .iter()
+        .map(|f| f.0)
+        .find(|n| *n == name)
+        .unwrap_or("young");
+    let (r, plot, files) = slip_sweep(name, s, out)?;
+    cache.retain(|p| p.name != name);
+    cache.push(plot);
+    let f = slip_figure_of(name);
+    let rows = match name {
+        "slip-ratio" => slip_ratio_rows(&r, s)?,
+        "young" => young_rows(&r),
+        _ => {
+            let x_scale = if s.re_aimed(f.key) { 1.0 } else { f.x_scale };
+            vec![trend_row(&r, x_scale, f.x_label, f.paper)]
+        }
+    };
+    Ok((files, rows))
+}
+
+/// Fig. fullset: the four Slip plots (ratio, b/a, h, nu) as one 2 x 2 panel, from this run's
+/// plots when `all` drew them, else by running the four sweeps.
+fn slip_panel(
+    s: &FigureSettings,
+    out: &OutputDir,
+    cache: &mut PlotCache,
+) -> Result<Output, CliError> {
+    let mut drawn = Vec::new();
+    let mut files = Vec::new();
+    for name in PANEL {
+        match cache.iter().find(|p| p.name == name) {
+            Some(p) => drawn.push(p.clone()),
+            None => {
+                let (_, p, f) = slip_sweep(name, s, out)?;
+                files.extend(f);
+                drawn.push(p);
+            }
+        }
+    }
+    let column =
+        |f: fn(&SlipPlot) -> &Vec<f64>| drawn.iter().flat_map(f).copied().collect::<Vec<_>>();
+    let table = Table::new()
+        .text(
+            "panel",
+            drawn.iter().flat_map(|p| p.x.iter().map(|_| p.name)),
+        )
+        .f64("x", column(|p| &p.x))
+        .f64("slip_fraction", column(|p| &p.slip));
+    out.write_csv("slip-panel.csv", &table)?;
+    let plots = drawn
+        .iter()
+        .zip(["(a) ", "(b) ", "(c) ", "(d) "])
+        .map(|(p, tag)| p.plot.clone().prefix_title(tag).size(700, 500))
+        .collect();
+    out.write_plot("slip-panel", &Panel::new(plots, 2))?;
+    files.extend(written(&["slip-panel.csv"], &["slip-panel"]));
+    Ok((
+        files,
+        vec![row(
+            "panels",
+            "(a) ratio, (b) b/a, (c) h, (d) nu".into(),
+            "Fig. fullset (a)-(d)",
+            "one 2 x 2 figure; each panel as its own figure too",
+        )],
+    ))
+}
+
+/// The first ratio with Slip = 1 (or without a static solution) and the bisected threshold
+/// with the capstan mu it implies.
+fn slip_ratio_rows(
+    r: &sweep::SweepReport,
+    s: &FigureSettings,
+) -> Result<Vec<Comparison>, CliError> {
     let full = r
         .points
         .iter()
@@ -555,7 +710,7 @@ fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
                 "first sweep point without a static solution"
             },
         ),
-        None => ("not reached in [1, 3.5]".into(), ""),
+        None => ("not reached in the sweep".into(), ""),
     };
     let mut rows = vec![row(
         "full slip above ratio (sweep)",
@@ -563,9 +718,8 @@ fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
         "2.75",
         sweep_note,
     )];
-    // The bisected threshold and the capstan mu it implies.
     let threshold = "full-slip threshold ratio (bisection)";
-    match crate::commands::threshold::report(&s.scene()) {
+    match crate::commands::threshold::report(&s.scene_with(&[])?) {
         Ok(t) => {
             let note = if t.no_equilibrium_beyond {
                 "no static equilibrium beyond"
@@ -590,23 +744,11 @@ fn slip_ratio(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
             rows.push(row(threshold, "failed".into(), "2.75", &note));
         }
     }
-    Ok((files, rows))
+    Ok(rows)
 }
 
-/// Slip against one scene key (geometry or material: one model per point).
-fn slip_param(
-    s: &FigureSettings,
-    out: &OutputDir,
-    stem: &str,
-    key: &str,
-    range: (f64, f64),
-    x_label: &str,
-    x_scale: f64,
-) -> Result<Output, CliError> {
-    let title = format!("Slip against {x_label}, tau_max = 2");
-    let (r, files) = SlipSweep::new(stem, key, range, (11, 5))
-        .axis(x_label, x_scale, &title)
-        .run(s, out)?;
+/// Slip at the first and last converged point of a sweep.
+fn trend_row(r: &sweep::SweepReport, x_scale: f64, x_label: &str, paper: &str) -> Comparison {
     let ok: Vec<(f64, f64)> = r
         .points
         .iter()
@@ -623,21 +765,13 @@ fn slip_param(
         ),
         _ => "no converged points".into(),
     };
-    let paper = match stem {
-        "slip-ba" => "decreases as b/a increases",
-        "slip-thickness" => "decreases as h decreases",
-        _ => "decreases slightly as nu increases",
-    };
     let failed = r.points.iter().filter(|p| !p.converged).count();
     let note = format!("{} points, {failed} without a solution", r.points.len());
-    Ok((files, vec![row("Slip trend", trend, paper, &note)]))
+    row("Slip trend", trend, paper, &note)
 }
 
 /// Slip for E in [500, 1500]: the paper finds a constant 71.2 %.
-fn young(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    let (r, files) = SlipSweep::new("young", "body.young", (500.0, 1500.0), (5, 3))
-        .axis("E (Pa)", 1.0, "Slip against Young's modulus, tau_max = 2")
-        .run(s, out)?;
+fn young_rows(r: &sweep::SweepReport) -> Vec<Comparison> {
     let slips: Vec<f64> = r.points.iter().filter_map(|p| p.slip_fraction).collect();
     let (lo, hi) = slips
         .iter()
@@ -645,14 +779,10 @@ fn young(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
             (a.min(x), b.max(x))
         });
     let ours = format!("{:.1} % .. {:.1} %", 100.0 * lo, 100.0 * hi);
-    let note = "Slip = mean of the -1/0/+1 node states";
-    Ok((
-        files,
-        vec![row(
-            "Slip for E in [500, 1500]",
-            ours,
-            "71.2 % (constant)",
-            note,
-        )],
-    ))
+    vec![row(
+        "Slip for E in [500, 1500]",
+        ours,
+        "71.2 % (constant)",
+        "Slip = mean of the -1/0/+1 node states",
+    )]
 }

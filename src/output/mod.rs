@@ -28,6 +28,6 @@ pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_HEXAHEDRON, VTK_QUAD, Vtu,
 mod plot;
 
 pub use plot::{
-    ColourMap, Legend, LinePlot, Plot, Scale, Series, StateStrip, register_fonts, render_png,
-    render_svg, write_plot,
+    ColourMap, Legend, LinePlot, Panel, Plot, Scale, Series, StateStrip, register_fonts,
+    render_png, render_svg, write_plot,
 };

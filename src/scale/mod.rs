@@ -16,6 +16,8 @@ mod error;
 mod matrix_market;
 #[cfg(feature = "mpi")]
 pub mod mpi;
+#[cfg(feature = "petsc")]
+pub mod petsc;
 mod scene_hash;
 mod shard;
 
@@ -23,3 +25,15 @@ pub use error::ShardError;
 pub use matrix_market::{write_matrix_market_array, write_matrix_market_coordinate};
 pub use scene_hash::{Fnv1a64, sweep_hash};
 pub use shard::{ShardFile, ShardSpec, merge, read_parts, run_shard, shard_file_name};
+
+/// Whether this build has the PETSc backend (`solver.linear = "petsc"`, cargo feature `petsc`).
+pub const PETSC_ENABLED: bool = cfg!(feature = "petsc");
+
+/// The PETSc backend of the full-system Newton ([`capstan_elasticity::contact::FullSystemSettings::external`]);
+/// `None` in a build without the feature `petsc`.
+pub fn petsc_backend() -> Option<capstan_elasticity::solvers::ExternalLinear> {
+    #[cfg(feature = "petsc")]
+    return Some(capstan_petsc::EXTERNAL);
+    #[cfg(not(feature = "petsc"))]
+    None
+}

@@ -221,11 +221,23 @@ pub fn known_keys() -> Vec<String> {
     let mut keys = vec![
         "membrane.t_max".to_string(),
         "solver.max_sweeps".to_string(),
+        "solver.relaxation".to_string(),
+        "solver.petsc_options".to_string(),
         "discretisation.grading".to_string(),
         "discretisation.layers".to_string(),
+        "loads.f_t".to_string(),
+        "loads.f_n".to_string(),
     ];
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
+    }
+    for obstacle in capstan_geometry::registry::registry() {
+        keys.extend(
+            obstacle
+                .parameters
+                .iter()
+                .map(|p| format!("obstacle.{}", p.key)),
+        );
     }
     for (section, value) in &table {
         if let toml::Value::Table(t) = value {

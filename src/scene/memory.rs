@@ -17,7 +17,8 @@ pub(super) const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 /// # Math
 /// ```text
 /// N     = 2 n2 n3                          unknowns (plane strain)
-/// bytes = 190 N log2(N)  (x2 for fem-q2)   sparse system, Jacobian and multifrontal LU
+/// bytes = 190 w N log2(N)                 sparse system (w: the method's memory_width,
+///                                          2 for fem-q2, 4 for fem-qp), Jacobian and multifrontal LU
 ///       + 2^27                             factors (nested dissection): fits the measured
 ///                                          VmHWM of `capstan contact` (fd, default scene)
 ///                                          from above: full-newton 1.12 GB / 4.70 GB /
@@ -33,12 +34,11 @@ pub(super) const EXPRESSION_CHECK_SAMPLES: usize = 1025;
 pub fn memory_estimate(n2: usize, n3: usize, method: DiscretisationMethod, condensed: bool) -> f64 {
     let (n2, n3) = (n2 as f64, n3 as f64);
     let unknowns = 2.0 * n2 * n3;
-    let width = match method {
-        DiscretisationMethod::FemQ2 => 2.0,
-        // wider element couplings; the fill of the element nested dissection grows ~ p
-        DiscretisationMethod::FemQp => 4.0,
-        _ => 1.0,
-    };
+    // the method's own factor (fem-q2 2, fem-qp 4: wider element couplings, the fill of the
+    // element nested dissection grows ~ p); 1 for a method the registry no longer builds
+    let width = method
+        .scheme(&Default::default())
+        .map_or(1.0, |s| s.memory_width());
     let system =
         MEMORY_BYTES_PER_N_LOG_N * width * unknowns * unknowns.log2().max(1.0) + 134_217_728.0;
     if condensed {
@@ -132,4 +132,57 @@ pub const SOLID_MULTIGRID_BYTES_PER_UNKNOWN: f64 = 12_500.0;
 pub fn solid_multigrid_memory_estimate([n1, n2, n3]: [usize; 3]) -> f64 {
     let n = (3 * n1 * n2 * n3) as f64;
     SOLID_MULTIGRID_BYTES_PER_UNKNOWN * n + 128.0 * 1024.0 * 1024.0
+}
+
+/// Bytes per unknown that every rank holds with `solver.linear = "petsc"`: Newton and the
+/// contact bookkeeping run replicated, so each rank keeps the assembled model, the Jacobian on
+/// the extended pattern, the element matrices of the assembly and the gathered solution
+/// (see [`petsc_memory_estimate_per_rank`] for the fit).
+pub const PETSC_REPLICATED_BYTES_PER_UNKNOWN: f64 = 10_000.0;
+
+/// Bytes per unknown that PETSc splits over the ranks: its AIJ copy of the Jacobian rows
+/// (81 entries a row in 3-D Q1, 12 bytes an entry), the GAMG hierarchy and the GMRES(100)
+/// Krylov vectors (see [`petsc_memory_estimate_per_rank`] for the fit).
+pub const PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN: f64 = 1_500.0;
+
+/// The peak memory of one rank of a full-system solve of `unknowns` unknowns with
+/// `solver.linear = "petsc"` on `ranks` MPI ranks, bytes.
+///
+/// # Math
+/// ```text
+/// bytes(N, K) = PETSC_REPLICATED_BYTES_PER_UNKNOWN N
+///             + PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN N / K  + 2^28   (PETSc and MPI themselves)
+/// ```
+/// The replicated term does not shrink with `K`: the first version distributes the linear
+/// algebra only. Fitted above the per-rank peaks (maximum resident set) of the 3-D ellipse at
+/// 111,843 unknowns (Q1, 17 x 129 x 17): 1,319 MiB on one rank, 1,267 MiB on each of two,
+/// i.e. 9.0 KB replicated and 0.97 KB distributed per unknown above the 256 MiB; the
+/// constants (10 KB, 1.5 KB) lie 12 % and 11 % above the two peaks. Used for the plane-strain
+/// body too, where a row has 18 entries instead of 81 (an over-estimate there).
+pub fn petsc_memory_estimate_per_rank(unknowns: usize, ranks: usize) -> f64 {
+    let n = unknowns as f64;
+    PETSC_REPLICATED_BYTES_PER_UNKNOWN * n
+        + PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN * n / ranks.max(1) as f64
+        + 268_435_456.0
+}
+
+/// The MPI ranks of this run and those of them on this node, from the launcher's environment
+/// (Open MPI's `OMPI_COMM_WORLD_SIZE`, `OMPI_COMM_WORLD_LOCAL_SIZE`; Slurm's `SLURM_NTASKS`,
+/// `SLURM_NTASKS_PER_NODE`); `(1, 1)` outside `mpirun`.
+pub fn mpi_ranks() -> (usize, usize) {
+    let var = |names: &[&str]| {
+        names
+            .iter()
+            .find_map(|n| std::env::var(n).ok()?.trim().parse::<usize>().ok())
+            .filter(|&k| k > 0)
+    };
+    let ranks = var(&["OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"]).unwrap_or(1);
+    let local = var(&[
+        "OMPI_COMM_WORLD_LOCAL_SIZE",
+        "MPI_LOCALNRANKS",
+        "SLURM_NTASKS_PER_NODE",
+    ])
+    .unwrap_or(ranks)
+    .min(ranks);
+    (ranks, local)
 }

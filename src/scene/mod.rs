@@ -15,11 +15,9 @@ use capstan_elasticity::solid::SideFaces;
 use capstan_elasticity::solvers::LinearBackend;
 use capstan_friction::membrane::MembraneLoads;
 use capstan_friction::{AnyFrictionParams, FrictionLawKind, FrictionSettings};
+use capstan_geometry::GeometryError;
 use capstan_geometry::expression::Expression;
-use capstan_geometry::{
-    CircularCylinder, EllipticalPrism, ExpressionProfile, GeneralCone, GeneralPrism, Obstacle,
-    RightCircularCone,
-};
+use capstan_geometry::{Obstacle, ObstacleSettings};
 use serde::{Deserialize, Serialize};
 
 use crate::error::CliError;
@@ -81,28 +79,18 @@ impl Default for OutputSpec {
     }
 }
 
-/// The obstacle's shape (`obstacle.shape`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Shape {
-    /// Circular cylinder of `obstacle.radius`.
-    Cylinder,
-    /// Elliptical prism `(x1, a sin x2, b cos x2)` with `obstacle.a`, `obstacle.b`.
-    Ellipse,
-    /// General prism `(x1, u(x2), v(x2))` from expressions `obstacle.u`, `obstacle.v`.
-    Prism,
-    /// Right circular cone of half-aperture `obstacle.half_angle`.
-    CircularCone,
-    /// General cone `x1 (1, ubar(x2), vbar(x2))` from `obstacle.ubar`, `obstacle.vbar`.
-    Cone,
-}
-
 /// `[obstacle]`.
+///
+/// `shape` names a registered obstacle ([`capstan_geometry::registry`]); the fields below are
+/// the parameters of the paper's obstacles, and any other key of the table (a parameter of an
+/// obstacle registered elsewhere, a number or an expression) is in `extra`. Unknown keys are
+/// refused by the scene's key check ([`known_keys`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[serde(default)]
 pub struct ObstacleSpec {
-    /// `cylinder | ellipse | prism | circular-cone | cone`.
-    pub shape: Shape,
+    /// A registered obstacle: `cylinder | ellipse | prism | circular-cone | cone` or one
+    /// registered at run time.
+    pub shape: String,
     /// Cylinder radius.
     pub radius: f64,
     /// Ellipse horizontal semi-axis.
@@ -119,12 +107,15 @@ pub struct ObstacleSpec {
     pub ubar: String,
     /// Cone profile `vbar(t)`.
     pub vbar: String,
+    /// Parameters of other registered obstacles, by key (numbers or expressions).
+    #[serde(flatten)]
+    pub extra: std::collections::BTreeMap<String, toml::Value>,
 }
 
 impl Default for ObstacleSpec {
     fn default() -> Self {
         Self {
-            shape: Shape::Ellipse,
+            shape: "ellipse".into(),
             radius: 2.0,
             a: 2.0,
             b: 2.0,
@@ -133,31 +124,55 @@ impl Default for ObstacleSpec {
             v: "2*cos(t)".into(),
             ubar: "0.5*sin(t)".into(),
             vbar: "0.5*cos(t)".into(),
+            extra: Default::default(),
         }
     }
 }
 
 impl ObstacleSpec {
-    /// Builds the obstacle, validating its parameters.
+    /// The values every registered obstacle draws its parameters from.
     ///
     /// # Errors
-    /// [`CliError::Geometry`] naming the bad field.
+    /// [`CliError::Scene`] naming an `extra` key that is neither a number nor a string.
+    pub fn settings(&self) -> Result<ObstacleSettings, CliError> {
+        use capstan_geometry::registry::ParameterValue::{Expression, Number};
+        let mut s = ObstacleSettings::new()
+            .with("radius", Number(self.radius))
+            .with("a", Number(self.a))
+            .with("b", Number(self.b))
+            .with("half_angle", Number(self.half_angle))
+            .with("u", Expression(self.u.clone()))
+            .with("v", Expression(self.v.clone()))
+            .with("ubar", Expression(self.ubar.clone()))
+            .with("vbar", Expression(self.vbar.clone()));
+        for (key, value) in &self.extra {
+            let value = match value {
+                toml::Value::Float(x) => Number(*x),
+                toml::Value::Integer(i) => Number(*i as f64),
+                toml::Value::String(e) => Expression(e.clone()),
+                other => {
+                    return Err(CliError::Scene {
+                        origin: format!("obstacle.{key}"),
+                        message: format!(
+                            "`obstacle.{key}` = {other} must be a number or an expression (a string)"
+                        ),
+                    });
+                }
+            };
+            s.insert(key, value);
+        }
+        Ok(s)
+    }
+
+    /// Builds the obstacle `shape` names, validating its parameters.
+    ///
+    /// # Errors
+    /// [`CliError::Geometry`] naming the bad field (or listing the registered shapes).
     pub fn build(&self) -> Result<Obstacle, CliError> {
-        Ok(match self.shape {
-            Shape::Cylinder => Obstacle::Cylinder(CircularCylinder::new(self.radius)?),
-            Shape::Ellipse => Obstacle::Ellipse(EllipticalPrism::new(self.a, self.b)?),
-            Shape::Prism => Obstacle::Prism(GeneralPrism::new(ExpressionProfile::parse_named(
-                &self.u,
-                &self.v,
-                ["obstacle.u", "obstacle.v"],
-            )?)),
-            Shape::CircularCone => Obstacle::CircularCone(RightCircularCone::new(self.half_angle)?),
-            Shape::Cone => Obstacle::Cone(GeneralCone::new(ExpressionProfile::parse_named(
-                &self.ubar,
-                &self.vbar,
-                ["obstacle.ubar", "obstacle.vbar"],
-            )?)),
-        })
+        Ok(capstan_geometry::registry::build(
+            &self.shape,
+            &self.settings()?,
+        )?)
     }
 }
 
@@ -247,6 +262,37 @@ pub struct MembraneSpec {
     /// Work budget: Newton iterations of the membrane displacement model
     /// (`infer-mu --model membrane`), default 100.
     pub max_newton_iterations: usize,
+    /// `finite` (default: Theorem 1, tension `T` of a membrane of width `loads.width` and
+    /// thickness `loads.thickness`) | `infinite` (Corollary 1: the tensile stress `tau` of a
+    /// membrane infinitely long in `x1`, any Poisson's ratio; `membrane.t0` is `tau0`, the loads
+    /// are volume densities, `loads.width` and `loads.thickness` are not used).
+    pub model: MembraneModel,
+    /// How a steady belt speed `loads.speed` enters: `corrected` (default: the acceleration is
+    /// normal to the path, only the normal load changes) | `paper` (the printed transform, which
+    /// also adds `g_r2 = -rho_l Gamma^2_22 V^2`; erratum 4).
+    pub belt_speed_rule: BeltSpeedRule,
+}
+
+/// `membrane.model`: which of the paper's membrane results a scene computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MembraneModel {
+    /// Theorem 1: a membrane of finite width with zero Poisson's ratio; tension `T` (force).
+    #[default]
+    Finite,
+    /// Corollary 1: infinitely long in `x1`, any Poisson's ratio; tensile stress `tau`.
+    Infinite,
+}
+
+/// `membrane.belt_speed_rule`: the steady-speed transform (erratum 4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BeltSpeedRule {
+    /// Only the normal load changes: `g_r3 -> g_r3 + 2 rho_l H V^2`.
+    #[default]
+    Corrected,
+    /// The paper's printed rule: also `g_r2 -> g_r2 - rho_l Gamma^2_22 V^2`.
+    Paper,
 }
 
 impl MembraneSpec {
@@ -277,6 +323,8 @@ impl Default for MembraneSpec {
             max_root_iterations: capstan_friction::membrane::MembraneBudget::default()
                 .max_root_iterations,
             max_newton_iterations: 100,
+            model: MembraneModel::default(),
+            belt_speed_rule: BeltSpeedRule::default(),
         }
     }
 }
@@ -299,6 +347,15 @@ pub struct LoadsSpec {
     pub tau0: f64,
     /// End traction at `x2 = theta_max` of the thick body.
     pub tau_max: f64,
+    /// Tangential force density `f_t(t)` on the membrane, an expression in `t = x2 = theta`:
+    /// force per unit length along the unit tangent (towards `theta_max`); a volume density
+    /// with `membrane.model = "infinite"`. Adds to gravity and speed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f_t: Option<String>,
+    /// Normal force density `f_n(t)` on the membrane, an expression in `t`: force per unit
+    /// length along the outward normal (away from the obstacle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f_n: Option<String>,
 }
 
 impl Default for LoadsSpec {
@@ -320,11 +377,24 @@ impl Default for LoadsSpec {
             speed,
             tau0: 1.0,
             tau_max: 2.0,
+            f_t: None,
+            f_n: None,
         }
     }
 }
 
 impl LoadsSpec {
+    /// The load expressions `loads.f_t`, `loads.f_n` (none given: an empty load).
+    ///
+    /// # Errors
+    /// [`capstan_friction::FrictionError::Geometry`] naming `loads.f_t` or `loads.f_n` for
+    /// text that does not parse.
+    pub fn expression_load(
+        &self,
+    ) -> Result<capstan_friction::membrane::ExpressionLoad, capstan_friction::FrictionError> {
+        capstan_friction::membrane::ExpressionLoad::parse(self.f_t.as_deref(), self.f_n.as_deref())
+    }
+
     /// The body forces on the membrane (every key but the thick body's end tractions).
     pub fn membrane(&self) -> MembraneLoads {
         MembraneLoads {
@@ -401,8 +471,9 @@ impl Default for GridSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// `lu | cholesky | jacobi | gauss-seidel | multigrid` (`multigrid`: GMRES with the
-    /// geometric multigrid of the 3-D body, `full-newton` only).
+    /// `lu | cholesky | jacobi | gauss-seidel | multigrid | petsc` (`multigrid`: GMRES with the
+    /// geometric multigrid of the 3-D body, `full-newton` only; `petsc`: PETSc's KSP over the
+    /// MPI ranks of `mpirun`, `full-newton` only, builds with the feature `petsc`).
     pub linear: String,
     /// `newton | jacobi-newton`.
     pub nonlinear: String,
@@ -418,6 +489,18 @@ pub struct SolverSpec {
     /// `"multigrid"`; unset: 10,000 (10^7 for `jacobi-newton`, 500 for `multigrid`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_sweeps: Option<usize>,
+    /// The relaxation weight `w` in `(0, 2)` of the Jacobi / Gauss–Seidel iterations
+    /// (`x += w D^-1 (b - A x)`; `w < 1` damps Jacobi, `w > 1` is SOR): the library's
+    /// `IterativeParams::relaxation`. Unset: 1, and 1/2 for `jacobi-newton`; `1` is the
+    /// paper's undamped Jacobi.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relaxation: Option<f64>,
+    /// PETSc options for `solver.linear = "petsc"`, in PETSc's command-line syntax, over the
+    /// defaults `-ksp_type gmres -ksp_gmres_restart 100 -pc_type gamg -mg_levels_ksp_type
+    /// chebyshev -mg_levels_pc_type sor -ksp_rtol 1e-8 -ksp_max_it 2000` (e.g. `"-ksp_type cg -pc_type gamg"`, or MUMPS:
+    /// `"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps"`); unset: the defaults.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub petsc_options: Option<String>,
 }
 
 impl Default for SolverSpec {
@@ -430,6 +513,8 @@ impl Default for SolverSpec {
             max_continuation_steps: contact.max_continuation_steps,
             min_load_step: contact.min_load_step,
             max_sweeps: None,
+            relaxation: None,
+            petsc_options: None,
         }
     }
 }
@@ -508,6 +593,7 @@ impl DiscretisationSpec {
     }
 }
 
+mod build;
 mod load;
 mod memory;
 #[cfg(test)]
@@ -517,7 +603,8 @@ mod validate;
 pub use load::{Origins, known_keys};
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
-    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, SOLID_BYTES_PER_N_4_3, available_memory,
-    human_bytes, memory_estimate, solid_fill_factor, solid_memory_estimate,
-    solid_multigrid_memory_estimate,
+    MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN,
+    PETSC_REPLICATED_BYTES_PER_UNKNOWN, SOLID_BYTES_PER_N_4_3, available_memory, human_bytes,
+    memory_estimate, mpi_ranks, petsc_memory_estimate_per_rank, solid_fill_factor,
+    solid_memory_estimate, solid_multigrid_memory_estimate,
 };

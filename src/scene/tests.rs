@@ -30,7 +30,7 @@ fn set_overrides_numbers_and_strings() {
         "obstacle.u=2*sin(t) + 0.2*sin(2*t)",
         "friction.mu=0.3",
     ]);
-    assert_eq!(s.obstacle.shape, Shape::Prism);
+    assert_eq!(s.obstacle.shape, "prism");
     assert_eq!(s.obstacle.u, "2*sin(t) + 0.2*sin(2*t)");
     assert_eq!(s.friction.mu, 0.3);
 }
@@ -276,4 +276,41 @@ fn grading_keys_are_refused_outside_their_range_and_off_fem_qp_2d() {
         let e = load_error(&sets);
         assert!(expected.iter().all(|x| e.contains(x)), "{sets:?}: {e}");
     }
+}
+
+#[test]
+fn petsc_is_refused_outside_full_newton_and_without_the_feature() {
+    assert!(known_keys().contains(&"solver.petsc_options".to_string()));
+    let e = load_error(&["solver.linear=petsc"]); // with the default `newton`
+    assert!(
+        e.contains("`solver.linear`") && e.contains("full-newton"),
+        "{e}"
+    );
+    let full = ["solver.linear=petsc", "solver.nonlinear=full-newton"];
+    if crate::scale::PETSC_ENABLED {
+        let s = load(&[&full[..], &["solver.petsc_options=\"-ksp_type cg\""]].concat());
+        assert_eq!(s.solver.petsc_options.as_deref(), Some("-ksp_type cg"));
+    } else {
+        let e = load_error(&full);
+        assert!(e.contains("--features petsc"), "{e}");
+    }
+    // unset options are not written back
+    let text = toml::to_string(&Scene::default()).unwrap();
+    assert!(!text.contains("petsc_options"));
+}
+
+#[test]
+fn petsc_memory_per_rank_shrinks_only_in_its_distributed_part() {
+    let n = 1_048_707;
+    let one = petsc_memory_estimate_per_rank(n, 1);
+    let two = petsc_memory_estimate_per_rank(n, 2);
+    // halving the distributed part only
+    let half = PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN * n as f64 / 2.0;
+    assert!((one - two - half).abs() < 1e-6 * one);
+    // many ranks: the replicated model is the floor
+    let floor = PETSC_REPLICATED_BYTES_PER_UNKNOWN * n as f64;
+    assert!(petsc_memory_estimate_per_rank(n, 1 << 20) > floor);
+    assert!(petsc_memory_estimate_per_rank(n, 0) == one); // no ranks: one
+    let (ranks, local) = mpi_ranks();
+    assert!(ranks >= 1 && (1..=ranks).contains(&local));
 }

@@ -5,8 +5,10 @@ use super::*;
 impl Scene {
     /// Checks every field against its allowed range (see [`Scene::load`], which calls it).
     ///
-    /// Ranges: `obstacle.radius, a, b > 0`; `obstacle.half_angle` in `(0, pi/2)`; the
-    /// shape's expressions parse and are finite with finite first and second derivatives on
+    /// Ranges: `obstacle.shape` is a registered obstacle ([`capstan_geometry::registry`]),
+    /// whose builder checks its own keys (`obstacle.radius, a, b > 0`; `obstacle.half_angle`
+    /// in `(0, pi/2)`; a registered obstacle's ranges); the four expressions parse, and the
+    /// shape's expressions are finite with finite first and second derivatives on
     /// `[membrane.theta0, membrane.theta_max]`; `friction.law` is one of
     /// [`FrictionLawKind::names`],
     /// `friction.mu >= 0`, `friction.eps > 0`; `membrane.t0 > 0`, `theta0 < theta_max`,
@@ -103,40 +105,48 @@ impl Scene {
             "(membrane.theta0, inf)",
             m.theta_max > m.theta0,
         )?;
-        match o.shape {
-            Shape::Cylinder => real("obstacle.radius", o.radius, "(0, inf)", o.radius > 0.0)?,
-            Shape::Ellipse => {
-                real("obstacle.a", o.a, "(0, inf)", o.a > 0.0)?;
-                real("obstacle.b", o.b, "(0, inf)", o.b > 0.0)?;
-            }
-            Shape::CircularCone => real(
-                "obstacle.half_angle",
-                o.half_angle,
-                "(0, pi/2)",
-                o.half_angle > 0.0 && o.half_angle < FRAC_PI_2,
-            )?,
-            Shape::Prism | Shape::Cone => {}
-        }
-        for (key, src) in [
-            ("obstacle.u", &o.u),
-            ("obstacle.v", &o.v),
-            ("obstacle.ubar", &o.ubar),
-            ("obstacle.vbar", &o.vbar),
-        ] {
-            let used = matches!(
-                (o.shape, key),
-                (Shape::Prism, "obstacle.u" | "obstacle.v")
-                    | (Shape::Cone, "obstacle.ubar" | "obstacle.vbar")
-            );
+        let registered = capstan_geometry::registry::find(&o.shape).ok_or_else(|| {
+            bad(
+                "obstacle.shape",
+                format!("{:?}", o.shape),
+                &capstan_geometry::registry::names(),
+            )
+        })?;
+        let settings = o.settings()?;
+        let is_expression = |key: &str| {
+            registered.parameter(key).is_some_and(|p| {
+                matches!(
+                    p.default,
+                    capstan_geometry::registry::ParameterDefault::Expression(_)
+                )
+            })
+        };
+        // The paper's four expressions always parse; the shape's own are C^2 on the wrap.
+        let fixed = [
+            ("u", &o.u),
+            ("v", &o.v),
+            ("ubar", &o.ubar),
+            ("vbar", &o.vbar),
+        ];
+        let extra = registered
+            .parameters
+            .iter()
+            .filter(|p| !fixed.iter().any(|(k, _)| *k == p.key) && is_expression(p.key))
+            .filter_map(|p| match settings.get(p.key) {
+                Some(capstan_geometry::registry::ParameterValue::Expression(e)) => Some((p.key, e)),
+                _ => None,
+            });
+        for (name, src) in fixed.into_iter().chain(extra) {
+            let key = format!("obstacle.{name}");
             let expression = Expression::parse(src).map_err(|e| CliError::Scene {
-                origin: at.locate(key),
+                origin: at.locate(&key),
                 message: format!("`{key}` = {src:?}: {e}"),
             })?;
-            if used {
+            if is_expression(name) {
                 expression
                     .check_finite_on(m.theta0, m.theta_max, EXPRESSION_CHECK_SAMPLES)
                     .map_err(|e| CliError::Scene {
-                        origin: at.locate(key),
+                        origin: at.locate(&key),
                         message: format!(
                             "`{key}` = {src:?} must be finite with finite first and second derivatives on [membrane.theta0, membrane.theta_max] = [{}, {}]: {e}",
                             m.theta0, m.theta_max
@@ -144,6 +154,22 @@ impl Scene {
                     })?;
             }
         }
+        // The obstacle's own ranges: validated by building it.
+        registered.build_from(&settings).map_err(|e| match e {
+            GeometryError::InvalidParameter {
+                field,
+                value,
+                allowed,
+            } => bad(field, value.to_string(), allowed),
+            GeometryError::Expression { field, .. } => CliError::Scene {
+                origin: at.locate(field),
+                message: e.to_string(),
+            },
+            other => CliError::Scene {
+                origin: at.locate("obstacle.shape"),
+                message: other.to_string(),
+            },
+        })?;
         let f = &self.friction;
         if FrictionLawKind::parse(&f.law).is_none() {
             return Err(bad(
@@ -217,6 +243,25 @@ impl Scene {
         real("loads.speed", l.speed, "finite values", true)?;
         real("loads.tau0", l.tau0, "finite values", true)?;
         real("loads.tau_max", l.tau_max, "finite values", true)?;
+        if let Some(w) = self.solver.relaxation {
+            real("solver.relaxation", w, "(0, 2)", w > 0.0 && w < 2.0)?;
+        }
+        for (key, src) in [("loads.f_t", &l.f_t), ("loads.f_n", &l.f_n)] {
+            let Some(src) = src else { continue };
+            let expression = Expression::parse(src).map_err(|e| CliError::Scene {
+                origin: at.locate(key),
+                message: format!("`{key}` = {src:?}: {e}"),
+            })?;
+            expression
+                .check_finite_on(m.theta0, m.theta_max, EXPRESSION_CHECK_SAMPLES)
+                .map_err(|e| CliError::Scene {
+                    origin: at.locate(key),
+                    message: format!(
+                        "`{key}` = {src:?} must be finite with finite first and second derivatives on [membrane.theta0, membrane.theta_max] = [{}, {}]: {e}",
+                        m.theta0, m.theta_max
+                    ),
+                })?;
+        }
         let b = &self.body;
         real("body.thickness", b.thickness, "(0, inf)", b.thickness > 0.0)?;
         real("body.young", b.young, "(0, inf)", b.young > 0.0)?;
@@ -295,11 +340,26 @@ impl Scene {
                     "`multigrid` only with body.dimension = 3 and solver.nonlinear = \"full-newton\" (the geometric multigrid of the 3-D box); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`",
                 ));
             }
+        } else if self.solver.linear == "petsc" {
+            if self.solver.nonlinear != "full-newton" {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`petsc` only with solver.nonlinear = \"full-newton\" (PETSc solves the full-system Newton steps)",
+                ));
+            }
+            if !crate::scale::PETSC_ENABLED {
+                return Err(bad(
+                    "solver.linear",
+                    format!("{:?}", self.solver.linear),
+                    "`petsc` only in a build with the cargo feature `petsc` (cargo build --release --features petsc; needs petsc-dev); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid`",
+                ));
+            }
         } else if self.solver.linear.parse::<LinearBackend>().is_err() {
             return Err(bad(
                 "solver.linear",
                 format!("{:?}", self.solver.linear),
-                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton)",
+                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton), `petsc` (full-newton, feature `petsc`)",
             ));
         }
         if !matches!(
@@ -313,6 +373,23 @@ impl Scene {
             ));
         }
         Ok(())
+    }
+
+    /// `solver.linear = "petsc"`: the ranks of this node together
+    /// ([`petsc_memory_estimate_per_rank`] times the local ranks of [`mpi_ranks`]) against the
+    /// memory available, so a scene is refused only when it does not fit on its ranks.
+    fn check_petsc_memory(&self, at: &Origins, key: &str, unknowns: usize) -> Result<(), CliError> {
+        let (ranks, local) = mpi_ranks();
+        let per_rank = petsc_memory_estimate_per_rank(unknowns, ranks);
+        let need = per_rank * local as f64;
+        check_memory(at, key, need, |have| {
+            format!(
+                "{unknowns} unknowns on {ranks} MPI rank(s), {local} of them on this node, need about {} per rank ({} on this node: the replicated model and Newton, and PETSc's share of the matrix, GAMG and GMRES), more than the {} available (MemAvailable in /proc/meminfo); spread the ranks over more nodes or use a coarser grid",
+                human_bytes(per_rank),
+                human_bytes(need),
+                human_bytes(have)
+            )
+        })
     }
 
     fn validate_grid(&self, at: &Origins) -> Result<(), CliError> {
@@ -347,6 +424,9 @@ impl Scene {
         }
         if self.body.dimension == 3 {
             return self.validate_solid_grid(at);
+        }
+        if self.solver.linear == "petsc" {
+            return self.check_petsc_memory(at, "grid.n2", 2 * g.n2 * g.n3);
         }
         let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
         check_memory(at, "grid.n2", need, |have| {
@@ -393,16 +473,24 @@ impl Scene {
                 ),
             });
         }
+        if self.solver.linear == "petsc" {
+            return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
+        }
         let condensed = self.solver.nonlinear == "newton";
         let multigrid = self.solver.linear == "multigrid";
         let need = if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
         } else {
-            let degree = match self.discretisation.method {
-                DiscretisationMethod::FemQ2 => 2,
-                DiscretisationMethod::FemQp => order,
-                _ => 1,
+            let settings = capstan_elasticity::registration::DiscretisationSettings {
+                order,
+                ..Default::default()
             };
+            let degree = self
+                .discretisation
+                .method
+                .scheme(&settings)
+                .and_then(|s| s.solid_element())
+                .map_or(1, |e| e.degree());
             solid_memory_estimate([g.n1, g.n2, g.n3], condensed, degree)
         };
         check_memory(at, "grid.n1", need, |have| {

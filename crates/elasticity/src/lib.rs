@@ -1,6 +1,8 @@
-//! Curvilinear linear elasticity for capstan: the plane-strain Navier operator of a thick
-//! body over a rigid prism, discretised by second-order finite differences on the
-//! `(x2, x3)` rectangle `[theta0, theta1] x [0, h]` of a shell chart.
+//! Curvilinear linear elasticity for capstan: thick bodies of either dimension over any
+//! obstacle surface (the plane-strain body on a prism, the 3-D body on any chart), their
+//! discretisations (a registry: finite differences, Q1/Q2 and Qp finite elements, or one
+//! registered from outside), and the frictional contact problem on the face `x3 = 0` with
+//! its solvers ([`contact`]).
 //!
 //! # Quick start
 //! ```
@@ -38,25 +40,40 @@
 //! nabla_i T^i_j = (1/sqrt(g)) d_i (sqrt(g) T^i_j) - Gamma^k_ij T^i_k
 //! nabla_k v_l = g_ln (d_k v^n + Gamma^n_km v^m)
 //! ```
-//! Plane strain: `d_1 = 0`, `v^1 = 0`; unknowns are the contravariant `v^2` (radians on an
-//! angular chart) and `v^3` (length). Paper indices 1, 2, 3 are array indices 0, 1, 2.
+//! on the shell chart `Theta = sigma + x3 N` of the obstacle surface. Plane strain: `d_1 = 0`,
+//! `v^1 = 0`; unknowns are the contravariant `v^2` (radians on an angular chart) and `v^3`
+//! (length). Paper indices 1, 2, 3 are array indices 0, 1, 2.
 //!
-//! # Status
+//! # Contents
+//! - Bodies: [`contact::ThickBody`] (plane strain on any prism surface),
+//!   [`solid::SolidBody`] (3-D on any surface), and [`contact::Body`], one description for
+//!   both with the dimension as data ([`contact::Body::model`] is the one 2-D/3-D fork).
+//! - Discretisations: the [`Discretisation`] trait of plane-strain operators (dof numbering,
+//!   assembly into a [`LinearSystem`] whose pattern is built once, contact rows
+//!   [`ContactNode`], output [`NodalFields`]) and the [`registry`] that names them in scenes
+//!   (`fd` [`FiniteDifferenceNavier`], `fem-q1`/`fem-q2`
+//!   [`finite_element::FiniteElementNavier`], `fem-qp` [`finite_element::HighOrderNavier`]),
+//!   each registered once with its parameters and a builder that validates; 3-D hexahedra of
+//!   any order in [`solid`].
+//! - Contact ([`contact`]): the model on the face `x3 = 0` of any
+//!   [`contact::ContactOperator`] with a pointwise friction law, loads as a list of unit
+//!   right-hand sides (end tractions first), the boundary-only and full-system solvers,
+//!   limiting ratios and thresholds.
 //! - [`Material`], pointwise [`kinematics`], [`Grid`], [`BoundaryConditions`] (Dirichlet,
-//!   traction `n_i T^i_j = t_j`, stress `T^a_j`, periodic `x2`, pinned dofs),
-//! - [`FiniteDifferenceNavier`] behind the [`Discretisation`] trait: dof numbering,
-//!   assembly into a [`LinearSystem`] whose pattern is built once, the contact rows
-//!   ([`ContactNode`]) with the sparse maps `v -> T^3_3, T^3_2`, output [`NodalFields`],
-//! - [`samples`] (manufactured solutions, the Lamé cylinder, the paper's ellipse) and
-//!   [`verification`] (convergence studies with observed orders).
+//!   traction `n_i T^i_j = t_j`, stress `T^a_j`, periodic `x2`, pinned dofs), [`samples`]
+//!   (manufactured solutions, the Lamé cylinder, the paper's ellipse) and [`verification`]
+//!   (convergence studies with observed orders).
 //!
-//! Verified: second order in max and L2 norms by manufactured solutions on elliptical and
-//! expression-defined prisms and on the Lamé thick cylinder (full wrap).
+//! Verified: second order in max and L2 norms (finite differences, Q1), third (Q2) and
+//! `p + 1` (Qp) in L2 by manufactured solutions on elliptical and expression-defined prisms
+//! and on the Lamé thick cylinder; the 3-D body by manufactured solutions on prisms and cones
+//! and against the extruded plane-strain body.
 //!
 //! # Limitations
-//! Prisms only (plane strain; charts that depend on `x1` are rejected). Uniform grids. The
-//! contact problem itself (friction law on `x3 = 0`) is built on top of this crate's
-//! [`ContactNode`] rows, not here.
+//! The plane-strain body needs an `x1`-invariant chart (a prism; cones are 3-D only). Finite
+//! differences and Q1/Q2 elements use the grid's uniform nodes (graded meshes: `fem-qp`).
+//! Contact is bilateral (`v^3 = 0` on `x3 = 0`) with one friction law for the whole face; the
+//! solvers drive the two end tractions (further loads of the list enter the right-hand side).
 #![warn(missing_docs)]
 
 mod boundary;

@@ -41,6 +41,9 @@
 use std::sync::{Arc, LazyLock, RwLock};
 
 use crate::error::ElasticityError;
+use crate::finite_element::DiscretisationMethod;
+use crate::plane_problem::PlaneProblem;
+use crate::shell_geometry::ShellGeometry;
 
 pub use crate::registration::{
     DiscretisationScheme, DiscretisationSettings, PlaneOperator, RegisteredDiscretisation,
@@ -112,6 +115,85 @@ pub fn register(discretisation: RegisteredDiscretisation) -> Result<(), Elastici
     }
     all.push(Box::leak(Box::new(discretisation)));
     Ok(())
+}
+
+impl DiscretisationMethod {
+    /// The registered method of a name, `None` if none is registered under it.
+    pub fn from_name(name: &str) -> Option<Self> {
+        find(name).map(|entry| Self::registered(entry.name))
+    }
+
+    /// The variant with its data, built from `settings` by the registry (which validates
+    /// them).
+    ///
+    /// # Errors
+    /// The builder's errors, naming the scene key; [`ElasticityError::UnknownDiscretisation`]
+    /// for a method no longer registered.
+    pub fn scheme(
+        self,
+        settings: &DiscretisationSettings,
+    ) -> Result<Arc<dyn DiscretisationScheme>, ElasticityError> {
+        build(self.name(), settings)
+    }
+
+    /// Whether the assembled matrix is symmetric (and, with enough Dirichlet conditions,
+    /// positive definite): the Cholesky backend applies. See
+    /// [`DiscretisationScheme::is_symmetric`] (default settings).
+    pub fn is_symmetric(self) -> bool {
+        self.scheme(&DiscretisationSettings::default())
+            .is_ok_and(|s| s.is_symmetric())
+    }
+
+    /// Builds the discretisation (`fem-qp` of order [`Self::DEFAULT_ORDER`]).
+    ///
+    /// # Errors
+    /// The constructor's errors.
+    pub fn build<G: ShellGeometry + Send + Sync + 'static>(
+        self,
+        problem: PlaneProblem<G>,
+    ) -> Result<PlaneOperator, ElasticityError> {
+        self.build_with_order(problem, Self::DEFAULT_ORDER)
+    }
+
+    /// Builds the discretisation; `order` is the `p` of `fem-qp` (ignored by the others).
+    ///
+    /// # Errors
+    /// See [`Self::build`].
+    pub fn build_with_order<G: ShellGeometry + Send + Sync + 'static>(
+        self,
+        problem: PlaneProblem<G>,
+        order: usize,
+    ) -> Result<PlaneOperator, ElasticityError> {
+        let settings = DiscretisationSettings {
+            order,
+            ..Default::default()
+        };
+        self.scheme(&settings)?.build(problem.share_chart())
+    }
+}
+
+impl core::str::FromStr for DiscretisationMethod {
+    type Err = ElasticityError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::from_name(s).ok_or_else(|| ElasticityError::UnknownDiscretisation {
+            name: s.to_owned(),
+            known: names(),
+        })
+    }
+}
+
+impl serde::Serialize for DiscretisationMethod {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for DiscretisationMethod {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
 }
 
 #[cfg(test)]

@@ -42,6 +42,14 @@ pub enum FrictionError {
         /// What needs it.
         why: &'static str,
     },
+    /// A parameter was given where the model has no place for it.
+    #[error("`{field}` is not supported here: {why}")]
+    Unsupported {
+        /// The parameter's name, as in scene files (e.g. `loads.f_t`).
+        field: &'static str,
+        /// Why, and what to do instead.
+        why: &'static str,
+    },
     /// The obstacle could not be evaluated (invalid parameter, degenerate point, bad expression).
     #[error(transparent)]
     Geometry(#[from] GeometryError),
@@ -203,6 +211,7 @@ impl FrictionError {
         match self {
             Self::InvalidParameter { .. }
             | Self::MissingParameter { .. }
+            | Self::Unsupported { .. }
             | Self::DuplicateLaw { .. }
             | Self::UnknownLaw { .. }
             | Self::Geometry(_) => ErrorCategory::InvalidInput,

@@ -225,6 +225,57 @@ where
     out.map(|d| [d.re, d.v1, d.v2, d.v3])
 }
 
+/// Value and first four derivatives of a map `R -> R^N` written generically.
+///
+/// Returns `out[k] = [f_k, f_k', f_k'', f_k''', f_k'''']`: the curve is evaluated once on a
+/// third-order dual number over a first-order one, whose `v3` part carries `f'''` and its
+/// derivative.
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{ad::curve_jet4, Scalar};
+/// fn f<S: Scalar<f64>>(t: S) -> [S; 1] {
+///     [t.sin()]
+/// }
+/// let [s] = curve_jet4(f, 0.3_f64);
+/// assert!((s[4] - 0.3_f64.sin()).abs() < 1e-15);
+/// ```
+pub fn curve_jet4<F: Real, const N: usize, G>(f: G, t: F) -> [[F; 5]; N]
+where
+    G: Fn(Dual3<Dual1<F>>) -> [Dual3<Dual1<F>>; N],
+{
+    let one = Dual::new(F::one(), F::zero());
+    let z = Dual::from_re(F::zero());
+    let out = f(Dual3::new(Dual::new(t, F::one()), one, z, z));
+    out.map(|d| [d.re.re, d.v1.re, d.v2.re, d.v3.re, d.v3.eps])
+}
+
+/// The fourth partial derivatives `d4[a][b][c][d] = d_a d_b d_c d_d f` of a map `R^2 -> R^3`
+/// written generically: [`surface_jet_over`] on dual coordinates seeded along each axis.
+///
+/// # Example
+/// ```
+/// use capstan_geometry::{ad, Scalar};
+/// fn f<S: Scalar<f64>>([x, y]: [S; 2]) -> [S; 3] {
+///     [x * x * y * y, y, x]
+/// }
+/// let d4 = ad::surface_fourth_derivatives(f, [1.0_f64, 2.0]);
+/// assert_eq!(d4[0][0][1][1][0], 4.0); // d_x d_x d_y d_y (x^2 y^2) = 4
+/// assert_eq!(d4[1][0][1][0][0], 4.0);
+/// assert_eq!(d4[0][0][0][1][0], 0.0);
+/// ```
+pub fn surface_fourth_derivatives<F: Real, G>(f: G, x: [F; 2]) -> [[[[[F; 3]; 2]; 2]; 2]; 2]
+where
+    G: Fn([Jet3<Dual1<F>>; 2]) -> [Jet3<Dual1<F>>; 3],
+{
+    core::array::from_fn(|a| {
+        let seeded =
+            core::array::from_fn(|k| Dual::new(x[k], if k == a { F::one() } else { F::zero() }));
+        let jet = surface_jet_over::<F, Dual1<F>, _>(&f, seeded);
+        jet.d3.map(|m| m.map(|r| r.map(|v| v.map(|d| d.eps))))
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

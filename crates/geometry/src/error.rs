@@ -39,6 +39,56 @@ pub enum GeometryError {
         /// The parse or evaluation error.
         source: crate::expression::ExpressionError,
     },
+    /// [`crate::registry::register`] was given a name that is registered already.
+    #[error("an obstacle named `{name}` is registered already")]
+    DuplicateObstacle {
+        /// The name (`obstacle.shape`).
+        name: &'static str,
+    },
+    /// `obstacle.shape` names no registered obstacle.
+    #[error("`obstacle.shape` = {name:?} is not a registered obstacle: expected one of {allowed}")]
+    UnknownObstacle {
+        /// The name given.
+        name: String,
+        /// The registered names, comma-separated.
+        allowed: String,
+    },
+    /// A scene parameter of an obstacle has the wrong kind (a number for an expression, ...).
+    #[error("`obstacle.{key}` must be {expected}")]
+    ParameterKind {
+        /// The key under `[obstacle]` (e.g. `depth`).
+        key: &'static str,
+        /// What it must be (e.g. `a number`).
+        expected: &'static str,
+    },
+    /// A builder read a key its registration does not declare (a registration bug).
+    #[error("`obstacle.{key}` is not among the parameters the obstacle registers")]
+    UndeclaredParameter {
+        /// The key under `[obstacle]`.
+        key: String,
+    },
+}
+
+/// `value` if it is finite and `ok(value)`, else [`GeometryError::InvalidParameter`] naming
+/// `field` (the scene key, e.g. `obstacle.depth`) and the `allowed` range.
+///
+/// # Errors
+/// As described.
+pub fn check(
+    field: &'static str,
+    value: f64,
+    allowed: &'static str,
+    ok: impl Fn(f64) -> bool,
+) -> Result<f64, GeometryError> {
+    if value.is_finite() && ok(value) {
+        Ok(value)
+    } else {
+        Err(GeometryError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        })
+    }
 }
 
 /// Checks that `value` is finite and strictly positive.

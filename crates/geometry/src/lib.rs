@@ -25,25 +25,35 @@
 //! forward-mode automatic differentiation, the shell chart `Theta = sigma + x3 N`
 //! ([`ShellChart`]), the paper's obstacles (plane, circular cylinder, elliptical prism, general
 //! prism, right circular cone, general cone), a test sphere, and profiles defined by math
-//! expressions in `t` ([`ExpressionProfile`]).
+//! expressions in `t` ([`ExpressionProfile`]). [`Obstacle`] is the run-time choice among them
+//! and user obstacles ([`Obstacle::prism_over`], [`Obstacle::cone_over`],
+//! [`Obstacle::surface`]); [`registry`] makes any of them nameable in scenes
+//! (`obstacle.shape`), including obstacles registered at run time.
 //!
 //! # Limitations
 //! Charts must be `C^3` where they are evaluated (the shell chart's Christoffel symbols use
 //! third derivatives of `sigma`), `C^4` for the derivatives of the shell geometry
 //! ([`ShellChart::point_over`] on dual coordinates). Expression profiles are evaluated by an interpreter, several
-//! times slower than a compiled `sigma`.
+//! times slower than a compiled `sigma`. A user obstacle behind a pointer ([`SharedSurface`],
+//! [`SharedProfile`]) is exact at scalars carrying up to [`TAYLOR_ORDER`] = 4 derivatives
+//! (every evaluation in the workspace) and refuses more.
 #![warn(missing_docs)]
 
 pub mod ad;
 mod cone;
 mod elliptical_prism;
+mod erased;
 mod error;
 pub mod expression;
 mod expression_profile;
 mod nalgebra_views;
 mod obstacle;
+mod obstacles;
 mod prism;
 mod profile;
+mod registration;
+pub mod registry;
+pub mod samples;
 pub mod scalar;
 mod shell;
 mod simple_surfaces;
@@ -53,13 +63,17 @@ mod vector;
 pub use ad::SurfaceJet;
 pub use cone::GeneralCone;
 pub use elliptical_prism::{CircularCylinder, EllipticalPrism};
+pub use erased::{
+    DynProfile, DynSurface, FourthDerivatives, SharedProfile, SharedSurface, TAYLOR_ORDER,
+};
 pub use error::GeometryError;
 pub use expression_profile::ExpressionProfile;
 /// The nalgebra the views (`SurfaceGeometry::first_form_matrix`, `ShellPoint::metric_matrix`, ...) return.
 pub use nalgebra;
-pub use obstacle::Obstacle;
+pub use obstacle::{Obstacle, ObstacleProfile};
 pub use prism::GeneralPrism;
 pub use profile::ProfileCurve;
+pub use registration::ObstacleSettings;
 pub use scalar::{Real, Scalar, real};
 pub use shell::{ShellChart, ShellFrame, ShellPoint, normal_derivatives};
 pub use simple_surfaces::{Plane, RightCircularCone, Sphere};

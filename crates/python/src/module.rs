@@ -403,30 +403,29 @@ fn contact<'py>(
             error: caught,
             stop,
         };
-        if s.body.dimension == 3 {
-            let (report, solution, model) =
-                commands::solid_contact::solve_observed(&s, &mut observer)?;
-            if let Some(dir) = &out {
-                let o = commands::solid_contact::write_out(dir, &report, &s)?;
-                commands::solid_contact::write_body(&o, &s, &model, &solution)?;
-            }
-            let json = stamped(&report, &s)?;
-            let (grid, fields, coordinates) =
-                commands::solid_contact::body_fields(&s, &model, &solution)?;
-            let vtu = capstan::figures::solid_body::solid_vtu(
-                &grid,
-                &fields,
-                &coordinates,
-                &solution.contact,
-            );
-            let shape = vec![grid.n1(), grid.n2(), grid.n3()];
-            return Ok((json, field_bytes(grid.points(), vtu.point_arrays()), shape));
-        }
-        let (report, solved) = commands::contact::solve_observed(&s, &mut observer)?;
+        let (report, run) = commands::contact::solve_observed(&s, &mut observer)?;
         if let Some(dir) = &out {
-            commands::contact::write_out(dir, &report, &solved, &s)?;
+            commands::contact::write_run(dir, &report, &run, &s)?;
         }
         let json = stamped(&report, &s)?;
+        let solved = match &run {
+            commands::contact::ContactRun::Plane(solved) => solved,
+            commands::contact::ContactRun::Solid { solution, model } => {
+                let Some(body) = model.solid() else {
+                    return Ok((json, Vec::new(), Vec::new()));
+                };
+                let (grid, fields, coordinates) =
+                    commands::solid_contact::body_fields(&s, body, solution)?;
+                let vtu = capstan::figures::solid_body::solid_vtu(
+                    &grid,
+                    &fields,
+                    &coordinates,
+                    &solution.contact,
+                );
+                let shape = vec![grid.n1(), grid.n2(), grid.n3()];
+                return Ok((json, field_bytes(grid.points(), vtu.point_arrays()), shape));
+            }
+        };
         let grid = capstan::figures::body::body_grid(&solved.obstacle, &solved.fields)
             .map_err(CliError::from)?;
         let vtu = capstan::figures::body::body_vtu(&grid, &solved.fields, &solved.solution.contact);

@@ -155,6 +155,15 @@ pub enum SolverError {
         #[source]
         source: Box<dyn std::error::Error + Send + Sync + 'static>,
     },
+    /// An external linear backend (PETSc) failed; the cause is the source.
+    #[error("{backend} failed: {source}")]
+    External {
+        /// The backend's name (`"petsc"`).
+        backend: &'static str,
+        /// The backend's own error.
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync + 'static>,
+    },
     /// faer could not complete an operation (out of memory, index overflow).
     #[error("sparse backend failure: {0}")]
     Backend(#[from] faer::sparse::FaerError),

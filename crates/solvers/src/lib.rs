@@ -91,6 +91,7 @@ mod csr_matrix;
 mod direct_params;
 mod direct_solve;
 mod error;
+mod external_linear;
 mod iterative_params;
 mod jacobi_newton;
 mod krylov;
@@ -117,6 +118,7 @@ pub use condensed_solver::CondensedSolver;
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
+pub use external_linear::{ExternalLinear, ExternalLinearBuild};
 pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
 pub use krylov::{

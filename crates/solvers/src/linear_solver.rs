@@ -2,6 +2,7 @@
 //! right-hand sides.
 
 use crate::error::SolverError;
+use crate::observer::Observer;
 use crate::scalar::SolverScalar;
 use crate::sparsity_pattern::SparsityPattern;
 
@@ -65,6 +66,22 @@ pub trait LinearSolver<F: SolverScalar> {
     /// Iterations of the last `solve_in_place` for iterative backends; `None` for direct ones.
     fn last_iterations(&self) -> Option<usize>;
 
+    /// [`LinearSolver::solve_in_place`] reporting its iterations to `observer`
+    /// ([`crate::SolveStage::Krylov`] events). The default reports nothing and solves; an
+    /// iterative backend whose iterations are observable (PETSc's KSP monitor) overrides it.
+    ///
+    /// # Errors
+    /// As [`LinearSolver::solve_in_place`]; [`SolverError::Interrupted`] when the observer
+    /// asks to stop.
+    fn solve_in_place_observed(
+        &mut self,
+        rhs: &mut [F],
+        observer: &mut dyn Observer<F>,
+    ) -> Result<(), SolverError> {
+        let _ = observer;
+        self.solve_in_place(rhs)
+    }
+
     /// Solves for `ncols` right-hand sides stored column after column in `rhs`
     /// (column-major, length `n * ncols`).
     ///
@@ -121,6 +138,13 @@ impl<F: SolverScalar, S: LinearSolver<F> + ?Sized> LinearSolver<F> for Box<S> {
     }
     fn last_iterations(&self) -> Option<usize> {
         (**self).last_iterations()
+    }
+    fn solve_in_place_observed(
+        &mut self,
+        rhs: &mut [F],
+        observer: &mut dyn Observer<F>,
+    ) -> Result<(), SolverError> {
+        (**self).solve_in_place_observed(rhs, observer)
     }
     fn solve_many_in_place(&mut self, rhs: &mut [F], ncols: usize) -> Result<(), SolverError> {
         (**self).solve_many_in_place(rhs, ncols)

@@ -316,7 +316,7 @@ impl NonlinearSolver<f64> for Newton {
             for (d, ri) in du.iter_mut().zip(&r) {
                 *d = -ri;
             }
-            let solved = self.linear.solve_in_place(&mut du);
+            let solved = self.linear.solve_in_place_observed(&mut du, observer);
             report.linear_iterations += self.linear.last_iterations().unwrap_or(0);
             solved?;
             if let Some(index) = first_non_finite(&du) {

@@ -94,6 +94,7 @@ pub struct LinePlot {
     y_scale: Scale,
     legend: Legend,
     size: (u32, u32),
+    y_min_span: f64,
 }
 
 /// Where the legend sits.
@@ -127,7 +128,14 @@ impl LinePlot {
             y_scale: Scale::Linear,
             legend: Legend::Auto,
             size: (900, 600),
+            y_min_span: 0.0,
         }
+    }
+
+    /// The same plot with `prefix` before its title (e.g. the tag `(a) ` of a panel).
+    pub fn prefix_title(mut self, prefix: &str) -> Self {
+        self.title = format!("{prefix}{}", self.title);
+        self
     }
 
     /// Sets the x-axis description.
@@ -168,6 +176,14 @@ impl LinePlot {
     /// Moves (or hides) the legend.
     pub fn legend(mut self, legend: Legend) -> Self {
         self.legend = legend;
+        self
+    }
+
+    /// A linear y-axis spans at least `span` (widened about the data's centre), so that a
+    /// change by one quantum of the data (e.g. one contact node of a mean state) is not drawn
+    /// across the whole height.
+    pub fn y_min_span(mut self, span: f64) -> Self {
+        self.y_min_span = span;
         self
     }
 
@@ -430,10 +446,17 @@ impl Plot for LinePlot {
             self.series.iter().flat_map(|s| s.x.iter().copied()),
             self.x_scale,
         );
-        let (y0, y1) = self.range(
+        let (mut y0, mut y1) = self.range(
             self.series.iter().flat_map(|s| s.y.iter().copied()),
             self.y_scale,
         );
+        if self.y_scale == Scale::Linear && y1 - y0 < self.y_min_span {
+            let centre = 0.5 * (y0 + y1);
+            (y0, y1) = (
+                centre - 0.5 * self.y_min_span,
+                centre + 0.5 * self.y_min_span,
+            );
+        }
         let ranges = (
             Range {
                 lo: x0,

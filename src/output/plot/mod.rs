@@ -8,10 +8,12 @@
 //!
 //! Plot kinds: [`LinePlot`] (several series, lines and/or markers, linear or log axes: tension
 //! profiles, ratio against `b/a`, work-precision), [`StateStrip`] (stick/slip state along the
-//! contact surface) and [`ColourMap`] (a scalar field on the curved body, with a colour bar).
+//! contact surface), [`ColourMap`] (a scalar field on the curved body, with a colour bar) and
+//! [`Panel`] (line plots side by side as one figure).
 
 mod colour_map;
 mod line;
+mod panel;
 mod strip;
 
 use std::path::{Path, PathBuf};
@@ -24,6 +26,7 @@ mod style;
 
 pub use colour_map::ColourMap;
 pub use line::{Legend, LinePlot, Scale, Series};
+pub use panel::Panel;
 pub use strip::StateStrip;
 
 use super::atomic::write_atomic;

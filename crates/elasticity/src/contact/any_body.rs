@@ -208,7 +208,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::ContactOperator;
+    use crate::contact::operator::ContactOperator;
     use capstan_geometry::EllipticalPrism;
 
     #[test]

@@ -7,9 +7,9 @@ use std::sync::{Arc, OnceLock};
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    ColumnOrdering, CsrMatrix, DirectParams, Jacobian, KrylovMethod, LinearSolver, Newton,
-    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
-    SolveStage, SolverError, SparseLu, SparsityPattern,
+    ColumnOrdering, CsrMatrix, DirectParams, ExternalLinear, Jacobian, KrylovMethod, LinearSolver,
+    Newton, NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual,
+    SilentObserver, SolveStage, SolverError, SparseLu, SparsityPattern,
 };
 
 use crate::contact::body::ThickBody;
@@ -41,6 +41,11 @@ pub struct FullSystemSettings {
     /// ([`BulkMultigrid`]; `solver.linear = "multigrid"`, the 3-D body only), the stuck start
     /// by CG. Ignored by `jacobi-newton`.
     pub multigrid: Option<BulkMultigrid>,
+    /// `Some`: each Newton step and the stuck start by an external linear backend
+    /// (`solver.linear = "petsc"`: PETSc's KSP, distributed over the MPI ranks while Newton
+    /// and the contact bookkeeping run replicated on every rank); takes precedence over
+    /// `multigrid` and `newton.linear`. Ignored by `jacobi-newton`.
+    pub external: Option<ExternalLinear>,
 }
 
 impl Default for FullSystemSettings {
@@ -51,6 +56,7 @@ impl Default for FullSystemSettings {
             continuation: ContactSettings::default(),
             coarsest_nodes: SEQUENCING_COARSEST_NODES,
             multigrid: None,
+            external: None,
         }
     }
 }
@@ -176,6 +182,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             values[slot] += 1e4 * values[slot].abs().max(1.0);
         }
         let mut lu: Box<dyn LinearSolver<f64> + Send> = match &self.settings.multigrid {
+            _ if let Some(external) = self.settings.external => (external.build)()?,
             Some(m) => m.build(
                 model.discretisation(),
                 KrylovMethod::Cg,
@@ -219,6 +226,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             ..self.settings.newton
         };
         let result = match (&self.settings.multigrid, self.settings.method) {
+            (_, NonlinearMethod::Newton) if let Some(external) = self.settings.external => {
+                Newton::with_linear_solver(params, (external.build)()?)?
+                    .solve(&problem, v, observer)
+            }
             (Some(m), NonlinearMethod::Newton) => {
                 let linear = m
                     .build(

@@ -63,7 +63,7 @@ pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
     solve_sequenced,
 };
-pub use model::{ContactModel, EndLoads, SiteTraction};
+pub use model::{ContactModel, END_LOADS, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};

@@ -9,7 +9,8 @@ use crate::contact::operator::ContactOperator;
 use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
 
-/// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`.
+/// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`: the
+/// paper's load, the first two entries ([`END_LOADS`]) of a contact model's load list.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EndLoads {
     /// `tau0` (the paper's minimum traction).
@@ -39,6 +40,11 @@ impl EndLoads {
         Self::new(s * self.tau0, s * self.tau_max)
     }
 
+    /// The magnitudes of [`END_LOADS`], in that order: `[tau0, tau_max]`.
+    pub fn magnitudes(&self) -> [f64; 2] {
+        [self.tau0, self.tau_max]
+    }
+
     /// `max(|tau0|, |tau_max|)`.
     pub fn magnitude(&self) -> f64 {
         self.tau0.abs().max(self.tau_max.abs())
@@ -57,6 +63,10 @@ impl EndLoads {
         Ok(())
     }
 }
+
+/// The loads of the paper's body, by scene key: the end tractions `tau0` at `x2 = theta0`
+/// and `tau_max` at `x2 = theta1` ([`EndLoads`]).
+pub const END_LOADS: [&str; 2] = ["loads.tau0", "loads.tau_max"];
 
 /// The friction law at one contact site (a contact node; one or two tangential entries, see
 /// [`ContactNode`]): the physical slip and traction, and for each entry of the site the
@@ -157,17 +167,19 @@ pub(crate) struct ExtendedPattern {
 /// ```text
 /// R(v) = A v - b(tau) - sum_k w_k e_{row_k} t_2,k(v) = 0
 /// t_2,k = sqrt(g_22) t(u_k, sigma_k)      u_k = sqrt(g_22) v^2_k,  sigma_k = T^3_3(v) at node k
-/// b(tau) = tau0 b_0 + tau_max b_1          (b linear in the end loads)
+/// b(m) = sum_k m_k b_k                     (b linear in the loads; the end tractions
+///                                          tau0, tau_max are the first two)
 /// ```
 /// `t(u, sigma)` is the physical traction on the body from the [`FrictionLaw`], evaluated with
 /// slip `(0, u)` (the `x1` slip of plane strain is zero) and normal stress `sigma = T^3_3`
 /// (unit outward normal `n = -g^3` on `x3 = 0`, so `n.T.n = T^3_3`; negative in compression).
 /// For regularised Coulomb `t = mu sigma u / max(|u|, eps)`: opposite to the slip when `sigma < 0`.
 ///
-/// The model is built from two discretisations of the same body with unit end loads
-/// `(1, 0)` and `(0, 1)`; it checks they share one bulk operator `A`, which is what lets the
-/// condensed solver ([`crate::contact::BoundarySolver`]) handle every tension ratio with two
-/// bulk solves.
+/// The model is built from one discretisation of the same body per load at unit magnitude
+/// (the end loads `(1, 0)` and `(0, 1)` in the paper's case, [`ContactModel::with_loads`] for
+/// a list); it checks they share one bulk operator `A`, which is what lets the condensed
+/// solver ([`crate::contact::BoundarySolver`]) handle every tension ratio with two bulk
+/// solves.
 pub struct ContactModel<D, L: FrictionLaw<f64>> {
     /// Shared by the models of [`ContactModel::with_params`].
     disc: std::sync::Arc<D>,
@@ -175,7 +187,9 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     params: L::Params,
     slip_threshold: f64,
     system: LinearSystem,
-    rhs_basis: [Vec<f64>; 2],
+    /// The names of the loads (scene keys), one per right-hand side of `rhs_basis`.
+    loads: Vec<&'static str>,
+    rhs_basis: Vec<Vec<f64>>,
     nodes: Vec<ContactNode>,
     active: Vec<usize>,
     sites: Sites,
@@ -195,17 +209,49 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
 
 impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// Builds the model from `build(tau0, tau_max)`, which returns the discretisation of the
-    /// body with those end loads and zero tangential traction on `x3 = 0`.
+    /// body with those end loads and zero tangential traction on `x3 = 0`: the load list
+    /// [`END_LOADS`] of [`ContactModel::with_loads`].
     ///
     /// `slip_threshold` classifies stick and slip (the regularisation width `eps` for
     /// regularised Coulomb).
     ///
     /// # Errors
-    /// Errors of `build`; [`ContactError::InconsistentLoads`] if the two unit-load operators
-    /// differ; [`ContactError::NoContactNodes`]; [`ElasticityError::InvalidParameter`] for a
-    /// non-positive `slip_threshold`.
+    /// See [`ContactModel::with_loads`].
     pub fn new(
         build: impl Fn(f64, f64) -> Result<D, crate::error::ElasticityError>,
+        law: L,
+        params: L::Params,
+        slip_threshold: f64,
+    ) -> Result<Self, ContactError> {
+        Self::with_loads(
+            |m: &[f64]| build(m[0], m[1]),
+            &END_LOADS,
+            law,
+            params,
+            slip_threshold,
+        )
+    }
+
+    /// Builds the model from a list of loads (boundary or body loads, named by `loads`) and
+    /// `build(magnitudes)`, the discretisation of the body with load `k` scaled by
+    /// `magnitudes[k]` and zero tangential traction on `x3 = 0`.
+    ///
+    /// # Math
+    /// The bulk operator does not depend on the loads and the right-hand side is linear in
+    /// them, so the model keeps one unit right-hand side per load (superposition):
+    /// ```text
+    /// b(m) = sum_k m_k b_k,   b_k = b(e_k)   (one build per load, e_k the k-th unit vector)
+    /// ```
+    /// The first two loads are what [`EndLoads`] scales (the solvers drive the tension ratio
+    /// through them); further loads enter [`ContactModel::rhs_of`].
+    ///
+    /// # Errors
+    /// Errors of `build`; [`ContactError::InconsistentLoads`] if the unit-load operators
+    /// differ; [`ContactError::NoContactNodes`]; [`ElasticityError::InvalidParameter`] for a
+    /// non-positive `slip_threshold` or fewer than two loads.
+    pub fn with_loads(
+        build: impl Fn(&[f64]) -> Result<D, crate::error::ElasticityError>,
+        loads: &[&'static str],
         law: L,
         params: L::Params,
         slip_threshold: f64,
@@ -217,31 +263,45 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
                 allowed: "(0, inf)",
             }));
         }
-        let disc = build(1.0, 0.0)?;
-        let other = build(0.0, 1.0)?;
-        let system = disc.contact_system()?;
-        let system1 = other.contact_system()?;
-        if system1.pattern != system.pattern || system1.values.len() != system.values.len() {
-            return Err(ContactError::InconsistentLoads {
-                what: "sparsity pattern",
-            });
+        if loads.len() < 2 {
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
+                field: "loads",
+                value: loads.len() as f64,
+                allowed: "at least the two end tractions (tau0, tau_max) first",
+            }));
         }
+        let unit = |k: usize| {
+            let mut m = vec![0.0; loads.len()];
+            m[k] = 1.0;
+            m
+        };
+        let disc = build(&unit(0))?;
+        let system = disc.contact_system()?;
         let scale = system
             .values
             .iter()
             .fold(0.0f64, |m, x| m.max(x.abs()))
             .max(f64::MIN_POSITIVE);
-        if system
-            .values
-            .iter()
-            .zip(&system1.values)
-            .any(|(a, b)| (a - b).abs() > 1e-12 * scale)
-        {
-            return Err(ContactError::InconsistentLoads {
-                what: "matrix values",
-            });
+        let mut rhs_basis = vec![system.rhs.clone()];
+        for k in 1..loads.len() {
+            let other = build(&unit(k))?.contact_system()?;
+            if other.pattern != system.pattern || other.values.len() != system.values.len() {
+                return Err(ContactError::InconsistentLoads {
+                    what: "sparsity pattern",
+                });
+            }
+            if system
+                .values
+                .iter()
+                .zip(&other.values)
+                .any(|(a, b)| (a - b).abs() > 1e-12 * scale)
+            {
+                return Err(ContactError::InconsistentLoads {
+                    what: "matrix values",
+                });
+            }
+            rhs_basis.push(other.rhs);
         }
-        let rhs_basis = [system.rhs.clone(), system1.rhs];
         let nodes = disc.contact_entries()?;
         let active: Vec<usize> = (0..nodes.len())
             .filter(|&k| nodes[k].tangential_row.is_some())
@@ -257,6 +317,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             params,
             slip_threshold,
             system,
+            loads: loads.to_vec(),
             rhs_basis,
             nodes,
             active,
@@ -281,6 +342,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             params,
             slip_threshold: self.slip_threshold,
             system: self.system.clone(),
+            loads: self.loads.clone(),
             rhs_basis: self.rhs_basis.clone(),
             nodes: self.nodes.clone(),
             active: self.active.clone(),
@@ -341,16 +403,45 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         &self.ext
     }
 
-    /// `b(tau) = tau0 b_0 + tau_max b_1`.
+    /// `b(tau) = tau0 b_0 + tau_max b_1` (further loads at zero).
     pub fn rhs(&self, loads: EndLoads) -> Vec<f64> {
-        self.rhs_basis[0]
-            .iter()
-            .zip(&self.rhs_basis[1])
-            .map(|(a, b)| loads.tau0 * a + loads.tau_max * b)
-            .collect()
+        self.rhs_of(&loads.magnitudes())
     }
 
-    /// The right-hand side for unit `tau0` (`i = 0`) or unit `tau_max` (`i = 1`).
+    /// `b(m) = sum_k m_k b_k` over the first `magnitudes.len()` loads (the others at zero).
+    ///
+    /// # Panics
+    /// If `magnitudes` is empty or longer than [`ContactModel::loads`].
+    #[track_caller]
+    pub fn rhs_of(&self, magnitudes: &[f64]) -> Vec<f64> {
+        assert!(
+            !magnitudes.is_empty() && magnitudes.len() <= self.rhs_basis.len(),
+            "one magnitude per load, at most {}",
+            self.rhs_basis.len()
+        );
+        let mut b: Vec<f64> = self.rhs_basis[0]
+            .iter()
+            .map(|x| magnitudes[0] * x)
+            .collect();
+        for (m, basis) in magnitudes.iter().zip(&self.rhs_basis).skip(1) {
+            for (bi, x) in b.iter_mut().zip(basis) {
+                *bi += m * x;
+            }
+        }
+        b
+    }
+
+    /// The loads of the model, by name (scene keys), in the order of their right-hand sides:
+    /// [`END_LOADS`] first.
+    pub fn loads(&self) -> &[&'static str] {
+        &self.loads
+    }
+
+    /// The right-hand side of load `i` at unit magnitude (`i = 0`: unit `tau0`, `i = 1`: unit
+    /// `tau_max`).
+    ///
+    /// # Panics
+    /// If `i` is not below the number of loads.
     #[track_caller]
     pub fn rhs_basis(&self, i: usize) -> &[f64] {
         &self.rhs_basis[i]

@@ -76,6 +76,12 @@ pub trait ContactOperator {
     fn plane(&self) -> Option<&dyn Discretisation> {
         None
     }
+
+    /// The 3-D body behind the operator (its box grid and nodal fields, for outputs), `None`
+    /// (the default) for a plane-strain operator.
+    fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
+        None
+    }
 }
 
 /// A contact operator of either dimension, as [`crate::contact::Body::operator`] builds it.
@@ -121,6 +127,10 @@ impl ContactOperator for BodyOperator {
 
     fn plane(&self) -> Option<&dyn Discretisation> {
         (**self).plane()
+    }
+
+    fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
+        (**self).solid()
     }
 }
 

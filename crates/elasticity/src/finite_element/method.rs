@@ -1,5 +1,5 @@
-//! Choosing a discretisation by name (`discretisation.method` in scene files), and the Q1/Q2
-//! elements' registrations.
+//! Naming a discretisation (`discretisation.method` in scene files; the lookups by name are in
+//! [`crate::registry`]), and the Q1/Q2 elements' registrations.
 
 use std::sync::Arc;
 
@@ -12,8 +12,7 @@ use crate::registration::{
     DiscretisationScheme, DiscretisationSettings, PlaneOperator, RegisteredDiscretisation,
     SchemeParameter, nearest_element_nodes,
 };
-use crate::registry;
-use crate::shell_geometry::{SharedChart, ShellGeometry};
+use crate::shell_geometry::SharedChart;
 use crate::solid::HexElement;
 
 /// A discretisation of the Navier operator, by its registered name: `fd`, `fem-q1`,
@@ -45,6 +44,9 @@ use crate::solid::HexElement;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct DiscretisationMethod(&'static str);
 
+// The lookups (`from_name`, `scheme`, `build`, `FromStr`, serde) live in `crate::registry`,
+// which imports this module: an inherent impl there keeps the imports one way.
+
 #[allow(non_upper_case_globals)] // spelled as the variants they were, so call sites read the same
 impl DiscretisationMethod {
     /// `fd`: [`crate::FiniteDifferenceNavier`], second-order finite differences (finite volumes).
@@ -68,57 +70,9 @@ impl DiscretisationMethod {
         self.0
     }
 
-    /// The registered method of a name, `None` if none is registered under it.
-    pub fn from_name(name: &str) -> Option<Self> {
-        registry::find(name).map(|entry| Self(entry.name))
-    }
-
-    /// The variant with its data, built from `settings` by the registry (which validates
-    /// them).
-    ///
-    /// # Errors
-    /// The builder's errors, naming the scene key; [`ElasticityError::UnknownDiscretisation`]
-    /// for a method no longer registered.
-    pub fn scheme(
-        self,
-        settings: &DiscretisationSettings,
-    ) -> Result<Arc<dyn DiscretisationScheme>, ElasticityError> {
-        registry::build(self.0, settings)
-    }
-
-    /// Whether the assembled matrix is symmetric (and, with enough Dirichlet conditions,
-    /// positive definite): the Cholesky backend applies. See
-    /// [`DiscretisationScheme::is_symmetric`] (default settings).
-    pub fn is_symmetric(self) -> bool {
-        self.scheme(&DiscretisationSettings::default())
-            .is_ok_and(|s| s.is_symmetric())
-    }
-
-    /// Builds the discretisation (`fem-qp` of order [`Self::DEFAULT_ORDER`]).
-    ///
-    /// # Errors
-    /// The constructor's errors.
-    pub fn build<G: ShellGeometry + Send + Sync + 'static>(
-        self,
-        problem: PlaneProblem<G>,
-    ) -> Result<PlaneOperator, ElasticityError> {
-        self.build_with_order(problem, Self::DEFAULT_ORDER)
-    }
-
-    /// Builds the discretisation; `order` is the `p` of `fem-qp` (ignored by the others).
-    ///
-    /// # Errors
-    /// See [`Self::build`].
-    pub fn build_with_order<G: ShellGeometry + Send + Sync + 'static>(
-        self,
-        problem: PlaneProblem<G>,
-        order: usize,
-    ) -> Result<PlaneOperator, ElasticityError> {
-        let settings = DiscretisationSettings {
-            order,
-            ..Default::default()
-        };
-        self.scheme(&settings)?.build(problem.share_chart())
+    /// The method of a registered name (the registry's own `&'static` spelling).
+    pub(crate) const fn registered(name: &'static str) -> Self {
+        Self(name)
     }
 }
 
@@ -131,30 +85,6 @@ impl Default for DiscretisationMethod {
 impl core::fmt::Display for DiscretisationMethod {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.write_str(self.0)
-    }
-}
-
-impl core::str::FromStr for DiscretisationMethod {
-    type Err = ElasticityError;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::from_name(s).ok_or_else(|| ElasticityError::UnknownDiscretisation {
-            name: s.to_owned(),
-            known: registry::names(),
-        })
-    }
-}
-
-impl serde::Serialize for DiscretisationMethod {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.0)
-    }
-}
-
-impl<'de> serde::Deserialize<'de> for DiscretisationMethod {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let name = String::deserialize(deserializer)?;
-        name.parse().map_err(serde::de::Error::custom)
     }
 }
 

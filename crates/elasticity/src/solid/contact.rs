@@ -180,4 +180,8 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
             )
         })
     }
+
+    fn solid(&self) -> Option<&dyn super::fields::SolidOutput> {
+        Some(self)
+    }
 }

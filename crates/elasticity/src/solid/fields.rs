@@ -2,6 +2,7 @@
 //! the contact rows' stencil everywhere (Q1/Q2: second-order differences of the nodal values;
 //! Qp: the element polynomials).
 
+use super::grid::BoxGrid;
 use super::operator::SolidNavier;
 use crate::continuum::{SOLID, mixed_strains};
 use crate::error::ElasticityError;
@@ -48,6 +49,29 @@ impl SolidFields {
     /// Physical strain `E_ij / sqrt(g_ii g_jj)` at node `k`.
     pub fn physical_strain(&self, k: usize) -> [[f64; 3]; 3] {
         crate::fields::physical_strain(&self.strain[k], self.scale[k])
+    }
+}
+
+/// What outputs read of a 3-D body's operator, whatever its chart: the box grid of its nodes
+/// and the nodal fields of a solution. A [`crate::contact::BodyOperator`] of a 3-D body gives it
+/// through [`crate::contact::ContactOperator::solid`].
+pub trait SolidOutput {
+    /// The box grid of the nodes ([`SolidNavier::grid`]).
+    fn box_grid(&self) -> &BoxGrid;
+    /// The nodal fields of the solution `v` ([`SolidNavier::fields`]).
+    ///
+    /// # Errors
+    /// As [`SolidNavier::fields`].
+    fn nodal_fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError>;
+}
+
+impl<G: ShellGeometry + Sync> SolidOutput for SolidNavier<G> {
+    fn box_grid(&self) -> &BoxGrid {
+        self.grid()
+    }
+
+    fn nodal_fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
+        self.fields(v)
     }
 }
 

@@ -45,7 +45,7 @@ pub mod samples;
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 pub use element::HexElement;
-pub use fields::SolidFields;
+pub use fields::{SolidFields, SolidOutput};
 pub use grid::BoxGrid;
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count};
 pub use operator::{SolidForce, SolidNavier};

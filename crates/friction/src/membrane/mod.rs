@@ -29,6 +29,7 @@
 mod budget;
 pub mod closed_form;
 mod cone;
+mod development;
 mod equilibrium;
 mod geodesic_strip;
 mod infinite;
@@ -41,12 +42,14 @@ mod validity;
 
 pub use budget::MembraneBudget;
 pub use cone::{ConeMembrane, ConePoint};
+pub use development::{DevelopmentPoint, development};
 pub use equilibrium::{LocalEquilibrium, MembraneEquilibrium};
 pub use geodesic_strip::GeodesicStrip;
 pub use infinite::InfiniteMembrane;
-pub use load_field::{Gravity, LoadField, NoLoad};
+pub use load_field::{ExpressionLoad, Gravity, LoadField, LoadSum, NoLoad, PaperSpeedTransform};
 pub use obstacle::{
-    FrictionEstimate, infer_mu, infer_mu_within, tension_profile, tension_profile_within,
+    FrictionEstimate, infer_mu, infer_mu_within, tension_profile, tension_profile_with_load,
+    tension_profile_within,
 };
 pub use prism::PrismMembrane;
 pub use problem::{MembraneLoads, MembraneProblem, Method, TensionProfile};

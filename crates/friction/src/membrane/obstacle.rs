@@ -11,6 +11,7 @@ use super::closed_form::{
 };
 use super::cone::{ConeMembrane, validate_cone_problem};
 use super::equilibrium::MembraneEquilibrium;
+use super::load_field::LoadField;
 use super::prism::{PrismMembrane, check_speed};
 use super::problem::{MembraneProblem, Method, TensionProfile, exp_tension};
 use super::turning_angle::{ProfilePoint, turning_angles_within};
@@ -25,6 +26,9 @@ use crate::root::Brent;
 ///   right circular cone;
 /// - quadrature of the exponent (log-tension): expression prisms without weight, general cones;
 /// - ODE: ellipses and expression prisms with weight.
+///
+/// A user prism or cone ([`Obstacle::prism_over`], [`Obstacle::cone_over`]) takes the general
+/// method of its class, as expression prisms and cones do; a general user surface is refused.
 ///
 /// Steady speed without weight is closed form on every prism: `T = c + (T0 - c) exp(mu dPsi)`.
 ///
@@ -94,9 +98,6 @@ pub fn tension_profile_within(
         Obstacle::Ellipse(e) => MembraneEquilibrium::new(e, *problem)
             .with_budget(budget)
             .solve(),
-        Obstacle::Prism(p) => {
-            PrismMembrane::new(p.profile_curve()).tension_profile_within(problem, budget)
-        }
         Obstacle::CircularCone(cone) => {
             validate_cone_problem(problem)?;
             let alpha = cone.half_angle();
@@ -114,9 +115,77 @@ pub fn tension_profile_within(
                 method: Method::ClosedForm,
             })
         }
-        Obstacle::Cone(cone) => ConeMembrane::new(cone.profile_curve())
+        Obstacle::Prism(_)
+        | Obstacle::Cone(_)
+        | Obstacle::UserPrism(_)
+        | Obstacle::UserCone(_)
+        | Obstacle::UserSurface(_) => general_method(obstacle, problem, budget),
+    }
+}
+
+/// Theorem 1 on a prism (quadrature of the exponent, or the ODE with weight) or Theorem 2 on
+/// a cone, over the obstacle's profile curve: the general method of its class.
+fn general_method(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    budget: &MembraneBudget,
+) -> Result<TensionProfile, FrictionError> {
+    let profile = obstacle.profile().ok_or_else(not_prism_or_cone)?;
+    if obstacle.is_prism() {
+        PrismMembrane::new(&profile).tension_profile_within(problem, budget)
+    } else {
+        ConeMembrane::new(&profile)
             .with_max_subdivisions(budget.max_subdivisions)
-            .tension_profile(problem),
+            .tension_profile(problem)
+    }
+}
+
+/// The membrane models (Theorems 1 and 2) need a prism or a cone.
+fn not_prism_or_cone() -> FrictionError {
+    FrictionError::MissingParameter {
+        field: "obstacle.shape",
+        why: "the membrane models need a prism or a cone; this obstacle is a general surface",
+    }
+}
+
+/// [`tension_profile_within`] with an extra load field along the membrane (Theorem 1 with
+/// any `(0, g_r2, g_r3)`, e.g. [`ExpressionLoad`](super::ExpressionLoad)), on prisms.
+///
+/// # Math
+/// The equilibrium ODE of [`MembraneEquilibrium`] with the problem's weight and steady speed
+/// plus `extra`, integrated by Dormand–Prince 8(5,3) to `1e-13`:
+/// `dT/dx2 = mu sqrt(a_22) (kappa (T - rho_l V^2) - g_r3) - g_r2`.
+///
+/// # Errors
+/// As [`tension_profile_within`]; [`FrictionError::Unsupported`] on a cone (Theorem 2 has no
+/// external load: the strip follows a geodesic, not an `x2` line) and on the plane.
+pub fn tension_profile_with_load<L: LoadField + ?Sized>(
+    obstacle: &Obstacle,
+    problem: &MembraneProblem,
+    budget: &MembraneBudget,
+    extra: &L,
+) -> Result<TensionProfile, FrictionError> {
+    problem.validate()?;
+    budget.validate()?;
+    if obstacle.is_prism() {
+        return MembraneEquilibrium::new(obstacle, *problem)
+            .with_budget(budget)
+            .solve_with(extra)
+            .map(|(profile, _)| profile);
+    }
+    match obstacle {
+        Obstacle::Plane(_) => Err(FrictionError::NonPositiveCurvature {
+            angle: problem.theta0,
+            mean_curvature: 0.0,
+        }),
+        _ if obstacle.is_cone() => Err(FrictionError::Unsupported {
+            field: "loads.f_t, loads.f_n, membrane.belt_speed_rule",
+            why: "Theorem 2 (cones) takes no external load or steady speed: the strip follows a geodesic, not an x2 line; use a prism obstacle",
+        }),
+        _ => Err(FrictionError::Unsupported {
+            field: "obstacle.shape",
+            why: "a general surface has no profile curve: the membrane models need a prism or a cone",
+        }),
     }
 }
 
@@ -214,10 +283,6 @@ fn unit_exponent(
             ellipse_turning_angle(e.a(), e.b(), t1) - ellipse_turning_angle(e.a(), e.b(), t0),
             Method::ClosedForm,
         ),
-        Obstacle::Prism(p) => (
-            turning_angles_within(p.profile_curve(), t0, &[t1], budget.max_subdivisions)?[0],
-            Method::Quadrature,
-        ),
         Obstacle::CircularCone(cone) => {
             check_cone_development(cone.half_angle(), t0, t1)?;
             (
@@ -225,12 +290,21 @@ fn unit_exponent(
                 Method::ClosedForm,
             )
         }
-        Obstacle::Cone(cone) => (
-            ConeMembrane::new(cone.profile_curve())
-                .with_max_subdivisions(budget.max_subdivisions)
-                .exponents(t0, &[t1])?[0],
-            Method::Quadrature,
-        ),
+        Obstacle::Prism(_)
+        | Obstacle::Cone(_)
+        | Obstacle::UserPrism(_)
+        | Obstacle::UserCone(_)
+        | Obstacle::UserSurface(_) => {
+            let profile = obstacle.profile().ok_or_else(not_prism_or_cone)?;
+            let e = if obstacle.is_prism() {
+                turning_angles_within(&profile, t0, &[t1], budget.max_subdivisions)?[0]
+            } else {
+                ConeMembrane::new(&profile)
+                    .with_max_subdivisions(budget.max_subdivisions)
+                    .exponents(t0, &[t1])?[0]
+            };
+            (e, Method::Quadrature)
+        }
     })
 }
 

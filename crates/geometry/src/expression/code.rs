@@ -76,11 +76,14 @@ pub(super) enum Function {
     Cosh,
     Tanh,
     Atan,
+    Cot,
+    Sec,
+    Csc,
 }
 
 impl Function {
     /// Every function, in the order of [`FUNCTION_NAMES`].
-    const ALL: [Self; 11] = [
+    const ALL: [Self; 14] = [
         Self::Sin,
         Self::Cos,
         Self::Tan,
@@ -92,6 +95,9 @@ impl Function {
         Self::Cosh,
         Self::Tanh,
         Self::Atan,
+        Self::Cot,
+        Self::Sec,
+        Self::Csc,
     ];
 
     /// The name used in expressions.
@@ -108,6 +114,9 @@ impl Function {
             Self::Cosh => "cosh",
             Self::Tanh => "tanh",
             Self::Atan => "atan",
+            Self::Cot => "cot",
+            Self::Sec => "sec",
+            Self::Csc => "csc",
         }
     }
 
@@ -130,6 +139,11 @@ impl Function {
             Self::Cosh => x.cosh(),
             Self::Tanh => x.tanh(),
             Self::Atan => x.atan(),
+            // cot = 1/tan, sec = 1/cos, csc = 1/sin: the reciprocal of a dual number carries
+            // the exact derivatives (`(1/f)' = -f'/f^2`, and so on).
+            Self::Cot => x.tan().recip(),
+            Self::Sec => x.cos().recip(),
+            Self::Csc => x.sin().recip(),
         }
     }
 }

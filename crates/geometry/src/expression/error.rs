@@ -1,7 +1,8 @@
 //! Errors of parsing and checking an expression.
 
 /// The functions callable from an expression, in the order listed in error messages.
-const FUNCTION_NAMES: &str = "sin, cos, tan, exp, ln, sqrt, abs, sinh, cosh, tanh, atan";
+const FUNCTION_NAMES: &str =
+    "sin, cos, tan, exp, ln, sqrt, abs, sinh, cosh, tanh, atan, cot, sec, csc";
 
 /// An error from parsing an expression or from checking it on an interval.
 ///

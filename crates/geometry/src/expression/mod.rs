@@ -13,7 +13,7 @@
 //! power      := primary ('^' unary)?
 //! primary    := number | 't' | 'pi' | 'e' | function '(' expression ')' | '(' expression ')'
 //! function   := 'sin' | 'cos' | 'tan' | 'exp' | 'ln' | 'sqrt' | 'abs'
-//!             | 'sinh' | 'cosh' | 'tanh' | 'atan'
+//!             | 'sinh' | 'cosh' | 'tanh' | 'atan' | 'cot' | 'sec' | 'csc'
 //! number     := digits ['.' [digits]] [exponent] | '.' digits [exponent]
 //! exponent   := ('e' | 'E') ['+' | '-'] digits
 //! ```

@@ -193,7 +193,9 @@ def geometry(scene: Scene, x2: "Iterable[float] | float") -> Result:
     ``sqrt_g_outer``) and the tensors ``first_form`` (metric ``a_ab``, shape ``(n, 2, 2)``),
     ``first_form_inverse``, ``second_form``, ``mixed_second_form``, ``christoffel``
     (``Gamma^c_ab`` as ``[c][a][b]``, ``(n, 2, 2, 2)``), ``normal``, ``point``, ``shell_metric``
-    and ``shell_metric_outer`` (``g_ij`` at ``x3 = 0`` and ``x3 = body.thickness``)."""
+    and ``shell_metric_outer`` (``g_ij`` at ``x3 = 0`` and ``x3 = body.thickness``). On a cone,
+    ``development`` holds the development map of Theorem 2 at ``x1 = 1``: ``phi``, ``phi_rate``,
+    ``radius`` (``rbar``), ``chi`` (``(chi1, chi2)``) and ``jacobian`` (``d chi / d x``)."""
     x = np.atleast_1d(np.asarray(x2, dtype=float)).tolist()
     return Result(_capstan.geometry(scene, x))
 

@@ -1,0 +1,523 @@
+//! [`PetscSolver`]: capstan's [`LinearSolver`] over a distributed PETSc matrix and KSP.
+
+use core::ffi::{c_int, c_void};
+use std::ffi::CString;
+
+use capstan_petsc_sys as sys;
+use capstan_solvers::{
+    ExternalLinear, LinearSolver, Observer, Progress, SolveStage, SolverError, SparsityPattern,
+};
+
+use crate::error::{PetscError, check, diverged_name};
+use crate::session::running;
+
+/// The name of the backend in `solver.linear`.
+pub const NAME: &str = "petsc";
+
+/// The backend as an [`ExternalLinear`] for the contact solvers' settings.
+pub const EXTERNAL: ExternalLinear = ExternalLinear {
+    name: NAME,
+    build: build_boxed,
+};
+
+fn build_boxed() -> Result<Box<dyn LinearSolver<f64> + Send>, SolverError> {
+    Ok(Box::new(PetscSolver::new()?))
+}
+
+/// The contiguous block of rows rank `rank` of `size` owns among `n`: PETSc's own split
+/// (`PetscSplitOwnership`), the first `n mod size` ranks one row more.
+///
+/// # Math
+/// ```text
+/// local(r) = floor(n / size) + (r < n mod size),   first(r) = sum_{q < r} local(q)
+/// ```
+pub fn owned_rows(n: usize, rank: usize, size: usize) -> core::ops::Range<usize> {
+    let (base, extra) = (n / size, n % size);
+    let first = rank * base + rank.min(extra);
+    first..first + base + usize::from(rank < extra)
+}
+
+fn index(value: usize, quantity: &'static str) -> Result<sys::PetscInt, PetscError> {
+    sys::PetscInt::try_from(value).map_err(|_| PetscError::IndexOverflow {
+        quantity,
+        value,
+        bits: sys::PetscInt::BITS,
+    })
+}
+
+/// The PETSc objects of one analysed pattern.
+struct Objects {
+    mat: sys::Mat,
+    ksp: sys::KSP,
+    x: sys::Vec,
+    b: sys::Vec,
+    scatter: sys::VecScatter,
+    all: sys::Vec,
+}
+
+impl Drop for Objects {
+    fn drop(&mut self) {
+        if !running() {
+            return; // PETSc is finalised: its memory went with it
+        }
+        // SAFETY: each handle was created by PETSc in `analyse` and is destroyed once.
+        unsafe {
+            sys::KSPDestroy(&mut self.ksp);
+            sys::VecScatterDestroy(&mut self.scatter);
+            sys::VecDestroy(&mut self.all);
+            sys::VecDestroy(&mut self.x);
+            sys::VecDestroy(&mut self.b);
+            sys::MatDestroy(&mut self.mat);
+        }
+    }
+}
+
+/// The residual norms of the current KSP solve, as PETSc's monitor reports them.
+#[derive(Default)]
+struct Monitor {
+    norms: Vec<f64>,
+}
+
+unsafe extern "C" fn monitor(
+    _ksp: sys::KSP,
+    _iteration: sys::PetscInt,
+    norm: sys::PetscReal,
+    context: *mut c_void,
+) -> sys::PetscErrorCode {
+    // SAFETY: `context` is the `Monitor` boxed in the `PetscSolver` that set this monitor and
+    // outlives its KSP.
+    let m = unsafe { &mut *context.cast::<Monitor>() };
+    m.norms.push(norm);
+    0
+}
+
+/// A [`LinearSolver`] that hands `A x = b` to PETSc: `A` a distributed AIJ matrix of which
+/// each MPI rank owns a contiguous block of rows ([`owned_rows`]), solved by KSP with the
+/// options of the [`crate::Session`] (default [`crate::DEFAULT_OPTIONS`]: GMRES + GAMG).
+///
+/// Every rank calls every method with the same (replicated) pattern, values and right-hand
+/// side; each rank inserts only its own rows and entries of `b`, and every rank receives the
+/// whole solution (`VecScatterCreateToAll`), so the caller's Newton iteration stays
+/// replicated and identical on all ranks.
+///
+/// # Math
+/// ```text
+/// analyse: rows first..end of rank r; per row, d_nnz = entries with first <= col < end,
+///          o_nnz = the others (exact MPIAIJ preallocation, new non-zeros are an error)
+/// factor:  MatSetValues row by row, MatAssembly, KSPSetOperators (PC rebuilt at the solve)
+/// solve:   KSPSolve to |b - A x| <= rtol |b| (left-preconditioned norm for GMRES), then
+///          x gathered to every rank
+/// ```
+///
+/// # Example
+/// ```
+/// use capstan_petsc::{PetscSolver, Session};
+/// use capstan_solvers::{LinearSolver, SparsityPattern};
+/// let session = Session::start("-ksp_type cg -pc_type jacobi").unwrap();
+/// let (pattern, slots) =
+///     SparsityPattern::from_entries(2, 2, &[(0, 0), (1, 0), (0, 1), (1, 1)]).unwrap();
+/// let mut values = vec![0.0; pattern.nnz()];
+/// for (k, v) in [4.0, 1.0, 1.0, 3.0].into_iter().enumerate() {
+///     values[slots[k]] += v;
+/// }
+/// let mut solver = PetscSolver::new().unwrap();
+/// solver.analyse(&pattern).unwrap();
+/// solver.factor(&values).unwrap();
+/// let mut x = vec![1.0, 2.0];
+/// solver.solve_in_place(&mut x).unwrap();
+/// assert!((x[0] - 1.0 / 11.0).abs() < 1e-8);
+/// drop(session);
+/// ```
+/// # Errors
+/// KSP's budget (`-ksp_max_it`) spent: [`SolverError::BudgetSpent`] naming
+/// `solver.petsc_options -ksp_max_it`; a failed preconditioner (e.g. a zero pivot of LU):
+/// [`SolverError::Singular`]; other divergence and PETSc failures:
+/// [`SolverError::External`] around a [`PetscError`].
+pub struct PetscSolver {
+    n: usize,
+    rows: core::ops::Range<usize>,
+    /// Owned rows in CSR: `row_ptr` (length rows + 1), global columns, CSC slots.
+    row_ptr: Vec<usize>,
+    cols: Vec<sys::PetscInt>,
+    slots: Vec<usize>,
+    row_values: Vec<f64>,
+    objects: Option<Objects>,
+    factored: bool,
+    monitor: Box<Monitor>,
+    last_iterations: Option<usize>,
+    rank: usize,
+    size: usize,
+}
+
+// SAFETY: the PETSc handles are owned by this value alone and used from one thread at a time
+// (`&mut self`); MPI is initialised single-threaded, so the caller keeps all PETSc work on one
+// thread (capstan's Newton iteration runs on the calling thread).
+unsafe impl Send for PetscSolver {}
+
+impl core::fmt::Debug for PetscSolver {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("PetscSolver")
+            .field("n", &self.n)
+            .field("rows", &self.rows)
+            .field("rank", &self.rank)
+            .field("size", &self.size)
+            .finish_non_exhaustive()
+    }
+}
+
+impl PetscSolver {
+    /// A solver on `PETSC_COMM_WORLD`.
+    ///
+    /// # Errors
+    /// [`PetscError::NotStarted`] without a running [`crate::Session`].
+    pub fn new() -> Result<Self, PetscError> {
+        if !running() {
+            return Err(PetscError::NotStarted);
+        }
+        let (mut rank, mut size): (c_int, c_int) = (0, 1);
+        // SAFETY: PETSc (hence MPI) is running.
+        unsafe {
+            check(
+                sys::MPI_Comm_rank(sys::PETSC_COMM_WORLD, &mut rank),
+                "MPI_Comm_rank",
+            )?;
+            check(
+                sys::MPI_Comm_size(sys::PETSC_COMM_WORLD, &mut size),
+                "MPI_Comm_size",
+            )?;
+        }
+        Ok(Self {
+            n: 0,
+            rows: 0..0,
+            row_ptr: Vec::new(),
+            cols: Vec::new(),
+            slots: Vec::new(),
+            row_values: Vec::new(),
+            objects: None,
+            factored: false,
+            monitor: Box::default(),
+            last_iterations: None,
+            rank: rank as usize,
+            size: size as usize,
+        })
+    }
+
+    /// The rows this rank owns (after [`LinearSolver::analyse`]).
+    pub fn owned(&self) -> core::ops::Range<usize> {
+        self.rows.clone()
+    }
+
+    /// The residual norms PETSc's monitor reported in the last solve (iteration 0 first).
+    pub fn last_residuals(&self) -> &[f64] {
+        &self.monitor.norms
+    }
+
+    fn create(&mut self) -> Result<Objects, PetscError> {
+        let local = self.rows.len();
+        let (first, end) = (self.rows.start, self.rows.end);
+        let mut d_nnz = Vec::with_capacity(local);
+        let mut o_nnz = Vec::with_capacity(local);
+        for i in 0..local {
+            let cols = &self.cols[self.row_ptr[i]..self.row_ptr[i + 1]];
+            let d = cols
+                .iter()
+                .filter(|&&c| (first..end).contains(&(c as usize)))
+                .count();
+            d_nnz.push(index(d, "row entries")?);
+            o_nnz.push(index(cols.len() - d, "row entries")?);
+        }
+        let n = index(self.n, "unknowns")?;
+        let local = index(local, "owned rows")?;
+        let aij = CString::new("aij").expect("no NUL");
+        let mut o = Objects {
+            mat: core::ptr::null_mut(),
+            ksp: core::ptr::null_mut(),
+            x: core::ptr::null_mut(),
+            b: core::ptr::null_mut(),
+            scatter: core::ptr::null_mut(),
+            all: core::ptr::null_mut(),
+        };
+        // SAFETY: PETSc is running; every out-pointer is a field of `o`, destroyed by its Drop
+        // (null handles are ignored by PETSc's destroy functions).
+        unsafe {
+            let comm = sys::PETSC_COMM_WORLD;
+            check(sys::MatCreate(comm, &mut o.mat), "MatCreate")?;
+            check(sys::MatSetSizes(o.mat, local, local, n, n), "MatSetSizes")?;
+            check(sys::MatSetType(o.mat, aij.as_ptr()), "MatSetType")?;
+            // Whichever applies (one rank: SeqAIJ; more: MPIAIJ); the other is a no-op.
+            check(
+                sys::MatSeqAIJSetPreallocation(o.mat, 0, d_nnz.as_ptr()),
+                "MatSeqAIJSetPreallocation",
+            )?;
+            check(
+                sys::MatMPIAIJSetPreallocation(o.mat, 0, d_nnz.as_ptr(), 0, o_nnz.as_ptr()),
+                "MatMPIAIJSetPreallocation",
+            )?;
+            check(
+                sys::MatSetOption(o.mat, sys::MAT_NEW_NONZERO_ALLOCATION_ERR, 1),
+                "MatSetOption",
+            )?;
+            check(
+                sys::MatCreateVecs(o.mat, &mut o.x, &mut o.b),
+                "MatCreateVecs",
+            )?;
+            check(
+                sys::VecScatterCreateToAll(o.x, &mut o.scatter, &mut o.all),
+                "VecScatterCreateToAll",
+            )?;
+            check(sys::KSPCreate(comm, &mut o.ksp), "KSPCreate")?;
+            let context: *mut Monitor = &mut *self.monitor;
+            check(
+                sys::KSPMonitorSet(o.ksp, Some(monitor), context.cast(), None),
+                "KSPMonitorSet",
+            )?;
+        }
+        Ok(o)
+    }
+
+    fn solve_observed(
+        &mut self,
+        rhs: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(), SolverError> {
+        let Some(o) = self.objects.as_ref().filter(|_| self.factored) else {
+            return Err(SolverError::CallOrder {
+                called: "solve_in_place",
+                requires: "factor",
+            });
+        };
+        if rhs.len() != self.n {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "rhs",
+                expected: self.n,
+                found: rhs.len(),
+            });
+        }
+        if let Some(index) = rhs.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                quantity: "right-hand side",
+                index,
+                iteration: None,
+            });
+        }
+        self.monitor.norms.clear();
+        let (mut reason, mut iterations): (c_int, sys::PetscInt) = (0, 0);
+        let (mut rtol, mut atol, mut dtol, mut max_it) = (0.0, 0.0, 0.0, 0);
+        // SAFETY: the handles are live; the arrays are borrowed between Get/Restore only and
+        // have the local (or, for `all`, global) length PETSc created them with.
+        unsafe {
+            let mut b: *mut f64 = core::ptr::null_mut();
+            check(sys::VecGetArray(o.b, &mut b), "VecGetArray")?;
+            core::slice::from_raw_parts_mut(b, self.rows.len())
+                .copy_from_slice(&rhs[self.rows.clone()]);
+            check(sys::VecRestoreArray(o.b, &mut b), "VecRestoreArray")?;
+            check(sys::KSPSolve(o.ksp, o.b, o.x), "KSPSolve")?;
+            check(
+                sys::KSPGetConvergedReason(o.ksp, &mut reason),
+                "KSPGetConvergedReason",
+            )?;
+            check(
+                sys::KSPGetIterationNumber(o.ksp, &mut iterations),
+                "KSPGetIterationNumber",
+            )?;
+            check(
+                sys::KSPGetTolerances(o.ksp, &mut rtol, &mut atol, &mut dtol, &mut max_it),
+                "KSPGetTolerances",
+            )?;
+        }
+        let iterations = iterations as usize;
+        self.last_iterations = Some(iterations);
+        let norms = &self.monitor.norms;
+        let r0 = norms.first().copied().unwrap_or(0.0);
+        let relative = |r: f64| if r0 > 0.0 { r / r0 } else { r };
+        for (k, &r) in norms.iter().enumerate().skip(1) {
+            observer.iteration(&Progress::new(SolveStage::Krylov, k, relative(r), 1.0));
+        }
+        if observer.interrupted() {
+            return Err(SolverError::Interrupted {
+                iteration: iterations,
+            });
+        }
+        if reason < 0 {
+            let last = relative(norms.last().copied().unwrap_or(f64::INFINITY));
+            return Err(match reason {
+                sys::KSP_DIVERGED_ITS => SolverError::BudgetSpent {
+                    field: "solver.petsc_options -ksp_max_it",
+                    iterations,
+                    residual: last,
+                    tolerance: rtol,
+                },
+                sys::KSP_DIVERGED_PC_FAILED => SolverError::Singular { pivot: None },
+                _ => PetscError::Diverged {
+                    reason,
+                    name: diverged_name(reason),
+                    iterations,
+                }
+                .into(),
+            });
+        }
+        // SAFETY: as above; `all` holds all n entries on every rank after the scatter.
+        unsafe {
+            check(
+                sys::VecScatterBegin(
+                    o.scatter,
+                    o.x,
+                    o.all,
+                    sys::INSERT_VALUES,
+                    sys::SCATTER_FORWARD,
+                ),
+                "VecScatterBegin",
+            )?;
+            check(
+                sys::VecScatterEnd(
+                    o.scatter,
+                    o.x,
+                    o.all,
+                    sys::INSERT_VALUES,
+                    sys::SCATTER_FORWARD,
+                ),
+                "VecScatterEnd",
+            )?;
+            let mut x: *const f64 = core::ptr::null();
+            check(sys::VecGetArrayRead(o.all, &mut x), "VecGetArrayRead")?;
+            rhs.copy_from_slice(core::slice::from_raw_parts(x, self.n));
+            check(
+                sys::VecRestoreArrayRead(o.all, &mut x),
+                "VecRestoreArrayRead",
+            )?;
+        }
+        if let Some(index) = rhs.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                quantity: "solution",
+                index,
+                iteration: None,
+            });
+        }
+        Ok(())
+    }
+}
+
+impl LinearSolver<f64> for PetscSolver {
+    fn analyse(&mut self, pattern: &SparsityPattern) -> Result<(), SolverError> {
+        if !pattern.is_square() {
+            return Err(SolverError::NotSquare {
+                nrows: pattern.nrows(),
+                ncols: pattern.ncols(),
+            });
+        }
+        self.objects = None;
+        self.factored = false;
+        self.n = pattern.nrows();
+        self.rows = owned_rows(self.n, self.rank, self.size);
+        let (row_ptr, col_idx, slot) = pattern.row_layout();
+        let (lo, hi) = (row_ptr[self.rows.start], row_ptr[self.rows.end]);
+        self.row_ptr = row_ptr[self.rows.start..=self.rows.end]
+            .iter()
+            .map(|p| p - lo)
+            .collect();
+        self.cols = col_idx[lo..hi]
+            .iter()
+            .map(|&c| index(c, "column"))
+            .collect::<Result<_, _>>()?;
+        self.slots = slot[lo..hi].to_vec();
+        self.row_values = vec![0.0; hi - lo];
+        self.objects = Some(self.create()?);
+        Ok(())
+    }
+
+    fn factor(&mut self, values: &[f64]) -> Result<(), SolverError> {
+        let Some(o) = self.objects.as_ref() else {
+            return Err(SolverError::CallOrder {
+                called: "factor",
+                requires: "analyse",
+            });
+        };
+        self.factored = false;
+        if let Some(&max) = self.slots.iter().max()
+            && max >= values.len()
+        {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "values",
+                expected: max + 1,
+                found: values.len(),
+            });
+        }
+        if let Some(index) = values.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                quantity: "matrix value",
+                index,
+                iteration: None,
+            });
+        }
+        for (v, &s) in self.row_values.iter_mut().zip(&self.slots) {
+            *v = values[s];
+        }
+        // SAFETY: live handles; each row's columns and values are slices of equal length.
+        unsafe {
+            for (i, row) in self.rows.clone().enumerate() {
+                let (a, b) = (self.row_ptr[i], self.row_ptr[i + 1]);
+                let global = row as sys::PetscInt;
+                check(
+                    sys::MatSetValues(
+                        o.mat,
+                        1,
+                        &global,
+                        (b - a) as sys::PetscInt,
+                        self.cols[a..b].as_ptr(),
+                        self.row_values[a..b].as_ptr(),
+                        sys::INSERT_VALUES,
+                    ),
+                    "MatSetValues",
+                )?;
+            }
+            check(
+                sys::MatAssemblyBegin(o.mat, sys::MAT_FINAL_ASSEMBLY),
+                "MatAssemblyBegin",
+            )?;
+            check(
+                sys::MatAssemblyEnd(o.mat, sys::MAT_FINAL_ASSEMBLY),
+                "MatAssemblyEnd",
+            )?;
+            check(sys::KSPSetOperators(o.ksp, o.mat, o.mat), "KSPSetOperators")?;
+            check(sys::KSPSetFromOptions(o.ksp), "KSPSetFromOptions")?;
+        }
+        self.factored = true;
+        Ok(())
+    }
+
+    fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), SolverError> {
+        self.solve_observed(rhs, &mut capstan_solvers::SilentObserver)
+    }
+
+    fn solve_in_place_observed(
+        &mut self,
+        rhs: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(), SolverError> {
+        self.solve_observed(rhs, observer)
+    }
+
+    fn last_iterations(&self) -> Option<usize> {
+        self.last_iterations
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn owned_rows_tile_the_range_like_petsc_split_ownership() {
+        for (n, size) in [(10, 3), (7, 7), (3, 4), (1_000_001, 128)] {
+            let blocks: Vec<_> = (0..size).map(|r| owned_rows(n, r, size)).collect();
+            assert_eq!(blocks[0].start, 0);
+            assert_eq!(blocks[size - 1].end, n);
+            for w in blocks.windows(2) {
+                assert_eq!(w[0].end, w[1].start);
+                assert!(w[0].len() >= w[1].len() && w[0].len() <= w[1].len() + 1);
+            }
+        }
+        assert_eq!(owned_rows(10, 0, 3), 0..4);
+        assert_eq!(owned_rows(10, 2, 3), 7..10);
+    }
+}

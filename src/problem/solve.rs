@@ -1,0 +1,233 @@
+//! Solving a [`Problem`]: one path for 2-D and 3-D bodies.
+
+use std::time::Instant;
+
+use capstan_elasticity::PlaneOperator;
+use capstan_elasticity::contact::{
+    BodyOperator, BoundarySolver, ContactError, ContactModel, ContactOperator, ContactSettings,
+    ContactSolution, FullSystemSolver, ThresholdResult, ThresholdSettings, solve_sequenced,
+    threshold_ratio,
+};
+use capstan_elasticity::friction::AnyFrictionLaw;
+use capstan_elasticity::solid::SolidOutput;
+use capstan_elasticity::solvers::{Observer, SilentObserver};
+use capstan_elasticity::{Discretisation, ElasticityError};
+use capstan_friction::FrictionError;
+use capstan_geometry::Surface;
+
+use capstan_elasticity::contact::Dimension;
+
+use super::builder::Problem;
+use super::solver::SolveMethod;
+
+/// The contact model of a [`Problem`] (either dimension, any registered friction law).
+pub type Model = ContactModel<BodyOperator, AnyFrictionLaw>;
+
+/// What a [`Problem`] failed with: its friction law, its body, or the contact solve (no
+/// equilibrium, non-convergence within the budgets, an observer's stop).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ProblemError {
+    /// The friction law: unknown name or bad parameters.
+    #[error(transparent)]
+    Friction(#[from] FrictionError),
+    /// The body: bad material, grid, discretisation or geometry.
+    #[error(transparent)]
+    Elasticity(#[from] ElasticityError),
+    /// The contact solve.
+    #[error(transparent)]
+    Contact(#[from] ContactError),
+}
+
+/// The model a solve ended on: the problem's own ([`Problem::model`]), or, after grid
+/// sequencing on the plane-strain body, the finest level's.
+#[derive(Debug)]
+pub enum SolvedModel {
+    /// [`Problem::model`].
+    Body(Model),
+    /// The finest level of the full-system Newton's grid sequence (plane strain).
+    Sequenced(ContactModel<PlaneOperator, AnyFrictionLaw>),
+}
+
+impl SolvedModel {
+    /// The operator, whichever model it is.
+    pub fn operator(&self) -> &dyn ContactOperator {
+        match self {
+            Self::Body(m) => m.discretisation(),
+            Self::Sequenced(m) => m.discretisation(),
+        }
+    }
+
+    /// The plane-strain discretisation (grid, numbering, nodal fields), `None` in 3-D.
+    pub fn plane(&self) -> Option<&dyn Discretisation> {
+        self.operator().plane()
+    }
+
+    /// The 3-D body's box grid and nodal fields, `None` in plane strain.
+    pub fn solid(&self) -> Option<&dyn SolidOutput> {
+        self.operator().solid()
+    }
+
+    /// The short name of the discretisation (`fd`, `fem-q2`, `solid-q1`, ...).
+    pub fn method(&self) -> &'static str {
+        self.operator().method()
+    }
+
+    /// The number of contact unknowns (tangential entries on the contact face).
+    pub fn contact_unknowns(&self) -> usize {
+        match self {
+            Self::Body(m) => m.active().len(),
+            Self::Sequenced(m) => m.active().len(),
+        }
+    }
+}
+
+/// A solved [`Problem`].
+#[derive(Debug)]
+pub struct Solved {
+    /// The model the solution belongs to.
+    pub model: SolvedModel,
+    /// The solution: displacement, contact profile, stick/slip, statistics.
+    pub solution: ContactSolution,
+    /// `[lower, upper]` tension ratios friction can hold, when the body can slide rigidly and
+    /// the condensed solver ran (an entry is infinite when friction holds every ratio that
+    /// way); `None` otherwise.
+    pub limiting: Option<[f64; 2]>,
+    /// Full-system Newton on the plane-strain body: `[n2, n3, newton iterations]` of each
+    /// grid-sequencing level, coarsest first; `None` otherwise.
+    pub grid_sequence: Option<Vec<[usize; 3]>>,
+    /// Wall times `[set-up, solve]` in seconds (set-up: assembly, factorisation and
+    /// condensation of the condensed solver; for the full-system solvers only the body's
+    /// description, their assembly being part of the solve).
+    pub times: [f64; 2],
+}
+
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
+    /// The contact model: the body's operator of either dimension with the friction law.
+    ///
+    /// # Errors
+    /// The friction law's and the body's errors.
+    pub fn model(&self) -> Result<Model, ProblemError> {
+        let (law, params, eps) = self.friction.build()?;
+        Ok(self.body.model(law, params, eps)?)
+    }
+
+    /// Solves the problem ([`Problem::solve_observed`] with no observer).
+    ///
+    /// # Errors
+    /// See [`Problem::solve_observed`].
+    pub fn solve(&self) -> Result<Solved, ProblemError> {
+        self.solve_observed(&mut SilentObserver)
+    }
+
+    /// Solves the problem with its solver, reporting every iteration to `observer` (which may
+    /// stop the solve).
+    ///
+    /// # Errors
+    /// Bad input ([`ProblemError::Friction`], [`ProblemError::Elasticity`], or
+    /// [`ContactError`] of kind `InvalidInput`); [`ContactError::NoEquilibrium`] when the loads
+    /// are beyond what friction holds (the full-system solvers' non-convergence is checked
+    /// against the condensed solver's limiting ratios and reported so); non-convergence within
+    /// the budgets; [`ContactError::Interrupted`] when `observer` stops the solve.
+    pub fn solve_observed(&self, observer: &mut dyn Observer<f64>) -> Result<Solved, ProblemError> {
+        let t0 = Instant::now();
+        let loads = self.loads;
+        let plane = matches!(self.body.dimension, Dimension::Plane);
+        match self.solver.method {
+            SolveMethod::Condensed => {
+                let model = self.model()?;
+                let solver = BoundarySolver::new(&model, self.solver.budgets)?;
+                let setup = t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
+                let solution = solver.solve_observed(loads, observer)?;
+                let limiting = solver
+                    .sliding_at(solution.loads.tau0)?
+                    .map(|m| [m.lower_ratio, m.upper_ratio]);
+                let times = [setup, t1.elapsed().as_secs_f64()];
+                drop(solver);
+                Ok(Solved {
+                    model: SolvedModel::Body(model),
+                    solution,
+                    limiting,
+                    grid_sequence: None,
+                    times,
+                })
+            }
+            SolveMethod::FullNewton(_)
+            | SolveMethod::FullNewtonMultigrid
+            | SolveMethod::FullNewtonPetsc
+                if plane =>
+            {
+                // Grid sequencing: the model is assembled level by level inside.
+                let (law, params, eps) = self.friction.build()?;
+                let body = self.body.plane();
+                let setup = t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
+                let settings = self.solver.full_settings();
+                match solve_sequenced(&body, law, params, eps, loads, settings, observer) {
+                    Ok(seq) => Ok(Solved {
+                        grid_sequence: Some(
+                            seq.levels.iter().map(|&(a, b, c)| [a, b, c]).collect(),
+                        ),
+                        model: SolvedModel::Sequenced(seq.model),
+                        solution: seq.solution,
+                        limiting: None,
+                        times: [setup, t1.elapsed().as_secs_f64()],
+                    }),
+                    Err(e @ ContactError::NotConverged { .. }) => {
+                        Err(self.explain_not_converged(&self.model()?, e))
+                    }
+                    Err(e) => Err(e.into()),
+                }
+            }
+            SolveMethod::FullNewton(_)
+            | SolveMethod::FullNewtonMultigrid
+            | SolveMethod::FullNewtonPetsc
+            | SolveMethod::JacobiNewton => {
+                let model = self.model()?;
+                let solver = FullSystemSolver::new(&model, self.solver.full_settings())?;
+                let setup = t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
+                let solved = solver.solve_observed(loads, observer);
+                let times = [setup, t1.elapsed().as_secs_f64()];
+                drop(solver);
+                match solved {
+                    Ok(solution) => Ok(Solved {
+                        model: SolvedModel::Body(model),
+                        solution,
+                        limiting: None,
+                        grid_sequence: None,
+                        times,
+                    }),
+                    Err(e @ ContactError::NotConverged { .. }) if plane => {
+                        Err(self.explain_not_converged(&model, e))
+                    }
+                    Err(e) => Err(e.into()),
+                }
+            }
+        }
+    }
+
+    /// The tension ratio `tau_max / tau0` at which the whole contact surface slides (bisection
+    /// on the condensed solver, [`threshold_ratio`]).
+    ///
+    /// # Errors
+    /// The model's errors; non-convergence of a solve within the budgets.
+    pub fn threshold(&self) -> Result<ThresholdResult, ProblemError> {
+        let model = self.model()?;
+        let solver = BoundarySolver::new(&model, self.solver.budgets)?;
+        Ok(threshold_ratio(&solver, ThresholdSettings::default())?)
+    }
+
+    /// A full-system non-convergence, told apart: no equilibrium (checked by the condensed
+    /// solver's limiting ratios of `model`) rather than a solver failure.
+    fn explain_not_converged(&self, model: &Model, e: ContactError) -> ProblemError {
+        let check = || -> Result<(), ContactError> {
+            BoundarySolver::new(model, ContactSettings::default())?.check_equilibrium(self.loads)
+        };
+        match check() {
+            Err(no_equilibrium @ ContactError::NoEquilibrium { .. }) => no_equilibrium.into(),
+            _ => e.into(),
+        }
+    }
+}

@@ -1,0 +1,68 @@
+//! `mpirun -n K capstan contact scene.toml --set solver.linear='"petsc"'` (feature `petsc`):
+//! PETSc running for the length of one command.
+//!
+//! Every rank runs the whole command: it reads the scene, assembles the model and runs the
+//! full-system Newton with its contact bookkeeping (replicated, identical on every rank); the
+//! linear solve of each Newton step is one distributed PETSc solve in which each rank owns a
+//! contiguous block of rows ([`capstan_petsc::owned_rows`]). Rank 0 alone prints and writes the
+//! outputs; the other ranks end quietly when the solve is done.
+
+use capstan_petsc::Session;
+
+use crate::error::CliError;
+use crate::scene::Scene;
+
+/// PETSc for one command.
+#[derive(Debug)]
+pub struct PetscRun {
+    session: Session,
+}
+
+impl PetscRun {
+    /// Starts PETSc when the scene asks for it (`solver.linear = "petsc"`) with
+    /// `solver.petsc_options`; `None` otherwise. Ranks other than 0 are made quiet (no
+    /// progress output).
+    ///
+    /// # Errors
+    /// [`CliError::Scene`] naming `solver.petsc_options` when PETSc refuses to start or the
+    /// options cannot be passed to it.
+    pub fn start(scene: &Scene) -> Result<Option<Self>, CliError> {
+        if scene.solver.linear != "petsc" {
+            return Ok(None);
+        }
+        let options = scene.solver.petsc_options.as_deref().unwrap_or("");
+        let session = Session::start(options).map_err(|e| CliError::Scene {
+            origin: "solver.petsc_options".into(),
+            message: e.to_string(),
+        })?;
+        if session.rank() != 0 {
+            crate::progress::set_flags(true, 0);
+        }
+        Ok(Some(Self { session }))
+    }
+
+    /// Whether this process is rank 0 (the one that prints and writes).
+    pub fn is_root(&self) -> bool {
+        self.session.rank() == 0
+    }
+
+    /// The number of ranks.
+    pub fn ranks(&self) -> usize {
+        self.session.size()
+    }
+
+    /// Peak resident memory of this rank so far, bytes (PETSc's measure).
+    pub fn peak_memory(&self) -> f64 {
+        self.session.peak_memory().unwrap_or(0.0)
+    }
+
+    /// Ends PETSc (and MPI) on a rank other than 0 and exits with status 0; rank 0 returns
+    /// and ends PETSc when `self` is dropped, after writing.
+    pub fn end_unless_root(self) -> Self {
+        if self.is_root() {
+            return self;
+        }
+        drop(self);
+        std::process::exit(0)
+    }
+}

@@ -1,0 +1,238 @@
+//! `mpirun -n K capstan contact ... --set solver.linear='"petsc"'` (feature `petsc`) gives the
+//! serial full-system Newton's answer (sparse LU) to 1e-8 relative, on 1, 2 and 4 ranks
+//! (oversubscribed), for a plane-strain scene and a 3-D band on a cone; rank 0 alone prints
+//! and writes; the Krylov iterations reach the observers; a spent KSP budget is a typed error.
+//! Skipped (with a message) when `mpirun` is not installed.
+#![cfg(feature = "petsc")]
+
+mod common;
+
+use std::process::Command;
+
+use common::{BIN, capstan_json, scratch_dir, succeed};
+
+/// The plane-strain default scene on a 61 x 11 grid (1,342 unknowns), full-system Newton.
+const PLANE: [&str; 6] = [
+    "--set",
+    "grid.n2=61",
+    "--set",
+    "grid.n3=11",
+    "--set",
+    "solver.nonlinear=\"full-newton\"",
+];
+
+/// A finite-width band on a circular cone, 9 x 33 x 5 Q1 nodes (4,455 unknowns), solved by
+/// PETSc's MUMPS: GMRES + GAMG (the default) stalls near 1e-9 relative on this thin band (no
+/// rigid-body near-null space given to GAMG) and spends its budget.
+const CONE: [&str; 26] = [
+    "--set",
+    "body.dimension=3",
+    "--set",
+    "discretisation.method=fem-q1",
+    "--set",
+    "obstacle.shape=cone",
+    "--set",
+    "obstacle.ubar=0.25*sin(t)",
+    "--set",
+    "obstacle.vbar=0.25*cos(t)",
+    "--set",
+    "body.x1=1.2",
+    "--set",
+    "body.width=0.4",
+    "--set",
+    "body.thickness=0.1",
+    "--set",
+    "grid.n2=33",
+    "--set",
+    "grid.n3=5",
+    "--set",
+    "grid.n1=9",
+    "--set",
+    "loads.tau_max=1.2",
+    "--set",
+    "solver.nonlinear=\"full-newton\"",
+];
+
+const PETSC: [&str; 2] = ["--set", "solver.linear=\"petsc\""];
+
+const MUMPS: [&str; 2] = [
+    "--set",
+    "solver.petsc_options=\"-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps\"",
+];
+
+fn mpirun(ranks: usize) -> Command {
+    let mut c = Command::new("mpirun");
+    c.args([
+        "--allow-run-as-root",
+        "--oversubscribe",
+        "-n",
+        &ranks.to_string(),
+        BIN,
+    ]);
+    c
+}
+
+fn have_mpirun() -> bool {
+    if Command::new("mpirun").arg("--version").output().is_ok() {
+        return true;
+    }
+    eprintln!("SKIP: mpirun not installed");
+    false
+}
+
+/// Every number in `v` under its path (array entries share their array's path).
+fn numbers(v: &serde_json::Value, path: &str, out: &mut Vec<(String, f64)>) {
+    match v {
+        serde_json::Value::Object(m) => {
+            for (k, x) in m {
+                numbers(x, &format!("{path}.{k}"), out);
+            }
+        }
+        serde_json::Value::Array(a) => a.iter().for_each(|x| numbers(x, path, out)),
+        serde_json::Value::Number(n) => out.push((path.to_owned(), n.as_f64().unwrap())),
+        _ => {}
+    }
+}
+
+/// `max |a - b|` over every number of the contact surface and the extreme displacements,
+/// relative to the largest displacement (fields that vanish, as `v3` at the contact, are
+/// measured against it too).
+fn relative_difference(serial: &serde_json::Value, parallel: &serde_json::Value) -> f64 {
+    let scale = ["max_azimuthal_displacement", "max_radial_displacement"]
+        .iter()
+        .map(|k| serial[k]["value"].as_f64().unwrap().abs())
+        .fold(0.0, f64::max);
+    assert!(scale > 0.0);
+    let mut worst = 0.0f64;
+    for key in [
+        "contact",
+        "max_azimuthal_displacement",
+        "max_radial_displacement",
+        "solid",
+    ] {
+        let (mut a, mut b) = (Vec::new(), Vec::new());
+        numbers(&serial[key], key, &mut a);
+        numbers(&parallel[key], key, &mut b);
+        assert_eq!(a.len(), b.len(), "{key}");
+        let mut fields = std::collections::BTreeMap::<&str, f64>::new();
+        for ((p, x), (q, _)) in a.iter().zip(&b) {
+            assert_eq!(p, q);
+            let m = fields.entry(p).or_insert(0.0);
+            *m = m.max(x.abs());
+        }
+        for ((p, x), (_, y)) in a.iter().zip(&b) {
+            // stresses and tractions on their own scale, displacements on the displacement's
+            let own = fields[p.as_str()].max(scale);
+            worst = worst.max((x - y).abs() / own);
+        }
+    }
+    worst
+}
+
+fn json(output: &std::process::Output) -> serde_json::Value {
+    // one document: only rank 0 prints
+    serde_json::from_slice(&output.stdout).unwrap_or_else(|e| {
+        panic!(
+            "stdout is not one JSON document ({e}):\n{}",
+            String::from_utf8_lossy(&output.stdout)
+        )
+    })
+}
+
+fn agrees_on_1_2_4_ranks(scene: &[&str], options: &[&str]) {
+    let serial = capstan_json(&[&["contact"][..], scene].concat());
+    assert_eq!(serial["status"], "converged");
+    for ranks in [1, 2, 4] {
+        let out = succeed(
+            mpirun(ranks)
+                .arg("contact")
+                .args(scene)
+                .args(PETSC)
+                .args(options)
+                .arg("--json"),
+        );
+        let parallel = json(&out);
+        assert_eq!(parallel["status"], "converged", "{ranks} ranks");
+        assert_eq!(parallel["slip_fraction"], serial["slip_fraction"]);
+        // the Krylov iterations of every Newton step are counted
+        assert!(parallel["linear_iterations"].as_u64().unwrap() > 0);
+        let d = relative_difference(&serial, &parallel);
+        assert!(d < 1e-8, "{ranks} ranks: relative difference {d:.3e}");
+    }
+}
+
+#[test]
+fn plane_strain_on_1_2_4_ranks_matches_the_serial_solve() {
+    if have_mpirun() {
+        agrees_on_1_2_4_ranks(&PLANE, &[]);
+    }
+}
+
+#[test]
+fn cone_band_on_1_2_4_ranks_matches_the_serial_solve() {
+    if have_mpirun() {
+        agrees_on_1_2_4_ranks(&CONE, &MUMPS);
+    }
+}
+
+#[test]
+fn rank_0_alone_writes_and_reports_krylov_iterations() {
+    if !have_mpirun() {
+        return;
+    }
+    let dir = scratch_dir("petsc-out");
+    let out = succeed(
+        mpirun(2)
+            .args(["-v", "contact"])
+            .args(PLANE)
+            .args(PETSC)
+            .args(["--out", dir.to_str().unwrap()]),
+    );
+    for file in ["contact.json", "contact.csv", "scene.toml"] {
+        assert!(dir.join(file).exists(), "{file}");
+    }
+    let scene = std::fs::read_to_string(dir.join("scene.toml")).unwrap();
+    assert!(scene.contains("linear = \"petsc\""), "{scene}");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let krylov = stderr.lines().filter(|l| l.starts_with("krylov")).count();
+    let newton = stderr.lines().filter(|l| l.starts_with("newton")).count();
+    // rank 1 is quiet: each Newton iterate printed once, with its Krylov iterations
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("contact.json")).unwrap()).unwrap();
+    // (Newton attempts that fail and are retried by the continuation report their Krylov
+    // iterations too, but are not counted in `linear_iterations`)
+    assert!(
+        krylov as u64 >= report["linear_iterations"].as_u64().unwrap() && krylov > 0,
+        "{krylov} Krylov lines:\n{stderr}"
+    );
+    assert!(newton > 0);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn spent_ksp_budget_and_wrong_nonlinear_solver_are_typed_errors() {
+    // one rank without mpirun (a singleton): the exit code is capstan's own
+    let out = Command::new(BIN)
+        .arg("contact")
+        .args(PLANE)
+        .args(PETSC)
+        .args([
+            "--set",
+            "solver.petsc_options=\"-pc_type none -ksp_max_it 2\"",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(4));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("-ksp_max_it"), "{stderr}");
+    let out = Command::new(BIN)
+        .args(["contact", "--set", "solver.linear=\"petsc\""])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("solver.linear") && stderr.contains("full-newton"),
+        "{stderr}"
+    );
+}
