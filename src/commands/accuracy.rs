@@ -25,6 +25,10 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use capstan_elasticity::contact::{ContactQuantities, ContactSolution};
+
+use crate::error::CliError;
+use crate::problem::{AccuracyTarget, Problem, Refined, Scaled, Step};
 use crate::scene::Scene;
 
 /// `estimated_error` of a report: the estimate of every converging quantity, by name, and the
@@ -84,4 +88,136 @@ impl capstan_elasticity::solvers::Observer<f64> for StopOnly<'_> {
     fn interrupted(&mut self) -> bool {
         self.0.interrupted()
     }
+}
+
+/// `accuracy` in a report run to an accuracy target (`accuracy.tol`): the target, what capstan
+/// chose, and every refinement step.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AccuracyReport {
+    /// `accuracy.tol`.
+    pub tol: f64,
+    /// `accuracy.max_unknowns`.
+    pub max_unknowns: usize,
+    /// The chosen discretisation and grid: the last step.
+    pub chosen: Step,
+    /// The contact solver (`solver.nonlinear`).
+    pub solver: String,
+    /// Every step, coarsest first (`worst`: the largest relative estimate and its quantity).
+    pub steps: Vec<Step>,
+}
+
+impl AccuracyReport {
+    /// The report of a refinement to `target` with the scene's solver.
+    pub fn new<T, S>(
+        scene: &Scene,
+        target: &AccuracyTarget,
+        refined: &Refined<T, S>,
+    ) -> Option<Self> {
+        Some(Self {
+            tol: target.tolerance,
+            max_unknowns: target.max_unknowns,
+            chosen: refined.steps.last()?.clone(),
+            solver: scene.solver.nonlinear.clone(),
+            steps: refined.steps.clone(),
+        })
+    }
+
+    /// The estimate of a refinement: `|Q_k - Q_{k-1}|` of every quantity, against the grid of
+    /// the step before (method `previous-refinement`).
+    pub fn estimate<T, S>(refined: &Refined<T, S>) -> ErrorEstimate {
+        let n = refined.steps.len();
+        ErrorEstimate {
+            quantities: refined
+                .estimates
+                .iter()
+                .map(|(k, v)| (k.clone(), Some(*v)))
+                .collect(),
+            coarser_grid: refined.steps[n.saturating_sub(2)].grid.clone(),
+            method: "previous-refinement",
+        }
+    }
+
+    /// One line per step and the choice, for the text reports.
+    pub fn table(&self) -> String {
+        let mut s = format!(
+            "  accuracy target {:e}: chose {}{} graded {} on {:?} ({} unknowns), solver {}\n",
+            self.tol,
+            self.chosen.method,
+            self.chosen
+                .order
+                .map_or_else(String::new, |p| format!(" p = {p}")),
+            self.chosen.grading,
+            self.chosen.grid,
+            self.chosen.unknowns,
+            self.solver
+        );
+        for step in &self.steps {
+            s += &format!(
+                "    step {:?}: {:.3} s{}\n",
+                step.grid,
+                step.seconds,
+                step.worst
+                    .as_ref()
+                    .map_or_else(String::new, |(q, e)| format!(
+                        ", worst relative estimate {e:.2e} ({q})"
+                    ))
+            );
+        }
+        s
+    }
+}
+
+/// The quantities of a contact solution with the scales their tolerances are relative to:
+/// lengths along the contact face (`slip_measure`, `stick_from`, `stick_to`) the face's
+/// measure, every other quantity its own magnitude.
+pub fn scaled(
+    quantities: &ContactQuantities,
+    solution: &ContactSolution,
+) -> BTreeMap<String, Scaled> {
+    quantities
+        .scalars(solution)
+        .into_iter()
+        .map(|(name, value)| {
+            let scale = match name.as_str() {
+                "slip_measure" | "stick_from" | "stick_to" => quantities.contact_measure,
+                _ => value.abs(),
+            };
+            let scale = scale.max(f64::MIN_POSITIVE);
+            (name, Scaled { value, scale })
+        })
+        .collect()
+}
+
+/// Solves a scene's contact problem to its accuracy target: the solution of the chosen step,
+/// its estimate and the report of the choice.
+///
+/// # Errors
+/// The solves' errors; [`CliError::AccuracyNotReached`] when the budget runs out.
+pub fn contact_to(
+    scene: &Scene,
+    target: &AccuracyTarget,
+    observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
+) -> Result<
+    (
+        crate::problem::Solved,
+        Problem,
+        ErrorEstimate,
+        AccuracyReport,
+    ),
+    CliError,
+> {
+    let problem = scene.build()?;
+    let probes = probes(scene);
+    let refined = problem.refine_to(target, |p| {
+        let solved = p.solve_observed(observer)?;
+        let q = solved.quantities(&probes)?;
+        let scaled = scaled(&q, &solved.solution);
+        Ok((solved, scaled))
+    })?;
+    let estimate = AccuracyReport::estimate(&refined);
+    let report = AccuracyReport::new(scene, target, &refined).ok_or(CliError::Scene {
+        origin: "accuracy.tol".into(),
+        message: "no refinement step ran".into(),
+    })?;
+    Ok((refined.value, refined.problem, estimate, report))
 }

@@ -232,6 +232,10 @@ pub struct ContactReport {
     /// method has no coarser level.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_error: Option<ErrorEstimate>,
+    /// With an accuracy target (`accuracy.tol`): the target, the chosen discretisation, grid
+    /// and solver, and every refinement step ([`accuracy::AccuracyReport`]); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<accuracy::AccuracyReport>,
 }
 
 impl ContactReport {
@@ -288,6 +292,7 @@ impl ContactReport {
             solid: None,
             quantities: None,
             estimated_error: None,
+            accuracy: None,
         }
     }
 }
@@ -402,10 +407,26 @@ pub fn solve_observed(
         CliError::Contact(e) => contact_budget(e, &scene.solver),
         e => e,
     };
+    let probes = accuracy::probes(scene);
+    if let Some(target) = scene.accuracy.target()? {
+        let (solved, problem, estimate, accuracy) = accuracy::contact_to(scene, &target, observer)
+            .map_err(|e| match e {
+                CliError::Contact(e) => contact_budget(e, &scene.solver),
+                e => e,
+            })?;
+        let mut report = report_of(scene, &solved);
+        report.grid = [problem.body.n2, problem.body.n3];
+        if let Some(solid) = report.solid.as_mut() {
+            solid.grid = problem.grid().try_into().unwrap_or(solid.grid);
+        }
+        report.quantities = Some(solved.quantities(&probes)?);
+        report.estimated_error = Some(estimate);
+        report.accuracy = Some(accuracy);
+        return Ok((report, run_of(scene, solved)?));
+    }
     let problem = scene.build()?;
     let solved = problem.solve_observed(observer).map_err(named)?;
     let mut report = report_of(scene, &solved);
-    let probes = accuracy::probes(scene);
     let scalars = solved.scalars(&probes)?;
     report.quantities = Some(solved.quantities(&probes)?);
     if scene.output.error_estimate
@@ -420,14 +441,18 @@ pub fn solve_observed(
             coarse.grid(),
         ));
     }
-    let run = match solved.model.plane() {
+    Ok((report, run_of(scene, solved)?))
+}
+
+/// The outputs' view of a solved problem.
+fn run_of(scene: &Scene, solved: crate::problem::Solved) -> Result<ContactRun, CliError> {
+    Ok(match solved.model.plane() {
         Some(disc) => ContactRun::Plane(self::solved(scene, disc, solved.solution)?),
         None => ContactRun::Solid {
             solution: solved.solution,
             model: solved.model,
         },
-    };
-    Ok((report, run))
+    })
 }
 
 /// The report of a solved scene (the 3-D body adds `solid`).
@@ -565,6 +590,9 @@ pub fn table(r: &ContactReport) -> String {
     s += &format!("  max |v3| {}\n", e(&r.max_radial_displacement));
     s += &format!("  Slip {:.6}\n", r.slip_fraction);
     s += &quantities_table(r);
+    if let Some(a) = &r.accuracy {
+        s += &a.table();
+    }
     match r.stick_interval {
         Some([a, b]) => s += &format!("  stick ({a:.6}, {b:.6})\n"),
         None => s += "  stick: none\n",

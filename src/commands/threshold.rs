@@ -4,11 +4,13 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
+use capstan_elasticity::contact::ThresholdSettings;
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
-use crate::commands::accuracy::ErrorEstimate;
+use crate::commands::accuracy::{AccuracyReport, ErrorEstimate};
 use crate::error::CliError;
+use crate::problem::Scaled;
 use crate::scene::Scene;
 
 /// `capstan threshold --json` (keys are a public contract).
@@ -45,6 +47,10 @@ pub struct ThresholdReport {
     /// `output.error_estimate = false` or when the method has no coarser level.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimated_error: Option<ErrorEstimate>,
+    /// With an accuracy target (`accuracy.tol`): the target, the chosen discretisation, grid
+    /// and solver, and every refinement step; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<AccuracyReport>,
 }
 
 /// Computes the report.
@@ -53,25 +59,42 @@ pub struct ThresholdReport {
 /// Bad input (2); non-convergence (4).
 pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let t = Instant::now();
-    let problem = scene.build()?;
-    let r = problem.threshold()?;
-    let implied_mu = implied_mu(scene, r.ratio)?;
-    let estimated_error = match problem.coarser()? {
-        Some(coarse) if scene.output.error_estimate => {
-            let ratio = coarse.threshold()?.ratio;
-            let level = |ratio: f64, mu: f64| {
-                BTreeMap::from([
-                    ("threshold_ratio".to_owned(), ratio),
-                    ("implied_mu".to_owned(), mu),
-                ])
+    let mut problem = scene.build()?;
+    let mut accuracy = None;
+    let (r, implied_mu, estimated_error) = if let Some(target) = scene.accuracy.target()? {
+        // the bisection's own tolerance well below the target's
+        let settings = ThresholdSettings {
+            tolerance: (target.tolerance * 1e-2).min(ThresholdSettings::default().tolerance),
+            ..Default::default()
+        };
+        let refined = problem.refine_to(&target, |p| {
+            let r = p.threshold_with(settings)?;
+            let membrane = MembraneProblem {
+                theta0: scene.membrane.theta0,
+                theta_max: scene.membrane.theta_max,
+                t0: 1.0,
+                ..Default::default()
             };
-            Some(ErrorEstimate::from_levels(
-                &level(r.ratio, implied_mu),
-                &level(ratio, self::implied_mu(scene, ratio)?),
-                coarse.grid(),
-            ))
-        }
-        _ => None,
+            let mu = membrane::infer_mu(&p.body.surface, &membrane, r.ratio)?.mu;
+            let q = |v: f64| Scaled {
+                value: v,
+                scale: v.abs().max(f64::MIN_POSITIVE),
+            };
+            let quantities = BTreeMap::from([
+                ("threshold_ratio".to_owned(), q(r.ratio)),
+                ("implied_mu".to_owned(), q(mu)),
+            ]);
+            Ok(((r, mu), quantities))
+        })?;
+        accuracy = AccuracyReport::new(scene, &target, &refined);
+        let estimate = AccuracyReport::estimate(&refined);
+        let ((r, mu), chosen) = (refined.value, refined.problem);
+        problem = chosen;
+        (r, mu, Some(estimate))
+    } else {
+        let r = problem.threshold()?;
+        let mu = implied_mu(scene, r.ratio)?;
+        (r, mu, plain_estimate(scene, &problem, r.ratio, mu)?)
     };
     Ok(ThresholdReport {
         status: "converged",
@@ -83,10 +106,37 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         implied_mu,
         mu: scene.friction.mu,
         solves: r.solves,
-        grid: [scene.grid.n2, scene.grid.n3],
+        grid: [problem.body.n2, problem.body.n3],
         seconds: t.elapsed().as_secs_f64(),
         grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
         estimated_error,
+        accuracy,
+    })
+}
+
+/// The estimate one grid level coarser (`output.error_estimate`).
+fn plain_estimate(
+    scene: &Scene,
+    problem: &crate::Problem,
+    ratio: f64,
+    implied_mu: f64,
+) -> Result<Option<ErrorEstimate>, CliError> {
+    Ok(match problem.coarser()? {
+        Some(coarse) if scene.output.error_estimate => {
+            let coarse_ratio = coarse.threshold()?.ratio;
+            let level = |ratio: f64, mu: f64| {
+                BTreeMap::from([
+                    ("threshold_ratio".to_owned(), ratio),
+                    ("implied_mu".to_owned(), mu),
+                ])
+            };
+            Some(ErrorEstimate::from_levels(
+                &level(ratio, implied_mu),
+                &level(coarse_ratio, self::implied_mu(scene, coarse_ratio)?),
+                coarse.grid(),
+            ))
+        }
+        _ => None,
     })
 }
 
@@ -111,7 +161,11 @@ pub fn table(r: &ThresholdReport) -> String {
             .and_then(|e| e.quantities.get(name).copied().flatten())
             .map_or_else(String::new, |e| format!(" +- {e:.1e}"))
     };
-    format!(
+    let accuracy = r
+        .accuracy
+        .as_ref()
+        .map_or_else(String::new, AccuracyReport::table);
+    let text = format!(
         "threshold tension ratio {:.6}{} (Slip = 1{}), grid {} x {}\n  implied capstan mu {:.6}{} (thick-body mu {})\n  last ratio with a stick node {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
         r.threshold_ratio,
         estimate("threshold_ratio"),
@@ -129,5 +183,6 @@ pub fn table(r: &ThresholdReport) -> String {
         r.slip_fraction_below,
         r.solves,
         r.seconds
-    )
+    );
+    text + &accuracy
 }

@@ -37,9 +37,11 @@ mod builder;
 mod friction;
 mod solve;
 mod solver;
+mod target;
 
 pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, Dimension, EndLoads};
 pub use friction::Friction;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{SolveMethod, Solver};
+pub use target::{AccuracyTarget, Refined, Scaled, Step};

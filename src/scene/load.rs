@@ -227,6 +227,7 @@ pub fn known_keys() -> Vec<String> {
         "discretisation.layers".to_string(),
         "loads.f_t".to_string(),
         "loads.f_n".to_string(),
+        "accuracy.tol".to_string(),
     ];
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));

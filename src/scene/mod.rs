@@ -44,6 +44,45 @@ pub struct Scene {
     pub discretisation: DiscretisationSpec,
     /// `[output]`: how files are written.
     pub output: OutputSpec,
+    /// `[accuracy]`: an accuracy target (capstan chooses discretisation and grid).
+    pub accuracy: AccuracySpec,
+}
+
+/// `[accuracy]`: with `tol` set, `contact`, `threshold`, `sweep` and `figure` choose the
+/// discretisation and grid themselves and refine until every reported quantity's estimated
+/// error is below `tol` relative ([`crate::problem::AccuracyTarget`]); `grid.*` and
+/// `discretisation.*` are then not used (plane strain; a 3-D body refines its own grid).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AccuracySpec {
+    /// The relative tolerance, `1e-9 ..= 0.1`; unset (default): the scene's own grid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tol: Option<f64>,
+    /// The work budget: the most unknowns a refinement step may have (default 300,000).
+    pub max_unknowns: usize,
+}
+
+impl Default for AccuracySpec {
+    fn default() -> Self {
+        Self {
+            tol: None,
+            max_unknowns: crate::problem::AccuracyTarget::DEFAULT_MAX_UNKNOWNS,
+        }
+    }
+}
+
+impl AccuracySpec {
+    /// The target `tol` asks for, `None` without one.
+    ///
+    /// # Errors
+    /// [`CliError::Elasticity`] naming `accuracy.tol` outside its range.
+    pub fn target(&self) -> Result<Option<crate::problem::AccuracyTarget>, CliError> {
+        self.tol
+            .map(|tol| {
+                Ok(crate::problem::AccuracyTarget::new(tol)?.with_max_unknowns(self.max_unknowns))
+            })
+            .transpose()
+    }
 }
 
 /// `[output]`: how `--out` writes its files (the numbers are the same either way).
