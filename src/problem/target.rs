@@ -17,13 +17,13 @@
 //! (slip measure, stick-zone ends) the face's measure.
 //!
 //! # The ladder
-//! Plane strain: `fem-qp` of order `p = 2, 3, ..., 7` (GLL nodes) with `p` geometric layers of
+//! Plane strain: `fem-qp` of order `p = 2, 3, ..., 6` (GLL nodes) with `p` geometric layers of
 //! ratio `0.15` toward both ends of `x2` and `x3` (the hp meshes of the corner singularities
 //! where the contact face meets the loaded ends: Schwab, *p- and hp-FEM*, section 4.4),
-//! `16 + 2p` elements along `x2` and `2p + 2` through the thickness; past `p = 7` the `p = 7`
-//! mesh halved in `h`. Measured on the default scene (docs/verification.md, "Accuracy
+//! `16 + 2p` elements along `x2` and `2p + 2` through the thickness; past `p = 6` twice the
+//! elements of `p = 6` per step (the same layers, the uniform part and the layers finer). Measured on the default scene (docs/verification.md, "Accuracy
 //! targets"), the threshold ratio converges geometrically along it (differences `2.7e-3,
-//! 1.1e-3, 3.7e-4, 1.2e-4, 4.8e-5`), where the uniform FD and Q2 grids and a graded mesh
+//! 1.1e-3, 3.7e-4, 1.2e-4`; order 7 adds 4.8e-5), where the uniform FD and Q2 grids and a graded mesh
 //! refined in `h` alone move it by `1e-4 ... 1e-3` from level to level. A 3-D body keeps its
 //! method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
 //! own.
@@ -40,9 +40,10 @@ use super::builder::Problem;
 /// The most an estimate may fall from one step to the next: `e_k >= |Q_{k-1} - Q_{k-2}| / DROP`.
 const DROP: f64 = 4.0;
 
-/// The highest order of the plane ladder (order 8 with 8 layers of ratio 0.15 gives
-/// elements `H 0.15^7 ~ 2e-6 H` and a singular factorisation).
-const MAX_ORDER: usize = 7;
+/// The highest order of the plane ladder: order 7 with 7 layers of ratio 0.15 (elements
+/// `H 0.15^6 ~ 1e-5 H`) gives a singular factorisation at `nu = 0.45`, order 8 already at the
+/// default `nu = 1/4`.
+const MAX_ORDER: usize = 6;
 
 /// The grading ratio of the plane ladder toward the ends (Schwab's `sigma ~ 0.15`).
 const GRADING: f64 = 0.15;
@@ -64,8 +65,8 @@ impl AccuracyTarget {
     /// The allowed tolerances.
     pub const ALLOWED: &'static str = "1e-9 <= accuracy.tol <= 0.1";
 
-    /// The default work budget: `300,000` unknowns (the plane ladder's step 6, the `p = 7`
-    /// mesh halved, is `2 * 421 * 225 = 189,450`; the next `755,378`).
+    /// The default work budget: `300,000` unknowns (the plane ladder's step 5, the `p = 6`
+    /// mesh with twice the elements, is `2 * 337 * 169 = 113,906`; the next `452,322`).
     pub const DEFAULT_MAX_UNKNOWNS: usize = 300_000;
 
     /// A target of relative tolerance `tolerance` with the default budget.
@@ -149,7 +150,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let mut p = self.clone();
         match &mut p.body.dimension {
             Dimension::Plane => {
-                // hp: p = 2 ... 7 with p geometric layers, then the p = 7 mesh halved in h
+                // hp: p = 2 ... 6 with p geometric layers, then the p = 6 mesh refined in h
                 let order = (2 + k).min(MAX_ORDER);
                 let halvings = k.saturating_sub(MAX_ORDER - 2);
                 p.body.method = DiscretisationMethod::FemQp;
@@ -265,5 +266,138 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             previous = Some(quantities);
         }
         unreachable!("the budget ends the ladder")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A manufactured quantity along the ladder: `Q_k = 1 + (-1)^k C 3^-k` (geometric with
+    /// alternating sign, the worst case of the estimate), no solve.
+    fn alternating(k: usize) -> f64 {
+        1.0 + (-1.0f64).powi(k as i32) * 0.1 * 3f64.powi(-(k as i32))
+    }
+
+    fn step_of(p: &Problem) -> usize {
+        let halvings = ((p.body.n3 - 1) / (p.body.settings.order * (2 * p.body.settings.order + 2)))
+            .trailing_zeros() as usize;
+        (p.body.settings.order - 2) + halvings
+    }
+
+    #[test]
+    fn refine_to_stops_where_the_estimate_meets_the_tolerance_and_brackets_the_error() {
+        let problem = Problem::paper();
+        for tol in [1e-2, 1e-3, 1e-4] {
+            let target = AccuracyTarget::new(tol)
+                .unwrap()
+                .with_max_unknowns(usize::MAX);
+            let refined = problem
+                .refine_to(&target, |p| {
+                    let q = alternating(step_of(p));
+                    Ok((
+                        q,
+                        BTreeMap::from([(
+                            "q".to_owned(),
+                            Scaled {
+                                value: q,
+                                scale: 1.0,
+                            },
+                        )]),
+                    ))
+                })
+                .unwrap();
+            let e = refined.estimates["q"];
+            let truth = (refined.value - 1.0).abs();
+            assert!(e <= tol, "{tol}: estimate {e:.2e}");
+            assert!(truth <= tol, "{tol}: true error {truth:.2e}");
+            // alternating: d_k = (3 + 1) E_k exactly
+            assert!((e / truth - 4.0).abs() < 1e-9, "{tol}: ratio {}", e / truth);
+            assert!(refined.steps.len() >= MIN_STEPS + 1);
+            assert_eq!(refined.steps.len(), step_of(&refined.problem) + 1);
+        }
+    }
+
+    #[test]
+    fn a_step_landing_on_its_predecessor_does_not_end_the_refinement() {
+        // Q: 0, 0.1, 0.1 + 1e-9, then converged: d_2 = 1e-9, but e_2 >= 0.1 / 4
+        let values = [0.0, 0.1, 0.1 + 1e-9, 0.1 + 2e-9, 0.1 + 2e-9];
+        let target = AccuracyTarget::new(1e-3).unwrap();
+        let refined = Problem::paper()
+            .refine_to(&target, |p| {
+                let q = values[step_of(p)];
+                Ok((
+                    q,
+                    BTreeMap::from([(
+                        "q".to_owned(),
+                        Scaled {
+                            value: q,
+                            scale: 1.0,
+                        },
+                    )]),
+                ))
+            })
+            .unwrap();
+        // step 2: e = 0.025; step 3: max(1e-9, 2.5e-10) meets 1e-3
+        assert_eq!(refined.steps.len(), 4);
+        assert_eq!(refined.steps[2].worst.as_ref().unwrap().1, 0.1 / DROP);
+    }
+
+    #[test]
+    fn a_spent_budget_is_a_typed_error_naming_the_quantity() {
+        let target = AccuracyTarget::new(1e-6).unwrap().with_max_unknowns(10_000);
+        let e = Problem::paper()
+            .refine_to(&target, |p| {
+                let q = 1.0 / p.body.settings.order as f64; // converges too slowly
+                Ok((
+                    (),
+                    BTreeMap::from([(
+                        "slow".to_owned(),
+                        Scaled {
+                            value: q,
+                            scale: 1.0,
+                        },
+                    )]),
+                ))
+            })
+            .unwrap_err();
+        match e {
+            ProblemError::AccuracyNotReached {
+                quantity,
+                unknowns,
+                max_unknowns,
+                ..
+            } => {
+                assert_eq!(quantity, "slow");
+                assert!(unknowns > max_unknowns);
+            }
+            e => panic!("{e}"),
+        }
+        assert!(AccuracyTarget::new(0.0).is_err());
+        assert!(AccuracyTarget::new(f64::NAN).is_err());
+        assert!(AccuracyTarget::new(0.5).is_err());
+    }
+
+    #[test]
+    fn the_plane_ladder_is_hp_then_h() {
+        let p = Problem::paper();
+        let grids: Vec<_> = (0..7)
+            .map(|k| {
+                let s = p.accuracy_step(k).unwrap();
+                (s.body.settings.order, s.body.n2, s.body.n3)
+            })
+            .collect();
+        assert_eq!(
+            grids,
+            [
+                (2, 41, 13),
+                (3, 67, 25),
+                (4, 97, 41),
+                (5, 131, 61),
+                (6, 169, 85),
+                (6, 337, 169),
+                (6, 673, 337)
+            ]
+        );
     }
 }
