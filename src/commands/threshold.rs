@@ -62,9 +62,11 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let mut problem = scene.build()?;
     let mut accuracy = None;
     let (r, implied_mu, estimated_error) = if let Some(target) = scene.accuracy.target()? {
-        // the bisection's own tolerance well below the target's
+        // the bisection's own tolerance a tenth of the target's (at most the default 1e-6:
+        // a bracket much tighter puts solves next to the rigid-sliding limit, where the
+        // continuation needs hundreds of Newton steps)
         let settings = ThresholdSettings {
-            tolerance: (target.tolerance * 1e-2).min(ThresholdSettings::default().tolerance),
+            tolerance: (target.tolerance * 1e-1).min(ThresholdSettings::default().tolerance),
             ..Default::default()
         };
         let refined = problem.refine_to(&target, |p| {
