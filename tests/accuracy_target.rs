@@ -45,3 +45,20 @@ fn threshold_to_1e_3_is_within_tolerance_of_the_hp_ladder_at_order_6() {
     assert_eq!(accuracy.chosen.order, Some(4));
     assert_eq!(accuracy.steps.len(), 3);
 }
+
+#[test]
+fn a_sweep_with_a_target_solves_every_point_to_it() {
+    let sets = ["accuracy.tol=1e-2".to_owned()];
+    let r = capstan::commands::sweep::report(None, &sets, "body.poisson", &[0.1, 0.3]).unwrap();
+    for p in &r.points {
+        assert!(p.converged, "{:?}", p.error);
+        let a = p.accuracy.as_ref().unwrap();
+        let slip = a.estimated_error["slip_measure"].unwrap();
+        assert!(
+            slip <= 1e-2 * a.contact_measure,
+            "slip measure estimate {slip:.2e}"
+        );
+        assert_eq!(a.grid.len(), 2);
+        assert!(a.slip_measure > 0.0 && a.slip_measure < a.contact_measure);
+    }
+}
