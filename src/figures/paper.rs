@@ -636,8 +636,9 @@ fn slip_figure(
             vec![trend_row(&r, x_scale, f.x_label, f.paper)]
         }
     };
-    if name == "slip-poisson" {
-        // the threshold at an accuracy target: the trend the node fraction cannot resolve
+    if name == "slip-poisson" && s.scene.is_none() && !s.re_aimed(f.key) {
+        // the threshold at an accuracy target, the trend the node fraction cannot resolve, on
+        // the paper's body (finding (v)); a scene file or another key re-aims the figure
         let (key, values) = s.sweep(f.key, f.range, s.steps(f.steps.0, f.steps.1));
         let stem = "slip-poisson-threshold";
         let (points, more) = threshold_trend::threshold_trend(s, &key, &values, stem, out)?;

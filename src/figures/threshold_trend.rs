@@ -34,7 +34,8 @@ pub struct TrendPoint {
 /// `+- estimate` band; returns the points and the files written.
 ///
 /// # Errors
-/// A point's scene or threshold errors (the accuracy target's budget included).
+/// The first point's error when every point fails (its scene, its threshold, the accuracy
+/// target's budget); a failing point among others is left out of the curve.
 pub fn threshold_trend(
     s: &FigureSettings,
     key: &str,
@@ -44,9 +45,9 @@ pub fn threshold_trend(
 ) -> Result<(Vec<TrendPoint>, Vec<String>), CliError> {
     let tolerance = default_tolerance(s.quick);
     let _sequential = capstan_elasticity::contact::sequential_linear_algebra_scope();
-    let points = values
+    let solved = values
         .par_iter()
-        .map(|&v| {
+        .map(|&v| -> Result<TrendPoint, CliError> {
             let mut scene = s.scene_with(&[format!("{key}={v}")])?;
             if scene.accuracy.tol.is_none() {
                 scene.accuracy.tol = Some(tolerance);
@@ -64,7 +65,19 @@ pub fn threshold_trend(
                 grid: r.grid,
             })
         })
-        .collect::<Result<Vec<_>, CliError>>()?;
+        .collect::<Vec<_>>();
+    // a point whose threshold fails (a budget spent next to the rigid-sliding limit) is left
+    // out of the curve and counted in the comparison, not the end of the figure
+    let points: Vec<TrendPoint> = solved
+        .iter()
+        .filter_map(|r| r.as_ref().ok())
+        .cloned()
+        .collect();
+    if points.is_empty()
+        && let Some(Err(e)) = solved.into_iter().next()
+    {
+        return Err(e);
+    }
     let column = |f: fn(&TrendPoint) -> f64| points.iter().map(f).collect::<Vec<_>>();
     let table = Table::new()
         .f64("value", column(|p| p.value))
