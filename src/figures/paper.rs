@@ -643,7 +643,8 @@ fn slip_figure(
         let stem = "slip-poisson-threshold";
         let (points, more) = threshold_trend::threshold_trend(s, &key, &values, stem, out)?;
         files.extend(more);
-        rows.push(threshold_trend::comparison(&points, &key));
+        let [quantity, ours, paper, note] = threshold_trend::comparison(&points, &key);
+        rows.push(row(&quantity, ours, &paper, &note));
     }
     Ok((files, rows))
 }

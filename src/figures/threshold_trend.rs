@@ -127,8 +127,8 @@ pub fn resolved_direction(points: &[TrendPoint]) -> Option<i8> {
     direction
 }
 
-/// The trend beside the paper's finding (v) in `index.md`.
-pub fn comparison(points: &[TrendPoint], key: &str) -> crate::figures::paper::Comparison {
+/// The trend beside the paper's finding (v) in `index.md`: quantity, ours, the paper's, note.
+pub fn comparison(points: &[TrendPoint], key: &str) -> [String; 4] {
     let (first, last) = (points.first(), points.last());
     let ours = match (first, last) {
         (Some(a), Some(b)) => format!(
@@ -142,12 +142,12 @@ pub fn comparison(points: &[TrendPoint], key: &str) -> crate::figures::paper::Co
         Some(_) => "threshold increases monotonically, every step beyond both error bars",
         None => "not resolved: a step within the error bars or a change of direction",
     };
-    crate::figures::paper::Comparison {
-        quantity: format!("threshold ratio against {key} (accuracy target)"),
+    [
+        format!("threshold ratio against {key} (accuracy target)"),
         ours,
-        paper: "Slip decreases slightly as nu increases".into(),
-        note: note.into(),
-    }
+        "Slip decreases slightly as nu increases".into(),
+        note.into(),
+    ]
 }
 
 #[cfg(test)]

@@ -1,32 +1,7 @@
 //! Accuracy targets: capstan chooses the discretisation and grid of a [`Problem`] and refines
 //! until every reported quantity's estimated error is below a tolerance.
 //!
-//! # Math
-//! A ladder of discretisations `D_0, D_1, ...` gives every quantity `Q` a sequence
-//! `Q_0, Q_1, ...`. The estimate of the error of `Q_k` is the difference to the step before,
-//! kept from falling faster than a factor 4 per step:
-//! ```text
-//! d_k(Q) = |Q_k - Q_{k-1}|,      e_k(Q) = max(d_k, d_{k-1} / 4)
-//! ```
-//! For an error falling geometrically by `q` per step (`E_k = C q^-k`), `d_k` lies between
-//! `(q - 1) E_k` (monotone) and `(q + 1) E_k` (alternating), so `e_k` is `2 ... 4` times the
-//! true error at the `q ~ 3` measured on the default scene; the floor `d_{k-1} / 4` keeps a
-//! step that happens to land near its predecessor from ending the refinement. Refinement
-//! stops at the first `k >= 2` (two differences) with `e_k(Q) <= tol * scale(Q)` for every
-//! `Q`; `scale(Q)` is the quantity's own magnitude, or for lengths along the contact face
-//! (slip measure, stick-zone ends) the face's measure.
-//!
-//! # The ladder
-//! Plane strain: `fem-qp` of order `p = 2, 3, ..., 6` (GLL nodes) with `p` geometric layers of
-//! ratio `0.15` toward both ends of `x2` and `x3` (the hp meshes of the corner singularities
-//! where the contact face meets the loaded ends: Schwab, *p- and hp-FEM*, section 4.4),
-//! `16 + 2p` elements along `x2` and `2p + 2` through the thickness; past `p = 6` twice the
-//! elements of `p = 6` per step (the same layers, the uniform part and the layers finer). Measured on the default scene (docs/verification.md, "Accuracy
-//! targets"), the threshold ratio converges geometrically along it (differences `2.7e-3,
-//! 1.1e-3, 3.7e-4, 1.2e-4`; order 7 adds 4.8e-5), where the uniform FD and Q2 grids and a graded mesh
-//! refined in `h` alone move it by `1e-4 ... 1e-3` from level to level. A 3-D body keeps its
-//! method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
-//! own.
+//! See [`AccuracyTarget`] for the estimate and the ladder.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -53,6 +28,33 @@ const MIN_STEPS: usize = 2;
 use super::solve::ProblemError;
 
 /// What an accuracy target asks for, with its work budget.
+///
+/// # Math
+/// A ladder of discretisations `D_0, D_1, ...` gives every quantity `Q` a sequence
+/// `Q_0, Q_1, ...`. The estimate of the error of `Q_k` is the difference to the step before,
+/// kept from falling faster than a factor 4 per step:
+/// ```text
+/// d_k(Q) = |Q_k - Q_{k-1}|,      e_k(Q) = max(d_k, d_{k-1} / 4)
+/// ```
+/// For an error falling geometrically by `q` per step (`E_k = C q^-k`), `d_k` lies between
+/// `(q - 1) E_k` (monotone) and `(q + 1) E_k` (alternating), so `e_k` is `2 ... 4` times the
+/// true error at the `q ~ 3` measured on the default scene; the floor `d_{k-1} / 4` keeps a
+/// step that happens to land near its predecessor from ending the refinement. Refinement
+/// stops at the first `k >= 2` (two differences) with `e_k(Q) <= tol * scale(Q)` for every
+/// `Q`; `scale(Q)` is the quantity's own magnitude, or for lengths along the contact face
+/// (slip measure, stick-zone ends) the face's measure.
+///
+/// # The ladder
+/// Plane strain: `fem-qp` of order `p = 2, 3, ..., 6` (GLL nodes) with `p` geometric layers of
+/// ratio `0.15` toward both ends of `x2` and `x3` (the hp meshes of the corner singularities
+/// where the contact face meets the loaded ends: Schwab, *p- and hp-FEM*, section 4.4),
+/// `16 + 2p` elements along `x2` and `2p + 2` through the thickness; past `p = 6` twice the
+/// elements of `p = 6` per step (the same layers, the uniform part and the layers finer). Measured on the default scene (docs/verification.md, "Accuracy
+/// targets"), the threshold ratio converges geometrically along it (differences `2.7e-3,
+/// 1.1e-3, 3.7e-4, 1.2e-4`; order 7 adds 4.8e-5), where the uniform FD and Q2 grids and a graded mesh
+/// refined in `h` alone move it by `1e-4 ... 1e-3` from level to level. A 3-D body keeps its
+/// method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
+/// own.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AccuracyTarget {
     /// The relative tolerance every quantity's estimated error must meet.
@@ -142,7 +144,7 @@ pub struct Refined<T, S> {
 }
 
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
-    /// The problem at step `k` of the accuracy ladder (see the [module docs](self)).
+    /// The problem at step `k` of the accuracy ladder (see [`AccuracyTarget`]).
     ///
     /// # Errors
     /// The discretisation's errors ([`ProblemError::Elasticity`]).
@@ -179,7 +181,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     }
 
     /// Refines along the accuracy ladder until every quantity `eval` reports has
-    /// `e_k(Q) <= target.tolerance * scale(Q)` (see the [module docs](self)).
+    /// `e_k(Q) <= target.tolerance * scale(Q)` (see [`AccuracyTarget`]).
     ///
     /// `eval` solves one step's problem and returns its result and quantities by name. A
     /// quantity present on one step and missing on the other (a stick zone that appears) has
