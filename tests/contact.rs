@@ -275,7 +275,7 @@ fn jacobi_newton_agrees_with_lu_newton_on_a_small_grid() {
     settings.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges on this operator
     settings.newton.iterative.max_iterations = 200_000;
     settings.newton.iterative.tolerance = 1e-12;
-    settings.newton.linear = LinearBackend::Jacobi;
+    settings.newton.linear = LinearBackend::JACOBI;
     settings.continuation.tolerance = 1e-9;
     let jacobi = FullSystemSolver::new(&model, settings)
         .unwrap()

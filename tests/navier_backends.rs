@@ -24,15 +24,23 @@ fn lu_jacobi_and_gauss_seidel_agree_on_the_paper_ellipse() {
     // break diagonal dominance); damped Jacobi (relaxation 1/2) and Gauss-Seidel converge.
     let tolerance = 1e-10;
     for (backend, relaxation, iterations) in [
-        (LinearBackend::Jacobi, 0.5, 2393),
-        (LinearBackend::GaussSeidel, 1.0, 606),
+        (LinearBackend::JACOBI, 0.5, 2393),
+        (LinearBackend::GAUSS_SEIDEL, 1.0, 606),
     ] {
         let params = IterativeParams {
             tolerance,
             max_iterations: 100_000,
             relaxation,
         };
-        let mut solver = backend.build(&params).unwrap();
+        let mut solver = backend
+            .build(
+                &capstan_elasticity::solvers::LinearSettings {
+                    iterative: params,
+                    ..Default::default()
+                },
+                &(),
+            )
+            .unwrap();
         let v = system.solve(&mut *solver).unwrap();
         assert_eq!(solver.last_iterations(), Some(iterations), "{backend}");
         let scale = lu.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -48,7 +56,15 @@ fn lu_jacobi_and_gauss_seidel_agree_on_the_paper_ellipse() {
         max_iterations: 20_000,
         relaxation: 1.0,
     };
-    let mut jacobi = LinearBackend::Jacobi.build(&params).unwrap();
+    let mut jacobi = LinearBackend::JACOBI
+        .build(
+            &capstan_elasticity::solvers::LinearSettings {
+                iterative: params,
+                ..Default::default()
+            },
+            &(),
+        )
+        .unwrap();
     assert!(
         system.solve(&mut *jacobi).is_err(),
         "undamped Jacobi is expected to diverge"

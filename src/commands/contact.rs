@@ -1,9 +1,7 @@
 //! `capstan contact`: the thick body on a rough prism under the scene's friction law
 //! (`friction.law` through `AnyFrictionLaw`; regularised Coulomb by default, paper section 3).
 
-use capstan_elasticity::contact::{
-    BulkMultigrid, ContactQuantities, ContactSolution, EndLoads, ThickBody,
-};
+use capstan_elasticity::contact::{ContactQuantities, ContactSolution, EndLoads, ThickBody};
 use capstan_elasticity::solvers::Observer;
 use capstan_elasticity::{Discretisation, Material};
 use serde::Serialize;
@@ -546,7 +544,7 @@ pub(crate) fn contact_budget(
             solver
                 .max_sweeps
                 .map_or_else(|| "unset".into(), |n| n.to_string()),
-            BulkMultigrid::default().krylov.max_iterations,
+            capstan_elasticity::solvers::KrylovParams::default().max_iterations,
             iterations.saturating_mul(4)
         ),
         ContactError::Solver(SolverError::NotConverged { iterations, .. }) => format!(

@@ -169,11 +169,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     times,
                 })
             }
-            SolveMethod::FullNewton(_)
-            | SolveMethod::FullNewtonMultigrid
-            | SolveMethod::FullNewtonPetsc
-                if plane =>
-            {
+            SolveMethod::FullNewton(_) if plane => {
                 // Grid sequencing: the model is assembled level by level inside.
                 let (law, params, eps) = self.friction.build()?;
                 let body = self.body.plane();
@@ -196,10 +192,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     Err(e) => Err(e.into()),
                 }
             }
-            SolveMethod::FullNewton(_)
-            | SolveMethod::FullNewtonMultigrid
-            | SolveMethod::FullNewtonPetsc
-            | SolveMethod::JacobiNewton => {
+            SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton => {
                 let model = self.model()?;
                 let solver = FullSystemSolver::new(&model, self.solver.full_settings())?;
                 let setup = t0.elapsed().as_secs_f64();

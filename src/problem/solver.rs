@@ -1,6 +1,6 @@
 //! The contact solver of a [`super::Problem`] and its work budgets.
 
-use capstan_elasticity::contact::{BulkMultigrid, ContactSettings, FullSystemSettings};
+use capstan_elasticity::contact::{ContactSettings, FullSystemSettings};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 
 /// How the contact problem is solved (`solver.nonlinear`, `solver.linear` in scenes).
@@ -10,18 +10,14 @@ pub enum SolveMethod {
     /// factorised once; also gives the limiting tension ratios when the body can slide rigidly.
     #[default]
     Condensed,
-    /// `full-newton`: Newton on the full residual with the linear backend, refactorised each
-    /// step (grid sequencing on the plane-strain body).
+    /// `full-newton`: Newton on the full residual with any registered linear backend
+    /// (`capstan_solvers::linear_registry`): a factorisation or stationary iteration each
+    /// step, `multigrid` (GMRES with the geometric multigrid of the 3-D body), `petsc` (feature
+    /// `petsc`: PETSc's KSP over the MPI ranks, Newton replicated on every rank) or a user's
+    /// (grid sequencing on the plane-strain body).
     FullNewton(LinearBackend),
     /// `jacobi-newton`: the paper's Jacobi–Newton (damped Jacobi, relaxation 1/2).
     JacobiNewton,
-    /// `full-newton` with `solver.linear = "multigrid"`: each Newton step by GMRES with the
-    /// geometric multigrid of the 3-D body ([`BulkMultigrid`]).
-    FullNewtonMultigrid,
-    /// `full-newton` with `solver.linear = "petsc"` (feature `petsc`): each Newton step by
-    /// PETSc's KSP over the MPI ranks, Newton replicated on every rank
-    /// ([`FullSystemSettings::external`]).
-    FullNewtonPetsc,
 }
 
 /// The contact solver with its work budgets.
@@ -56,8 +52,6 @@ impl Solver {
         let mut s = FullSystemSettings::default();
         match self.method {
             SolveMethod::FullNewton(linear) => s.newton.linear = linear,
-            SolveMethod::FullNewtonMultigrid => s.multigrid = Some(BulkMultigrid::default()),
-            SolveMethod::FullNewtonPetsc => s.external = crate::scale::petsc_backend(),
             SolveMethod::JacobiNewton => {
                 s.method = NonlinearMethod::JacobiNewton;
                 s.newton.iterative.relaxation = 0.5; // undamped Jacobi diverges here
@@ -75,10 +69,9 @@ impl Solver {
             s.newton.iterative.relaxation = w;
         }
         if let Some(sweeps) = self.max_sweeps {
+            // the budget of whichever family the backend is
             s.newton.iterative.max_iterations = sweeps;
-            if let Some(m) = s.multigrid.as_mut() {
-                m.krylov.max_iterations = sweeps;
-            }
+            s.newton.krylov.max_iterations = sweeps;
         }
         s
     }

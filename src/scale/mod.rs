@@ -29,11 +29,17 @@ pub use shard::{ShardFile, ShardSpec, merge, read_parts, run_shard, shard_file_n
 /// Whether this build has the PETSc backend (`solver.linear = "petsc"`, cargo feature `petsc`).
 pub const PETSC_ENABLED: bool = cfg!(feature = "petsc");
 
-/// The PETSc backend of the full-system Newton ([`capstan_elasticity::contact::FullSystemSettings::external`]);
-/// `None` in a build without the feature `petsc`.
-pub fn petsc_backend() -> Option<capstan_elasticity::solvers::ExternalLinear> {
+/// Registers the linear backends of this build's optional features in
+/// `capstan_solvers::linear_registry` (feature `petsc`: `petsc`), once per process; scene
+/// validation and [`crate::Scene::build`] call it before they parse `solver.linear`.
+pub fn register_feature_backends() {
     #[cfg(feature = "petsc")]
-    return Some(capstan_petsc::EXTERNAL);
-    #[cfg(not(feature = "petsc"))]
-    None
+    {
+        static ONCE: std::sync::Once = std::sync::Once::new();
+        ONCE.call_once(|| {
+            // a program that registered it itself first keeps its entry
+            let _ =
+                capstan_elasticity::solvers::linear_registry::register(capstan_petsc::REGISTRATION);
+        });
+    }
 }

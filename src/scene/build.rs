@@ -84,31 +84,21 @@ impl Scene {
     /// `full-newton`.
     fn solve_method(&self) -> Result<SolveMethod, CliError> {
         let s = &self.solver;
-        if s.linear == "multigrid" {
-            return match s.nonlinear.as_str() {
-                "full-newton" => Ok(SolveMethod::FullNewtonMultigrid),
-                other => Err(CliError::Scene {
-                    origin: "solver.linear".into(),
-                    message: format!(
-                        "`solver.linear` = \"multigrid\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
-                    ),
-                }),
-            };
+        crate::scale::register_feature_backends();
+        if s.linear == "petsc" && !crate::scale::PETSC_ENABLED {
+            return Err(CliError::Scene {
+                origin: "solver.linear".into(),
+                message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
+            });
         }
-        if s.linear == "petsc" {
-            return match s.nonlinear.as_str() {
-                "full-newton" if crate::scale::PETSC_ENABLED => Ok(SolveMethod::FullNewtonPetsc),
-                "full-newton" => Err(CliError::Scene {
-                    origin: "solver.linear".into(),
-                    message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
-                }),
-                other => Err(CliError::Scene {
-                    origin: "solver.linear".into(),
-                    message: format!(
-                        "`solver.linear` = \"petsc\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{other}`"
-                    ),
-                }),
-            };
+        if matches!(s.linear.as_str(), "multigrid" | "petsc") && s.nonlinear != "full-newton" {
+            return Err(CliError::Scene {
+                origin: "solver.linear".into(),
+                message: format!(
+                    "`solver.linear` = \"{}\" is the bulk solver of `solver.nonlinear` = \"full-newton\", not of `{}`",
+                    s.linear, s.nonlinear
+                ),
+            });
         }
         let linear = s
             .linear

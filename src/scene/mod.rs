@@ -560,9 +560,12 @@ impl Default for SolverSpec {
 
 impl SolverSpec {
     /// The contact solvers' settings with the scene's budgets (`solver.max_iterations`,
-    /// `max_continuation_steps`, `min_load_step`).
+    /// `max_continuation_steps`, `min_load_step`) and its linear backend (`solver.linear`, for
+    /// the condensed bulk).
     pub fn contact_settings(&self) -> capstan_elasticity::contact::ContactSettings {
         capstan_elasticity::contact::ContactSettings {
+            // (`validate` refused a name that no backend is registered under)
+            linear: self.linear.parse().unwrap_or_default(),
             max_iterations: self.max_iterations,
             max_continuation_steps: self.max_continuation_steps,
             min_load_step: self.min_load_step,
@@ -633,6 +636,7 @@ impl DiscretisationSpec {
 }
 
 mod build;
+mod follow;
 mod load;
 mod memory;
 #[cfg(test)]

@@ -371,10 +371,17 @@ impl Scene {
                 ));
             }
         } else if self.solver.linear.parse::<LinearBackend>().is_err() {
+            let registered: Vec<String> = LinearBackend::all()
+                .iter()
+                .map(|b| format!("`{b}`"))
+                .collect();
             return Err(bad(
                 "solver.linear",
                 format!("{:?}", self.solver.linear),
-                "`lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid` (3-D body, full-newton), `petsc` (full-newton, feature `petsc`)",
+                &format!(
+                    "{} (`multigrid`: 3-D body, full-newton; `petsc`: full-newton, feature `petsc`)",
+                    registered.join(", ")
+                ),
             ));
         }
         if !matches!(

@@ -51,7 +51,15 @@ fn iterative(
         max_iterations: 2_000_000,
         relaxation,
     };
-    let mut solver = backend.build(&params).expect("valid parameters");
+    let mut solver = backend
+        .build(
+            &capstan_elasticity::solvers::LinearSettings {
+                iterative: params,
+                ..Default::default()
+            },
+            &(),
+        )
+        .expect("valid parameters");
     let t = Instant::now();
     let result = system.solve(&mut *solver);
     let seconds = t.elapsed().as_secs_f64();
@@ -194,8 +202,8 @@ fn main() {
     if with_iterative {
         extra += &format!(
             ",\"iterative\":[{},{}]",
-            iterative(&system, LinearBackend::Jacobi, 0.5, &v),
-            iterative(&system, LinearBackend::GaussSeidel, 1.0, &v)
+            iterative(&system, LinearBackend::JACOBI, 0.5, &v),
+            iterative(&system, LinearBackend::GAUSS_SEIDEL, 1.0, &v)
         );
     }
     println!(

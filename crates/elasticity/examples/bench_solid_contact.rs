@@ -25,12 +25,12 @@ mod common;
 use std::time::Instant;
 
 use capstan_elasticity::contact::{
-    BoundarySolver, BulkMultigrid, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
+    BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
 };
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::SolidBody;
 use capstan_elasticity::solvers::{
-    KrylovParams, MultigridParams, Progress, Smoother, max_abs, max_abs_difference,
+    KrylovParams, LinearBackend, MultigridParams, Progress, Smoother, max_abs, max_abs_difference,
 };
 use capstan_elasticity::verification::peak_memory_mib;
 use capstan_geometry::{EllipticalPrism, Obstacle};
@@ -94,22 +94,20 @@ fn main() {
             (setup, out)
         }
         _ => {
-            let settings = FullSystemSettings {
-                multigrid: (solver == "multigrid").then(|| BulkMultigrid {
-                    krylov: KrylovParams {
-                        tolerance: krylov_tol,
-                        restart,
-                        ..Default::default()
-                    },
-                    multigrid: MultigridParams {
-                        smoother,
-                        power_iterations,
-                        ..Default::default()
-                    },
+            let mut settings = FullSystemSettings::default();
+            if solver == "multigrid" {
+                settings.newton.linear = LinearBackend::MULTIGRID;
+                settings.newton.krylov = KrylovParams {
+                    tolerance: krylov_tol,
+                    restart,
                     ..Default::default()
-                }),
-                ..Default::default()
-            };
+                };
+                settings.newton.multigrid = MultigridParams {
+                    smoother,
+                    power_iterations,
+                    ..Default::default()
+                };
+            }
             let s = FullSystemSolver::new(&model, settings).expect("set-up");
             let setup = t.elapsed().as_secs_f64();
             let out: Vec<_> = ratios

@@ -4,14 +4,12 @@
 //! is a typed error naming its key.
 
 use capstan_elasticity::ElasticityError;
-use capstan_elasticity::contact::{
-    BulkMultigrid, ContactError, EndLoads, FullSystemSettings, FullSystemSolver,
-};
+use capstan_elasticity::contact::{ContactError, EndLoads, FullSystemSettings, FullSystemSolver};
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::{FaceComponent, FaceCondition, SolidBody, SolidNavier};
 use capstan_elasticity::solvers::{
-    CsrMatrix, KRYLOV_BUDGET_FIELD, KrylovMethod, KrylovParams, Multigrid, MultigridParams,
-    SilentObserver, Smoother, SolverError, krylov_solve,
+    CsrMatrix, KRYLOV_BUDGET_FIELD, KrylovMethod, KrylovParams, LinearBackend, Multigrid,
+    MultigridParams, SilentObserver, Smoother, SolverError, krylov_solve,
 };
 use capstan_geometry::{EllipticalPrism, ShellChart};
 
@@ -96,11 +94,20 @@ fn multigrid_cg_iterations_stay_bounded_under_refinement() {
     }
 }
 
-fn settings(multigrid: Option<BulkMultigrid>) -> FullSystemSettings {
-    FullSystemSettings {
-        multigrid,
-        ..Default::default()
+/// The full-system settings with the `multigrid` backend of `krylov`, `multigrid` settings,
+/// or the default sparse LU (`None`).
+fn settings(multigrid: Option<(KrylovParams, MultigridParams)>) -> FullSystemSettings {
+    let mut s = FullSystemSettings::default();
+    if let Some((krylov, multigrid)) = multigrid {
+        s.newton.linear = LinearBackend::MULTIGRID;
+        s.newton.krylov = krylov;
+        s.newton.multigrid = multigrid;
     }
+    s
+}
+
+fn default_multigrid() -> Option<(KrylovParams, MultigridParams)> {
+    Some(Default::default())
 }
 
 #[test]
@@ -115,7 +122,7 @@ fn iterative_contact_solution_equals_the_direct_one() {
         .unwrap()
         .solve(loads)
         .unwrap();
-    let iterative = FullSystemSolver::new(&model, settings(Some(BulkMultigrid::default())))
+    let iterative = FullSystemSolver::new(&model, settings(default_multigrid()))
         .unwrap()
         .solve(loads)
         .unwrap();
@@ -138,15 +145,17 @@ fn a_spent_krylov_budget_is_a_typed_error_naming_the_key() {
     let body = ellipse_body([5, 33, 5]);
     let law = RegularisedCoulombParams::new(0.5, EPS).unwrap();
     let model = body.model(RegularisedCoulomb, law, EPS).unwrap();
-    let mg = BulkMultigrid {
-        krylov: KrylovParams {
+    let mg = (
+        KrylovParams {
             max_iterations: 1,
             tolerance: 1e-12,
             ..Default::default()
         },
-        coarsest_unknowns: 200,
-        ..Default::default()
-    };
+        MultigridParams {
+            coarsest_unknowns: 200,
+            ..Default::default()
+        },
+    );
     let err = FullSystemSolver::new(&model, settings(Some(mg)))
         .unwrap()
         .solve(EndLoads::ratio(1.5))
@@ -169,7 +178,7 @@ fn multigrid_is_refused_without_a_hierarchy() {
     let body = ThickBody::paper(21, 6).unwrap(); // plane strain: no box hierarchy
     let law = RegularisedCoulombParams::new(0.5, EPS).unwrap();
     let model = body.model(RegularisedCoulomb, law, EPS).unwrap();
-    match FullSystemSolver::new(&model, settings(Some(BulkMultigrid::default()))) {
+    match FullSystemSolver::new(&model, settings(default_multigrid())) {
         Err(ContactError::Elasticity(ElasticityError::InvalidParameter { field, .. })) => {
             assert_eq!(field, "solver.linear")
         }

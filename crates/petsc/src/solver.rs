@@ -5,7 +5,8 @@ use std::ffi::CString;
 
 use capstan_petsc_sys as sys;
 use capstan_solvers::{
-    ExternalLinear, LinearSolver, Observer, Progress, SolveStage, SolverError, SparsityPattern,
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, LinearSolver, Observer,
+    Progress, RegisteredLinearSolver, SolveStage, SolverError, SparsityPattern,
 };
 
 use crate::error::{PetscError, check, diverged_name};
@@ -14,13 +15,22 @@ use crate::session::running;
 /// The name of the backend in `solver.linear`.
 pub const NAME: &str = "petsc";
 
-/// The backend as an [`ExternalLinear`] for the contact solvers' settings.
-pub const EXTERNAL: ExternalLinear = ExternalLinear {
+/// The backend's entry for `capstan_solvers::linear_registry::register` (a program registers
+/// it once, after opening the PETSc [`crate::Session`]): `solver.linear = "petsc"` then
+/// reaches both contact solvers like the built-ins. It reads its settings from PETSc's options
+/// database (`solver.petsc_options`), not from [`LinearSettings`].
+pub const REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
     name: NAME,
+    summary: "PETSc KSP over the MPI ranks (default GMRES + GAMG to 1e-8; options from solver.petsc_options)",
+    parameters: &[],
+    kind: BackendKind::Krylov,
     build: build_boxed,
 };
 
-fn build_boxed() -> Result<Box<dyn LinearSolver<f64> + Send>, SolverError> {
+fn build_boxed(
+    _: &LinearSettings,
+    _: &dyn LinearContext,
+) -> Result<BoxedLinearSolver, SolverError> {
     Ok(Box::new(PetscSolver::new()?))
 }
 

@@ -26,7 +26,7 @@ fn solve(system: &capstan_solvers::samples::LinearSystem) -> (Vec<f64>, Vec<Prog
 fn petsc_solver_matches_lu_reports_krylov_and_spends_budget_typed() {
     let session = Session::start("-ksp_type gmres -pc_type gamg -ksp_rtol 1e-12").unwrap();
     let system = ConvectionDiffusion2d::new(40, [20.0, -10.0]).system();
-    let mut lu = LinearBackend::Lu.build(&Default::default()).unwrap();
+    let mut lu = LinearBackend::LU.build(&Default::default(), &()).unwrap();
     lu.analyse(&system.pattern).unwrap();
     lu.factor(&system.values).unwrap();
     let mut exact = system.rhs.clone();

@@ -4,8 +4,7 @@ use crate::error::SolverError;
 use crate::lu_kind::LuKind;
 use crate::ordering::ColumnOrdering;
 
-/// Settings of the direct backends ([`crate::SparseLu`], [`crate::SparseCholesky`],
-/// [`crate::CondensedSolver`]).
+/// Settings of the direct backends ([`crate::SparseLu`], [`crate::SparseCholesky`]).
 ///
 /// faer factorises a numerically singular matrix "successfully" and its solve then returns
 /// huge or non-finite numbers. Every direct solve is therefore checked: the solution must be

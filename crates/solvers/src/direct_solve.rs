@@ -380,14 +380,6 @@ pub(crate) fn empty_line(pattern: &SparsityPattern, values: &[f64]) -> Option<us
     empty_col.or_else(|| row_has.iter().position(|h| !h))
 }
 
-/// A scratch buffer for faer, with allocation failure as a typed error.
-pub(crate) fn scratch(
-    req: faer::dyn_stack::StackReq,
-) -> Result<faer::dyn_stack::MemBuffer, SolverError> {
-    faer::dyn_stack::MemBuffer::try_new(req)
-        .map_err(|_| SolverError::Backend(faer::sparse::FaerError::OutOfMemory))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

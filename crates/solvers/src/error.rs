@@ -26,7 +26,15 @@ pub enum SolverError {
         /// The name that was given.
         name: String,
         /// The accepted spellings.
-        allowed: &'static str,
+        allowed: String,
+    },
+    /// A registration under a name that is taken.
+    #[error("a {kind} named `{name}` is registered already")]
+    DuplicateName {
+        /// What was being registered, e.g. `"linear backend"`.
+        kind: &'static str,
+        /// The name.
+        name: &'static str,
     },
     /// Newton's residual grew beyond the divergence limit.
     #[error("Newton diverged at iteration {iteration}: residual {residual:.3e}")]
@@ -232,6 +240,14 @@ impl SolverError {
     pub(crate) fn call_order(called: &'static str, requires: &'static str) -> Self {
         Self::CallOrder { called, requires }
     }
+}
+
+/// A scratch buffer for faer, with allocation failure as a typed error.
+pub(crate) fn scratch(
+    req: faer::dyn_stack::StackReq,
+) -> Result<faer::dyn_stack::MemBuffer, SolverError> {
+    faer::dyn_stack::MemBuffer::try_new(req)
+        .map_err(|_| SolverError::Backend(faer::sparse::FaerError::OutOfMemory))
 }
 
 #[cfg(test)]

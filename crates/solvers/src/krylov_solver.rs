@@ -4,7 +4,11 @@ use std::sync::Arc;
 
 use crate::csr_matrix::CsrMatrix;
 use crate::error::SolverError;
-use crate::krylov::{IdentityPreconditioner, KrylovParams, krylov_solve};
+use crate::krylov::{IdentityPreconditioner, KrylovMethod, KrylovParams, krylov_solve};
+use crate::linear_registration::{
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
+    RegisteredLinearSolver,
+};
 use crate::linear_solver::{LinearSolver, check_rhs, check_square};
 use crate::multigrid::{Multigrid, MultigridParams};
 use crate::observer::SilentObserver;
@@ -46,6 +50,74 @@ pub struct KrylovSolver {
     factored: bool,
     last_iterations: Option<usize>,
     last_residual: Option<f64>,
+}
+
+/// The `multigrid` entry of [`crate::linear_registry`]: CG (symmetric positive definite
+/// matrices, [`LinearContext::symmetric_positive_definite`]) or GMRES preconditioned by one
+/// V-cycle on the context's hierarchy ([`LinearContext::prolongations`], coarsest level at
+/// most [`MultigridParams::coarsest_unknowns`] unknowns).
+pub(crate) const REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
+    name: "multigrid",
+    summary: "GMRES (CG when symmetric positive definite) preconditioned by a V-cycle of the caller's geometric hierarchy",
+    parameters: &[
+        Parameter {
+            key: "krylov.tolerance",
+            default: "1e-8",
+            allowed: "(0, 1)",
+        },
+        Parameter {
+            key: "krylov.max_iterations",
+            default: "500",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "krylov.restart",
+            default: "100",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "multigrid.smoother",
+            default: "chebyshev",
+            allowed: "jacobi, chebyshev",
+        },
+        Parameter {
+            key: "multigrid.smoothing_steps",
+            default: "1",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "multigrid.coarsest_unknowns",
+            default: "5000",
+            allowed: "[1, inf)",
+        },
+    ],
+    kind: BackendKind::Krylov,
+    build: build_multigrid,
+};
+
+fn build_multigrid(
+    s: &LinearSettings,
+    context: &dyn LinearContext,
+) -> Result<BoxedLinearSolver, SolverError> {
+    s.krylov.validate()?;
+    s.multigrid.validate()?;
+    let prolongations = context
+        .prolongations(s.multigrid.coarsest_unknowns)
+        .ok_or(SolverError::InvalidParameter {
+            field: "linear",
+            value: f64::NAN,
+            allowed: "`multigrid` only where the caller gives a geometric hierarchy (LinearContext::prolongations)",
+        })?;
+    let method = if context.symmetric_positive_definite() {
+        KrylovMethod::Cg
+    } else {
+        KrylovMethod::Gmres
+    };
+    let krylov = KrylovParams { method, ..s.krylov };
+    Ok(Box::new(KrylovSolver::new(
+        krylov,
+        Some((prolongations, s.multigrid)),
+    )?))
 }
 
 impl KrylovSolver {

@@ -21,9 +21,10 @@
 //!   every entry so assembly is `values[slot[k]] += v`; views for faer and `sprs`.
 //! - [`LinearSolver`]: `analyse` once per pattern, `factor` per set of values, `solve_in_place`
 //!   for many right-hand sides. Backends: [`SparseLu`] and [`SparseCholesky`] (faer, symbolic
-//!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline), and
-//!   [`CondensedSolver`] (static condensation when only a small interface block changes).
-//!   [`LinearBackend`] picks one by name.
+//!   analysis reused), [`Jacobi`] and [`GaussSeidel`] (the paper's iterative baseline),
+//!   [`KrylovSolver`] (`multigrid`). Each is registered once in [`linear_registry`] (name, summary, parameters, builder);
+//!   [`LinearBackend`] picks a registered one by name, and a crate that embeds capstan
+//!   registers its own the same way.
 //! - Krylov methods ([`krylov_solve`]: conjugate gradients, restarted right-preconditioned GMRES) on a
 //!   [`CsrMatrix`], with a work budget and a typed [`SolverError::BudgetSpent`], and a
 //!   [`Multigrid`] V-cycle on a given hierarchy of prolongations (Galerkin coarse operators,
@@ -45,7 +46,7 @@
 //! problems against each other and against the residual `|b - A x|`.
 //!
 //! # Limitations
-//! - The faer backends, [`CondensedSolver`] and the nonlinear solvers are implemented for
+//! - The faer backends and the nonlinear solvers are implemented for
 //!   `f64` only; the pattern helpers and the iterative backends are generic over
 //!   [`SolverScalar`].
 //! - [`Jacobi`] and [`GaussSeidel`] are stationary methods without preconditioning or Krylov
@@ -69,8 +70,9 @@
 //! use capstan_solvers::{LinearBackend, samples::Poisson2d};
 //! let system = Poisson2d::new(16).system();
 //! let mut solutions = Vec::new();
-//! for backend in LinearBackend::ALL {
-//!     let mut solver = backend.build(&Default::default()).unwrap();
+//! // every registered backend that needs nothing from the caller (`multigrid` needs a hierarchy)
+//! for backend in LinearBackend::all().into_iter().filter(|b| b.name() != "multigrid") {
+//!     let mut solver = backend.build(&Default::default(), &()).unwrap();
 //!     solver.analyse(&system.pattern).unwrap();
 //!     solver.factor(&system.values).unwrap();
 //!     let mut x = system.rhs.clone();
@@ -86,17 +88,17 @@
 #[macro_use]
 mod named;
 
-mod condensed_solver;
 mod csr_matrix;
 mod direct_params;
 mod direct_solve;
 mod error;
-mod external_linear;
 mod iterative_params;
 mod jacobi_newton;
 mod krylov;
 mod krylov_solver;
 mod linear_backend;
+mod linear_registration;
+pub mod linear_registry;
 mod linear_solver;
 mod lu_kind;
 mod multifrontal_lu;
@@ -114,11 +116,9 @@ mod sparse_cholesky;
 mod sparse_lu;
 mod sparsity_pattern;
 
-pub use condensed_solver::CondensedSolver;
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
-pub use external_linear::{ExternalLinear, ExternalLinearBuild};
 pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
 pub use krylov::{
@@ -127,6 +127,10 @@ pub use krylov::{
 };
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
+pub use linear_registration::{
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
+    RegisteredLinearSolver,
+};
 pub use linear_solver::LinearSolver;
 pub use lu_kind::LuKind;
 pub use multigrid::{Multigrid, MultigridParams, MultigridPreconditioner, Smoother};

@@ -29,8 +29,8 @@ use crate::sparsity_pattern::SparsityPattern;
 /// for (k, v) in [4.0, 1.0, 1.0, 3.0].into_iter().enumerate() {
 ///     values[slots[k]] += v;
 /// }
-/// for backend in [LinearBackend::Lu, LinearBackend::Cholesky, LinearBackend::GaussSeidel] {
-///     let mut solver = backend.build(&Default::default()).unwrap();
+/// for backend in [LinearBackend::LU, LinearBackend::CHOLESKY, LinearBackend::GAUSS_SEIDEL] {
+///     let mut solver = backend.build(&Default::default(), &()).unwrap();
 ///     solver.analyse(&pattern).unwrap();
 ///     solver.factor(&values).unwrap();
 ///     let mut x = vec![1.0, 2.0];

@@ -58,6 +58,9 @@ pub struct MultigridParams {
     pub smoothing_steps: usize,
     /// Power iterations for `lambda` (the largest eigenvalue of `D^-1 A`), at least 1.
     pub power_iterations: usize,
+    /// The hierarchy the caller builds stops coarsening at a level of at most this many
+    /// unknowns (solved by a sparse LU), at least 1 ([`crate::LinearContext::prolongations`]).
+    pub coarsest_unknowns: usize,
 }
 
 impl Default for MultigridParams {
@@ -66,6 +69,7 @@ impl Default for MultigridParams {
             smoother: Smoother::default(),
             smoothing_steps: 1,
             power_iterations: 12,
+            coarsest_unknowns: 5_000,
         }
     }
 }
@@ -90,6 +94,7 @@ impl MultigridParams {
         }
         SolverError::check_count("smoothing_steps", self.smoothing_steps)?;
         SolverError::check_count("power_iterations", self.power_iterations)?;
+        SolverError::check_count("coarsest_unknowns", self.coarsest_unknowns)?;
         Ok(())
     }
 }

@@ -5,8 +5,11 @@ use core::fmt;
 use crate::direct_params::DirectParams;
 use crate::error::SolverError;
 use crate::iterative_params::IterativeParams;
+use crate::krylov::KrylovParams;
 use crate::linear_backend::LinearBackend;
+use crate::linear_registration::LinearSettings;
 use crate::linear_solver::LinearSolver;
+use crate::multigrid::MultigridParams;
 use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
 use crate::observer::{Observer, Progress, SolveStage};
 use crate::problem::Jacobian;
@@ -63,12 +66,17 @@ pub struct NewtonParams {
     pub relative_tolerance: f64,
     /// Step-length control.
     pub line_search: LineSearch,
-    /// Linear backend for the Newton systems `J du = -r`.
+    /// Linear backend for the Newton systems `J du = -r` (any registered one:
+    /// [`crate::linear_registry`]).
     pub linear: LinearBackend,
     /// Settings of the iterative linear backends (inner tolerance for Jacobi–Newton).
     pub iterative: IterativeParams,
     /// Settings of the direct linear backends (fill-reducing ordering, solution check).
     pub direct: DirectParams,
+    /// Settings of the Krylov backends (`multigrid`).
+    pub krylov: KrylovParams,
+    /// Settings of the multigrid preconditioner (`multigrid`).
+    pub multigrid: MultigridParams,
     /// Residual growth factor (> 1) that counts as divergence.
     pub divergence_limit: f64,
 }
@@ -80,15 +88,27 @@ impl Default for NewtonParams {
             absolute_tolerance: 1e-10,
             relative_tolerance: 1e-10,
             line_search: LineSearch::default(),
-            linear: LinearBackend::Lu,
+            linear: LinearBackend::LU,
             iterative: IterativeParams::default(),
             direct: DirectParams::default(),
+            krylov: KrylovParams::default(),
+            multigrid: MultigridParams::default(),
             divergence_limit: 1e8,
         }
     }
 }
 
 impl NewtonParams {
+    /// The settings of the linear backends, as [`LinearBackend::build`] reads them.
+    pub fn linear_settings(&self) -> LinearSettings {
+        LinearSettings {
+            direct: self.direct,
+            iterative: self.iterative,
+            krylov: self.krylov,
+            multigrid: self.multigrid,
+        }
+    }
+
     /// Checks every field (the linear settings are checked when the backend is built).
     ///
     /// # Errors
@@ -174,9 +194,7 @@ impl Newton {
     /// [`SolverError::InvalidParameter`] if a setting is out of range.
     pub fn new(params: NewtonParams) -> Result<Self, SolverError> {
         params.validate()?;
-        let linear = params
-            .linear
-            .build_with(&params.iterative, &params.direct)?;
+        let linear = params.linear.build(&params.linear_settings(), &())?;
         Ok(Self {
             params,
             linear,
@@ -185,7 +203,7 @@ impl Newton {
         })
     }
 
-    /// Newton with a caller-supplied linear solver (e.g. a [`crate::CondensedSolver`]);
+    /// Newton with a caller-supplied linear solver (e.g. one built with a [`crate::LinearContext`]);
     /// `params.linear` is ignored.
     ///
     /// # Errors
@@ -442,7 +460,7 @@ mod tests {
         let p: NewtonParams =
             serde_json::from_str(r#"{"max_iterations": 7, "linear": "gauss-seidel"}"#).unwrap();
         assert_eq!(p.max_iterations, 7);
-        assert_eq!(p.linear, LinearBackend::GaussSeidel);
+        assert_eq!(p.linear, LinearBackend::GAUSS_SEIDEL);
         assert_eq!(p.line_search, LineSearch::default());
         let json = serde_json::to_string(&p).unwrap();
         assert_eq!(serde_json::from_str::<NewtonParams>(&json).unwrap(), p);

@@ -399,7 +399,7 @@ pub fn amd_symmetrised(pattern: &SparsityPattern) -> Result<Vec<usize>, SolverEr
     if n == 0 {
         return Ok(fwd);
     }
-    let mut mem = crate::direct_solve::scratch(faer::sparse::linalg::amd::order_scratch::<usize>(
+    let mut mem = crate::error::scratch(faer::sparse::linalg::amd::order_scratch::<usize>(
         n,
         pattern.nnz(),
     ))?;
@@ -484,7 +484,7 @@ pub fn amd_compressed(pattern: &SparsityPattern) -> Result<Vec<usize>, SolverErr
     );
     let mut fwd = vec![0usize; runs];
     let mut inv = vec![0usize; runs];
-    let mut mem = crate::direct_solve::scratch(faer::sparse::linalg::amd::order_scratch::<usize>(
+    let mut mem = crate::error::scratch(faer::sparse::linalg::amd::order_scratch::<usize>(
         runs,
         q_row_idx.len(),
     ))?;

@@ -4,6 +4,7 @@
 
 use crate::error::SolverError;
 use crate::iterative_params::{IterativeParams, RowMatrix};
+use crate::linear_registration::{BackendKind, Parameter, RegisteredLinearSolver};
 use crate::linear_solver::LinearSolver;
 use crate::scalar::SolverScalar;
 use crate::sparsity_pattern::SparsityPattern;
@@ -107,6 +108,56 @@ impl<F: SolverScalar, const GAUSS_SEIDEL: bool> Relaxation<F, GAUSS_SEIDEL> {
         &self.params
     }
 }
+
+/// The `jacobi` entry of [`crate::linear_registry`].
+pub(crate) const JACOBI_REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
+    name: "jacobi",
+    summary: "(damped) Jacobi sweeps, the paper's iterative baseline: diagonally dominant matrices",
+    parameters: &[
+        Parameter {
+            key: "iterative.tolerance",
+            default: "1e-10",
+            allowed: "(0, 1)",
+        },
+        Parameter {
+            key: "iterative.max_iterations",
+            default: "10000",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "iterative.relaxation",
+            default: "1",
+            allowed: "(0, 2)",
+        },
+    ],
+    kind: BackendKind::Stationary,
+    build: |s, _| Ok(Box::new(Jacobi::<f64>::new(s.iterative)?)),
+};
+
+/// The `gauss-seidel` entry of [`crate::linear_registry`].
+pub(crate) const GAUSS_SEIDEL_REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
+    name: "gauss-seidel",
+    summary: "Gauss-Seidel (SOR) sweeps: symmetric positive definite or diagonally dominant matrices",
+    parameters: &[
+        Parameter {
+            key: "iterative.tolerance",
+            default: "1e-10",
+            allowed: "(0, 1)",
+        },
+        Parameter {
+            key: "iterative.max_iterations",
+            default: "10000",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "iterative.relaxation",
+            default: "1",
+            allowed: "(0, 2)",
+        },
+    ],
+    kind: BackendKind::Stationary,
+    build: |s, _| Ok(Box::new(GaussSeidel::<f64>::new(s.iterative)?)),
+};
 
 impl<F: SolverScalar, const GAUSS_SEIDEL: bool> Default for Relaxation<F, GAUSS_SEIDEL> {
     /// Default [`IterativeParams`].

@@ -5,7 +5,7 @@ use core::fmt::{Debug, Display};
 /// A real floating-point scalar the generic parts of the crate work with (`f64`, `f32`).
 ///
 /// The pattern helpers, the iterative backends and the problem traits are generic over it; the
-/// faer backends ([`crate::SparseLu`], [`crate::SparseCholesky`], [`crate::CondensedSolver`])
+/// faer backends ([`crate::SparseLu`], [`crate::SparseCholesky`])
 /// and the nonlinear solvers are implemented for `f64` only.
 pub trait SolverScalar: num_traits::Float + Send + Sync + Debug + Display + 'static {
     /// The value as `f64`, for error reports (NaN when it does not convert).

@@ -8,9 +8,10 @@ use faer::sparse::linalg::cholesky::{
 
 use crate::direct_params::DirectParams;
 use crate::direct_solve::{
-    analysed_values, check_no_empty_line, checked_solve, direct_solves, finite_rhs, scratch,
+    analysed_values, check_no_empty_line, checked_solve, direct_solves, finite_rhs,
 };
-use crate::error::SolverError;
+use crate::error::{SolverError, scratch};
+use crate::linear_registration::{BackendKind, Parameter, RegisteredLinearSolver};
 use crate::linear_solver::{LinearSolver, check_square};
 use crate::ordering::ColumnOrdering;
 use crate::scalar::max_abs;
@@ -139,6 +140,36 @@ impl SparseCholesky {
         })
     }
 }
+
+/// The `cholesky` entry of [`crate::linear_registry`].
+pub(crate) const REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
+    name: "cholesky",
+    summary: "sparse Cholesky (faer): symmetric positive definite matrices",
+    parameters: &[
+        Parameter {
+            key: "direct.ordering",
+            default: "auto",
+            allowed: "auto, colamd, amd, nested-dissection",
+        },
+        Parameter {
+            key: "direct.residual_tolerance",
+            default: "1e-8",
+            allowed: "(0, 1)",
+        },
+        Parameter {
+            key: "direct.refinement_steps",
+            default: "2",
+            allowed: "[0, inf)",
+        },
+        Parameter {
+            key: "direct.symmetry_tolerance",
+            default: "1e-10",
+            allowed: "[0, 1)",
+        },
+    ],
+    kind: BackendKind::Direct,
+    build: |s, _| Ok(Box::new(SparseCholesky::new(s.direct)?)),
+};
 
 impl LinearSolver<f64> for SparseCholesky {
     fn analyse(&mut self, pattern: &SparsityPattern) -> Result<(), SolverError> {

@@ -18,9 +18,9 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use crate::direct_params::DirectParams;
 use crate::direct_solve::{
     RefineWork, analysed_values, check_and_refine, check_and_refine_block, check_no_empty_line,
-    checked_solve, direct_solves, finite_rhs, scratch, to_column_major, to_row_major,
+    checked_solve, direct_solves, finite_rhs, to_column_major, to_row_major,
 };
-use crate::error::SolverError;
+use crate::error::{SolverError, scratch};
 use crate::linear_solver::{LinearSolver, check_square};
 use crate::lu_kind::LuKind;
 use crate::multifrontal_lu::solve::{BlockWork, SOLVE_BLOCK_WIDTH};

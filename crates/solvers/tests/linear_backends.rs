@@ -3,13 +3,22 @@
 
 use capstan_solvers::samples::{ConvectionDiffusion2d, LinearSystem, Poisson2d};
 use capstan_solvers::{
-    GaussSeidel, IterativeParams, Jacobi, LinearBackend, LinearSolver, SolverError, SparseCholesky,
-    SparseLu, SparsityPattern, max_abs, max_abs_difference,
+    GaussSeidel, IterativeParams, Jacobi, LinearBackend, LinearContext, LinearSettings,
+    LinearSolver, SolverError, SparseCholesky, SparseLu, SparsityPattern, max_abs,
+    max_abs_difference,
 };
+
+/// The registered backends that need nothing from the caller (`multigrid` needs a hierarchy).
+const STANDALONE: [LinearBackend; 4] = [
+    LinearBackend::LU,
+    LinearBackend::CHOLESKY,
+    LinearBackend::JACOBI,
+    LinearBackend::GAUSS_SEIDEL,
+];
 
 /// Solves `system` with `backend`; returns the solution and the iterations reported.
 fn solve(system: &LinearSystem, backend: LinearBackend) -> (Vec<f64>, Option<usize>) {
-    let mut solver = backend.build(&IterativeParams::default()).unwrap();
+    let mut solver = backend.build(&LinearSettings::default(), &()).unwrap();
     solver.analyse(&system.pattern).unwrap();
     solver.factor(&system.values).unwrap();
     let mut x = system.rhs.clone();
@@ -25,9 +34,9 @@ fn norm(a: &[f64]) -> f64 {
 fn poisson_is_solved_by_every_backend_and_they_agree() {
     let system = Poisson2d::new(16).system();
     let b = norm(&system.rhs);
-    let (reference, _) = solve(&system, LinearBackend::Lu);
+    let (reference, _) = solve(&system, LinearBackend::LU);
     assert!(system.residual_norm(&reference) < 1e-14 * b.max(1.0)); // direct: round-off only
-    for backend in LinearBackend::ALL {
+    for backend in STANDALONE {
         let (x, iterations) = solve(&system, backend);
         let residual = system.residual_norm(&x);
         if backend.is_direct() {
@@ -49,8 +58,8 @@ fn poisson_is_solved_by_every_backend_and_they_agree() {
 fn iterative_counts_on_poisson_are_pinned() {
     // Deterministic: x_0 = 0, fixed ordering, default tolerance 1e-10.
     let system = Poisson2d::new(16).system();
-    let (_, jacobi) = solve(&system, LinearBackend::Jacobi);
-    let (_, gauss_seidel) = solve(&system, LinearBackend::GaussSeidel);
+    let (_, jacobi) = solve(&system, LinearBackend::JACOBI);
+    let (_, gauss_seidel) = solve(&system, LinearBackend::GAUSS_SEIDEL);
     assert_eq!(jacobi, Some(1332));
     assert_eq!(gauss_seidel, Some(667)); // rho(GS) = rho(Jacobi)^2: half the sweeps
 }
@@ -59,10 +68,10 @@ fn iterative_counts_on_poisson_are_pinned() {
 fn convection_diffusion_is_solved_by_lu_jacobi_and_gauss_seidel() {
     let system = ConvectionDiffusion2d::new(16, [20.0, 10.0]).system();
     let b = norm(&system.rhs);
-    let (reference, _) = solve(&system, LinearBackend::Lu);
+    let (reference, _) = solve(&system, LinearBackend::LU);
     assert!(system.residual_norm(&reference) <= 1e-13 * b); // direct: round-off only
     let mut counts = Vec::new();
-    for backend in [LinearBackend::Jacobi, LinearBackend::GaussSeidel] {
+    for backend in [LinearBackend::JACOBI, LinearBackend::GAUSS_SEIDEL] {
         let (x, iterations) = solve(&system, backend);
         assert!(system.residual_norm(&x) <= 1e-10 * b, "{backend}");
         assert!(
@@ -98,8 +107,8 @@ fn refactor_with_new_values_on_the_same_pattern() {
         values: shifted,
         ..system.clone()
     };
-    for backend in LinearBackend::ALL {
-        let mut solver = backend.build(&IterativeParams::default()).unwrap();
+    for backend in STANDALONE {
+        let mut solver = backend.build(&LinearSettings::default(), &()).unwrap();
         solver.analyse(&system.pattern).unwrap();
         for s in [&system, &new_system, &system] {
             solver.factor(&s.values).unwrap();
@@ -124,11 +133,11 @@ fn many_right_hand_sides_match_single_solves() {
         .map(|k| ((k * 7919) % 101) as f64 / 101.0 - 0.5)
         .collect();
     for backend in [
-        LinearBackend::Lu,
-        LinearBackend::Jacobi,
-        LinearBackend::GaussSeidel,
+        LinearBackend::LU,
+        LinearBackend::JACOBI,
+        LinearBackend::GAUSS_SEIDEL,
     ] {
-        let mut solver = backend.build(&IterativeParams::default()).unwrap();
+        let mut solver = backend.build(&LinearSettings::default(), &()).unwrap();
         solver.analyse(&system.pattern).unwrap();
         solver.factor(&system.values).unwrap();
         let mut blocked = rhs.clone();
@@ -228,21 +237,27 @@ fn singular_graph_laplacian_is_a_typed_error_on_a_larger_grid() {
     }
     let mut rhs = vec![0.0; n];
     rhs[0] = 1.0; // not in the range
-    for backend in LinearBackend::ALL {
+    for backend in STANDALONE {
         let mut solver = backend
-            .build(&IterativeParams {
-                max_iterations: 500,
-                ..Default::default()
-            })
+            .build(
+                &LinearSettings {
+                    iterative: IterativeParams {
+                        max_iterations: 500,
+                        ..Default::default()
+                    },
+                    ..Default::default()
+                },
+                &(),
+            )
             .unwrap();
         solver.analyse(&system.pattern).unwrap();
         let mut x = rhs.clone();
         let result = solver
             .factor(&values)
             .and_then(|()| solver.solve_in_place(&mut x));
-        let expected = match backend {
-            LinearBackend::Lu => matches!(result, Err(SolverError::Singular { .. })),
-            LinearBackend::Cholesky => matches!(
+        let expected = match backend.name() {
+            "lu" => matches!(result, Err(SolverError::Singular { .. })),
+            "cholesky" => matches!(
                 result,
                 Err(SolverError::NotPositiveDefinite { .. } | SolverError::Singular { .. })
             ),
@@ -350,8 +365,8 @@ fn non_finite_inputs_are_rejected() {
     let system = Poisson2d::new(3).system();
     let mut bad = system.values.clone();
     bad[4] = f64::NAN;
-    for backend in LinearBackend::ALL {
-        let mut solver = backend.build(&IterativeParams::default()).unwrap();
+    for backend in STANDALONE {
+        let mut solver = backend.build(&LinearSettings::default(), &()).unwrap();
         solver.analyse(&system.pattern).unwrap();
         assert!(
             matches!(
@@ -384,8 +399,8 @@ fn non_finite_inputs_are_rejected() {
 #[test]
 fn zero_right_hand_side_gives_zero_solution() {
     let system = Poisson2d::new(5).system();
-    for backend in LinearBackend::ALL {
-        let mut solver = backend.build(&IterativeParams::default()).unwrap();
+    for backend in STANDALONE {
+        let mut solver = backend.build(&LinearSettings::default(), &()).unwrap();
         solver.analyse(&system.pattern).unwrap();
         solver.factor(&system.values).unwrap();
         let mut x = vec![0.0; system.dimension()];
@@ -407,7 +422,7 @@ fn jacobi_works_in_single_precision() {
     jacobi.analyse(&system.pattern).unwrap();
     jacobi.factor(&values).unwrap();
     jacobi.solve_in_place(&mut x).unwrap();
-    let (reference, _) = solve(&system, LinearBackend::Lu);
+    let (reference, _) = solve(&system, LinearBackend::LU);
     for (a, b) in x.iter().zip(&reference) {
         // 1e-5 relative residual times cond ~ 40 for n = 8
         assert!((f64::from(*a) - b).abs() <= 1e-3 * max_abs(&reference));
@@ -417,10 +432,11 @@ fn jacobi_works_in_single_precision() {
 #[test]
 fn backend_names_parse() {
     for (name, backend) in [
-        ("lu", LinearBackend::Lu),
-        ("cholesky", LinearBackend::Cholesky),
-        ("jacobi", LinearBackend::Jacobi),
-        ("gauss-seidel", LinearBackend::GaussSeidel),
+        ("lu", LinearBackend::LU),
+        ("cholesky", LinearBackend::CHOLESKY),
+        ("jacobi", LinearBackend::JACOBI),
+        ("gauss-seidel", LinearBackend::GAUSS_SEIDEL),
+        ("multigrid", LinearBackend::MULTIGRID),
     ] {
         assert_eq!(name.parse::<LinearBackend>().unwrap(), backend);
     }
@@ -469,4 +485,39 @@ fn structurally_singular_matrix_without_empty_lines_is_singular() {
         matches!(result, Err(SolverError::Singular { .. })),
         "{result:?}"
     );
+}
+
+/// A one-level hierarchy: the V-cycle is the sparse LU of the matrix itself.
+struct OneLevel;
+
+impl LinearContext for OneLevel {
+    fn prolongations(
+        &self,
+        _coarsest_unknowns: usize,
+    ) -> Option<std::sync::Arc<[capstan_solvers::CsrMatrix]>> {
+        Some(Vec::new().into())
+    }
+}
+
+#[test]
+fn multigrid_solves_with_the_callers_hierarchy_and_is_refused_without_one() {
+    let system = ConvectionDiffusion2d::new(16, [20.0, 10.0]).system();
+    let (reference, _) = solve(&system, LinearBackend::LU);
+    let mut solver = LinearBackend::MULTIGRID
+        .build(&LinearSettings::default(), &OneLevel)
+        .unwrap();
+    solver.analyse(&system.pattern).unwrap();
+    solver.factor(&system.values).unwrap();
+    let mut x = system.rhs.clone();
+    solver.solve_in_place(&mut x).unwrap();
+    // the preconditioner is the exact inverse: one GMRES iteration
+    assert_eq!(solver.last_iterations(), Some(1));
+    assert!(max_abs_difference(&x, &reference) < 1e-10 * max_abs(&reference));
+    assert!(matches!(
+        LinearBackend::MULTIGRID.build(&LinearSettings::default(), &()),
+        Err(SolverError::InvalidParameter {
+            field: "linear",
+            ..
+        })
+    ));
 }

@@ -50,7 +50,8 @@ use capstan_elasticity::samples::{
     LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms,
 };
 use capstan_elasticity::solvers::{
-    ColumnOrdering, DirectParams, IterativeParams, LinearBackend, LinearSolver, SparseCholesky,
+    ColumnOrdering, DirectParams, IterativeParams, LinearBackend, LinearSettings, LinearSolver,
+    SparseCholesky,
 };
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError, ShellGeometry};
@@ -343,7 +344,7 @@ fn build_solver(
         ))
     };
     Ok(match (backend, method) {
-        (Backend::Named(LinearBackend::Cholesky), Some(order)) => {
+        (Backend::Named(b), Some(order)) if b == LinearBackend::CHOLESKY => {
             cholesky(order.cholesky_ordering(&parts.grid))?
         }
         (Backend::CholeskyAmd, _) => cholesky(ColumnOrdering::Amd)?,
@@ -353,7 +354,11 @@ fn build_solver(
                 max_iterations: 20_000,
                 ..Default::default()
             };
-            b.build(&iterative).map_err(ElasticityError::from)?
+            let settings = LinearSettings {
+                iterative,
+                ..Default::default()
+            };
+            b.build(&settings, &()).map_err(ElasticityError::from)?
         }
         (Backend::CholeskyNestedDissection, _) => {
             let grid = parts.grid.shape();
@@ -533,9 +538,9 @@ const METHODS: [Option<ElementOrder>; 3] = [None, Some(ElementOrder::Q1), Some(E
 /// The linear backends of one method: LU for all; the Cholesky variants for the (symmetric)
 /// finite elements.
 fn backends(method: Option<ElementOrder>) -> Vec<Backend> {
-    let mut backends = vec![Backend::Named(LinearBackend::Lu)];
+    let mut backends = vec![Backend::Named(LinearBackend::LU)];
     if method.is_some() {
-        backends.push(Backend::Named(LinearBackend::Cholesky));
+        backends.push(Backend::Named(LinearBackend::CHOLESKY));
         backends.push(Backend::CholeskyAmd);
         backends.push(Backend::CholeskyNestedDissection);
     }
@@ -572,7 +577,7 @@ fn capstan_pass(
                 problem,
                 levels[0],
                 method,
-                Backend::Named(LinearBackend::GaussSeidel),
+                Backend::Named(LinearBackend::GAUSS_SEIDEL),
                 reference,
                 use_vmhwm,
             ) {

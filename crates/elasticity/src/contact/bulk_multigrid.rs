@@ -1,92 +1,74 @@
-//! The iterative bulk solver of the full-system Newton: a Krylov method preconditioned by the
-//! discretisation's geometric multigrid (`solver.linear = "multigrid"`).
+//! What the contact solvers tell a linear backend about their matrices
+//! ([`capstan_solvers::LinearContext`]): the discretisation's geometric hierarchy (for
+//! `solver.linear = "multigrid"`), built once and shared, and whether the matrix is symmetric
+//! positive definite.
 
 use std::sync::{Arc, OnceLock};
 
 use capstan_solvers::{
-    CsrMatrix, KrylovMethod, KrylovParams, KrylovSolver, LinearSolver, MultigridParams,
+    BoxedLinearSolver, CsrMatrix, DirectParams, LinearBackend, LinearContext, LinearSettings,
 };
 
 use crate::contact::error::ContactError;
 use crate::contact::operator::ContactOperator;
 use crate::error::ElasticityError;
 
-/// Settings of the iterative bulk solver of [`crate::contact::FullSystemSolver`]
-/// ([`crate::contact::FullSystemSettings::multigrid`]).
-///
-/// # Math
-/// Each Newton step solves `J du = -r` by right-preconditioned GMRES to
-/// `|J du + r| <= krylov.tolerance |r|` (an inexact Newton method with the fixed forcing term
-/// `krylov.tolerance`), the preconditioner one V-cycle of the Galerkin hierarchy
-/// `J_{l+1} = P_l^T J_l P_l` built on the Jacobian itself (the friction rows included), the
-/// prolongations `P_l` those of the discretisation
-/// ([`ContactOperator::multigrid_prolongations`]). The stuck starting guess (the bulk with a
-/// stiff spring on the tangential contact rows: symmetric positive definite) is solved by CG
-/// with the same V-cycle.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BulkMultigrid {
-    /// Tolerance, work budget and restart of the Krylov solves (the method is chosen: GMRES
-    /// for the Jacobians, CG for the stuck start).
-    pub krylov: KrylovParams,
-    /// Smoother and smoothing steps of the V-cycle.
-    pub multigrid: MultigridParams,
-    /// Coarsening stops at a level of at most this many unknowns (solved by a sparse LU).
-    pub coarsest_unknowns: usize,
+/// The context of one contact solver's linear solves: its discretisation's multigrid
+/// prolongations ([`ContactOperator::multigrid_prolongations`]), computed on first use and
+/// kept in `cache` for every later backend of the solver.
+pub(crate) struct OperatorContext<'a, D: ?Sized> {
+    pub(crate) operator: &'a D,
+    pub(crate) cache: &'a OnceLock<Arc<[CsrMatrix]>>,
+    /// The matrices are symmetric positive definite (the stuck start of a symmetric bulk).
+    pub(crate) symmetric_positive_definite: bool,
 }
 
-impl Default for BulkMultigrid {
-    fn default() -> Self {
-        Self {
-            krylov: KrylovParams::default(),
-            multigrid: MultigridParams::default(),
-            coarsest_unknowns: 5_000,
+impl<D: ContactOperator + ?Sized> LinearContext for OperatorContext<'_, D> {
+    fn prolongations(&self, coarsest_unknowns: usize) -> Option<Arc<[CsrMatrix]>> {
+        if let Some(p) = self.cache.get() {
+            return Some(Arc::clone(p));
         }
+        let p = self.operator.multigrid_prolongations(coarsest_unknowns)?;
+        Some(Arc::clone(self.cache.get_or_init(|| p)))
+    }
+
+    fn symmetric_positive_definite(&self) -> bool {
+        self.symmetric_positive_definite
     }
 }
 
-impl BulkMultigrid {
-    /// Checks every field.
-    ///
-    /// # Errors
-    /// [`ContactError::Solver`] naming a bad Krylov or multigrid setting.
-    pub fn validate(&self) -> Result<(), ContactError> {
-        self.krylov.validate()?;
-        self.multigrid.validate()?;
-        Ok(())
+/// `backend` built from `settings` for the matrices of `operator`, with the discretisation's
+/// fill-reducing ordering ([`ContactOperator::lu_ordering`]) unless `settings.direct` sets
+/// one.
+///
+/// # Errors
+/// [`ElasticityError::InvalidParameter`] naming `solver.linear` when the backend needs a
+/// multigrid hierarchy the discretisation does not have (the plane-strain bodies); invalid
+/// settings.
+pub(crate) fn build_backend<D: ContactOperator + ?Sized>(
+    backend: LinearBackend,
+    settings: &LinearSettings,
+    operator: &D,
+    cache: &OnceLock<Arc<[CsrMatrix]>>,
+    symmetric_positive_definite: bool,
+) -> Result<BoxedLinearSolver, ContactError> {
+    let mut settings = *settings;
+    if settings.direct.ordering == DirectParams::default().ordering {
+        settings.direct.ordering = operator.lu_ordering();
     }
-
-    /// A linear solver of `method` (CG or GMRES) with the V-cycle on the prolongations of
-    /// `operator`, cached in `cache` after the first call.
-    ///
-    /// # Errors
-    /// [`ElasticityError::InvalidParameter`] naming `solver.linear` when the discretisation has
-    /// no multigrid hierarchy (the plane-strain bodies); invalid settings.
-    pub(crate) fn build<D: ContactOperator + ?Sized>(
-        &self,
-        operator: &D,
-        method: KrylovMethod,
-        cache: &OnceLock<Arc<[CsrMatrix]>>,
-    ) -> Result<Box<dyn LinearSolver<f64> + Send>, ContactError> {
-        let prolongations = match cache.get() {
-            Some(p) => Arc::clone(p),
-            None => {
-                let p = operator
-                    .multigrid_prolongations(self.coarsest_unknowns)
-                    .ok_or(ContactError::from(ElasticityError::InvalidParameter {
-                        field: "solver.linear",
-                        value: f64::NAN,
-                        allowed: "`multigrid` only for a discretisation with a multigrid hierarchy (the 3-D body, body.dimension = 3)",
-                    }))?;
-                Arc::clone(cache.get_or_init(|| p))
-            }
-        };
-        let krylov = KrylovParams {
-            method,
-            ..self.krylov
-        };
-        Ok(Box::new(KrylovSolver::new(
-            krylov,
-            Some((prolongations, self.multigrid)),
-        )?))
-    }
+    let context = OperatorContext {
+        operator,
+        cache,
+        symmetric_positive_definite,
+    };
+    backend.build(&settings, &context).map_err(|e| match e {
+        capstan_solvers::SolverError::InvalidParameter { field: "linear", .. } => {
+            ContactError::from(ElasticityError::InvalidParameter {
+                field: "solver.linear",
+                value: f64::NAN,
+                allowed: "`multigrid` only for a discretisation with a multigrid hierarchy (the 3-D body, body.dimension = 3)",
+            })
+        }
+        other => other.into(),
+    })
 }

@@ -1,20 +1,20 @@
-//! The full-system contact solver: Newton (sparse LU refactorised each step, or GMRES with the
-//! discretisation's geometric multigrid: [`BulkMultigrid`]) or the paper's Jacobi–Newton on
-//! the whole residual. The reference the boundary-only solver is checked
+//! The full-system contact solver: Newton (any registered linear backend for the steps:
+//! sparse LU refactorised each step by default, or GMRES with the discretisation's geometric
+//! multigrid, `multigrid`) or the paper's Jacobi–Newton on the whole residual. The reference the boundary-only solver is checked
 //! against, and the baseline of the benchmarks.
 
 use std::sync::{Arc, OnceLock};
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    ColumnOrdering, CsrMatrix, DirectParams, ExternalLinear, Jacobian, KrylovMethod, LinearSolver,
-    Newton, NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual,
-    SilentObserver, SolveStage, SolverError, SparseLu, SparsityPattern,
+    BackendKind, BoxedLinearSolver, CsrMatrix, Jacobian, LinearBackend, Newton, NewtonParams,
+    NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage,
+    SolverError, SparsityPattern,
 };
 
 use crate::contact::body::ThickBody;
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
-use crate::contact::bulk_multigrid::BulkMultigrid;
+use crate::contact::bulk_multigrid::build_backend;
 use crate::contact::error::{ContactError, ContactErrorKind};
 use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::operator::ContactOperator;
@@ -29,23 +29,17 @@ pub struct FullSystemSettings {
     /// `newton` (linear backend `newton.linear`) or `jacobi-newton`.
     pub method: NonlinearMethod,
     /// Newton settings; the tolerances are replaced by `continuation.tolerance` relative to
-    /// `max(1, |b|_2)`.
+    /// `max(1, |b|_2)`. `newton.linear` is any registered backend
+    /// ([`capstan_solvers::linear_registry`]): `lu` (default) refactorised each step, or
+    /// `multigrid` (`solver.linear = "multigrid"`, the 3-D body only): each step by GMRES
+    /// preconditioned with the discretisation's geometric multigrid (settings
+    /// `newton.krylov`, `newton.multigrid`), the stuck start by CG.
     pub newton: NewtonParams,
     /// Continuation settings (shared with the boundary-only solver).
     pub continuation: ContactSettings,
     /// [`solve_sequenced`] solves grids of at most this many nodes directly (its coarsest
     /// level); default [`SEQUENCING_COARSEST_NODES`].
     pub coarsest_nodes: usize,
-    /// `None` (default): each Newton step by the direct backend `newton.linear`; `Some`: by
-    /// GMRES preconditioned with the discretisation's geometric multigrid
-    /// ([`BulkMultigrid`]; `solver.linear = "multigrid"`, the 3-D body only), the stuck start
-    /// by CG. Ignored by `jacobi-newton`.
-    pub multigrid: Option<BulkMultigrid>,
-    /// `Some`: each Newton step and the stuck start by an external linear backend
-    /// (`solver.linear = "petsc"`: PETSc's KSP, distributed over the MPI ranks while Newton
-    /// and the contact bookkeeping run replicated on every rank); takes precedence over
-    /// `multigrid` and `newton.linear`. Ignored by `jacobi-newton`.
-    pub external: Option<ExternalLinear>,
 }
 
 impl Default for FullSystemSettings {
@@ -55,8 +49,6 @@ impl Default for FullSystemSettings {
             newton: NewtonParams::default(),
             continuation: ContactSettings::default(),
             coarsest_nodes: SEQUENCING_COARSEST_NODES,
-            multigrid: None,
-            external: None,
         }
     }
 }
@@ -118,7 +110,7 @@ pub struct FullSystemSolver<'a, D, L: FrictionLaw<f64>> {
     settings: FullSystemSettings,
     /// The stuck solution for unit `tau0` and unit `tau_max` (one sparse LU, on first use).
     stuck: OnceLock<[Vec<f64>; 2]>,
-    /// The discretisation's multigrid prolongations (iterative bulk only, on first use).
+    /// The discretisation's multigrid prolongations (for backends that ask, on first use).
     prolongations: OnceLock<Arc<[CsrMatrix]>>,
 }
 
@@ -131,8 +123,9 @@ impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
 }
 
 impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
-    /// Checks the settings (the stuck starting guesses are factorised on first use) and builds
-    /// the multigrid hierarchy when [`FullSystemSettings::multigrid`] is set.
+    /// Checks the settings by building the linear backend once (the stuck starting guesses
+    /// are factorised on first use; a backend that asks for the multigrid hierarchy gets it
+    /// now).
     ///
     /// # Errors
     /// Invalid settings; [`ElasticityError::InvalidParameter`] naming `solver.linear` for
@@ -143,31 +136,49 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     ) -> Result<Self, ContactError> {
         settings.continuation.validate()?;
         settings.newton.validate()?;
-        let prolongations = OnceLock::new();
-        if let Some(m) = &settings.multigrid {
-            // the hierarchy now, so that a discretisation without one is refused here
-            m.build(model.discretisation(), KrylovMethod::Gmres, &prolongations)?;
-        }
-        Ok(Self {
+        let solver = Self {
             model,
             settings,
             stuck: OnceLock::new(),
-            prolongations,
+            prolongations: OnceLock::new(),
+        };
+        // validate by building: a discretisation without the hierarchy a backend needs is
+        // refused here
+        solver.backend(settings.newton.linear, false)?;
+        Ok(solver)
+    }
+
+    /// `backend` with the Newton settings, for the model's matrices (`spd`: symmetric positive
+    /// definite ones), the discretisation's ordering unless one is set.
+    fn backend(
+        &self,
+        backend: LinearBackend,
+        spd: bool,
+    ) -> Result<BoxedLinearSolver, ContactError> {
+        build_backend(
+            backend,
+            &self.settings.newton.linear_settings(),
+            self.model.discretisation(),
+            &self.prolongations,
+            spd,
+        )
+    }
+
+    /// Whether the bulk operator `A` is symmetric (then the stuck start's matrix, `A` with a
+    /// positive spring on diagonal entries, is symmetric positive definite).
+    fn symmetric_bulk(&self) -> bool {
+        let system = self.model.system();
+        let p = &system.pattern;
+        p.entries().zip(&system.values).all(|((i, j), v)| {
+            p.slot(j, i)
+                .is_some_and(|s| (system.values[s] - v).abs() <= 1e-12 * v.abs().max(1.0))
         })
     }
 
-    /// The direct solver settings: `settings.newton.direct`, with the discretisation's
-    /// ordering ([`ContactOperator::lu_ordering`]) unless one is set.
-    fn direct_params(&self) -> DirectParams {
-        let mut direct = self.settings.newton.direct;
-        if direct.ordering == ColumnOrdering::Auto {
-            direct.ordering = self.model.discretisation().lu_ordering();
-        }
-        direct
-    }
-
-    /// The stuck solutions for unit loads: one sparse LU of `A` with a stiff spring on the
-    /// tangential contact rows.
+    /// The stuck solutions for unit loads: one factorisation of `A` with a stiff spring on the
+    /// tangential contact rows, by the Newton backend (by `lu` if that is a stationary
+    /// iteration: the stiff spring is what sweeps are slowest on), told the matrix is
+    /// symmetric positive definite when `A` is symmetric (CG for `multigrid`).
     fn stuck_basis(&self) -> Result<&[Vec<f64>; 2], ContactError> {
         if let Some(s) = self.stuck.get() {
             return Ok(s);
@@ -181,14 +192,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         for &slot in &ext.tangential_slot {
             values[slot] += 1e4 * values[slot].abs().max(1.0);
         }
-        let mut lu: Box<dyn LinearSolver<f64> + Send> = match &self.settings.multigrid {
-            _ if let Some(external) = self.settings.external => (external.build)()?,
-            Some(m) => m.build(
-                model.discretisation(),
-                KrylovMethod::Cg,
-                &self.prolongations,
-            )?,
-            None => Box::new(SparseLu::new(self.direct_params())?),
+        let linear = self.settings.newton.linear;
+        let mut lu = match linear.kind() {
+            BackendKind::Stationary => self.backend(LinearBackend::LU, false)?,
+            BackendKind::Krylov => self.backend(linear, self.symmetric_bulk())?,
+            _ => self.backend(linear, false)?,
         };
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
@@ -222,32 +230,17 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
             relative_tolerance: 0.0,
             max_iterations: self.settings.continuation.max_iterations,
-            direct: self.direct_params(),
             ..self.settings.newton
         };
-        let result = match (&self.settings.multigrid, self.settings.method) {
-            (_, NonlinearMethod::Newton) if let Some(external) = self.settings.external => {
-                Newton::with_linear_solver(params, (external.build)()?)?
-                    .solve(&problem, v, observer)
-            }
-            (Some(m), NonlinearMethod::Newton) => {
-                let linear = m
-                    .build(
-                        self.model.discretisation(),
-                        KrylovMethod::Gmres,
-                        &self.prolongations,
-                    )
-                    .map_err(|e| match e {
-                        ContactError::Solver(s) => s,
-                        other => SolverError::problem("jacobian", other),
-                    })?;
+        let result = match self.settings.method {
+            NonlinearMethod::Newton => {
+                let linear = self.backend(params.linear, false).map_err(|e| match e {
+                    ContactError::Solver(s) => s,
+                    other => SolverError::problem("jacobian", other),
+                })?;
                 Newton::with_linear_solver(params, linear)?.solve(&problem, v, observer)
             }
-            _ => self
-                .settings
-                .method
-                .build(params)?
-                .solve(&problem, v, observer),
+            method => method.build(params)?.solve(&problem, v, observer),
         };
         match result {
             Ok(report) => {

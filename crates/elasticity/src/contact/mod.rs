@@ -57,7 +57,6 @@ mod threshold;
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
 pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
-pub use bulk_multigrid::BulkMultigrid;
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,

@@ -26,7 +26,7 @@
 //!
 //! - A geometric multigrid hierarchy of the box ([`box_hierarchy`]: trilinear prolongations
 //!   per component, Dirichlet dofs constrained, periodic `x2`), used by the full-system
-//!   Newton's iterative bulk solver ([`crate::contact::BulkMultigrid`]).
+//!   Newton's iterative bulk solver (`solver.linear = "multigrid"`, [`capstan_solvers::KrylovSolver`]).
 //!
 //! # Limitations
 //! Uniform grids; the contact rows recover `T^3_j` pointwise (no

@@ -4,7 +4,7 @@
 use std::sync::{Arc, Mutex};
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::{LinearSolver, SparseLu};
+use capstan_solvers::{BoxedLinearSolver, LinearSolver};
 use faer::Mat;
 
 use crate::contact::error::ContactError;
@@ -21,7 +21,8 @@ pub(super) const CONDENSATION_BLOCK_ENTRIES: usize = 1 << 24;
 /// condensed matrices (cheap to clone: the large parts are shared).
 #[derive(Clone)]
 pub(super) struct Condensation {
-    pub(super) lu: Arc<Mutex<SparseLu>>,
+    /// The factorised stabilised bulk (any registered backend: `ContactSettings::linear`).
+    pub(super) lu: Arc<Mutex<BoxedLinearSolver>>,
     pub(super) spring: Vec<f64>,
     pub(super) pz: Arc<Mat<f64>>,
     pub(super) nz: Arc<Mat<f64>>,
@@ -39,7 +40,7 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     ext: &ExtendedPattern,
     values: &[f64],
     spring: &[f64],
-    lu: &mut SparseLu,
+    lu: &mut dyn LinearSolver<f64>,
 ) -> Result<(Mat<f64>, Mat<f64>), ContactError> {
     let m = spring.len();
     let n = model.dof_count();

@@ -14,10 +14,11 @@ pub use settings::{ContactSettings, SetupStats, SlidingMode};
 use std::sync::{Arc, Mutex};
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::{LinearSolver, Observer, SilentObserver, SparseLu};
+use capstan_solvers::{LinearSettings, LinearSolver, Observer, SilentObserver};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
+use crate::contact::bulk_multigrid::build_backend;
 use crate::contact::error::ContactError;
 use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::operator::ContactOperator;
@@ -62,7 +63,7 @@ const SPRING_DOMINANCE: f64 = 0.1;
 /// spring `c_k` on those rows (so the bulk stays invertible even when the body can slide
 /// rigidly, as on a circle) and the unknowns `s_k = t_2,k + c_k v^2_k`:
 /// ```text
-/// A~ = A + sum_k w_k c_k e_row_k e_tdof_k^T         factorised once (sparse LU)
+/// A~ = A + sum_k w_k c_k e_row_k e_tdof_k^T         factorised once (`settings.linear`)
 /// v(s) = v_a tau0 + v_b tau_max + Z s,   Z = A~^-1 W  (m solves; only P Z, N Z are kept)
 /// x = P v = x0 + (P Z) s        (v^2 at the contact nodes)
 /// sigma = N v = n0 + (N Z) s    (T^3_3 at the contact nodes)
@@ -146,10 +147,13 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 diag / node.traction_weight
             })
             .collect();
-        let mut lu = SparseLu::new(capstan_solvers::DirectParams {
-            ordering: model.discretisation().lu_ordering(),
-            ..Default::default()
-        })?;
+        let mut lu = build_backend(
+            settings.linear,
+            &LinearSettings::default(),
+            model.discretisation(),
+            &std::sync::OnceLock::new(),
+            false,
+        )?;
         lu.analyse(&ext.pattern)?;
         let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu)?;
         let mut factorisations = 1;

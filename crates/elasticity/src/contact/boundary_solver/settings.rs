@@ -1,5 +1,7 @@
 //! Settings of the contact Newton iterations and what the solver reports of its setup.
 
+use capstan_solvers::LinearBackend;
+
 use crate::contact::error::ContactError;
 use crate::error::ElasticityError;
 
@@ -23,6 +25,9 @@ pub struct ContactSettings {
     pub min_load_step: f64,
     /// Cap on continuation steps.
     pub max_continuation_steps: usize,
+    /// The linear backend that factorises the stabilised bulk (any registered one:
+    /// [`capstan_solvers::linear_registry`]; default `lu`).
+    pub linear: LinearBackend,
 }
 
 impl Default for ContactSettings {
@@ -33,6 +38,7 @@ impl Default for ContactSettings {
             initial_load_step: 0.25,
             min_load_step: 1e-4,
             max_continuation_steps: 400,
+            linear: LinearBackend::LU,
         }
     }
 }
