@@ -74,6 +74,13 @@ pub enum CliError {
         /// The studies that missed, with observed and expected orders.
         missed: Vec<String>,
     },
+    /// An accuracy target (`accuracy.tol`) was not reached within its work budget
+    /// (`accuracy.max_unknowns`; exit code 4).
+    #[error("{message}")]
+    AccuracyNotReached {
+        /// What was reached, naming the keys.
+        message: String,
+    },
     /// Sweep parts that cannot be run or merged (bad `--shard`, parts that do not belong
     /// together, missing or duplicate points: exit code 2).
     #[error(transparent)]
@@ -87,6 +94,9 @@ impl From<crate::problem::ProblemError> for CliError {
             ProblemError::Friction(e) => e.into(),
             ProblemError::Elasticity(e) => e.into(),
             ProblemError::Contact(e) => e.into(),
+            e @ ProblemError::AccuracyNotReached { .. } => Self::AccuracyNotReached {
+                message: e.to_string(),
+            },
         }
     }
 }
@@ -108,7 +118,7 @@ impl CliError {
     pub fn exit_code(&self) -> i32 {
         match self {
             Self::Io { .. } | Self::Output(_) => 1,
-            Self::ContactBudget { .. } => 4,
+            Self::ContactBudget { .. } | Self::AccuracyNotReached { .. } => 4,
             Self::TimedOut { .. } => 5,
             Self::VerificationFailed { .. } => 6,
             Self::Scene { .. }

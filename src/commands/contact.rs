@@ -1,11 +1,12 @@
 //! `capstan contact`: the thick body on a rough prism under the scene's friction law
 //! (`friction.law` through `AnyFrictionLaw`; regularised Coulomb by default, paper section 3).
 
-use capstan_elasticity::contact::{ContactSolution, EndLoads, ThickBody};
+use capstan_elasticity::contact::{ContactQuantities, ContactSolution, EndLoads, ThickBody};
 use capstan_elasticity::solvers::Observer;
 use capstan_elasticity::{Discretisation, Material};
 use serde::Serialize;
 
+use crate::commands::accuracy::{self, ErrorEstimate};
 use crate::error::CliError;
 use crate::figures::reports::report_dir;
 use crate::output::Table;
@@ -231,6 +232,19 @@ pub struct ContactReport {
     /// surface; absent in plane strain.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solid: Option<crate::commands::solid_report::SolidReport>,
+    /// The converging quantities (keys `slip_measure`, `slip_physical_measure`,
+    /// `contact_measure`, `normal_stress_probes`: [`ContactQuantities`]).
+    #[serde(flatten)]
+    pub quantities: Option<ContactQuantities>,
+    /// The estimated discretisation error of every converging quantity
+    /// ([`crate::commands::accuracy`]); absent with `output.error_estimate = false` or when the
+    /// method has no coarser level.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated_error: Option<ErrorEstimate>,
+    /// With an accuracy target (`accuracy.tol`): the target, the chosen discretisation, grid
+    /// and solver, and every refinement step ([`accuracy::AccuracyReport`]); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<accuracy::AccuracyReport>,
 }
 
 impl ContactReport {
@@ -290,6 +304,9 @@ impl ContactReport {
             discretisation: "fd",
             grid_sequence: None,
             solid: None,
+            quantities: None,
+            estimated_error: None,
+            accuracy: None,
         }
     }
 }
@@ -400,22 +417,56 @@ pub fn solve_observed(
     scene: &Scene,
     observer: &mut dyn Observer<f64>,
 ) -> Result<(ContactReport, ContactRun), CliError> {
+    let named = |e| match CliError::from(e) {
+        CliError::Contact(e) => contact_budget(e, &scene.solver),
+        e => e,
+    };
+    let probes = accuracy::probes(scene);
+    if let Some(target) = scene.accuracy.target()? {
+        let (solved, problem, estimate, accuracy) = accuracy::contact_to(scene, &target, observer)
+            .map_err(|e| match e {
+                CliError::Contact(e) => contact_budget(e, &scene.solver),
+                e => e,
+            })?;
+        let mut report = report_of(scene, &solved);
+        report.grid = [problem.body.n2, problem.body.n3];
+        if let Some(solid) = report.solid.as_mut() {
+            solid.grid = problem.grid().try_into().unwrap_or(solid.grid);
+        }
+        report.quantities = Some(solved.quantities(&probes)?);
+        report.estimated_error = Some(estimate);
+        report.accuracy = Some(accuracy);
+        return Ok((report, run_of(scene, solved)?));
+    }
     let problem = scene.build()?;
-    let solved = problem
-        .solve_observed(observer)
-        .map_err(|e| match CliError::from(e) {
-            CliError::Contact(e) => contact_budget(e, &scene.solver),
-            e => e,
-        })?;
-    let report = report_of(scene, &solved);
-    let run = match solved.model.plane() {
+    let solved = problem.solve_observed(observer).map_err(named)?;
+    let mut report = report_of(scene, &solved);
+    let scalars = solved.scalars(&probes)?;
+    report.quantities = Some(solved.quantities(&probes)?);
+    if scene.output.error_estimate
+        && let Some(coarse) = problem.coarser()?
+    {
+        let coarse_solved = coarse
+            .solve_observed(&mut accuracy::StopOnly(observer))
+            .map_err(named)?;
+        report.estimated_error = Some(ErrorEstimate::from_levels(
+            &scalars,
+            &coarse_solved.scalars(&probes)?,
+            coarse.grid(),
+        ));
+    }
+    Ok((report, run_of(scene, solved)?))
+}
+
+/// The outputs' view of a solved problem.
+fn run_of(scene: &Scene, solved: crate::problem::Solved) -> Result<ContactRun, CliError> {
+    Ok(match solved.model.plane() {
         Some(disc) => ContactRun::Plane(self::solved(scene, disc, solved.solution)?),
         None => ContactRun::Solid {
             solution: solved.solution,
             model: solved.model,
         },
-    };
-    Ok((report, run))
+    })
 }
 
 /// The report of a solved scene (the 3-D body adds `solid`).
@@ -552,6 +603,10 @@ pub fn table(r: &ContactReport) -> String {
     s += &format!("  max |v2| {}\n", e(&r.max_azimuthal_displacement));
     s += &format!("  max |v3| {}\n", e(&r.max_radial_displacement));
     s += &format!("  Slip {:.6}\n", r.slip_fraction);
+    s += &quantities_table(r);
+    if let Some(a) = &r.accuracy {
+        s += &a.table();
+    }
     match r.stick_interval {
         Some([a, b]) => s += &format!("  stick ({a:.6}, {b:.6})\n"),
         None => s += "  stick: none\n",
@@ -569,6 +624,52 @@ pub fn table(r: &ContactReport) -> String {
             "  limiting tension ratios (rigid sliding): [{}, {}]\n",
             f(lo, "-inf (none)"),
             f(hi, "inf (none)")
+        );
+    }
+    s
+}
+
+/// The converging quantities with their estimated errors (`+- e`), as [`table`] prints them.
+fn quantities_table(r: &ContactReport) -> String {
+    let Some(q) = &r.quantities else {
+        return String::new();
+    };
+    let estimate = |name: &str| {
+        r.estimated_error
+            .as_ref()
+            .and_then(|e| e.quantities.get(name).copied().flatten())
+            .map_or_else(String::new, |e| format!(" +- {e:.1e}"))
+    };
+    let mut s = format!(
+        "  slip measure {:.6}{} of {:.6} (physical {:.6}{})\n",
+        q.slip_measure,
+        estimate("slip_measure"),
+        q.contact_measure,
+        q.slip_physical_measure,
+        estimate("slip_physical_measure")
+    );
+    for (i, p) in q.normal_stress_probes.iter().enumerate() {
+        s += &format!(
+            "  sigma_n({:.6}) = {:+.6e}{}\n",
+            p.x2,
+            p.value,
+            estimate(&format!("normal_stress_probe_{i}"))
+        );
+    }
+    if let Some(e) = &r.estimated_error {
+        let named = ["stick_from", "stick_to", "max_abs_v2", "max_abs_v3"]
+            .iter()
+            .filter_map(|n| {
+                Some(format!(
+                    "{n} {:.1e}",
+                    e.quantities.get(*n).copied().flatten()?
+                ))
+            })
+            .collect::<Vec<_>>();
+        s += &format!(
+            "  estimated errors (vs grid {:?}): {}\n",
+            e.coarser_grid,
+            named.join(", ")
         );
     }
     s

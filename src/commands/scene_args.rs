@@ -18,6 +18,10 @@ pub struct SceneArgs {
     /// Print one JSON object instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// An accuracy target: the same as `--set accuracy.tol=TOL` (capstan chooses the
+    /// discretisation and grid and refines until every estimate is below TOL relative).
+    #[arg(long, value_name = "TOL")]
+    pub tol: Option<f64>,
 }
 
 impl SceneArgs {
@@ -26,6 +30,10 @@ impl SceneArgs {
     /// # Errors
     /// See [`Scene::load`].
     pub fn load(&self) -> Result<Scene, CliError> {
-        Scene::load(self.scene.as_deref(), &self.sets)
+        let mut sets = self.sets.clone();
+        if let Some(tol) = self.tol {
+            sets.push(format!("accuracy.tol={tol:e}"));
+        }
+        Scene::load(self.scene.as_deref(), &sets)
     }
 }

@@ -44,6 +44,7 @@ impl PointStatus {
                 ContactErrorKind::NotConverged => Self::NotConverged,
                 ContactErrorKind::Interrupted => Self::Interrupted,
             },
+            CliError::AccuracyNotReached { .. } => Self::NotConverged,
             _ => Self::InvalidInput,
         }
     }
@@ -82,6 +83,24 @@ pub struct SweepPoint {
     pub tension_ratio: f64,
     /// The error message of a failed point.
     pub error: Option<String>,
+    /// With an accuracy target (`accuracy.tol`): the point's converging quantities, their
+    /// estimates and the grid chosen; absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<PointAccuracy>,
+}
+
+/// A sweep point solved to an accuracy target.
+#[derive(Debug, Clone, PartialEq, Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointAccuracy {
+    /// The x2-length of the slipping set (`slip_measure` of `capstan contact`).
+    pub slip_measure: f64,
+    /// The length of the contact face (`contact_measure`).
+    pub contact_measure: f64,
+    /// `estimated_error.quantities` of the point's contact report.
+    pub estimated_error: std::collections::BTreeMap<String, Option<f64>>,
+    /// The grid the target chose.
+    pub grid: Vec<usize>,
 }
 
 /// `capstan sweep --json`.
@@ -137,6 +156,7 @@ fn point(
             max_radial_displacement: Some(sol.max_radial_displacement),
             tension_ratio: loads.tension_ratio(),
             error: None,
+            accuracy: None,
         },
         Err(e) => SweepPoint {
             value,
@@ -149,6 +169,7 @@ fn point(
             max_radial_displacement: None,
             tension_ratio: loads.tension_ratio(),
             error: Some(e.to_string()),
+            accuracy: None,
         },
     }
 }
@@ -395,7 +416,11 @@ fn run(
         message: "no points".into(),
     })?)?;
     let shared = key == "loads.tau_max" || key == "loads.tau0";
-    let points = points(scene, with, at, &tick, &model, &point_vtu)?;
+    let points = if scene.accuracy.tol.is_some() {
+        accurate_points(scene, with, values, &tick)
+    } else {
+        points(scene, with, at, &tick, &model, &point_vtu)?
+    };
     bar.finish_and_clear();
     Ok(SweepReport {
         param: key.to_owned(),
@@ -403,6 +428,57 @@ fn run(
         shared_factorisation: shared,
         seconds: t.elapsed().as_secs_f64(),
     })
+}
+
+/// The points of a sweep run to an accuracy target: each point's scene solved by
+/// `capstan contact` with its target ([`crate::commands::accuracy::contact_to`]), in parallel.
+fn accurate_points(
+    scene: &Scene,
+    with: &(dyn Fn(f64) -> Result<Scene, CliError> + Sync),
+    values: &[f64],
+    tick: &(dyn Fn() + Sync),
+) -> Vec<SweepPoint> {
+    values
+        .par_iter()
+        .map(|&v| {
+            let solved = with(v).and_then(|sc| {
+                crate::commands::contact::solve_observed(
+                    &sc,
+                    &mut capstan_elasticity::solvers::SilentObserver,
+                )
+                .map(|(report, _)| (loads(&sc), report))
+            });
+            tick();
+            match solved {
+                Ok((l, r)) => SweepPoint {
+                    value: v,
+                    status: PointStatus::Converged,
+                    converged: true,
+                    slip_fraction: Some(r.slip_fraction),
+                    newton_iterations: Some(r.newton_iterations),
+                    stick_interval: r.stick_interval,
+                    max_azimuthal_displacement: Some(r.max_azimuthal_displacement),
+                    max_radial_displacement: Some(r.max_radial_displacement),
+                    tension_ratio: l.tension_ratio(),
+                    error: None,
+                    accuracy: r.quantities.as_ref().map(|q| PointAccuracy {
+                        slip_measure: q.slip_measure,
+                        contact_measure: q.contact_measure,
+                        estimated_error: r
+                            .estimated_error
+                            .as_ref()
+                            .map(|e| e.quantities.clone())
+                            .unwrap_or_default(),
+                        grid: r
+                            .accuracy
+                            .as_ref()
+                            .map_or_else(|| r.grid.to_vec(), |a| a.chosen.grid.clone()),
+                    }),
+                },
+                Err(e) => point(v, loads(scene), Err(e)),
+            }
+        })
+        .collect()
 }
 
 /// Plain text: a title line, then one line per point under a header in the same columns.

@@ -1,12 +1,16 @@
 //! `capstan threshold`: the tension ratio at which the whole contact slides (Slip = 1), and the
 //! capstan coefficient of friction it implies.
 
+use std::collections::BTreeMap;
 use std::time::Instant;
 
+use capstan_elasticity::contact::ThresholdSettings;
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
+use crate::commands::accuracy::{AccuracyReport, ErrorEstimate};
 use crate::error::CliError;
+use crate::problem::Scaled;
 use crate::scene::Scene;
 
 /// `capstan threshold --json` (keys are a public contract).
@@ -38,6 +42,15 @@ pub struct ThresholdReport {
     /// `grid.n1` of a 3-D body (`body.dimension = 3`); absent in plane strain.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid_n1: Option<usize>,
+    /// The estimated discretisation error of `threshold_ratio` and `implied_mu`: the difference
+    /// to the threshold one grid level coarser ([`crate::commands::accuracy`]); absent with
+    /// `output.error_estimate = false` or when the method has no coarser level.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated_error: Option<ErrorEstimate>,
+    /// With an accuracy target (`accuracy.tol`): the target, the chosen discretisation, grid
+    /// and solver, and every refinement step; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<AccuracyReport>,
 }
 
 /// Computes the report.
@@ -53,15 +66,45 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         });
     }
     let t = Instant::now();
-    let r = scene.build()?.threshold()?;
-    let obstacle = scene.obstacle.build()?;
-    let problem = MembraneProblem {
-        theta0: scene.membrane.theta0,
-        theta_max: scene.membrane.theta_max,
-        t0: 1.0,
-        ..Default::default()
+    let mut problem = scene.build()?;
+    let mut accuracy = None;
+    let (r, implied_mu, estimated_error) = if let Some(target) = scene.accuracy.target()? {
+        // the bisection's own tolerance a tenth of the target's (at most the default 1e-6:
+        // a bracket much tighter puts solves next to the rigid-sliding limit, where the
+        // continuation needs hundreds of Newton steps)
+        let settings = ThresholdSettings {
+            tolerance: (target.tolerance * 1e-1).min(ThresholdSettings::default().tolerance),
+            ..Default::default()
+        };
+        let refined = problem.refine_to(&target, |p| {
+            let r = p.threshold_with(settings)?;
+            let membrane = MembraneProblem {
+                theta0: scene.membrane.theta0,
+                theta_max: scene.membrane.theta_max,
+                t0: 1.0,
+                ..Default::default()
+            };
+            let mu = membrane::infer_mu(&p.body.surface, &membrane, r.ratio)?.mu;
+            let q = |v: f64| Scaled {
+                value: v,
+                scale: v.abs().max(f64::MIN_POSITIVE),
+            };
+            let quantities = BTreeMap::from([
+                ("threshold_ratio".to_owned(), q(r.ratio)),
+                ("implied_mu".to_owned(), q(mu)),
+            ]);
+            Ok(((r, mu), quantities))
+        })?;
+        accuracy = AccuracyReport::new(scene, &target, &refined);
+        let estimate = AccuracyReport::estimate(&refined);
+        let ((r, mu), chosen) = (refined.value, refined.problem);
+        problem = chosen;
+        (r, mu, Some(estimate))
+    } else {
+        let r = problem.threshold()?;
+        let mu = implied_mu(scene, r.ratio)?;
+        (r, mu, plain_estimate(scene, &problem, r.ratio, mu)?)
     };
-    let implied_mu = membrane::infer_mu(&obstacle, &problem, r.ratio)?.mu;
     Ok(ThresholdReport {
         status: "converged",
         threshold_ratio: r.ratio,
@@ -72,17 +115,69 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         implied_mu,
         mu: scene.friction.mu,
         solves: r.solves,
-        grid: [scene.grid.n2, scene.grid.n3],
+        grid: [problem.body.n2, problem.body.n3],
         seconds: t.elapsed().as_secs_f64(),
         grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
+        estimated_error,
+        accuracy,
     })
+}
+
+/// The estimate one grid level coarser (`output.error_estimate`).
+fn plain_estimate(
+    scene: &Scene,
+    problem: &crate::Problem,
+    ratio: f64,
+    implied_mu: f64,
+) -> Result<Option<ErrorEstimate>, CliError> {
+    Ok(match problem.coarser()? {
+        Some(coarse) if scene.output.error_estimate => {
+            let coarse_ratio = coarse.threshold()?.ratio;
+            let level = |ratio: f64, mu: f64| {
+                BTreeMap::from([
+                    ("threshold_ratio".to_owned(), ratio),
+                    ("implied_mu".to_owned(), mu),
+                ])
+            };
+            Some(ErrorEstimate::from_levels(
+                &level(ratio, implied_mu),
+                &level(coarse_ratio, self::implied_mu(scene, coarse_ratio)?),
+                coarse.grid(),
+            ))
+        }
+        _ => None,
+    })
+}
+
+/// The capstan coefficient a threshold ratio implies on the scene's obstacle and contact
+/// interval (membrane model, Corollary 1).
+fn implied_mu(scene: &Scene, ratio: f64) -> Result<f64, CliError> {
+    let obstacle = scene.obstacle.build()?;
+    let problem = MembraneProblem {
+        theta0: scene.membrane.theta0,
+        theta_max: scene.membrane.theta_max,
+        t0: 1.0,
+        ..Default::default()
+    };
+    Ok(membrane::infer_mu(&obstacle, &problem, ratio)?.mu)
 }
 
 /// Plain text.
 pub fn table(r: &ThresholdReport) -> String {
-    format!(
-        "threshold tension ratio {:.6} (Slip = 1{}), grid {} x {}\n  implied capstan mu {:.6} (thick-body mu {})\n  last ratio with a stick node {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
+    let estimate = |name: &str| {
+        r.estimated_error
+            .as_ref()
+            .and_then(|e| e.quantities.get(name).copied().flatten())
+            .map_or_else(String::new, |e| format!(" +- {e:.1e}"))
+    };
+    let accuracy = r
+        .accuracy
+        .as_ref()
+        .map_or_else(String::new, AccuracyReport::table);
+    let text = format!(
+        "threshold tension ratio {:.6}{} (Slip = 1{}), grid {} x {}\n  implied capstan mu {:.6}{} (thick-body mu {})\n  last ratio with a stick node {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
         r.threshold_ratio,
+        estimate("threshold_ratio"),
         if r.no_equilibrium_beyond {
             "; no static equilibrium beyond"
         } else {
@@ -91,10 +186,12 @@ pub fn table(r: &ThresholdReport) -> String {
         r.grid[0],
         r.grid[1],
         r.implied_mu,
+        estimate("implied_mu"),
         r.mu,
         r.below,
         r.slip_fraction_below,
         r.solves,
         r.seconds
-    )
+    );
+    text + &accuracy
 }

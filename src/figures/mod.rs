@@ -6,3 +6,4 @@ pub mod paper;
 pub mod reports;
 pub mod settings;
 pub mod solid_body;
+pub mod threshold_trend;

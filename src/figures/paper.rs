@@ -19,6 +19,7 @@ use serde::Serialize;
 use crate::commands::{contact, sweep, tension};
 use crate::error::CliError;
 pub use crate::figures::settings::{FigureRange, FigureSettings};
+use crate::figures::threshold_trend;
 use crate::output::{LinePlot, OutputDir, Panel, Series, Table};
 
 /// The figures, in the order of the paper.
@@ -623,11 +624,11 @@ fn slip_figure(
         .map(|f| f.0)
         .find(|n| *n == name)
         .unwrap_or("young");
-    let (r, plot, files) = slip_sweep(name, s, out)?;
+    let (r, plot, mut files) = slip_sweep(name, s, out)?;
     cache.retain(|p| p.name != name);
     cache.push(plot);
     let f = slip_figure_of(name);
-    let rows = match name {
+    let mut rows = match name {
         "slip-ratio" => slip_ratio_rows(&r, s)?,
         "young" => young_rows(&r),
         _ => {
@@ -635,6 +636,16 @@ fn slip_figure(
             vec![trend_row(&r, x_scale, f.x_label, f.paper)]
         }
     };
+    if name == "slip-poisson" && s.scene.is_none() && !s.re_aimed(f.key) {
+        // the threshold at an accuracy target, the trend the node fraction cannot resolve, on
+        // the paper's body (finding (v)); a scene file or another key re-aims the figure
+        let (key, values) = s.sweep(f.key, f.range, s.steps(f.steps.0, f.steps.1));
+        let stem = "slip-poisson-threshold";
+        let (points, more) = threshold_trend::threshold_trend(s, &key, &values, stem, out)?;
+        files.extend(more);
+        let [quantity, ours, paper, note] = threshold_trend::comparison(&points, &key);
+        rows.push(row(&quantity, ours, &paper, &note));
+    }
     Ok((files, rows))
 }
 

@@ -34,13 +34,16 @@
 //! assert!((solid.solution.slip_fraction - q1.solution.slip_fraction).abs() < 1e-9);
 //! ```
 
+mod accuracy;
 mod builder;
 mod friction;
 mod solve;
 mod solver;
+mod target;
 
 pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
 pub use friction::Friction;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{SolveMethod, Solver};
+pub use target::{AccuracyTarget, Refined, Scaled, Step};

@@ -37,6 +37,22 @@ pub enum ProblemError {
     /// The contact solve.
     #[error(transparent)]
     Contact(#[from] ContactError),
+    /// An accuracy target's work budget ran out before every estimate met the tolerance.
+    #[error(
+        "accuracy target {tolerance:e} not reached: `{quantity}` still has a relative estimate of {estimate:.2e}, and the next refinement has {unknowns} unknowns, over the budget `accuracy.max_unknowns` = {max_unknowns}; raise it or loosen `accuracy.tol`"
+    )]
+    AccuracyNotReached {
+        /// The tolerance asked for.
+        tolerance: f64,
+        /// The quantity with the largest relative estimate on the last step.
+        quantity: String,
+        /// Its relative estimate.
+        estimate: f64,
+        /// Unknowns of the step that would come next.
+        unknowns: usize,
+        /// The budget.
+        max_unknowns: usize,
+    },
 }
 
 /// The model a solve ended on: the problem's own ([`Problem::model`]), or, after grid
@@ -209,9 +225,20 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     /// # Errors
     /// The model's errors; non-convergence of a solve within the budgets.
     pub fn threshold(&self) -> Result<ThresholdResult, ProblemError> {
+        self.threshold_with(ThresholdSettings::default())
+    }
+
+    /// [`Problem::threshold`] with the bisection's `settings` (its tolerance).
+    ///
+    /// # Errors
+    /// See [`Problem::threshold`].
+    pub fn threshold_with(
+        &self,
+        settings: ThresholdSettings,
+    ) -> Result<ThresholdResult, ProblemError> {
         let model = self.model()?;
         let solver = BoundarySolver::new(&model, self.solver.budgets)?;
-        Ok(threshold_ratio(&solver, ThresholdSettings::default())?)
+        Ok(threshold_ratio(&solver, settings)?)
     }
 
     /// A full-system non-convergence, told apart: no equilibrium (checked by the condensed

@@ -358,6 +358,7 @@ mod tests {
             max_radial_displacement: None,
             tension_ratio: 2.0,
             error: None,
+            accuracy: None,
         }
     }
 

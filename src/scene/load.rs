@@ -230,6 +230,7 @@ pub fn known_keys() -> Vec<String> {
         "loads.f_n".to_string(),
         "loads.body_force".to_string(),
         "loads.path".to_string(),
+        "accuracy.tol".to_string(),
     ];
     for law in capstan_friction::registry::registry() {
         keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));

@@ -46,6 +46,31 @@ pub struct Scene {
     pub output: OutputSpec,
     /// `[contact]`: the kind of contact on the thick body's face `x3 = 0`.
     pub contact: ContactSpec,
+    /// `[accuracy]`: an accuracy target (capstan chooses discretisation and grid).
+    pub accuracy: AccuracySpec,
+}
+
+/// `[accuracy]`: with `tol` set, `contact`, `threshold`, `sweep` and `figure` choose the
+/// discretisation and grid themselves and refine until every reported quantity's estimated
+/// error is below `tol` relative ([`crate::problem::AccuracyTarget`]); `grid.*` and
+/// `discretisation.*` are then not used (plane strain; a 3-D body refines its own grid).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct AccuracySpec {
+    /// The relative tolerance, `1e-9 ..= 0.1`; unset (default): the scene's own grid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tol: Option<f64>,
+    /// The work budget: the most unknowns a refinement step may have (default 300,000).
+    pub max_unknowns: usize,
+}
+
+impl Default for AccuracySpec {
+    fn default() -> Self {
+        Self {
+            tol: None,
+            max_unknowns: crate::problem::AccuracyTarget::DEFAULT_MAX_UNKNOWNS,
+        }
+    }
 }
 
 /// `[contact]`: bilateral (the paper's `v^3 = 0`, default) or unilateral (Signorini) contact
@@ -107,8 +132,22 @@ impl ContactSpec {
     }
 }
 
+impl AccuracySpec {
+    /// The target `tol` asks for, `None` without one.
+    ///
+    /// # Errors
+    /// [`CliError::Elasticity`] naming `accuracy.tol` outside its range.
+    pub fn target(&self) -> Result<Option<crate::problem::AccuracyTarget>, CliError> {
+        self.tol
+            .map(|tol| {
+                Ok(crate::problem::AccuracyTarget::new(tol)?.with_max_unknowns(self.max_unknowns))
+            })
+            .transpose()
+    }
+}
+
 /// `[output]`: how `--out` writes its files (the numbers are the same either way).
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSpec {
     /// `none` (default) | `zlib`: VTU arrays compressed with zlib (VTK's
@@ -118,6 +157,26 @@ pub struct OutputSpec {
     /// interval) as a second piece, so ParaView shows body and obstacle together. Off by
     /// default: a reader that merges pieces (meshio) then sees both meshes as one.
     pub vtu_obstacle: bool,
+    /// Where `capstan contact` reports the normal stress `sigma_n` of the contact face
+    /// (`normal_stress_probes`): `x2` values inside `[membrane.theta0, membrane.theta_max]`
+    /// (a 3-D body: on the middle `x1` line). Unset: the quarter points of the interval.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probe_x2: Option<Vec<f64>>,
+    /// `true` (default): `capstan contact` and `capstan threshold` solve again one grid level
+    /// coarser and report `estimated_error` for every converging quantity
+    /// (`src/commands/accuracy.rs`); `false` skips that solve.
+    pub error_estimate: bool,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            vtu_compression: crate::output::VtuCompression::default(),
+            vtu_obstacle: false,
+            probe_x2: None,
+            error_estimate: true,
+        }
+    }
 }
 
 /// `[obstacle]`.

@@ -130,6 +130,21 @@ impl Scene {
                 Err(bad(key, format!("{v}"), allowed))
             }
         };
+        if let Some(tol) = self.accuracy.tol {
+            real(
+                "accuracy.tol",
+                tol,
+                crate::problem::AccuracyTarget::ALLOWED,
+                (1e-9..=0.1).contains(&tol),
+            )?;
+        }
+        if self.accuracy.max_unknowns < 1000 {
+            return Err(bad(
+                "accuracy.max_unknowns",
+                self.accuracy.max_unknowns.to_string(),
+                "at least 1000",
+            ));
+        }
         let o = &self.obstacle;
         let m = &self.membrane;
         real("membrane.theta0", m.theta0, "finite values", true)?;

@@ -34,10 +34,21 @@ def test_contact_matches_cli(cli):
     assert r.contact.v2.tolist() == r.to_dict()["contact"]["v2"]
     assert r.contact.state.dtype.kind == "i"
     assert json.loads(r.to_json())["capstan_version"] == capstan.__version__
+    # the converging quantities with their estimated errors (one grid level coarser)
+    assert r.estimated_error.method == "one-level-coarser"
+    assert 0 < r.estimated_error.quantities["slip_measure"] < 1e-2
+    assert r.slip_measure < r.contact_measure
 
 
 def test_threshold_matches_cli(cli):
     same(capstan.threshold(capstan.Scene()), cli("threshold"))
+
+
+def test_threshold_to_an_accuracy_target_matches_cli(cli):
+    r = capstan.threshold(capstan.Scene({"accuracy.tol": 1e-3}))
+    same(r, cli("threshold", "--tol", "1e-3"))
+    assert r.accuracy.chosen.method == "fem-qp"
+    assert r.estimated_error.quantities["threshold_ratio"] < 1e-3 * r.threshold_ratio
 
 
 def test_sweep_matches_cli(cli):

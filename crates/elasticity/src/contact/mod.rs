@@ -58,6 +58,7 @@ mod error;
 mod full_system;
 mod model;
 mod operator;
+mod quantities;
 mod solution;
 mod threshold;
 mod unilateral;
@@ -74,6 +75,7 @@ pub use full_system::{
 pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
 pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
+pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
 pub use solution::{
     ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
     classify, state_intervals,

@@ -1,0 +1,223 @@
+//! Error estimates of the converging quantities (`estimated_error` in `capstan contact --json`
+//! and `capstan threshold --json`): every quantity is computed again one grid level coarser,
+//! with the same discretisation and solver, and the difference is the estimate.
+//!
+//! # Math
+//! With `Q_h` the quantity on the scene's grid and `Q_2h` on the next coarser level of grid
+//! sequencing (`n -> (n + 1) / 2` nodes per direction, kept whole elements for `fem-q2` and
+//! `fem-qp`: [`capstan_elasticity::registration::DiscretisationScheme::coarser_nodes`]),
+//! ```text
+//! estimated_error(Q) = |Q_h - Q_2h| / (2^p - 1),  p = 1
+//! ```
+//! that is Richardson's estimate of `|Q - Q_h|` for a first-order quantity, and an upper bound
+//! `(2^p - 1)` times too large for one of order `p > 1` (3x for `p = 2`). The rate is fixed at
+//! 1 rather than observed because the quantities of the paper's problem are not in their
+//! asymptotic range on practical grids: the stick zone of the regularised law is a boundary
+//! layer a few nodes wide at the default grid (docs/verification.md, "Converging
+//! quantities"), and the end corners of the contact face carry singular stresses, so the
+//! observed rates vary between 0.3 and 2 from level to level. A quantity that the coarser
+//! level does not have (the stick zone vanished there) has no estimate (`null`).
+//!
+//! The estimate is of the discretisation error only; the solver's own tolerances (Newton
+//! `1e-10` relative residual, the threshold bisection `1e-6` relative) are far below it.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use capstan_elasticity::contact::{ContactQuantities, ContactSolution};
+
+use crate::error::CliError;
+use crate::problem::{AccuracyTarget, Problem, Refined, Scaled, Step};
+use crate::scene::Scene;
+
+/// `estimated_error` of a report: the estimate of every converging quantity, by name, and the
+/// grid it was estimated from.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ErrorEstimate {
+    /// `|Q_h - Q_2h|` for every converging quantity `Q` of the report (see the module docs);
+    /// `null` for a quantity missing on the coarser grid.
+    pub quantities: BTreeMap<String, Option<f64>>,
+    /// `[n2, n3]` of the coarser grid (`[n1, n2, n3]` on a 3-D body).
+    pub coarser_grid: Vec<usize>,
+    /// How the estimate was made: `one-level-coarser`.
+    pub method: &'static str,
+}
+
+impl ErrorEstimate {
+    /// The estimate from the quantities on the scene's grid (`fine`) and one level coarser.
+    pub fn from_levels(
+        fine: &BTreeMap<String, f64>,
+        coarse: &BTreeMap<String, f64>,
+        coarser_grid: Vec<usize>,
+    ) -> Self {
+        let quantities = fine
+            .iter()
+            .map(|(name, q)| {
+                let e = coarse.get(name).map(|c| (q - c).abs());
+                (name.clone(), e.filter(|e| e.is_finite()))
+            })
+            .collect();
+        Self {
+            quantities,
+            coarser_grid,
+            method: "one-level-coarser",
+        }
+    }
+}
+
+/// The probe points of a scene: `output.probe_x2`, or the quarter points of the contact
+/// interval when it is not set.
+pub fn probes(scene: &Scene) -> Vec<f64> {
+    scene.output.probe_x2.clone().unwrap_or_else(|| {
+        capstan_elasticity::contact::default_probes([
+            scene.membrane.theta0,
+            scene.membrane.theta_max,
+        ])
+    })
+}
+
+/// The observer of the coarser solve of an estimate: forwards only the stop request of the
+/// run's observer (Ctrl-C, `--timeout`, a Python callback's stop), so progress lines and
+/// callbacks describe the scene's own solve.
+pub struct StopOnly<'a>(pub &'a mut dyn capstan_elasticity::solvers::Observer<f64>);
+
+impl capstan_elasticity::solvers::Observer<f64> for StopOnly<'_> {
+    fn iteration(&mut self, _progress: &capstan_elasticity::solvers::Progress<f64>) {}
+
+    fn interrupted(&mut self) -> bool {
+        self.0.interrupted()
+    }
+}
+
+/// `accuracy` in a report run to an accuracy target (`accuracy.tol`): the target, what capstan
+/// chose, and every refinement step.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AccuracyReport {
+    /// `accuracy.tol`.
+    pub tol: f64,
+    /// `accuracy.max_unknowns`.
+    pub max_unknowns: usize,
+    /// The chosen discretisation and grid: the last step.
+    pub chosen: Step,
+    /// The contact solver (`solver.nonlinear`).
+    pub solver: String,
+    /// Every step, coarsest first (`worst`: the largest relative estimate and its quantity).
+    pub steps: Vec<Step>,
+}
+
+impl AccuracyReport {
+    /// The report of a refinement to `target` with the scene's solver.
+    pub fn new<T, S>(
+        scene: &Scene,
+        target: &AccuracyTarget,
+        refined: &Refined<T, S>,
+    ) -> Option<Self> {
+        Some(Self {
+            tol: target.tolerance,
+            max_unknowns: target.max_unknowns,
+            chosen: refined.steps.last()?.clone(),
+            solver: scene.solver.nonlinear.clone(),
+            steps: refined.steps.clone(),
+        })
+    }
+
+    /// The estimate of a refinement: `|Q_k - Q_{k-1}|` of every quantity, against the grid of
+    /// the step before (method `previous-refinement`).
+    pub fn estimate<T, S>(refined: &Refined<T, S>) -> ErrorEstimate {
+        let n = refined.steps.len();
+        ErrorEstimate {
+            quantities: refined
+                .estimates
+                .iter()
+                .map(|(k, v)| (k.clone(), Some(*v)))
+                .collect(),
+            coarser_grid: refined.steps[n.saturating_sub(2)].grid.clone(),
+            method: "previous-refinement",
+        }
+    }
+
+    /// One line per step and the choice, for the text reports.
+    pub fn table(&self) -> String {
+        let mut s = format!(
+            "  accuracy target {:e}: chose {}{} graded {} on {:?} ({} unknowns), solver {}\n",
+            self.tol,
+            self.chosen.method,
+            self.chosen
+                .order
+                .map_or_else(String::new, |p| format!(" p = {p}")),
+            self.chosen.grading,
+            self.chosen.grid,
+            self.chosen.unknowns,
+            self.solver
+        );
+        for step in &self.steps {
+            s += &format!(
+                "    step {:?}: {:.3} s{}\n",
+                step.grid,
+                step.seconds,
+                step.worst
+                    .as_ref()
+                    .map_or_else(String::new, |(q, e)| format!(
+                        ", worst relative estimate {e:.2e} ({q})"
+                    ))
+            );
+        }
+        s
+    }
+}
+
+/// The quantities of a contact solution with the scales their tolerances are relative to:
+/// lengths along the contact face (`slip_measure`, `stick_from`, `stick_to`) the face's
+/// measure, every other quantity its own magnitude.
+pub fn scaled(
+    quantities: &ContactQuantities,
+    solution: &ContactSolution,
+) -> BTreeMap<String, Scaled> {
+    quantities
+        .scalars(solution)
+        .into_iter()
+        .map(|(name, value)| {
+            let scale = match name.as_str() {
+                "slip_measure" | "stick_from" | "stick_to" => quantities.contact_measure,
+                _ => value.abs(),
+            };
+            let scale = scale.max(f64::MIN_POSITIVE);
+            (name, Scaled { value, scale })
+        })
+        .collect()
+}
+
+/// Solves a scene's contact problem to its accuracy target: the solution of the chosen step,
+/// its estimate and the report of the choice.
+///
+/// # Errors
+/// The solves' errors; [`CliError::AccuracyNotReached`] when the budget runs out.
+pub fn contact_to(
+    scene: &Scene,
+    target: &AccuracyTarget,
+    observer: &mut dyn capstan_elasticity::solvers::Observer<f64>,
+) -> Result<
+    (
+        crate::problem::Solved,
+        Problem,
+        ErrorEstimate,
+        AccuracyReport,
+    ),
+    CliError,
+> {
+    let problem = scene.build()?;
+    let probes = probes(scene);
+    let refined = problem.refine_to(target, |p| {
+        let solved = p.solve_observed(observer)?;
+        let q = solved.quantities(&probes)?;
+        let scaled = scaled(&q, &solved.solution);
+        Ok((solved, scaled))
+    })?;
+    let estimate = AccuracyReport::estimate(&refined);
+    let report = AccuracyReport::new(scene, target, &refined).ok_or(CliError::Scene {
+        origin: "accuracy.tol".into(),
+        message: "no refinement step ran".into(),
+    })?;
+    Ok((refined.value, refined.problem, estimate, report))
+}

@@ -1,0 +1,405 @@
+//! Accuracy targets: capstan chooses the discretisation and grid of a [`Problem`] and refines
+//! until every reported quantity's estimated error is below a tolerance.
+//!
+//! See [`AccuracyTarget`] for the estimate and the ladder.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use capstan_elasticity::contact::Dimension;
+use capstan_elasticity::finite_element::{DiscretisationMethod, Grading};
+use capstan_geometry::Surface;
+
+use super::builder::Problem;
+
+/// The most an estimate may fall from one step to the next: `e_k >= |Q_{k-1} - Q_{k-2}| / DROP`.
+const DROP: f64 = 4.0;
+
+/// The highest order of the plane ladder: order 7 with 7 layers of ratio 0.15 (elements
+/// `H 0.15^6 ~ 1e-5 H`) gives a singular factorisation at `nu = 0.45`, order 8 already at the
+/// default `nu = 1/4`.
+const MAX_ORDER: usize = 6;
+
+/// The grading ratio of the plane ladder toward the ends (Schwab's `sigma ~ 0.15`).
+const GRADING: f64 = 0.15;
+
+/// The least index of the step that may end the refinement (three solves: two differences).
+const MIN_STEPS: usize = 2;
+use super::solve::ProblemError;
+
+/// What an accuracy target asks for, with its work budget.
+///
+/// # Math
+/// A ladder of discretisations `D_0, D_1, ...` gives every quantity `Q` a sequence
+/// `Q_0, Q_1, ...`. The estimate of the error of `Q_k` is the difference to the step before,
+/// kept from falling faster than a factor 4 per step:
+/// ```text
+/// d_k(Q) = |Q_k - Q_{k-1}|,      e_k(Q) = max(d_k, d_{k-1} / 4)
+/// ```
+/// For an error falling geometrically by `q` per step (`E_k = C q^-k`), `d_k` lies between
+/// `(q - 1) E_k` (monotone) and `(q + 1) E_k` (alternating), so `e_k` is `2 ... 4` times the
+/// true error at the `q ~ 3` measured on the default scene; the floor `d_{k-1} / 4` keeps a
+/// step that happens to land near its predecessor from ending the refinement. Refinement
+/// stops at the first `k >= 2` (two differences) with `e_k(Q) <= tol * scale(Q)` for every
+/// `Q`; `scale(Q)` is the quantity's own magnitude, or for lengths along the contact face
+/// (slip measure, stick-zone ends) the face's measure.
+///
+/// # The ladder
+/// Plane strain: `fem-qp` of order `p = 2, 3, ..., 6` (GLL nodes) with `p` geometric layers of
+/// ratio `0.15` toward both ends of `x2` and `x3` (the hp meshes of the corner singularities
+/// where the contact face meets the loaded ends: Schwab, *p- and hp-FEM*, section 4.4),
+/// `16 + 2p` elements along `x2` and `2p + 2` through the thickness; past `p = 6` twice the
+/// elements of `p = 6` per step (the same layers, the uniform part and the layers finer). Measured on the default scene (docs/verification.md, "Accuracy
+/// targets"), the threshold ratio converges geometrically along it (differences `2.7e-3,
+/// 1.1e-3, 3.7e-4, 1.2e-4`; order 7 adds 4.8e-5), where the uniform FD and Q2 grids and a graded mesh
+/// refined in `h` alone move it by `1e-4 ... 1e-3` from level to level. A 3-D body keeps its
+/// method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
+/// own.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccuracyTarget {
+    /// The relative tolerance every quantity's estimated error must meet.
+    pub tolerance: f64,
+    /// The largest number of unknowns a step may have (the work budget).
+    pub max_unknowns: usize,
+}
+
+impl AccuracyTarget {
+    /// The allowed tolerances.
+    pub const ALLOWED: &'static str = "1e-9 <= accuracy.tol <= 0.1";
+
+    /// The default work budget: `300,000` unknowns (the plane ladder's step 5, the `p = 6`
+    /// mesh with twice the elements, is `2 * 337 * 169 = 113,906`; the next `452,322`).
+    pub const DEFAULT_MAX_UNKNOWNS: usize = 300_000;
+
+    /// A target of relative tolerance `tolerance` with the default budget.
+    ///
+    /// # Errors
+    /// [`ProblemError::Elasticity`] (`InvalidParameter` naming `accuracy.tol`) outside
+    /// [`Self::ALLOWED`].
+    pub fn new(tolerance: f64) -> Result<Self, ProblemError> {
+        if !(1e-9..=0.1).contains(&tolerance) {
+            return Err(capstan_elasticity::ElasticityError::InvalidParameter {
+                field: "accuracy.tol",
+                value: tolerance,
+                allowed: Self::ALLOWED,
+            }
+            .into());
+        }
+        Ok(Self {
+            tolerance,
+            max_unknowns: Self::DEFAULT_MAX_UNKNOWNS,
+        })
+    }
+
+    /// With the work budget `max_unknowns`.
+    #[must_use]
+    pub fn with_max_unknowns(mut self, max_unknowns: usize) -> Self {
+        self.max_unknowns = max_unknowns;
+        self
+    }
+}
+
+/// A quantity's value with the scale its tolerance is relative to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scaled {
+    /// The value.
+    pub value: f64,
+    /// `scale(Q)` (positive).
+    pub scale: f64,
+}
+
+/// One step of the refinement: the discretisation, its size, time and worst estimate.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Step {
+    /// The discretisation (`fem-qp`, ...).
+    pub method: &'static str,
+    /// Its order (`fem-qp`), else `null`.
+    pub order: Option<usize>,
+    /// The grading ratio toward the ends (`1`: uniform).
+    pub grading: f64,
+    /// `[n2, n3]`, or `[n1, n2, n3]` in 3-D.
+    pub grid: Vec<usize>,
+    /// Unknowns (2 per node in plane strain, 3 in 3-D).
+    pub unknowns: usize,
+    /// Wall time of the step, seconds.
+    pub seconds: f64,
+    /// The largest relative estimate `e_k(Q) / scale(Q)` and its quantity (`null` at step 0).
+    pub worst: Option<(String, f64)>,
+    /// Every quantity's value on this step.
+    pub values: BTreeMap<String, f64>,
+}
+
+/// The result of [`Problem::refine_to`]: the last step's result and problem, the estimate of
+/// every quantity, and the steps taken.
+#[derive(Debug, Clone)]
+pub struct Refined<T, S> {
+    /// What the last step's evaluation returned.
+    pub value: T,
+    /// The problem of the last step (the chosen discretisation and grid).
+    pub problem: Problem<S>,
+    /// `e_k(Q) = |Q_k - Q_{k-1}|` of every quantity of the last step.
+    pub estimates: BTreeMap<String, f64>,
+    /// The steps, coarsest first.
+    pub steps: Vec<Step>,
+}
+
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
+    /// The problem at step `k` of the accuracy ladder (see [`AccuracyTarget`]).
+    ///
+    /// # Errors
+    /// The discretisation's errors ([`ProblemError::Elasticity`]).
+    pub fn accuracy_step(&self, k: usize) -> Result<Self, ProblemError> {
+        let mut p = self.clone();
+        match &mut p.body.dimension {
+            Dimension::Plane => {
+                // hp: p = 2 ... 6 with p geometric layers, then the p = 6 mesh refined in h
+                let order = (2 + k).min(MAX_ORDER);
+                let halvings = k.saturating_sub(MAX_ORDER - 2);
+                p.body.method = DiscretisationMethod::FemQp;
+                p.body.settings.order = order;
+                p.body.settings.grading = Grading::geometric(GRADING, order)?;
+                p.body.n2 = order * ((16 + 2 * order) << halvings) + 1;
+                p.body.n3 = order * ((2 * order + 2) << halvings) + 1;
+            }
+            Dimension::Solid { n1, .. } => {
+                let twice = |n: usize| (n - 1) * (1 << k) + 1;
+                *n1 = twice(*n1);
+                p.body.n2 = twice(p.body.n2);
+                p.body.n3 = twice(p.body.n3);
+            }
+        }
+        p.body.scheme()?.check_nodes("grid.n2", p.body.n2)?;
+        Ok(p)
+    }
+
+    /// The number of unknowns of the body (2 per node in plane strain, 3 in 3-D).
+    pub fn unknowns(&self) -> usize {
+        match self.body.dimension {
+            Dimension::Plane => 2 * self.body.n2 * self.body.n3,
+            Dimension::Solid { n1, .. } => 3 * n1 * self.body.n2 * self.body.n3,
+        }
+    }
+
+    /// Refines along the accuracy ladder until every quantity `eval` reports has
+    /// `e_k(Q) <= target.tolerance * scale(Q)` (see [`AccuracyTarget`]).
+    ///
+    /// `eval` solves one step's problem and returns its result and quantities by name. A
+    /// quantity present on one step and missing on the other (a stick zone that appears) has
+    /// no estimate yet, and refinement goes on.
+    ///
+    /// # Errors
+    /// `eval`'s errors; [`ProblemError::AccuracyNotReached`] when the next step would exceed
+    /// `target.max_unknowns`.
+    pub fn refine_to<T>(
+        &self,
+        target: &AccuracyTarget,
+        mut eval: impl FnMut(&Self) -> Result<(T, BTreeMap<String, Scaled>), ProblemError>,
+    ) -> Result<Refined<T, S>, ProblemError> {
+        let mut steps: Vec<Step> = Vec::new();
+        let mut previous: Option<BTreeMap<String, Scaled>> = None;
+        let mut differences: BTreeMap<String, f64> = BTreeMap::new();
+        for k in 0.. {
+            let problem = self.accuracy_step(k)?;
+            let unknowns = problem.unknowns();
+            if unknowns > target.max_unknowns {
+                let (quantity, estimate) = steps
+                    .last()
+                    .and_then(|s| s.worst.clone())
+                    .unwrap_or_else(|| ("every quantity".to_owned(), f64::INFINITY));
+                return Err(ProblemError::AccuracyNotReached {
+                    tolerance: target.tolerance,
+                    quantity,
+                    estimate,
+                    unknowns,
+                    max_unknowns: target.max_unknowns,
+                });
+            }
+            let t = Instant::now();
+            let (value, quantities) = eval(&problem)?;
+            let mut estimates = BTreeMap::new();
+            let mut worst: Option<(String, f64)> = None;
+            if let Some(before) = &previous {
+                for (name, q) in &quantities {
+                    let relative = match before.get(name) {
+                        Some(b) => {
+                            let d = (q.value - b.value).abs();
+                            // a step that happens to land near the previous value does not
+                            // end the refinement: at most a factor DROP below the last change
+                            let e = d.max(differences.get(name).map_or(0.0, |d0| d0 / DROP));
+                            differences.insert(name.clone(), d);
+                            estimates.insert(name.clone(), e);
+                            e / q.scale
+                        }
+                        None => f64::INFINITY,
+                    };
+                    if worst.as_ref().is_none_or(|w| relative > w.1) {
+                        worst = Some((name.clone(), relative));
+                    }
+                }
+                for name in before.keys().filter(|n| !quantities.contains_key(*n)) {
+                    worst = Some((name.clone(), f64::INFINITY));
+                }
+            }
+            steps.push(Step {
+                method: problem.body.method.name(),
+                order: (problem.body.method == DiscretisationMethod::FemQp)
+                    .then_some(problem.body.settings.order),
+                grading: problem.body.settings.grading.ratio(),
+                grid: problem.grid(),
+                unknowns,
+                seconds: t.elapsed().as_secs_f64(),
+                worst: worst.clone(),
+                values: quantities
+                    .iter()
+                    .map(|(k, q)| (k.clone(), q.value))
+                    .collect(),
+            });
+            if let Some((_, w)) = worst
+                && w <= target.tolerance
+                && k >= MIN_STEPS
+            {
+                return Ok(Refined {
+                    value,
+                    problem,
+                    estimates,
+                    steps,
+                });
+            }
+            previous = Some(quantities);
+        }
+        unreachable!("the budget ends the ladder")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A manufactured quantity along the ladder: `Q_k = 1 + (-1)^k C 3^-k` (geometric with
+    /// alternating sign, the worst case of the estimate), no solve.
+    fn alternating(k: usize) -> f64 {
+        1.0 + (-1.0f64).powi(k as i32) * 0.1 * 3f64.powi(-(k as i32))
+    }
+
+    fn step_of(p: &Problem) -> usize {
+        let halvings = ((p.body.n3 - 1) / (p.body.settings.order * (2 * p.body.settings.order + 2)))
+            .trailing_zeros() as usize;
+        (p.body.settings.order - 2) + halvings
+    }
+
+    #[test]
+    fn refine_to_stops_where_the_estimate_meets_the_tolerance_and_brackets_the_error() {
+        let problem = Problem::paper();
+        for tol in [1e-2, 1e-3, 1e-4] {
+            let target = AccuracyTarget::new(tol)
+                .unwrap()
+                .with_max_unknowns(usize::MAX);
+            let refined = problem
+                .refine_to(&target, |p| {
+                    let q = alternating(step_of(p));
+                    Ok((
+                        q,
+                        BTreeMap::from([(
+                            "q".to_owned(),
+                            Scaled {
+                                value: q,
+                                scale: 1.0,
+                            },
+                        )]),
+                    ))
+                })
+                .unwrap();
+            let e = refined.estimates["q"];
+            let truth = (refined.value - 1.0).abs();
+            assert!(e <= tol, "{tol}: estimate {e:.2e}");
+            assert!(truth <= tol, "{tol}: true error {truth:.2e}");
+            // alternating: d_k = (3 + 1) E_k exactly
+            assert!((e / truth - 4.0).abs() < 1e-9, "{tol}: ratio {}", e / truth);
+            assert!(refined.steps.len() > MIN_STEPS);
+            assert_eq!(refined.steps.len(), step_of(&refined.problem) + 1);
+        }
+    }
+
+    #[test]
+    fn a_step_landing_on_its_predecessor_does_not_end_the_refinement() {
+        // Q: 0, 0.1, 0.1 + 1e-9, then converged: d_2 = 1e-9, but e_2 >= 0.1 / 4
+        let values = [0.0, 0.1, 0.1 + 1e-9, 0.1 + 2e-9, 0.1 + 2e-9];
+        let target = AccuracyTarget::new(1e-3).unwrap();
+        let refined = Problem::paper()
+            .refine_to(&target, |p| {
+                let q = values[step_of(p)];
+                Ok((
+                    q,
+                    BTreeMap::from([(
+                        "q".to_owned(),
+                        Scaled {
+                            value: q,
+                            scale: 1.0,
+                        },
+                    )]),
+                ))
+            })
+            .unwrap();
+        // step 2: e = 0.025; step 3: max(1e-9, 2.5e-10) meets 1e-3
+        assert_eq!(refined.steps.len(), 4);
+        assert_eq!(refined.steps[2].worst.as_ref().unwrap().1, 0.1 / DROP);
+    }
+
+    #[test]
+    fn a_spent_budget_is_a_typed_error_naming_the_quantity() {
+        let target = AccuracyTarget::new(1e-6).unwrap().with_max_unknowns(10_000);
+        let e = Problem::paper()
+            .refine_to(&target, |p| {
+                let q = 1.0 / p.body.settings.order as f64; // converges too slowly
+                Ok((
+                    (),
+                    BTreeMap::from([(
+                        "slow".to_owned(),
+                        Scaled {
+                            value: q,
+                            scale: 1.0,
+                        },
+                    )]),
+                ))
+            })
+            .unwrap_err();
+        match e {
+            ProblemError::AccuracyNotReached {
+                quantity,
+                unknowns,
+                max_unknowns,
+                ..
+            } => {
+                assert_eq!(quantity, "slow");
+                assert!(unknowns > max_unknowns);
+            }
+            e => panic!("{e}"),
+        }
+        assert!(AccuracyTarget::new(0.0).is_err());
+        assert!(AccuracyTarget::new(f64::NAN).is_err());
+        assert!(AccuracyTarget::new(0.5).is_err());
+    }
+
+    #[test]
+    fn the_plane_ladder_is_hp_then_h() {
+        let p = Problem::paper();
+        let grids: Vec<_> = (0..7)
+            .map(|k| {
+                let s = p.accuracy_step(k).unwrap();
+                (s.body.settings.order, s.body.n2, s.body.n3)
+            })
+            .collect();
+        assert_eq!(
+            grids,
+            [
+                (2, 41, 13),
+                (3, 67, 25),
+                (4, 97, 41),
+                (5, 131, 61),
+                (6, 169, 85),
+                (6, 337, 169),
+                (6, 673, 337)
+            ]
+        );
+    }
+}
