@@ -90,10 +90,9 @@ mod plane_problem;
 mod plane_strain_operator;
 pub mod registration;
 pub mod registry;
-pub mod samples;
 mod shell_geometry;
 pub mod solid;
-mod studies;
+pub mod studies;
 pub mod verification;
 
 pub use boundary::{
@@ -111,7 +110,7 @@ pub use material::Material;
 pub use plane_problem::{BodyForce, PlaneProblem};
 pub use registration::PlaneOperator;
 pub use shell_geometry::{SharedChart, ShellGeometry};
-pub use studies::studies;
+pub use studies::{samples, studies};
 
 /// The friction crate, re-exported for users of [`contact`].
 pub use capstan_friction as friction;

@@ -94,7 +94,7 @@ fn manufactured_solutions_converge_at_order_p_plus_one_for_qp_hexahedra() {
 /// largest `|v^1|` (relative likewise).
 /// The 2-D operator is Q1/Q2 for [`HexElement::Uniform`], `fem-qp` for [`HexElement::Gll`].
 fn reduction_difference(
-    parts: capstan_elasticity::finite_element::ProblemParts,
+    parts: capstan_elasticity::studies::ProblemParts,
     element: HexElement,
     volumetric: VolumetricIntegration,
 ) -> Result<(f64, f64), ElasticityError> {

@@ -30,8 +30,6 @@ mod element;
 pub mod high_order;
 mod method;
 mod navier;
-mod problem_parts;
-mod problems;
 mod volumetric;
 
 /// The problem the operators here are built from (also at the crate root).
@@ -45,6 +43,4 @@ pub use method::{DiscretisationMethod, FemQk};
 pub(crate) use method::{Q1_REGISTRATION, Q2_REGISTRATION};
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;
-pub use problem_parts::{ProblemParts, SampleChart};
-pub use problems::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use volumetric::VolumetricIntegration;

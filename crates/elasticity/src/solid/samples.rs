@@ -13,10 +13,11 @@ use super::grid::BoxGrid;
 use super::operator::{SolidForce, SolidNavier};
 use crate::continuum::{SOLID, mixed_stress_of};
 use crate::error::ElasticityError;
-use crate::finite_element::{ElementOrder, SampleChart, VolumetricIntegration};
+use crate::finite_element::{ElementOrder, VolumetricIntegration};
 use crate::material::Material;
 use crate::samples::manufactured_forcing;
 use crate::shell_geometry::ShellGeometry;
+use crate::studies::SampleChart;
 use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// A smooth 3-D displacement field `x -> [v^1, v^2, v^3]`, written once for every scalar:

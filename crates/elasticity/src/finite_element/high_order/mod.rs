@@ -54,7 +54,6 @@ mod operator;
 mod scheme;
 mod skeleton;
 mod solve;
-mod study;
 mod tensor_kernel;
 #[cfg(test)]
 mod tests;
@@ -67,4 +66,3 @@ pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
 pub use scheme::FemQp;
 pub(crate) use scheme::REGISTRATION;
 pub use solve::CondensedSystem;
-pub use study::{HighOrderStudy, high_order_studies};
