@@ -90,6 +90,7 @@ mod plane_problem;
 mod plane_strain_operator;
 pub mod registration;
 pub mod registry;
+mod schemes;
 mod shell_geometry;
 pub mod solid;
 pub mod studies;
@@ -104,11 +105,11 @@ pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, i
 pub use error::ElasticityError;
 pub use fields::NodalFields;
 pub use finite_difference::FiniteDifferenceNavier;
-pub use finite_difference::FiniteDifferences;
 pub use grid::Grid;
 pub use material::Material;
 pub use plane_problem::{BodyForce, PlaneProblem};
 pub use registration::PlaneOperator;
+pub use schemes::{FemQk, FemQp, FiniteDifferences};
 pub use shell_geometry::{SharedChart, ShellGeometry};
 pub use studies::{samples, studies};
 

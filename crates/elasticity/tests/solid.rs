@@ -5,9 +5,9 @@ use capstan_elasticity::finite_element::{
     ElementOrder, FiniteElementNavier, VolumetricIntegration,
 };
 use capstan_elasticity::samples::{LameCylinder, PaperEllipse};
-use capstan_elasticity::solid::samples::SolidMms;
 use capstan_elasticity::solid::{BoxGrid, FaceCondition, HexElement, SolidBoundary, SolidNavier};
 use capstan_elasticity::solvers::SparseCholesky;
+use capstan_elasticity::studies::solid::SolidMms;
 use capstan_elasticity::verification::{GridLevel, observed_order};
 use capstan_elasticity::{Component, Discretisation, ElasticityError};
 

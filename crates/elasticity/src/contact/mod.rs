@@ -50,6 +50,8 @@ mod error;
 mod full_system;
 mod model;
 mod operator;
+mod solid_body;
+mod solid_operator;
 mod solution;
 mod threshold;
 
@@ -62,7 +64,6 @@ pub use full_system::{
     solve_sequenced,
 };
 pub use model::{ContactModel, END_LOADS, EndLoads, SiteTraction};
-pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use solution::{
     ContactProfile, ContactSolution, SolidContactProfile, SolveStats, StateInterval, classify,

@@ -10,15 +10,16 @@ mod fem;
 pub(crate) mod high_order;
 mod parts;
 pub mod samples;
+pub mod solid;
 
 pub use fem::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use high_order::{HighOrderStudy, high_order_studies};
 pub use parts::{ProblemParts, SampleChart};
 
 use crate::finite_element::ElementOrder;
-use crate::solid::samples::{SolidMms, SolidStudy};
 use crate::verification::Study;
 use samples::{LameCylinder, MmsBoundaries, PrismMms};
+use solid::{SolidMms, SolidStudy};
 
 /// The registered studies, in report order: the finite-difference studies, then the same
 /// problems with finite elements, then the 3-D body. New discretisations append theirs.
