@@ -3,8 +3,9 @@
 //! run in CI; the four-grid studies are `#[ignore]`d
 //! (`cargo test --release --test fem_convergence -- --ignored`).
 
-use capstan_elasticity::finite_element::{ElementOrder, FemProblem, FemStudy};
+use capstan_elasticity::finite_element::ElementOrder;
 use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PrismMms};
+use capstan_elasticity::studies::{FemProblem, FemStudy};
 use capstan_elasticity::verification::{Study, StudyReport};
 
 fn run(problem: FemProblem, order: ElementOrder, quick: bool) -> StudyReport {

@@ -3,10 +3,11 @@
 //! differences on the paper's linear stand-in.
 
 use capstan_elasticity::finite_element::{
-    DiscretisationMethod, ElementOrder, VolumetricIntegration, mms_parts, paper_parts,
+    DiscretisationMethod, ElementOrder, VolumetricIntegration,
 };
 use capstan_elasticity::samples::{ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms};
 use capstan_elasticity::solvers::{SparseCholesky, SparseLu};
+use capstan_elasticity::studies::{mms_parts, paper_parts};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Component, Discretisation, ElasticityError};
 

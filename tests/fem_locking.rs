@@ -12,9 +12,10 @@
 
 use capstan_elasticity::Material;
 use capstan_elasticity::finite_element::{
-    ElementOrder, FemProblem, FemStudy, FiniteElementNavier, VolumetricIntegration,
+    ElementOrder, FiniteElementNavier, VolumetricIntegration,
 };
 use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PrismMms};
+use capstan_elasticity::studies::{FemProblem, FemStudy};
 use capstan_elasticity::verification::{GridLevel, Study, observed_order};
 
 use ElementOrder::{Q1, Q2};
@@ -277,8 +278,8 @@ fn lame_contact_stress_errors(
     count: usize,
 ) -> Vec<StressErrors> {
     use capstan_elasticity::Discretisation;
-    use capstan_elasticity::finite_element::lame_parts;
     use capstan_elasticity::solvers::SparseCholesky;
+    use capstan_elasticity::studies::lame_parts;
     let lame = LameCylinder {
         material: Material::new(10.0, nu).unwrap(),
         ..LameCylinder::default()
@@ -379,8 +380,8 @@ fn mms_contact_normal_stress_with_sri_is_second_order() {
     // Q2-SRI 1.73e-2, 5.21e-3, 1.45e-3 (1.79); Q1-SRI 2.02e-2, 6.18e-3, 1.72e-3 (1.78), where the
     // element-centre value of the first element row gave 9.63e-2, 5.21e-2, 2.70e-2 (0.92).
     use capstan_elasticity::Discretisation;
-    use capstan_elasticity::finite_element::mms_parts;
     use capstan_elasticity::solvers::SparseLu;
+    use capstan_elasticity::studies::mms_parts;
     let mms = PrismMms::ellipse(0.5, MmsBoundaries::TractionContact);
     let errors = |order: ElementOrder, volumetric: VolumetricIntegration| -> Vec<(f64, f64)> {
         [(33, 9), (65, 17), (129, 33)]

@@ -18,11 +18,12 @@ mod common;
 
 use std::time::Instant;
 
-use capstan_elasticity::finite_element::{ElementOrder, lame_parts};
+use capstan_elasticity::finite_element::ElementOrder;
 use capstan_elasticity::samples::{LameCylinder, ManufacturedField};
 use capstan_elasticity::solvers::{
     ColumnOrdering, DirectParams, GridShape, LinearSolver, SparseCholesky,
 };
+use capstan_elasticity::studies::lame_parts;
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError};
 use common::ExampleArgs;

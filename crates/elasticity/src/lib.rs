@@ -91,10 +91,10 @@ mod plane_problem;
 mod plane_strain_operator;
 pub mod registration;
 pub mod registry;
-pub mod samples;
+mod schemes;
 mod shell_geometry;
 pub mod solid;
-mod studies;
+pub mod studies;
 pub mod verification;
 
 pub use boundary::{
@@ -106,13 +106,13 @@ pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, i
 pub use error::ElasticityError;
 pub use fields::NodalFields;
 pub use finite_difference::FiniteDifferenceNavier;
-pub use finite_difference::FiniteDifferences;
 pub use grid::Grid;
 pub use material::Material;
 pub use plane_problem::{BodyForce, PlaneProblem};
 pub use registration::PlaneOperator;
+pub use schemes::{FemQk, FemQp, FiniteDifferences};
 pub use shell_geometry::{SharedChart, ShellGeometry};
-pub use studies::studies;
+pub use studies::{samples, studies};
 
 /// The friction crate, re-exported for users of [`contact`].
 pub use capstan_friction as friction;

@@ -53,10 +53,10 @@ pub use crate::registration::{
 /// The built-in discretisations, in the order of [`names`].
 fn builtin() -> Vec<&'static RegisteredDiscretisation> {
     vec![
-        &crate::finite_difference::REGISTRATION,
-        &crate::finite_element::Q1_REGISTRATION,
-        &crate::finite_element::Q2_REGISTRATION,
-        &crate::finite_element::high_order::REGISTRATION,
+        &crate::schemes::FD_REGISTRATION,
+        &crate::schemes::Q1_REGISTRATION,
+        &crate::schemes::Q2_REGISTRATION,
+        &crate::schemes::QP_REGISTRATION,
     ]
 }
 
@@ -204,7 +204,7 @@ mod tests {
     fn builtins_are_registered_under_their_scene_names() {
         assert!(names().starts_with("fd, fem-q1, fem-q2, fem-qp"));
         assert!(find("fem-q3").is_none());
-        let err = register(crate::finite_difference::REGISTRATION).unwrap_err();
+        let err = register(crate::schemes::FD_REGISTRATION).unwrap_err();
         assert!(matches!(
             err,
             ElasticityError::DuplicateDiscretisation { name: "fd" }

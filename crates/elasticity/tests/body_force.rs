@@ -13,8 +13,8 @@ use capstan_elasticity::contact::{
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::samples::{MmsBoundaries, PrismMms, displacement_error};
 use capstan_elasticity::solid::SideFaces;
-use capstan_elasticity::solid::samples::{SolidField, SolidMms};
 use capstan_elasticity::solvers::{SparseCholesky, SparseLu};
+use capstan_elasticity::studies::solid::{SolidField, SolidMms};
 use capstan_elasticity::verification::{GridLevel, observed_order};
 use capstan_elasticity::{BodyForce, Discretisation, ShellGeometry};
 use capstan_friction::{RegularisedCoulomb, RegularisedCoulombParams};

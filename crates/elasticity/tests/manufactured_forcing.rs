@@ -8,7 +8,7 @@ use capstan_elasticity::ShellGeometry;
 use capstan_elasticity::samples::{
     ExactSolution, LameCylinder, ManufacturedField, MmsBoundaries, PrismMms, TrigonometricField,
 };
-use capstan_elasticity::solid::samples::{SolidExact, SolidField, SolidMms};
+use capstan_elasticity::studies::solid::{SolidExact, SolidField, SolidMms};
 use capstan_geometry::{CircularCylinder, Obstacle, Plane, Scalar, ShellChart};
 
 /// `sum_a d_a P_a(x)` over `(coordinate axis, flux index a)` by the Richardson-extrapolated

@@ -5,9 +5,9 @@ use capstan_elasticity::finite_element::{
     ElementOrder, FiniteElementNavier, VolumetricIntegration,
 };
 use capstan_elasticity::samples::{LameCylinder, PaperEllipse};
-use capstan_elasticity::solid::samples::SolidMms;
 use capstan_elasticity::solid::{BoxGrid, FaceCondition, HexElement, SolidBoundary, SolidNavier};
 use capstan_elasticity::solvers::SparseCholesky;
+use capstan_elasticity::studies::solid::SolidMms;
 use capstan_elasticity::verification::{GridLevel, observed_order};
 use capstan_elasticity::{Component, Discretisation, ElasticityError};
 
@@ -94,7 +94,7 @@ fn manufactured_solutions_converge_at_order_p_plus_one_for_qp_hexahedra() {
 /// largest `|v^1|` (relative likewise).
 /// The 2-D operator is Q1/Q2 for [`HexElement::Uniform`], `fem-qp` for [`HexElement::Gll`].
 fn reduction_difference(
-    parts: capstan_elasticity::finite_element::ProblemParts,
+    parts: capstan_elasticity::studies::ProblemParts,
     element: HexElement,
     volumetric: VolumetricIntegration,
 ) -> Result<(f64, f64), ElasticityError> {

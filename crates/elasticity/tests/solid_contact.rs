@@ -214,7 +214,7 @@ fn orthotropic_coulomb_slips_off_the_traction_direction_on_the_three_dimensional
 #[allow(clippy::needless_range_loop)] // mirrors T^ij = T^i_l g^lj
 fn recovered_nodal_stress_is_second_order_on_the_elliptical_cone() {
     use capstan_elasticity::finite_element::ElementOrder;
-    use capstan_elasticity::solid::samples::{SolidField, SolidMms};
+    use capstan_elasticity::studies::solid::{SolidField, SolidMms};
     let mms = SolidMms::elliptical_cone();
     let exact = mms.exact();
     let mut errors = Vec::new();

@@ -7,9 +7,9 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::finite_element::{DiscretisationMethod, ElementOrder};
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-use capstan_elasticity::solid::samples::SolidMms;
 use capstan_elasticity::solid::{HexElement, SideFaces, SolidBody};
 use capstan_elasticity::solvers::SparseCholesky;
+use capstan_elasticity::studies::solid::SolidMms;
 use capstan_geometry::{EllipticalPrism, Obstacle};
 
 #[test]

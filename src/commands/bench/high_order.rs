@@ -14,10 +14,11 @@
 use std::time::Instant;
 
 use capstan_elasticity::finite_element::{
-    Grading, HighOrderNavier, QpSettings, SampleChart, VolumetricIntegration, paper_parts,
+    Grading, HighOrderNavier, QpSettings, VolumetricIntegration,
 };
 use capstan_elasticity::samples::PaperEllipse;
 use capstan_elasticity::solvers::SparseCholesky;
+use capstan_elasticity::studies::{SampleChart, paper_parts};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError};
 

@@ -43,9 +43,7 @@ pub use targets::{Headline, SeriesTimes, TARGETS, time_to_error};
 use std::path::PathBuf;
 use std::time::Instant;
 
-use capstan_elasticity::finite_element::{
-    ElementOrder, ProblemParts, lame_parts, mms_parts, paper_parts,
-};
+use capstan_elasticity::finite_element::ElementOrder;
 use capstan_elasticity::samples::{
     LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms,
 };
@@ -53,6 +51,7 @@ use capstan_elasticity::solvers::{
     ColumnOrdering, DirectParams, IterativeParams, LinearBackend, LinearSettings, LinearSolver,
     SparseCholesky,
 };
+use capstan_elasticity::studies::{ProblemParts, lame_parts, mms_parts, paper_parts};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError, ShellGeometry};
 use clap::{Args, Subcommand};

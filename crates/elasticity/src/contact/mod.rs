@@ -59,6 +59,8 @@ mod full_system;
 mod model;
 mod operator;
 mod quantities;
+mod solid_body;
+mod solid_operator;
 mod solution;
 mod threshold;
 mod unilateral;
@@ -73,7 +75,6 @@ pub use full_system::{
     solve_sequenced,
 };
 pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
-pub(crate) use operator::extremum;
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
 pub use solution::{

@@ -30,8 +30,6 @@ mod element;
 pub mod high_order;
 mod method;
 mod navier;
-mod problem_parts;
-mod problems;
 mod volumetric;
 
 /// The problem the operators here are built from (also at the crate root).
@@ -39,12 +37,8 @@ pub use crate::plane_problem::PlaneProblem;
 pub use assembly::ElementAssembly;
 pub use element::{ElementOrder, gauss_rule};
 pub(crate) use element::{check_whole_elements, lumped_weight};
-pub use high_order::FemQp;
 pub use high_order::{Grading, HighOrderNavier, QpSettings, gll_rule};
-pub use method::{DiscretisationMethod, FemQk};
-pub(crate) use method::{Q1_REGISTRATION, Q2_REGISTRATION};
+pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;
-pub use problem_parts::{ProblemParts, SampleChart};
-pub use problems::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use volumetric::VolumetricIntegration;

@@ -2,14 +2,12 @@
 //! `x3 = 0`: the convenience builder of 3-D contact models (the counterpart of
 //! [`crate::contact::ThickBody`]).
 
-use capstan_friction::FrictionLaw;
 use capstan_geometry::{ShellChart, Surface};
 
 use super::boundary::{FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 use super::element::HexElement;
 use super::grid::BoxGrid;
 use super::operator::SolidNavier;
-use crate::contact::{ContactError, ContactModel};
 use crate::error::ElasticityError;
 use crate::finite_element::{ElementOrder, VolumetricIntegration};
 use crate::material::Material;
@@ -170,24 +168,6 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
             None,
             self.order,
             self.volumetric,
-        )
-    }
-
-    /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`).
-    ///
-    /// # Errors
-    /// See [`ContactModel::new`].
-    pub fn model<L: FrictionLaw<f64>>(
-        &self,
-        law: L,
-        params: L::Params,
-        slip_threshold: f64,
-    ) -> Result<ContactModel<SolidNavier<ShellChart<S>>, L>, ContactError> {
-        ContactModel::new(
-            |tau0, tau_max| self.operator(tau0, tau_max),
-            law,
-            params,
-            slip_threshold,
         )
     }
 }

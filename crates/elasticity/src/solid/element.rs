@@ -163,7 +163,7 @@ impl HexElement {
 /// ```
 /// point `q = (q1 nq + q2) nq + q3`.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct ElementRule {
+pub(crate) struct ElementRule {
     /// The 1-D abscissae on `[-1, 1]`.
     pub(super) points: Vec<f64>,
     weights: Vec<f64>,
@@ -191,7 +191,7 @@ impl ElementRule {
     }
 
     /// The weight `w_q1 w_q2 w_q3 det` of point `q`.
-    pub(super) fn weight(&self, q: usize) -> f64 {
+    pub(crate) fn weight(&self, q: usize) -> f64 {
         let n = self.points.len();
         let w = &self.weights;
         w[q / (n * n)] * w[(q / n) % n] * w[q % n] * self.det
@@ -248,7 +248,7 @@ fn shape_table(element: HexElement, gp: &[f64], lengths: [f64; 3]) -> Vec<[f64; 
 ///          for polynomials of degree p)
 /// ```
 #[derive(Debug, Clone, PartialEq)]
-pub(super) struct LineTables {
+pub(crate) struct LineTables {
     element: HexElement,
     /// `int_-1^1 l_a`, `a = 0 ... p`.
     weights: Vec<f64>,
@@ -285,7 +285,7 @@ impl LineTables {
     }
 
     /// `int l_i dx` of node line `i` of `n` spaced `dx` (see [`LineTables`]).
-    pub(super) fn weight(&self, i: usize, n: usize, dx: f64, periodic: bool) -> f64 {
+    pub(crate) fn weight(&self, i: usize, n: usize, dx: f64, periodic: bool) -> f64 {
         match self.element {
             HexElement::Uniform(order) => lumped_weight(order, i, n, dx, periodic),
             HexElement::Gll(p) => {
@@ -300,7 +300,7 @@ impl LineTables {
 
     /// The derivative at node line `i` of `n` spaced `dx` as weights of the nodal values on
     /// the line: `(line, c_j)` (see [`LineTables`]).
-    pub(super) fn derivative(
+    pub(crate) fn derivative(
         &self,
         i: usize,
         n: usize,

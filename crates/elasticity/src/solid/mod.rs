@@ -34,13 +34,11 @@
 
 mod body;
 mod boundary;
-mod contact;
 mod element;
 mod fields;
 mod grid;
 mod multigrid;
 mod operator;
-pub mod samples;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};

@@ -59,13 +59,13 @@ const COMPONENTS: usize = 3;
 /// # Errors
 /// See [`SolidNavier::new`].
 pub struct SolidNavier<G> {
-    pub(super) chart: G,
-    pub(super) material: Material,
-    pub(super) grid: BoxGrid,
-    pub(super) lines: LineTables,
+    pub(crate) chart: G,
+    pub(crate) material: Material,
+    pub(crate) grid: BoxGrid,
+    pub(crate) lines: LineTables,
     volumetric: VolumetricIntegration,
     elements: [usize; 3],
-    pub(super) dirichlet: Vec<Option<f64>>,
+    pub(crate) dirichlet: Vec<Option<f64>>,
     assembly: ElementAssembly,
     system: LinearSystem,
 }

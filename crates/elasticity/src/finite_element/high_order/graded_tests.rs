@@ -7,8 +7,8 @@ use capstan_solvers::SparseCholesky;
 use super::tests::assert_exponential;
 use super::{Grading, HighOrderNavier, QpSettings};
 use crate::discretisation::Discretisation;
-use crate::finite_element::{SampleChart, mms_parts, paper_parts};
 use crate::samples::{ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms};
+use crate::studies::{SampleChart, mms_parts, paper_parts};
 use crate::verification::{GridLevel, observed_order};
 
 /// Order `p`, geometric grading `sigma` with `layers`, refined by `split`.

@@ -51,10 +51,8 @@ mod graded_tests;
 mod kernel;
 mod mesh;
 mod operator;
-mod scheme;
 mod skeleton;
 mod solve;
-mod study;
 mod tensor_kernel;
 #[cfg(test)]
 mod tests;
@@ -64,7 +62,4 @@ pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_b
 pub use kernel::{ElementTables, add_element_matrix};
 pub use mesh::{Grading, QpSettings};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
-pub use scheme::FemQp;
-pub(crate) use scheme::REGISTRATION;
 pub use solve::CondensedSystem;
-pub use study::{HighOrderStudy, high_order_studies};

@@ -16,8 +16,9 @@ use crate::continuum::kinematics::{
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
+use crate::finite_element::DisplacementErrors;
+use crate::finite_element::ElementAssembly;
 use crate::finite_element::navier::norms::{TensorElements, tensor_displacement_errors};
-use crate::finite_element::{DisplacementErrors, ElementAssembly};
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::LinearSolver;

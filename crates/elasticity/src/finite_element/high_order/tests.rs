@@ -5,12 +5,11 @@ use capstan_solvers::SparseCholesky;
 
 use super::HighOrderNavier;
 use crate::discretisation::Discretisation;
-use crate::finite_element::{
-    ElementOrder, FiniteElementNavier, VolumetricIntegration, lame_parts, mms_parts,
-};
+use crate::finite_element::{ElementOrder, FiniteElementNavier, VolumetricIntegration};
 use crate::samples::{
     LameCylinder, ManufacturedField, MmsBoundaries, PrismMms, TrigonometricExact,
 };
+use crate::studies::{lame_parts, mms_parts};
 use crate::verification::{GridLevel, observed_order};
 use std::sync::Arc;
 
@@ -43,7 +42,7 @@ fn mms_qp(
     k: usize,
     volumetric: VolumetricIntegration,
 ) -> (
-    HighOrderNavier<crate::finite_element::SampleChart>,
+    HighOrderNavier<crate::studies::SampleChart>,
     Arc<TrigonometricExact>,
 ) {
     let level = GridLevel {
@@ -111,7 +110,7 @@ fn static_condensation_equals_the_full_solve() {
     }
 }
 
-/// `(h, L2 error)` of the manufactured Qp study ([`super::study::high_order_mms`]) on `2k x k`
+/// `(h, L2 error)` of the manufactured Qp study ([`crate::studies::high_order::high_order_mms`]) on `2k x k`
 /// elements of order `p` for each `k`.
 fn mms_study(p: usize, ks: &[usize]) -> Vec<(f64, f64)> {
     ks.iter()
@@ -120,7 +119,8 @@ fn mms_study(p: usize, ks: &[usize]) -> Vec<(f64, f64)> {
                 n2: 2 * k * p + 1,
                 n3: k * p + 1,
             };
-            let (parts, exact) = mms_parts(&super::study::high_order_mms(), level).unwrap();
+            let (parts, exact) =
+                mms_parts(&crate::studies::high_order::high_order_mms(), level).unwrap();
             let op = parts.high_order(p, VolumetricIntegration::Full).unwrap();
             let v = op.solve(&mut SparseCholesky::default()).unwrap();
             let e = op
@@ -164,7 +164,7 @@ fn manufactured_solution_converges_with_order_p_plus_1_in_l2_up_to_p_6() {
     // the oscillatory field with its exact (AD) forcing, three grids per order (2k x k
     // elements): in the asymptotic range and far above round-off (finest errors 8.7e-5 at
     // p = 1 ... 6.9e-12 at p = 6)
-    for (p, ks) in (1..=6).zip(super::study::HIGH_ORDER_MMS_GRIDS) {
+    for (p, ks) in (1..=6).zip(crate::studies::high_order::HIGH_ORDER_MMS_GRIDS) {
         let study = mms_study(p, &ks);
         let order = observed_order(&study);
         println!(
@@ -211,7 +211,7 @@ fn lame_cylinder_converges_exponentially_in_p() {
 #[test]
 fn registered_studies_report_orders_near_p_plus_1() {
     // the Lamé studies of `capstan verify` for p = 2, 3, 4 (4 x {4, 8, 16} elements)
-    for study in super::high_order_studies().iter().skip(7).take(3) {
+    for study in crate::studies::high_order_studies().iter().skip(7).take(3) {
         let r = study.run(true).unwrap();
         let p = r
             .discretisation

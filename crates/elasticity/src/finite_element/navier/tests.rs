@@ -90,8 +90,8 @@ fn pattern_by_definition<G: ShellGeometry + Sync>(op: &FiniteElementNavier<G>) -
 
 #[test]
 fn direct_pattern_and_system_equal_the_entries_path() {
-    use crate::finite_element::{lame_parts, paper_parts};
     use crate::samples::{LameCylinder, PaperEllipse};
+    use crate::studies::{lame_parts, paper_parts};
     use crate::verification::GridLevel;
     for order in [ElementOrder::Q1, ElementOrder::Q2] {
         let parts = [
@@ -116,8 +116,8 @@ fn direct_pattern_and_system_equal_the_entries_path() {
 
 #[test]
 fn element_nested_dissection_solution_equals_amd() {
-    use crate::finite_element::lame_parts;
     use crate::samples::LameCylinder;
+    use crate::studies::lame_parts;
     use crate::verification::GridLevel;
     use capstan_solvers::{ColumnOrdering, DirectParams, SparseCholesky};
     for order in [ElementOrder::Q1, ElementOrder::Q2] {

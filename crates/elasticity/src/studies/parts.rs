@@ -3,12 +3,11 @@
 
 use capstan_geometry::{Obstacle, ShellChart};
 
-use super::element::ElementOrder;
-use super::high_order::{HighOrderNavier, QpSettings};
-use super::navier::FiniteElementNavier;
-use super::volumetric::VolumetricIntegration;
 use crate::error::ElasticityError;
 use crate::finite_difference::FiniteDifferenceNavier;
+use crate::finite_element::{
+    ElementOrder, FiniteElementNavier, HighOrderNavier, QpSettings, VolumetricIntegration,
+};
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 

@@ -2,11 +2,12 @@
 
 use capstan_solvers::SparseCholesky;
 
-use super::operator::order_name;
+use super::fem::{FemProblem, lame_parts, mms_parts};
+use super::samples::{LameCylinder, ManufacturedField, MmsBoundaries, PrismField, PrismMms};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::finite_element::{FemProblem, VolumetricIntegration, lame_parts, mms_parts};
-use crate::samples::{LameCylinder, ManufacturedField, MmsBoundaries, PrismField, PrismMms};
+use crate::finite_element::VolumetricIntegration;
+use crate::finite_element::high_order::order_name;
 use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// An exact displacement `x -> [v^2, v^3]`.

@@ -3,15 +3,14 @@
 
 use std::sync::Arc;
 
-use super::element::ElementOrder;
-use super::navier::FiniteElementNavier;
-use super::navier::norms::DisplacementErrors;
-use super::problem_parts::ProblemParts;
-use super::volumetric::VolumetricIntegration;
+use super::parts::ProblemParts;
+use super::samples::{
+    LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms, TrigonometricExact,
+};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::samples::{
-    LameCylinder, ManufacturedField, MmsBoundaries, PaperEllipse, PrismMms, TrigonometricExact,
+use crate::finite_element::{
+    DisplacementErrors, ElementOrder, FiniteElementNavier, VolumetricIntegration,
 };
 use crate::verification::{GridLevel, Study, StudyPoint};
 

@@ -1,10 +1,25 @@
-//! The registry of convergence studies that `capstan verify` runs.
+//! The reference problems with exact or manufactured solutions ([`samples`]), each built for
+//! any plane-strain discretisation ([`ProblemParts`]: the FD, Q1/Q2 and Qp operators of one
+//! problem), and the registry of convergence studies that `capstan verify` runs
+//! ([`studies`]: observed orders against the expected ones).
+//!
+//! This room sits above the discretisations (it builds every one of them); nothing below
+//! imports it.
+
+mod fem;
+pub(crate) mod high_order;
+mod parts;
+pub mod samples;
+pub mod solid;
+
+pub use fem::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
+pub use high_order::{HighOrderStudy, high_order_studies};
+pub use parts::{ProblemParts, SampleChart};
 
 use crate::finite_element::ElementOrder;
-use crate::finite_element::fem_studies;
-use crate::samples::{LameCylinder, MmsBoundaries, PrismMms};
-use crate::solid::samples::{SolidMms, SolidStudy};
 use crate::verification::Study;
+use samples::{LameCylinder, MmsBoundaries, PrismMms};
+use solid::{SolidMms, SolidStudy};
 
 /// The registered studies, in report order: the finite-difference studies, then the same
 /// problems with finite elements, then the 3-D body. New discretisations append theirs.
@@ -17,7 +32,7 @@ pub fn studies() -> Vec<Box<dyn Study>> {
         Box::new(LameCylinder::default()),
     ];
     studies.extend(fem_studies());
-    studies.extend(crate::finite_element::high_order::high_order_studies());
+    studies.extend(high_order_studies());
     // the 3-D body: cones (one with g_12 != 0) and a prism of finite width
     for mms in [
         SolidMms::circular_cone(),

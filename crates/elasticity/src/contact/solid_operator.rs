@@ -3,19 +3,19 @@
 
 use capstan_solvers::{ColumnOrdering, GridShape};
 
-use super::operator::SolidNavier;
-use crate::contact::{ContactOperator, Extremum, extremum};
+use crate::contact::operator::{ContactOperator, Extremum, extremum};
 use crate::continuum::{SOLID, mixed_strains};
 use crate::discretisation::{ContactNode, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
+use crate::solid::SolidNavier;
 
 impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// The gradient-recovery stencil at a node: `(node, [value, d_1, d_2, d_3])` weights
     /// (Q1/Q2: second-order differences of the nodal values, one-sided at the faces; Qp: the
     /// element polynomials' derivatives averaged over the elements sharing the node; see
     /// [`super::element::LineTables`]).
-    pub(super) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
+    pub(crate) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
         let counts = self.grid.counts();
         let spacing = self.grid.spacing();
         let periodic = [false, self.grid.is_periodic(), false];
@@ -181,7 +181,7 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
         })
     }
 
-    fn solid(&self) -> Option<&dyn super::fields::SolidOutput> {
+    fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
         Some(self)
     }
 }

@@ -8,15 +8,19 @@ use capstan_geometry::{
     Surface, ad,
 };
 
-use super::boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
-use super::grid::BoxGrid;
-use super::operator::{SolidForce, SolidNavier};
+use super::samples::manufactured_forcing;
 use crate::continuum::{SOLID, mixed_stress_of};
 use crate::error::ElasticityError;
-use crate::finite_element::{ElementOrder, SampleChart, VolumetricIntegration};
+use crate::finite_element::{ElementOrder, VolumetricIntegration};
 use crate::material::Material;
-use crate::samples::manufactured_forcing;
 use crate::shell_geometry::ShellGeometry;
+use crate::solid::BoxGrid;
+use crate::solid::HexElement;
+use crate::solid::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
+use crate::solid::{SolidForce, SolidNavier};
+
+/// The chart of the 3-D sample problems (as `crate::studies::SampleChart`).
+type SampleChart = ShellChart<Obstacle>;
 use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// A smooth 3-D displacement field `x -> [v^1, v^2, v^3]`, written once for every scalar:
@@ -216,7 +220,7 @@ impl SolidMms {
     pub fn operator(
         &self,
         n: [usize; 3],
-        order: impl Into<super::HexElement>,
+        order: impl Into<HexElement>,
     ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
         self.operator_with_force(n, order, |f| f)
     }
@@ -230,7 +234,7 @@ impl SolidMms {
     pub fn operator_with_force(
         &self,
         n: [usize; 3],
-        order: impl Into<super::HexElement>,
+        order: impl Into<HexElement>,
         force: impl FnOnce(SolidForce) -> SolidForce,
     ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
         let exact = self.exact();
@@ -283,7 +287,7 @@ impl SolidMms {
     pub fn relative_error(
         &self,
         m: usize,
-        order: impl Into<super::HexElement>,
+        order: impl Into<HexElement>,
     ) -> Result<(f64, f64), ElasticityError> {
         let order = order.into();
         let k = order.degree();

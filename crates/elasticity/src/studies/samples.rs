@@ -9,6 +9,7 @@ use capstan_geometry::{
     ShellChart, ShellPoint, Surface,
 };
 
+use super::parts::ProblemParts;
 use crate::boundary::{
     BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
     SideCondition, X2Ends,
@@ -18,7 +19,6 @@ use crate::continuum::{InputLayout, PLANE_STRAIN, mixed_stress_of};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_difference::FiniteDifferenceNavier;
-use crate::finite_element::ProblemParts;
 use crate::grid::Grid;
 use crate::material::Material;
 use crate::plane_problem::BodyForce;
@@ -26,7 +26,7 @@ use crate::shell_geometry::ShellGeometry;
 use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// The chart type of the samples.
-pub use crate::finite_element::SampleChart;
+pub use super::parts::SampleChart;
 
 /// A smooth displacement field `(x2, x3) -> [v^2, v^3]`, written once for every scalar: its
 /// derivatives (the gradient in the boundary data and the errors, the second derivatives in

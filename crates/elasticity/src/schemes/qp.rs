@@ -3,9 +3,8 @@
 
 use std::sync::Arc;
 
-use super::mesh::{Grading, QpSettings};
-use super::operator::{HighOrderNavier, check_order};
 use crate::error::ElasticityError;
+use crate::finite_element::high_order::{Grading, HighOrderNavier, QpSettings, check_order};
 use crate::plane_problem::PlaneProblem;
 use crate::registration::{
     DiscretisationScheme, PlaneOperator, RegisteredDiscretisation, SchemeParameter,
