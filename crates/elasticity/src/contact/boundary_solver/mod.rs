@@ -14,7 +14,7 @@ pub use settings::{ContactSettings, SetupStats, SlidingMode};
 use std::sync::{Arc, Mutex};
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::{LinearSettings, LinearSolver, Observer, SilentObserver};
+use capstan_solvers::{LinearBackend, LinearSettings, LinearSolver, Observer, SilentObserver};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
@@ -24,7 +24,8 @@ use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use condensation::{
-    Condensation, condense, frictionless_operator, largest_singular_value, project, row_max,
+    Condensation, ContactSchur, condense, frictionless_operator, largest_singular_value, project,
+    row_max,
 };
 
 /// A converged condensed Newton run: `(iterations, relative residual)`.
@@ -155,7 +156,14 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             false,
         )?;
         lu.analyse(&ext.pattern)?;
-        let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu)?;
+        // the direct default condenses from the Schur complements (one partial
+        // factorisation, no solves); other backends by `m` solves
+        let schur = if settings.linear == LinearBackend::LU {
+            ContactSchur::new(model)?
+        } else {
+            None
+        };
+        let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu, schur.as_ref())?;
         let mut factorisations = 1;
         // A spring far stiffer than every boundary mode of the body (thin bodies: the diagonal
         // grows like 1 / dx3^2, the boundary stiffness like h) makes `s - C x` cancel to
@@ -165,7 +173,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             for c in &mut spring {
                 *c *= top;
             }
-            (pz, nz) = condense(model, ext, &values, &spring, &mut lu)?;
+            (pz, nz) = condense(model, ext, &values, &spring, &mut lu, schur.as_ref())?;
             factorisations += 1;
         }
         let base = [0, 1].map(|i| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
@@ -197,7 +205,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             contact_unknowns: m,
             bulk_unknowns: n,
             factorisations,
-            bulk_solves: factorisations * m + 2,
+            bulk_solves: if schur.is_some() {
+                2
+            } else {
+                factorisations * m + 2
+            },
         };
         Self::with_condensation(model, bulk, setup, settings)
     }
