@@ -1,14 +1,17 @@
 //! The contact solver of a [`super::Problem`] and its work budgets.
 
-use capstan_elasticity::contact::{ContactSettings, FullSystemSettings};
+use capstan_elasticity::contact::{Body, ContactSettings, Dimension, FullSystemSettings};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 
 /// How the contact problem is solved (`solver.nonlinear`, `solver.linear` in scenes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum SolveMethod {
-    /// `newton` (default): boundary-only Newton on the condensed contact tractions, the bulk
-    /// factorised once; also gives the limiting tension ratios when the body can slide rigidly.
+    /// `auto` (default): the method [`SolveMethod::resolved`] picks for the body: condensed
+    /// while the dense Newton on the contact unknowns is cheap, full-system Newton otherwise.
     #[default]
+    Auto,
+    /// `newton`: boundary-only Newton on the condensed contact tractions, the bulk
+    /// factorised once; also gives the limiting tension ratios when the body can slide rigidly.
     Condensed,
     /// `full-newton`: Newton on the full residual with any registered linear backend
     /// (`capstan_solvers::linear_registry`): a factorisation or stationary iteration each
@@ -18,6 +21,69 @@ pub enum SolveMethod {
     FullNewton(LinearBackend),
     /// `jacobi-newton`: the paper's Jacobi–Newton (damped Jacobi, relaxation 1/2).
     JacobiNewton,
+}
+
+/// Contact unknowns up to which `auto` condenses: the condensed Newton factorises a dense
+/// `m x m` matrix each iteration (`m^3 / 3` multiply-adds: 0.4 GFlop at 1,500), the condensation
+/// itself costs about two sparse factorisations (the Schur complement, from one partial
+/// factorisation) and `m^3` dense work.
+pub const AUTO_CONDENSED_CONTACT_UNKNOWNS: usize = 1500;
+
+/// What `auto` chose and why (`solver_choice` in the JSON report).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct SolverChoice {
+    /// `newton` (condensed), `full-newton` or `jacobi-newton`: the scene name of the method run.
+    pub nonlinear: &'static str,
+    /// The linear backend's registered name (`lu`, `multigrid`, ...).
+    pub linear: &'static str,
+    /// Whether `auto` made the choice (`false`: the scene or the program named the method).
+    pub auto: bool,
+    /// Why, in a few words.
+    pub reason: String,
+}
+
+impl Solver {
+    /// The concrete method for `body`: [`Solver::method`] unless [`SolveMethod::Auto`], which is
+    /// ```text
+    /// m = contact unknowns (n2 in plane strain, 2 n1 n2 on the 3-D box)
+    /// m <= 1500:   condensed (Newton on m unknowns, bulk condensed once: also what a sweep or
+    ///              a threshold re-uses)
+    /// m >  1500:   full-system Newton, LU (the dense m x m Newton would dominate)
+    /// ```
+    /// and the [`SolverChoice`] reported with it.
+    pub fn resolved<S>(&self, body: &Body<S>) -> (SolveMethod, SolverChoice) {
+        let m = match body.dimension {
+            Dimension::Plane => body.n2,
+            Dimension::Solid { n1, .. } => 2 * n1 * body.n2,
+        };
+        let (method, reason) = match self.method {
+            SolveMethod::Auto if m <= AUTO_CONDENSED_CONTACT_UNKNOWNS => (
+                SolveMethod::Condensed,
+                format!(
+                    "{m} contact unknowns <= {AUTO_CONDENSED_CONTACT_UNKNOWNS}: condensed onto the contact face"
+                ),
+            ),
+            SolveMethod::Auto => (
+                SolveMethod::FullNewton(LinearBackend::LU),
+                format!(
+                    "{m} contact unknowns > {AUTO_CONDENSED_CONTACT_UNKNOWNS}: a dense condensed Newton would dominate; full-system Newton with the sparse LU"
+                ),
+            ),
+            other => (other, "named by the solver settings".into()),
+        };
+        let (nonlinear, linear) = match method {
+            SolveMethod::FullNewton(linear) => ("full-newton", linear.name()),
+            SolveMethod::JacobiNewton => ("jacobi-newton", "jacobi"),
+            _ => ("newton", self.budgets.linear.name()),
+        };
+        let choice = SolverChoice {
+            nonlinear,
+            linear,
+            auto: self.method == SolveMethod::Auto,
+            reason,
+        };
+        (method, choice)
+    }
 }
 
 /// The contact solver with its work budgets.
@@ -59,7 +125,7 @@ impl Solver {
                 s.newton.iterative.tolerance = 1e-12;
                 s.continuation.tolerance = 1e-9;
             }
-            SolveMethod::Condensed => {}
+            SolveMethod::Condensed | SolveMethod::Auto => {}
         }
         s.continuation = ContactSettings {
             tolerance: s.continuation.tolerance,

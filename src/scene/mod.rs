@@ -455,7 +455,9 @@ pub struct SolverSpec {
     /// geometric multigrid of the 3-D body, `full-newton` only; `petsc`: PETSc's KSP over the
     /// MPI ranks of `mpirun`, `full-newton` only, builds with the feature `petsc`).
     pub linear: String,
-    /// `newton | jacobi-newton`.
+    /// `auto | newton | full-newton | jacobi-newton` (`auto`, the default: condensed up to
+    /// [`crate::problem::AUTO_CONDENSED_CONTACT_UNKNOWNS`] contact unknowns, full-system Newton
+    /// with the sparse LU beyond; the choice is `solver_choice` in the report).
     pub nonlinear: String,
     /// Work budget: contact Newton iterations per load step (every nonlinear solver; with
     /// `full-newton` per grid-sequencing level too), default 60.
@@ -483,12 +485,22 @@ pub struct SolverSpec {
     pub petsc_options: Option<String>,
 }
 
+impl SolverSpec {
+    /// Whether the contact problem with `contact_unknowns` unknowns is solved condensed
+    /// (`newton`, or `auto` up to [`crate::problem::AUTO_CONDENSED_CONTACT_UNKNOWNS`]).
+    pub fn condenses(&self, contact_unknowns: usize) -> bool {
+        self.nonlinear == "newton"
+            || self.nonlinear == "auto"
+                && contact_unknowns <= crate::problem::AUTO_CONDENSED_CONTACT_UNKNOWNS
+    }
+}
+
 impl Default for SolverSpec {
     fn default() -> Self {
         let contact = capstan_elasticity::contact::ContactSettings::default();
         Self {
             linear: "lu".into(),
-            nonlinear: "newton".into(),
+            nonlinear: "auto".into(),
             max_iterations: contact.max_iterations,
             max_continuation_steps: contact.max_continuation_steps,
             min_load_step: contact.min_load_step,

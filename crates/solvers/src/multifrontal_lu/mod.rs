@@ -9,6 +9,7 @@
 //!     F_s = A'(front) + sum over children c of the contribution blocks CB_c (extend-add)
 //! P_s F11 = L11 U11                 pivots only from the block rows [b_s, e_s), accepted if
 //!     |pivot| >= 0.01 max |column k of [F11; F21]|      (threshold partial pivoting)
+//!     or the pivot row has no entry right of the pivot (a Dirichlet row: no update, no growth)
 //! L21 = F21 U11^-1,  U12 = L11^-1 P_s F12,  CB_s = F22 - L21 U12  -> parent of s
 //! ```
 //! Row swaps never leave a front's block, so `struct(L + U)` stays within `struct(C + C^T)`:
@@ -317,7 +318,7 @@ impl FrontalStructure {
             }
             self.assemble_front(s, m, &pos, row_idx, values, &mut contributions, &mut front);
             let swaps = &mut factors.swaps[b..e];
-            self.eliminate(&mut front, m, ns, swaps, b, par)?;
+            self.eliminate(&mut front, m, ns, swaps, b, PIVOT_THRESHOLD, par)?;
             let out = &mut factors.values[self.val_ptr[s]..self.val_ptr[s + 1]];
             let (panel, u12) = out.split_at_mut(m * ns);
             panel.copy_from_slice(&front[..m * ns]);
@@ -374,8 +375,9 @@ impl FrontalStructure {
     }
 
     /// Eliminates the first `ns` columns of the `m x m` front whose first column is position
-    /// `b` (pivots from rows `0..ns`, swaps recorded in `swaps`), then forms
+    /// `b` (pivots from rows `0..ns` passing `threshold`, swaps recorded in `swaps`), then forms
     /// `U12 = L11^-1 F12` and the Schur update `F22 -= L21 U12` in place.
+    #[allow(clippy::too_many_arguments)] // the front, its shape and the kernel's knobs
     fn eliminate(
         &self,
         front: &mut [f64],
@@ -383,14 +385,15 @@ impl FrontalStructure {
         ns: usize,
         swaps: &mut [u32],
         b: usize,
+        threshold: f64,
         par: Par,
     ) -> Result<(), FrontFailure> {
-        factor_panel(front, m, ns, swaps, b, PANEL_BLOCK, par).map_err(
-            |failure| match failure {
+        factor_panel(front, m, ns, swaps, b, PANEL_BLOCK, threshold, par).map_err(|failure| {
+            match failure {
                 FrontFailure::Singular(k) => FrontFailure::Singular(self.perm_fwd[b + k]),
                 other => other,
-            },
-        )?;
+            }
+        })?;
         let nr = m - ns;
         if nr > 0 {
             let par = if nr * nr * ns >= PARALLEL_FLOPS {
@@ -431,4 +434,4 @@ struct Front<'a> {
 mod tests;
 
 pub(crate) use panel::FrontFailure;
-use panel::{PANEL_BLOCK, PARALLEL_FLOPS, factor_panel};
+use panel::{PANEL_BLOCK, PARALLEL_FLOPS, PIVOT_THRESHOLD, factor_panel};

@@ -4,6 +4,11 @@
 use faer::Par;
 
 use super::{FrontFailure, FrontalStructure};
+
+/// Smallest accepted `|pivot| / max |entry of its column in the front|` of the partial
+/// factorisation: looser than the LU's 0.01 (no fallback kernel here; the caller checks the
+/// complement against a solve, [`crate::schur_complement`]).
+pub(super) const SCHUR_PIVOT_THRESHOLD: f64 = 1e-3;
 use crate::sparsity_pattern::SparsityPattern;
 
 impl FrontalStructure {
@@ -70,7 +75,15 @@ impl FrontalStructure {
             }
             self.assemble_front(s, m, &pos, row_idx, values, &mut contributions, &mut front);
             let eliminated = e.min(stop) - b;
-            self.eliminate(&mut front, m, eliminated, &mut swaps[b..], b, par)?;
+            self.eliminate(
+                &mut front,
+                m,
+                eliminated,
+                &mut swaps[b..],
+                b,
+                SCHUR_PIVOT_THRESHOLD,
+                par,
+            )?;
             let rest = m - eliminated;
             if rest == 0 {
                 continue;

@@ -53,7 +53,10 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     }
     lu.factor(&values)?;
     if let Some(schur) = schur {
-        return schur.condense(model, spring);
+        let (pz, nz) = schur.condense(model, spring)?;
+        if agrees_with_a_solve(model, &pz, &nz, lu)? {
+            return Ok((pz, nz));
+        }
     }
     let mut pz = Mat::<f64>::zeros(m, m);
     let mut nz = Mat::<f64>::zeros(m, m);
@@ -78,6 +81,41 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
         }
     }
     Ok((pz, nz))
+}
+
+/// Largest relative difference accepted between the Schur condensation and a solve.
+const SCHUR_CHECK: f64 = 1e-9;
+
+/// Whether `(P Z, N Z)` from the Schur complements agree with one solve by the factorised
+/// stabilised bulk `lu` on the sum of the unit right-hand sides (`Z 1 = A~^-1 W 1`), to
+/// [`SCHUR_CHECK`] of their largest entry: the partial factorisation pivots more loosely than
+/// the LU, and a failed check condenses by solves instead.
+fn agrees_with_a_solve<D: ContactOperator, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+    pz: &Mat<f64>,
+    nz: &Mat<f64>,
+    lu: &mut dyn LinearSolver<f64>,
+) -> Result<bool, ContactError> {
+    let m = pz.nrows();
+    let mut v = vec![0.0; model.dof_count()];
+    for k in 0..m {
+        let node = model.active_node(k);
+        v[node.tangential_row.expect("active")] += node.traction_weight;
+    }
+    lu.solve_in_place(&mut v)?;
+    let (x, sigma) = project(model, &v);
+    let close = |z: &Mat<f64>, y: &[f64]| {
+        let row_sums: Vec<f64> = (0..m).map(|i| (0..m).map(|j| z[(i, j)]).sum()).collect();
+        let scale = y
+            .iter()
+            .fold(0.0f64, |a, b| a.max(b.abs()))
+            .max(f64::MIN_POSITIVE);
+        row_sums
+            .iter()
+            .zip(y)
+            .all(|(a, b)| (a - b).abs() <= SCHUR_CHECK * scale)
+    };
+    Ok(close(pz, &x) && close(nz, &sigma))
 }
 
 /// The frictionless condensed operator `H0 = I - C P Z`.
