@@ -41,4 +41,4 @@ pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, Dimension, EndLoads};
 pub use friction::Friction;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
-pub use solver::{AUTO_CONDENSED_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice};
+pub use solver::{SolveMethod, Solver, SolverChoice};

@@ -6,8 +6,8 @@ use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 /// How the contact problem is solved (`solver.nonlinear`, `solver.linear` in scenes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum SolveMethod {
-    /// `auto` (default): the method [`SolveMethod::resolved`] picks for the body: condensed
-    /// while the dense Newton on the contact unknowns is cheap, full-system Newton otherwise.
+    /// `auto` (default): the method [`Solver::resolved`] picks for the body (the condensed
+    /// solver today, see there).
     #[default]
     Auto,
     /// `newton`: boundary-only Newton on the condensed contact tractions, the bulk
@@ -23,12 +23,6 @@ pub enum SolveMethod {
     JacobiNewton,
 }
 
-/// Contact unknowns up to which `auto` condenses: the condensed Newton factorises a dense
-/// `m x m` matrix each iteration (`m^3 / 3` multiply-adds: 0.4 GFlop at 1,500), the condensation
-/// itself costs about two sparse factorisations (the Schur complement, from one partial
-/// factorisation) and `m^3` dense work.
-pub const AUTO_CONDENSED_CONTACT_UNKNOWNS: usize = 1500;
-
 /// What `auto` chose and why (`solver_choice` in the JSON report).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SolverChoice {
@@ -43,31 +37,24 @@ pub struct SolverChoice {
 }
 
 impl Solver {
-    /// The concrete method for `body`: [`Solver::method`] unless [`SolveMethod::Auto`], which is
-    /// ```text
-    /// m = contact unknowns (n2 in plane strain, 2 n1 n2 on the 3-D box)
-    /// m <= 1500:   condensed (Newton on m unknowns, bulk condensed once: also what a sweep or
-    ///              a threshold re-uses)
-    /// m >  1500:   full-system Newton, LU (the dense m x m Newton would dominate)
-    /// ```
-    /// and the [`SolverChoice`] reported with it.
+    /// The concrete method for `body`: [`Solver::method`] unless [`SolveMethod::Auto`], which
+    /// is the condensed solver for every body today, and the [`SolverChoice`] reported with it.
+    ///
+    /// Measured (release, 2 shared cores): in plane strain the condensation from the Schur
+    /// complement keeps `newton` within 20% of `full-newton` from FD 250 x 41 to Q2 1025 x 131
+    /// (and 2x faster on the default scene); on the first 3-D try (Q1, 5 x 250 x 41, 2,500
+    /// contact unknowns) `full-newton` with `lu` ran out of memory (killed at 22.6 GB) and
+    /// `multigrid` does not converge on that grid (249 cells along `x2` do not coarsen), so
+    /// `auto` condenses there too.
     pub fn resolved<S>(&self, body: &Body<S>) -> (SolveMethod, SolverChoice) {
         let m = match body.dimension {
             Dimension::Plane => body.n2,
             Dimension::Solid { n1, .. } => 2 * n1 * body.n2,
         };
         let (method, reason) = match self.method {
-            SolveMethod::Auto if m <= AUTO_CONDENSED_CONTACT_UNKNOWNS => (
-                SolveMethod::Condensed,
-                format!(
-                    "{m} contact unknowns <= {AUTO_CONDENSED_CONTACT_UNKNOWNS}: condensed onto the contact face"
-                ),
-            ),
             SolveMethod::Auto => (
-                SolveMethod::FullNewton(LinearBackend::LU),
-                format!(
-                    "{m} contact unknowns > {AUTO_CONDENSED_CONTACT_UNKNOWNS}: a dense condensed Newton would dominate; full-system Newton with the sparse LU"
-                ),
+                SolveMethod::Condensed,
+                format!("{m} contact unknowns: condensed onto the contact face (Schur complement)"),
             ),
             other => (other, "named by the solver settings".into()),
         };

@@ -455,9 +455,9 @@ pub struct SolverSpec {
     /// geometric multigrid of the 3-D body, `full-newton` only; `petsc`: PETSc's KSP over the
     /// MPI ranks of `mpirun`, `full-newton` only, builds with the feature `petsc`).
     pub linear: String,
-    /// `auto | newton | full-newton | jacobi-newton` (`auto`, the default: condensed up to
-    /// [`crate::problem::AUTO_CONDENSED_CONTACT_UNKNOWNS`] contact unknowns, full-system Newton
-    /// with the sparse LU beyond; the choice is `solver_choice` in the report).
+    /// `auto | newton | full-newton | jacobi-newton` (`auto`, the default: the method
+    /// [`crate::problem::Solver::resolved`] picks, `newton` today; the choice is
+    /// `solver_choice` in the report).
     pub nonlinear: String,
     /// Work budget: contact Newton iterations per load step (every nonlinear solver; with
     /// `full-newton` per grid-sequencing level too), default 60.
@@ -486,12 +486,10 @@ pub struct SolverSpec {
 }
 
 impl SolverSpec {
-    /// Whether the contact problem with `contact_unknowns` unknowns is solved condensed
-    /// (`newton`, or `auto` up to [`crate::problem::AUTO_CONDENSED_CONTACT_UNKNOWNS`]).
-    pub fn condenses(&self, contact_unknowns: usize) -> bool {
-        self.nonlinear == "newton"
-            || self.nonlinear == "auto"
-                && contact_unknowns <= crate::problem::AUTO_CONDENSED_CONTACT_UNKNOWNS
+    /// Whether the contact problem is solved condensed (`newton`, or `auto`, which condenses
+    /// every body today: [`crate::problem::Solver::resolved`]).
+    pub fn condenses(&self) -> bool {
+        matches!(self.nonlinear.as_str(), "newton" | "auto")
     }
 }
 
