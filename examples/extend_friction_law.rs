@@ -87,9 +87,8 @@ fn slip(law: &str, set: &[(&str, &str)]) -> f64 {
     for (key, value) in set {
         scene = scene.with_raw(key, value, "example").expect("valid key");
     }
-    let (report, _) =
-        capstan::commands::contact::solve_observed(&scene, &mut capstan::solvers::SilentObserver)
-            .expect("the body holds at ratio 2");
+    let (report, _) = capstan::api::contact_observed(&scene, &mut capstan::solvers::SilentObserver)
+        .expect("the body holds at ratio 2");
     report.slip_fraction
 }
 
@@ -131,12 +130,9 @@ mod tests {
             .and_then(|s| s.with_raw("friction.cap", "-1", "example"));
         let message = match scene {
             Err(e) => e.to_string(),
-            Ok(s) => capstan::commands::contact::solve_observed(
-                &s,
-                &mut capstan::solvers::SilentObserver,
-            )
-            .unwrap_err()
-            .to_string(),
+            Ok(s) => capstan::api::contact_observed(&s, &mut capstan::solvers::SilentObserver)
+                .unwrap_err()
+                .to_string(),
         };
         assert!(message.contains("friction.cap"), "{message}");
     }

@@ -19,7 +19,7 @@
 use capstan::geometry::registry::{self, ObstacleParameter, ParameterDefault, RegisteredObstacle};
 use capstan::geometry::{Obstacle, ProfileCurve, Scalar};
 use capstan::solvers::SilentObserver;
-use capstan::{CliError, Scene, commands};
+use capstan::{CliError, Scene, api};
 
 /// The trough's cross-section `(2 sin t, 2 cos t - sag sin^2 t)`: convex for `sag < 1`.
 #[derive(Debug, Clone, Copy)]
@@ -76,7 +76,7 @@ fn trough_scene(sag: f64, sets: &[(&str, &str)]) -> Result<Scene, CliError> {
 /// `T_max / T0` of the membrane on the trough by capstan, and by Simpson's rule here.
 fn membrane_ratio(sag: f64) -> Result<(f64, f64), CliError> {
     let scene = trough_scene(sag, &[])?;
-    let capstan = commands::tension::report(&scene)?.tension_ratio;
+    let capstan = api::tension(&scene)?.tension_ratio;
     let (t0, t1, mu) = (
         scene.membrane.theta0,
         scene.membrane.theta_max,
@@ -106,7 +106,7 @@ fn contact_2d(sag: f64) -> Result<(bool, f64), CliError> {
             ("loads.tau_max", "1.3"),
         ],
     )?;
-    let (report, _) = commands::contact::solve_observed(&scene, &mut SilentObserver)?;
+    let (report, _) = api::contact_observed(&scene, &mut SilentObserver)?;
     Ok((report.converged, report.slip_fraction))
 }
 
@@ -126,7 +126,7 @@ fn contact_3d(sag: f64) -> Result<(bool, f64), CliError> {
             ("loads.tau_max", "1.3"),
         ],
     )?;
-    let (report, _) = commands::contact::solve_observed(&scene, &mut SilentObserver)?;
+    let (report, _) = api::contact_observed(&scene, &mut SilentObserver)?;
     Ok((report.converged, report.slip_fraction))
 }
 

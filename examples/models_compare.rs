@@ -10,7 +10,7 @@
 //! Kikuchi–Oden model implies `nu_F = 1/2` for the pair `(1, r_K)` by construction, the capstan
 //! equation implies `mu_F = ln(r_K) / Psi` (`Psi = pi` here) and the membrane model the `mu`
 //! at which it fully slips at `r_K` (Brent on its discrete full-slip ratio). The study itself
-//! is `capstan::commands::compare` (also `capstan compare`).
+//! is `capstan::api::compare` (also `capstan compare`).
 //!
 //! Run: `cargo run --release --example models_compare -- [--quick] [OUT_DIR]`
 //! (default `out/models`). Writes `compare.json`, `implied_mu.csv`, `thickness.csv` and plots
@@ -18,7 +18,7 @@
 //! Look at: `mu_capstan < nu_F = 0.5` in every row (the paper's finding `mu_F <= nu_F`), and
 //! `r_K` rising towards `exp(nu_F pi) = 4.81` as `h -> 0` without reaching it.
 
-use capstan::commands::compare;
+use capstan::api;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -28,10 +28,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .find(|a| !a.starts_with("--"))
         .cloned()
         .unwrap_or_else(|| "out/models".into());
-    let report = compare::report(quick)?;
-    print!("{}", compare::table(&report));
+    let report = api::compare(quick)?;
+    print!("{}", api::compare_table(&report));
     let dir = std::path::Path::new(&out);
-    compare::write_out(dir, &report)?;
+    api::write_compare(dir, &report)?;
     println!("wrote {}", dir.join("implied_mu.csv").display());
     Ok(())
 }

@@ -19,16 +19,18 @@
 //! assert_eq!(from_scene.solution.slip_fraction, solved.solution.slip_fraction);
 //! ```
 //!
-//! The command line's commands over scenes:
+//! The studies of the command line over scenes, as library calls ([`api`]: tension,
+//! infer-mu, threshold, geometry, sweep, contact; the CLI and the Python package are thin
+//! layers over them):
 //! ```
-//! use capstan::{Scene, commands};
+//! use capstan::{Scene, api};
 //! // the default scene: a membrane over a semi-elliptical prism a = b = 2, mu = 1/2, half a turn
 //! let scene = Scene::default();
-//! let tension = commands::tension::report(&scene).unwrap();
+//! let tension = api::tension(&scene).unwrap();
 //! assert!((tension.tension_ratio - (0.5 * std::f64::consts::PI).exp()).abs() < 1e-9);
 //! // any scene key, checked as `--set` checks it
 //! let coarse = scene.with_raw("grid.n2", "41", "set").unwrap().with_raw("grid.n3", "9", "set").unwrap();
-//! let (report, _) = commands::contact::solve_observed(&coarse, &mut capstan::solvers::SilentObserver).unwrap();
+//! let (report, _) = api::contact_observed(&coarse, &mut capstan::solvers::SilentObserver).unwrap();
 //! assert!(report.converged && report.slip_fraction > 0.0);
 //! ```
 //!
@@ -36,7 +38,13 @@
 //! output writers. See the README for the two problems it solves.
 #![warn(missing_docs)]
 
+pub mod api;
+/// The binary's command line (argument parsing, dispatch): not library API.
+#[doc(hidden)]
 pub mod cli;
+/// The binary's commands (text tables, files, benches): not library API; the library calls
+/// are [`api`] and [`Problem`].
+#[doc(hidden)]
 pub mod commands;
 pub mod error;
 pub mod figures;

@@ -239,7 +239,7 @@ fn q2_needs_odd_grids() {
             "--set",
             "discretisation.method=fem-q2",
             "--set",
-            "grid.n3=41",
+            "grid.n2=250",
         ],
         &["grid.n2", "250", "odd"],
     );

@@ -151,7 +151,16 @@ fn threshold_of_a_three_dimensional_body() {
 fn bad_three_dimensional_input_names_the_key() {
     for (set, key) in [
         (&["--set", "body.dimension=4"][..], "body.dimension"),
-        (&["--set", "body.dimension=3"][..], "discretisation.method"),
+        // finite differences given explicitly (not given, the method follows the dimension)
+        (
+            &[
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "discretisation.method=fd",
+            ][..],
+            "discretisation.method",
+        ),
         (
             &["--set", "body.dimension=3", "--set", "body.width=-1"][..],
             "body.width",

@@ -3,9 +3,8 @@
 
 use std::path::PathBuf;
 
-use capstan_elasticity::Discretisation;
 use capstan_elasticity::contact::{
-    BoundarySolver, ContactModel, ContactSettings, ThickBody, ThickBodyOperator,
+    Body, BoundarySolver, ContactModel, ContactSettings, ThickBody, ThickBodyOperator,
     solve_below_threshold,
 };
 use capstan_friction::FrictionError;
@@ -187,7 +186,8 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
             r.method = "membrane-displacement";
         }
         FrictionModel::KikuchiOden => {
-            let body = crate::commands::contact::thick_body(scene)?;
+            // either dimension: the body the scene builds (`body.dimension`)
+            let body = scene.build()?.body;
             let k = kikuchi_oden_mu(&body, ratio, eps, capstan.mu, 1e-6)?;
             (r.mu, r.solves) = (k.mu, Some(k.solves));
             r.method = "thick-body";
@@ -356,7 +356,10 @@ pub fn thick_body_slides(
 }
 
 /// [`thick_body_slides`] for a built solver.
-fn solver_slides<D: Discretisation, L: capstan_friction::FrictionLaw<f64>>(
+fn solver_slides<
+    D: capstan_elasticity::contact::ContactOperator,
+    L: capstan_friction::FrictionLaw<f64>,
+>(
     solver: &BoundarySolver<'_, D, L>,
     ratio: f64,
 ) -> Result<bool, CliError> {
@@ -370,8 +373,8 @@ fn solver_slides<D: Discretisation, L: capstan_friction::FrictionLaw<f64>>(
 /// # Errors
 /// [`FrictionError::NoFrictionCoefficient`] when the body still slides at `mu = 1e3`; see
 /// [`thick_body_slides`]. A body that holds at `mu = guess / 2^40` gives `mu = 0`.
-pub fn kikuchi_oden_mu(
-    body: &ThickBody,
+pub fn kikuchi_oden_mu<S: capstan_geometry::Surface<f64> + Clone + Send + Sync + 'static>(
+    body: &Body<S>,
     ratio: f64,
     eps: f64,
     guess: f64,
@@ -383,7 +386,7 @@ pub fn kikuchi_oden_mu(
     let guess = if guess > 0.0 { guess } else { 0.1 };
     // The bulk does not depend on `mu`: factorise and condense it once, at the guess.
     let law = |mu: f64| RegularisedCoulombParams::new(mu, eps);
-    let base_model = coulomb_model(body, guess, eps)?;
+    let base_model = body.model(RegularisedCoulomb, law(guess)?, eps)?;
     let base = BoundarySolver::new(&base_model, ContactSettings::default())?;
     let solves = std::cell::Cell::new(0);
     let slides = |mu: f64| -> Result<bool, CliError> {

@@ -174,7 +174,7 @@ impl Scene {
         origin: &str,
     ) -> Result<Self, CliError> {
         check_known_keys(&table, origins)?;
-        let scene = match Scene::deserialize(toml::Value::Table(table)) {
+        let mut scene = match Scene::deserialize(toml::Value::Table(table)) {
             Ok(scene) => scene,
             Err(e) => {
                 // The merged table carries no spans: when the file alone is already wrong,
@@ -193,6 +193,7 @@ impl Scene {
                 });
             }
         };
+        scene.follow_defaults(origins);
         scene.validate_with(origins)?;
         Ok(scene)
     }
@@ -346,6 +347,11 @@ impl Origins {
             (Some(file), None) if !key.contains('.') => file.clone(),
             _ => "(built-in default)".into(),
         }
+    }
+
+    /// Whether `key` (dotted) was given: in the file or by an override.
+    pub fn given(&self, key: &str) -> bool {
+        self.set.contains(key) || self.lines.contains_key(key)
     }
 }
 

@@ -587,6 +587,7 @@ impl DiscretisationSpec {
 }
 
 mod build;
+mod follow;
 mod load;
 mod memory;
 #[cfg(test)]

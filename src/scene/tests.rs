@@ -102,8 +102,9 @@ fn bad_values_unknown_keys_and_wrong_types_are_refused_naming_them() {
             ],
             &["`discretisation.order` = 3", "fem-qp"],
         ),
-        // 250 - 1 node intervals are not a whole number of order-4 elements
-        (&[fem_qp], &["`grid.n2` = 250", "p e + 1"]),
+        // 250 - 1 node intervals are not a whole number of order-4 elements (given: refused;
+        // not given, the grid follows the method: see the test below)
+        (&[fem_qp, "grid.n2=250"], &["`grid.n2` = 250", "p e + 1"]),
         (&["obstacle.radiu=2"], &["obstacle.radiu"]),
         (&["friction.mu=abc"], &["mu"]),
         (&["nonsense"], &["KEY=VALUE"]),
@@ -313,4 +314,52 @@ fn petsc_memory_per_rank_shrinks_only_in_its_distributed_part() {
     assert!(petsc_memory_estimate_per_rank(n, 0) == one); // no ranks: one
     let (ranks, local) = mpi_ranks();
     assert!(ranks >= 1 && (1..=ranks).contains(&local));
+}
+
+#[test]
+fn the_discretisation_follows_the_dimension_and_the_grid_follows_the_discretisation() {
+    // 3-D alone: fd is plane strain only, so the method not given becomes fem-q1
+    let s = load(&["body.dimension=3"]);
+    assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ1);
+    assert_eq!([s.grid.n1, s.grid.n2, s.grid.n3], [5, 250, 41]);
+    // given explicitly, it is refused as before
+    let e = load_error(&["body.dimension=3", "discretisation.method=fd"]);
+    assert!(
+        e.contains("discretisation.method") && e.contains("plane strain"),
+        "{e}"
+    );
+    // the grid not given moves to the nearest admissible count (ties down)
+    let s = load(&["discretisation.method=fem-qp"]);
+    assert_eq!([s.grid.n2, s.grid.n3], [249, 41]);
+    let s = load(&["discretisation.method=fem-qp", "discretisation.order=6"]);
+    assert_eq!([s.grid.n2, s.grid.n3], [247, 43]);
+    let s = load(&["discretisation.method=fem-q2", "body.dimension=3"]);
+    assert_eq!([s.grid.n1, s.grid.n2, s.grid.n3], [5, 249, 41]);
+    // an admissible count is kept; a given inadmissible one is refused with its key
+    let s = load(&["discretisation.method=fem-qp", "grid.n2=101"]);
+    assert_eq!(s.grid.n2, 101);
+    let e = load_error(&["discretisation.method=fem-qp", "grid.n2=250"]);
+    assert!(e.contains("grid.n2") && e.contains("p e + 1"), "{e}");
+    // a scene from a file: keys in the file are given, the others follow
+    let file = Scene::from_text(
+        Some(("[discretisation]\nmethod = \"fem-q2\"\n", "s.toml")),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(file.grid.n2, 249);
+    let e = Scene::from_text(
+        Some((
+            "[discretisation]\nmethod = \"fem-q2\"\n[grid]\nn2 = 250\n",
+            "s.toml",
+        )),
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("s.toml:4") && e.contains("grid.n2"), "{e}");
+    // the library path (Python's Scene.set): one key at a time
+    let s = Scene::default()
+        .with_value("body.dimension", toml::Value::Integer(3), "set")
+        .unwrap();
+    assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ1);
 }
