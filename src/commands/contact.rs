@@ -198,6 +198,10 @@ pub struct ContactReport {
     pub tension_ratio: f64,
     /// `condensed`, `full-newton` or `full-jacobi-newton`.
     pub method: &'static str,
+    /// The solver that ran and why (`solver.nonlinear = "auto"` chooses by size); absent for a
+    /// report not made by a solve of the facade.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solver_choice: Option<crate::problem::SolverChoice>,
     /// Load-continuation steps.
     pub continuation_steps: usize,
     /// Relative max-norm residual of the full system.
@@ -289,6 +293,7 @@ impl ContactReport {
             tau_max: sol.loads.tau_max,
             tension_ratio: sol.loads.tension_ratio(),
             method: sol.stats.method,
+            solver_choice: None,
             continuation_steps: sol.stats.continuation_steps,
             residual: sol.stats.residual,
             linear_iterations: sol.stats.linear_iterations,
@@ -474,6 +479,7 @@ fn report_of(scene: &Scene, solved: &crate::problem::Solved) -> ContactReport {
     let body = &scene.body;
     ContactReport {
         discretisation: solved.model.method(),
+        solver_choice: Some(solved.choice.clone()),
         grid_sequence: solved.grid_sequence.clone(),
         solid: solved
             .model
@@ -592,6 +598,12 @@ pub fn table(r: &ContactReport) -> String {
         r.setup_seconds,
         r.solve_seconds
     );
+    if let Some(c) = r.solver_choice.as_ref().filter(|c| c.auto) {
+        s += &format!(
+            "  solver auto: {} with {} ({})\n",
+            c.nonlinear, c.linear, c.reason
+        );
+    }
     let e = |x: &Extremum| format!("{:+.6e} at (x2, x3) = ({:.6}, {:.6})", x.value, x.x2, x.x3);
     if let Some(solid) = &r.solid {
         let [n1, n2, n3] = solid.grid;

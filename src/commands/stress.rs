@@ -481,7 +481,7 @@ pub fn grid_refusal(n: [usize; 2]) -> StressPoint {
         Err(e) => point.failure = Some(format!("refused: {e}")),
         Ok(scene) => {
             let mut parameters = point.parameters.clone();
-            if scene.solver.nonlinear != "newton" {
+            if !matches!(scene.solver.nonlinear.as_str(), "auto" | "newton") {
                 parameters.insert(
                     "solver.nonlinear".into(),
                     serde_json::json!(scene.solver.nonlinear),

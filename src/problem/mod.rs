@@ -45,5 +45,5 @@ pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
 pub use friction::Friction;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
-pub use solver::{SolveMethod, Solver};
+pub use solver::{SolveMethod, Solver, SolverChoice};
 pub use target::{AccuracyTarget, Refined, Scaled, Step};

@@ -18,7 +18,7 @@ use capstan_geometry::Surface;
 use capstan_elasticity::contact::Dimension;
 
 use super::builder::Problem;
-use super::solver::SolveMethod;
+use super::solver::{SolveMethod, Solver, SolverChoice};
 
 /// The contact model of a [`Problem`] (either dimension, any registered friction law).
 pub type Model = ContactModel<BodyOperator, AnyFrictionLaw>;
@@ -112,6 +112,8 @@ pub struct Solved {
     /// Full-system Newton on the plane-strain body: `[n2, n3, newton iterations]` of each
     /// grid-sequencing level, coarsest first; `None` otherwise.
     pub grid_sequence: Option<Vec<[usize; 3]>>,
+    /// The method that ran (what `auto` chose, or the one named).
+    pub choice: SolverChoice,
     /// Wall times `[set-up, solve]` in seconds (set-up: assembly, factorisation and
     /// condensation of the condensed solver; for the full-system solvers only the body's
     /// description, their assembly being part of the solve).
@@ -151,8 +153,15 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let plane = matches!(self.body.dimension, Dimension::Plane);
         // grid sequencing starts from the condensed solver, which keeps v^3 = 0
         let sequenced = plane && !self.body.contact.is_unilateral();
-        match self.solver.method {
-            SolveMethod::Condensed => {
+        let (method, choice) = self.solver.resolved(&self.body);
+        // the full-system settings of the method that runs
+        let full = Solver {
+            method,
+            ..self.solver
+        }
+        .full_settings();
+        match method {
+            SolveMethod::Condensed | SolveMethod::Auto => {
                 let model = self.model()?;
                 let solver = BoundarySolver::new(&model, self.solver.budgets)?;
                 let setup = t0.elapsed().as_secs_f64();
@@ -168,6 +177,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     solution,
                     limiting,
                     grid_sequence: None,
+                    choice,
                     times,
                 })
             }
@@ -177,8 +187,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let body = self.body.plane();
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
-                let settings = self.solver.full_settings();
-                match solve_sequenced(&body, law, params, eps, loads, settings, observer) {
+                match solve_sequenced(&body, law, params, eps, loads, full, observer) {
                     Ok(seq) => Ok(Solved {
                         grid_sequence: Some(
                             seq.levels.iter().map(|&(a, b, c)| [a, b, c]).collect(),
@@ -186,6 +195,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                         model: SolvedModel::Sequenced(seq.model),
                         solution: seq.solution,
                         limiting: None,
+                        choice,
                         times: [setup, t1.elapsed().as_secs_f64()],
                     }),
                     Err(e @ ContactError::NotConverged { .. }) => {
@@ -196,7 +206,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             }
             SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton => {
                 let model = self.model()?;
-                let solver = FullSystemSolver::new(&model, self.solver.full_settings())?;
+                let solver = FullSystemSolver::new(&model, full)?;
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
                 let solved = solver.solve_observed(loads, observer);
@@ -208,6 +218,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                         solution,
                         limiting: None,
                         grid_sequence: None,
+                        choice,
                         times,
                     }),
                     Err(e @ ContactError::NotConverged { .. }) if plane => {

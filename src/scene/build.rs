@@ -113,13 +113,14 @@ impl Scene {
                 },
             )?;
         match s.nonlinear.as_str() {
+            "auto" => Ok(SolveMethod::Auto),
             "newton" => Ok(SolveMethod::Condensed),
             "full-newton" => Ok(SolveMethod::FullNewton(linear)),
             "jacobi-newton" => Ok(SolveMethod::JacobiNewton),
             other => Err(CliError::Scene {
                 origin: "solver.nonlinear".into(),
                 message: format!(
-                    "unknown contact solver `{other}`; expected `newton` (boundary-only), `full-newton` or `jacobi-newton`"
+                    "unknown contact solver `{other}`; expected `auto` (chosen by size), `newton` (boundary-only), `full-newton` or `jacobi-newton`"
                 ),
             }),
         }

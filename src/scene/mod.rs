@@ -646,7 +646,9 @@ pub struct SolverSpec {
     /// geometric multigrid of the 3-D body, `full-newton` only; `petsc`: PETSc's KSP over the
     /// MPI ranks of `mpirun`, `full-newton` only, builds with the feature `petsc`).
     pub linear: String,
-    /// `newton | jacobi-newton`.
+    /// `auto | newton | full-newton | jacobi-newton` (`auto`, the default: the method
+    /// [`crate::problem::Solver::resolved`] picks, `newton` today; the choice is
+    /// `solver_choice` in the report).
     pub nonlinear: String,
     /// Work budget: contact Newton iterations per load step (every nonlinear solver; with
     /// `full-newton` per grid-sequencing level too), default 60.
@@ -674,12 +676,20 @@ pub struct SolverSpec {
     pub petsc_options: Option<String>,
 }
 
+impl SolverSpec {
+    /// Whether the contact problem is solved condensed (`newton`, or `auto`, which condenses
+    /// every body today: [`crate::problem::Solver::resolved`]).
+    pub fn condenses(&self) -> bool {
+        matches!(self.nonlinear.as_str(), "newton" | "auto")
+    }
+}
+
 impl Default for SolverSpec {
     fn default() -> Self {
         let contact = capstan_elasticity::contact::ContactSettings::default();
         Self {
             linear: "lu".into(),
-            nonlinear: "newton".into(),
+            nonlinear: "auto".into(),
             max_iterations: contact.max_iterations,
             max_continuation_steps: contact.max_continuation_steps,
             min_load_step: contact.min_load_step,

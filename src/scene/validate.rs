@@ -444,12 +444,12 @@ impl Scene {
         }
         if !matches!(
             self.solver.nonlinear.as_str(),
-            "newton" | "full-newton" | "jacobi-newton"
+            "auto" | "newton" | "full-newton" | "jacobi-newton"
         ) {
             return Err(bad(
                 "solver.nonlinear",
                 format!("{:?}", self.solver.nonlinear),
-                "{\"newton\", \"full-newton\", \"jacobi-newton\"}",
+                "{\"auto\", \"newton\", \"full-newton\", \"jacobi-newton\"}",
             ));
         }
         Ok(())
@@ -508,7 +508,7 @@ impl Scene {
         if self.solver.linear == "petsc" {
             return self.check_petsc_memory(at, "grid.n2", 2 * g.n2 * g.n3);
         }
-        let need = memory_estimate(g.n2, g.n3, method, self.solver.nonlinear == "newton");
+        let need = memory_estimate(g.n2, g.n3, method, self.solver.condenses());
         check_memory(at, "grid.n2", need, |have| {
             format!(
                 "grid {} x {} ({method}) needs about {} for the sparse system and its LU factors (estimate: {MEMORY_BYTES_PER_N_LOG_N} bytes x N log2 N, N = {} unknowns: contact solves measured up to 4000 x 640), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid",
@@ -556,7 +556,7 @@ impl Scene {
         if self.solver.linear == "petsc" {
             return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
         }
-        let condensed = self.solver.nonlinear == "newton";
+        let condensed = self.solver.condenses();
         let multigrid = self.solver.linear == "multigrid";
         let need = if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])

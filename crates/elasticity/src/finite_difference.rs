@@ -8,7 +8,7 @@ use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
 };
-use crate::discretisation::{ContactNode, Discretisation, SparseRow};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::plane_problem::PlaneProblem;
@@ -375,6 +375,27 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
         let mut entries = Vec::with_capacity(self.dof_count() * 20);
         self.visit(|d, terms, _| entries.extend(terms.iter().map(|t| (d, t.0))))?;
         Ok(entries)
+    }
+
+    /// One pass over the rows for the pattern, the values and the right-hand side (the
+    /// default visits them twice: [`Discretisation::entries`], then
+    /// [`Discretisation::refill`]); the same system.
+    fn system(&self) -> Result<LinearSystem, ElasticityError> {
+        let mut entries = Vec::with_capacity(self.dof_count() * 20);
+        let mut values = Vec::with_capacity(self.dof_count() * 20);
+        let mut rhs = vec![0.0; self.dof_count()];
+        self.visit(|d, terms, b| {
+            entries.extend(terms.iter().map(|t| (d, t.0)));
+            values.extend(terms.iter().map(|t| t.1));
+            rhs[d] = b;
+        })?;
+        let mut system = LinearSystem::from_entries(self.dof_count(), &entries)?;
+        drop(entries);
+        for (k, v) in values.into_iter().enumerate() {
+            system.add_entry(k, v);
+        }
+        system.rhs = rhs;
+        Ok(system)
     }
 
     fn fill_values(

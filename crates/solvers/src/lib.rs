@@ -112,6 +112,7 @@ mod problem;
 mod relaxation;
 pub mod samples;
 mod scalar;
+mod schur_complement;
 mod sparse_cholesky;
 mod sparse_lu;
 mod sparsity_pattern;
@@ -145,6 +146,7 @@ pub use ordering::{
 pub use problem::{Jacobian, Residual};
 pub use relaxation::{GaussSeidel, Jacobi, Relaxation};
 pub use scalar::{SolverScalar, max_abs, max_abs_difference};
+pub use schur_complement::schur_complement;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_lu::SparseLu;
 pub use sparsity_pattern::SparsityPattern;

@@ -44,7 +44,8 @@ impl SparsityPattern {
     /// with it, for every input entry `k`, its slot in the CSC value array.
     ///
     /// Entries may come in any order and repeat; repeated entries share a slot, so assembly is
-    /// `values[slots[k]] += contribution[k]`. Cost `O(m log m)` for `m` entries.
+    /// `values[slots[k]] += contribution[k]`. Cost `O(m + nrows + ncols)` for `m` entries (two
+    /// counting sorts).
     ///
     /// # Errors
     /// [`SolverError::EntryOutOfBounds`] if an entry lies outside the matrix.
@@ -61,9 +62,35 @@ impl SparsityPattern {
                 ncols,
             });
         }
-        // Sort entry indices by (col, row); duplicates become neighbours.
-        let mut order: Vec<usize> = (0..entries.len()).collect();
-        order.sort_unstable_by_key(|&k| (entries[k].1, entries[k].0));
+        // Entry indices sorted by (col, row), duplicates neighbours: a counting sort by row,
+        // then a stable one by column.
+        let mut order = vec![0usize; entries.len()];
+        {
+            let mut by_row = vec![0usize; entries.len()];
+            let mut start = vec![0usize; nrows + 1];
+            for &(r, _) in entries {
+                start[r + 1] += 1;
+            }
+            for i in 0..nrows {
+                start[i + 1] += start[i];
+            }
+            for (k, &(r, _)) in entries.iter().enumerate() {
+                by_row[start[r]] = k;
+                start[r] += 1;
+            }
+            let mut start = vec![0usize; ncols + 1];
+            for &(_, c) in entries {
+                start[c + 1] += 1;
+            }
+            for j in 0..ncols {
+                start[j + 1] += start[j];
+            }
+            for &k in &by_row {
+                let c = entries[k].1;
+                order[start[c]] = k;
+                start[c] += 1;
+            }
+        }
         let mut col_ptr = vec![0usize; ncols + 1];
         let mut row_idx = Vec::with_capacity(entries.len());
         let mut slots = vec![0usize; entries.len()];

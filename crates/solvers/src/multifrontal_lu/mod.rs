@@ -9,6 +9,7 @@
 //!     F_s = A'(front) + sum over children c of the contribution blocks CB_c (extend-add)
 //! P_s F11 = L11 U11                 pivots only from the block rows [b_s, e_s), accepted if
 //!     |pivot| >= 0.01 max |column k of [F11; F21]|      (threshold partial pivoting)
+//!     or the pivot row has no entry right of the pivot (a Dirichlet row: no update, no growth)
 //! L21 = F21 U11^-1,  U12 = L11^-1 P_s F12,  CB_s = F22 - L21 U12  -> parent of s
 //! ```
 //! Row swaps never leave a front's block, so `struct(L + U)` stays within `struct(C + C^T)`:
@@ -315,51 +316,9 @@ impl FrontalStructure {
             for (t, &i) in r.iter().enumerate() {
                 pos[i as usize] = (ns + t) as u32;
             }
-            front.clear();
-            front.resize(m * m, 0.0);
-            for &(slot, col) in &self.assembly[self.assembly_ptr[s]..self.assembly_ptr[s + 1]] {
-                let slot = slot as usize;
-                let i = pos[self.perm_inv[row_idx[slot]]] as usize;
-                let j = pos[self.perm_inv[col as usize]] as usize;
-                front[i + m * j] += values[slot];
-            }
-            for &c in &self.children[self.child_ptr[s]..self.child_ptr[s + 1]] {
-                let c = c as usize;
-                let rc = self.off_block_rows(c);
-                let nc = rc.len();
-                let cb = contributions[c].take().unwrap_or_default();
-                debug_assert_eq!(cb.len(), nc * nc);
-                for (bb, &jb) in rc.iter().enumerate() {
-                    let col = m * pos[jb as usize] as usize;
-                    for (a, &ia) in rc.iter().enumerate() {
-                        front[col + pos[ia as usize] as usize] += cb[a + nc * bb];
-                    }
-                }
-            }
+            self.assemble_front(s, m, &pos, row_idx, values, &mut contributions, &mut front);
             let swaps = &mut factors.swaps[b..e];
-            factor_panel(&mut front, m, ns, swaps, b, PANEL_BLOCK, par).map_err(|failure| {
-                match failure {
-                    FrontFailure::Singular(k) => FrontFailure::Singular(self.perm_fwd[b + k]),
-                    other => other,
-                }
-            })?;
-            if nr > 0 {
-                let par = if nr * nr * ns >= PARALLEL_FLOPS {
-                    par
-                } else {
-                    Par::Seq
-                };
-                let f = MatMut::from_column_major_slice_mut(&mut front, m, m);
-                let (top, bottom) = f.split_at_row_mut(ns);
-                let (l11, mut u12) = top.split_at_col_mut(ns);
-                faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
-                    l11.rb(),
-                    u12.rb_mut(),
-                    par,
-                );
-                let (l21, f22) = bottom.split_at_col_mut(ns);
-                faer::linalg::matmul::matmul(f22, Accum::Add, l21.rb(), u12.rb(), -1.0, par);
-            }
+            self.eliminate(&mut front, m, ns, swaps, b, PIVOT_THRESHOLD, par)?;
             let out = &mut factors.values[self.val_ptr[s]..self.val_ptr[s + 1]];
             let (panel, u12) = out.split_at_mut(m * ns);
             panel.copy_from_slice(&front[..m * ns]);
@@ -377,9 +336,88 @@ impl FrontalStructure {
         }
         Ok(())
     }
+
+    /// Assembles the `m x m` front of supernode `s` into `front` (cleared first): the entries
+    /// of `A` it owns and the contribution blocks of its children (taken out of
+    /// `contributions`); `pos` maps positions to the front's rows.
+    #[allow(clippy::too_many_arguments)] // the factorisation loop's state, passed down as is
+    fn assemble_front(
+        &self,
+        s: usize,
+        m: usize,
+        pos: &[u32],
+        row_idx: &[usize],
+        values: &[f64],
+        contributions: &mut [Option<Vec<f64>>],
+        front: &mut Vec<f64>,
+    ) {
+        front.clear();
+        front.resize(m * m, 0.0);
+        for &(slot, col) in &self.assembly[self.assembly_ptr[s]..self.assembly_ptr[s + 1]] {
+            let slot = slot as usize;
+            let i = pos[self.perm_inv[row_idx[slot]]] as usize;
+            let j = pos[self.perm_inv[col as usize]] as usize;
+            front[i + m * j] += values[slot];
+        }
+        for &c in &self.children[self.child_ptr[s]..self.child_ptr[s + 1]] {
+            let c = c as usize;
+            let rc = self.off_block_rows(c);
+            let nc = rc.len();
+            let cb = contributions[c].take().unwrap_or_default();
+            debug_assert_eq!(cb.len(), nc * nc);
+            for (bb, &jb) in rc.iter().enumerate() {
+                let col = m * pos[jb as usize] as usize;
+                for (a, &ia) in rc.iter().enumerate() {
+                    front[col + pos[ia as usize] as usize] += cb[a + nc * bb];
+                }
+            }
+        }
+    }
+
+    /// Eliminates the first `ns` columns of the `m x m` front whose first column is position
+    /// `b` (pivots from rows `0..ns` passing `threshold`, swaps recorded in `swaps`), then forms
+    /// `U12 = L11^-1 F12` and the Schur update `F22 -= L21 U12` in place.
+    #[allow(clippy::too_many_arguments)] // the front, its shape and the kernel's knobs
+    fn eliminate(
+        &self,
+        front: &mut [f64],
+        m: usize,
+        ns: usize,
+        swaps: &mut [u32],
+        b: usize,
+        threshold: f64,
+        par: Par,
+    ) -> Result<(), FrontFailure> {
+        factor_panel(front, m, ns, swaps, b, PANEL_BLOCK, threshold, par).map_err(|failure| {
+            match failure {
+                FrontFailure::Singular(k) => FrontFailure::Singular(self.perm_fwd[b + k]),
+                other => other,
+            }
+        })?;
+        let nr = m - ns;
+        if nr > 0 {
+            let par = if nr * nr * ns >= PARALLEL_FLOPS {
+                par
+            } else {
+                Par::Seq
+            };
+            let f = MatMut::from_column_major_slice_mut(front, m, m);
+            let (top, bottom) = f.split_at_row_mut(ns);
+            let (l11, mut u12) = top.split_at_col_mut(ns);
+            faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
+                l11.rb(),
+                u12.rb_mut(),
+                par,
+            );
+            let (l21, f22) = bottom.split_at_col_mut(ns);
+            faer::linalg::matmul::matmul(f22, Accum::Add, l21.rb(), u12.rb(), -1.0, par);
+        }
+        Ok(())
+    }
 }
 
 mod panel;
+mod schur;
 pub(crate) mod solve;
 /// A supernode's front: its columns `b..e` (`ns` of them), the rows `r` below the diagonal block
 /// (`nr` of them), `m = ns + nr` rows in all.
@@ -396,4 +434,4 @@ struct Front<'a> {
 mod tests;
 
 pub(crate) use panel::FrontFailure;
-use panel::{PANEL_BLOCK, PARALLEL_FLOPS, factor_panel};
+use panel::{PANEL_BLOCK, PARALLEL_FLOPS, PIVOT_THRESHOLD, factor_panel};

@@ -27,7 +27,8 @@ pub(crate) enum FrontFailure {
 pub(super) const PANEL_BLOCK: usize = 32;
 
 /// Right-looking LU of the first `ns` columns of the `m x m` column-major `front`, pivots from
-/// rows `0..ns` only; the trailing columns get only the row swaps. `swaps[k]` receives
+/// rows `0..ns` only, accepted when at least `threshold` times the largest entry of their
+/// column ([`PIVOT_THRESHOLD`] for the LU); the trailing columns get only the row swaps. `swaps[k]` receives
 /// `offset + ` the row swapped with `k`.
 ///
 /// # Math
@@ -36,6 +37,7 @@ pub(super) const PANEL_BLOCK: usize = 32;
 /// `U[kb..ke, ke..ns] = L[kb..ke, kb..ke]^-1 F[kb..ke, ke..ns]` and
 /// `F[ke..m, ke..ns] -= L[ke..m, kb..ke] U[kb..ke, ke..ns]`. Every column sees the same
 /// updates as in the unblocked order before its pivot is chosen, so the pivots agree.
+#[allow(clippy::too_many_arguments)] // the front, its shape, and the kernel's knobs
 pub(super) fn factor_panel(
     front: &mut [f64],
     m: usize,
@@ -43,12 +45,13 @@ pub(super) fn factor_panel(
     swaps: &mut [u32],
     offset: usize,
     nb: usize,
+    threshold: f64,
     par: Par,
 ) -> Result<(), FrontFailure> {
     let nb = nb.max(1);
     for kb in (0..ns).step_by(nb) {
         let ke = (kb + nb).min(ns);
-        factor_columns(front, m, ns, kb..ke, swaps, offset)?;
+        factor_columns(front, m, ns, kb..ke, swaps, offset, threshold)?;
         if ke == ns {
             break;
         }
@@ -89,6 +92,7 @@ fn factor_columns(
     cols: core::ops::Range<usize>,
     swaps: &mut [u32],
     offset: usize,
+    threshold: f64,
 ) -> Result<(), FrontFailure> {
     let end = cols.end;
     for k in cols {
@@ -107,7 +111,7 @@ fn factor_columns(
         if p == 0.0 && q == 0.0 {
             return Err(FrontFailure::Singular(k));
         }
-        if p < PIVOT_THRESHOLD * q {
+        if p < threshold * q && !row_is_done(front, m, k, pivot_row) {
             return Err(FrontFailure::NeedsPivoting);
         }
         swaps[k] = (offset + pivot_row) as u32;
@@ -134,4 +138,11 @@ fn factor_columns(
         }
     }
     Ok(())
+}
+
+/// Whether row `row` of the front has no entry right of column `k` (a Dirichlet row, `e_k^T`):
+/// eliminating on it then updates nothing, so its multipliers cannot make entries grow and
+/// the threshold does not apply.
+fn row_is_done(front: &[f64], m: usize, k: usize, row: usize) -> bool {
+    (k + 1..m).all(|c| front[row + m * c] == 0.0)
 }

@@ -1,6 +1,6 @@
 //! Unit tests of the multifrontal kernels.
 
-use super::panel::{PANEL_BLOCK, factor_panel};
+use super::panel::{PANEL_BLOCK, PIVOT_THRESHOLD, factor_panel};
 use super::solve::{BlockWork, DENSE_SOLVE_COLUMNS};
 use super::*;
 use crate::samples::{
@@ -101,7 +101,7 @@ fn blocked_panel_equals_the_unblocked_panel() {
         let run = |nb: usize| {
             let mut f = front.clone();
             let mut swaps = vec![0u32; ns];
-            factor_panel(&mut f, m, ns, &mut swaps, 7, nb, Par::Seq).unwrap();
+            factor_panel(&mut f, m, ns, &mut swaps, 7, nb, PIVOT_THRESHOLD, Par::Seq).unwrap();
             (f, swaps)
         };
         let (reference, ref_swaps) = run(ns);
@@ -130,7 +130,16 @@ fn blocked_panel_equals_the_unblocked_panel() {
     for nb in [ns, PANEL_BLOCK] {
         let mut f = front.clone();
         assert_eq!(
-            factor_panel(&mut f, m, ns, &mut [0; 80], 0, nb, Par::Seq),
+            factor_panel(
+                &mut f,
+                m,
+                ns,
+                &mut [0; 80],
+                0,
+                nb,
+                PIVOT_THRESHOLD,
+                Par::Seq
+            ),
             Err(FrontFailure::NeedsPivoting)
         );
     }

@@ -101,6 +101,7 @@ pub struct SetupStats {
     /// Sparse LU factorisations of the bulk (1; 2 when the spring was softened, see
     /// [`BoundarySolver`](super::BoundarySolver); 0 for a solver from [`BoundarySolver::with_model`](super::BoundarySolver::with_model)).
     pub factorisations: usize,
-    /// Sparse solves with the bulk factors (`m` per factorisation, `+ 2`).
+    /// Sparse solves with the bulk factors: 2 (the unit loads) after a condensation from the
+    /// Schur complements (the `lu` default), `m` per factorisation `+ 2` by solves.
     pub bulk_solves: usize,
 }
