@@ -220,8 +220,9 @@ impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
     /// # Example
     /// ```
     /// use capstan_elasticity::finite_element::{
-    ///     ElementOrder, FiniteElementNavier, VolumetricIntegration, lame_parts,
+    ///     ElementOrder, FiniteElementNavier, VolumetricIntegration,
     /// };
+    /// use capstan_elasticity::studies::lame_parts;
     /// use capstan_elasticity::samples::{LameCylinder, ManufacturedField};
     /// use capstan_elasticity::verification::GridLevel;
     /// use capstan_elasticity::{Discretisation, Material};
