@@ -15,7 +15,7 @@ pub struct VerifyReport {
     pub studies: Vec<StudyReport>,
 }
 
-/// Runs the studies of [`capstan_elasticity::studies`].
+/// Runs the studies of [`capstan_elasticity::studies()`].
 ///
 /// # Errors
 /// Any elasticity error of a study (a failure here is a bug: the studies are fixed problems).

@@ -12,7 +12,7 @@
 //!
 //! # Status
 //! Verified by the manufactured solutions and the Lamé cylinder of the finite-difference
-//! studies ([`fem_studies`], run by `capstan verify`): order 2 (Q1) and 3 (Q2) in L2.
+//! studies ([`crate::studies::fem_studies`], run by `capstan verify`): order 2 (Q1) and 3 (Q2) in L2.
 //! [`DiscretisationMethod`] selects `fd | fem-q1 | fem-q2 | fem-qp` (scene key
 //! `discretisation.method`; `fem-qp` is [`HighOrderNavier`], elements of any order `p` with
 //! Gauss–Lobatto–Legendre nodes and static condensation, module [`high_order`]);

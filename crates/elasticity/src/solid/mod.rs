@@ -15,7 +15,7 @@
 //!   hexahedra with GLL nodes, [`HexElement`]; full or selective reduced integration,
 //!   symmetric Dirichlet elimination, assembled once).
 //! - Verified by manufactured solutions on cones (one with `g_12 != 0`) and an expression
-//!   prism ([`samples`]: L2 orders 2 and 3), and against the 2-D plane-strain operator on
+//!   prism ([`crate::studies::solid`]: L2 orders 2 and 3), and against the 2-D plane-strain operator on
 //!   prisms (the extruded problem reproduces it to round-off).
 //!
 //! - The frictional contact face `x3 = 0` ([`SolidBody`]: end tensions, free or plane-strain

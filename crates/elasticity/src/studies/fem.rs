@@ -96,7 +96,7 @@ impl FemStudy {
     }
 
     /// Solves on one grid (sparse Cholesky) and returns `dx3` and every error norm of
-    /// [`FiniteElementNavier::displacement_errors`](super::FiniteElementNavier::displacement_errors) (the relative L2 error is
+    /// [`FiniteElementNavier::displacement_errors`](crate::finite_element::FiniteElementNavier::displacement_errors) (the relative L2 error is
     /// `l2 / l2_exact`).
     ///
     /// # Errors

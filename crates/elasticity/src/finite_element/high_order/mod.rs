@@ -17,7 +17,7 @@
 //! - `mesh`: the element boundaries, uniform or geometrically graded ([`Grading`],
 //!   [`QpSettings`]).
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
-//! - `study`: the convergence studies of `capstan verify` ([`high_order_studies`]).
+//! - the convergence studies (in `crate::studies`) of `capstan verify` ([`crate::studies::high_order_studies`]).
 //!
 //! # Nodes and the grid
 //! The operator takes a [`crate::Grid`] with `n2 = p e2 + 1` (periodic `p e2`) and
