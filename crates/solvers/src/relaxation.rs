@@ -109,27 +109,30 @@ impl<F: SolverScalar, const GAUSS_SEIDEL: bool> Relaxation<F, GAUSS_SEIDEL> {
     }
 }
 
+/// The settings both stationary iterations read (`IterativeParams`).
+const ITERATIVE_PARAMETERS: &[Parameter] = &[
+    Parameter {
+        key: "iterative.tolerance",
+        default: "1e-10",
+        allowed: "(0, 1)",
+    },
+    Parameter {
+        key: "iterative.max_iterations",
+        default: "10000",
+        allowed: "[1, inf)",
+    },
+    Parameter {
+        key: "iterative.relaxation",
+        default: "1",
+        allowed: "(0, 2)",
+    },
+];
+
 /// The `jacobi` entry of [`crate::linear_registry`].
 pub(crate) const JACOBI_REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
     name: "jacobi",
     summary: "(damped) Jacobi sweeps, the paper's iterative baseline: diagonally dominant matrices",
-    parameters: &[
-        Parameter {
-            key: "iterative.tolerance",
-            default: "1e-10",
-            allowed: "(0, 1)",
-        },
-        Parameter {
-            key: "iterative.max_iterations",
-            default: "10000",
-            allowed: "[1, inf)",
-        },
-        Parameter {
-            key: "iterative.relaxation",
-            default: "1",
-            allowed: "(0, 2)",
-        },
-    ],
+    parameters: ITERATIVE_PARAMETERS,
     kind: BackendKind::Stationary,
     build: |s, _| Ok(Box::new(Jacobi::<f64>::new(s.iterative)?)),
 };
@@ -138,23 +141,7 @@ pub(crate) const JACOBI_REGISTRATION: RegisteredLinearSolver = RegisteredLinearS
 pub(crate) const GAUSS_SEIDEL_REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
     name: "gauss-seidel",
     summary: "Gauss-Seidel (SOR) sweeps: symmetric positive definite or diagonally dominant matrices",
-    parameters: &[
-        Parameter {
-            key: "iterative.tolerance",
-            default: "1e-10",
-            allowed: "(0, 1)",
-        },
-        Parameter {
-            key: "iterative.max_iterations",
-            default: "10000",
-            allowed: "[1, inf)",
-        },
-        Parameter {
-            key: "iterative.relaxation",
-            default: "1",
-            allowed: "(0, 2)",
-        },
-    ],
+    parameters: ITERATIVE_PARAMETERS,
     kind: BackendKind::Stationary,
     build: |s, _| Ok(Box::new(GaussSeidel::<f64>::new(s.iterative)?)),
 };

@@ -131,15 +131,7 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
         tau0: f64,
         tau_max: f64,
     ) -> Result<SolidNavier<ShellChart<S>>, ElasticityError> {
-        SolidNavier::new(
-            ShellChart::new(self.surface.clone()),
-            self.material,
-            self.grid()?,
-            &self.boundary_free_face(tau0, tau_max),
-            None,
-            self.order,
-            self.volumetric,
-        )
+        self.operator_with(&self.boundary_free_face(tau0, tau_max))
     }
 
     /// The grid of the body.
@@ -160,11 +152,19 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
         tau0: f64,
         tau_max: f64,
     ) -> Result<SolidNavier<ShellChart<S>>, ElasticityError> {
+        self.operator_with(&self.boundary(tau0, tau_max))
+    }
+
+    /// The assembled operator of the body with the face conditions `boundary`.
+    fn operator_with(
+        &self,
+        boundary: &SolidBoundary,
+    ) -> Result<SolidNavier<ShellChart<S>>, ElasticityError> {
         SolidNavier::new(
             ShellChart::new(self.surface.clone()),
             self.material,
             self.grid()?,
-            &self.boundary(tau0, tau_max),
+            boundary,
             None,
             self.order,
             self.volumetric,
