@@ -104,9 +104,12 @@ const DENSE_LU: RegisteredLinearSolver = RegisteredLinearSolver {
 
 /// Registers `dense-lu` once per process (a second registration would be refused).
 fn register_dense_lu() {
-    if linear_registry::find(DENSE_LU.name).is_none() {
+    // `Once`, not find-then-register: the tests run on several threads and both would
+    // see the name missing before either registered it.
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
         linear_registry::register(DENSE_LU).expect("first registration of `dense-lu`");
-    }
+    });
 }
 
 /// A small scene of either dimension with `solver.nonlinear = nonlinear` and

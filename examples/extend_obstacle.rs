@@ -53,9 +53,12 @@ const TROUGH: RegisteredObstacle = RegisteredObstacle {
 
 /// Registers the trough once per process (a second registration would be refused).
 fn register_trough() {
-    if registry::find(TROUGH.name).is_none() {
+    // `Once`, not find-then-register: the tests run on several threads and both would
+    // see the name missing before either registered it.
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
         registry::register(TROUGH).expect("first registration of `trough`");
-    }
+    });
 }
 
 /// A scene on the trough with `sag`, wrapped over `[-0.6, 1.0]`, then the given `KEY=VALUE`
