@@ -600,7 +600,10 @@ fn threshold_bracketed_at_the_limit_takes_three_solves_and_matches_the_bisection
             "{t:?}"
         );
         // the bisection from 1 (tolerance 1e-6) ends on the same limit
-        assert!((t.ratio - bisection.ratio).abs() <= 2e-6 * limit, "{t:?} {bisection:?}");
+        assert!(
+            (t.ratio - bisection.ratio).abs() <= 2e-6 * limit,
+            "{t:?} {bisection:?}"
+        );
         assert!(bisection.solves > 15);
     }
     // without a sliding mode (an ellipse) the option changes nothing
