@@ -451,12 +451,17 @@ pub fn solve_observed(
     if scene.output.error_estimate
         && let Some(coarse) = problem.coarser()?
     {
-        let coarse_solved = coarse
-            .solve_observed(&mut accuracy::StopOnly(observer))
-            .map_err(named)?;
+        // grid sequencing solved the coarser level already: no second solve
+        let coarse_scalars = match &solved.coarser {
+            Some(level) => level.scalars(&probes)?,
+            None => coarse
+                .solve_observed(&mut accuracy::StopOnly(observer))
+                .map_err(named)?
+                .scalars(&probes)?,
+        };
         report.estimated_error = Some(ErrorEstimate::from_levels(
             &scalars,
-            &coarse_solved.scalars(&probes)?,
+            &coarse_scalars,
             coarse.grid(),
         ));
     }

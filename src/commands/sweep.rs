@@ -497,6 +497,19 @@ pub fn table(r: &SweepReport) -> String {
         let slip = p.slip_fraction.map_or("-".into(), |x| format!("{x:.4}"));
         let newton = p.newton_iterations.map_or("-".into(), |x| x.to_string());
         s += &line([&format!("{:.6}", p.value), p.status.name(), &slip, &newton]);
+        if let Some(a) = &p.accuracy {
+            // what the accuracy target chose for the point, and the slip measure it reached
+            let e = a
+                .estimated_error
+                .get("slip_measure")
+                .copied()
+                .flatten()
+                .map_or_else(String::new, |e| format!(" +- {e:.1e}"));
+            s += &format!(
+                "{:>12} slip measure {:.6}{e} of {:.6}, chosen grid {:?}\n",
+                "", a.slip_measure, a.contact_measure, a.grid
+            );
+        }
     }
     s
 }

@@ -487,6 +487,10 @@ pub struct Sequenced<L: FrictionLaw<f64>> {
     pub solution: ContactSolution,
     /// `(n2, n3, newton iterations)` of every level, coarsest first.
     pub levels: Vec<(usize, usize, usize)>,
+    /// The level before the finest (the body's [`ThickBody::coarser`] grid): its model and
+    /// solution, a free solution one grid level coarser for error estimates; `None` with one
+    /// level.
+    pub coarser: Option<(ContactModel<PlaneOperator, L>, ContactSolution)>,
 }
 
 /// The full-system Newton on `body` with grid sequencing (nested iteration): the body on
@@ -569,12 +573,14 @@ where
                 model,
                 solution,
                 levels,
+                coarser: None,
             });
         }
     };
     observer.iteration(&level_done(0, coarsest.n2, coarsest.n3, &solution));
     levels.push((coarsest.n2, coarsest.n3, solution.stats.newton_iterations));
     let mut model = model;
+    let mut coarser = None;
     for fine in &bodies[1..] {
         let fine_model = fine.model(law.clone(), params.clone(), slip_threshold)?;
         let start = interpolate_nodal(
@@ -582,15 +588,19 @@ where
             &solution.displacement,
             fine_model.discretisation(),
         );
-        solution = FullSystemSolver::new(&fine_model, settings)?
+        let fine_solution = FullSystemSolver::new(&fine_model, settings)?
             .solve_from_observed(loads, &start, observer)?;
-        observer.iteration(&level_done(levels.len(), fine.n2, fine.n3, &solution));
-        levels.push((fine.n2, fine.n3, solution.stats.newton_iterations));
-        model = fine_model;
+        observer.iteration(&level_done(levels.len(), fine.n2, fine.n3, &fine_solution));
+        levels.push((fine.n2, fine.n3, fine_solution.stats.newton_iterations));
+        coarser = Some((
+            std::mem::replace(&mut model, fine_model),
+            std::mem::replace(&mut solution, fine_solution),
+        ));
     }
     Ok(Sequenced {
         model,
         solution,
         levels,
+        coarser,
     })
 }
