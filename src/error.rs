@@ -84,7 +84,7 @@ pub enum CliError {
     /// Sweep parts that cannot be run or merged (bad `--shard`, parts that do not belong
     /// together, missing or duplicate points: exit code 2).
     #[error(transparent)]
-    Shard(#[from] crate::scale::ShardError),
+    Shard(#[from] crate::shard_error::ShardError),
 }
 
 impl From<crate::problem::ProblemError> for CliError {

@@ -87,8 +87,8 @@ impl Scene {
     /// `full-newton`.
     fn solve_method(&self) -> Result<SolveMethod, CliError> {
         let s = &self.solver;
-        crate::scale::register_feature_backends();
-        if s.linear == "petsc" && !crate::scale::PETSC_ENABLED {
+        crate::features::register_feature_backends();
+        if s.linear == "petsc" && !crate::features::PETSC_ENABLED {
             return Err(CliError::Scene {
                 origin: "solver.linear".into(),
                 message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),

@@ -1,6 +1,6 @@
 //! Unit tests of scene reading and validation.
 
-use super::load::key_lines;
+use super::origins::key_lines;
 use super::*;
 
 /// The scene of the built-in defaults with `sets` (`KEY=VALUE`), which must be valid.
@@ -288,7 +288,7 @@ fn petsc_is_refused_outside_full_newton_and_without_the_feature() {
         "{e}"
     );
     let full = ["solver.linear=petsc", "solver.nonlinear=full-newton"];
-    if crate::scale::PETSC_ENABLED {
+    if crate::features::PETSC_ENABLED {
         let s = load(&[&full[..], &["solver.petsc_options=\"-ksp_type cg\""]].concat());
         assert_eq!(s.solver.petsc_options.as_deref(), Some("-ksp_type cg"));
     } else {

@@ -421,7 +421,7 @@ impl Scene {
                     "`petsc` only with solver.nonlinear = \"full-newton\" (PETSc solves the full-system Newton steps)",
                 ));
             }
-            if !crate::scale::PETSC_ENABLED {
+            if !crate::features::PETSC_ENABLED {
                 return Err(bad(
                     "solver.linear",
                     format!("{:?}", self.solver.linear),
