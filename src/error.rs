@@ -97,6 +97,11 @@ impl From<crate::problem::ProblemError> for CliError {
             e @ ProblemError::AccuracyNotReached { .. } => Self::AccuracyNotReached {
                 message: e.to_string(),
             },
+            e @ (ProblemError::UnknownNonlinearMethod { .. }
+            | ProblemError::DuplicateNonlinearMethod { .. }) => Self::Scene {
+                origin: "solver.nonlinear".into(),
+                message: e.to_string(),
+            },
         }
     }
 }

@@ -5,7 +5,9 @@ use capstan_elasticity::registration::DiscretisationSettings;
 
 use super::Scene;
 use crate::error::CliError;
-use crate::problem::{Body, Dimension, EndLoads, Friction, Problem, SolveMethod, Solver};
+use crate::problem::{
+    Body, Dimension, EndLoads, Friction, Problem, SolveMethod, Solver, nonlinear_registry,
+};
 
 impl Scene {
     /// The thick-body contact problem the scene describes: `obstacle.*`, `body.*`, `grid.*`,
@@ -112,17 +114,9 @@ impl Scene {
                     message: e.to_string(),
                 },
             )?;
-        match s.nonlinear.as_str() {
-            "auto" => Ok(SolveMethod::Auto),
-            "newton" => Ok(SolveMethod::Condensed),
-            "full-newton" => Ok(SolveMethod::FullNewton(linear)),
-            "jacobi-newton" => Ok(SolveMethod::JacobiNewton),
-            other => Err(CliError::Scene {
-                origin: "solver.nonlinear".into(),
-                message: format!(
-                    "unknown contact solver `{other}`; expected `auto` (chosen by size), `newton` (boundary-only), `full-newton` or `jacobi-newton`"
-                ),
-            }),
-        }
+        Ok(nonlinear_registry::build(
+            &s.nonlinear,
+            &nonlinear_registry::NonlinearSettings { linear },
+        )?)
     }
 }

@@ -678,7 +678,10 @@ impl SolverSpec {
     /// Whether the contact problem is solved condensed (`newton`, or `auto`, which condenses
     /// every body today: [`crate::problem::Solver::resolved`]).
     pub fn condenses(&self) -> bool {
-        matches!(self.nonlinear.as_str(), "newton" | "auto")
+        let settings = crate::problem::nonlinear_registry::NonlinearSettings::default();
+        crate::problem::nonlinear_registry::find(&self.nonlinear)
+            .and_then(|m| (m.build)(&settings).ok())
+            .is_some_and(|m| m.condenses())
     }
 }
 

@@ -363,3 +363,40 @@ fn the_discretisation_follows_the_dimension_and_the_grid_follows_the_discretisat
         .unwrap();
     assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ1);
 }
+
+#[test]
+fn solver_nonlinear_names_come_from_the_nonlinear_registry() {
+    use crate::problem::SolveMethod;
+    use crate::problem::nonlinear_registry::{self, RegisteredNonlinearMethod};
+    let e = Scene::default()
+        .with_raw("solver.nonlinear", "\"newtn\"", "set")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("solver.nonlinear") && e.contains("auto, newton, full-newton, jacobi-newton"),
+        "{e}"
+    );
+    // a method registered from outside is named by the scene at once
+    let _ = nonlinear_registry::register(RegisteredNonlinearMethod {
+        name: "scene-test-full-newton-gs",
+        aliases: &["scene-test-fngs"],
+        summary: "full-system Newton, each step by Gauss-Seidel",
+        parameters: &[],
+        build: |_| Ok(SolveMethod::FullNewton("gauss-seidel".parse().unwrap())),
+    });
+    for name in ["scene-test-full-newton-gs", "scene-test-fngs"] {
+        let scene = Scene::default()
+            .with_raw("solver.nonlinear", &format!("{name:?}"), "set")
+            .unwrap();
+        assert!(!scene.solver.condenses());
+        let problem = scene.build().unwrap();
+        assert_eq!(
+            problem.solver.method,
+            SolveMethod::FullNewton("gauss-seidel".parse().unwrap())
+        );
+    }
+    // the built-in names build what they always did
+    let condensed = Scene::default().build().unwrap();
+    assert_eq!(condensed.solver.method, SolveMethod::Auto);
+    assert!(Scene::default().solver.condenses());
+}

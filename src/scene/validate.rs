@@ -442,14 +442,14 @@ impl Scene {
                 ),
             ));
         }
-        if !matches!(
-            self.solver.nonlinear.as_str(),
-            "auto" | "newton" | "full-newton" | "jacobi-newton"
-        ) {
+        if crate::problem::nonlinear_registry::find(&self.solver.nonlinear).is_none() {
             return Err(bad(
                 "solver.nonlinear",
                 format!("{:?}", self.solver.nonlinear),
-                "{\"auto\", \"newton\", \"full-newton\", \"jacobi-newton\"}",
+                &format!(
+                    "{{{}}} (the registered nonlinear methods)",
+                    crate::problem::nonlinear_registry::names()
+                ),
             ));
         }
         Ok(())
