@@ -31,7 +31,7 @@ use capstan::elasticity::continuum::kinematics::{contravariant_stress, mixed_str
 use capstan::elasticity::continuum::{
     FaceData, PLANE_STRAIN, check_plane_strain, energy_matrix, face_flux,
 };
-use capstan::elasticity::finite_element::{ElementAssembly, VolumetricIntegration};
+use capstan::elasticity::finite_element::ElementAssembly;
 use capstan::elasticity::kinematics::LocalDisplacement;
 use capstan::elasticity::registry::{
     self, DiscretisationScheme, PlaneOperator, RegisteredDiscretisation,
@@ -335,20 +335,7 @@ fn register() {
             summary: "linear triangles (two per grid cell), plane strain only",
             parameters: &[],
             build: |s| {
-                if s.volumetric != VolumetricIntegration::Full {
-                    return Err(ElasticityError::InvalidParameter {
-                        field: "discretisation.volumetric",
-                        value: f64::NAN,
-                        allowed: "full with p1-triangles",
-                    });
-                }
-                if !s.grading.is_uniform() {
-                    return Err(ElasticityError::InvalidParameter {
-                        field: "discretisation.grading",
-                        value: s.grading.ratio(),
-                        allowed: "1 (uniform) with p1-triangles",
-                    });
-                }
+                s.require_full_uniform("full with p1-triangles", "1 (uniform) with p1-triangles")?;
                 Ok(Arc::new(P1Scheme))
             },
         })
