@@ -648,7 +648,7 @@ fn bad_inputs_are_typed_errors() {
         body.model(RegularisedCoulomb, coulomb(0.5, EPS), 0.0),
         Err(ContactError::Elasticity(
             ElasticityError::InvalidParameter {
-                field: "friction.eps",
+                field: "slip_threshold",
                 ..
             }
         ))

@@ -205,16 +205,17 @@ fn point_vtu(
         };
     };
     let solved = crate::commands::contact::solved(scene, disc, sol.clone())?;
-    crate::figures::body::write_body(
+    crate::output::body::write_body(
         out,
         &point_vtu_name(index),
         &solved.obstacle,
         &solved.fields,
         &sol.contact,
-        crate::figures::body::BodyFiles {
+        crate::output::body::BodyFiles {
             time: Some(value),
             plots: false,
-            output: &scene.output,
+            compression: scene.output.vtu_compression,
+            obstacle: scene.output.vtu_obstacle,
         },
     )?;
     Ok(())
@@ -392,7 +393,7 @@ fn solid_point_vtu(
 ) -> Result<(), CliError> {
     let (grid, fields, coordinates) =
         crate::commands::solid_contact::body_fields(scene, body, sol)?;
-    let vtu = crate::figures::solid_body::solid_vtu(&grid, &fields, &coordinates, &sol.contact)
+    let vtu = crate::output::solid_body::solid_vtu(&grid, &fields, &coordinates, &sol.contact)
         .encoding(scene.output.vtu_compression.encoding())
         .time(value);
     out.write_vtu(&format!("{}.vtu", point_vtu_name(index)), &vtu)?;

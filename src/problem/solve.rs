@@ -37,6 +37,22 @@ pub enum ProblemError {
     /// The contact solve.
     #[error(transparent)]
     Contact(#[from] ContactError),
+    /// `solver.nonlinear` names no registered nonlinear method.
+    #[error(
+        "`solver.nonlinear` = `{name}` is not a registered nonlinear method; registered: {known}"
+    )]
+    UnknownNonlinearMethod {
+        /// The name asked for.
+        name: String,
+        /// The registered names, comma-separated.
+        known: String,
+    },
+    /// A nonlinear method registered under a name (or alias) that is taken.
+    #[error("a nonlinear method named `{name}` is registered already")]
+    DuplicateNonlinearMethod {
+        /// The name.
+        name: &'static str,
+    },
     /// An accuracy target's work budget ran out before every estimate met the tolerance.
     #[error(
         "accuracy target {tolerance:e} not reached: `{quantity}` still has a relative estimate of {estimate:.2e}, and the next refinement has {unknowns} unknowns, over the budget `accuracy.max_unknowns` = {max_unknowns}; raise it or loosen `accuracy.tol`"

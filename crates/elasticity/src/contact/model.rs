@@ -268,7 +268,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     ) -> Result<Self, ContactError> {
         if !(slip_threshold.is_finite() && slip_threshold > 0.0) {
             return Err(ContactError::from(ElasticityError::InvalidParameter {
-                field: "friction.eps",
+                field: "slip_threshold",
                 value: slip_threshold,
                 allowed: "(0, inf)",
             }));
