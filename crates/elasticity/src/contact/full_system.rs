@@ -329,7 +329,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut v = start.to_vec();
         if start.iter().all(|x| x.is_finite()) {
             match self.newton(loads, &mut v, &mut stats, observer) {
-                Ok(_) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
+                Ok(_) => {
+                    self.check_lift_off(loads, &v)?;
+                    return Ok(ContactSolution::new(self.model, loads, v, stats));
+                }
                 Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
                     return Err(e.into());
                 }
@@ -398,6 +401,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             let mut step = c.initial_load_step;
             stats.continuation_steps = 0;
             let mut last = f64::INFINITY;
+            let mut lifted_off = self.all_separated(loads, &v);
             while lambda < 1.0 && stats.continuation_steps < c.max_continuation_steps {
                 stats.continuation_steps += 1;
                 let next = (lambda + step).min(1.0);
@@ -424,6 +428,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                         return Err(e.into());
                     }
                     Err(e) => {
+                        lifted_off = self.all_separated(loads.scaled(next), &trial);
                         last = match e {
                             SolverError::Stagnated { residual, .. }
                             | SolverError::NotConverged { residual, .. }
@@ -438,6 +443,13 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                 }
             }
             if lambda < 1.0 {
+                if lifted_off {
+                    // the last attempt ended with the body off the obstacle
+                    return Err(ContactError::LiftedOff {
+                        ratio: loads.tension_ratio(),
+                        nodes: self.model.unilateral().map_or(0, |u| u.rows.len()),
+                    });
+                }
                 return Err(ContactError::NotConverged {
                     iterations: stats.newton_iterations,
                     residual: last,
@@ -446,7 +458,28 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             }
             v = current;
         }
+        self.check_lift_off(loads, &v)?;
         Ok(ContactSolution::new(self.model, loads, v, stats))
+    }
+
+    /// Whether the model is unilateral and every contact node has separated at `v`.
+    fn all_separated(&self, loads: EndLoads, v: &[f64]) -> bool {
+        self.model.unilateral().is_some_and(|u| {
+            let rhs = self.model.rhs(loads);
+            !u.contact_set(v, &rhs).iter().any(|&c| c)
+        })
+    }
+
+    /// [`ContactError::LiftedOff`] if every contact node has separated at `v`
+    /// ([`FullSystemSolver::all_separated`]).
+    fn check_lift_off(&self, loads: EndLoads, v: &[f64]) -> Result<(), ContactError> {
+        if self.all_separated(loads, v) {
+            return Err(ContactError::LiftedOff {
+                ratio: loads.tension_ratio(),
+                nodes: self.model.unilateral().map_or(0, |u| u.rows.len()),
+            });
+        }
+        Ok(())
     }
 }
 

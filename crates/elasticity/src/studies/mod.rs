@@ -10,6 +10,7 @@ mod fem;
 pub(crate) mod high_order;
 mod parts;
 pub mod samples;
+mod signorini;
 pub mod solid;
 
 pub use fem::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
