@@ -68,6 +68,8 @@ pub struct FullSystemProblem<'a, D, L: FrictionLaw<f64>> {
     /// The contact active set at the last residual evaluation (the accepted iterate when an
     /// observer hears of it).
     last_set: std::cell::Cell<Option<ActiveSet>>,
+    /// Exact friction's penalty start ([`FullSystemProblem::penalty_start`]).
+    penalty: Option<f64>,
 }
 
 impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
@@ -77,6 +79,21 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
             rhs: model.rhs(loads),
             model,
             last_set: std::cell::Cell::new(None),
+            penalty: None,
+        }
+    }
+
+    /// The problem for `loads` with exact friction replaced by its regularisation
+    /// `t = P_C(-(|sigma_n| / width) u)` (regularised Coulomb of width `mu width`: a linear
+    /// spring up to the friction limit, no traction in the trial), the start of the
+    /// semismooth Newton method. Its Newton converges from the stuck start with load
+    /// continuation, like every regularised law; the exact rows from the stuck start can step
+    /// into full slip at every site, where their Jacobian is singular along the rigid sliding
+    /// mode of a circular obstacle.
+    pub fn penalty_start(model: &'a ContactModel<D, L>, loads: EndLoads, width: f64) -> Self {
+        Self {
+            penalty: Some(width),
+            ..Self::new(model, loads)
         }
     }
 
@@ -94,7 +111,7 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
 impl<D, L: FrictionLaw<f64>> Residual<f64> for FullSystemProblem<'_, D, L> {
     type Error = core::convert::Infallible;
     fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.residual_into(&self.rhs, u, r);
+        self.model.residual_with(&self.rhs, u, r, self.penalty);
         self.last_set.set(Some(self.model.active_set(&self.rhs, u)));
         Ok(())
     }
@@ -105,7 +122,7 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
         &self.model.extended().pattern
     }
     fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.jacobian_into(&self.rhs, u, values);
+        self.model.jacobian_with(&self.rhs, u, values, self.penalty);
         Ok(())
     }
 }
@@ -247,7 +264,27 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         stats: &mut SolveStats,
         observer: &mut dyn Observer<f64>,
     ) -> Result<f64, SolverError> {
-        let problem = FullSystemProblem::new(self.model, loads);
+        if self.model.is_exact_friction() {
+            let penalty =
+                FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
+            self.newton_on(&penalty, v, stats, observer)?;
+        }
+        self.newton_on(
+            &FullSystemProblem::new(self.model, loads),
+            v,
+            stats,
+            observer,
+        )
+    }
+
+    /// Newton on `problem` from `v`.
+    fn newton_on(
+        &self,
+        problem: &FullSystemProblem<'_, D, L>,
+        v: &mut [f64],
+        stats: &mut SolveStats,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<f64, SolverError> {
         let b = problem.rhs().iter().map(|x| x * x).sum::<f64>().sqrt();
         let params = NewtonParams {
             absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
@@ -258,7 +295,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         // every Newton iterate reported with the active set it ended on
         let mut observer = WithActiveSet {
             inner: observer,
-            problem: &problem,
+            problem,
         };
         let observer: &mut dyn Observer<f64> = &mut observer;
         let result = match self.settings.method {
@@ -267,9 +304,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                     ContactError::Solver(s) => s,
                     other => SolverError::problem("jacobian", other),
                 })?;
-                Newton::with_linear_solver(params, linear)?.solve(&problem, v, observer)
+                Newton::with_linear_solver(params, linear)?.solve(problem, v, observer)
             }
-            method => method.build(params)?.solve(&problem, v, observer),
+            method => method.build(params)?.solve(problem, v, observer),
         };
         match result {
             Ok(report) => {

@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use capstan_friction::Frictionless;
+use capstan_friction::{FrictionLaw, Frictionless};
 
 use super::samples::{
     ManufacturedField, MmsBoundaries, PrismMms, TrigonometricExact, displacement_error,
@@ -119,6 +119,24 @@ impl SignoriniMms {
         ),
         ContactError,
     > {
+        self.model_with(method, level, Frictionless, (), 1.0)
+    }
+
+    /// [`SignoriniMms::model`] with the friction law `law` on the contact part (stick/slip
+    /// threshold `slip_threshold`) on top of the manufactured tangential traction: a
+    /// frictional Signorini problem held at both ends (no rigid mode), whose solution is no
+    /// longer `U`.
+    ///
+    /// # Errors
+    /// See [`SignoriniMms::model`].
+    pub fn model_with<L: FrictionLaw<f64>>(
+        &self,
+        method: DiscretisationMethod,
+        level: GridLevel,
+        law: L,
+        params: L::Params,
+        slip_threshold: f64,
+    ) -> Result<(ContactModel<PlaneOperator, L>, Arc<TrigonometricExact>), ContactError> {
         let (parts, exact) = self.mms.parts(level)?;
         let base = parts.boundary.clone();
         let force = parts.body_force.clone();
@@ -132,8 +150,13 @@ impl SignoriniMms {
                 .map(|f| -> BodyForce { Arc::new(move |x| f(x).map(|y| s * y)) });
             method.build(problem)
         };
-        let model =
-            ContactModel::with_loads(build, &["mms.data", "mms.zero"], Frictionless, (), 1.0)?;
+        let model = ContactModel::with_loads(
+            build,
+            &["mms.data", "mms.zero"],
+            law,
+            params,
+            slip_threshold,
+        )?;
         let model = model.into_unilateral(&self.gap(&exact))?;
         Ok((model, exact))
     }
