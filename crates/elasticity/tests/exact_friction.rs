@@ -118,3 +118,38 @@ fn exact_coulomb_reports_its_active_set_per_iteration() {
     assert_eq!(last.stick + last.slip, 41, "{last:?}");
     assert_eq!(last.stick, 1, "{last:?}");
 }
+
+/// A 3-D body of width 1 with free sides (Q1, 3 x 21 x 5, ratio 1.5): exact Coulomb with the
+/// two-component slip and the friction disc converges, and regularised Coulomb approaches it
+/// at first order in `eps` (max `|v2|`), with the same Slip.
+#[test]
+fn exact_coulomb_on_a_3d_body_is_the_limit_of_regularised_coulomb() {
+    use capstan_elasticity::contact::Dimension;
+    use capstan_elasticity::solid::SideFaces;
+    let mut b = paper_body(21, 5);
+    b.method = DiscretisationMethod::FemQ1;
+    b.dimension = Dimension::Solid {
+        x1: [-0.5, 0.5],
+        n1: 3,
+        sides: SideFaces::Free,
+    };
+    let loads = EndLoads::new(1.0, 1.5);
+    let x = exact(&b, loads);
+    assert!(x.stats.residual < 1e-9, "{:e}", x.stats.residual);
+    let v2 = x.max_azimuthal_displacement.value;
+    let runs: Vec<(f64, ContactSolution)> = [1e-5, 1e-6]
+        .into_iter()
+        .map(|e| (e, regularised(&b, e, loads)))
+        .collect();
+    let errors: Vec<(f64, f64)> = runs
+        .iter()
+        .map(|(e, s)| (*e, (s.max_azimuthal_displacement.value - v2).abs()))
+        .collect();
+    let p = capstan_elasticity::verification::observed_order(&errors);
+    // measured: 3.79e-6, 3.81e-7 (order 0.998)
+    assert!((p - 1.0).abs() < 0.1, "{p}: {errors:?}");
+    assert!(errors[1].1 < 3e-4 * v2.abs(), "{errors:?}");
+    for (_, s) in &runs {
+        assert_eq!(s.slip_fraction, x.slip_fraction);
+    }
+}
