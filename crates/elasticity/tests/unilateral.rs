@@ -211,7 +211,7 @@ fn every_newton_iterate_reports_its_contact_set_to_the_observer() {
 /// within a grid spacing.
 #[test]
 fn manufactured_signorini_converges_at_the_element_order() {
-    use capstan_elasticity::samples::SignoriniMms;
+    use capstan_elasticity::studies::SignoriniMms;
     use capstan_elasticity::verification::{GridLevel, observed_order};
     let mms = SignoriniMms::default();
     // (method, expected order, finest error away from the split bound)
@@ -245,7 +245,7 @@ fn manufactured_signorini_converges_at_the_element_order() {
                 )
             })
             .collect();
-        let order = |f: fn(&capstan_elasticity::samples::SignoriniPoint) -> f64| {
+        let order = |f: fn(&capstan_elasticity::studies::SignoriniPoint) -> f64| {
             observed_order(&study.iter().map(|p| (p.h, f(p))).collect::<Vec<_>>())
         };
         let (whole, away) = (order(|p| p.max_error), order(|p| p.max_error_away));

@@ -6,18 +6,28 @@
 use std::sync::Arc;
 
 use capstan_friction::nonsmooth_law::DynNonsmoothLaw;
-use capstan_friction::{FrictionLaw, FrictionState, Projection};
+use capstan_friction::{FrictionState, Projection};
 use capstan_solvers::{ActiveSet, SparsityPattern};
 
 use crate::contact::error::ContactError;
-use crate::contact::model::ContactModel;
-use crate::contact::operator::ContactOperator;
 use crate::contact::pattern::ExtendedPattern;
+use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
 
 /// The blend `delta` of the stick branch into the generalised Jacobian of a sliding site
-/// (see [`ContactModel::into_exact_friction`]).
+/// (see [`crate::contact::ContactModel::into_exact_friction`]).
 const SLIP_JACOBIAN_BLEND: f64 = 1e-6;
+
+/// What exact friction reads of a contact model: its contact entries, bulk system and
+/// extended pattern.
+pub(crate) trait ContactRows {
+    /// The active contact entry `k`.
+    fn node(&self, k: usize) -> &ContactNode;
+    /// The bulk system `A`.
+    fn bulk(&self) -> &LinearSystem;
+    /// The extended pattern of the full-system Jacobian.
+    fn pattern(&self) -> &ExtendedPattern;
+}
 
 /// The state of a site after the projection, its physical slip and friction traction.
 type SiteState = (FrictionState, [f64; 2], [f64; 2]);
@@ -26,7 +36,7 @@ type SiteState = (FrictionState, [f64; 2], [f64; 2]);
 /// projection.
 #[derive(Debug, Clone)]
 struct ExactSite {
-    /// Active entries (indices into [`ContactModel::active`]).
+    /// Active entries (indices into `ContactModel::active`).
     entries: Vec<usize>,
     /// Per entry, `(A slot, column)` of the entries of its tangential row in `A`.
     rows: Vec<Vec<(usize, usize)>>,
@@ -40,7 +50,7 @@ struct ExactSite {
 }
 
 /// Exact friction on every contact site of a model: the law (a projection onto the friction
-/// set) and the per-site data. See [`ContactModel::into_exact_friction`].
+/// set) and the per-site data. See [`crate::contact::ContactModel::into_exact_friction`].
 #[derive(Debug, Clone)]
 pub(crate) struct ExactFriction {
     law: Arc<dyn DynNonsmoothLaw>,
@@ -59,54 +69,20 @@ struct SiteProjection {
     projection_sigma_abs: f64,
 }
 
-impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
-    /// The model with exact (nonsmooth) friction `law` on every contact site in place of its
-    /// pointwise law (which is then not used): `law` is a projection onto the friction set
-    /// (`exact-coulomb`: the disc `|t| <= mu |sigma_n|`; `exact-orthotropic-coulomb`: the
-    /// ellipse), [`capstan_friction::nonsmooth_law::bind_nonsmooth`] or a scene's
-    /// [`capstan_friction::AnyNonsmoothParams`].
-    ///
-    /// # Math
-    /// With `q_e(v) = (A v - b)_{row_e}` the free tangential balance row of entry `e` of a site
-    /// (weight `w_e`, frame `f_e`, `F = [f_e]`), the friction traction the row carries and the
-    /// slip are
-    /// ```text
-    /// t_e = q_e / w_e,   tau = F^{-T} t   (pseudo-inverse f / |f|^2 for one entry),   u = F x
-    /// ```
-    /// and the friction rows become (Alart–Curnier, De Saxcé)
-    /// ```text
-    /// R_e(v) = q_e(v) - w_e f_e . P_C(sigma_n)(tau(v) - r u(v))
-    /// ```
-    /// `R = 0` iff `tau = P_C(tau - r u)`: stick (`|tau| <= mu |sigma_n|`, `u = 0`) or slip on
-    /// the limit surface against the slip. `r = |A_{row_e, dof_e}| / (w_e |f_e|^2)` (mean over
-    /// the entries) makes `r u` of the size of `tau`. The generalised Jacobian is
-    /// ```text
-    /// dR_e = a_e - sum_f (w_e / w_f) (f_e^T J F^{-T}_f) a_f + w_e r sum_f (f_e^T J f_f) e_{dof_f}
-    ///        - w_e (f_e . dP/dsigma) dsigma_n
-    /// ```
-    /// (`J = dP/dtrial`): stick rows read `w r u = 0`, slip rows the balance with the limit
-    /// traction, so Newton on `R` is the semismooth Newton method. Separated sites (unilateral
-    /// contact) keep the free row (`tau = 0`).
-    ///
-    /// On a circle the bilateral body has a rigid sliding mode, and the exact solution of the
-    /// paper's body sticks at one node only (the neutral point: the regularised stick zone
-    /// shrinks onto it as `eps -> 0`, docs/models.md). An iterate in which every site slides
-    /// has a Jacobian singular along the mode, so at sliding sites `J` is blended with the
-    /// stick branch, `(1 - delta) J + delta I`, `delta = 1e-6`: the Newton step is then
-    /// inexact by `O(delta)` (the residual, and so the solution, are unchanged).
-    ///
-    /// The full-system solver starts the semismooth Newton method from the regularised
-    /// problem `t = P_C(-(|sigma_n| / s) u)` (`s` the model's slip threshold: regularised
-    /// Coulomb of width `mu s`), solved from the stuck start with the same continuation as
-    /// every regularised law ([`crate::contact::FullSystemProblem::penalty_start`]).
+impl ExactFriction {
+    /// The exact friction `law` on the contact sites `members` (active entries per site, of
+    /// `active` in all) of `rows`, with the extended pattern it needs (see
+    /// [`crate::contact::ContactModel::into_exact_friction`](crate::contact::ContactModel::into_exact_friction)).
     ///
     /// # Errors
     /// [`ElasticityError::InvalidParameter`] naming `friction.law` for a site whose frames are
     /// singular or whose tangential diagonal vanishes.
-    pub fn into_exact_friction(
-        mut self,
+    pub(crate) fn build(
+        rows: &dyn ContactRows,
+        members: &[Vec<usize>],
+        active: usize,
         law: Arc<dyn DynNonsmoothLaw>,
-    ) -> Result<Self, ContactError> {
+    ) -> Result<(Self, ExtendedPattern), ContactError> {
         let invalid = |value: f64, allowed: &'static str| {
             ContactError::from(ElasticityError::InvalidParameter {
                 field: "friction.law",
@@ -114,26 +90,25 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
                 allowed,
             })
         };
-        let system = self.system();
-        let ext = self.extended();
+        let system = rows.bulk();
+        let ext = rows.pattern();
         let mut row_of = vec![usize::MAX; system.dimension()];
-        for j in 0..self.site_count() {
-            for &k in self.site_members(j) {
-                row_of[self.active_node(k).tangential_row.expect("active")] = k;
+        for site in members {
+            for &k in site {
+                row_of[rows.node(k).tangential_row.expect("active")] = k;
             }
         }
-        let mut rows_of_entry: Vec<Vec<(usize, usize)>> = vec![Vec::new(); self.active().len()];
+        let mut rows_of_entry: Vec<Vec<(usize, usize)>> = vec![Vec::new(); active];
         for (slot, (i, j)) in system.pattern.entries().enumerate() {
             if row_of[i] != usize::MAX {
                 rows_of_entry[row_of[i]].push((slot, j));
             }
         }
         let mut extra: Vec<(usize, usize)> = Vec::new();
-        let mut sites = Vec::with_capacity(self.site_count());
-        for j in 0..self.site_count() {
-            let entries = self.site_members(j).to_vec();
-            let frames: Vec<[f64; 2]> =
-                entries.iter().map(|&k| self.active_node(k).frame).collect();
+        let mut sites = Vec::with_capacity(members.len());
+        for site in members {
+            let entries = site.clone();
+            let frames: Vec<[f64; 2]> = entries.iter().map(|&k| rows.node(k).frame).collect();
             let inverse = match frames[..] {
                 [f] => {
                     let n2 = f[0] * f[0] + f[1] * f[1];
@@ -154,7 +129,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             };
             let mut r = 0.0;
             for &k in &entries {
-                let node = self.active_node(k);
+                let node = rows.node(k);
                 let row = node.tangential_row.expect("active");
                 let diagonal = system
                     .pattern
@@ -170,12 +145,12 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
                     "contact rows with a nonzero tangential diagonal",
                 ));
             }
-            let rows: Vec<Vec<(usize, usize)>> =
+            let entry_rows: Vec<Vec<(usize, usize)>> =
                 entries.iter().map(|&k| rows_of_entry[k].clone()).collect();
             let mut cross = vec![vec![Vec::new(); entries.len()]; entries.len()];
             for (e, &k) in entries.iter().enumerate() {
-                let row_e = self.active_node(k).tangential_row.expect("active");
-                for (f, row_f) in rows.iter().enumerate() {
+                let row_e = rows.node(k).tangential_row.expect("active");
+                for (f, row_f) in entry_rows.iter().enumerate() {
                     if f != e {
                         // placeholders: indices into `extra`, mapped to slots below
                         cross[e][f] = row_f
@@ -190,7 +165,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             }
             sites.push(ExactSite {
                 entries,
-                rows,
+                rows: entry_rows,
                 cross,
                 inverse,
                 augmentation: r,
@@ -206,8 +181,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
                 }
             }
         }
-        self.set_exact(new_ext, ExactFriction { law, sites });
-        Ok(self)
+        Ok((ExactFriction { law, sites }, new_ext))
     }
 }
 
@@ -246,9 +220,9 @@ fn extend_pattern(
 impl ExactFriction {
     /// The projection at site `j` for `v`, with `free[e] = q_e(v)` the free rows of its
     /// entries; `None` where the site has separated (`separated`: unilateral contact).
-    fn project<D, L: FrictionLaw<f64>>(
+    fn project(
         &self,
-        model: &ContactModel<D, L>,
+        rows: &dyn ContactRows,
         j: usize,
         v: &[f64],
         free: &[f64],
@@ -262,14 +236,14 @@ impl ExactFriction {
         let mut tau = [0.0; 2];
         let mut slip = [0.0; 2];
         for (e, &k) in site.entries.iter().enumerate() {
-            let node = model.active_node(k);
+            let node = rows.node(k);
             let t = free[e] / node.traction_weight;
             for c in 0..2 {
                 tau[c] += site.inverse[e][c] * t;
                 slip[c] += node.frame[c] * v[node.tangential_dof];
             }
         }
-        let first = model.active_node(site.entries[0]);
+        let first = rows.node(site.entries[0]);
         let sigma = first.normal_stress.dot(v);
         let (trial, d_trial_sigma) = match penalty {
             // the penalty start: t = P_C(-(|sigma_n| / width) u), regularised Coulomb
@@ -305,35 +279,30 @@ impl ExactFriction {
     }
 
     /// The free rows `q_e` of site `j` from `r = A v - b`.
-    fn free_rows<D, L: FrictionLaw<f64>>(
-        &self,
-        model: &ContactModel<D, L>,
-        j: usize,
-        r: &[f64],
-    ) -> [f64; 2] {
+    fn free_rows(&self, rows: &dyn ContactRows, j: usize, r: &[f64]) -> [f64; 2] {
         let mut q = [0.0; 2];
         for (e, &k) in self.sites[j].entries.iter().enumerate() {
-            q[e] = r[model.active_node(k).tangential_row.expect("active")];
+            q[e] = r[rows.node(k).tangential_row.expect("active")];
         }
         q
     }
 
     /// Subtracts `w_e f_e . P` from the friction rows of `r`, which holds `A v - b` there.
-    pub(crate) fn residual_into<D, L: FrictionLaw<f64>>(
+    pub(crate) fn residual_into(
         &self,
-        model: &ContactModel<D, L>,
+        rows: &dyn ContactRows,
         v: &[f64],
         separated: Option<&[bool]>,
         r: &mut [f64],
         penalty: Option<f64>,
     ) {
         for j in 0..self.sites.len() {
-            let q = self.free_rows(model, j, r);
-            let Some(sp) = self.project(model, j, v, &q, separated, penalty) else {
+            let q = self.free_rows(rows, j, r);
+            let Some(sp) = self.project(rows, j, v, &q, separated, penalty) else {
                 continue;
             };
             for &k in &self.sites[j].entries {
-                let node = model.active_node(k);
+                let node = rows.node(k);
                 let t = node.frame[0] * sp.projection.traction[0]
                     + node.frame[1] * sp.projection.traction[1];
                 r[node.tangential_row.expect("active")] -= node.traction_weight * t;
@@ -344,20 +313,20 @@ impl ExactFriction {
     /// Adds the generalised derivative of the friction rows to `values` (which hold `A` on
     /// the extended pattern); `r` is `A v - b`.
     #[allow(clippy::needless_range_loop)] // mirrors f_e^T J F^{-T}_f
-    pub(crate) fn jacobian_into<D, L: FrictionLaw<f64>>(
+    pub(crate) fn jacobian_into(
         &self,
-        model: &ContactModel<D, L>,
+        rows: &dyn ContactRows,
         v: &[f64],
         r: &[f64],
         separated: Option<&[bool]>,
         values: &mut [f64],
         penalty: Option<f64>,
     ) {
-        let a = &model.system().values;
-        let ext = model.extended();
+        let a = &rows.bulk().values;
+        let ext = rows.pattern();
         for (j, site) in self.sites.iter().enumerate() {
-            let q = self.free_rows(model, j, r);
-            let Some(sp) = self.project(model, j, v, &q, separated, penalty) else {
+            let q = self.free_rows(rows, j, r);
+            let Some(sp) = self.project(rows, j, v, &q, separated, penalty) else {
                 continue;
             };
             let mut jp = sp.projection.d_trial;
@@ -372,10 +341,10 @@ impl ExactFriction {
                 }
             }
             for (e, &k) in site.entries.iter().enumerate() {
-                let node = model.active_node(k);
+                let node = rows.node(k);
                 let (fe, we) = (node.frame, node.traction_weight);
                 for (f, &kf) in site.entries.iter().enumerate() {
-                    let other = model.active_node(kf);
+                    let other = rows.node(kf);
                     // f_e^T J F^{-T}_f and f_e^T J f_f
                     let (mut m, mut s) = (0.0, 0.0);
                     for c in 0..2 {
@@ -429,32 +398,32 @@ impl ExactFriction {
 
     /// Per site: the state of the projection (`None` where separated), the physical slip and
     /// the friction traction on the body; `r` is `A v - b`.
-    pub(crate) fn site_states<D, L: FrictionLaw<f64>>(
+    pub(crate) fn site_states(
         &self,
-        model: &ContactModel<D, L>,
+        rows: &dyn ContactRows,
         v: &[f64],
         r: &[f64],
         separated: Option<&[bool]>,
     ) -> Vec<Option<SiteState>> {
         (0..self.sites.len())
             .map(|j| {
-                let q = self.free_rows(model, j, r);
-                self.project(model, j, v, &q, separated, None)
+                let q = self.free_rows(rows, j, r);
+                self.project(rows, j, v, &q, separated, None)
                     .map(|sp| (sp.projection.state, sp.slip, sp.projection.traction))
             })
             .collect()
     }
 
     /// The active set (stick, slip, separated) at `v`; `r` is `A v - b`.
-    pub(crate) fn active_set<D, L: FrictionLaw<f64>>(
+    pub(crate) fn active_set(
         &self,
-        model: &ContactModel<D, L>,
+        rows: &dyn ContactRows,
         v: &[f64],
         r: &[f64],
         separated: Option<&[bool]>,
     ) -> ActiveSet {
         let mut set = ActiveSet::default();
-        for state in self.site_states(model, v, r, separated) {
+        for state in self.site_states(rows, v, r, separated) {
             match state.map(|s| s.0) {
                 None | Some(FrictionState::Separated) => set.separated += 1,
                 Some(FrictionState::Stick) => set.stick += 1,
@@ -466,16 +435,16 @@ impl ExactFriction {
 
     /// Per contact site (by [`crate::discretisation::ContactNode::site`]) where the body
     /// touches: the state for [`crate::contact::ContactProfile::state`] (`0` stick, else the
-    /// sign of the `e_2` slip, `+1` when it is zero) and the friction traction on the body.
-    pub(crate) fn profile<D, L: FrictionLaw<f64>>(
+    /// sign of the `e_2` slip, `+1` when it is zero) and the friction traction on the body;
+    /// `r` is `A v - b`.
+    pub(crate) fn profile(
         &self,
-        model: &ContactModel<D, L>,
-        rhs: &[f64],
+        rows: &dyn ContactRows,
         v: &[f64],
+        r: &[f64],
+        separated: Option<&[bool]>,
     ) -> std::collections::HashMap<usize, (i8, [f64; 2])> {
-        let r = model.free_residual(rhs, v);
-        let separated = model.separated_sites(rhs, v);
-        self.site_states(model, v, &r, separated.as_deref())
+        self.site_states(rows, v, r, separated)
             .into_iter()
             .enumerate()
             .filter_map(|(j, s)| {
@@ -485,7 +454,7 @@ impl ExactFriction {
                     _ if slip[1] >= 0.0 => 1,
                     _ => -1,
                 };
-                let site = model.active_node(self.sites[j].entries[0]).site;
+                let site = rows.node(self.sites[j].entries[0]).site;
                 Some((site, (code, traction)))
             })
             .collect()

@@ -4,12 +4,13 @@
 use capstan_friction::{ContactState, FrictionLaw};
 
 use crate::contact::error::ContactError;
-use crate::contact::exact_friction::ExactFriction;
+use crate::contact::exact_friction::{ContactRows, ExactFriction};
 use crate::contact::operator::ContactOperator;
 use crate::contact::pattern::{ExtendedPattern, Sites, extended_pattern};
 use crate::contact::unilateral::{Gap, Unilateral};
 use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
+use capstan_friction::nonsmooth_law::DynNonsmoothLaw;
 
 /// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`: the
 /// paper's load, the first two entries ([`END_LOADS`]) of a contact model's load list.
@@ -414,9 +415,58 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.exact.as_ref()
     }
 
-    pub(crate) fn set_exact(&mut self, ext: ExtendedPattern, exact: ExactFriction) {
+    /// The model with exact (nonsmooth) friction `law` on every contact site in place of its
+    /// pointwise law (which is then not used): `law` is a projection onto the friction set
+    /// (`exact-coulomb`: the disc `|t| <= mu |sigma_n|`; `exact-orthotropic-coulomb`: the
+    /// ellipse), [`capstan_friction::nonsmooth_law::bind_nonsmooth`] or a scene's
+    /// [`capstan_friction::AnyNonsmoothParams`].
+    ///
+    /// # Math
+    /// With `q_e(v) = (A v - b)_{row_e}` the free tangential balance row of entry `e` of a site
+    /// (weight `w_e`, frame `f_e`, `F = [f_e]`), the friction traction the row carries and the
+    /// slip are
+    /// ```text
+    /// t_e = q_e / w_e,   tau = F^{-T} t   (pseudo-inverse f / |f|^2 for one entry),   u = F x
+    /// ```
+    /// and the friction rows become (Alart–Curnier, De Saxcé)
+    /// ```text
+    /// R_e(v) = q_e(v) - w_e f_e . P_C(sigma_n)(tau(v) - r u(v))
+    /// ```
+    /// `R = 0` iff `tau = P_C(tau - r u)`: stick (`|tau| <= mu |sigma_n|`, `u = 0`) or slip on
+    /// the limit surface against the slip. `r = |A_{row_e, dof_e}| / (w_e |f_e|^2)` (mean over
+    /// the entries) makes `r u` of the size of `tau`. The generalised Jacobian is
+    /// ```text
+    /// dR_e = a_e - sum_f (w_e / w_f) (f_e^T J F^{-T}_f) a_f + w_e r sum_f (f_e^T J f_f) e_{dof_f}
+    ///        - w_e (f_e . dP/dsigma) dsigma_n
+    /// ```
+    /// (`J = dP/dtrial`): stick rows read `w r u = 0`, slip rows the balance with the limit
+    /// traction, so Newton on `R` is the semismooth Newton method. Separated sites (unilateral
+    /// contact) keep the free row (`tau = 0`).
+    ///
+    /// On a circle the bilateral body has a rigid sliding mode, and the exact solution of the
+    /// paper's body sticks at one node only (the neutral point: the regularised stick zone
+    /// shrinks onto it as `eps -> 0`, docs/models.md). An iterate in which every site slides
+    /// has a Jacobian singular along the mode, so at sliding sites `J` is blended with the
+    /// stick branch, `(1 - delta) J + delta I`, `delta = 1e-6`: the Newton step is then
+    /// inexact by `O(delta)` (the residual, and so the solution, are unchanged).
+    ///
+    /// The full-system solver starts the semismooth Newton method from the regularised
+    /// problem `t = P_C(-(|sigma_n| / s) u)` (`s` the model's slip threshold: regularised
+    /// Coulomb of width `mu s`), solved from the stuck start with the same continuation as
+    /// every regularised law ([`crate::contact::FullSystemProblem::penalty_start`]).
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `friction.law` for a site whose frames are
+    /// singular or whose tangential diagonal vanishes.
+    pub fn into_exact_friction(
+        mut self,
+        law: std::sync::Arc<dyn DynNonsmoothLaw>,
+    ) -> Result<Self, ContactError> {
+        let (exact, ext) =
+            ExactFriction::build(&self, &self.sites.members, self.active.len(), law)?;
         self.ext = ext;
         self.exact = Some(exact);
+        Ok(self)
     }
 
     /// Whether the model has exact (nonsmooth) friction ([`ContactModel::into_exact_friction`]).
@@ -827,5 +877,17 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
                 }
             }
         }
+    }
+}
+
+impl<D, L: FrictionLaw<f64>> ContactRows for ContactModel<D, L> {
+    fn node(&self, k: usize) -> &ContactNode {
+        self.active_node(k)
+    }
+    fn bulk(&self) -> &LinearSystem {
+        &self.system
+    }
+    fn pattern(&self) -> &ExtendedPattern {
+        &self.ext
     }
 }

@@ -177,7 +177,10 @@ impl ContactSolution {
             .map(|rows| rows.into_iter().collect());
         let mut separated = separated_dof.as_ref().map(|_| Vec::with_capacity(n));
         // exact friction: the state and traction of the projection, by site
-        let exact = model.exact_friction().map(|x| x.profile(model, &rhs, &v));
+        let exact = model.exact_friction().map(|x| {
+            let r = model.free_residual(&rhs, &v);
+            x.profile(model, &v, &r, model.separated_sites(&rhs, &v).as_deref())
+        });
         for entries in &sites {
             let lifted = separated_dof
                 .as_ref()

@@ -27,7 +27,6 @@ use crate::verification::{GridLevel, Study, StudyPoint};
 
 /// The chart type of the samples.
 pub use super::parts::SampleChart;
-pub use super::signorini::{SignoriniMms, SignoriniPoint};
 
 /// A smooth displacement field `(x2, x3) -> [v^2, v^3]`, written once for every scalar: its
 /// derivatives (the gradient in the boundary data and the errors, the second derivatives in
