@@ -55,7 +55,18 @@ const SPINNER_AFTER: Duration = Duration::from_secs(2);
 
 /// One line of an iterative solve's progress, as `-v` prints it:
 /// `condensed-newton   3  residual 1.234e-07  step 1  stick 12  slip 229`.
+///
+/// Set-up phases print their work instead: `set-up  condensation 1200/2500`.
 pub fn progress_line(p: &Progress<f64>) -> String {
+    if let Some(w) = p.work {
+        return format!(
+            "{:<16} {} {}/{}",
+            p.stage.name(),
+            w.phase.name(),
+            w.done,
+            w.total
+        );
+    }
     let mut line = format!(
         "{:<16} {:>4}  residual {:.3e}  step {:.3}",
         p.stage.name(),

@@ -141,3 +141,95 @@ fn an_observer_stops_the_condensed_and_the_full_system_solver() {
     let r: Vec<f64> = rec.events.iter().map(|p| p.residual_norm).collect();
     assert!(r.len() > 2 && r.last().unwrap() < &(1e-8 * r[0]), "{r:?}");
 }
+
+/// The set-up events of `events`: `(phase, done, total)`.
+fn set_up_events(events: &[Progress<f64>]) -> Vec<(&'static str, usize, usize)> {
+    events
+        .iter()
+        .filter(|p| p.stage == SolveStage::SetUp)
+        .map(|p| {
+            let w = p.work.expect("a set-up event carries its work");
+            assert_eq!(
+                (p.iteration, p.residual_norm, p.step_length),
+                (w.done, 0.0, 0.0)
+            );
+            (w.phase.name(), w.done, w.total)
+        })
+        .collect()
+}
+
+/// A small scene of `dimension` with the default (condensed) solver.
+fn small_problem(dimension: usize) -> capstan::Problem {
+    let n2 = if dimension == 2 { "41" } else { "21" };
+    let mut scene = capstan::Scene::default();
+    for (key, value) in [
+        ("body.dimension", dimension.to_string()),
+        ("grid.n1", "3".into()),
+        ("grid.n2", n2.into()),
+        ("grid.n3", "5".into()),
+        ("body.width", "0.5".into()),
+        ("loads.tau_max", "1.5".into()),
+    ] {
+        scene = scene.with_raw(key, &value, "test").unwrap();
+    }
+    scene.build().unwrap()
+}
+
+#[test]
+fn the_set_up_reports_assembly_factorisation_and_condensation_before_newton() {
+    for dimension in [2, 3] {
+        let mut rec = Recorder::default();
+        small_problem(dimension).solve_observed(&mut rec).unwrap();
+        let set_up = set_up_events(&rec.events);
+        // assembly, then the factorisation, then the condensation to its last column
+        assert_eq!(
+            &set_up[..4],
+            &[
+                ("assembly", 0, 1),
+                ("assembly", 1, 1),
+                ("factorisation", 0, 1),
+                ("factorisation", 1, 1),
+            ]
+        );
+        let condensation: Vec<_> = set_up.iter().filter(|e| e.0 == "condensation").collect();
+        let &&(_, last, m) = condensation.last().expect("condensation events");
+        assert!(m > 0 && last == m, "{dimension}-D: {condensation:?}");
+        assert!(
+            condensation
+                .windows(2)
+                .all(|w| w[0].1 <= w[1].1 || w[1].1 == w[1].2)
+        );
+        // every set-up event comes before the first Newton iterate
+        let first_newton = rec
+            .events
+            .iter()
+            .position(|p| p.stage == SolveStage::CondensedNewton)
+            .expect("Newton iterates");
+        let last_set_up = rec
+            .events
+            .iter()
+            .rposition(|p| p.stage == SolveStage::SetUp)
+            .unwrap();
+        assert!(last_set_up < first_newton, "{dimension}-D");
+    }
+}
+
+#[test]
+fn an_observer_stops_the_set_up_after_the_factorisation() {
+    for dimension in [2, 3] {
+        // the fourth event is the end of the factorisation: the first poll
+        let mut rec = Recorder {
+            stop_after: Some(4),
+            ..Recorder::default()
+        };
+        let err = small_problem(dimension)
+            .solve_observed(&mut rec)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("interrupted"), "{dimension}-D: {err}");
+        assert!(
+            rec.events.iter().all(|p| p.stage == SolveStage::SetUp),
+            "{dimension}-D: stopped before any Newton iterate"
+        );
+    }
+}

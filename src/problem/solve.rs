@@ -10,7 +10,7 @@ use capstan_elasticity::contact::{
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
 use capstan_elasticity::solid::SolidOutput;
-use capstan_elasticity::solvers::{Observer, SilentObserver};
+use capstan_elasticity::solvers::{Observer, Progress, SetUpPhase, SilentObserver};
 use capstan_elasticity::{Discretisation, ElasticityError};
 use capstan_friction::FrictionError;
 use capstan_geometry::Surface;
@@ -130,6 +130,15 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         Ok(self.body.model(law, params, eps)?)
     }
 
+    /// [`Problem::model`], reported to `observer` as the set-up phase
+    /// [`SetUpPhase::Assembly`] (an event when it starts and one when it ends).
+    fn model_observed(&self, observer: &mut dyn Observer<f64>) -> Result<Model, ProblemError> {
+        observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 0, 1));
+        let model = self.model()?;
+        observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 1, 1));
+        Ok(model)
+    }
+
     /// Solves the problem ([`Problem::solve_observed`] with no observer).
     ///
     /// # Errors
@@ -162,8 +171,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         .full_settings();
         match method {
             SolveMethod::Condensed | SolveMethod::Auto => {
-                let model = self.model()?;
-                let solver = BoundarySolver::new(&model, self.solver.budgets)?;
+                let model = self.model_observed(observer)?;
+                let solver = BoundarySolver::new_observed(&model, self.solver.budgets, observer)?;
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
                 let solution = solver.solve_observed(loads, observer)?;
@@ -205,7 +214,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 }
             }
             SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton => {
-                let model = self.model()?;
+                let model = self.model_observed(observer)?;
                 let solver = FullSystemSolver::new(&model, full)?;
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();

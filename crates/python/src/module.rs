@@ -392,6 +392,9 @@ impl Observer<f64> for PyObserver<'_> {
                 d.set_item("stick", p.active.map(|a| a.stick))?;
                 d.set_item("slip", p.active.map(|a| a.slip))?;
                 d.set_item("separated", p.active.map(|a| a.separated))?;
+                d.set_item("phase", p.work.map(|w| w.phase.name()))?;
+                d.set_item("done", p.work.map(|w| w.done))?;
+                d.set_item("total", p.work.map(|w| w.total))?;
                 callback.call1(py, (d,))?;
                 Ok(())
             };

@@ -138,7 +138,9 @@ pub use multigrid::{Multigrid, MultigridParams, MultigridPreconditioner, Smoothe
 pub use newton::{LineSearch, Newton, NewtonParams};
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};
-pub use observer::{ActiveSet, Observer, Progress, SilentObserver, SolveStage};
+pub use observer::{
+    ActiveSet, Observer, Progress, SetUpPhase, SetUpWork, SilentObserver, SolveStage,
+};
 pub use ordering::{
     ColumnOrdering, GridShape, amd_compressed, amd_symmetrised, is_permutation,
     nested_dissection_elements, nested_dissection_grid,

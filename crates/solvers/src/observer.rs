@@ -2,7 +2,9 @@
 //!
 //! One [`Observer`] receives a [`Progress`] event per accepted iteration from every loop that
 //! iterates: Newton on a sparse system, Jacobi–Newton, Newton on the condensed contact
-//! boundary, continuation steps, grid-sequencing levels, the membrane models. The event names
+//! boundary, continuation steps, grid-sequencing levels, the membrane models, and from the
+//! set-up phases that run before them (assembly, factorisation, the condensation onto the
+//! contact boundary, [`SolveStage::SetUp`] with [`SetUpWork`]). The event names
 //! its [`SolveStage`], so one observer can print, draw a progress bar, record residual
 //! histories or forward them to Python. An observer can also stop a solve: solvers poll
 //! [`Observer::interrupted`] after each iteration and return a typed `Interrupted` error.
@@ -29,6 +31,10 @@ pub enum SolveStage {
     /// A Krylov iteration (CG, GMRES) of a linear solve; `residual_norm` is the relative
     /// residual `|b - A x_k| / |b|` (GMRES: its estimate from the least-squares problem).
     Krylov,
+    /// A set-up phase before the iterations (assembly, factorisation, condensation):
+    /// [`Progress::work`] says which phase and how much of it is done; `iteration` is the
+    /// work done and `residual_norm`, `step_length` are 0.
+    SetUp,
 }
 
 // `name()`: the lower-case name used in logs and in the Python package
@@ -41,7 +47,39 @@ named_variants!(SolveStage {
     GridLevel => "grid-level",
     Membrane => "membrane",
     Krylov => "krylov",
+    SetUp => "set-up",
 });
+
+/// The phase of a [`SolveStage::SetUp`] event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum SetUpPhase {
+    /// Assembling the discrete operator (element integrals, the contact rows).
+    Assembly,
+    /// Ordering and factorising a sparse matrix (or building a preconditioner).
+    Factorisation,
+    /// Condensing the bulk onto the contact unknowns: `total` right-hand sides solved with
+    /// the factorised bulk (or one Schur complement).
+    Condensation,
+}
+
+named_variants!(SetUpPhase {
+    Assembly => "assembly",
+    Factorisation => "factorisation",
+    Condensation => "condensation",
+});
+
+/// How far a set-up phase has come: `done` of `total` units of work (solves, elements;
+/// `0 of 1` when it starts and `1 of 1` when it ends for phases that cannot count).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SetUpWork {
+    /// The phase.
+    pub phase: SetUpPhase,
+    /// Units of work done.
+    pub done: usize,
+    /// Units of work in the phase.
+    pub total: usize,
+}
 
 /// Sizes of the contact active set after an iteration: nodes that stick and nodes that slip.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -73,6 +111,8 @@ pub struct Progress<F> {
     pub step_length: F,
     /// Stick/slip counts, where the solve has a contact boundary.
     pub active: Option<ActiveSet>,
+    /// The phase and its work done, for [`SolveStage::SetUp`] events (`None` otherwise).
+    pub work: Option<SetUpWork>,
 }
 
 impl<F> Progress<F> {
@@ -84,6 +124,19 @@ impl<F> Progress<F> {
             residual_norm,
             step_length,
             active: None,
+            work: None,
+        }
+    }
+
+    /// A [`SolveStage::SetUp`] event: `done` of `total` units of `phase` (`iteration = done`,
+    /// residual and step 0).
+    pub fn set_up(phase: SetUpPhase, done: usize, total: usize) -> Self
+    where
+        F: SolverScalar,
+    {
+        Self {
+            work: Some(SetUpWork { phase, done, total }),
+            ..Self::new(SolveStage::SetUp, done, F::zero(), F::zero())
         }
     }
 

@@ -243,8 +243,10 @@ def contact(
 
     ``callback(progress)`` is called after every iteration of the solve with a dict: ``stage``
     (``"condensed-newton"``, ``"continuation"``, ``"newton"``, ...), ``iteration``,
-    ``residual``, ``step_length``, ``stick``, ``slip``. An exception in the callback stops the
-    solve and propagates; so does Ctrl-C (KeyboardInterrupt). ``out`` writes the files of
+    ``residual``, ``step_length``, ``stick``, ``slip``, ``separated``. The set-up phases report
+    too, with stage ``"set-up"`` and ``phase`` (``"assembly"``, ``"factorisation"``,
+    ``"condensation"``), ``done`` and ``total`` (the phase's work done); other events have
+    these ``None``. An exception in the callback stops the solve and propagates; so does Ctrl-C (KeyboardInterrupt). ``out`` writes the files of
     ``--out``.
     """
     text, fields, shape = _capstan.contact(scene, callback, None if out is None else os.fspath(out))

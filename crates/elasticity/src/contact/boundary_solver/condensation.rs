@@ -4,7 +4,7 @@
 use std::sync::{Arc, Mutex};
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::{BoxedLinearSolver, LinearSolver};
+use capstan_solvers::{BoxedLinearSolver, LinearSolver, Observer, Progress, SetUpPhase};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
@@ -44,6 +44,10 @@ pub(super) struct Condensation {
 /// the extended pattern) and returns `(P Z, N Z)`, `Z = A~^-1 W`: from the Schur complements
 /// `schur` when given (dense work only), else by blocked multi-right-hand-side solves (at most
 /// [`CONDENSATION_BLOCK_ENTRIES`] doubles of workspace per block).
+///
+/// Reports the factorisation and every block of solves to `observer` as
+/// [`capstan_solvers::SolveStage::SetUp`] events and stops with
+/// [`ContactError::Interrupted`] after the factorisation or between blocks when it asks to.
 pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     model: &ContactModel<D, L>,
     ext: &ExtendedPattern,
@@ -51,6 +55,7 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     spring: &[f64],
     lu: &mut dyn LinearSolver<f64>,
     schur: Option<&ContactSchur>,
+    observer: &mut dyn Observer<f64>,
 ) -> Result<(Mat<f64>, Mat<f64>), ContactError> {
     let m = spring.len();
     let n = model.dof_count();
@@ -58,10 +63,16 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     for (k, c) in spring.iter().enumerate() {
         values[ext.tangential_slot[k]] += model.active_node(k).traction_weight * c;
     }
+    observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 0, 1));
     lu.factor(&values)?;
+    observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 1, 1));
+    if observer.interrupted() {
+        return Err(ContactError::Interrupted { iterations: 0 });
+    }
     if let Some(schur) = schur {
         let (pz, nz) = schur.condense(model, spring)?;
         if agrees_with_a_solve(model, &pz, &nz, lu)? {
+            observer.iteration(&Progress::set_up(SetUpPhase::Condensation, m, m));
             return Ok((pz, nz));
         }
     }
@@ -85,6 +96,14 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
                 pz[(j, first + c)] = col[nj.tangential_dof];
                 nz[(j, first + c)] = nj.normal_stress.dot(col);
             }
+        }
+        observer.iteration(&Progress::set_up(
+            SetUpPhase::Condensation,
+            first + width,
+            m,
+        ));
+        if observer.interrupted() {
+            return Err(ContactError::Interrupted { iterations: 0 });
         }
     }
     Ok((pz, nz))
@@ -375,11 +394,29 @@ mod tests {
                 .collect();
             let mut lu = SparseLu::default();
             lu.analyse(&ext.pattern).unwrap();
-            let by_solves = condense(&model, ext, &values, &spring, &mut lu, None).unwrap();
+            let by_solves = condense(
+                &model,
+                ext,
+                &values,
+                &spring,
+                &mut lu,
+                None,
+                &mut capstan_solvers::SilentObserver,
+            )
+            .unwrap();
             let schur = ContactSchur::new(&model)
                 .unwrap()
                 .expect("no pivoting across fronts");
-            let by_schur = condense(&model, ext, &values, &spring, &mut lu, Some(&schur)).unwrap();
+            let by_schur = condense(
+                &model,
+                ext,
+                &values,
+                &spring,
+                &mut lu,
+                Some(&schur),
+                &mut capstan_solvers::SilentObserver,
+            )
+            .unwrap();
             // two eliminations of the same matrix: round-off, amplified by the spring's scale
             for (a, b, what) in [
                 (&by_solves.0, &by_schur.0, "P Z"),

@@ -128,6 +128,22 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         model: &'a ContactModel<D, L>,
         settings: ContactSettings,
     ) -> Result<Self, ContactError> {
+        Self::new_observed(model, settings, &mut SilentObserver)
+    }
+
+    /// [`BoundarySolver::new`], reporting the factorisation and the condensation (one event
+    /// per block of solves: `done` of `m` contact columns) to `observer` as
+    /// [`capstan_solvers::SolveStage::SetUp`] events; on large 3-D bodies this set-up is most
+    /// of the run.
+    ///
+    /// # Errors
+    /// As [`BoundarySolver::new`]; [`ContactError::Interrupted`] when `observer` stops the
+    /// set-up (polled between blocks of solves).
+    pub fn new_observed(
+        model: &'a ContactModel<D, L>,
+        settings: ContactSettings,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<Self, ContactError> {
         settings.validate()?;
         refuse_unilateral(model)?;
         let ext = model.extended();
@@ -167,7 +183,15 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             } else {
                 None
             };
-        let (mut pz, mut nz) = condense(model, ext, &values, &spring, &mut lu, schur.as_ref())?;
+        let (mut pz, mut nz) = condense(
+            model,
+            ext,
+            &values,
+            &spring,
+            &mut lu,
+            schur.as_ref(),
+            observer,
+        )?;
         let mut factorisations = 1;
         // A spring far stiffer than every boundary mode of the body (thin bodies: the diagonal
         // grows like 1 / dx3^2, the boundary stiffness like h) makes `s - C x` cancel to
@@ -177,7 +201,15 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             for c in &mut spring {
                 *c *= top;
             }
-            (pz, nz) = condense(model, ext, &values, &spring, &mut lu, schur.as_ref())?;
+            (pz, nz) = condense(
+                model,
+                ext,
+                &values,
+                &spring,
+                &mut lu,
+                schur.as_ref(),
+                observer,
+            )?;
             factorisations += 1;
         }
         let mut unit_state = |mut v: Vec<f64>| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
