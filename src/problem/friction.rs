@@ -1,5 +1,9 @@
 //! The friction law of a [`super::Problem`], by its registered name.
 
+use std::sync::Arc;
+
+use capstan_elasticity::friction::nonsmooth_law::DynNonsmoothLaw;
+
 use capstan_elasticity::friction::{
     AnyFrictionLaw, AnyFrictionParams, FrictionError, FrictionSettings,
 };
@@ -52,5 +56,22 @@ impl Friction {
     pub fn build(&self) -> Result<(AnyFrictionLaw, AnyFrictionParams, f64), FrictionError> {
         let params = AnyFrictionParams::new(&self.law, &self.settings)?;
         Ok((AnyFrictionLaw, params, self.settings.eps))
+    }
+
+    /// The nonsmooth law registered as `law` (exact Coulomb and its orthotropic variant,
+    /// `capstan_friction::registry::register_nonsmooth`) with its parameters bound, or `None`
+    /// for a smooth (regularised) law.
+    ///
+    /// # Errors
+    /// The nonsmooth law's own parameter checks.
+    pub fn nonsmooth(&self) -> Result<Option<Arc<dyn DynNonsmoothLaw>>, FrictionError> {
+        capstan_elasticity::friction::registry::find_nonsmooth(&self.law)
+            .map(|entry| (entry.build)(&self.settings))
+            .transpose()
+    }
+
+    /// Whether `law` names a nonsmooth law ([`Friction::nonsmooth`]).
+    pub fn is_nonsmooth(&self) -> bool {
+        capstan_elasticity::friction::registry::find_nonsmooth(&self.law).is_some()
     }
 }

@@ -145,7 +145,21 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     ///
     /// # Errors
     /// The friction law's and the body's errors.
+    ///
+    /// A nonsmooth law ([`super::Friction::nonsmooth`]: `exact-coulomb`, ...) gives the body
+    /// without friction whose friction rows are then the law's projection rows
+    /// ([`ContactModel::into_exact_friction`]; `friction.eps` is only the slip threshold of
+    /// the reports and of the regularised start).
     pub fn model(&self) -> Result<Model, ProblemError> {
+        if let Some(exact) = self.friction.nonsmooth()? {
+            let frictionless =
+                super::Friction::named("frictionless", self.friction.settings.clone());
+            let (law, params, eps) = frictionless.build()?;
+            return Ok(self
+                .body
+                .model(law, params, eps)?
+                .into_exact_friction(exact)?);
+        }
         let (law, params, eps) = self.friction.build()?;
         Ok(self.body.model(law, params, eps)?)
     }
@@ -180,9 +194,22 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let t0 = Instant::now();
         let loads = self.loads;
         let plane = matches!(self.body.dimension, Dimension::Plane);
-        // grid sequencing starts from the condensed solver, which keeps v^3 = 0
-        let sequenced = plane && !self.body.contact.is_unilateral();
-        let (method, choice) = self.solver.resolved(&self.body);
+        // grid sequencing starts from the condensed solver, which keeps v^3 = 0 and knows no
+        // exact friction
+        let exact = self.friction.is_nonsmooth();
+        let sequenced = plane && !self.body.contact.is_unilateral() && !exact;
+        let (mut method, mut choice) = self.solver.resolved(&self.body);
+        if exact && method == SolveMethod::Condensed && choice.auto {
+            // the condensed solver refuses exact friction: auto takes the full system
+            let linear = capstan_elasticity::solvers::LinearBackend::LU;
+            method = SolveMethod::FullNewton(linear);
+            choice.nonlinear = "full-newton";
+            choice.linear = linear.name();
+            choice.reason = format!(
+                "exact friction (`{}`): the full-system semismooth Newton, sparse LU",
+                self.friction.law
+            );
+        }
         // the full-system settings of the method that runs
         let full = Solver {
             method,

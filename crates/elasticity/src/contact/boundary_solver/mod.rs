@@ -538,7 +538,8 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
 }
 
 /// The condensed solver keeps `v^3 = 0` on the contact face (it condenses onto the tangential
-/// tractions only): a unilateral model is refused, naming the key that picks another solver.
+/// tractions only) and solves smooth laws: a unilateral model or one with exact friction is
+/// refused, naming the key that picks another solver.
 fn refuse_unilateral<D, L: FrictionLaw<f64>>(
     model: &ContactModel<D, L>,
 ) -> Result<(), ContactError> {
@@ -546,6 +547,12 @@ fn refuse_unilateral<D, L: FrictionLaw<f64>>(
         return Err(ContactError::Unsupported {
             field: "solver.nonlinear",
             message: "the condensed `newton` keeps v^3 = 0 on the contact face; unilateral contact (`contact.kind = \"unilateral\"`) needs `full-newton` or `jacobi-newton`",
+        });
+    }
+    if model.is_exact_friction() {
+        return Err(ContactError::Unsupported {
+            field: "solver.nonlinear",
+            message: "the condensed `newton` solves regularised laws only; exact (nonsmooth) friction (`friction.law = \"exact-coulomb\"`, ...) needs `full-newton`",
         });
     }
     Ok(())
