@@ -235,6 +235,7 @@ fn ngsolve_mms_peer_converges_at_order_p_plus_one_when_ngsolve_is_installed() {
 #[test]
 fn ngsolve_paper_peer_points_match_capstan_graded_solution_when_ngsolve_is_installed() {
     use capstan::commands::bench::{Rectangle, points_error_of};
+    use capstan_elasticity::Discretisation;
     use capstan_elasticity::finite_element::{Grading, QpSettings};
     use capstan_elasticity::samples::PaperEllipse;
     use capstan_elasticity::solvers::SparseCholesky;
