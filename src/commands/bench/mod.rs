@@ -238,9 +238,9 @@ fn status_kib(field: &str) -> Option<f64> {
         .and_then(|v| v.parse().ok())
 }
 
-/// What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
-/// the paper's graded reference).
-type Reference<'a> = &'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync);
+// What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
+// the paper's graded reference), `peer_error::Reference`.
+use peer_error::Reference;
 
 /// Relative nodal L2 error (trapezoid, `sqrt(g)` weights) of `v` on `op`'s grid.
 fn nodal_error(

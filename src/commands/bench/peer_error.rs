@@ -24,7 +24,9 @@ use std::path::Path;
 
 use capstan_elasticity::ShellGeometry;
 
-use super::Reference;
+/// What the error of a solution is measured against: a field `x -> [v^2, v^3]`
+/// (contravariant components at `(x2, x3)`; exact, or the paper's graded reference).
+pub type Reference<'a> = &'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync);
 
 /// Newton steps per point.
 const NEWTON_STEPS: usize = 40;
