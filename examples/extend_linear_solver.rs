@@ -148,12 +148,7 @@ fn displacement(
 
 /// `max |a - b| / max |b|`.
 fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let diff = a
-        .iter()
-        .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    diff / scale
+    capstan::solvers::max_abs_difference(a, b) / capstan::solvers::max_abs(b)
 }
 
 /// For each body and contact solver: the relative difference of `dense-lu` from `lu` and

@@ -8,9 +8,10 @@ use serde::Serialize;
 use crate::commands;
 pub use crate::commands::{SceneArgs, StudyArgs};
 use crate::error::CliError;
-use crate::figures::reports::{write_geometry, write_json_report, write_tension};
+use crate::figures::reports::{write_geometry, write_tension};
 use crate::output::OutputDir;
 use crate::provenance::Stamped;
+use crate::provenance::write_json_report;
 use crate::scene::Scene;
 
 /// Friction between elastic bodies and rough rigid curved obstacles.
@@ -67,9 +68,9 @@ pub enum Command {
     /// capstan models), with iterations, residuals, condition estimates, refinement changes.
     Stress(StudyArgs),
     /// The paper's figures and tables (sections 2 and 3) as PNG + SVG + CSV, with an index.
-    Figure(commands::figure::FigureArgs),
+    Figure(crate::figures::command::FigureArgs),
     /// Sweep parts written by `capstan sweep --shard I/N`, checked and merged into one sweep.
-    Merge(commands::merge::MergeArgs),
+    Merge(crate::scale::merge_command::MergeArgs),
     /// The contact problem's linear system (Newton Jacobian at a state) in Matrix Market.
     ExportSystem(commands::export_system::ExportSystemArgs),
 }
@@ -407,7 +408,7 @@ fn run_command(cli: Cli) -> Result<String, CliError> {
             commands::stress::table,
         ),
         Some(Command::Figure(args)) => figure(&args, cli.quiet),
-        Some(Command::Merge(args)) => commands::merge::run(&args),
+        Some(Command::Merge(args)) => crate::scale::merge_command::run(&args),
         Some(Command::ExportSystem(args)) => export_system(&args),
     }
 }
@@ -564,9 +565,11 @@ fn export_system(args: &commands::export_system::ExportSystemArgs) -> Result<Str
     })
 }
 
-fn figure(args: &commands::figure::FigureArgs, quiet: bool) -> Result<String, CliError> {
-    let index = commands::figure::run(args, quiet)?;
-    render(args.json, &index, || Ok(commands::figure::table(&index)))
+fn figure(args: &crate::figures::command::FigureArgs, quiet: bool) -> Result<String, CliError> {
+    let index = crate::figures::command::run(args, quiet)?;
+    render(args.json, &index, || {
+        Ok(crate::figures::command::table(&index))
+    })
 }
 
 fn bench(args: &commands::bench::BenchArgs) -> Result<String, CliError> {

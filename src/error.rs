@@ -36,15 +36,15 @@ pub enum CliError {
     Geometry(#[from] GeometryError),
     /// An elasticity problem failed (bad material, grid or boundary data: exit code 2).
     #[error(transparent)]
-    Elasticity(#[from] capstan_elasticity::ElasticityError),
+    Elasticity(capstan_elasticity::ElasticityError),
     /// A membrane capstan model failed: bad input (exit code 2), no limiting equilibrium on
     /// the interval (lift-off, slack, non-convex, no `mu`: 3), or non-convergence (4).
     #[error(transparent)]
-    Friction(#[from] FrictionError),
+    Friction(FrictionError),
     /// A thick-body contact problem failed: bad input (exit code 2), no static equilibrium
     /// (tension ratio beyond what friction holds: 3), or non-convergence (4).
     #[error(transparent)]
-    Contact(#[from] capstan_elasticity::contact::ContactError),
+    Contact(capstan_elasticity::contact::ContactError),
     /// A thick-body solve ran out of a work budget that scene keys set (exit code 4): the
     /// contact error, then the budget keys with their values and what to change.
     #[error("{source}; work budget: {budget}")]
@@ -84,7 +84,90 @@ pub enum CliError {
     /// Sweep parts that cannot be run or merged (bad `--shard`, parts that do not belong
     /// together, missing or duplicate points: exit code 2).
     #[error(transparent)]
-    Shard(#[from] crate::scale::ShardError),
+    Shard(#[from] crate::shard_error::ShardError),
+}
+
+/// The scene key of a library constructor's API parameter: the library's errors name the
+/// parameter (`Material::new`: `young`, `poisson`; the friction laws' parameters: `mu`, `eps`,
+/// ...; `ContactModel::new`: `slip_threshold`), the command line's the key a scene sets.
+/// Names without a scene key (and names that are scene keys already) are kept.
+///
+/// `friction` picks the friction law's keys (`mu` is `friction.mu` there).
+pub fn scene_key(field: &'static str, friction: bool) -> &'static str {
+    const FRICTION: [(&str, &str); 6] = [
+        ("mu", "friction.mu"),
+        ("mu2", "friction.mu2"),
+        ("eps", "friction.eps"),
+        ("bound", "friction.bound"),
+        ("exponent", "friction.exponent"),
+        ("axis_angle", "friction.axis_angle"),
+    ];
+    const ELASTICITY: [(&str, &str); 3] = [
+        ("young", "body.young"),
+        ("poisson", "body.poisson"),
+        ("slip_threshold", "friction.eps"),
+    ];
+    let table: &[(&str, &str)] = if friction { &FRICTION } else { &ELASTICITY };
+    table
+        .iter()
+        .find(|(api, _)| *api == field)
+        .map_or(field, |(_, key)| key)
+}
+
+/// `e` with an invalid parameter named by its scene key ([`scene_key`]).
+fn keyed_friction(e: FrictionError) -> FrictionError {
+    match e {
+        FrictionError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        } => FrictionError::InvalidParameter {
+            field: scene_key(field, true),
+            value,
+            allowed,
+        },
+        other => other,
+    }
+}
+
+/// `e` with an invalid parameter named by its scene key ([`scene_key`]).
+fn keyed_elasticity(e: capstan_elasticity::ElasticityError) -> capstan_elasticity::ElasticityError {
+    use capstan_elasticity::ElasticityError;
+    match e {
+        ElasticityError::InvalidParameter {
+            field,
+            value,
+            allowed,
+        } => ElasticityError::InvalidParameter {
+            field: scene_key(field, false),
+            value,
+            allowed,
+        },
+        other => other,
+    }
+}
+
+impl From<FrictionError> for CliError {
+    fn from(e: FrictionError) -> Self {
+        Self::Friction(keyed_friction(e))
+    }
+}
+
+impl From<capstan_elasticity::ElasticityError> for CliError {
+    fn from(e: capstan_elasticity::ElasticityError) -> Self {
+        Self::Elasticity(keyed_elasticity(e))
+    }
+}
+
+impl From<capstan_elasticity::contact::ContactError> for CliError {
+    fn from(e: capstan_elasticity::contact::ContactError) -> Self {
+        use capstan_elasticity::contact::ContactError;
+        Self::Contact(match e {
+            ContactError::Elasticity(e) => ContactError::Elasticity(keyed_elasticity(e)),
+            ContactError::Friction(e) => ContactError::Friction(keyed_friction(e)),
+            other => other,
+        })
+    }
 }
 
 impl From<crate::problem::ProblemError> for CliError {
@@ -95,6 +178,11 @@ impl From<crate::problem::ProblemError> for CliError {
             ProblemError::Elasticity(e) => e.into(),
             ProblemError::Contact(e) => e.into(),
             e @ ProblemError::AccuracyNotReached { .. } => Self::AccuracyNotReached {
+                message: e.to_string(),
+            },
+            e @ (ProblemError::UnknownNonlinearMethod { .. }
+            | ProblemError::DuplicateNonlinearMethod { .. }) => Self::Scene {
+                origin: "solver.nonlinear".into(),
                 message: e.to_string(),
             },
         }
@@ -140,5 +228,44 @@ impl CliError {
                 _ => 1,
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use capstan_elasticity::{ElasticityError, Material};
+    use capstan_friction::RegularisedCoulombParams;
+
+    #[test]
+    fn library_errors_name_the_api_parameter_and_cli_errors_the_scene_key() {
+        let e = Material::new(1.0, 0.7).unwrap_err();
+        assert!(matches!(
+            e,
+            ElasticityError::InvalidParameter {
+                field: "poisson",
+                ..
+            }
+        ));
+        assert!(
+            CliError::from(e)
+                .to_string()
+                .contains("`body.poisson` = 0.7")
+        );
+        let e = RegularisedCoulombParams::new(-1.0, 1e-3).unwrap_err();
+        assert!(e.to_string().contains("`mu` = -1"), "{e}");
+        let cli = CliError::from(e);
+        assert!(cli.to_string().contains("`friction.mu` = -1"), "{cli}");
+        assert_eq!(cli.exit_code(), 2);
+        // through the library API: the problem names `eps`, the CLI `friction.eps`
+        let problem = crate::Problem::paper()
+            .with_grid(21, 5)
+            .with_friction(crate::problem::Friction::coulomb(0.5, -1.0));
+        let e = problem.solve().unwrap_err();
+        assert!(e.to_string().contains("`eps`"), "{e}");
+        assert!(CliError::from(e).to_string().contains("`friction.eps`"));
+        // an elasticity name that is not a constructor's parameter is kept
+        assert_eq!(scene_key("grid.n2", false), "grid.n2");
+        assert_eq!(scene_key("mu", false), "mu");
     }
 }

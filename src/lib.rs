@@ -47,6 +47,7 @@ pub mod cli;
 #[doc(hidden)]
 pub mod commands;
 pub mod error;
+mod features;
 pub mod figures;
 pub mod output;
 pub mod problem;
@@ -54,6 +55,7 @@ pub mod progress;
 pub mod provenance;
 pub mod scale;
 pub mod scene;
+mod shard_error;
 
 pub use capstan_elasticity as elasticity;
 pub use capstan_elasticity::solvers;

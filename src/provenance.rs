@@ -2,6 +2,8 @@
 //! version and the fully resolved scene (every key, defaults filled in), so a file can be
 //! reproduced from itself (`capstan contact DIR/scene.toml`).
 
+use std::path::Path;
+
 use serde::Serialize;
 
 use crate::error::CliError;
@@ -52,4 +54,36 @@ pub fn write_scene(out: &OutputDir, scene: &Scene) -> Result<(), CliError> {
         Ok(())
     })?;
     Ok(())
+}
+
+/// Writes `NAME.json` with its provenance ([`Stamped`]) and, for a report of a scene,
+/// `scene.toml`.
+///
+/// # Errors
+/// Output errors (a non-finite number refuses the file).
+pub fn write_json_report<T: Serialize>(
+    dir: &Path,
+    name: &str,
+    report: &T,
+    scene: Option<&Scene>,
+) -> Result<(), CliError> {
+    report_dir(dir, name, report, scene).map(drop)
+}
+
+/// As [`write_json_report`]; the directory, for the report's other files.
+///
+/// # Errors
+/// Output errors (a non-finite number refuses the file).
+pub fn report_dir<T: Serialize>(
+    dir: &Path,
+    name: &str,
+    report: &T,
+    scene: Option<&Scene>,
+) -> Result<OutputDir, CliError> {
+    let out = OutputDir::create(dir)?;
+    out.write_json(&format!("{name}.json"), &Stamped::new(report, scene))?;
+    if let Some(scene) = scene {
+        write_scene(&out, scene)?;
+    }
+    Ok(out)
 }

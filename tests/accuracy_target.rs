@@ -40,6 +40,8 @@ fn threshold_to_1e_3_is_within_tolerance_of_the_hp_ladder_at_order_6() {
         (0.5..=10.0).contains(&ratio),
         "estimate / true error = {ratio:.2}"
     );
+    // bracketed from the rigid-sliding limit: r = 1, above it, just below it
+    assert_eq!(target.solves, 3);
     let accuracy = target.accuracy.unwrap();
     assert_eq!(accuracy.chosen.method, "fem-qp");
     assert_eq!(accuracy.chosen.order, Some(4));
@@ -61,4 +63,7 @@ fn a_sweep_with_a_target_solves_every_point_to_it() {
         assert_eq!(a.grid.len(), 2);
         assert!(a.slip_measure > 0.0 && a.slip_measure < a.contact_measure);
     }
+    // the text table says what the target chose for every point
+    let table = capstan::commands::sweep::table(&r);
+    assert_eq!(table.matches("chosen grid").count(), 2, "{table}");
 }

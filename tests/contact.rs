@@ -578,6 +578,49 @@ fn threshold_on_the_circle_is_the_limiting_ratio() {
 }
 
 #[test]
+fn threshold_bracketed_at_the_limit_takes_three_solves_and_matches_the_bisection() {
+    let body = ThickBody::paper(40, 9).unwrap();
+    let model = coulomb_model(&body, 0.5, EPS);
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let bisection = threshold_ratio(&solver, ThresholdSettings::default()).unwrap();
+    for tolerance in [1e-4, 1e-6, 1e-8] {
+        let settings = ThresholdSettings {
+            tolerance,
+            bracket_at_limit: true,
+            ..Default::default()
+        };
+        let t = threshold_ratio(&solver, settings).unwrap();
+        let limit = t.limiting_ratio.unwrap();
+        // r = 1, L (1 + d) (no equilibrium), L (1 + d) (1 - 0.99 tolerance) (a stick node)
+        assert_eq!(t.solves, 3, "{t:?}");
+        assert!(t.above_is_no_equilibrium && t.slip_fraction_below < 1.0);
+        assert!(t.ratio - t.below <= tolerance * t.ratio, "{t:?}");
+        assert!(
+            t.ratio > limit && t.ratio <= limit * (1.0 + tolerance.min(4e-6) / 4.0),
+            "{t:?}"
+        );
+        // the bisection from 1 (tolerance 1e-6) ends on the same limit
+        assert!(
+            (t.ratio - bisection.ratio).abs() <= 2e-6 * limit,
+            "{t:?} {bisection:?}"
+        );
+        assert!(bisection.solves > 15);
+    }
+    // without a sliding mode (an ellipse) the option changes nothing
+    let body = ellipse(2.0, 1.0, 40, 9);
+    let model = coulomb_model(&body, 0.5, EPS);
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let settings = ThresholdSettings {
+        bracket_at_limit: true,
+        ..Default::default()
+    };
+    assert_eq!(
+        threshold_ratio(&solver, settings).unwrap(),
+        threshold_ratio(&solver, ThresholdSettings::default()).unwrap()
+    );
+}
+
+#[test]
 fn threshold_on_an_ellipse_is_where_slip_reaches_one() {
     let body = ellipse(2.0, 1.0, 40, 9);
     let model = coulomb_model(&body, 0.5, EPS);
@@ -605,7 +648,7 @@ fn bad_inputs_are_typed_errors() {
         body.model(RegularisedCoulomb, coulomb(0.5, EPS), 0.0),
         Err(ContactError::Elasticity(
             ElasticityError::InvalidParameter {
-                field: "friction.eps",
+                field: "slip_threshold",
                 ..
             }
         ))

@@ -72,3 +72,49 @@ fn estimates_bracket_the_true_error_of_q2_against_a_finer_grid() {
 fn estimates_bracket_the_true_error_of_q2_against_a_much_finer_grid() {
     check(&[(241, 41), (481, 81)], (961, 161));
 }
+
+#[test]
+fn grid_sequencing_gives_the_estimate_its_coarser_level_without_a_second_solve() {
+    // full-system Newton on 201 x 101 (20,301 nodes, over the 20,000 of one level): the
+    // sequence solves 101 x 51 first, the grid of `Problem::coarser`
+    let mut scene = Scene::default();
+    scene.grid.n2 = 201;
+    scene.grid.n3 = 101;
+    scene.solver.nonlinear = "full-newton".into();
+    let problem = scene.build().unwrap();
+    let solved = problem.solve().unwrap();
+    let level = solved
+        .coarser
+        .as_ref()
+        .expect("a sequenced solve keeps its coarser level");
+    let coarse = problem.coarser().unwrap().unwrap();
+    assert_eq!(coarse.grid(), [101, 51]);
+    assert_eq!(level.model.plane().unwrap().grid().n2(), 101);
+    let probes = capstan::commands::accuracy::probes(&scene);
+    let kept = level.scalars(&probes).unwrap();
+    let again = coarse.solve().unwrap().scalars(&probes).unwrap();
+    assert_eq!(
+        kept.keys().collect::<Vec<_>>(),
+        again.keys().collect::<Vec<_>>()
+    );
+    for (name, value) in &kept {
+        // the same problem on the same grid: equal to the Newton tolerances
+        let other = again[name];
+        assert!(
+            (value - other).abs() <= 1e-7 * other.abs().max(1e-3),
+            "{name}: {value} against {other}"
+        );
+    }
+    // and the report's estimate is the difference to it
+    let report = solve_observed(&scene, &mut SilentObserver).unwrap().0;
+    let estimate = report.estimated_error.unwrap();
+    assert_eq!(estimate.coarser_grid, [101, 51]);
+    let fine = solved.scalars(&probes).unwrap();
+    for (name, e) in &estimate.quantities {
+        let expected = (fine[name] - kept[name]).abs();
+        assert!(
+            (e.unwrap() - expected).abs() <= 1e-9 * fine[name].abs().max(1e-3),
+            "{name}"
+        );
+    }
+}

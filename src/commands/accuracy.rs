@@ -18,6 +18,9 @@
 //! observed rates vary between 0.3 and 2 from level to level. A quantity that the coarser
 //! level does not have (the stick zone vanished there) has no estimate (`null`).
 //!
+//! After the full-system Newton's grid sequencing the coarser level is the one the sequence
+//! solved on the way ([`crate::problem::Solved::coarser`]), with no solve of its own.
+//!
 //! The estimate is of the discretisation error only; the solver's own tolerances (Newton
 //! `1e-10` relative residual, the threshold bisection `1e-6` relative) are far below it.
 

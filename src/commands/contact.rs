@@ -8,9 +8,9 @@ use serde::Serialize;
 
 use crate::commands::accuracy::{self, ErrorEstimate};
 use crate::error::CliError;
-use crate::figures::reports::report_dir;
 use crate::output::Table;
 use crate::progress::CliObserver;
+use crate::provenance::report_dir;
 use crate::scene::Scene;
 
 /// The contact model a scene describes (either dimension).
@@ -451,12 +451,17 @@ pub fn solve_observed(
     if scene.output.error_estimate
         && let Some(coarse) = problem.coarser()?
     {
-        let coarse_solved = coarse
-            .solve_observed(&mut accuracy::StopOnly(observer))
-            .map_err(named)?;
+        // grid sequencing solved the coarser level already: no second solve
+        let coarse_scalars = match &solved.coarser {
+            Some(level) => level.scalars(&probes)?,
+            None => coarse
+                .solve_observed(&mut accuracy::StopOnly(observer))
+                .map_err(named)?
+                .scalars(&probes)?,
+        };
         report.estimated_error = Some(ErrorEstimate::from_levels(
             &scalars,
-            &coarse_solved.scalars(&probes)?,
+            &coarse_scalars,
             coarse.grid(),
         ));
     }
@@ -688,7 +693,7 @@ fn quantities_table(r: &ContactReport) -> String {
 }
 
 /// Writes `contact.json`, `contact.csv` (contact surface), `displacement.csv` (nodes),
-/// `body.vtu` (every field on the curved body, see [`crate::figures::body::VTU_ARRAYS`]) and the
+/// `body.vtu` (every field on the curved body, see [`crate::output::body::VTU_ARRAYS`]) and the
 /// plots `body_v2`, `body_v3` (displacement colour maps) and `body_state` (stick/slip strip),
 /// each as SVG and PNG.
 ///
@@ -709,16 +714,17 @@ pub fn write_out(
         .f64("v2", sol.nodes.v2.clone())
         .f64("v3", sol.nodes.v3.clone());
     out.write_csv("displacement.csv", &nodes)?;
-    crate::figures::body::write_body(
+    crate::output::body::write_body(
         &out,
         "body",
         &sol.obstacle,
         &sol.fields,
         &sol.solution.contact,
-        crate::figures::body::BodyFiles {
+        crate::output::body::BodyFiles {
             time: None,
             plots: true,
-            output: &scene.output,
+            compression: scene.output.vtu_compression,
+            obstacle: scene.output.vtu_obstacle,
         },
     )?;
     Ok(())

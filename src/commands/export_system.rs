@@ -24,7 +24,7 @@ use crate::commands::SceneArgs;
 use crate::commands::contact;
 use crate::error::CliError;
 use crate::output::OutputDir;
-use crate::scale::{write_matrix_market_array, write_matrix_market_coordinate};
+use crate::output::{write_matrix_market_array, write_matrix_market_coordinate};
 
 /// The state the system is linearised at.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum, Serialize)]

@@ -11,8 +11,8 @@ use capstan_friction::{AnyNonsmoothLaw, AnyNonsmoothParams, FrictionError, Frict
 use serde::Serialize;
 
 use crate::error::CliError;
-use crate::figures::reports::report_dir;
 use crate::output::{LinePlot, Series, Table};
+use crate::provenance::report_dir;
 use crate::scene::Scene;
 
 /// One load state of the path.

@@ -7,8 +7,8 @@ use capstan_elasticity::contact::ContactSolution;
 use capstan_elasticity::solid::{SolidFields, SolidOutput};
 
 use crate::error::CliError;
-use crate::figures::solid_body::{solid_grid, write_solid_body};
 use crate::output::QuadGrid;
+use crate::output::solid_body::{solid_grid, write_solid_body};
 use crate::scene::Scene;
 
 /// The 3-D body's hexahedra, nodal fields and node coordinates `(x1, x2, x3)` for the
@@ -42,8 +42,8 @@ pub fn body_fields(
 }
 
 /// Writes `body.vtu`: the 3-D body's fields on its hexahedra
-/// ([`crate::figures::body::VTU_ARRAYS`] and
-/// [`crate::figures::solid_body::SOLID_EXTRA_VTU_ARRAYS`]).
+/// ([`crate::output::body::VTU_ARRAYS`] and
+/// [`crate::output::solid_body::SOLID_EXTRA_VTU_ARRAYS`]).
 ///
 /// # Errors
 /// Geometry or output errors.
@@ -61,7 +61,7 @@ pub fn write_body(
         &fields,
         &coordinates,
         &solution.contact,
-        &scene.output,
+        scene.output.vtu_compression,
     )?;
     Ok(())
 }

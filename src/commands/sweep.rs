@@ -205,16 +205,17 @@ fn point_vtu(
         };
     };
     let solved = crate::commands::contact::solved(scene, disc, sol.clone())?;
-    crate::figures::body::write_body(
+    crate::output::body::write_body(
         out,
         &point_vtu_name(index),
         &solved.obstacle,
         &solved.fields,
         &sol.contact,
-        crate::figures::body::BodyFiles {
+        crate::output::body::BodyFiles {
             time: Some(value),
             plots: false,
-            output: &scene.output,
+            compression: scene.output.vtu_compression,
+            obstacle: scene.output.vtu_obstacle,
         },
     )?;
     Ok(())
@@ -392,7 +393,7 @@ fn solid_point_vtu(
 ) -> Result<(), CliError> {
     let (grid, fields, coordinates) =
         crate::commands::solid_contact::body_fields(scene, body, sol)?;
-    let vtu = crate::figures::solid_body::solid_vtu(&grid, &fields, &coordinates, &sol.contact)
+    let vtu = crate::output::solid_body::solid_vtu(&grid, &fields, &coordinates, &sol.contact)
         .encoding(scene.output.vtu_compression.encoding())
         .time(value);
     out.write_vtu(&format!("{}.vtu", point_vtu_name(index)), &vtu)?;
@@ -497,6 +498,19 @@ pub fn table(r: &SweepReport) -> String {
         let slip = p.slip_fraction.map_or("-".into(), |x| format!("{x:.4}"));
         let newton = p.newton_iterations.map_or("-".into(), |x| x.to_string());
         s += &line([&format!("{:.6}", p.value), p.status.name(), &slip, &newton]);
+        if let Some(a) = &p.accuracy {
+            // what the accuracy target chose for the point, and the slip measure it reached
+            let e = a
+                .estimated_error
+                .get("slip_measure")
+                .copied()
+                .flatten()
+                .map_or_else(String::new, |e| format!(" +- {e:.1e}"));
+            s += &format!(
+                "{:>12} slip measure {:.6}{e} of {:.6}, chosen grid {:?}\n",
+                "", a.slip_measure, a.contact_measure, a.grid
+            );
+        }
     }
     s
 }

@@ -69,11 +69,13 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let mut problem = scene.build()?;
     let mut accuracy = None;
     let (r, implied_mu, estimated_error) = if let Some(target) = scene.accuracy.target()? {
-        // the bisection's own tolerance a tenth of the target's (at most the default 1e-6:
-        // a bracket much tighter puts solves next to the rigid-sliding limit, where the
-        // continuation needs hundreds of Newton steps)
+        // the bisection's own tolerance a tenth of the target's (at most the default 1e-6),
+        // bracketed from the rigid-sliding limit where the body has one: 3 solves a step, not
+        // the ~22 of a bisection from 1 (whose solves next to the limit spent the Newton budget
+        // on the ladder's 113,906-unknown step)
         let settings = ThresholdSettings {
             tolerance: (target.tolerance * 1e-1).min(ThresholdSettings::default().tolerance),
+            bracket_at_limit: true,
             ..Default::default()
         };
         let refined = problem.refine_to(&target, |p| {

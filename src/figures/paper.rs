@@ -398,7 +398,7 @@ fn solve_at(s: &FigureSettings, tau_max: f64) -> Result<contact::Solved, CliErro
 
 /// Section 3, tau_max = 1: the displacement field on the body.
 fn displacement(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
-    use crate::figures::body;
+    use crate::output::body;
     let solved = solve_at(s, 1.0)?;
     let grid = body::body_grid(&solved.obstacle, &solved.fields)?;
     let [v2, v3] = body::displacement_maps(&grid, &solved.fields, "tau_max = 1")?;
@@ -451,11 +451,11 @@ fn slip_stick(s: &FigureSettings, out: &OutputDir) -> Result<Output, CliError> {
     let table = Table::new()
         .f64("x2", c.x2.clone())
         .f64("slip", c.slip.clone())
-        .i32("state", crate::figures::body::contact_states(c));
+        .i32("state", crate::output::body::contact_states(c));
     out.write_csv("slip-stick.csv", &table)?;
     out.write_plot(
         "slip-stick",
-        &crate::figures::body::state_strip(c, "Stick and slip, tau_max = 1"),
+        &crate::output::body::state_strip(c, "Stick and slip, tau_max = 1"),
     )?;
     let stick = sol
         .stick_interval

@@ -3,46 +3,12 @@
 
 use std::path::Path;
 
-use serde::Serialize;
-
 use crate::commands::geometry::GeometryReport;
 use crate::commands::tension::TensionReport;
 use crate::error::CliError;
-use crate::output::{LinePlot, OutputDir, Series, Table};
-use crate::provenance::{Stamped, write_scene};
+use crate::output::{LinePlot, Series, Table};
+use crate::provenance::report_dir;
 use crate::scene::Scene;
-
-/// Writes `NAME.json` with its provenance ([`Stamped`]) and, for a report of a scene,
-/// `scene.toml`.
-///
-/// # Errors
-/// Output errors (a non-finite number refuses the file).
-pub fn write_json_report<T: Serialize>(
-    dir: &Path,
-    name: &str,
-    report: &T,
-    scene: Option<&Scene>,
-) -> Result<(), CliError> {
-    report_dir(dir, name, report, scene).map(drop)
-}
-
-/// As [`write_json_report`]; the directory, for the report's other files.
-///
-/// # Errors
-/// Output errors (a non-finite number refuses the file).
-pub fn report_dir<T: Serialize>(
-    dir: &Path,
-    name: &str,
-    report: &T,
-    scene: Option<&Scene>,
-) -> Result<OutputDir, CliError> {
-    let out = OutputDir::create(dir)?;
-    out.write_json(&format!("{name}.json"), &Stamped::new(report, scene))?;
-    if let Some(scene) = scene {
-        write_scene(&out, scene)?;
-    }
-    Ok(out)
-}
 
 /// Writes `tension.json` (stamped), `scene.toml`, `tension.csv` (`theta`, `tension`) and the profile plot
 /// `tension.{svg,png}`.

@@ -12,17 +12,21 @@
 //! -1.0/0.0/1.0); VTU files are uncompressed.
 
 mod atomic;
+pub mod body;
 mod csv;
 mod error;
 mod json;
+mod matrix_market;
 mod out_dir;
 mod quad_grid;
+pub mod solid_body;
 mod vtu;
 
 pub use atomic::{commit_deferred, defer_commits, discard_outputs_and, write_atomic};
 pub use csv::{Column, ColumnData, Table, format_f64};
 pub use error::OutputError;
 pub use json::{check_finite_json, to_json_string, write_json};
+pub use matrix_market::{write_matrix_market_array, write_matrix_market_coordinate};
 pub use out_dir::OutputDir;
 pub use vtu::{DataArray, Encoding, Pvd, QuadGrid, VTK_HEXAHEDRON, VTK_QUAD, Vtu, VtuCompression};
 mod plot;

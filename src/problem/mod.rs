@@ -37,6 +37,7 @@
 mod accuracy;
 mod builder;
 mod friction;
+pub mod nonlinear_registry;
 mod solve;
 mod solver;
 mod target;

@@ -37,6 +37,22 @@ pub enum ProblemError {
     /// The contact solve.
     #[error(transparent)]
     Contact(#[from] ContactError),
+    /// `solver.nonlinear` names no registered nonlinear method.
+    #[error(
+        "`solver.nonlinear` = `{name}` is not a registered nonlinear method; registered: {known}"
+    )]
+    UnknownNonlinearMethod {
+        /// The name asked for.
+        name: String,
+        /// The registered names, comma-separated.
+        known: String,
+    },
+    /// A nonlinear method registered under a name (or alias) that is taken.
+    #[error("a nonlinear method named `{name}` is registered already")]
+    DuplicateNonlinearMethod {
+        /// The name.
+        name: &'static str,
+    },
     /// An accuracy target's work budget ran out before every estimate met the tolerance.
     #[error(
         "accuracy target {tolerance:e} not reached: `{quantity}` still has a relative estimate of {estimate:.2e}, and the next refinement has {unknowns} unknowns, over the budget `accuracy.max_unknowns` = {max_unknowns}; raise it or loosen `accuracy.tol`"
@@ -118,6 +134,10 @@ pub struct Solved {
     /// condensation of the condensed solver; for the full-system solvers only the body's
     /// description, their assembly being part of the solve).
     pub times: [f64; 2],
+    /// After grid sequencing: the level before the finest, on [`Problem::coarser`]'s grid
+    /// (the same problem one level coarser, solved on the way), which error estimates use
+    /// instead of a solve of their own; `None` otherwise.
+    pub coarser: Option<Box<Solved>>,
 }
 
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
@@ -188,6 +208,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     grid_sequence: None,
                     choice,
                     times,
+                    coarser: None,
                 })
             }
             SolveMethod::FullNewton(_) if sequenced => {
@@ -197,16 +218,30 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
                 match solve_sequenced(&body, law, params, eps, loads, full, observer) {
-                    Ok(seq) => Ok(Solved {
-                        grid_sequence: Some(
-                            seq.levels.iter().map(|&(a, b, c)| [a, b, c]).collect(),
-                        ),
-                        model: SolvedModel::Sequenced(seq.model),
-                        solution: seq.solution,
-                        limiting: None,
-                        choice,
-                        times: [setup, t1.elapsed().as_secs_f64()],
-                    }),
+                    Ok(seq) => {
+                        let coarser = seq.coarser.map(|(model, solution)| {
+                            Box::new(Solved {
+                                model: SolvedModel::Sequenced(model),
+                                solution,
+                                limiting: None,
+                                grid_sequence: None,
+                                choice: choice.clone(),
+                                times: [0.0, 0.0],
+                                coarser: None,
+                            })
+                        });
+                        Ok(Solved {
+                            grid_sequence: Some(
+                                seq.levels.iter().map(|&(a, b, c)| [a, b, c]).collect(),
+                            ),
+                            model: SolvedModel::Sequenced(seq.model),
+                            solution: seq.solution,
+                            limiting: None,
+                            choice,
+                            times: [setup, t1.elapsed().as_secs_f64()],
+                            coarser,
+                        })
+                    }
                     Err(e @ ContactError::NotConverged { .. }) => {
                         Err(self.explain_not_converged(&self.model()?, e))
                     }
@@ -229,6 +264,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                         grid_sequence: None,
                         choice,
                         times,
+                        coarser: None,
                     }),
                     Err(e @ ContactError::NotConverged { .. }) if plane => {
                         Err(self.explain_not_converged(&model, e))

@@ -23,6 +23,14 @@ pub enum SolveMethod {
     JacobiNewton,
 }
 
+impl SolveMethod {
+    /// Whether the method condenses the contact problem onto the contact face (`newton`, and
+    /// `auto`, which condenses every bilateral body: [`Solver::resolved`]).
+    pub fn condenses(&self) -> bool {
+        matches!(self, Self::Condensed | Self::Auto)
+    }
+}
+
 /// What `auto` chose and why (`solver_choice` in the JSON report).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SolverChoice {

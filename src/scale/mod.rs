@@ -12,8 +12,7 @@
 //! merged report's `seconds` is the longest part's wall time (the only field that differs from
 //! an unsharded run's).
 
-mod error;
-mod matrix_market;
+pub mod merge_command;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 #[cfg(feature = "petsc")]
@@ -21,25 +20,8 @@ pub mod petsc;
 mod scene_hash;
 mod shard;
 
-pub use error::ShardError;
-pub use matrix_market::{write_matrix_market_array, write_matrix_market_coordinate};
+pub use crate::features::{PETSC_ENABLED, register_feature_backends};
+pub use crate::output::{write_matrix_market_array, write_matrix_market_coordinate};
+pub use crate::shard_error::ShardError;
 pub use scene_hash::{Fnv1a64, sweep_hash};
 pub use shard::{ShardFile, ShardSpec, merge, read_parts, run_shard, shard_file_name};
-
-/// Whether this build has the PETSc backend (`solver.linear = "petsc"`, cargo feature `petsc`).
-pub const PETSC_ENABLED: bool = cfg!(feature = "petsc");
-
-/// Registers the linear backends of this build's optional features in
-/// `capstan_solvers::linear_registry` (feature `petsc`: `petsc`), once per process; scene
-/// validation and [`crate::Scene::build`] call it before they parse `solver.linear`.
-pub fn register_feature_backends() {
-    #[cfg(feature = "petsc")]
-    {
-        static ONCE: std::sync::Once = std::sync::Once::new();
-        ONCE.call_once(|| {
-            // a program that registered it itself first keeps its entry
-            let _ =
-                capstan_elasticity::solvers::linear_registry::register(capstan_petsc::REGISTRATION);
-        });
-    }
-}

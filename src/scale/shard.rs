@@ -5,11 +5,11 @@ use std::str::FromStr;
 
 use serde::{Deserialize, Serialize};
 
-use super::error::ShardError;
 use super::scene_hash::sweep_hash;
 use crate::commands::sweep::{SweepPoint, SweepReport};
 use crate::error::CliError;
 use crate::scene::Scene;
+use crate::shard_error::ShardError;
 
 /// `--shard I/N`: the `I`-th (1-based) of `N` interleaved parts of a sweep.
 ///

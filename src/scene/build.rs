@@ -5,7 +5,9 @@ use capstan_elasticity::registration::DiscretisationSettings;
 
 use super::Scene;
 use crate::error::CliError;
-use crate::problem::{Body, Dimension, EndLoads, Friction, Problem, SolveMethod, Solver};
+use crate::problem::{
+    Body, Dimension, EndLoads, Friction, Problem, SolveMethod, Solver, nonlinear_registry,
+};
 
 impl Scene {
     /// The thick-body contact problem the scene describes: `obstacle.*`, `body.*`, `grid.*`,
@@ -87,8 +89,8 @@ impl Scene {
     /// `full-newton`.
     fn solve_method(&self) -> Result<SolveMethod, CliError> {
         let s = &self.solver;
-        crate::scale::register_feature_backends();
-        if s.linear == "petsc" && !crate::scale::PETSC_ENABLED {
+        crate::features::register_feature_backends();
+        if s.linear == "petsc" && !crate::features::PETSC_ENABLED {
             return Err(CliError::Scene {
                 origin: "solver.linear".into(),
                 message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
@@ -112,17 +114,9 @@ impl Scene {
                     message: e.to_string(),
                 },
             )?;
-        match s.nonlinear.as_str() {
-            "auto" => Ok(SolveMethod::Auto),
-            "newton" => Ok(SolveMethod::Condensed),
-            "full-newton" => Ok(SolveMethod::FullNewton(linear)),
-            "jacobi-newton" => Ok(SolveMethod::JacobiNewton),
-            other => Err(CliError::Scene {
-                origin: "solver.nonlinear".into(),
-                message: format!(
-                    "unknown contact solver `{other}`; expected `auto` (chosen by size), `newton` (boundary-only), `full-newton` or `jacobi-newton`"
-                ),
-            }),
-        }
+        Ok(nonlinear_registry::build(
+            &s.nonlinear,
+            &nonlinear_registry::NonlinearSettings { linear },
+        )?)
     }
 }

@@ -17,7 +17,7 @@ use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_elasticity::registration::DiscretisationSettings;
 
 use super::Scene;
-use super::load::Origins;
+use super::origins::Origins;
 
 impl Scene {
     /// Applies the defaults that follow other keys (see the module docs); `origins` says which

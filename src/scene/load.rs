@@ -1,6 +1,12 @@
 //! Reading a scene: TOML text, `--set` overrides, the known keys, where each key came from.
 
-use super::*;
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::origins::{Origins, key_lines};
+use super::{Scene, known_keys};
+use crate::error::CliError;
 
 impl Scene {
     /// Loads a scene from an optional TOML file, applies `--set KEY=VALUE` overrides and
@@ -216,46 +222,6 @@ fn insert_dotted(table: &mut toml::Table, key: &str, value: toml::Value) -> Resu
     Ok(format!("{section}.{field}"))
 }
 
-/// Every key a scene accepts, as dotted names (from the defaults, plus optional keys).
-pub fn known_keys() -> Vec<String> {
-    let table = toml::Table::try_from(Scene::default()).expect("the default scene serialises");
-    let mut keys = vec![
-        "membrane.t_max".to_string(),
-        "solver.max_sweeps".to_string(),
-        "solver.relaxation".to_string(),
-        "solver.petsc_options".to_string(),
-        "discretisation.grading".to_string(),
-        "discretisation.layers".to_string(),
-        "loads.f_t".to_string(),
-        "loads.f_n".to_string(),
-        "loads.body_force".to_string(),
-        "loads.path".to_string(),
-        "accuracy.tol".to_string(),
-    ];
-    for law in capstan_friction::registry::registry() {
-        keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
-    }
-    for law in capstan_friction::registry::nonsmooth_registry() {
-        keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
-    }
-    for obstacle in capstan_geometry::registry::registry() {
-        keys.extend(
-            obstacle
-                .parameters
-                .iter()
-                .map(|p| format!("obstacle.{}", p.key)),
-        );
-    }
-    for (section, value) in &table {
-        if let toml::Value::Table(t) = value {
-            keys.extend(t.keys().map(|k| format!("{section}.{k}")));
-        }
-    }
-    keys.sort();
-    keys.dedup();
-    keys
-}
-
 fn check_known_keys(table: &toml::Table, origins: &Origins) -> Result<(), CliError> {
     let known = known_keys();
     for (section, value) in table {
@@ -325,60 +291,4 @@ fn apply_set(table: &mut toml::Table, set: &str) -> Result<String, CliError> {
     };
     t.insert(field.to_string(), value);
     Ok(format!("{section}.{field}"))
-}
-
-/// Where each key's value came from, for error messages: a line of the scene file, `--set`,
-/// or the built-in default.
-#[derive(Debug, Clone, Default)]
-pub struct Origins {
-    /// The scene file, if any.
-    file: Option<String>,
-    /// 1-based line of each dotted key in the file.
-    lines: HashMap<String, usize>,
-    /// Dotted keys given by `--set` (they override the file).
-    set: HashSet<String>,
-    /// How those keys are named in errors (`--set` unless given).
-    label: Option<String>,
-}
-
-impl Origins {
-    /// `file:line` for a key from the file, `--set` for an override, else
-    /// `(built-in default)` (a default or a scene built in code).
-    pub fn locate(&self, key: &str) -> String {
-        if self.set.contains(key) {
-            return self.label.clone().unwrap_or_else(|| "--set".into());
-        }
-        match (&self.file, self.lines.get(key)) {
-            (Some(file), Some(line)) => format!("{file}:{line}"),
-            (Some(file), None) if !key.contains('.') => file.clone(),
-            _ => "(built-in default)".into(),
-        }
-    }
-
-    /// Whether `key` (dotted) was given: in the file or by an override.
-    pub fn given(&self, key: &str) -> bool {
-        self.set.contains(key) || self.lines.contains_key(key)
-    }
-}
-
-/// The 1-based line of every key of a TOML text, as dotted names (`section` and
-/// `section.key`); empty if the text does not parse.
-pub(super) fn key_lines(text: &str) -> HashMap<String, usize> {
-    let line_of = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
-    let mut lines = HashMap::new();
-    let Ok(doc) = toml::de::DeTable::parse(text) else {
-        return lines;
-    };
-    for (section, value) in doc.get_ref() {
-        lines.insert(section.get_ref().to_string(), line_of(section.span().start));
-        if let Some(t) = value.get_ref().as_table() {
-            for (key, _) in t {
-                lines.insert(
-                    format!("{}.{}", section.get_ref(), key.get_ref()),
-                    line_of(key.span().start),
-                );
-            }
-        }
-    }
-    lines
 }

@@ -1,6 +1,6 @@
 //! Size limits of a scene and the memory estimate of a thick-body solve.
 
-use super::*;
+use capstan_elasticity::finite_element::DiscretisationMethod;
 
 /// Largest `grid.n2` accepted before any memory estimate.
 pub const MAX_N2: usize = 10_000_000;

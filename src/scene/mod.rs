@@ -5,9 +5,7 @@
 //! `E = 1e3`, `nu = 1/4`, `eps = 1e-5`, grid 250 x 41). Keys are a public contract: they are
 //! only ever added, never renamed.
 
-use std::collections::{HashMap, HashSet};
 use std::f64::consts::FRAC_PI_2;
-use std::path::Path;
 
 use capstan_elasticity::ElasticityError;
 use capstan_elasticity::finite_element::{DiscretisationMethod, Grading, VolumetricIntegration};
@@ -680,7 +678,10 @@ impl SolverSpec {
     /// Whether the contact problem is solved condensed (`newton`, or `auto`, which condenses
     /// every body today: [`crate::problem::Solver::resolved`]).
     pub fn condenses(&self) -> bool {
-        matches!(self.nonlinear.as_str(), "newton" | "auto")
+        let settings = crate::problem::nonlinear_registry::NonlinearSettings::default();
+        crate::problem::nonlinear_registry::find(&self.nonlinear)
+            .and_then(|m| (m.build)(&settings).ok())
+            .is_some_and(|m| m.condenses())
     }
 }
 
@@ -777,15 +778,55 @@ impl DiscretisationSpec {
     }
 }
 
+/// Every key a scene accepts, as dotted names (from the defaults, plus optional keys).
+pub fn known_keys() -> Vec<String> {
+    let table = toml::Table::try_from(Scene::default()).expect("the default scene serialises");
+    let mut keys = vec![
+        "membrane.t_max".to_string(),
+        "solver.max_sweeps".to_string(),
+        "solver.relaxation".to_string(),
+        "solver.petsc_options".to_string(),
+        "discretisation.grading".to_string(),
+        "discretisation.layers".to_string(),
+        "loads.f_t".to_string(),
+        "loads.f_n".to_string(),
+        "loads.body_force".to_string(),
+        "loads.path".to_string(),
+        "accuracy.tol".to_string(),
+    ];
+    for law in capstan_friction::registry::registry() {
+        keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
+    }
+    for law in capstan_friction::registry::nonsmooth_registry() {
+        keys.extend(law.parameters.iter().map(|p| format!("friction.{p}")));
+    }
+    for obstacle in capstan_geometry::registry::registry() {
+        keys.extend(
+            obstacle
+                .parameters
+                .iter()
+                .map(|p| format!("obstacle.{}", p.key)),
+        );
+    }
+    for (section, value) in &table {
+        if let toml::Value::Table(t) = value {
+            keys.extend(t.keys().map(|k| format!("{section}.{k}")));
+        }
+    }
+    keys.sort();
+    keys.dedup();
+    keys
+}
+
 mod build;
 mod follow;
 mod load;
 mod memory;
+mod origins;
 #[cfg(test)]
 mod tests;
 mod validate;
 
-pub use load::{Origins, known_keys};
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
     MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN,
@@ -793,3 +834,4 @@ pub use memory::{
     memory_estimate, mpi_ranks, petsc_memory_estimate_per_rank, solid_fill_factor,
     solid_memory_estimate, solid_multigrid_memory_estimate,
 };
+pub use origins::Origins;

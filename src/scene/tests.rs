@@ -1,6 +1,6 @@
 //! Unit tests of scene reading and validation.
 
-use super::load::key_lines;
+use super::origins::key_lines;
 use super::*;
 
 /// The scene of the built-in defaults with `sets` (`KEY=VALUE`), which must be valid.
@@ -288,7 +288,7 @@ fn petsc_is_refused_outside_full_newton_and_without_the_feature() {
         "{e}"
     );
     let full = ["solver.linear=petsc", "solver.nonlinear=full-newton"];
-    if crate::scale::PETSC_ENABLED {
+    if crate::features::PETSC_ENABLED {
         let s = load(&[&full[..], &["solver.petsc_options=\"-ksp_type cg\""]].concat());
         assert_eq!(s.solver.petsc_options.as_deref(), Some("-ksp_type cg"));
     } else {
@@ -362,4 +362,41 @@ fn the_discretisation_follows_the_dimension_and_the_grid_follows_the_discretisat
         .with_value("body.dimension", toml::Value::Integer(3), "set")
         .unwrap();
     assert_eq!(s.discretisation.method, DiscretisationMethod::FemQ1);
+}
+
+#[test]
+fn solver_nonlinear_names_come_from_the_nonlinear_registry() {
+    use crate::problem::SolveMethod;
+    use crate::problem::nonlinear_registry::{self, RegisteredNonlinearMethod};
+    let e = Scene::default()
+        .with_raw("solver.nonlinear", "\"newtn\"", "set")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("solver.nonlinear") && e.contains("auto, newton, full-newton, jacobi-newton"),
+        "{e}"
+    );
+    // a method registered from outside is named by the scene at once
+    let _ = nonlinear_registry::register(RegisteredNonlinearMethod {
+        name: "scene-test-full-newton-gs",
+        aliases: &["scene-test-fngs"],
+        summary: "full-system Newton, each step by Gauss-Seidel",
+        parameters: &[],
+        build: |_| Ok(SolveMethod::FullNewton("gauss-seidel".parse().unwrap())),
+    });
+    for name in ["scene-test-full-newton-gs", "scene-test-fngs"] {
+        let scene = Scene::default()
+            .with_raw("solver.nonlinear", &format!("{name:?}"), "set")
+            .unwrap();
+        assert!(!scene.solver.condenses());
+        let problem = scene.build().unwrap();
+        assert_eq!(
+            problem.solver.method,
+            SolveMethod::FullNewton("gauss-seidel".parse().unwrap())
+        );
+    }
+    // the built-in names build what they always did
+    let condensed = Scene::default().build().unwrap();
+    assert_eq!(condensed.solver.method, SolveMethod::Auto);
+    assert!(Scene::default().solver.condenses());
 }

@@ -421,7 +421,7 @@ impl Scene {
                     "`petsc` only with solver.nonlinear = \"full-newton\" (PETSc solves the full-system Newton steps)",
                 ));
             }
-            if !crate::scale::PETSC_ENABLED {
+            if !crate::features::PETSC_ENABLED {
                 return Err(bad(
                     "solver.linear",
                     format!("{:?}", self.solver.linear),
@@ -442,14 +442,14 @@ impl Scene {
                 ),
             ));
         }
-        if !matches!(
-            self.solver.nonlinear.as_str(),
-            "auto" | "newton" | "full-newton" | "jacobi-newton"
-        ) {
+        if crate::problem::nonlinear_registry::find(&self.solver.nonlinear).is_none() {
             return Err(bad(
                 "solver.nonlinear",
                 format!("{:?}", self.solver.nonlinear),
-                "{\"auto\", \"newton\", \"full-newton\", \"jacobi-newton\"}",
+                &format!(
+                    "{{{}}} (the registered nonlinear methods)",
+                    crate::problem::nonlinear_registry::names()
+                ),
             ));
         }
         Ok(())

@@ -128,7 +128,7 @@ impl ContactNode {
     /// The contact node `(i, 0)` of a plane-strain discretisation `d` (the grid's `x2`, the
     /// dofs of `d`); `dirichlet` holds the prescribed value of every dof (its tangential row is
     /// free where it has none); `rows` are `[shear_stress, normal_stress]`.
-    pub(crate) fn at<D: Discretisation + ?Sized>(
+    pub fn at<D: Discretisation + ?Sized>(
         d: &D,
         i: usize,
         dirichlet: &[Option<f64>],

@@ -74,7 +74,7 @@ impl NodalFields {
     ///
     /// # Errors
     /// Geometry failures of the chart; whatever `local` returns.
-    pub(crate) fn from_nodes<G: ShellGeometry>(
+    pub fn from_nodes<G: ShellGeometry>(
         grid: Grid,
         chart: &G,
         local: impl FnMut(

@@ -155,8 +155,10 @@ impl Grid {
     }
 
     /// The gradient-recovery stencil at a node, `(node, [value, d_2, d_3])` weights, in place
-    /// of what `out` held.
-    pub(crate) fn node_stencil(&self, [i, j]: [usize; 2], out: &mut Vec<([usize; 2], [f64; 3])>) {
+    /// of what `out` held: the node itself, then second-order differences in `x2` and `x3`
+    /// (central inside, one-sided `(-3, 4, -1) / (2 h)` at a bounded end; see
+    /// [`crate::kinematics::LocalDisplacement::from_stencil`]).
+    pub fn node_stencil(&self, [i, j]: [usize; 2], out: &mut Vec<([usize; 2], [f64; 3])>) {
         out.clear();
         out.push(([i, j], [1.0, 0.0, 0.0]));
         for (ii, w) in self.d2_stencil(i) {

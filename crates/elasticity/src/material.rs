@@ -32,19 +32,19 @@ impl Material {
     /// A material with Young's modulus `young = E` and Poisson's ratio `poisson = nu`.
     ///
     /// # Errors
-    /// [`ElasticityError::InvalidParameter`] naming `body.young` unless `E` is finite and
-    /// `> 0`, or `body.poisson` unless `-1 < nu < 1/2`.
+    /// [`ElasticityError::InvalidParameter`] naming `young` unless `E` is finite and
+    /// `> 0`, or `poisson` unless `-1 < nu < 1/2` (scenes: `body.young`, `body.poisson`).
     pub fn new(young: f64, poisson: f64) -> Result<Self, ElasticityError> {
         if !(young.is_finite() && young > 0.0) {
             return Err(ElasticityError::InvalidParameter {
-                field: "body.young",
+                field: "young",
                 value: young,
                 allowed: "(0, inf)",
             });
         }
         if !(poisson > -1.0 && poisson < 0.5) {
             return Err(ElasticityError::InvalidParameter {
-                field: "body.poisson",
+                field: "poisson",
                 value: poisson,
                 allowed: "(-1, 1/2)",
             });
@@ -102,10 +102,7 @@ mod tests {
         for e in [0.0, -1.0, f64::NAN, f64::INFINITY] {
             assert!(matches!(
                 Material::new(e, 0.3),
-                Err(ElasticityError::InvalidParameter {
-                    field: "body.young",
-                    ..
-                })
+                Err(ElasticityError::InvalidParameter { field: "young", .. })
             ));
         }
         for nu in [0.5, -1.0, 0.7, f64::NAN] {
@@ -113,7 +110,7 @@ mod tests {
             assert!(matches!(
                 err,
                 ElasticityError::InvalidParameter {
-                    field: "body.poisson",
+                    field: "poisson",
                     ..
                 }
             ));

@@ -46,6 +46,37 @@ impl Default for DiscretisationSettings {
     }
 }
 
+impl DiscretisationSettings {
+    /// Checks the settings of a method with neither a volumetric rule to reduce nor element
+    /// boundaries to grade: `volumetric` must be full and `grading` uniform; the errors say
+    /// `volumetric_allowed`, `grading_allowed`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `discretisation.volumetric` or
+    /// `discretisation.grading`.
+    pub fn require_full_uniform(
+        &self,
+        volumetric_allowed: &'static str,
+        grading_allowed: &'static str,
+    ) -> Result<(), ElasticityError> {
+        if self.volumetric != VolumetricIntegration::Full {
+            return Err(ElasticityError::InvalidParameter {
+                field: "discretisation.volumetric",
+                value: f64::NAN,
+                allowed: volumetric_allowed,
+            });
+        }
+        if !self.grading.is_uniform() {
+            return Err(ElasticityError::InvalidParameter {
+                field: "discretisation.grading",
+                value: self.grading.ratio(),
+                allowed: grading_allowed,
+            });
+        }
+        Ok(())
+    }
+}
+
 /// One scene parameter of a discretisation: its key under `[discretisation]`, its default and
 /// its allowed values, as text for help and error messages.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

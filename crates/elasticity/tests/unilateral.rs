@@ -3,8 +3,8 @@
 
 use capstan_elasticity::ElasticityError;
 use capstan_elasticity::contact::{
-    Body, BoundarySolver, ContactError, ContactKind, ContactSettings, ContactSolution, EndLoads,
-    FullSystemSettings, FullSystemSolver, Gap, SEPARATED,
+    Body, BoundarySolver, ContactError, ContactErrorKind, ContactKind, ContactSettings,
+    ContactSolution, EndLoads, FullSystemSettings, FullSystemSolver, Gap, SEPARATED,
 };
 use capstan_elasticity::finite_element::DiscretisationMethod;
 use capstan_friction::{RegularisedCoulomb, RegularisedCoulombParams};
@@ -203,4 +203,93 @@ fn every_newton_iterate_reports_its_contact_set_to_the_observer() {
     assert!(separated > 0);
     // the semismooth Newton moves the active set from the closed start to the solution's
     assert!(sets.windows(2).any(|w| w[0] != w[1]), "{sets:?}");
+}
+
+/// The manufactured Signorini solution ([`SignoriniMms`]: contact on `x2 < 0.1`, lifted off
+/// beyond) converges at the element's order (FD and Q1: 2; Q2: 3, nodal values up to 4),
+/// over the whole body and away from the split; the discrete split brackets the exact one
+/// within a grid spacing.
+#[test]
+fn manufactured_signorini_converges_at_the_element_order() {
+    use capstan_elasticity::studies::SignoriniMms;
+    use capstan_elasticity::verification::{GridLevel, observed_order};
+    let mms = SignoriniMms::default();
+    // (method, expected order, finest error away from the split bound)
+    let cases = [
+        (DiscretisationMethod::Fd, 2.0, 1e-5),
+        (DiscretisationMethod::FemQ1, 2.0, 3e-6),
+        (DiscretisationMethod::FemQ2, 3.0, 3e-7),
+    ];
+    for (method, expected, bound) in cases {
+        let study: Vec<_> = [12, 24, 48]
+            .into_iter()
+            .map(|m| {
+                let level = GridLevel {
+                    n2: 2 * m + 1,
+                    n3: m + 1,
+                };
+                mms.run(method, level, 0.25).unwrap()
+            })
+            .collect();
+        let table: String = study
+            .iter()
+            .map(|p| {
+                format!(
+                    "{:?} h {:.4} max {:.3e} away {:.3e} split {:?} newton {}\n",
+                    (p.level.n2, p.level.n3),
+                    p.h,
+                    p.max_error,
+                    p.max_error_away,
+                    p.split,
+                    p.newton_iterations
+                )
+            })
+            .collect();
+        let order = |f: fn(&capstan_elasticity::studies::SignoriniPoint) -> f64| {
+            observed_order(&study.iter().map(|p| (p.h, f(p))).collect::<Vec<_>>())
+        };
+        let (whole, away) = (order(|p| p.max_error), order(|p| p.max_error_away));
+        if expected == 2.0 {
+            assert!((away - 2.0).abs() < 0.15, "{method:?} {away}\n{table}");
+            assert!((whole - 2.0).abs() < 0.15, "{method:?} {whole}\n{table}");
+        } else {
+            // nodal values of Q2 superconverge (order 4 on smooth data); the split's band
+            // keeps the observed order between 3 and 4
+            assert!((2.85..4.3).contains(&away), "{method:?} {away}\n{table}");
+            assert!((2.85..4.3).contains(&whole), "{method:?} {whole}\n{table}");
+        }
+        let finest = study.last().unwrap();
+        assert!(finest.max_error_away < bound, "{method:?}\n{table}");
+        let [last_contact, first_separated] = finest.split.unwrap();
+        assert!(
+            last_contact <= mms.split + finest.h && first_separated >= mms.split - finest.h,
+            "{method:?}\n{table}"
+        );
+        assert!(
+            first_separated - last_contact < 1.5 * finest.h,
+            "{method:?}\n{table}"
+        );
+    }
+}
+
+/// Compressed ends (`tau0 = tau_max = -1`) bow the body off the obstacle: every node
+/// separates, the free body has rigid motions, and the solver says there is no equilibrium
+/// (the kind behind exit code 3) instead of returning a solution off the obstacle; pressed
+/// on by tension the same body solves. Unbalanced compression (`-1`, `-2`) too.
+#[test]
+fn a_body_lifting_off_entirely_has_no_equilibrium() {
+    let mut b = body(DiscretisationMethod::FemQ1, 41, 9);
+    b.contact = ContactKind::unilateral();
+    let params = RegularisedCoulombParams::new(0.5, 1e-5).unwrap();
+    let model = b.model(RegularisedCoulomb, params, 1e-5).unwrap();
+    let solver = FullSystemSolver::new(&model, FullSystemSettings::default()).unwrap();
+    for (tau0, tau_max) in [(-1.0, -1.0), (-1.0, -2.0)] {
+        let err = solver.solve(EndLoads::new(tau0, tau_max)).unwrap_err();
+        assert!(
+            matches!(err, ContactError::LiftedOff { nodes: 41, .. }),
+            "({tau0}, {tau_max}): {err}"
+        );
+        assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium);
+    }
+    assert!(solver.solve(EndLoads::new(1.0, 1.5)).is_ok());
 }

@@ -12,7 +12,9 @@ pub enum FrictionError {
     /// A parameter is non-finite or outside its allowed range.
     #[error("`{field}` = {value} is outside {allowed}")]
     InvalidParameter {
-        /// The parameter's name, as in scene files (e.g. `friction.mu`).
+        /// The parameter's name: a constructor's API parameter (`mu`, `eps`); a scene-level
+        /// builder (a registry entry) names the scene key (`friction.cap`). The `capstan`
+        /// facade maps API names to scene keys (`mu` -> `friction.mu`).
         field: &'static str,
         /// The offending value.
         value: f64,
@@ -349,9 +351,9 @@ pub(crate) fn check_non_negative<F: Real>(
 /// [`check`] of `friction.eps`, a law's regularisation width: finite and `> 0`.
 ///
 /// # Errors
-/// [`FrictionError::InvalidParameter`] naming `friction.eps`.
+/// [`FrictionError::InvalidParameter`] naming `eps`.
 pub(crate) fn check_width<F: Real>(eps: F) -> Result<(), FrictionError> {
-    check("friction.eps", to_f64(eps), "(0, inf)", |v| v > 0.0).map(drop)
+    check("eps", to_f64(eps), "(0, inf)", |v| v > 0.0).map(drop)
 }
 
 /// [`GeometryError::Degenerate`] of a profile point a membrane model integrates over: `what`

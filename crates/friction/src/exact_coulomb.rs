@@ -40,9 +40,9 @@ impl<F: Real> ExactCoulombParams<F> {
     /// The coefficient of friction `mu`.
     ///
     /// # Errors
-    /// [`FrictionError::InvalidParameter`] naming `friction.mu` unless `mu` is finite and `>= 0`.
+    /// [`FrictionError::InvalidParameter`] naming `mu` unless `mu` is finite and `>= 0`.
     pub fn new(mu: F) -> Result<Self, FrictionError> {
-        check_non_negative("friction.mu", mu)?;
+        check_non_negative("mu", mu)?;
         Ok(Self { mu })
     }
     /// The coefficient of friction `mu`.
@@ -104,10 +104,7 @@ mod tests {
     fn new_rejects_negative_mu() {
         assert!(matches!(
             ExactCoulombParams::new(-0.1),
-            Err(FrictionError::InvalidParameter {
-                field: "friction.mu",
-                ..
-            })
+            Err(FrictionError::InvalidParameter { field: "mu", .. })
         ));
         assert!(ExactCoulombParams::new(f64::NAN).is_err());
     }

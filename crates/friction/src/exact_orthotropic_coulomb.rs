@@ -56,23 +56,18 @@ impl<F: Real> ExactOrthotropicCoulombParams<F> {
     /// Coefficients along the two orthotropy axes and the first axis's angle (radians).
     ///
     /// # Errors
-    /// [`FrictionError::InvalidParameter`] naming `friction.mu`, `friction.mu2` or
-    /// `friction.axis_angle`.
+    /// [`FrictionError::InvalidParameter`] naming `mu`, `mu2` or `axis_angle`
+    /// (the API parameters; scenes: `friction.mu`, ...).
     pub fn new(mu: [F; 2], axis_angle: F) -> Result<Self, FrictionError> {
-        check_non_negative("friction.mu", mu[0])?;
+        check_non_negative("mu", mu[0])?;
         let m1 = to_f64(mu[0]);
         check(
-            "friction.mu2",
+            "mu2",
             to_f64(mu[1]),
             "[0, inf), not both coefficients zero",
             |v| v >= 0.0 && (v > 0.0 || m1 > 0.0),
         )?;
-        check(
-            "friction.axis_angle",
-            to_f64(axis_angle),
-            "(-inf, inf)",
-            |_| true,
-        )?;
+        check("axis_angle", to_f64(axis_angle), "(-inf, inf)", |_| true)?;
         Ok(Self {
             mu,
             axis: [axis_angle.cos(), axis_angle.sin()],

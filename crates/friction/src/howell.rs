@@ -45,11 +45,11 @@ impl<F: Real> HowellParams<F> {
     /// Coefficient `mu'`, exponent `n` and regularisation width `eps`.
     ///
     /// # Errors
-    /// [`FrictionError::InvalidParameter`] naming `friction.mu`, `friction.exponent` or
+    /// [`FrictionError::InvalidParameter`] naming `mu`, `friction.exponent` or
     /// `friction.eps` for a value outside its range.
     pub fn new(mu: F, exponent: F, eps: F) -> Result<Self, FrictionError> {
-        check_non_negative("friction.mu", mu)?;
-        check("friction.exponent", to_f64(exponent), "(0, 2]", |v| {
+        check_non_negative("mu", mu)?;
+        check("exponent", to_f64(exponent), "(0, 2]", |v| {
             v > 0.0 && v <= 2.0
         })?;
         check_width(eps)?;

@@ -38,10 +38,10 @@ impl<F: Real> RegularisedCoulombParams<F> {
     /// Coefficient of friction `mu` and regularisation width `eps` (physical slip length).
     ///
     /// # Errors
-    /// [`FrictionError::InvalidParameter`] naming `friction.mu` unless `mu` is finite and
-    /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
+    /// [`FrictionError::InvalidParameter`] naming `mu` unless `mu` is finite and
+    /// `>= 0`, or `eps` unless `eps` is finite and `> 0`.
     pub fn new(mu: F, eps: F) -> Result<Self, FrictionError> {
-        check_non_negative("friction.mu", mu)?;
+        check_non_negative("mu", mu)?;
         check_width(eps)?;
         Ok(Self { mu, eps })
     }
@@ -94,17 +94,11 @@ mod tests {
     fn new_rejects_negative_mu_and_zero_eps() {
         assert!(matches!(
             RegularisedCoulombParams::new(-0.1, 1e-3),
-            Err(FrictionError::InvalidParameter {
-                field: "friction.mu",
-                ..
-            })
+            Err(FrictionError::InvalidParameter { field: "mu", .. })
         ));
         assert!(matches!(
             RegularisedCoulombParams::new(0.5, 0.0),
-            Err(FrictionError::InvalidParameter {
-                field: "friction.eps",
-                ..
-            })
+            Err(FrictionError::InvalidParameter { field: "eps", .. })
         ));
         assert!(RegularisedCoulombParams::new(f64::NAN, 1.0).is_err());
     }

@@ -39,10 +39,10 @@ impl<F: Real> TrescaParams<F> {
     /// Friction bound and regularisation width.
     ///
     /// # Errors
-    /// [`FrictionError::InvalidParameter`] naming `friction.bound` unless `g` is finite and
-    /// `>= 0`, or `friction.eps` unless `eps` is finite and `> 0`.
+    /// [`FrictionError::InvalidParameter`] naming `bound` unless `g` is finite and
+    /// `>= 0`, or `eps` unless `eps` is finite and `> 0`.
     pub fn new(bound: F, eps: F) -> Result<Self, FrictionError> {
-        check_non_negative("friction.bound", bound)?;
+        check_non_negative("bound", bound)?;
         check_width(eps)?;
         Ok(Self { bound, eps })
     }

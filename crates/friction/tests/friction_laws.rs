@@ -227,38 +227,35 @@ fn tresca_ignores_pressure_and_howell_has_no_traction_in_tension() {
 }
 
 #[test]
-fn parameter_errors_name_the_scene_key() {
+fn parameter_errors_name_the_api_parameter() {
     let field = |e: FrictionError| match e {
         FrictionError::InvalidParameter { field, .. } => field,
         other => panic!("{other}"),
     };
     assert_eq!(
         field(SmoothCoulombParams::new(-1.0, 1.0).unwrap_err()),
-        "friction.mu"
+        "mu"
     );
     assert_eq!(
         field(SmoothCoulombParams::new(1.0, 0.0).unwrap_err()),
-        "friction.eps"
+        "eps"
     );
-    assert_eq!(
-        field(TrescaParams::new(-0.1, 1.0).unwrap_err()),
-        "friction.bound"
-    );
+    assert_eq!(field(TrescaParams::new(-0.1, 1.0).unwrap_err()), "bound");
     assert_eq!(
         field(HowellParams::new(0.5, 0.0, 1.0).unwrap_err()),
-        "friction.exponent"
+        "exponent"
     );
     assert_eq!(
         field(HowellParams::new(0.5, f64::NAN, 1.0).unwrap_err()),
-        "friction.exponent"
+        "exponent"
     );
     assert_eq!(
         field(OrthotropicCoulombParams::new([0.0, 0.0], 0.0, 1.0).unwrap_err()),
-        "friction.mu2"
+        "mu2"
     );
     assert_eq!(
         field(OrthotropicCoulombParams::new([0.1, 0.2], f64::INFINITY, 1.0).unwrap_err()),
-        "friction.axis_angle"
+        "axis_angle"
     );
     let s = FrictionSettings {
         exponent: 3.0,
@@ -266,7 +263,7 @@ fn parameter_errors_name_the_scene_key() {
     };
     assert_eq!(
         field(AnyFrictionParams::new("howell", &s).unwrap_err()),
-        "friction.exponent"
+        "exponent" // the facade maps it to `friction.exponent`
     );
     // unused settings are not checked
     assert!(AnyFrictionParams::new("coulomb", &s).is_ok());

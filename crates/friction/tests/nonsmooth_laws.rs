@@ -244,10 +244,7 @@ fn a_zero_coefficient_makes_the_ellipse_a_segment() {
     assert_eq!(pr.d_trial, [[1.0, 0.0], [0.0, 0.0]]);
     assert!(matches!(
         ExactOrthotropicCoulombParams::new([0.0, 0.0], 0.0),
-        Err(FrictionError::InvalidParameter {
-            field: "friction.mu2",
-            ..
-        })
+        Err(FrictionError::InvalidParameter { field: "mu2", .. })
     ));
 }
 
@@ -284,10 +281,7 @@ fn nonsmooth_laws_are_named_from_scenes_and_refused_where_smooth_ones_are_needed
     };
     assert!(matches!(
         AnyNonsmoothParams::new("exact-orthotropic-coulomb", &bad),
-        Err(FrictionError::InvalidParameter {
-            field: "friction.mu",
-            ..
-        })
+        Err(FrictionError::InvalidParameter { field: "mu", .. })
     ));
     for law in registry::nonsmooth_registry() {
         for key in law.parameters {

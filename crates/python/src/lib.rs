@@ -1,6 +1,6 @@
 //! The compiled half of the Python package `capstan` (module `capstan._capstan`).
 //!
-//! Every function here is a thin call into the facade's command functions (`capstan::commands`),
+//! Every function here is a thin call into the facade's library API (`capstan::api`),
 //! so Python gets exactly what `capstan <command> --json` prints: the same scene keys, the same
 //! result keys, the same digits. The pure-Python half (`python/capstan/`) wraps the JSON and the
 //! whole-body field buffers into result objects with numpy arrays.

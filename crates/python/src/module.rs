@@ -6,7 +6,7 @@ use std::sync::{Arc, Mutex, mpsc};
 use std::time::Duration;
 
 use capstan::CliError;
-use capstan::commands;
+use capstan::api;
 use capstan::elasticity::contact::ContactErrorKind;
 use capstan::elasticity::solvers::{Observer, Progress};
 use capstan::output::to_json_string;
@@ -240,13 +240,13 @@ fn stamped<T: serde::Serialize>(report: &T, scene: &Scene) -> Result<String, Cli
 #[pyfunction]
 fn tension(py: Python<'_>, scene: &PyScene) -> PyResult<String> {
     let s = scene.scene.clone();
-    run(py, move |_| stamped(&commands::tension::report(&s)?, &s))
+    run(py, move |_| stamped(&api::tension(&s)?, &s))
 }
 
 /// `capstan infer-mu --model MODEL --json` (`capstan`, `membrane` or `kikuchi-oden`).
 #[pyfunction]
 fn infer_mu(py: Python<'_>, scene: &PyScene, model: &str) -> PyResult<String> {
-    use commands::infer_mu::FrictionModel;
+    use api::FrictionModel;
     let model = match model {
         "capstan" => FrictionModel::Capstan,
         "membrane" => FrictionModel::Membrane,
@@ -262,16 +262,14 @@ fn infer_mu(py: Python<'_>, scene: &PyScene, model: &str) -> PyResult<String> {
         }
     };
     let s = scene.scene.clone();
-    run(py, move |_| {
-        stamped(&commands::infer_mu::report_for(&s, model)?, &s)
-    })
+    run(py, move |_| stamped(&api::infer_mu(&s, model)?, &s))
 }
 
 /// `capstan threshold --json`.
 #[pyfunction]
 fn threshold(py: Python<'_>, scene: &PyScene) -> PyResult<String> {
     let s = scene.scene.clone();
-    run(py, move |_| stamped(&commands::threshold::report(&s)?, &s))
+    run(py, move |_| stamped(&api::threshold(&s)?, &s))
 }
 
 /// `capstan membrane-path --json`, with the node angles and the per-step node profiles
@@ -296,7 +294,7 @@ fn membrane_path(
             error: seen,
             stop,
         };
-        let r = commands::membrane_path::report_observed(&s, &mut observer)?;
+        let r = api::membrane_path_observed(&s, &mut observer)?;
         let names = [
             "displacement",
             "slip_increment",
@@ -328,9 +326,7 @@ fn membrane_path(
 #[pyfunction]
 fn geometry(py: Python<'_>, scene: &PyScene, x2: Vec<f64>) -> PyResult<String> {
     let s = scene.scene.clone();
-    run(py, move |_| {
-        stamped(&commands::geometry::report_at(&s, &x2)?, &s)
-    })
+    run(py, move |_| stamped(&api::geometry_at(&s, &x2)?, &s))
 }
 
 /// `capstan sweep --param PARAM --json` over `values`; with `out`, its files as `--out` writes them.
@@ -349,10 +345,10 @@ fn sweep(
             Some(dir) => Some(capstan::output::OutputDir::create(dir)?),
             None => None,
         };
-        let at = commands::sweep::SweepPoints::new(&param, &values).fields(fields.as_ref());
-        let report = commands::sweep::report_scene(&s, at)?;
+        let at = api::SweepPoints::new(&param, &values).fields(fields.as_ref());
+        let report = api::sweep(&s, at)?;
         if let Some(dir) = &out {
-            commands::sweep::write_out(dir, &report, &s)?;
+            api::write_sweep(dir, &report, &s)?;
         }
         stamped(&report, &s)
     })
@@ -457,20 +453,19 @@ fn contact<'py>(
             error: caught,
             stop,
         };
-        let (report, run) = commands::contact::solve_observed(&s, &mut observer)?;
+        let (report, run) = api::contact_observed(&s, &mut observer)?;
         if let Some(dir) = &out {
-            commands::contact::write_run(dir, &report, &run, &s)?;
+            api::write_contact(dir, &report, &run, &s)?;
         }
         let json = stamped(&report, &s)?;
         let solved = match &run {
-            commands::contact::ContactRun::Plane(solved) => solved,
-            commands::contact::ContactRun::Solid { solution, model } => {
+            api::ContactRun::Plane(solved) => solved,
+            api::ContactRun::Solid { solution, model } => {
                 let Some(body) = model.solid() else {
                     return Ok((json, Vec::new(), Vec::new()));
                 };
-                let (grid, fields, coordinates) =
-                    commands::solid_contact::body_fields(&s, body, solution)?;
-                let vtu = capstan::figures::solid_body::solid_vtu(
+                let (grid, fields, coordinates) = api::solid_fields(&s, body, solution)?;
+                let vtu = capstan::output::solid_body::solid_vtu(
                     &grid,
                     &fields,
                     &coordinates,
@@ -480,9 +475,9 @@ fn contact<'py>(
                 return Ok((json, field_bytes(grid.points(), vtu.point_arrays()), shape));
             }
         };
-        let grid = capstan::figures::body::body_grid(&solved.obstacle, &solved.fields)
+        let grid = capstan::output::body::body_grid(&solved.obstacle, &solved.fields)
             .map_err(CliError::from)?;
-        let vtu = capstan::figures::body::body_vtu(&grid, &solved.fields, &solved.solution.contact);
+        let vtu = capstan::output::body::body_vtu(&grid, &solved.fields, &solved.solution.contact);
         Ok((
             json,
             field_bytes(grid.points(), vtu.point_arrays()),

@@ -40,6 +40,19 @@ pub enum ContactError {
         /// Largest ratio friction can hold.
         upper: f64,
     },
+    /// Unilateral contact: the solution has every contact node separated from the obstacle.
+    /// The body is then free, and a free body has rigid motions: its static equilibrium under
+    /// the loads is not unique (balanced loads) or does not exist (unbalanced ones; Newton then
+    /// fails with every node separated). Either way no equilibrium on the obstacle exists.
+    #[error(
+        "no static equilibrium: the body lifts off the obstacle entirely (all {nodes} contact nodes separated) at tension ratio {ratio:.6}"
+    )]
+    LiftedOff {
+        /// `tau_max / tau0` asked for.
+        ratio: f64,
+        /// Contact nodes (every one separated).
+        nodes: usize,
+    },
     /// The nonlinear solve failed even with load continuation.
     #[error(
         "contact Newton did not converge: residual {residual:.3e} after {iterations} iterations (load factor reached {load_factor:.4})"
@@ -105,7 +118,7 @@ impl ContactError {
     /// Which kind of failure this is.
     pub fn kind(&self) -> ContactErrorKind {
         match self {
-            Self::NoEquilibrium { .. } => ContactErrorKind::NoEquilibrium,
+            Self::NoEquilibrium { .. } | Self::LiftedOff { .. } => ContactErrorKind::NoEquilibrium,
             Self::NotConverged { .. } => ContactErrorKind::NotConverged,
             Self::Interrupted { .. } | Self::Solver(SolverError::Interrupted { .. }) => {
                 ContactErrorKind::Interrupted

@@ -68,6 +68,8 @@ pub struct FullSystemProblem<'a, D, L: FrictionLaw<f64>> {
     /// The contact active set at the last residual evaluation (the accepted iterate when an
     /// observer hears of it).
     last_set: std::cell::Cell<Option<ActiveSet>>,
+    /// Exact friction's penalty start ([`FullSystemProblem::penalty_start`]).
+    penalty: Option<f64>,
 }
 
 impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
@@ -77,6 +79,21 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
             rhs: model.rhs(loads),
             model,
             last_set: std::cell::Cell::new(None),
+            penalty: None,
+        }
+    }
+
+    /// The problem for `loads` with exact friction replaced by its regularisation
+    /// `t = P_C(-(|sigma_n| / width) u)` (regularised Coulomb of width `mu width`: a linear
+    /// spring up to the friction limit, no traction in the trial), the start of the
+    /// semismooth Newton method. Its Newton converges from the stuck start with load
+    /// continuation, like every regularised law; the exact rows from the stuck start can step
+    /// into full slip at every site, where their Jacobian is singular along the rigid sliding
+    /// mode of a circular obstacle.
+    pub fn penalty_start(model: &'a ContactModel<D, L>, loads: EndLoads, width: f64) -> Self {
+        Self {
+            penalty: Some(width),
+            ..Self::new(model, loads)
         }
     }
 
@@ -94,7 +111,7 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
 impl<D, L: FrictionLaw<f64>> Residual<f64> for FullSystemProblem<'_, D, L> {
     type Error = core::convert::Infallible;
     fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.residual_into(&self.rhs, u, r);
+        self.model.residual_with(&self.rhs, u, r, self.penalty);
         self.last_set.set(Some(self.model.active_set(&self.rhs, u)));
         Ok(())
     }
@@ -105,7 +122,7 @@ impl<D, L: FrictionLaw<f64>> Jacobian<f64> for FullSystemProblem<'_, D, L> {
         &self.model.extended().pattern
     }
     fn jacobian(&self, u: &[f64], values: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.jacobian_into(&self.rhs, u, values);
+        self.model.jacobian_with(&self.rhs, u, values, self.penalty);
         Ok(())
     }
 }
@@ -247,7 +264,27 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         stats: &mut SolveStats,
         observer: &mut dyn Observer<f64>,
     ) -> Result<f64, SolverError> {
-        let problem = FullSystemProblem::new(self.model, loads);
+        if self.model.is_exact_friction() {
+            let penalty =
+                FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
+            self.newton_on(&penalty, v, stats, observer)?;
+        }
+        self.newton_on(
+            &FullSystemProblem::new(self.model, loads),
+            v,
+            stats,
+            observer,
+        )
+    }
+
+    /// Newton on `problem` from `v`.
+    fn newton_on(
+        &self,
+        problem: &FullSystemProblem<'_, D, L>,
+        v: &mut [f64],
+        stats: &mut SolveStats,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<f64, SolverError> {
         let b = problem.rhs().iter().map(|x| x * x).sum::<f64>().sqrt();
         let params = NewtonParams {
             absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
@@ -258,7 +295,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         // every Newton iterate reported with the active set it ended on
         let mut observer = WithActiveSet {
             inner: observer,
-            problem: &problem,
+            problem,
         };
         let observer: &mut dyn Observer<f64> = &mut observer;
         let result = match self.settings.method {
@@ -267,9 +304,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                     ContactError::Solver(s) => s,
                     other => SolverError::problem("jacobian", other),
                 })?;
-                Newton::with_linear_solver(params, linear)?.solve(&problem, v, observer)
+                Newton::with_linear_solver(params, linear)?.solve(problem, v, observer)
             }
-            method => method.build(params)?.solve(&problem, v, observer),
+            method => method.build(params)?.solve(problem, v, observer),
         };
         match result {
             Ok(report) => {
@@ -329,7 +366,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut v = start.to_vec();
         if start.iter().all(|x| x.is_finite()) {
             match self.newton(loads, &mut v, &mut stats, observer) {
-                Ok(_) => return Ok(ContactSolution::new(self.model, loads, v, stats)),
+                Ok(_) => {
+                    self.check_lift_off(loads, &v)?;
+                    return Ok(ContactSolution::new(self.model, loads, v, stats));
+                }
                 Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
                     return Err(e.into());
                 }
@@ -398,6 +438,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             let mut step = c.initial_load_step;
             stats.continuation_steps = 0;
             let mut last = f64::INFINITY;
+            let mut lifted_off = self.all_separated(loads, &v);
             while lambda < 1.0 && stats.continuation_steps < c.max_continuation_steps {
                 stats.continuation_steps += 1;
                 let next = (lambda + step).min(1.0);
@@ -424,6 +465,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                         return Err(e.into());
                     }
                     Err(e) => {
+                        lifted_off = self.all_separated(loads.scaled(next), &trial);
                         last = match e {
                             SolverError::Stagnated { residual, .. }
                             | SolverError::NotConverged { residual, .. }
@@ -438,6 +480,13 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
                 }
             }
             if lambda < 1.0 {
+                if lifted_off {
+                    // the last attempt ended with the body off the obstacle
+                    return Err(ContactError::LiftedOff {
+                        ratio: loads.tension_ratio(),
+                        nodes: self.model.unilateral().map_or(0, |u| u.rows.len()),
+                    });
+                }
                 return Err(ContactError::NotConverged {
                     iterations: stats.newton_iterations,
                     residual: last,
@@ -446,7 +495,28 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             }
             v = current;
         }
+        self.check_lift_off(loads, &v)?;
         Ok(ContactSolution::new(self.model, loads, v, stats))
+    }
+
+    /// Whether the model is unilateral and every contact node has separated at `v`.
+    fn all_separated(&self, loads: EndLoads, v: &[f64]) -> bool {
+        self.model.unilateral().is_some_and(|u| {
+            let rhs = self.model.rhs(loads);
+            !u.contact_set(v, &rhs).iter().any(|&c| c)
+        })
+    }
+
+    /// [`ContactError::LiftedOff`] if every contact node has separated at `v`
+    /// ([`FullSystemSolver::all_separated`]).
+    fn check_lift_off(&self, loads: EndLoads, v: &[f64]) -> Result<(), ContactError> {
+        if self.all_separated(loads, v) {
+            return Err(ContactError::LiftedOff {
+                ratio: loads.tension_ratio(),
+                nodes: self.model.unilateral().map_or(0, |u| u.rows.len()),
+            });
+        }
+        Ok(())
     }
 }
 
@@ -487,6 +557,10 @@ pub struct Sequenced<L: FrictionLaw<f64>> {
     pub solution: ContactSolution,
     /// `(n2, n3, newton iterations)` of every level, coarsest first.
     pub levels: Vec<(usize, usize, usize)>,
+    /// The level before the finest (the body's [`ThickBody::coarser`] grid): its model and
+    /// solution, a free solution one grid level coarser for error estimates; `None` with one
+    /// level.
+    pub coarser: Option<(ContactModel<PlaneOperator, L>, ContactSolution)>,
 }
 
 /// The full-system Newton on `body` with grid sequencing (nested iteration): the body on
@@ -569,12 +643,14 @@ where
                 model,
                 solution,
                 levels,
+                coarser: None,
             });
         }
     };
     observer.iteration(&level_done(0, coarsest.n2, coarsest.n3, &solution));
     levels.push((coarsest.n2, coarsest.n3, solution.stats.newton_iterations));
     let mut model = model;
+    let mut coarser = None;
     for fine in &bodies[1..] {
         let fine_model = fine.model(law.clone(), params.clone(), slip_threshold)?;
         let start = interpolate_nodal(
@@ -582,15 +658,19 @@ where
             &solution.displacement,
             fine_model.discretisation(),
         );
-        solution = FullSystemSolver::new(&fine_model, settings)?
+        let fine_solution = FullSystemSolver::new(&fine_model, settings)?
             .solve_from_observed(loads, &start, observer)?;
-        observer.iteration(&level_done(levels.len(), fine.n2, fine.n3, &solution));
-        levels.push((fine.n2, fine.n3, solution.stats.newton_iterations));
-        model = fine_model;
+        observer.iteration(&level_done(levels.len(), fine.n2, fine.n3, &fine_solution));
+        levels.push((fine.n2, fine.n3, fine_solution.stats.newton_iterations));
+        coarser = Some((
+            std::mem::replace(&mut model, fine_model),
+            std::mem::replace(&mut solution, fine_solution),
+        ));
     }
     Ok(Sequenced {
         model,
         solution,
         levels,
+        coarser,
     })
 }

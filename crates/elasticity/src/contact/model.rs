@@ -2,13 +2,15 @@
 //! law on the contact rows of any [`Discretisation`].
 
 use capstan_friction::{ContactState, FrictionLaw};
-use capstan_solvers::SparsityPattern;
 
 use crate::contact::error::ContactError;
+use crate::contact::exact_friction::{ContactRows, ExactFriction};
 use crate::contact::operator::ContactOperator;
+use crate::contact::pattern::{ExtendedPattern, Sites, extended_pattern};
 use crate::contact::unilateral::{Gap, Unilateral};
 use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
+use capstan_friction::nonsmooth_law::DynNonsmoothLaw;
 
 /// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`: the
 /// paper's load, the first two entries ([`END_LOADS`]) of a contact model's load list.
@@ -114,56 +116,6 @@ pub(crate) fn add_slip(u: &mut [f64; 2], beta: f64, frame: [f64; 2], x: f64) {
     }
 }
 
-/// The entries of the contact sites: for each site with a free tangential row, its active
-/// entries (indices into [`ContactModel::active`]); for each active entry, its site and its
-/// place in the site.
-#[derive(Debug, Clone)]
-pub(crate) struct Sites {
-    pub members: Vec<Vec<usize>>,
-    /// `(site, position in the site)` per active entry.
-    pub of_active: Vec<(usize, usize)>,
-}
-
-impl Sites {
-    /// Groups the active entries by [`ContactNode::site`] (first appearance order).
-    fn new(nodes: &[ContactNode], active: &[usize]) -> Result<Self, ContactError> {
-        let mut index = std::collections::HashMap::new();
-        let mut members: Vec<Vec<usize>> = Vec::new();
-        let mut of_active = Vec::with_capacity(active.len());
-        for (k, &a) in active.iter().enumerate() {
-            let site = *index.entry(nodes[a].site).or_insert_with(|| {
-                members.push(Vec::new());
-                members.len() - 1
-            });
-            if members[site].len() == 2 {
-                return Err(ContactError::from(ElasticityError::InvalidParameter {
-                    field: "contact entries per site",
-                    value: 3.0,
-                    allowed: "1 or 2 (one per tangential direction)",
-                }));
-            }
-            of_active.push((site, members[site].len()));
-            members[site].push(k);
-        }
-        Ok(Self { members, of_active })
-    }
-}
-
-/// The extended sparsity pattern: `A` plus every friction entry of the contact rows.
-#[derive(Debug, Clone)]
-pub(crate) struct ExtendedPattern {
-    pub pattern: SparsityPattern,
-    /// Slot in `pattern` of slot `k` of `A`.
-    pub a_slot: Vec<usize>,
-    /// Slot of `(tangential_row, tangential_dof)` per active node.
-    pub tangential_slot: Vec<usize>,
-    /// Slots of `(tangential_row, normal_stress.columns[..])` per active node.
-    pub normal_slots: Vec<Vec<usize>>,
-    /// Slot of `(tangential_row, tangential_dof of the other entry of the site)` per active
-    /// entry (`None` on a site with one entry).
-    pub partner_slot: Vec<Option<usize>>,
-}
-
 /// A frictional contact problem on a discretised thick body.
 ///
 /// # Math
@@ -204,6 +156,8 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     ext: ExtendedPattern,
     /// The Signorini rows of unilateral contact (`None`: bilateral, `v^3 = 0`).
     unilateral: Option<Unilateral>,
+    /// Exact (nonsmooth) friction in place of `law` ([`ContactModel::into_exact_friction`]).
+    exact: Option<ExactFriction>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -268,7 +222,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     ) -> Result<Self, ContactError> {
         if !(slip_threshold.is_finite() && slip_threshold > 0.0) {
             return Err(ContactError::from(ElasticityError::InvalidParameter {
-                field: "friction.eps",
+                field: "slip_threshold",
                 value: slip_threshold,
                 allowed: "(0, inf)",
             }));
@@ -335,6 +289,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             sites,
             ext,
             unilateral: None,
+            exact: None,
         })
     }
 
@@ -448,6 +403,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             sites: self.sites.clone(),
             ext: self.ext.clone(),
             unilateral: self.unilateral.clone(),
+            exact: self.exact.clone(),
         }
     }
 
@@ -455,10 +411,87 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.unilateral.as_ref()
     }
 
+    pub(crate) fn exact_friction(&self) -> Option<&ExactFriction> {
+        self.exact.as_ref()
+    }
+
+    /// The model with exact (nonsmooth) friction `law` on every contact site in place of its
+    /// pointwise law (which is then not used): `law` is a projection onto the friction set
+    /// (`exact-coulomb`: the disc `|t| <= mu |sigma_n|`; `exact-orthotropic-coulomb`: the
+    /// ellipse), [`capstan_friction::nonsmooth_law::bind_nonsmooth`] or a scene's
+    /// [`capstan_friction::AnyNonsmoothParams`].
+    ///
+    /// # Math
+    /// With `q_e(v) = (A v - b)_{row_e}` the free tangential balance row of entry `e` of a site
+    /// (weight `w_e`, frame `f_e`, `F = [f_e]`), the friction traction the row carries and the
+    /// slip are
+    /// ```text
+    /// t_e = q_e / w_e,   tau = F^{-T} t   (pseudo-inverse f / |f|^2 for one entry),   u = F x
+    /// ```
+    /// and the friction rows become (Alart–Curnier, De Saxcé)
+    /// ```text
+    /// R_e(v) = q_e(v) - w_e f_e . P_C(sigma_n)(tau(v) - r u(v))
+    /// ```
+    /// `R = 0` iff `tau = P_C(tau - r u)`: stick (`|tau| <= mu |sigma_n|`, `u = 0`) or slip on
+    /// the limit surface against the slip. `r = |A_{row_e, dof_e}| / (w_e |f_e|^2)` (mean over
+    /// the entries) makes `r u` of the size of `tau`. The generalised Jacobian is
+    /// ```text
+    /// dR_e = a_e - sum_f (w_e / w_f) (f_e^T J F^{-T}_f) a_f + w_e r sum_f (f_e^T J f_f) e_{dof_f}
+    ///        - w_e (f_e . dP/dsigma) dsigma_n
+    /// ```
+    /// (`J = dP/dtrial`): stick rows read `w r u = 0`, slip rows the balance with the limit
+    /// traction, so Newton on `R` is the semismooth Newton method. Separated sites (unilateral
+    /// contact) keep the free row (`tau = 0`).
+    ///
+    /// On a circle the bilateral body has a rigid sliding mode, and the exact solution of the
+    /// paper's body sticks at one node only (the neutral point: the regularised stick zone
+    /// shrinks onto it as `eps -> 0`, docs/models.md). An iterate in which every site slides
+    /// has a Jacobian singular along the mode, so at sliding sites `J` is blended with the
+    /// stick branch, `(1 - delta) J + delta I`, `delta = 1e-6`: the Newton step is then
+    /// inexact by `O(delta)` (the residual, and so the solution, are unchanged).
+    ///
+    /// The full-system solver starts the semismooth Newton method from the regularised
+    /// problem `t = P_C(-(|sigma_n| / s) u)` (`s` the model's slip threshold: regularised
+    /// Coulomb of width `mu s`), solved from the stuck start with the same continuation as
+    /// every regularised law ([`crate::contact::FullSystemProblem::penalty_start`]).
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `friction.law` for a site whose frames are
+    /// singular or whose tangential diagonal vanishes.
+    pub fn into_exact_friction(
+        mut self,
+        law: std::sync::Arc<dyn DynNonsmoothLaw>,
+    ) -> Result<Self, ContactError> {
+        let (exact, ext) =
+            ExactFriction::build(&self, &self.sites.members, self.active.len(), law)?;
+        self.ext = ext;
+        self.exact = Some(exact);
+        Ok(self)
+    }
+
+    /// Whether the model has exact (nonsmooth) friction ([`ContactModel::into_exact_friction`]).
+    pub fn is_exact_friction(&self) -> bool {
+        self.exact.is_some()
+    }
+
+    /// `A v - b` for the right-hand side `rhs`.
+    pub(crate) fn free_residual(&self, rhs: &[f64], v: &[f64]) -> Vec<f64> {
+        let mut r = vec![0.0; v.len()];
+        self.system.pattern.matvec(&self.system.values, v, &mut r);
+        for (ri, bi) in r.iter_mut().zip(rhs) {
+            *ri -= bi;
+        }
+        r
+    }
+
     /// The contact active set at `v`: sites that stick (`|u| < eps`), slip, and have lifted
     /// off (unilateral contact) under the loads' right-hand side `rhs`.
     pub fn active_set(&self, rhs: &[f64], v: &[f64]) -> capstan_solvers::ActiveSet {
         let separated = self.separated_sites(rhs, v);
+        if let Some(x) = &self.exact {
+            let r = self.free_residual(rhs, v);
+            return x.active_set(self, v, &r, separated.as_deref());
+        }
         let mut set = capstan_solvers::ActiveSet::default();
         for j in 0..self.sites.members.len() {
             if separated.as_ref().is_some_and(|s| s[j]) {
@@ -719,13 +752,31 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// If `v`, `rhs` or `r` have the wrong length.
     #[track_caller]
     pub fn residual_into(&self, rhs: &[f64], v: &[f64], r: &mut [f64]) {
+        self.residual_with(rhs, v, r, None);
+    }
+
+    /// [`ContactModel::residual_into`]; exact friction in its penalty start when `penalty`
+    /// is set ([`crate::contact::FullSystemProblem::penalty_start`]).
+    pub(crate) fn residual_with(
+        &self,
+        rhs: &[f64],
+        v: &[f64],
+        r: &mut [f64],
+        penalty: Option<f64>,
+    ) {
         self.system.pattern.matvec(&self.system.values, v, r);
         for (ri, bi) in r.iter_mut().zip(rhs) {
             *ri -= bi;
         }
         let contact = self.unilateral.as_ref().map(|u| u.contact_set(v, rhs));
+        if let Some(x) = &self.exact {
+            x.residual_into(self, v, self.separated_sites(rhs, v).as_deref(), r, penalty);
+        }
         for (j, members) in self.sites.members.iter().enumerate() {
-            let Some(st) = self.site_traction_in_contact(j, v, contact.as_deref()) else {
+            let Some(st) = self
+                .site_traction_in_contact(j, v, contact.as_deref())
+                .filter(|_| self.exact.is_none())
+            else {
                 continue;
             };
             for (e, &k) in members.iter().enumerate() {
@@ -782,7 +833,15 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// # Panics
     /// If `v` or `values` have the wrong length.
     #[track_caller]
-    pub(crate) fn jacobian_into(&self, rhs: &[f64], v: &[f64], values: &mut [f64]) {
+    /// Exact friction in its penalty start when `penalty` is set (see
+    /// [`ContactModel::residual_with`]).
+    pub(crate) fn jacobian_with(
+        &self,
+        rhs: &[f64],
+        v: &[f64],
+        values: &mut [f64],
+        penalty: Option<f64>,
+    ) {
         values.iter_mut().for_each(|x| *x = 0.0);
         for (k, &a) in self.system.values.iter().enumerate() {
             values[self.ext.a_slot[k]] += a;
@@ -790,6 +849,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         let contact = self.unilateral.as_ref().map(|u| u.contact_set(v, rhs));
         if let Some(u) = &self.unilateral {
             u.jacobian_into(v, rhs, &self.ext.a_slot, values);
+        }
+        if let Some(x) = &self.exact {
+            let r = self.free_residual(rhs, v);
+            let separated = self.separated_sites(rhs, v);
+            x.jacobian_into(self, v, &r, separated.as_deref(), values, penalty);
+            return;
         }
         for (j, members) in self.sites.members.iter().enumerate() {
             let Some(st) = self.site_traction_in_contact(j, v, contact.as_deref()) else {
@@ -815,52 +880,14 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     }
 }
 
-fn extended_pattern(
-    a: &SparsityPattern,
-    nodes: &[ContactNode],
-    active: &[usize],
-    sites: &Sites,
-) -> Result<ExtendedPattern, ContactError> {
-    let mut entries: Vec<(usize, usize)> = a.entries().collect();
-    let na = entries.len();
-    let mut marks = Vec::with_capacity(active.len());
-    for &k in active {
-        let node = &nodes[k];
-        let row = node.tangential_row.expect("active");
-        marks.push(entries.len());
-        entries.push((row, node.tangential_dof));
-        entries.extend(node.normal_stress.columns.iter().map(|&c| (row, c)));
+impl<D, L: FrictionLaw<f64>> ContactRows for ContactModel<D, L> {
+    fn node(&self, k: usize) -> &ContactNode {
+        self.active_node(k)
     }
-    let mut partner_marks = Vec::with_capacity(active.len());
-    for (k, &(site, e)) in sites.of_active.iter().enumerate() {
-        let members = &sites.members[site];
-        if members.len() == 2 {
-            let row = nodes[active[k]].tangential_row.expect("active");
-            partner_marks.push(Some(entries.len()));
-            entries.push((row, nodes[active[members[1 - e]]].tangential_dof));
-        } else {
-            partner_marks.push(None);
-        }
+    fn bulk(&self) -> &LinearSystem {
+        &self.system
     }
-    let n = a.nrows();
-    let (pattern, slots) =
-        SparsityPattern::from_entries(n, n, &entries).map_err(crate::ElasticityError::from)?;
-    let a_slot = slots[..na].to_vec();
-    let tangential_slot = marks.iter().map(|&m| slots[m]).collect();
-    let normal_slots = active
-        .iter()
-        .zip(&marks)
-        .map(|(&k, &m)| slots[m + 1..m + 1 + nodes[k].normal_stress.columns.len()].to_vec())
-        .collect();
-    let partner_slot = partner_marks
-        .into_iter()
-        .map(|m| m.map(|m| slots[m]))
-        .collect();
-    Ok(ExtendedPattern {
-        pattern,
-        a_slot,
-        tangential_slot,
-        normal_slots,
-        partner_slot,
-    })
+    fn pattern(&self) -> &ExtendedPattern {
+        &self.ext
+    }
 }

@@ -1,9 +1,12 @@
-//! The 3-D body's contact model: [`SolidBody::model`] (here, in the contact room, so that the
+//! The 3-D body's contact model: [`SolidBody::model`] and its operator with a body force
+//! ([`SolidBody::operator_with_force`]), here in the contact room so that the
 //! 3-D operator's room `solid` does not import the contact room that builds on it).
 
 use capstan_friction::FrictionLaw;
 use capstan_geometry::{ShellChart, Surface};
 
+use crate::ElasticityError;
+use crate::contact::body_force::BodyForceField;
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
 use crate::solid::{SolidBody, SolidNavier};
@@ -24,6 +27,33 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
             law,
             params,
             slip_threshold,
+        )
+    }
+}
+
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
+    /// [`SolidBody::operator`] with the body force `force` (physical components, converted
+    /// to the covariant ones on the body's chart).
+    ///
+    /// # Errors
+    /// As [`SolidBody::operator`]; [`ElasticityError::NonFinite`] where the force is not
+    /// finite.
+    pub fn operator_with_force(
+        &self,
+        tau0: f64,
+        tau_max: f64,
+        force: Option<&BodyForceField>,
+    ) -> Result<SolidNavier<ShellChart<S>>, ElasticityError> {
+        let chart = ShellChart::new(self.surface.clone());
+        let covariant = force.map(|f| f.solid(chart.clone()));
+        SolidNavier::new(
+            chart,
+            self.material,
+            self.grid()?,
+            &self.boundary(tau0, tau_max),
+            covariant.as_ref(),
+            self.order,
+            self.volumetric,
         )
     }
 }

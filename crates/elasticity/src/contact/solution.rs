@@ -176,6 +176,11 @@ impl ContactSolution {
             .separated_nodes(&rhs, &v)
             .map(|rows| rows.into_iter().collect());
         let mut separated = separated_dof.as_ref().map(|_| Vec::with_capacity(n));
+        // exact friction: the state and traction of the projection, by site
+        let exact = model.exact_friction().map(|x| {
+            let r = model.free_residual(&rhs, &v);
+            x.profile(model, &v, &r, model.separated_sites(&rhs, &v).as_deref())
+        });
         for entries in &sites {
             let lifted = separated_dof
                 .as_ref()
@@ -241,6 +246,13 @@ impl ContactSolution {
                 sp.slip_1.push(st.slip[0]);
                 sp.friction_traction_1.push(st.traction[0]);
             }
+            if let Some(&(state, traction)) = exact.as_ref().and_then(|m| m.get(&first.site)) {
+                *p.state.last_mut().expect("pushed above") = state;
+                *p.friction_traction.last_mut().expect("pushed above") = traction[1];
+                if let Some(sp) = p.solid.as_mut() {
+                    *sp.friction_traction_1.last_mut().expect("pushed above") = traction[0];
+                }
+            }
         }
         p.separated = separated;
         // the paper's Slip over the nodes in contact
@@ -263,7 +275,9 @@ impl ContactSolution {
         };
         let pick = |f: &[f64]| line.iter().map(|&k| f[k]).collect::<Vec<f64>>();
         let states: Vec<i8> = line.iter().map(|&k| p.state[k]).collect();
-        let intervals = state_intervals(&pick(&p.x2), &pick(&p.slip), &states, eps);
+        // exact friction: stick is zero slip, so a run ends at its last sticking node
+        let level = if model.is_exact_friction() { 0.0 } else { eps };
+        let intervals = state_intervals(&pick(&p.x2), &pick(&p.slip), &states, level);
         let stick_interval = intervals
             .iter()
             .filter(|i| i.state == 0)

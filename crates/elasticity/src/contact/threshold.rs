@@ -16,6 +16,13 @@ pub struct ThresholdSettings {
     pub tolerance: f64,
     /// Give up bracketing past this ratio.
     pub max_ratio: f64,
+    /// Bracket from the sliding mode's limiting ratio `L` when the body has one: probe
+    /// `L (1 + d)` (no equilibrium) and `L (1 + d) (1 - tolerance)` (`d = min(1e-6,
+    /// tolerance / 4)`) first, so that two solves end the search when the whole contact slides
+    /// only at the limit (the circle: stick nodes persist up to `L`); the bisection from `1`
+    /// runs only if the lower probe fully slips or fails. Default `false` (the bisection from
+    /// `1`, whose midpoints the default reports keep).
+    pub bracket_at_limit: bool,
 }
 
 impl Default for ThresholdSettings {
@@ -23,6 +30,7 @@ impl Default for ThresholdSettings {
         Self {
             tolerance: 1e-6,
             max_ratio: 1e4,
+            bracket_at_limit: false,
         }
     }
 }
@@ -82,6 +90,15 @@ pub fn solve_below_threshold<D: ContactOperator, L: FrictionLaw<f64>>(
 /// # Errors
 /// [`ContactError::NotConverged`] if a solve fails for another reason or no bracket is found
 /// below `settings.max_ratio`.
+///
+/// # Math
+/// Bisection on `r = tau_max / tau0` keeping `[lo, hi]` with a stick node at `lo` and whole
+/// sliding (or no static solution) at `hi`, until `hi - lo <= tolerance * hi`. With a rigid
+/// sliding mode (the circle) no static solution exists past its limiting ratio `L`
+/// ([`BoundarySolver::sliding`]), so `hi` starts at `L (1 + d)`; with
+/// `settings.bracket_at_limit` the first probe below is `L (1 + d) (1 - 0.99 tolerance)`, and
+/// when it keeps a stick node the bracket is done after 3 solves (`r = 1`, above, below)
+/// instead of the `log2(L / tolerance)` of the bisection from `1`.
 pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
     solver: &BoundarySolver<'_, D, L>,
     settings: ThresholdSettings,
@@ -119,10 +136,29 @@ pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
             });
         }
     };
-    let mut hi = limiting_ratio.map_or(2.0, |r| r.max(1.0) * (1.0 + 1e-6));
-    loop {
+    let offset = if settings.bracket_at_limit {
+        (0.25 * settings.tolerance).min(1e-6)
+    } else {
+        1e-6
+    };
+    let mut hi = limiting_ratio.map_or(2.0, |r| r.max(1.0) * (1.0 + offset));
+    // whether `hi` is known to be at or above the threshold
+    let mut hi_above = false;
+    if settings.bracket_at_limit && limiting_ratio.is_some() && probe(hi, &mut warm)?.is_none() {
+        hi_above = true;
+        // the bracket [hi (1 - tolerance), hi] at once when a stick node holds up to there
+        let below = (hi * (1.0 - 0.99 * settings.tolerance)).max(lo);
+        match probe(below, &mut warm)? {
+            Some((s, _)) => {
+                lo = below;
+                slip_lo = s;
+            }
+            None => hi = below,
+        }
+    }
+    while !hi_above {
         match probe(hi, &mut warm)? {
-            None => break,
+            None => hi_above = true,
             Some((s, _)) => {
                 lo = hi;
                 slip_lo = s;

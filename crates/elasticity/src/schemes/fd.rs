@@ -2,7 +2,6 @@
 
 use crate::error::ElasticityError;
 use crate::finite_difference::FiniteDifferenceNavier;
-use crate::finite_element::VolumetricIntegration;
 use crate::plane_problem::PlaneProblem;
 use crate::registration::{DiscretisationScheme, PlaneOperator, RegisteredDiscretisation};
 use crate::shell_geometry::SharedChart;
@@ -28,20 +27,10 @@ pub(crate) const REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisati
     summary: "second-order finite differences (vertex-centred finite volumes), plane strain only",
     parameters: &[],
     build: |s| {
-        if s.volumetric != VolumetricIntegration::Full {
-            return Err(ElasticityError::InvalidParameter {
-                field: "discretisation.volumetric",
-                value: f64::NAN,
-                allowed: "full with finite differences (reduced needs fem-q1 or fem-q2)",
-            });
-        }
-        if !s.grading.is_uniform() {
-            return Err(ElasticityError::InvalidParameter {
-                field: "discretisation.grading",
-                value: s.grading.ratio(),
-                allowed: "1 (uniform) unless discretisation.method = fem-qp",
-            });
-        }
+        s.require_full_uniform(
+            "full with finite differences (reduced needs fem-q1 or fem-q2)",
+            "1 (uniform) unless discretisation.method = fem-qp",
+        )?;
         Ok(std::sync::Arc::new(FiniteDifferences))
     },
 };

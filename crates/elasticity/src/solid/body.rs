@@ -171,30 +171,3 @@ impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
         )
     }
 }
-
-impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
-    /// [`SolidBody::operator`] with the body force `force` (physical components, converted
-    /// to the covariant ones on the body's chart).
-    ///
-    /// # Errors
-    /// As [`SolidBody::operator`]; [`ElasticityError::NonFinite`] where the force is not
-    /// finite.
-    pub fn operator_with_force(
-        &self,
-        tau0: f64,
-        tau_max: f64,
-        force: Option<&crate::contact::BodyForceField>,
-    ) -> Result<SolidNavier<ShellChart<S>>, ElasticityError> {
-        let chart = ShellChart::new(self.surface.clone());
-        let covariant = force.map(|f| f.solid(chart.clone()));
-        SolidNavier::new(
-            chart,
-            self.material,
-            self.grid()?,
-            &self.boundary(tau0, tau_max),
-            covariant.as_ref(),
-            self.order,
-            self.volumetric,
-        )
-    }
-}

@@ -10,11 +10,13 @@ mod fem;
 pub(crate) mod high_order;
 mod parts;
 pub mod samples;
+pub mod signorini;
 pub mod solid;
 
 pub use fem::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use high_order::{HighOrderStudy, high_order_studies};
 pub use parts::{ProblemParts, SampleChart};
+pub use signorini::{SignoriniMms, SignoriniPoint};
 
 use crate::finite_element::ElementOrder;
 use crate::verification::Study;

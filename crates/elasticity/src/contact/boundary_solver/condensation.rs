@@ -9,8 +9,9 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 use crate::contact::error::ContactError;
-use crate::contact::model::{ContactModel, ExtendedPattern};
+use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
+use crate::contact::pattern::ExtendedPattern;
 
 /// Power iterations of [`largest_singular_value`].
 pub(super) const SINGULAR_VALUE_ITERATIONS: usize = 30;

@@ -9,7 +9,7 @@ use capstan_elasticity::contact::ContactProfile;
 use capstan_elasticity::solid::SolidFields;
 use capstan_geometry::{Obstacle, ShellChart};
 
-use crate::output::{ColourMap, OutputDir, OutputError, QuadGrid, StateStrip, Vtu};
+use crate::output::{ColourMap, OutputDir, OutputError, QuadGrid, StateStrip, Vtu, VtuCompression};
 
 /// Names of the VTU point arrays written by [`body_vtu`], with their component counts
 /// (a public contract, documented in `docs/guide.md`).
@@ -228,18 +228,20 @@ pub fn state_strip(contact: &ContactProfile, title: &str) -> StateStrip {
 
 /// What [`write_body`] writes besides the VTU's fields.
 #[derive(Debug, Clone, Copy)]
-pub struct BodyFiles<'a> {
+pub struct BodyFiles {
     /// The VTU's `TimeValue` (a sweep's value).
     pub time: Option<f64>,
     /// Also the plots `STEM_v2`, `STEM_v3`, `STEM_state`.
     pub plots: bool,
-    /// `[output]` of the scene: compression, the obstacle piece.
-    pub output: &'a crate::scene::OutputSpec,
+    /// How the VTU's arrays are encoded (`output.vtu_compression` of a scene).
+    pub compression: VtuCompression,
+    /// Also the obstacle as a second piece ([`obstacle_grid`]; `output.vtu_obstacle`).
+    pub obstacle: bool,
 }
 
 /// Writes `STEM.vtu`, `STEM_v2.{svg,png}`, `STEM_v3.{svg,png}` and `STEM_state.{svg,png}`
-/// into `out` (each atomically); `options.time` becomes the VTU's `TimeValue`; `options.output` chooses zlib
-/// compression and the obstacle as a second piece ([`obstacle_grid`]).
+/// into `out` (each atomically); `options.time` becomes the VTU's `TimeValue`; `options.compression` chooses
+/// zlib compression, `options.obstacle` the obstacle as a second piece ([`obstacle_grid`]).
 ///
 /// # Errors
 /// Geometry or output errors.
@@ -249,20 +251,21 @@ pub fn write_body(
     obstacle: &Obstacle,
     fields: &NodalFields,
     contact: &ContactProfile,
-    options: BodyFiles<'_>,
+    options: BodyFiles,
 ) -> Result<(), OutputError> {
     let BodyFiles {
         time,
         plots,
-        output,
+        compression,
+        obstacle: with_obstacle,
     } = options;
     let grid = body_grid(obstacle, fields)?;
-    let ribbon = if output.vtu_obstacle {
+    let ribbon = if with_obstacle {
         Some(obstacle_grid(obstacle, fields)?)
     } else {
         None
     };
-    let mut vtu = body_vtu(&grid, fields, contact).encoding(output.vtu_compression.encoding());
+    let mut vtu = body_vtu(&grid, fields, contact).encoding(compression.encoding());
     if let Some(r) = &ribbon {
         vtu = vtu.second_piece(r);
     }

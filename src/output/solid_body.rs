@@ -6,7 +6,7 @@ use capstan_elasticity::solid::SolidFields;
 use capstan_geometry::{Obstacle, ShellChart};
 
 use super::body::body_arrays_vtu;
-use crate::output::{OutputDir, OutputError, QuadGrid, Vtu};
+use crate::output::{OutputDir, OutputError, QuadGrid, Vtu, VtuCompression};
 
 /// The VTU point arrays a 3-D body has beyond those of the plane-strain body
 /// ([`super::body::VTU_ARRAYS`], with `v^1` now non-zero), with their component counts (a
@@ -33,7 +33,7 @@ pub fn solid_grid(
 
 /// Writes `STEM.vtu`: [`super::body::VTU_ARRAYS`] and [`SOLID_EXTRA_VTU_ARRAYS`] on `grid` (`n3` nodes through the thickness;
 /// `coordinates[k] = (x1, x2, x3)` of node `k`), the contact state and physical slips of the
-/// contact node below each node, compressed as `output` says.
+/// contact node below each node, compressed as `compression` says.
 ///
 /// # Errors
 /// Output errors.
@@ -44,10 +44,9 @@ pub fn write_solid_body(
     fields: &SolidFields,
     coordinates: &[[f64; 3]],
     contact: &ContactProfile,
-    output: &crate::scene::OutputSpec,
+    compression: VtuCompression,
 ) -> Result<(), OutputError> {
-    let vtu =
-        solid_vtu(grid, fields, coordinates, contact).encoding(output.vtu_compression.encoding());
+    let vtu = solid_vtu(grid, fields, coordinates, contact).encoding(compression.encoding());
     out.write_vtu(&format!("{stem}.vtu"), &vtu)?;
     Ok(())
 }
