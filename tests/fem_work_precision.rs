@@ -197,3 +197,112 @@ fn ngsolve_peer_script_smoke_when_ngsolve_is_installed() {
         e[1]
     );
 }
+
+#[test]
+fn ngsolve_mms_peer_converges_at_order_p_plus_one_when_ngsolve_is_installed() {
+    let (Some(python), Some(_)) = (
+        common::venv_python_with("ngsolve"),
+        common::venv_python_with("sympy"),
+    ) else {
+        eprintln!("skipped: the NGSolve mms peer test (.venv/bin/pip install ngsolve sympy)");
+        return;
+    };
+    let lines = peer_lines(
+        &python,
+        &[
+            "bench/peers/ngsolve_mms.py",
+            "--order",
+            "2",
+            "--levels",
+            "2,4,8",
+            "--repeat-min",
+            "1",
+            "--repeat-max",
+            "1",
+        ],
+    );
+    assert_eq!(lines.len(), 3);
+    assert_eq!(lines[0]["method"], "ngsolve-p2");
+    let e: Vec<f64> = lines.iter().map(|l| l["error"].as_f64().unwrap()).collect();
+    // p = 2 against the exact manufactured solution: order 3 in L2 (the curved geometry is
+    // exact to order 2 too), so halving maxh divides the error by about 8 (netgen's meshes are
+    // not nested: at least 6); a wrong load or geometry would stall the error instead
+    let orders: Vec<f64> = e.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+    assert!(orders.iter().all(|&k| k > 2.6), "{e:?} {orders:?}");
+    assert!(e[2] < 1e-4, "{e:?}");
+}
+
+#[test]
+fn ngsolve_paper_peer_points_match_capstan_graded_solution_when_ngsolve_is_installed() {
+    use capstan::commands::bench::{Rectangle, points_error_of};
+    use capstan_elasticity::Discretisation;
+    use capstan_elasticity::finite_element::{Grading, QpSettings};
+    use capstan_elasticity::samples::PaperEllipse;
+    use capstan_elasticity::solvers::SparseCholesky;
+    use capstan_elasticity::studies::paper_parts;
+    use capstan_elasticity::verification::GridLevel;
+
+    let Some(python) = common::venv_python_with("ngsolve") else {
+        eprintln!("skipped: the NGSolve paper peer test (.venv/bin/pip install ngsolve)");
+        return;
+    };
+    let dir = std::env::temp_dir().join(format!("capstan-paper-points-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let lines = peer_lines(
+        &python,
+        &[
+            "bench/peers/ngsolve_paper.py",
+            "--order",
+            "4",
+            "--levels",
+            "1,4",
+            "--repeat-min",
+            "1",
+            "--repeat-max",
+            "1",
+            "--error-points",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(lines.len(), 2);
+    assert!(lines[0]["error"].is_null());
+    // capstan's graded p = 4 solve, 4 layers per end, as the reference
+    let (p, n) = (4, 4);
+    let level = GridLevel {
+        n2: (2 * n + 6) * p + 1,
+        n3: (2 * n + 1) * p + 1,
+    };
+    let parts = paper_parts(&PaperEllipse::default(), level).unwrap();
+    let rect = Rectangle {
+        theta: parts.grid.theta(),
+        thickness: parts.grid.thickness(),
+    };
+    let chart = parts.chart.clone();
+    let op = parts
+        .high_order_with(QpSettings {
+            grading: Grading::geometric(0.4, n).unwrap(),
+            ..QpSettings::order(p)
+        })
+        .unwrap();
+    let v = op.solve(&mut SparseCholesky::default()).unwrap();
+    let reference = |x: [f64; 2]| op.displacement_at(&v, x);
+    let mut errors = vec![];
+    for line in &lines {
+        let file = Path::new(line["error_points"].as_str().unwrap());
+        let bytes = std::fs::read(file).unwrap();
+        // the weights add up to the area of the half annulus 2 <= r <= 3 (the curved mesh's
+        // geometry error is far below 1e-6)
+        let w: f64 = bytes
+            .chunks_exact(40)
+            .map(|r| f64::from_le_bytes(r[16..24].try_into().unwrap()))
+            .sum();
+        let area = 2.5 * std::f64::consts::PI;
+        assert!((w / area - 1.0).abs() < 1e-6, "{w} vs {area}");
+        errors.push(points_error_of(&bytes, &chart, rect, &reference).unwrap());
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    // two discretisations of the same problem (clamped face, tensions 1 and 2 pulling along
+    // -y at the ends): they agree to a few 1e-4 and more so with more corner layers; a sign
+    // or a side mixed up would give an O(1) difference
+    assert!(errors[1] < errors[0] && errors[1] < 3e-3, "{errors:?}");
+}

@@ -1,5 +1,6 @@
 """What the peer scripts of `capstan bench work-precision` share: the Lamé problem's
-command-line arguments, capstan's repeat rule, and the peak-memory probe (/proc/self)."""
+command-line arguments, capstan's repeat rule, plane-strain Lamé parameters, and the
+peak-memory probe (/proc/self)."""
 
 
 def vm_kib(field):
@@ -33,6 +34,12 @@ def add_lame_args(ap):
     ap.add_argument("--young", type=float, default=10.0)
     ap.add_argument("--poisson", type=float, default=0.3)
     ap.add_argument("--pressure", type=float, default=1.0)
+    add_repeat_args(ap)
+
+
+def add_repeat_args(ap):
+    """The repeat rule of capstan's runs: every level at least --repeat-min times, then until
+    --repeat-budget seconds of run time or --repeat-max runs."""
     ap.add_argument("--repeat-min", type=int, default=2)
     ap.add_argument("--repeat-max", type=int, default=5)
     ap.add_argument("--repeat-budget", type=float, default=1.0)
@@ -49,3 +56,11 @@ def fastest(a, once, seconds):
         if best is None or seconds(r) < seconds(best):
             best = r
     return best, runs
+
+
+def lame_parameters(young, poisson):
+    """(lambda, mu) of plane strain (as scikit-fem's `lame_parameters`)."""
+    return (
+        young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson)),
+        young / (2.0 * (1.0 + poisson)),
+    )

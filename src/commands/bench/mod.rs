@@ -1,7 +1,8 @@
 //! `capstan bench work-precision`: run time against error for the finite differences, the
 //! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp8`, `bench/high_order.rs`)
-//! with each applicable linear backend, on three problems, beside peer FEM libraries (scikit-fem,
-//! NGSolve: [`PEERS`]) on the Lamé cylinder.
+//! with each applicable linear backend, on three problems, beside peer FEM libraries (scikit-fem
+//! on the Lamé cylinder, NGSolve on all three: [`PEERS`]; on `paper` the peer's error is
+//! measured by capstan against its reference at the peer's quadrature points, `peer_error`).
 //!
 //! # Problems
 //! - `lame`: the Lamé thick cylinder (exact), full wrap, `n2 = 4m`, `n3 = m + 1`;
@@ -32,11 +33,13 @@
 //! the fastest capstan series per thread count against the fastest peer at each target.
 
 mod high_order;
+mod peer_error;
 mod peers;
 mod run;
 mod targets;
 
-pub use peers::{PEERS, Peer, PeerOrder, PeerStatus};
+pub use peer_error::{Rectangle, points_error, points_error_of};
+pub use peers::{PEERS, Peer, PeerOrder, PeerProblem, PeerSelection, PeerStatus};
 pub use run::{REPEAT_RULE, RepeatRule, Run, SeriesKey};
 pub use targets::{Headline, SeriesTimes, TARGETS, time_to_error};
 
@@ -235,9 +238,9 @@ fn status_kib(field: &str) -> Option<f64> {
         .and_then(|v| v.parse().ok())
 }
 
-/// What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
-/// the paper's graded reference).
-type Reference<'a> = &'a (dyn Fn([f64; 2]) -> [f64; 2] + Sync);
+// What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
+// the paper's graded reference), `peer_error::Reference`.
+use peer_error::Reference;
 
 /// Relative nodal L2 error (trapezoid, `sqrt(g)` weights) of `v` on `op`'s grid.
 fn nodal_error(
@@ -487,11 +490,35 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
     } else {
         let keep_order =
             |o: usize| args.peer_orders.is_empty() || args.peer_orders.contains(&(o as u64));
+        let keep_problem = |name: &str| {
+            PROBLEMS
+                .iter()
+                .any(|p| p.name() == name && args.selects_problem(*p))
+        };
+        let points_error = |name: &str, file: &std::path::Path| -> Result<f64, String> {
+            let (problem, reference) = PROBLEMS
+                .into_iter()
+                .zip(&references)
+                .find(|(p, _)| p.name() == name)
+                .ok_or_else(|| format!("peer points: no problem `{name}`"))?;
+            let parts = problem.parts(4).map_err(|e| e.to_string())?;
+            let rect = Rectangle {
+                theta: parts.grid.theta(),
+                thickness: parts.grid.thickness(),
+            };
+            points_error(file, &parts.chart, rect, *reference)
+        };
+        let selection = PeerSelection {
+            quick: args.quick,
+            keep_order: &keep_order,
+            keep_problem: &keep_problem,
+            points_error: &points_error,
+        };
         for peer in PEERS
             .iter()
             .filter(|p| WorkPrecisionArgs::selects(&args.peers, p.name))
         {
-            let (r, status) = peers::run_peer(peer, args.quick, &keep_order);
+            let (r, status) = peers::run_peer(peer, &selection);
             if status.status != "ran" {
                 eprintln!("work-precision: peer {}: {}", peer.name, status.status);
             }
@@ -659,7 +686,7 @@ fn best_backends(runs: &[Run], problem: &str) -> Vec<SeriesKey> {
     best
 }
 
-/// The CSV and the log-log plots: one per problem with every series, and for `lame` one with
+/// The CSV and the log-log plots: one per problem with every series, and one per problem with
 /// the best backend of each method, capstan's and the peers'.
 fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError> {
     let mut files = vec![];
@@ -697,9 +724,19 @@ fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf>, CliError
             false,
         ),
         (
+            "mms",
+            "Manufactured solution, ellipse b/a = 2: capstan and NGSolve, best backend per method",
+            true,
+        ),
+        (
             "paper",
             "Paper's linear stand-in (graded fem-qp10 reference): relative L2 error vs time",
             false,
+        ),
+        (
+            "paper",
+            "Paper's linear stand-in: capstan and NGSolve (RefineHP at the corners), best backend per method",
+            true,
         ),
     ];
     for (problem, title, best) in plots {
