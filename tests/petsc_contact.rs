@@ -22,8 +22,9 @@ const PLANE: [&str; 6] = [
 ];
 
 /// A finite-width band on a circular cone, 9 x 33 x 5 Q1 nodes (4,455 unknowns), solved by
-/// PETSc's MUMPS: GMRES + GAMG (the default) stalls near 1e-9 relative on this thin band (no
-/// rigid-body near-null space given to GAMG) and spends its budget.
+/// the default GMRES + GAMG with the body's six rigid motions as GAMG's near-null space
+/// (without them GAMG needed twice the Krylov iterations here and, on some rank counts,
+/// stalled near 1e-9 relative).
 const CONE: [&str; 26] = [
     "--set",
     "body.dimension=3",
@@ -157,6 +158,7 @@ fn agrees_on_1_2_4_ranks(scene: &[&str], options: &[&str]) {
         // the Krylov iterations of every Newton step are counted
         assert!(parallel["linear_iterations"].as_u64().unwrap() > 0);
         let d = relative_difference(&serial, &parallel);
+        eprintln!("{ranks} ranks: relative difference {d:.3e}");
         assert!(d < 1e-8, "{ranks} ranks: relative difference {d:.3e}");
     }
 }
@@ -169,9 +171,16 @@ fn plane_strain_on_1_2_4_ranks_matches_the_serial_solve() {
 }
 
 #[test]
+fn plane_strain_by_mumps_on_1_2_4_ranks_matches_the_serial_solve() {
+    if have_mpirun() {
+        agrees_on_1_2_4_ranks(&PLANE, &MUMPS);
+    }
+}
+
+#[test]
 fn cone_band_on_1_2_4_ranks_matches_the_serial_solve() {
     if have_mpirun() {
-        agrees_on_1_2_4_ranks(&CONE, &MUMPS);
+        agrees_on_1_2_4_ranks(&CONE, &[]);
     }
 }
 

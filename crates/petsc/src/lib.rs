@@ -28,7 +28,7 @@ pub use error::PetscError;
 #[cfg(feature = "petsc")]
 pub use session::{DEFAULT_OPTIONS, MUMPS_OPTIONS, Session, running};
 #[cfg(feature = "petsc")]
-pub use solver::{NAME, PetscSolver, REGISTRATION, owned_rows};
+pub use solver::{NAME, NEAR_NULL_OPTION, PetscSolver, REGISTRATION, owned_blocks, owned_rows};
 
 /// Whether the installed PETSc has MUMPS (the direct option, [`MUMPS_OPTIONS`]).
 #[cfg(feature = "petsc")]

@@ -129,7 +129,7 @@ pub use krylov::{
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
 pub use linear_registration::{
-    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, NearNullSpace, Parameter,
     RegisteredLinearSolver,
 };
 pub use linear_solver::LinearSolver;

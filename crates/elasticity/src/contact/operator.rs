@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use capstan_solvers::{ColumnOrdering, CsrMatrix};
+use capstan_solvers::{ColumnOrdering, CsrMatrix, NearNullSpace};
 
 use crate::boundary::Component;
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
@@ -50,6 +50,13 @@ pub trait ContactOperator {
     /// needs a direct linear backend.
     fn multigrid_prolongations(&self, coarsest_unknowns: usize) -> Option<Arc<[CsrMatrix]>> {
         let _ = coarsest_unknowns;
+        None
+    }
+
+    /// The rigid motions of the body in its unknowns and the unknowns per node, for an
+    /// algebraic multigrid (PETSc's GAMG: `MatSetNearNullSpace`, `MatSetBlockSize`); `None`
+    /// (the default) when the discretisation does not give them.
+    fn near_null_space(&self) -> Option<NearNullSpace> {
         None
     }
 
@@ -113,6 +120,10 @@ impl ContactOperator for BodyOperator {
         (**self).multigrid_prolongations(coarsest_unknowns)
     }
 
+    fn near_null_space(&self) -> Option<NearNullSpace> {
+        (**self).near_null_space()
+    }
+
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
         (**self).contact_system()
     }
@@ -173,6 +184,16 @@ impl<D: Discretisation> ContactOperator for D {
 
     fn lu_ordering(&self) -> ColumnOrdering {
         Discretisation::lu_ordering(self)
+    }
+
+    /// The block size 2 of the numbering `2 node + c` and no vectors: the plane
+    /// discretisations do not carry their chart, so an algebraic multigrid falls back to its
+    /// own near-null space for blocks of 2 (PETSc's GAMG: one constant per component).
+    fn near_null_space(&self) -> Option<NearNullSpace> {
+        Some(NearNullSpace {
+            block_size: 2,
+            vectors: Vec::new(),
+        })
     }
 
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {

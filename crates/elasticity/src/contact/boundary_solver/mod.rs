@@ -18,7 +18,7 @@ use capstan_solvers::{LinearBackend, LinearSettings, LinearSolver, Observer, Sil
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
-use crate::contact::bulk_multigrid::build_backend;
+use crate::contact::bulk_multigrid::{BackendCache, build_backend};
 use crate::contact::error::ContactError;
 use crate::contact::model::{ContactModel, EndLoads};
 use crate::contact::operator::ContactOperator;
@@ -153,7 +153,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             settings.linear,
             &LinearSettings::default(),
             model.discretisation(),
-            &std::sync::OnceLock::new(),
+            &BackendCache::default(),
             false,
         )?;
         lu.analyse(&ext.pattern)?;
