@@ -1,7 +1,9 @@
 //! `mpirun -n K capstan contact ... --set solver.linear='"petsc"'` (feature `petsc`) gives the
 //! serial full-system Newton's answer (sparse LU) to 1e-8 relative, on 1, 2 and 4 ranks
-//! (oversubscribed), for a plane-strain scene and a 3-D band on a cone; rank 0 alone prints
-//! and writes; the Krylov iterations reach the observers; a spent KSP budget is a typed error.
+//! (oversubscribed), for a plane-strain scene (assembled whole on every rank) and a 3-D band on
+//! a cone (each rank assembling its own rows, residuals gathered); rank 0 alone prints and
+//! writes; the Krylov iterations reach the observers; a spent KSP budget and unilateral
+//! contact on a body assembled over ranks are typed errors.
 //! Skipped (with a message) when `mpirun` is not installed.
 #![cfg(feature = "petsc")]
 
@@ -242,6 +244,27 @@ fn spent_ksp_budget_and_wrong_nonlinear_solver_are_typed_errors() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         stderr.contains("solver.linear") && stderr.contains("full-newton"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn unilateral_contact_on_a_body_assembled_over_ranks_is_refused_naming_the_key() {
+    if !have_mpirun() {
+        return;
+    }
+    // each rank assembles its rows of the 3-D body; the Signorini rows need whole rows of A
+    let out = mpirun(2)
+        .arg("contact")
+        .args(CONE)
+        .args(PETSC)
+        .args(["--set", "contact.kind=\"unilateral\""])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("contact.kind") && stderr.contains("more than one rank"),
         "{stderr}"
     );
 }

@@ -208,6 +208,13 @@ unsafe extern "C" {
     pub fn VecScatterDestroy(scatter: *mut VecScatter) -> PetscErrorCode;
     /// `VecDestroy(&v)`.
     pub fn VecDestroy(v: *mut Vec) -> PetscErrorCode;
+    /// `VecCreateMPI(comm, local, global, &v)`: a distributed vector, `local` entries here.
+    pub fn VecCreateMPI(
+        comm: MPI_Comm,
+        n: PetscInt,
+        big_n: PetscInt,
+        v: *mut Vec,
+    ) -> PetscErrorCode;
     /// `VecDuplicate(v, &w)`: a new vector laid out like `v`.
     pub fn VecDuplicate(v: Vec, w: *mut Vec) -> PetscErrorCode;
     /// `VecDot(x, y, &dot)`: the global `y^H x`.

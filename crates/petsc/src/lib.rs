@@ -17,12 +17,16 @@
 pub const ENABLED: bool = cfg!(feature = "petsc");
 
 #[cfg(feature = "petsc")]
+mod distribution;
+#[cfg(feature = "petsc")]
 mod error;
 #[cfg(feature = "petsc")]
 mod session;
 #[cfg(feature = "petsc")]
 mod solver;
 
+#[cfg(feature = "petsc")]
+pub use distribution::PetscDistribution;
 #[cfg(feature = "petsc")]
 pub use error::PetscError;
 #[cfg(feature = "petsc")]

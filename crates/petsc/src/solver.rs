@@ -39,35 +39,11 @@ fn build_boxed(
     }))
 }
 
-/// The contiguous block of rows rank `rank` of `size` owns among `n`: PETSc's own split
-/// (`PetscSplitOwnership`), the first `n mod size` ranks one row more.
-///
-/// # Math
-/// ```text
-/// local(r) = floor(n / size) + (r < n mod size),   first(r) = sum_{q < r} local(q)
-/// ```
-pub fn owned_rows(n: usize, rank: usize, size: usize) -> core::ops::Range<usize> {
-    let (base, extra) = (n / size, n % size);
-    let first = rank * base + rank.min(extra);
-    first..first + base + usize::from(rank < extra)
-}
-
 /// The PETSc option that turns the near-null space and block size off
 /// (`solver.petsc_options = "-capstan_near_null_space false"`; default true).
 pub const NEAR_NULL_OPTION: &str = "-capstan_near_null_space";
 
-/// [`owned_rows`] in whole blocks of `block` rows (the unknowns of one node stay on one rank,
-/// as `MatSetBlockSize` requires): the blocks split like rows, times `block`.
-///
-/// # Math
-/// ```text
-/// rows(r) = block owned_rows(n / block, r, size)     (n a multiple of block)
-/// ```
-pub fn owned_blocks(n: usize, block: usize, rank: usize, size: usize) -> core::ops::Range<usize> {
-    let block = block.max(1);
-    let b = owned_rows(n / block, rank, size);
-    block * b.start..block * b.end
-}
+pub use capstan_solvers::row_distribution::{owned_blocks, owned_rows};
 
 fn index(value: usize, quantity: &'static str) -> Result<sys::PetscInt, PetscError> {
     sys::PetscInt::try_from(value).map_err(|_| PetscError::IndexOverflow {
@@ -664,38 +640,5 @@ impl LinearSolver<f64> for PetscSolver {
 
     fn last_iterations(&self) -> Option<usize> {
         self.last_iterations
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn owned_rows_tile_the_range_like_petsc_split_ownership() {
-        for (n, size) in [(10, 3), (7, 7), (3, 4), (1_000_001, 128)] {
-            let blocks: Vec<_> = (0..size).map(|r| owned_rows(n, r, size)).collect();
-            assert_eq!(blocks[0].start, 0);
-            assert_eq!(blocks[size - 1].end, n);
-            for w in blocks.windows(2) {
-                assert_eq!(w[0].end, w[1].start);
-                assert!(w[0].len() >= w[1].len() && w[0].len() <= w[1].len() + 1);
-            }
-        }
-        assert_eq!(owned_rows(10, 0, 3), 0..4);
-        assert_eq!(owned_rows(10, 2, 3), 7..10);
-    }
-
-    #[test]
-    fn owned_blocks_keep_whole_nodes_on_one_rank() {
-        // 5 nodes of 3 unknowns on 2 ranks: nodes 0..3 and 3..5
-        assert_eq!(owned_blocks(15, 3, 0, 2), 0..9);
-        assert_eq!(owned_blocks(15, 3, 1, 2), 9..15);
-        assert_eq!(owned_blocks(10, 1, 2, 3), owned_rows(10, 2, 3));
-        for size in 1..6 {
-            let blocks: Vec<_> = (0..size).map(|r| owned_blocks(3 * 7, 3, r, size)).collect();
-            assert!(blocks.iter().all(|b| b.start % 3 == 0 && b.end % 3 == 0));
-            assert_eq!(blocks.last().unwrap().end, 21);
-        }
     }
 }

@@ -110,6 +110,7 @@ mod observer;
 mod ordering;
 mod problem;
 mod relaxation;
+pub mod row_distribution;
 pub mod samples;
 mod scalar;
 mod schur_complement;

@@ -1,8 +1,11 @@
 //! The frictional contact model: a linear bulk operator, end loads, and a pointwise friction
 //! law on the contact rows of any [`Discretisation`].
 
+use std::sync::Arc;
+
 use capstan_friction::{ContactState, FrictionLaw};
 use capstan_solvers::SparsityPattern;
+use capstan_solvers::row_distribution::RowDistribution;
 
 use crate::contact::error::ContactError;
 use crate::contact::operator::ContactOperator;
@@ -204,6 +207,9 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     ext: ExtendedPattern,
     /// The Signorini rows of unilateral contact (`None`: bilateral, `v^3 = 0`).
     unilateral: Option<Unilateral>,
+    /// `system` holds this process's rows only ([`ContactOperator::row_distribution`]):
+    /// residuals are completed by gathering the owners' rows.
+    distribution: Option<(Arc<dyn RowDistribution>, usize)>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -321,6 +327,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         let sites = Sites::new(&nodes, &active)?;
         let ext = extended_pattern(&system.pattern, &nodes, &active, &sites)?;
+        let distribution = disc.row_distribution();
         Ok(Self {
             disc: std::sync::Arc::new(disc),
             law,
@@ -335,6 +342,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             sites,
             ext,
             unilateral: None,
+            distribution,
         })
     }
 
@@ -361,6 +369,14 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// [`ElasticityError::InvalidParameter`] naming `contact.gap` for a negative gap, naming
     /// `contact.kind` for a contact node without a free normal row.
     pub fn into_unilateral(mut self, gap: &Gap) -> Result<Self, ContactError> {
+        if self.distribution.is_some() {
+            // the Signorini rows read whole rows of A on every process
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
+                field: "contact.kind",
+                value: f64::NAN,
+                allowed: "`bilateral` when the body is assembled over several processes (solver.linear = \"petsc\" on more than one rank); `unilateral` on one",
+            }));
+        }
         let active_of: std::collections::HashMap<usize, usize> = self
             .active
             .iter()
@@ -448,6 +464,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             sites: self.sites.clone(),
             ext: self.ext.clone(),
             unilateral: self.unilateral.clone(),
+            distribution: self.distribution.clone(),
         }
     }
 
@@ -473,6 +490,13 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             }
         }
         set
+    }
+
+    /// Whether the bulk operator holds this process's rows only (a distributed solve:
+    /// [`ContactOperator::row_distribution`]); [`ContactModel::system`] and the Jacobians then
+    /// have entries in those rows alone, the residuals are whole.
+    pub fn is_distributed(&self) -> bool {
+        self.distribution.is_some()
     }
 
     /// Whether the model has unilateral (Signorini) contact.
@@ -713,10 +737,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.site_traction_at_slip(j, slip, first.normal_stress.dot(v))
     }
 
-    /// The full residual `R(v) = A v - b(tau) - sum_k w_k e_row t_k(v)`.
+    /// The full residual `R(v) = A v - b(tau) - sum_k w_k e_row t_k(v)` (on a model
+    /// assembled over several processes, [`ContactModel::is_distributed`], each process
+    /// evaluates its rows and gathers the others: collective).
     ///
     /// # Panics
-    /// If `v`, `rhs` or `r` have the wrong length.
+    /// If `v`, `rhs` or `r` have the wrong length; if the gather fails.
     #[track_caller]
     pub fn residual_into(&self, rhs: &[f64], v: &[f64], r: &mut [f64]) {
         self.system.pattern.matvec(&self.system.values, v, r);
@@ -736,6 +762,10 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         if let Some(u) = &self.unilateral {
             u.residual_into(v, rhs, r);
+        }
+        if let Some((d, block)) = &self.distribution {
+            // this process's rows are right; the others come from their owners
+            d.gather(r, *block);
         }
     }
 

@@ -4,6 +4,7 @@
 
 use std::sync::Arc;
 
+use capstan_solvers::row_distribution::RowDistribution;
 use capstan_solvers::{ColumnOrdering, CsrMatrix, NearNullSpace};
 
 use crate::boundary::Component;
@@ -57,6 +58,14 @@ pub trait ContactOperator {
     /// algebraic multigrid (PETSc's GAMG: `MatSetNearNullSpace`, `MatSetBlockSize`); `None`
     /// (the default) when the discretisation does not give them.
     fn near_null_space(&self) -> Option<NearNullSpace> {
+        None
+    }
+
+    /// The process's share of a distributed solve when [`ContactOperator::contact_system`]
+    /// holds only its rows ([`RowDistribution::owned`] for `block` unknowns a node; the
+    /// right-hand side whole): `(distribution, block)`. `None` (the default): the whole
+    /// system.
+    fn row_distribution(&self) -> Option<(Arc<dyn RowDistribution>, usize)> {
         None
     }
 
@@ -122,6 +131,10 @@ impl ContactOperator for BodyOperator {
 
     fn near_null_space(&self) -> Option<NearNullSpace> {
         (**self).near_null_space()
+    }
+
+    fn row_distribution(&self) -> Option<(Arc<dyn RowDistribution>, usize)> {
+        (**self).row_distribution()
     }
 
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {

@@ -201,6 +201,15 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
         })
     }
 
+    fn row_distribution(
+        &self,
+    ) -> Option<(
+        std::sync::Arc<dyn capstan_solvers::row_distribution::RowDistribution>,
+        usize,
+    )> {
+        self.distribution().map(|d| (std::sync::Arc::clone(d), 3))
+    }
+
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
         Ok(self.system().clone())
     }
