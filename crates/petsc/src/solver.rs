@@ -157,6 +157,8 @@ pub struct PetscSolver {
     size: usize,
     /// Given to GAMG: `MatSetBlockSize` and `MatSetNearNullSpace`.
     near_null_space: Option<Arc<NearNullSpace>>,
+    /// Whether `MatSetBlockSize` is called (not under `-capstan_near_null_space false`).
+    tell_block_size: bool,
 }
 
 // SAFETY: the PETSc handles are owned by this value alone and used from one thread at a time
@@ -210,6 +212,7 @@ impl PetscSolver {
             rank: rank as usize,
             size: size as usize,
             near_null_space: None,
+            tell_block_size: true,
         })
     }
 
@@ -229,9 +232,9 @@ impl PetscSolver {
         self.near_null_space.as_ref().map_or(1, |z| z.block_size)
     }
 
-    /// Drops the near-null space when the options database says
+    /// Drops the near-null vectors and the block size when the options database says
     /// `-capstan_near_null_space false` (for comparisons: GAMG then coarsens as for a scalar
-    /// problem).
+    /// problem); the rows stay owned in whole nodes.
     fn read_near_null_option(&mut self) -> Result<(), PetscError> {
         let name = CString::new(NEAR_NULL_OPTION).expect("no NUL");
         let (mut value, mut set) = (1, 0);
@@ -249,7 +252,14 @@ impl PetscSolver {
             )?;
         }
         if set != 0 && value == 0 {
-            self.near_null_space = None;
+            // the rows stay owned in whole nodes (as the caller may have assembled them)
+            self.near_null_space = self.near_null_space.take().map(|z| {
+                Arc::new(NearNullSpace {
+                    block_size: z.block_size,
+                    vectors: Vec::new(),
+                })
+            });
+            self.tell_block_size = false;
         }
         Ok(())
     }
@@ -297,7 +307,7 @@ impl PetscSolver {
             check(sys::MatSetSizes(o.mat, local, local, n, n), "MatSetSizes")?;
             check(sys::MatSetType(o.mat, aij.as_ptr()), "MatSetType")?;
             let block = self.block_size();
-            if block > 1 {
+            if block > 1 && self.tell_block_size {
                 check(
                     sys::MatSetBlockSize(o.mat, index(block, "block size")?),
                     "MatSetBlockSize",
