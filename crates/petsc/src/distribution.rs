@@ -7,7 +7,7 @@ use capstan_petsc_sys as sys;
 use capstan_solvers::row_distribution::{RowDistribution, owned_blocks};
 
 use crate::error::{PetscError, check};
-use crate::session::running;
+use crate::session::{Session, running};
 
 /// A distributed vector of one length and its scatter to a full copy on every rank.
 struct Gather {
@@ -62,12 +62,12 @@ impl core::fmt::Debug for PetscDistribution {
 }
 
 impl PetscDistribution {
-    /// The distribution of the running [`crate::Session`] (`rank`, `size` of
+    /// The distribution of the running [`Session`] (`rank`, `size` of
     /// `PETSC_COMM_WORLD`).
     ///
     /// # Errors
     /// [`PetscError::NotStarted`] without a running session.
-    pub fn new(session: &crate::Session) -> Result<Self, PetscError> {
+    pub fn new(session: &Session) -> Result<Self, PetscError> {
         if !running() {
             return Err(PetscError::NotStarted);
         }
