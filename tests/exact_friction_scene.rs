@@ -50,7 +50,10 @@ fn exact_coulomb_from_a_scene_is_the_eps_to_zero_limit_of_regularised_coulomb() 
         .collect();
     let order = (errors[0] / errors[1]).log10();
     assert!(errors[1] < 1e-6 * exact.max(1.0), "{errors:?}");
-    assert!((order - 1.0).abs() < 0.1, "order {order}, errors {errors:?}");
+    assert!(
+        (order - 1.0).abs() < 0.1,
+        "order {order}, errors {errors:?}"
+    );
 }
 
 #[test]

@@ -1,11 +1,14 @@
 //! `mpirun -n K capstan contact scene.toml --set solver.linear='"petsc"'` (feature `petsc`):
 //! PETSc running for the length of one command.
 //!
-//! Every rank runs the whole command: it reads the scene, assembles the model and runs the
-//! full-system Newton with its contact bookkeeping (replicated, identical on every rank); the
-//! linear solve of each Newton step is one distributed PETSc solve in which each rank owns a
-//! contiguous block of rows ([`capstan_petsc::owned_rows`]). Rank 0 alone prints and writes the
-//! outputs; the other ranks end quietly when the solve is done.
+//! Every rank runs the whole command: it reads the scene and owns a contiguous block of rows
+//! (whole nodes: [`capstan_petsc::owned_blocks`]). On more than one rank a
+//! [`capstan_petsc::PetscDistribution`] is installed, so the 3-D body assembles only its rows
+//! and the contact model gathers its residuals; the plane-strain body is assembled whole on
+//! every rank. The Newton iteration and the contact bookkeeping (on the contact face) run
+//! replicated on whole vectors; the linear solve of each Newton step is one distributed PETSc
+//! solve. Rank 0 alone prints and writes the outputs; the other ranks end quietly when the
+//! solve is done.
 
 use capstan_petsc::Session;
 
@@ -37,6 +40,17 @@ impl PetscRun {
         })?;
         if session.rank() != 0 {
             crate::progress::set_flags(true, 0);
+        }
+        if session.size() > 1 {
+            // the 3-D body assembles this rank's rows only; residuals gathered
+            let distribution =
+                capstan_petsc::PetscDistribution::new(&session).map_err(|e| CliError::Scene {
+                    origin: "solver.linear".into(),
+                    message: e.to_string(),
+                })?;
+            capstan_elasticity::solvers::row_distribution::install(std::sync::Arc::new(
+                distribution,
+            ));
         }
         Ok(Some(Self { session }))
     }

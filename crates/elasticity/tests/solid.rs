@@ -205,3 +205,48 @@ fn a_chart_with_its_focal_surface_inside_the_body_is_a_typed_error() {
     println!("{err}");
     assert!(matches!(err, ElasticityError::Geometry(_)), "{err:?}");
 }
+
+/// The rigid translations of [`ContactOperator::near_null_space`] (in the contravariant
+/// components of the chart) are annihilated by the assembled operator up to the interpolation
+/// error of Q1: `|A z|` on the rows away from the Dirichlet faces, relative to
+/// `sum_c |A_rc| |z_c|`, falls at least like `h^2` (a vector that is not a rigid motion stays
+/// O(1)).
+#[test]
+fn rigid_body_modes_are_near_null_at_order_two() {
+    use capstan_elasticity::contact::ContactOperator;
+    let mms = SolidMms::elliptical_cone();
+    let mut points = Vec::new();
+    for m in [4, 8, 16] {
+        let n = m + 1;
+        let op = mms.operator([n, n, n], ElementOrder::Q1).unwrap();
+        let space = op.near_null_space().unwrap();
+        assert_eq!(space.block_size, 3);
+        assert_eq!(space.vectors.len(), 3);
+        let system = op.system();
+        let (row_ptr, cols, slots) = system.pattern.row_layout();
+        let mut worst = 0.0f64;
+        for z in &space.vectors {
+            assert_eq!(z.len(), op.dof_count());
+            for i1 in 2..n - 2 {
+                for i2 in 2..n - 2 {
+                    for i3 in 0..n {
+                        for c in 0..3 {
+                            let r = op.dof([i1, i2, i3], c);
+                            let (mut az, mut scale) = (0.0, 0.0);
+                            for k in row_ptr[r]..row_ptr[r + 1] {
+                                let a = system.values[slots[k]];
+                                az += a * z[cols[k]];
+                                scale += (a * z[cols[k]]).abs();
+                            }
+                            worst = worst.max(az.abs() / scale);
+                        }
+                    }
+                }
+            }
+        }
+        points.push((1.0 / m as f64, worst));
+    }
+    let p = observed_order(&points);
+    assert!(p > 1.9 && p < 3.0, "order {p}\n{}", table(&points));
+    assert!(points[2].1 < 2e-5, "{}", table(&points));
+}

@@ -41,8 +41,15 @@ pub struct _p_KSP {
 pub struct _p_PetscSF {
     _private: [u8; 0],
 }
+/// Opaque `struct _p_MatNullSpace`.
+#[repr(C)]
+pub struct _p_MatNullSpace {
+    _private: [u8; 0],
+}
 /// `Mat`.
 pub type Mat = *mut _p_Mat;
+/// `MatNullSpace`.
+pub type MatNullSpace = *mut _p_MatNullSpace;
 /// `Vec`.
 pub type Vec = *mut _p_Vec;
 /// `KSP`.
@@ -89,6 +96,15 @@ unsafe extern "C" {
     pub fn PetscFinalize() -> PetscErrorCode;
     /// `PetscOptionsInsertString(NULL, "-ksp_type cg ...")`: adds to the global options database.
     pub fn PetscOptionsInsertString(options: *mut c_void, s: *const c_char) -> PetscErrorCode;
+    /// `PetscOptionsGetBool(NULL, NULL, "-name", &value, &set)`: a boolean option of the
+    /// global database (`set` false when absent; `value` then untouched).
+    pub fn PetscOptionsGetBool(
+        options: *mut c_void,
+        prefix: *const c_char,
+        name: *const c_char,
+        value: *mut PetscBool,
+        set: *mut PetscBool,
+    ) -> PetscErrorCode;
     /// `PetscMemoryGetMaximumUsage(&bytes)`: peak resident memory, once enabled by
     /// `PetscMemorySetGetMaximumUsage()`.
     pub fn PetscMemoryGetMaximumUsage(bytes: *mut PetscLogDouble) -> PetscErrorCode;
@@ -146,6 +162,20 @@ unsafe extern "C" {
     pub fn MatCreateVecs(mat: Mat, right: *mut Vec, left: *mut Vec) -> PetscErrorCode;
     /// `MatDestroy(&A)`.
     pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
+    /// `MatSetBlockSize(A, bs)`: unknowns per node (before preallocation), read by GAMG.
+    pub fn MatSetBlockSize(mat: Mat, bs: PetscInt) -> PetscErrorCode;
+    /// `MatNullSpaceCreate(comm, has_constant, n, vecs, &space)`: `vecs` orthonormal.
+    pub fn MatNullSpaceCreate(
+        comm: MPI_Comm,
+        has_constant: PetscBool,
+        n: PetscInt,
+        vecs: *const Vec,
+        space: *mut MatNullSpace,
+    ) -> PetscErrorCode;
+    /// `MatSetNearNullSpace(A, space)`: the near-null space algebraic multigrid coarsens with.
+    pub fn MatSetNearNullSpace(mat: Mat, space: MatNullSpace) -> PetscErrorCode;
+    /// `MatNullSpaceDestroy(&space)`.
+    pub fn MatNullSpaceDestroy(space: *mut MatNullSpace) -> PetscErrorCode;
 
     /// `VecGetArray(v, &array)`: this rank's entries.
     pub fn VecGetArray(v: Vec, array: *mut *mut PetscScalar) -> PetscErrorCode;
@@ -178,6 +208,21 @@ unsafe extern "C" {
     pub fn VecScatterDestroy(scatter: *mut VecScatter) -> PetscErrorCode;
     /// `VecDestroy(&v)`.
     pub fn VecDestroy(v: *mut Vec) -> PetscErrorCode;
+    /// `VecCreateMPI(comm, local, global, &v)`: a distributed vector, `local` entries here.
+    pub fn VecCreateMPI(
+        comm: MPI_Comm,
+        n: PetscInt,
+        big_n: PetscInt,
+        v: *mut Vec,
+    ) -> PetscErrorCode;
+    /// `VecDuplicate(v, &w)`: a new vector laid out like `v`.
+    pub fn VecDuplicate(v: Vec, w: *mut Vec) -> PetscErrorCode;
+    /// `VecDot(x, y, &dot)`: the global `y^H x`.
+    pub fn VecDot(x: Vec, y: Vec, dot: *mut PetscScalar) -> PetscErrorCode;
+    /// `VecAXPY(y, alpha, x)`: `y += alpha x`.
+    pub fn VecAXPY(y: Vec, alpha: PetscScalar, x: Vec) -> PetscErrorCode;
+    /// `VecNormalize(x, &norm)`: `x /= |x|_2`, the norm before.
+    pub fn VecNormalize(x: Vec, norm: *mut PetscReal) -> PetscErrorCode;
 
     /// `KSPCreate(comm, &ksp)`.
     pub fn KSPCreate(comm: MPI_Comm, ksp: *mut KSP) -> PetscErrorCode;

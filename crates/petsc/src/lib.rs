@@ -2,12 +2,13 @@
 //! feature): a distributed AIJ matrix whose rows are split over the MPI ranks in contiguous
 //! blocks, solved by PETSc's KSP with the options of `solver.petsc_options`.
 //!
-//! Status: the linear algebra is distributed; the caller (the full-system contact Newton)
-//! runs replicated on every rank with the whole pattern, values and right-hand side, each rank
-//! inserting only its rows and receiving the whole solution. Memory per rank therefore still
-//! holds one copy of the assembled system; only PETSc's matrix, its preconditioner and the
-//! Krylov vectors are split. Built only with the system PETSc (Debian: `petsc-dev`, PETSc
-//! 3.18 on Open MPI), never by the default workspace build.
+//! Status: the linear algebra is distributed, each rank owning whole nodes
+//! ([`owned_blocks`]); GAMG is given the caller's near-null space and block size. A
+//! [`PetscDistribution`] installed as the process's row distribution lets the 3-D body
+//! assemble only its rows and the contact model gather its residuals; the caller's Newton
+//! iteration runs on whole vectors on every rank, each rank inserting its rows and receiving
+//! the whole solution. Built only with the system PETSc (Debian: `petsc-dev`, PETSc 3.18 on
+//! Open MPI), never by the default workspace build.
 //!
 //! Without the crate feature `petsc` (which the facade's feature `petsc` turns on) the crate
 //! is empty, so the default workspace build needs no PETSc.
@@ -17,6 +18,8 @@
 pub const ENABLED: bool = cfg!(feature = "petsc");
 
 #[cfg(feature = "petsc")]
+mod distribution;
+#[cfg(feature = "petsc")]
 mod error;
 #[cfg(feature = "petsc")]
 mod session;
@@ -24,11 +27,13 @@ mod session;
 mod solver;
 
 #[cfg(feature = "petsc")]
+pub use distribution::PetscDistribution;
+#[cfg(feature = "petsc")]
 pub use error::PetscError;
 #[cfg(feature = "petsc")]
 pub use session::{DEFAULT_OPTIONS, MUMPS_OPTIONS, Session, running};
 #[cfg(feature = "petsc")]
-pub use solver::{NAME, PetscSolver, REGISTRATION, owned_rows};
+pub use solver::{NAME, NEAR_NULL_OPTION, PetscSolver, REGISTRATION, owned_blocks, owned_rows};
 
 /// Whether the installed PETSc has MUMPS (the direct option, [`MUMPS_OPTIONS`]).
 #[cfg(feature = "petsc")]

@@ -2,11 +2,12 @@
 
 use core::ffi::{c_int, c_void};
 use std::ffi::CString;
+use std::sync::Arc;
 
 use capstan_petsc_sys as sys;
 use capstan_solvers::{
-    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, LinearSolver, Observer,
-    Progress, RegisteredLinearSolver, SolveStage, SolverError, SparsityPattern,
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, LinearSolver, NearNullSpace,
+    Observer, Progress, RegisteredLinearSolver, SolveStage, SolverError, SparsityPattern,
 };
 
 use crate::error::{PetscError, check, diverged_name};
@@ -29,23 +30,20 @@ pub const REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
 
 fn build_boxed(
     _: &LinearSettings,
-    _: &dyn LinearContext,
+    context: &dyn LinearContext,
 ) -> Result<BoxedLinearSolver, SolverError> {
-    Ok(Box::new(PetscSolver::new()?))
+    let solver = PetscSolver::new()?;
+    Ok(Box::new(match context.near_null_space() {
+        Some(space) => solver.with_near_null_space(space),
+        None => solver,
+    }))
 }
 
-/// The contiguous block of rows rank `rank` of `size` owns among `n`: PETSc's own split
-/// (`PetscSplitOwnership`), the first `n mod size` ranks one row more.
-///
-/// # Math
-/// ```text
-/// local(r) = floor(n / size) + (r < n mod size),   first(r) = sum_{q < r} local(q)
-/// ```
-pub fn owned_rows(n: usize, rank: usize, size: usize) -> core::ops::Range<usize> {
-    let (base, extra) = (n / size, n % size);
-    let first = rank * base + rank.min(extra);
-    first..first + base + usize::from(rank < extra)
-}
+/// The PETSc option that turns the near-null space and block size off
+/// (`solver.petsc_options = "-capstan_near_null_space false"`; default true).
+pub const NEAR_NULL_OPTION: &str = "-capstan_near_null_space";
+
+pub use capstan_solvers::row_distribution::{owned_blocks, owned_rows};
 
 fn index(value: usize, quantity: &'static str) -> Result<sys::PetscInt, PetscError> {
     sys::PetscInt::try_from(value).map_err(|_| PetscError::IndexOverflow {
@@ -157,6 +155,10 @@ pub struct PetscSolver {
     last_iterations: Option<usize>,
     rank: usize,
     size: usize,
+    /// Given to GAMG: `MatSetBlockSize` and `MatSetNearNullSpace`.
+    near_null_space: Option<Arc<NearNullSpace>>,
+    /// Whether `MatSetBlockSize` is called (not under `-capstan_near_null_space false`).
+    tell_block_size: bool,
 }
 
 // SAFETY: the PETSc handles are owned by this value alone and used from one thread at a time
@@ -209,7 +211,57 @@ impl PetscSolver {
             last_iterations: None,
             rank: rank as usize,
             size: size as usize,
+            near_null_space: None,
+            tell_block_size: true,
         })
+    }
+
+    /// The solver telling PETSc the unknowns per node and the near-null space of its matrices
+    /// (`MatSetBlockSize`, `MatSetNearNullSpace`: GAMG builds its coarse spaces from them;
+    /// without, it assumes one unknown per node and the constant vector). The vectors are
+    /// orthonormalised (Gram–Schmidt, twice) before PETSc gets them; rows are owned in whole
+    /// blocks ([`owned_blocks`]). Checked against the pattern at [`LinearSolver::analyse`].
+    #[must_use]
+    pub fn with_near_null_space(mut self, space: Arc<NearNullSpace>) -> Self {
+        self.near_null_space = Some(space);
+        self
+    }
+
+    /// The unknowns per node PETSc is told (1 without a near-null space).
+    fn block_size(&self) -> usize {
+        self.near_null_space.as_ref().map_or(1, |z| z.block_size)
+    }
+
+    /// Drops the near-null vectors and the block size when the options database says
+    /// `-capstan_near_null_space false` (for comparisons: GAMG then coarsens as for a scalar
+    /// problem); the rows stay owned in whole nodes.
+    fn read_near_null_option(&mut self) -> Result<(), PetscError> {
+        let name = CString::new(NEAR_NULL_OPTION).expect("no NUL");
+        let (mut value, mut set) = (1, 0);
+        // SAFETY: PETSc is running (checked in `new`); the name outlives the call.
+        unsafe {
+            check(
+                sys::PetscOptionsGetBool(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    name.as_ptr(),
+                    &mut value,
+                    &mut set,
+                ),
+                "PetscOptionsGetBool",
+            )?;
+        }
+        if set != 0 && value == 0 {
+            // the rows stay owned in whole nodes (as the caller may have assembled them)
+            self.near_null_space = self.near_null_space.take().map(|z| {
+                Arc::new(NearNullSpace {
+                    block_size: z.block_size,
+                    vectors: Vec::new(),
+                })
+            });
+            self.tell_block_size = false;
+        }
+        Ok(())
     }
 
     /// The rows this rank owns (after [`LinearSolver::analyse`]).
@@ -254,6 +306,13 @@ impl PetscSolver {
             check(sys::MatCreate(comm, &mut o.mat), "MatCreate")?;
             check(sys::MatSetSizes(o.mat, local, local, n, n), "MatSetSizes")?;
             check(sys::MatSetType(o.mat, aij.as_ptr()), "MatSetType")?;
+            let block = self.block_size();
+            if block > 1 && self.tell_block_size {
+                check(
+                    sys::MatSetBlockSize(o.mat, index(block, "block size")?),
+                    "MatSetBlockSize",
+                )?;
+            }
             // Whichever applies (one rank: SeqAIJ; more: MPIAIJ); the other is a no-op.
             check(
                 sys::MatSeqAIJSetPreallocation(o.mat, 0, d_nnz.as_ptr()),
@@ -275,6 +334,11 @@ impl PetscSolver {
                 sys::VecScatterCreateToAll(o.x, &mut o.scatter, &mut o.all),
                 "VecScatterCreateToAll",
             )?;
+            if let Some(space) = &self.near_null_space
+                && !space.vectors.is_empty()
+            {
+                self.set_near_null_space(o.mat, o.x, space)?;
+            }
             check(sys::KSPCreate(comm, &mut o.ksp), "KSPCreate")?;
             let context: *mut Monitor = &mut *self.monitor;
             check(
@@ -283,6 +347,79 @@ impl PetscSolver {
             )?;
         }
         Ok(o)
+    }
+
+    /// Gives `mat` the near-null space `space`: each vector's owned rows into a vector laid
+    /// out like `like`, orthonormalised by classical Gram–Schmidt applied twice (PETSc's
+    /// `MatNullSpaceCreate` wants orthonormal vectors), dependent ones dropped.
+    ///
+    /// # Safety
+    /// `mat` and `like` are live PETSc objects of this solver's layout.
+    unsafe fn set_near_null_space(
+        &self,
+        mat: sys::Mat,
+        like: sys::Vec,
+        space: &NearNullSpace,
+    ) -> Result<(), PetscError> {
+        let mut basis: Vec<sys::Vec> = Vec::with_capacity(space.vectors.len());
+        let result = (|| -> Result<(), PetscError> {
+            for z in &space.vectors {
+                let mut v: sys::Vec = core::ptr::null_mut();
+                // SAFETY: `like` is live; `v` is destroyed below; the local array has the
+                // owned rows' length.
+                unsafe {
+                    check(sys::VecDuplicate(like, &mut v), "VecDuplicate")?;
+                    basis.push(v);
+                    let mut a: *mut f64 = core::ptr::null_mut();
+                    check(sys::VecGetArray(v, &mut a), "VecGetArray")?;
+                    core::slice::from_raw_parts_mut(a, self.rows.len())
+                        .copy_from_slice(&z[self.rows.clone()]);
+                    check(sys::VecRestoreArray(v, &mut a), "VecRestoreArray")?;
+                    let mut first = 0.0;
+                    check(sys::VecNormalize(v, &mut first), "VecNormalize")?;
+                    let kept = basis.len() - 1;
+                    for _pass in 0..2 {
+                        for &q in &basis[..kept] {
+                            let mut d = 0.0;
+                            check(sys::VecDot(v, q, &mut d), "VecDot")?;
+                            check(sys::VecAXPY(v, -d, q), "VecAXPY")?;
+                        }
+                    }
+                    let mut norm = 0.0;
+                    check(sys::VecNormalize(v, &mut norm), "VecNormalize")?;
+                    if norm.is_nan() || norm <= 1e-10 {
+                        // dependent on the earlier ones (or zero): not a new direction
+                        let mut v = basis.pop().expect("just pushed");
+                        sys::VecDestroy(&mut v);
+                    }
+                }
+            }
+            let mut nsp: sys::MatNullSpace = core::ptr::null_mut();
+            // SAFETY: the vectors are live and orthonormal; the null space keeps its own
+            // references, so destroying ours afterwards is right.
+            unsafe {
+                check(
+                    sys::MatNullSpaceCreate(
+                        sys::PETSC_COMM_WORLD,
+                        0,
+                        index(basis.len(), "near-null vectors")?,
+                        basis.as_ptr(),
+                        &mut nsp,
+                    ),
+                    "MatNullSpaceCreate",
+                )?;
+                let set = check(sys::MatSetNearNullSpace(mat, nsp), "MatSetNearNullSpace");
+                sys::MatNullSpaceDestroy(&mut nsp);
+                set
+            }
+        })();
+        for v in &mut basis {
+            // SAFETY: each was created by VecDuplicate above and is destroyed once.
+            unsafe {
+                sys::VecDestroy(v);
+            }
+        }
+        result
     }
 
     fn solve_observed(
@@ -418,7 +555,11 @@ impl LinearSolver<f64> for PetscSolver {
         self.objects = None;
         self.factored = false;
         self.n = pattern.nrows();
-        self.rows = owned_rows(self.n, self.rank, self.size);
+        self.read_near_null_option()?;
+        if let Some(space) = &self.near_null_space {
+            space.check(self.n)?;
+        }
+        self.rows = owned_blocks(self.n, self.block_size(), self.rank, self.size);
         let (row_ptr, col_idx, slot) = pattern.row_layout();
         let (lo, hi) = (row_ptr[self.rows.start], row_ptr[self.rows.end]);
         self.row_ptr = row_ptr[self.rows.start..=self.rows.end]
@@ -509,25 +650,5 @@ impl LinearSolver<f64> for PetscSolver {
 
     fn last_iterations(&self) -> Option<usize> {
         self.last_iterations
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn owned_rows_tile_the_range_like_petsc_split_ownership() {
-        for (n, size) in [(10, 3), (7, 7), (3, 4), (1_000_001, 128)] {
-            let blocks: Vec<_> = (0..size).map(|r| owned_rows(n, r, size)).collect();
-            assert_eq!(blocks[0].start, 0);
-            assert_eq!(blocks[size - 1].end, n);
-            for w in blocks.windows(2) {
-                assert_eq!(w[0].end, w[1].start);
-                assert!(w[0].len() >= w[1].len() && w[0].len() <= w[1].len() + 1);
-            }
-        }
-        assert_eq!(owned_rows(10, 0, 3), 0..4);
-        assert_eq!(owned_rows(10, 2, 3), 7..10);
     }
 }

@@ -6,8 +6,10 @@
 use capstan_petsc::{MUMPS_OPTIONS, PetscError, PetscSolver, Session};
 use capstan_solvers::samples::ConvectionDiffusion2d;
 use capstan_solvers::{
-    LinearBackend, LinearSolver, Progress, SolveStage, SolverError, max_abs_difference,
+    LinearBackend, LinearSolver, NearNullSpace, Progress, SolveStage, SolverError,
+    max_abs_difference,
 };
+use std::sync::Arc;
 
 fn solve(system: &capstan_solvers::samples::LinearSystem) -> (Vec<f64>, Vec<Progress<f64>>, usize) {
     let mut solver = PetscSolver::new().unwrap();
@@ -49,6 +51,40 @@ fn petsc_solver_matches_lu_reports_krylov_and_spends_budget_typed() {
     session.insert_options(MUMPS_OPTIONS).unwrap();
     let (x, _, _) = solve(&system);
     assert!(max_abs_difference(&x, &exact) < 1e-12 * scale);
+
+    // A near-null space reaches GAMG (the constants; a dependent second vector is dropped by
+    // the orthonormalisation), the same answer; a block size that does not divide the
+    // unknowns is a typed error at analyse.
+    session
+        .insert_options("-ksp_type gmres -pc_type gamg -ksp_rtol 1e-12")
+        .unwrap();
+    let n = system.pattern.nrows();
+    let constants = NearNullSpace {
+        block_size: 1,
+        vectors: vec![vec![1.0; n], vec![2.0; n]],
+    };
+    let mut solver = PetscSolver::new()
+        .unwrap()
+        .with_near_null_space(Arc::new(constants));
+    solver.analyse(&system.pattern).unwrap();
+    solver.factor(&system.values).unwrap();
+    let mut x = system.rhs.clone();
+    solver.solve_in_place(&mut x).unwrap();
+    assert!(max_abs_difference(&x, &exact) < 1e-9 * scale);
+    let odd = NearNullSpace {
+        block_size: n + 1,
+        vectors: Vec::new(),
+    };
+    let mut solver = PetscSolver::new()
+        .unwrap()
+        .with_near_null_space(Arc::new(odd));
+    assert!(matches!(
+        solver.analyse(&system.pattern),
+        Err(SolverError::DimensionMismatch {
+            quantity: "block size",
+            ..
+        })
+    ));
 
     // A spent budget is a typed error naming the option.
     session

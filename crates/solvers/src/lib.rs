@@ -110,6 +110,7 @@ mod observer;
 mod ordering;
 mod problem;
 mod relaxation;
+pub mod row_distribution;
 pub mod samples;
 mod scalar;
 mod schur_complement;
@@ -129,7 +130,7 @@ pub use krylov::{
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
 pub use linear_registration::{
-    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
+    BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, NearNullSpace, Parameter,
     RegisteredLinearSolver,
 };
 pub use linear_solver::LinearSolver;

@@ -48,6 +48,64 @@ pub trait LinearContext {
     fn symmetric_positive_definite(&self) -> bool {
         false
     }
+
+    /// The near-null space of the matrices (e.g. an elastic body's rigid-body modes), for
+    /// algebraic multigrid; `None` when unknown.
+    fn near_null_space(&self) -> Option<Arc<NearNullSpace>> {
+        None
+    }
+}
+
+/// Vectors the matrices nearly annihilate, and the number of unknowns per node, for an
+/// algebraic multigrid preconditioner (PETSc's GAMG: `MatSetNearNullSpace`,
+/// `MatSetBlockSize`). Physics-free: a discretisation fills it (an elastic body: its rigid
+/// motions, 3 in the plane, 6 in space).
+///
+/// # Math
+/// ```text
+/// |A z_k| << |A| |z_k|   for every k    (exactly 0 without boundary conditions)
+/// unknown i belongs to node floor(i / block_size)
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct NearNullSpace {
+    /// Unknowns per node (the dofs of a node are consecutive): 2 or 3 for elasticity.
+    pub block_size: usize,
+    /// The vectors `z_k`, each of the matrices' dimension (need not be orthonormal).
+    pub vectors: Vec<Vec<f64>>,
+}
+
+impl NearNullSpace {
+    /// Checks the vectors: every one of length `n` (a multiple of the block size) and finite.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`] naming `near-null vector` or `block size`;
+    /// [`SolverError::NonFinite`] naming `near-null vector`.
+    pub fn check(&self, n: usize) -> Result<(), SolverError> {
+        if self.block_size == 0 || !n.is_multiple_of(self.block_size) {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "block size",
+                expected: n,
+                found: self.block_size,
+            });
+        }
+        for z in &self.vectors {
+            if z.len() != n {
+                return Err(SolverError::DimensionMismatch {
+                    quantity: "near-null vector",
+                    expected: n,
+                    found: z.len(),
+                });
+            }
+            if let Some(index) = z.iter().position(|x| !x.is_finite()) {
+                return Err(SolverError::NonFinite {
+                    quantity: "near-null vector",
+                    index,
+                    iteration: None,
+                });
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Nothing known about the matrices.
@@ -134,4 +192,33 @@ pub struct RegisteredLinearSolver {
     /// [`SolverError::InvalidParameter`] naming the first bad setting, or a context that lacks
     /// what the backend needs.
     pub build: fn(&LinearSettings, &dyn LinearContext) -> Result<BoxedLinearSolver, SolverError>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn near_null_space_check_names_the_wrong_length_block_or_value() {
+        let z = |block_size, vectors| NearNullSpace {
+            block_size,
+            vectors,
+        };
+        assert!(z(2, vec![vec![1.0; 4]]).check(4).is_ok());
+        assert!(z(2, vec![]).check(4).is_ok());
+        for (space, n, quantity) in [
+            (z(3, vec![]), 4, "block size"),
+            (z(0, vec![]), 4, "block size"),
+            (z(2, vec![vec![1.0; 3]]), 4, "near-null vector"),
+        ] {
+            match space.check(n) {
+                Err(SolverError::DimensionMismatch { quantity: q, .. }) => assert_eq!(q, quantity),
+                other => panic!("{other:?}"),
+            }
+        }
+        assert!(matches!(
+            z(1, vec![vec![1.0, f64::NAN]]).check(2),
+            Err(SolverError::NonFinite { index: 1, .. })
+        ));
+    }
 }

@@ -3,20 +3,21 @@
 //! multigrid, `multigrid`) or the paper's Jacobi–Newton on the whole residual. The reference the boundary-only solver is checked
 //! against, and the baseline of the benchmarks.
 
-use std::sync::{Arc, OnceLock};
+use std::sync::OnceLock;
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    ActiveSet, BackendKind, BoxedLinearSolver, CsrMatrix, Jacobian, LinearBackend, Newton,
-    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver,
-    SolveStage, SolverError, SparsityPattern,
+    ActiveSet, BackendKind, BoxedLinearSolver, Jacobian, LinearBackend, Newton, NewtonParams,
+    NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage,
+    SolverError, SparsityPattern,
 };
 
 use crate::contact::body::ThickBody;
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
-use crate::contact::bulk_multigrid::build_backend;
+use crate::contact::bulk_multigrid::{BackendCache, build_backend};
 use crate::contact::error::{ContactError, ContactErrorKind};
-use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::loads::EndLoads;
+use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use crate::discretisation::interpolate_nodal;
@@ -139,8 +140,9 @@ pub struct FullSystemSolver<'a, D, L: FrictionLaw<f64>> {
     /// but under unilateral contact: the body closed onto the obstacle, `v^3 = -g`); one
     /// sparse LU, on first use.
     stuck: OnceLock<[Vec<f64>; 3]>,
-    /// The discretisation's multigrid prolongations (for backends that ask, on first use).
-    prolongations: OnceLock<Arc<[CsrMatrix]>>,
+    /// The discretisation's multigrid prolongations and near-null space (for backends that
+    /// ask, on first use).
+    cache: BackendCache,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for FullSystemSolver<'_, D, L> {
@@ -169,7 +171,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             model,
             settings,
             stuck: OnceLock::new(),
-            prolongations: OnceLock::new(),
+            cache: BackendCache::default(),
         };
         // validate by building: a discretisation without the hierarchy a backend needs is
         // refused here
@@ -188,7 +190,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             backend,
             &self.settings.newton.linear_settings(),
             self.model.discretisation(),
-            &self.prolongations,
+            &self.cache,
             spd,
         )
     }

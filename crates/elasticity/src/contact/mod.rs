@@ -57,6 +57,7 @@ mod bulk_multigrid;
 mod error;
 mod exact_friction;
 mod full_system;
+mod loads;
 mod model;
 mod operator;
 mod pattern;
@@ -76,7 +77,8 @@ pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
     solve_sequenced,
 };
-pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
+pub use loads::{BODY_FORCE, END_LOADS, EndLoads};
+pub use model::{ContactModel, SiteTraction};
 pub use operator::{BodyOperator, ContactOperator, Extremum};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
 pub use solution::{

@@ -1,7 +1,10 @@
 //! The frictional contact model: a linear bulk operator, end loads, and a pointwise friction
 //! law on the contact rows of any [`Discretisation`].
 
+use std::sync::Arc;
+
 use capstan_friction::{ContactState, FrictionLaw};
+use capstan_solvers::row_distribution::RowDistribution;
 
 use crate::contact::error::ContactError;
 use crate::contact::exact_friction::{ContactRows, ExactFriction};
@@ -10,70 +13,9 @@ use crate::contact::pattern::{ExtendedPattern, Sites, extended_pattern};
 use crate::contact::unilateral::{Gap, Unilateral};
 use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
+
+use crate::contact::loads::{END_LOADS, EndLoads};
 use capstan_friction::nonsmooth_law::DynNonsmoothLaw;
-
-/// End tractions `T^2_2 = tau0` at `x2 = theta0` and `T^2_2 = tau_max` at `x2 = theta1`: the
-/// paper's load, the first two entries ([`END_LOADS`]) of a contact model's load list.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct EndLoads {
-    /// `tau0` (the paper's minimum traction).
-    pub tau0: f64,
-    /// `tau_max`.
-    pub tau_max: f64,
-}
-
-impl EndLoads {
-    /// The loads `(tau0, tau_max)`.
-    pub fn new(tau0: f64, tau_max: f64) -> Self {
-        Self { tau0, tau_max }
-    }
-
-    /// `tau0 = 1`, `tau_max = ratio`.
-    pub fn ratio(ratio: f64) -> Self {
-        Self::new(1.0, ratio)
-    }
-
-    /// `tau_max / tau0`.
-    pub fn tension_ratio(&self) -> f64 {
-        self.tau_max / self.tau0
-    }
-
-    /// Both loads times `s`.
-    pub fn scaled(&self, s: f64) -> Self {
-        Self::new(s * self.tau0, s * self.tau_max)
-    }
-
-    /// The magnitudes of [`END_LOADS`], in that order: `[tau0, tau_max]`.
-    pub fn magnitudes(&self) -> [f64; 2] {
-        [self.tau0, self.tau_max]
-    }
-
-    /// `max(|tau0|, |tau_max|)`.
-    pub fn magnitude(&self) -> f64 {
-        self.tau0.abs().max(self.tau_max.abs())
-    }
-
-    pub(crate) fn check(&self) -> Result<(), ContactError> {
-        for (field, value) in [("loads.tau0", self.tau0), ("loads.tau_max", self.tau_max)] {
-            if !value.is_finite() {
-                return Err(ContactError::from(ElasticityError::InvalidParameter {
-                    field,
-                    value,
-                    allowed: "finite values",
-                }));
-            }
-        }
-        Ok(())
-    }
-}
-
-/// The loads of the paper's body, by scene key: the end tractions `tau0` at `x2 = theta0`
-/// and `tau_max` at `x2 = theta1` ([`EndLoads`]).
-pub const END_LOADS: [&str; 2] = ["loads.tau0", "loads.tau_max"];
-
-/// The name (scene key) of a body's body force in its contact model's load list
-/// ([`crate::contact::BodyForceField`]), after [`END_LOADS`].
-pub const BODY_FORCE: &str = "loads.body_force";
 
 /// The friction law at one contact site (a contact node; one or two tangential entries, see
 /// [`ContactNode`]): the physical slip and traction, and for each entry of the site the
@@ -158,6 +100,9 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     unilateral: Option<Unilateral>,
     /// Exact (nonsmooth) friction in place of `law` ([`ContactModel::into_exact_friction`]).
     exact: Option<ExactFriction>,
+    /// `system` holds this process's rows only ([`ContactOperator::row_distribution`]):
+    /// residuals are completed by gathering the owners' rows.
+    distribution: Option<(Arc<dyn RowDistribution>, usize)>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -275,6 +220,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         let sites = Sites::new(&nodes, &active)?;
         let ext = extended_pattern(&system.pattern, &nodes, &active, &sites)?;
+        let distribution = disc.row_distribution();
         Ok(Self {
             disc: std::sync::Arc::new(disc),
             law,
@@ -290,6 +236,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             ext,
             unilateral: None,
             exact: None,
+            distribution,
         })
     }
 
@@ -316,6 +263,14 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// [`ElasticityError::InvalidParameter`] naming `contact.gap` for a negative gap, naming
     /// `contact.kind` for a contact node without a free normal row.
     pub fn into_unilateral(mut self, gap: &Gap) -> Result<Self, ContactError> {
+        if self.distribution.is_some() {
+            // the Signorini rows read whole rows of A on every process
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
+                field: "contact.kind",
+                value: f64::NAN,
+                allowed: "`bilateral` when the body is assembled over several processes (solver.linear = \"petsc\" on more than one rank); `unilateral` on one",
+            }));
+        }
         let active_of: std::collections::HashMap<usize, usize> = self
             .active
             .iter()
@@ -404,6 +359,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             ext: self.ext.clone(),
             unilateral: self.unilateral.clone(),
             exact: self.exact.clone(),
+            distribution: self.distribution.clone(),
         }
     }
 
@@ -506,6 +462,13 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             }
         }
         set
+    }
+
+    /// Whether the bulk operator holds this process's rows only (a distributed solve:
+    /// [`ContactOperator::row_distribution`]); [`ContactModel::system`] and the Jacobians then
+    /// have entries in those rows alone, the residuals are whole.
+    pub fn is_distributed(&self) -> bool {
+        self.distribution.is_some()
     }
 
     /// Whether the model has unilateral (Signorini) contact.
@@ -746,10 +709,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.site_traction_at_slip(j, slip, first.normal_stress.dot(v))
     }
 
-    /// The full residual `R(v) = A v - b(tau) - sum_k w_k e_row t_k(v)`.
+    /// The full residual `R(v) = A v - b(tau) - sum_k w_k e_row t_k(v)` (on a model
+    /// assembled over several processes, [`ContactModel::is_distributed`], each process
+    /// evaluates its rows and gathers the others: collective).
     ///
     /// # Panics
-    /// If `v`, `rhs` or `r` have the wrong length.
+    /// If `v`, `rhs` or `r` have the wrong length; if the gather fails.
     #[track_caller]
     pub fn residual_into(&self, rhs: &[f64], v: &[f64], r: &mut [f64]) {
         self.residual_with(rhs, v, r, None);
@@ -787,6 +752,10 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         if let Some(u) = &self.unilateral {
             u.residual_into(v, rhs, r);
+        }
+        if let Some((d, block)) = &self.distribution {
+            // this process's rows are right; the others come from their owners
+            d.gather(r, *block);
         }
     }
 

@@ -4,7 +4,8 @@
 
 use std::sync::Arc;
 
-use capstan_solvers::{ColumnOrdering, CsrMatrix};
+use capstan_solvers::row_distribution::RowDistribution;
+use capstan_solvers::{ColumnOrdering, CsrMatrix, NearNullSpace};
 
 use crate::boundary::Component;
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
@@ -50,6 +51,21 @@ pub trait ContactOperator {
     /// needs a direct linear backend.
     fn multigrid_prolongations(&self, coarsest_unknowns: usize) -> Option<Arc<[CsrMatrix]>> {
         let _ = coarsest_unknowns;
+        None
+    }
+
+    /// The rigid motions of the body in its unknowns and the unknowns per node, for an
+    /// algebraic multigrid (PETSc's GAMG: `MatSetNearNullSpace`, `MatSetBlockSize`); `None`
+    /// (the default) when the discretisation does not give them.
+    fn near_null_space(&self) -> Option<NearNullSpace> {
+        None
+    }
+
+    /// The process's share of a distributed solve when [`ContactOperator::contact_system`]
+    /// holds only its rows ([`RowDistribution::owned`] for `block` unknowns a node; the
+    /// right-hand side whole): `(distribution, block)`. `None` (the default): the whole
+    /// system.
+    fn row_distribution(&self) -> Option<(Arc<dyn RowDistribution>, usize)> {
         None
     }
 
@@ -113,6 +129,14 @@ impl ContactOperator for BodyOperator {
         (**self).multigrid_prolongations(coarsest_unknowns)
     }
 
+    fn near_null_space(&self) -> Option<NearNullSpace> {
+        (**self).near_null_space()
+    }
+
+    fn row_distribution(&self) -> Option<(Arc<dyn RowDistribution>, usize)> {
+        (**self).row_distribution()
+    }
+
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
         (**self).contact_system()
     }
@@ -173,6 +197,16 @@ impl<D: Discretisation> ContactOperator for D {
 
     fn lu_ordering(&self) -> ColumnOrdering {
         Discretisation::lu_ordering(self)
+    }
+
+    /// The block size 2 of the numbering `2 node + c` and no vectors: the plane
+    /// discretisations do not carry their chart, so an algebraic multigrid falls back to its
+    /// own near-null space for blocks of 2 (PETSc's GAMG: one constant per component).
+    fn near_null_space(&self) -> Option<NearNullSpace> {
+        Some(NearNullSpace {
+            block_size: 2,
+            vectors: Vec::new(),
+        })
     }
 
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {

@@ -152,6 +152,64 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
         Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations)
     }
 
+    /// The three rigid translations of space in the contravariant components
+    /// `v^i = g^i . e_d` at every node, block size 3; `None` if the chart fails at a node.
+    ///
+    /// # Math
+    /// ```text
+    /// z_d[3 m + i] = g^i(x_m) . e_d           d = 0, 1, 2   (0 at prescribed dofs)
+    /// ```
+    /// `a(z, w) = 0` for every `w`: the strain of a rigid motion vanishes, so without
+    /// boundary conditions `A z = 0`. The prescribed (Dirichlet) dofs are set to zero: their
+    /// rows are decoupled identities. The three rotations `u = e_a x Theta` are rigid motions
+    /// too, but with them PETSc's GAMG failed to set up (a zero pivot on a coarse level) on the
+    /// ellipse of `docs/solid.md` at 111,843 unknowns on one rank and at 15,795 on two; with
+    /// the translations alone it converges everywhere tried (`docs/scale-out.md`).
+    fn near_null_space(&self) -> Option<capstan_solvers::NearNullSpace> {
+        let [n1, n2, n3] = self.grid.counts();
+        let n = self.dof_count();
+        let mut vectors = vec![vec![0.0; n]; 3];
+        let heights: Vec<f64> = (0..n3)
+            .map(|k| self.grid.coordinates([0, 0, k])[2])
+            .collect();
+        let mut column = Vec::with_capacity(n3);
+        for i1 in 0..n1 {
+            for i2 in 0..n2 {
+                let x = self.grid.coordinates([i1, i2, 0]);
+                column.clear();
+                self.chart
+                    .shell_column([x[0], x[1]], &heights, &mut column)
+                    .ok()?;
+                for (i3, p) in column.iter().enumerate() {
+                    let m = self.grid.node_index([i1, i2, i3]);
+                    for (i, gi) in p.contravariant_basis.iter().enumerate() {
+                        for (d, z) in vectors.iter_mut().enumerate() {
+                            z[3 * m + i] = gi[d];
+                        }
+                    }
+                }
+            }
+        }
+        for (d, g) in self.dirichlet.iter().enumerate() {
+            if g.is_some() {
+                vectors.iter_mut().for_each(|z| z[d] = 0.0);
+            }
+        }
+        Some(capstan_solvers::NearNullSpace {
+            block_size: 3,
+            vectors,
+        })
+    }
+
+    fn row_distribution(
+        &self,
+    ) -> Option<(
+        std::sync::Arc<dyn capstan_solvers::row_distribution::RowDistribution>,
+        usize,
+    )> {
+        self.distribution().map(|d| (std::sync::Arc::clone(d), 3))
+    }
+
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
         Ok(self.system().clone())
     }

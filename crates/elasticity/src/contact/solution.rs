@@ -2,7 +2,8 @@
 
 use capstan_friction::FrictionLaw;
 
-use crate::contact::model::{ContactModel, EndLoads, add_slip};
+use crate::contact::loads::EndLoads;
+use crate::contact::model::{ContactModel, add_slip};
 use crate::contact::operator::{ContactOperator, Extremum};
 use crate::discretisation::ContactNode;
 

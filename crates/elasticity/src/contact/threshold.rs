@@ -4,7 +4,7 @@ use capstan_friction::FrictionLaw;
 
 use crate::contact::boundary_solver::BoundarySolver;
 use crate::contact::error::ContactError;
-use crate::contact::model::EndLoads;
+use crate::contact::loads::EndLoads;
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::ContactSolution;
 

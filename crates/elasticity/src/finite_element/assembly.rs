@@ -35,6 +35,11 @@ pub struct ElementAssembly {
     connectivity: Vec<usize>,
     nodes_per_element: usize,
     components: usize,
+    /// The rows assembled (all unless [`ElementAssembly::for_rows`]).
+    rows: core::ops::Range<usize>,
+    /// The number of each element kept among the caller's ([`ElementAssembly::for_rows`];
+    /// empty: all, in order).
+    element_ids: Vec<usize>,
 }
 
 impl ElementAssembly {
@@ -143,7 +148,162 @@ impl ElementAssembly {
             connectivity,
             nodes_per_element: nen,
             components,
+            rows: 0..ndof,
+            element_ids: Vec::new(),
         })
+    }
+
+    /// As [`ElementAssembly::new`], for the rows `rows` alone (whole nodes: `rows` starts
+    /// and ends at multiples of `components`), as one process of a distributed solve holds
+    /// them: only the elements with a node in `rows` are kept ([`ElementAssembly::element_id`]
+    /// gives their numbers among the caller's), and the pattern has entries in `rows` only
+    /// (its other rows are empty). [`ElementAssembly::assemble`] then gives the matrix rows
+    /// and right-hand side entries of `rows` exactly as the whole assembly does; the other
+    /// right-hand side entries are partial sums.
+    ///
+    /// # Errors
+    /// As [`ElementAssembly::new`]; [`ElasticityError::InvalidParameter`] naming `rows` if
+    /// they are not whole nodes inside the dofs.
+    pub fn for_rows(
+        node_count: usize,
+        components: usize,
+        nodes_per_element: usize,
+        connectivity: &[usize],
+        dirichlet: &[Option<f64>],
+        rows: core::ops::Range<usize>,
+    ) -> Result<Self, ElasticityError> {
+        let ndof = components * node_count;
+        ElasticityError::check_length("dirichlet values", ndof, dirichlet.len())?;
+        let c = components.max(1);
+        if rows.end > ndof
+            || rows.start > rows.end
+            || !rows.start.is_multiple_of(c)
+            || !rows.end.is_multiple_of(c)
+        {
+            return Err(ElasticityError::InvalidParameter {
+                field: "rows",
+                value: rows.end as f64,
+                allowed: "whole nodes inside the dofs",
+            });
+        }
+        let nen = nodes_per_element.max(1);
+        let owned_nodes = rows.start / c..rows.end / c;
+        let element_ids: Vec<usize> = (0..connectivity.len() / nen)
+            .filter(|&e| {
+                connectivity[e * nen..(e + 1) * nen]
+                    .iter()
+                    .any(|m| owned_nodes.contains(m))
+            })
+            .collect();
+        let kept: Vec<usize> = element_ids
+            .iter()
+            .flat_map(|&e| connectivity[e * nen..(e + 1) * nen].iter().copied())
+            .collect();
+        let start = bucket_starts(&kept, node_count);
+        let mut fill = start[..node_count].to_vec();
+        let mut elements_of = vec![0usize; kept.len()];
+        for (k, &m) in kept.iter().enumerate() {
+            elements_of[fill[m]] = k / nen;
+            fill[m] += 1;
+        }
+        // the owned rows' free columns (sorted), row-wise; then the compressed columns
+        let mut row_cols: Vec<Vec<usize>> = Vec::with_capacity(rows.len());
+        for d in rows.clone() {
+            if dirichlet[d].is_some() {
+                row_cols.push(vec![d]);
+                continue;
+            }
+            let m = d / c;
+            let mut nbrs: Vec<usize> = elements_of[start[m]..start[m + 1]]
+                .iter()
+                .flat_map(|&e| kept[e * nen..(e + 1) * nen].iter().copied())
+                .collect();
+            nbrs.sort_unstable();
+            nbrs.dedup();
+            row_cols.push(
+                nbrs.iter()
+                    .flat_map(|&n| (0..c).map(move |k| c * n + k))
+                    .filter(|&j| dirichlet[j].is_none())
+                    .collect(),
+            );
+        }
+        let mut col_ptr = vec![0usize; ndof + 1];
+        for cols in &row_cols {
+            for &j in cols {
+                col_ptr[j + 1] += 1;
+            }
+        }
+        for j in 0..ndof {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        if col_ptr[ndof] > u32::MAX as usize {
+            return Err(ElasticityError::InvalidParameter {
+                field: "pattern nonzeros",
+                value: col_ptr[ndof] as f64,
+                allowed: "[0, 2^32)",
+            });
+        }
+        let mut row_idx = vec![0usize; col_ptr[ndof]];
+        let mut next = col_ptr[..ndof].to_vec();
+        for (r, cols) in rows.clone().zip(&row_cols) {
+            for &j in cols {
+                row_idx[next[j]] = r; // rows visited in increasing order: sorted columns
+                next[j] += 1;
+            }
+        }
+        drop(row_cols);
+        let pattern = SparsityPattern::from_compressed_columns(ndof, ndof, col_ptr, row_idx)?;
+        let l = c * nen;
+        let mut slots = vec![NO_SLOT; element_ids.len() * l * l];
+        slots
+            .par_chunks_mut(l * l)
+            .enumerate()
+            .for_each(|(e, out)| {
+                let nodes = &kept[e * nen..(e + 1) * nen];
+                for a in 0..l {
+                    let r = c * nodes[a / c] + a % c;
+                    if !rows.contains(&r) {
+                        continue;
+                    }
+                    for b in 0..l {
+                        let j = c * nodes[b / c] + b % c;
+                        let keep = if dirichlet[r].is_some() {
+                            r == j
+                        } else {
+                            dirichlet[j].is_none()
+                        };
+                        if keep {
+                            let s = pattern.slot(r, j).expect("element entry in the pattern");
+                            out[a * l + b] = s as u32;
+                        }
+                    }
+                }
+            });
+        let mut diagonal = vec![usize::MAX; ndof];
+        for d in rows.clone() {
+            diagonal[d] = pattern.slot(d, d).expect("diagonal in the pattern");
+        }
+        Ok(Self {
+            pattern,
+            slots,
+            diagonal,
+            connectivity: kept,
+            nodes_per_element: nen,
+            components: c,
+            rows,
+            element_ids,
+        })
+    }
+
+    /// The number among the caller's elements of element `e` of this assembly (`e` itself
+    /// unless [`ElementAssembly::for_rows`] kept a subset).
+    pub fn element_id(&self, e: usize) -> usize {
+        self.element_ids.get(e).copied().unwrap_or(e)
+    }
+
+    /// The rows this assembly fills (all dofs unless [`ElementAssembly::for_rows`]).
+    pub fn rows(&self) -> core::ops::Range<usize> {
+        self.rows.clone()
     }
 
     /// The compressed-column pattern of the assembled matrix.
@@ -207,15 +367,17 @@ impl ElementAssembly {
                         let (a, b) = (idx / l, idx % l);
                         let r = self.components * nodes[a / self.components] + a % self.components;
                         let c = self.components * nodes[b / self.components] + b % self.components;
-                        if let (None, Some(g)) = (dirichlet[r], dirichlet[c]) {
+                        if let (None, Some(g)) = (dirichlet[r], dirichlet[c])
+                            && self.rows.contains(&r)
+                        {
                             rhs[r] -= x * g;
                         }
                     }
                 }
             }
         }
-        for (d, g) in dirichlet.iter().enumerate() {
-            if let Some(g) = g {
+        for d in self.rows.clone() {
+            if let Some(g) = dirichlet[d] {
                 rhs[d] = values[self.diagonal[d]] * g;
             }
         }
@@ -240,6 +402,79 @@ pub(super) fn bucket_starts(keys: &[usize], buckets: usize) -> Vec<usize> {
 mod tests {
     use super::*;
     use capstan_solvers::SparseCholesky;
+
+    /// A 2 x 3 grid of bilinear quads (3 x 4 nodes), 2 unknowns a node that couple, one
+    /// Dirichlet node: the element matrix `K_(2a+c, 2b+d) = (1 + a + b) (1 + c + d) + 4 delta`.
+    #[allow(clippy::type_complexity)] // (connectivity, Dirichlet values, element kernel)
+    fn quads() -> (
+        Vec<usize>,
+        Vec<Option<f64>>,
+        impl Fn(usize, &mut [f64]) + Sync,
+    ) {
+        let (nx, ny) = (3, 4);
+        let mut connectivity = Vec::new();
+        for i in 0..nx - 1 {
+            for j in 0..ny - 1 {
+                let m = |i: usize, j: usize| i * ny + j;
+                connectivity.extend([m(i, j), m(i + 1, j), m(i, j + 1), m(i + 1, j + 1)]);
+            }
+        }
+        let mut dirichlet = vec![None; 2 * nx * ny];
+        dirichlet[2 * 5] = Some(0.5);
+        dirichlet[2 * 5 + 1] = Some(-1.0);
+        let element = |e: usize, out: &mut [f64]| {
+            for r in 0..8 {
+                for c in 0..8 {
+                    let (a, b) = ((r / 2 + c / 2) as f64, (r % 2 + c % 2) as f64);
+                    out[r * 8 + c] = (1.0 + a) * (1.0 + b) * (1.0 + 0.1 * e as f64)
+                        + if r == c { 4.0 } else { 0.0 };
+                }
+            }
+        };
+        (connectivity, dirichlet, element)
+    }
+
+    #[test]
+    fn rows_assembled_apart_equal_the_whole_assembly() {
+        let (connectivity, dirichlet, element) = quads();
+        let load: Vec<f64> = (0..24).map(|k| k as f64 * 0.25 - 1.0).collect();
+        let whole = ElementAssembly::new(12, 2, 4, connectivity.clone(), &dirichlet)
+            .unwrap()
+            .assemble(&element, &load, &dirichlet)
+            .unwrap();
+        for size in [1, 2, 3, 5] {
+            let mut nnz = 0;
+            for rank in 0..size {
+                let rows = capstan_solvers::row_distribution::owned_blocks(24, 2, rank, size);
+                let part =
+                    ElementAssembly::for_rows(12, 2, 4, &connectivity, &dirichlet, rows.clone())
+                        .unwrap();
+                let ids: Vec<usize> = (0..part.element_count())
+                    .map(|e| part.element_id(e))
+                    .collect();
+                let system = part
+                    .assemble(|e, out| element(ids[e], out), &load, &dirichlet)
+                    .unwrap();
+                nnz += system.pattern.nnz();
+                for (r, c) in system.pattern.entries() {
+                    assert!(rows.contains(&r), "entry ({r}, {c}) outside the rows");
+                    let (a, b) = (
+                        system.pattern.slot(r, c).unwrap(),
+                        whole.pattern.slot(r, c).unwrap(),
+                    );
+                    assert_eq!(system.values[a], whole.values[b]); // same sums, same order
+                }
+                for r in rows {
+                    assert_eq!(system.rhs[r], whole.rhs[r]);
+                }
+            }
+            assert_eq!(nnz, whole.pattern.nnz(), "{size} parts");
+        }
+        assert!(matches!(
+            ElementAssembly::for_rows(12, 2, 4, &connectivity, &dirichlet, 1..4),
+            Err(ElasticityError::InvalidParameter { field: "rows", .. })
+        ));
+    }
 
     /// 1-D linear elements of `-u'' = 0` on `[0, 1]` (4 elements, 2 components that do not
     /// couple): `u(0) = 1`, `u(1) = 3` gives the linear interpolant exactly.

@@ -67,6 +67,8 @@ pub struct SolidNavier<G> {
     elements: [usize; 3],
     pub(crate) dirichlet: Vec<Option<f64>>,
     assembly: ElementAssembly,
+    /// Set when assembled for one process's rows ([`SolidNavier::distribution`]).
+    distribution: Option<std::sync::Arc<dyn capstan_solvers::row_distribution::RowDistribution>>,
     system: LinearSystem,
 }
 
@@ -181,13 +183,25 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                 }
             }
         }
-        let assembly = ElementAssembly::new(
-            grid.node_count(),
-            COMPONENTS,
-            np.pow(3),
-            connectivity,
-            &dirichlet,
-        )?;
+        // one process of a distributed solve assembles its own rows only
+        let distribution = capstan_solvers::row_distribution::installed();
+        let assembly = match &distribution {
+            None => ElementAssembly::new(
+                grid.node_count(),
+                COMPONENTS,
+                np.pow(3),
+                connectivity,
+                &dirichlet,
+            )?,
+            Some(d) => ElementAssembly::for_rows(
+                grid.node_count(),
+                COMPONENTS,
+                np.pow(3),
+                &connectivity,
+                &dirichlet,
+                d.owned(COMPONENTS * grid.node_count(), COMPONENTS),
+            )?,
+        };
         let mut op = Self {
             chart,
             material,
@@ -197,6 +211,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             elements,
             dirichlet,
             assembly,
+            distribution,
             system: LinearSystem::from_parts(
                 capstan_solvers::SparsityPattern::from_compressed_columns(0, 0, vec![0], vec![])
                     .expect("the empty pattern"),
@@ -215,7 +230,24 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             &load,
             &op.dirichlet,
         )?;
+        if let Some(d) = &op.distribution {
+            // the right-hand side whole on every rank (its other rows were partial sums)
+            d.gather(&mut op.system.rhs, COMPONENTS);
+        }
         Ok(op)
+    }
+
+    /// The process's share of a distributed solve this operator was assembled for (its
+    /// rows only: [`ElementAssembly::for_rows`], the rows
+    /// [`capstan_solvers::row_distribution::RowDistribution::owned`] of 3 unknowns a node;
+    /// the right-hand side whole), `None` for the whole operator. Set when a distribution
+    /// with more than one process is installed
+    /// ([`capstan_solvers::row_distribution::install`]); the L2 errors and the linear
+    /// [`SolidNavier::solve`] need the whole operator.
+    pub fn distribution(
+        &self,
+    ) -> Option<&std::sync::Arc<dyn capstan_solvers::row_distribution::RowDistribution>> {
+        self.distribution.as_ref()
     }
 
     /// The grid.
@@ -257,8 +289,10 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         self.grid.spacing().map(|d| k * d)
     }
 
-    /// Lower corner `(x1, x2, x3)` of element `e` (numbered `(e1 ne2 + e2) ne3 + e3`).
+    /// Lower corner `(x1, x2, x3)` of element `e` of the assembly (numbered
+    /// `(e1 ne2 + e2) ne3 + e3` among all: [`ElementAssembly::element_id`]).
     fn element_origin(&self, e: usize) -> [f64; 3] {
+        let e = self.assembly.element_id(e);
         let [_, ne2, ne3] = self.elements;
         let k = self.element().degree();
         let (e1, e2, e3) = (e / (ne2 * ne3), (e / ne3) % ne2, e % ne3);

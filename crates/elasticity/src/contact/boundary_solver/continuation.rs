@@ -5,7 +5,7 @@ use capstan_solvers::{Observer, Progress, SolveStage};
 
 use super::{BoundarySolver, Failure};
 use crate::contact::error::ContactError;
-use crate::contact::model::EndLoads;
+use crate::contact::loads::EndLoads;
 use crate::contact::operator::ContactOperator;
 
 impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {

@@ -18,9 +18,10 @@ use capstan_solvers::{LinearBackend, LinearSettings, LinearSolver, Observer, Sil
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
-use crate::contact::bulk_multigrid::build_backend;
+use crate::contact::bulk_multigrid::{BackendCache, build_backend};
 use crate::contact::error::ContactError;
-use crate::contact::model::{ContactModel, EndLoads};
+use crate::contact::loads::EndLoads;
+use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use condensation::{
@@ -169,7 +170,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             settings.linear,
             &LinearSettings::default(),
             model.discretisation(),
-            &std::sync::OnceLock::new(),
+            &BackendCache::default(),
             false,
         )?;
         lu.analyse(&ext.pattern)?;

@@ -6,7 +6,7 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 use super::{BoundarySolver, ContactSettings, Converged, Failure};
-use crate::contact::model::EndLoads;
+use crate::contact::loads::EndLoads;
 use crate::contact::operator::ContactOperator;
 
 /// A residual within this factor of the rounding floor of its evaluation counts as converged.
