@@ -10,6 +10,7 @@ use capstan_geometry::{
 
 use super::boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 use super::grid::BoxGrid;
+use super::matrix_free::SolidMatrixFree;
 use super::operator::{SolidForce, SolidNavier};
 use crate::continuum::{SOLID, mixed_stress_of};
 use crate::error::ElasticityError;
@@ -209,17 +210,10 @@ impl SolidMms {
         })
     }
 
-    /// The operator on an `n = [n1, n2, n3]` grid with elements of `order`.
-    ///
-    /// # Errors
-    /// Grid, geometry or element-count errors.
-    pub fn operator(
-        &self,
-        n: [usize; 3],
-        order: impl Into<super::HexElement>,
-    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
+    /// The boundary conditions (the exact field on the `x1`, `x2` faces, its tractions on the
+    /// `x3` faces) and the body force of the problem.
+    pub fn boundary(&self) -> (SolidBoundary, SolidForce) {
         let exact = self.exact();
-        let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
         let dirichlet = || {
             FaceCondition([0, 1, 2].map(|c| {
                 let ex = exact.clone();
@@ -250,7 +244,43 @@ impl SolidMms {
         };
         let ex = exact.clone();
         let force: SolidForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 3]));
+        (boundary, force)
+    }
+
+    /// The operator on an `n = [n1, n2, n3]` grid with elements of `order`.
+    ///
+    /// # Errors
+    /// Grid, geometry or element-count errors.
+    pub fn operator(
+        &self,
+        n: [usize; 3],
+        order: impl Into<super::HexElement>,
+    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
+        let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
+        let (boundary, force) = self.boundary();
         SolidNavier::new(
+            ShellChart::new(self.obstacle.clone()),
+            self.material,
+            grid,
+            &boundary,
+            Some(&force),
+            order,
+            VolumetricIntegration::Full,
+        )
+    }
+
+    /// The matrix-free operator of the same problem ([`SolidMatrixFree`]).
+    ///
+    /// # Errors
+    /// See [`SolidMms::operator`].
+    pub fn matrix_free(
+        &self,
+        n: [usize; 3],
+        order: impl Into<super::HexElement>,
+    ) -> Result<SolidMatrixFree<SampleChart>, ElasticityError> {
+        let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
+        let (boundary, force) = self.boundary();
+        SolidMatrixFree::new(
             ShellChart::new(self.obstacle.clone()),
             self.material,
             grid,
