@@ -283,3 +283,57 @@ fn semicoarsening_keeps_counts_flat_on_cells_of_aspect_four() {
     assert!(2 * c[1] <= 3 * c[0], "{c:?}");
     assert!(c[1] <= 60, "{c:?}");
 }
+
+#[test]
+fn qp3_contact_by_gmres_and_p_multigrid_equals_the_direct_solution() {
+    use capstan_elasticity::contact::{
+        BulkMultigrid, EndLoads, FullSystemSettings, FullSystemSolver,
+    };
+    use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
+    // Qp3 (GLL nodes): the Newton steps by GMRES with the V-cycle on [P_p (Q1 on the element
+    // vertices), box hierarchy], refused before this transfer existed
+    let mut body = SolidBody::new(
+        EllipticalPrism::new(2.0, 1.5).unwrap(),
+        [-0.5, 0.5],
+        [7, 49, 7],
+    );
+    body.order = HexElement::Gll(3);
+    let eps = 1e-5;
+    let law = RegularisedCoulombParams::new(0.5, eps).unwrap();
+    let model = body.model(RegularisedCoulomb, law, eps).unwrap();
+    let loads = EndLoads::ratio(1.5);
+    let solve = |multigrid: Option<BulkMultigrid>| {
+        FullSystemSolver::new(
+            &model,
+            FullSystemSettings {
+                multigrid,
+                ..Default::default()
+            },
+        )
+        .unwrap()
+        .solve(loads)
+        .unwrap()
+    };
+    let direct = solve(None);
+    let iterative = solve(Some(BulkMultigrid {
+        coarsest_unknowns: 200,
+        ..Default::default()
+    }));
+    assert!(iterative.stats.linear_iterations > iterative.stats.newton_iterations);
+    let scale = max_abs(&direct.displacement);
+    let diff: Vec<f64> = direct
+        .displacement
+        .iter()
+        .zip(&iterative.displacement)
+        .map(|(a, b)| a - b)
+        .collect();
+    assert!(
+        max_abs(&diff) <= 1e-8 * scale,
+        "{:e}",
+        max_abs(&diff) / scale
+    );
+    println!(
+        "Qp3 contact: {} Newton steps, {} Krylov iterations",
+        iterative.stats.newton_iterations, iterative.stats.linear_iterations
+    );
+}

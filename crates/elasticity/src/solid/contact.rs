@@ -144,16 +144,34 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     /// The trilinear hierarchy of the box ([`crate::solid::box_hierarchy`]), Dirichlet dofs
-    /// constrained; `None` for Qp elements of degree 3 and more (GLL nodes: the
-    /// trilinear interpolation between uniform grids does not apply).
+    /// constrained; for Qp elements of degree 3 and more (GLL nodes, where the trilinear
+    /// interpolation between uniform grids does not apply) first the p-multigrid transfer
+    /// from the Q1 field on the element vertices, then the box hierarchy of the vertex grid.
     fn multigrid_prolongations(
         &self,
         coarsest_unknowns: usize,
     ) -> Option<std::sync::Arc<[capstan_solvers::CsrMatrix]>> {
-        if self.element().degree() > 2 {
-            return None;
+        if self.element().degree() <= 2 {
+            return Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations);
         }
-        Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations)
+        let constrained: Vec<bool> = self.setup.dirichlet.iter().map(Option::is_some).collect();
+        let grid = &self.setup.grid;
+        let (first, counts, mask) =
+            crate::solid::matrix_free::p_prolongation(grid, self.element(), &constrained);
+        let vertices = super::grid::BoxGrid::new(
+            grid.x1_range(),
+            grid.x2_range(),
+            grid.thickness(),
+            counts,
+            grid.is_periodic(),
+        )
+        .ok()?;
+        let rest = super::multigrid::box_hierarchy(&vertices, &mask, coarsest_unknowns);
+        Some(
+            core::iter::once(first)
+                .chain(rest.prolongations.iter().cloned())
+                .collect(),
+        )
     }
 
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {

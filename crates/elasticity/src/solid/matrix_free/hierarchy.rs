@@ -62,6 +62,23 @@ fn p_interpolation(n: usize, k: usize, nodes: &[f64], periodic: bool) -> Vec<Vec
         .collect()
 }
 
+/// The p-multigrid transfer of `grid` (node lines of elements of `element`) to the Q1 grid
+/// of the element vertices: the prolongation, the vertex grid's node counts and its
+/// constrained dofs (see [`p_interpolation`] and [`tensor_prolongation`]).
+pub(crate) fn p_prolongation(
+    grid: &BoxGrid,
+    element: HexElement,
+    constrained: &[bool],
+) -> (CsrMatrix, [usize; 3], Vec<bool>) {
+    let n = grid.counts();
+    let per = [false, grid.is_periodic(), false];
+    let nodes = element.reference_nodes();
+    let k = element.degree();
+    let w: [Vec<Vec<(usize, f64)>>; 3] =
+        core::array::from_fn(|d| p_interpolation(n[d], k, &nodes, per[d]));
+    tensor_prolongation(n, &w, constrained)
+}
+
 /// The physical cell sizes `dx_d sqrt(g_dd)` of `grid` at its centre.
 fn cell_sizes<G: ShellGeometry>(chart: &G, grid: &BoxGrid) -> Result<[f64; 3], ElasticityError> {
     let [a, b] = grid.x1_range();

@@ -22,6 +22,7 @@ use crate::shell_geometry::ShellGeometry;
 use kernel::{GEOMETRY, Scratch, Tables};
 
 pub use hierarchy::SolidMultigridParams;
+pub(crate) use hierarchy::p_prolongation;
 
 /// The curvilinear Navier operator of a 3-D body by Q1, Q2 or Qp hexahedra, matrix-free:
 /// the same operator as [`super::SolidNavier`] (same weak form, quadrature and Dirichlet
