@@ -155,7 +155,7 @@ fn main() {
 /// An operator shared with its preconditioner.
 struct Shared<T>(Arc<T>);
 
-impl<T: LinearOperator + ?Sized> LinearOperator for Shared<T> {
+impl<T: LinearOperator + Send> LinearOperator for Shared<T> {
     fn dimension(&self) -> usize {
         self.0.dimension()
     }
