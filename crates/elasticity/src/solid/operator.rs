@@ -1,7 +1,5 @@
 //! The 3-D curvilinear Navier operator by Q1/Q2/Qp hexahedral finite elements on the box.
 
-use std::sync::Arc;
-
 use capstan_solvers::LinearSolver;
 use rayon::prelude::*;
 
@@ -17,8 +15,7 @@ use crate::finite_element::VolumetricIntegration;
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
 
-/// A body force density on the box: covariant components `[f_1, f_2, f_3]` at `(x1, x2, x3)`.
-pub type SolidForce = Arc<dyn Fn([f64; 3]) -> [f64; 3] + Send + Sync>;
+pub use super::setup::SolidForce;
 
 /// The curvilinear Navier operator of a 3-D body on the parametric box
 /// `[x1a, x1b] x [x2a, x2b] x [0, h]` of a shell chart `sigma + x3 N`, by Q1, Q2 or Qp

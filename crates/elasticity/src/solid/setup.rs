@@ -1,19 +1,23 @@
 //! What the assembled and the matrix-free 3-D operators share: the validated grid and
 //! boundary, the element, the chart at quadrature points, the load vector and the error norms.
 
+use std::sync::Arc;
+
 use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
 use super::boundary::{Face, FaceComponent, SolidBoundary};
 use super::element::{ElementRule, HexElement, LineTables};
 use super::grid::BoxGrid;
-use super::operator::SolidForce;
 use crate::continuum::{FaceData, face_flux};
 use crate::error::ElasticityError;
 use crate::finite_element::VolumetricIntegration;
 use crate::finite_element::high_order::gauss_legendre;
 use crate::material::Material;
 use crate::shell_geometry::ShellGeometry;
+
+/// A body force density on the box: covariant components `[f_1, f_2, f_3]` at `(x1, x2, x3)`.
+pub type SolidForce = Arc<dyn Fn([f64; 3]) -> [f64; 3] + Send + Sync>;
 
 /// A chart point and its coordinates `(x1, x2, x3)`.
 pub(super) type PointAt = (ShellPoint<f64>, [f64; 3]);

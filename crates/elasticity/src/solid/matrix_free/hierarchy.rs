@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use capstan_solvers::{CsrMatrix, MultigridParams, OperatorLevel, OperatorMultigrid};
 
-use super::SolidMatrixFree;
+use super::operator::SolidMatrixFree;
 use crate::error::ElasticityError;
 use crate::finite_element::{ElementOrder, VolumetricIntegration};
 use crate::shell_geometry::ShellGeometry;
