@@ -53,12 +53,7 @@ fn main() {
     ]);
     let start = Instant::now();
     // the operator, its right-hand side and a preconditioner, behind one interface
-    let (op, rhs, mut pc, levels): (
-        Box<dyn LinearOperator>,
-        Vec<f64>,
-        Box<dyn Preconditioner>,
-        Vec<usize>,
-    ) = match path.as_str() {
+    let (op, rhs, mut pc, levels): Path = match path.as_str() {
         "mf" => {
             let op = Arc::new(
                 SolidMatrixFree::new(
@@ -151,6 +146,14 @@ fn main() {
         peak_memory_mib(),
     );
 }
+
+/// A path: the operator, its right-hand side, its preconditioner and the level sizes.
+type Path = (
+    Box<dyn LinearOperator>,
+    Vec<f64>,
+    Box<dyn Preconditioner>,
+    Vec<usize>,
+);
 
 /// An operator shared with its preconditioner.
 struct Shared<T>(Arc<T>);
