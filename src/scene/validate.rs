@@ -369,13 +369,6 @@ impl Scene {
                 "4 (the default) unless discretisation.method = \"fem-qp\": only fem-qp has an order",
             ));
         }
-        if qp && b.dimension == 3 && order > 2 && self.solver.linear == "multigrid" {
-            return Err(bad(
-                "solver.linear",
-                "\"multigrid\"".into(),
-                "`lu` with fem-qp of order 3 and more in 3-D (the box multigrid's trilinear prolongations assume uniformly spaced nodes, not the GLL nodes)",
-            ));
-        }
         if qp {
             for (key, n) in [("grid.n2", self.grid.n2), ("grid.n3", self.grid.n3)] {
                 if n < 2 || !(n - 1).is_multiple_of(order) {

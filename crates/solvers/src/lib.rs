@@ -97,6 +97,7 @@ mod jacobi_newton;
 mod krylov;
 mod krylov_solver;
 mod linear_backend;
+mod linear_operator;
 mod linear_registration;
 pub mod linear_registry;
 mod linear_solver;
@@ -107,6 +108,7 @@ mod newton;
 mod nonlinear_method;
 mod nonlinear_solver;
 mod observer;
+mod operator_multigrid;
 mod ordering;
 mod problem;
 mod relaxation;
@@ -124,10 +126,11 @@ pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
 pub use krylov::{
     IdentityPreconditioner, KRYLOV_BUDGET_FIELD, KrylovMethod, KrylovParams, KrylovReport,
-    Preconditioner, krylov_solve,
+    Preconditioner, krylov_solve, krylov_solve_operator,
 };
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
+pub use linear_operator::LinearOperator;
 pub use linear_registration::{
     BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, Parameter,
     RegisteredLinearSolver,
@@ -139,6 +142,7 @@ pub use newton::{LineSearch, Newton, NewtonParams};
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{ActiveSet, Observer, Progress, SilentObserver, SolveStage};
+pub use operator_multigrid::{OperatorLevel, OperatorMultigrid};
 pub use ordering::{
     ColumnOrdering, GridShape, amd_compressed, amd_symmetrised, is_permutation,
     nested_dissection_elements, nested_dissection_grid,

@@ -16,13 +16,14 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// element polynomials' derivatives averaged over the elements sharing the node; see
     /// [`super::element::LineTables`]).
     pub(crate) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
-        let counts = self.grid.counts();
-        let spacing = self.grid.spacing();
-        let periodic = [false, self.grid.is_periodic(), false];
+        let counts = self.setup.grid.counts();
+        let spacing = self.setup.grid.spacing();
+        let periodic = [false, self.setup.grid.is_periodic(), false];
         let mut out = Vec::with_capacity(16);
         out.push((node, [1.0, 0.0, 0.0, 0.0]));
         for q in 0..3 {
             for (i, w) in self
+                .setup
                 .lines
                 .derivative(node[q], counts[q], spacing[q], periodic[q])
             {
@@ -48,15 +49,15 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// ```
     /// in the frame `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`: `|F v|^2 = a_ab v^a v^b`.
     fn contact_pair(&self, i1: usize, i2: usize) -> Result<[ContactNode; 2], ElasticityError> {
-        let [n1, n2, _] = self.grid.counts();
-        let [d1, d2, _] = self.grid.spacing();
+        let [n1, n2, _] = self.setup.grid.counts();
+        let [d1, d2, _] = self.setup.grid.spacing();
         let node = [i1, i2, 0];
-        let x = self.grid.coordinates(node);
-        let p = self.chart.shell_point(x)?;
+        let x = self.setup.grid.coordinates(node);
+        let p = self.setup.chart.shell_point(x)?;
         let g = &p.metric;
         let gi = &p.inverse_metric;
         let strains = mixed_strains(&p, &SOLID);
-        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
+        let (lambda, two_mu) = (self.setup.material.lambda(), 2.0 * self.setup.material.mu());
         let stencil = self.node_stencil(node);
         let row = |j: usize| -> SparseRow {
             let mut terms = Vec::with_capacity(3 * stencil.len());
@@ -82,8 +83,11 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         let normal = row(2);
         let weight = p.sqrt_g
             * gi[2][2].sqrt()
-            * self.lines.weight(i1, n1, d1, false)
-            * self.lines.weight(i2, n2, d2, self.grid.is_periodic());
+            * self.setup.lines.weight(i1, n1, d1, false)
+            * self
+                .setup
+                .lines
+                .weight(i2, n2, d2, self.setup.grid.is_periodic());
         let site = i1 * n2 + i2;
         let sqrt_a11 = g[0][0].sqrt();
         let frames = [[sqrt_a11, 0.0], [g[0][1] / sqrt_a11, 1.0 / gi[1][1].sqrt()]];
@@ -97,7 +101,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                 x2: x[1],
                 component: c + 1,
                 frame: frames[c],
-                tangential_row: self.dirichlet[dof].is_none().then_some(dof),
+                tangential_row: self.setup.dirichlet[dof].is_none().then_some(dof),
                 tangential_dof: dof,
                 normal_dof: self.dof(node, 2),
                 traction_weight: weight,
@@ -124,8 +128,8 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     /// + c` makes a column consecutive): the separators cut through the whole thickness. AMD
     /// for a periodic `x2`.
     fn lu_ordering(&self) -> ColumnOrdering {
-        let [n1, n2, n3] = self.grid.counts();
-        if self.grid.is_periodic() {
+        let [n1, n2, n3] = self.setup.grid.counts();
+        if self.setup.grid.is_periodic() {
             return ColumnOrdering::Auto;
         }
         ColumnOrdering::ElementNestedDissection {
@@ -140,16 +144,34 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     /// The trilinear hierarchy of the box ([`crate::solid::box_hierarchy`]), Dirichlet dofs
-    /// constrained; `None` for Qp elements of degree 3 and more (GLL nodes: the
-    /// trilinear interpolation between uniform grids does not apply).
+    /// constrained; for Qp elements of degree 3 and more (GLL nodes, where the trilinear
+    /// interpolation between uniform grids does not apply) first the p-multigrid transfer
+    /// from the Q1 field on the element vertices, then the box hierarchy of the vertex grid.
     fn multigrid_prolongations(
         &self,
         coarsest_unknowns: usize,
     ) -> Option<std::sync::Arc<[capstan_solvers::CsrMatrix]>> {
-        if self.element().degree() > 2 {
-            return None;
+        if self.element().degree() <= 2 {
+            return Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations);
         }
-        Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations)
+        let constrained: Vec<bool> = self.setup.dirichlet.iter().map(Option::is_some).collect();
+        let grid = &self.setup.grid;
+        let (first, counts, mask) =
+            crate::solid::matrix_free::p_prolongation(grid, self.element(), &constrained);
+        let vertices = crate::solid::BoxGrid::new(
+            grid.x1_range(),
+            grid.x2_range(),
+            grid.thickness(),
+            counts,
+            grid.is_periodic(),
+        )
+        .ok()?;
+        let rest = crate::solid::box_hierarchy(&vertices, &mask, coarsest_unknowns);
+        Some(
+            core::iter::once(first)
+                .chain(rest.prolongations.iter().cloned())
+                .collect(),
+        )
     }
 
     fn contact_system(&self) -> Result<LinearSystem, ElasticityError> {
@@ -157,7 +179,7 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
-        let [n1, n2, _] = self.grid.counts();
+        let [n1, n2, _] = self.setup.grid.counts();
         let mut out = Vec::with_capacity(2 * n1 * n2);
         for i1 in 0..n1 {
             for i2 in 0..n2 {
@@ -168,13 +190,13 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
-        let nodes = self.grid.node_count();
+        let nodes = self.setup.grid.node_count();
         [1, 2].map(|c| {
             extremum(
                 nodes,
                 |m| v[3 * m + c],
                 |m| {
-                    let x = self.grid.coordinates(self.grid.node(m));
+                    let x = self.setup.grid.coordinates(self.setup.grid.node(m));
                     (Some(x[0]), x[1], x[2])
                 },
             )

@@ -83,7 +83,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
     pub fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let n = self.grid.node_count();
+        let n = self.setup.grid.node_count();
         let mut out = SolidFields {
             displacement: Vec::with_capacity(n),
             cartesian_displacement: Vec::with_capacity(n),
@@ -91,16 +91,19 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             strain: Vec::with_capacity(n),
             scale: Vec::with_capacity(n),
         };
-        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
+        let (lambda, two_mu) = (self.setup.material.lambda(), 2.0 * self.setup.material.mu());
         for m in 0..n {
-            let node = self.grid.node(m);
-            let p = self.chart.shell_point(self.grid.coordinates(node))?;
+            let node = self.setup.grid.node(m);
+            let p = self
+                .setup
+                .chart
+                .shell_point(self.setup.grid.coordinates(node))?;
             let value: [f64; 3] = core::array::from_fn(|c| v[3 * m + c]);
             // u = [v^c, d_p v^c] (input 3 + 3 p + c)
             let mut u = [0.0; 12];
             u[..3].copy_from_slice(&value);
             for (at, w) in self.node_stencil(node) {
-                let k = 3 * self.grid.node_index(at);
+                let k = 3 * self.setup.grid.node_index(at);
                 for q in 0..3 {
                     for c in 0..3 {
                         u[3 + 3 * q + c] += w[1 + q] * v[k + c];
