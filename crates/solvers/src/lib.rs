@@ -92,6 +92,7 @@ mod csr_matrix;
 mod direct_params;
 mod direct_solve;
 mod error;
+mod inexact_newton;
 mod iterative_params;
 mod jacobi_newton;
 mod krylov;
@@ -122,6 +123,10 @@ mod sparsity_pattern;
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
+pub use inexact_newton::{
+    EisenstatWalker, INEXACT_NEWTON_BUDGET_FIELD, InexactNewtonParams, NewtonKrylovProblem,
+    inexact_newton,
+};
 pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
 pub use krylov::{
