@@ -348,6 +348,7 @@ mod tests {
             }
         }
 
+        #[allow(clippy::needless_range_loop)] // the rows of a tridiagonal matrix
         fn matrix(&self, u: &[f64]) -> CsrMatrix {
             let n = self.n;
             let s = ((n + 1) * (n + 1)) as f64;
