@@ -56,10 +56,12 @@ mod boundary_solver;
 mod bulk_multigrid;
 mod error;
 mod full_system;
+mod matrix_free_newton;
 mod model;
 mod operator;
 mod quantities;
 mod solid_body;
+mod solid_matrix_free;
 mod solid_operator;
 mod solution;
 mod threshold;
@@ -74,9 +76,11 @@ pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,
     solve_sequenced,
 };
+pub use matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
 pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
-pub use operator::{BodyOperator, ContactOperator, Extremum};
+pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
+pub use solid_matrix_free::SolidMatrixFreeBody;
 pub use solution::{
     ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
     classify, state_intervals,

@@ -5,7 +5,7 @@ use capstan_friction::{ContactState, FrictionLaw};
 use capstan_solvers::SparsityPattern;
 
 use crate::contact::error::ContactError;
-use crate::contact::operator::ContactOperator;
+use crate::contact::operator::{ContactOperator, MatrixFreeBulk};
 use crate::contact::unilateral::{Gap, Unilateral};
 use crate::discretisation::{ContactNode, LinearSystem};
 use crate::error::ElasticityError;
@@ -204,6 +204,8 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     ext: ExtendedPattern,
     /// The Signorini rows of unilateral contact (`None`: bilateral, `v^3 = 0`).
     unilateral: Option<Unilateral>,
+    /// The matrix-free bulk operator ([`ContactOperator::matrix_free`]), `None`: assembled.
+    bulk: Option<std::sync::Arc<dyn MatrixFreeBulk + Send + Sync>>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -321,6 +323,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         let sites = Sites::new(&nodes, &active)?;
         let ext = extended_pattern(&system.pattern, &nodes, &active, &sites)?;
+        let bulk = disc.matrix_free();
         Ok(Self {
             disc: std::sync::Arc::new(disc),
             law,
@@ -335,6 +338,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             sites,
             ext,
             unilateral: None,
+            bulk,
         })
     }
 
@@ -448,6 +452,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             sites: self.sites.clone(),
             ext: self.ext.clone(),
             unilateral: self.unilateral.clone(),
+            bulk: self.bulk.clone(),
         }
     }
 
@@ -478,6 +483,30 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// Whether the model has unilateral (Signorini) contact.
     pub fn is_unilateral(&self) -> bool {
         self.unilateral.is_some()
+    }
+
+    /// Whether the bulk operator is matrix-free ([`ContactOperator::matrix_free`]): then
+    /// [`ContactModel::system`] holds only the right-hand side, and only the matrix-free
+    /// Newton ([`crate::contact::MatrixFreeNewton`]) solves the model.
+    pub fn is_matrix_free(&self) -> bool {
+        self.bulk.is_some()
+    }
+
+    /// The matrix-free bulk operator, `None` when it is assembled.
+    pub fn matrix_free_bulk(&self) -> Option<&(dyn MatrixFreeBulk + Send + Sync)> {
+        self.bulk.as_deref()
+    }
+
+    /// [`ContactError::Unsupported`] naming `solver.linear` for a matrix-free model, which
+    /// `solver` (a solver that reads the assembled matrix) cannot solve.
+    pub(crate) fn require_assembled(&self, solver: &'static str) -> Result<(), ContactError> {
+        if self.is_matrix_free() {
+            return Err(ContactError::Unsupported {
+                field: "solver.linear",
+                message: solver,
+            });
+        }
+        Ok(())
     }
 
     /// Per contact site (in site order), whether it has separated from the obstacle at `v`
@@ -720,6 +749,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     #[track_caller]
     pub fn residual_into(&self, rhs: &[f64], v: &[f64], r: &mut [f64]) {
         self.system.pattern.matvec(&self.system.values, v, r);
+        if let Some(bulk) = &self.bulk {
+            // the bulk operator by its action (the assembled pattern is empty)
+            let mut av = vec![0.0; r.len()];
+            bulk.bulk().apply(v, &mut av);
+            r.iter_mut().zip(&av).for_each(|(ri, a)| *ri += a);
+        }
         for (ri, bi) in r.iter_mut().zip(rhs) {
             *ri -= bi;
         }

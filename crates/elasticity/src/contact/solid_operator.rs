@@ -9,32 +9,34 @@ use crate::discretisation::{ContactNode, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
 use crate::solid::SolidNavier;
+use crate::solid::setup::SolidSetup;
 
-impl<G: ShellGeometry + Sync> SolidNavier<G> {
-    /// The gradient-recovery stencil at a node: `(node, [value, d_1, d_2, d_3])` weights
-    /// (Q1/Q2: second-order differences of the nodal values, one-sided at the faces; Qp: the
-    /// element polynomials' derivatives averaged over the elements sharing the node; see
-    /// [`super::element::LineTables`]).
-    pub(crate) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
-        let counts = self.setup.grid.counts();
-        let spacing = self.setup.grid.spacing();
-        let periodic = [false, self.setup.grid.is_periodic(), false];
-        let mut out = Vec::with_capacity(16);
-        out.push((node, [1.0, 0.0, 0.0, 0.0]));
-        for q in 0..3 {
-            for (i, w) in self
-                .setup
-                .lines
-                .derivative(node[q], counts[q], spacing[q], periodic[q])
-            {
-                let mut at = node;
-                at[q] = i;
-                let mut weights = [0.0; 4];
-                weights[1 + q] = w;
-                out.push((at, weights));
+impl<G: ShellGeometry + Sync> SolidSetup<G> {
+    /// The contact entries of every node of the face `x3 = 0` ([`SolidSetup::contact_pair`]).
+    pub(crate) fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        let [n1, n2, _] = self.grid.counts();
+        let mut out = Vec::with_capacity(2 * n1 * n2);
+        for i1 in 0..n1 {
+            for i2 in 0..n2 {
+                out.extend(self.contact_pair(i1, i2)?);
             }
         }
-        out
+        Ok(out)
+    }
+
+    /// The largest `v^2`, `v^3` over the nodes and where they are.
+    pub(crate) fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
+        let nodes = self.grid.node_count();
+        [1, 2].map(|c| {
+            extremum(
+                nodes,
+                |m| v[3 * m + c],
+                |m| {
+                    let x = self.grid.coordinates(self.grid.node(m));
+                    (Some(x[0]), x[1], x[2])
+                },
+            )
+        })
     }
 
     /// The contact entries of node `(i1, i2, 0)`: `v^1` and `v^2`.
@@ -48,16 +50,20 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// frame_1 = [sqrt(a_11), 0],  frame_2 = [a_12 / sqrt(a_11), 1 / sqrt(a^22)]
     /// ```
     /// in the frame `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`: `|F v|^2 = a_ab v^a v^b`.
-    fn contact_pair(&self, i1: usize, i2: usize) -> Result<[ContactNode; 2], ElasticityError> {
-        let [n1, n2, _] = self.setup.grid.counts();
-        let [d1, d2, _] = self.setup.grid.spacing();
+    pub(crate) fn contact_pair(
+        &self,
+        i1: usize,
+        i2: usize,
+    ) -> Result<[ContactNode; 2], ElasticityError> {
+        let [n1, n2, _] = self.grid.counts();
+        let [d1, d2, _] = self.grid.spacing();
         let node = [i1, i2, 0];
-        let x = self.setup.grid.coordinates(node);
-        let p = self.setup.chart.shell_point(x)?;
+        let x = self.grid.coordinates(node);
+        let p = self.chart.shell_point(x)?;
         let g = &p.metric;
         let gi = &p.inverse_metric;
         let strains = mixed_strains(&p, &SOLID);
-        let (lambda, two_mu) = (self.setup.material.lambda(), 2.0 * self.setup.material.mu());
+        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
         let stencil = self.node_stencil(node);
         let row = |j: usize| -> SparseRow {
             let mut terms = Vec::with_capacity(3 * stencil.len());
@@ -83,11 +89,8 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         let normal = row(2);
         let weight = p.sqrt_g
             * gi[2][2].sqrt()
-            * self.setup.lines.weight(i1, n1, d1, false)
-            * self
-                .setup
-                .lines
-                .weight(i2, n2, d2, self.setup.grid.is_periodic());
+            * self.lines.weight(i1, n1, d1, false)
+            * self.lines.weight(i2, n2, d2, self.grid.is_periodic());
         let site = i1 * n2 + i2;
         let sqrt_a11 = g[0][0].sqrt();
         let frames = [[sqrt_a11, 0.0], [g[0][1] / sqrt_a11, 1.0 / gi[1][1].sqrt()]];
@@ -101,7 +104,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
                 x2: x[1],
                 component: c + 1,
                 frame: frames[c],
-                tangential_row: self.setup.dirichlet[dof].is_none().then_some(dof),
+                tangential_row: self.dirichlet[dof].is_none().then_some(dof),
                 tangential_dof: dof,
                 normal_dof: self.dof(node, 2),
                 traction_weight: weight,
@@ -179,28 +182,11 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
-        let [n1, n2, _] = self.setup.grid.counts();
-        let mut out = Vec::with_capacity(2 * n1 * n2);
-        for i1 in 0..n1 {
-            for i2 in 0..n2 {
-                out.extend(self.contact_pair(i1, i2)?);
-            }
-        }
-        Ok(out)
+        self.setup.contact_entries()
     }
 
     fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
-        let nodes = self.setup.grid.node_count();
-        [1, 2].map(|c| {
-            extremum(
-                nodes,
-                |m| v[3 * m + c],
-                |m| {
-                    let x = self.setup.grid.coordinates(self.setup.grid.node(m));
-                    (Some(x[0]), x[1], x[2])
-                },
-            )
-        })
+        self.setup.extremes(v)
     }
 
     fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {

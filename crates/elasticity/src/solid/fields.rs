@@ -3,7 +3,9 @@
 //! Qp: the element polynomials).
 
 use super::grid::BoxGrid;
+use super::matrix_free::SolidMatrixFree;
 use super::operator::SolidNavier;
+use super::setup::SolidSetup;
 use crate::continuum::{SOLID, mixed_strains};
 use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
@@ -80,10 +82,30 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     ///
     /// # Errors
     /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
-    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
     pub fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
+        self.setup.fields(v)
+    }
+}
+
+impl<G: ShellGeometry + Sync> SolidOutput for SolidMatrixFree<G> {
+    fn box_grid(&self) -> &BoxGrid {
+        self.grid()
+    }
+
+    fn nodal_fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
+        self.setup.fields(v)
+    }
+}
+
+impl<G: ShellGeometry + Sync> SolidSetup<G> {
+    /// The nodal fields of the solution `v` (see [`SolidFields`]).
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
+    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+    pub(crate) fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let n = self.setup.grid.node_count();
+        let n = self.grid.node_count();
         let mut out = SolidFields {
             displacement: Vec::with_capacity(n),
             cartesian_displacement: Vec::with_capacity(n),
@@ -91,19 +113,16 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
             strain: Vec::with_capacity(n),
             scale: Vec::with_capacity(n),
         };
-        let (lambda, two_mu) = (self.setup.material.lambda(), 2.0 * self.setup.material.mu());
+        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
         for m in 0..n {
-            let node = self.setup.grid.node(m);
-            let p = self
-                .setup
-                .chart
-                .shell_point(self.setup.grid.coordinates(node))?;
+            let node = self.grid.node(m);
+            let p = self.chart.shell_point(self.grid.coordinates(node))?;
             let value: [f64; 3] = core::array::from_fn(|c| v[3 * m + c]);
             // u = [v^c, d_p v^c] (input 3 + 3 p + c)
             let mut u = [0.0; 12];
             u[..3].copy_from_slice(&value);
             for (at, w) in self.node_stencil(node) {
-                let k = 3 * self.setup.grid.node_index(at);
+                let k = 3 * self.grid.node_index(at);
                 for q in 0..3 {
                     for c in 0..3 {
                         u[3 + 3 * q + c] += w[1 + q] * v[k + c];

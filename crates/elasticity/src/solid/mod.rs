@@ -40,13 +40,13 @@ mod grid;
 pub(crate) mod matrix_free;
 mod multigrid;
 mod operator;
-mod setup;
+pub(crate) mod setup;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 pub use element::HexElement;
 pub use fields::{SolidFields, SolidOutput};
 pub use grid::BoxGrid;
-pub use matrix_free::{SolidMatrixFree, SolidMultigridParams};
+pub use matrix_free::{MultigridParts, SolidMatrixFree, SolidMultigridParams};
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count, semicoarsening_hierarchy};
 pub use operator::{SolidForce, SolidNavier};

@@ -418,3 +418,30 @@ fn dirichlet_values(
     }
     Ok(out)
 }
+
+impl<G> SolidSetup<G> {
+    /// The gradient-recovery stencil at a node: `(node, [value, d_1, d_2, d_3])` weights
+    /// (Q1/Q2: second-order differences of the nodal values, one-sided at the faces; Qp: the
+    /// element polynomials' derivatives averaged over the elements sharing the node; see
+    /// [`LineTables`]).
+    pub(crate) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
+        let counts = self.grid.counts();
+        let spacing = self.grid.spacing();
+        let periodic = [false, self.grid.is_periodic(), false];
+        let mut out = Vec::with_capacity(16);
+        out.push((node, [1.0, 0.0, 0.0, 0.0]));
+        for q in 0..3 {
+            for (i, w) in self
+                .lines
+                .derivative(node[q], counts[q], spacing[q], periodic[q])
+            {
+                let mut at = node;
+                at[q] = i;
+                let mut weights = [0.0; 4];
+                weights[1 + q] = w;
+                out.push((at, weights));
+            }
+        }
+        out
+    }
+}

@@ -29,6 +29,18 @@ pub struct SolidMultigridParams {
     pub coarsest_unknowns: usize,
 }
 
+/// The pieces of the V-cycle of a [`SolidMatrixFree`] operator
+/// ([`SolidMultigridParams::parts`]).
+#[derive(Debug, Clone)]
+pub struct MultigridParts {
+    /// `P_0` from the assembled Q1 level to the matrix-free fine level.
+    pub prolongation: CsrMatrix,
+    /// The assembled Q1 operator of the coarse level (rediscretised).
+    pub coarse: CsrMatrix,
+    /// The box's (semi-coarsening) prolongations below the coarse level, finest first.
+    pub below: Arc<[CsrMatrix]>,
+}
+
 impl Default for SolidMultigridParams {
     fn default() -> Self {
         Self {
@@ -115,6 +127,30 @@ impl SolidMultigridParams {
         fine: &Arc<SolidMatrixFree<G>>,
         boundary: &SolidBoundary,
     ) -> Result<OperatorMultigrid, ElasticityError> {
+        let parts = self.parts(fine, boundary)?;
+        let level = OperatorLevel {
+            operator: Arc::clone(fine) as Arc<dyn capstan_solvers::LinearOperator + Send>,
+            prolongation: parts.prolongation,
+        };
+        Ok(OperatorMultigrid::new(
+            vec![level],
+            parts.coarse,
+            parts.below,
+            self.multigrid,
+        )?)
+    }
+
+    /// What [`SolidMultigridParams::build`] builds the V-cycle from (the transfers and the
+    /// assembled coarse level), for callers that put another operator on the fine level
+    /// (the Jacobian of the contact problem: the bulk plus a face term).
+    ///
+    /// # Errors
+    /// See [`SolidMultigridParams::build`].
+    pub fn parts<G: ShellGeometry + Clone + Send + Sync + 'static>(
+        &self,
+        fine: &SolidMatrixFree<G>,
+        boundary: &SolidBoundary,
+    ) -> Result<MultigridParts, ElasticityError> {
         self.multigrid.validate()?;
         let grid = fine.grid();
         let n = grid.counts();
@@ -184,15 +220,10 @@ impl SolidMultigridParams {
             cell_sizes(&chart, coarse.grid())?,
         );
         drop(coarse);
-        let level = OperatorLevel {
-            operator: Arc::clone(fine) as Arc<dyn capstan_solvers::LinearOperator + Send>,
+        Ok(MultigridParts {
             prolongation,
-        };
-        Ok(OperatorMultigrid::new(
-            vec![level],
-            matrix,
-            below.prolongations,
-            self.multigrid,
-        )?)
+            coarse: matrix,
+            below: below.prolongations,
+        })
     }
 }

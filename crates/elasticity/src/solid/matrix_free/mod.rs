@@ -7,6 +7,6 @@ mod hierarchy;
 mod kernel;
 mod operator;
 
-pub use hierarchy::SolidMultigridParams;
 pub(crate) use hierarchy::p_prolongation;
+pub use hierarchy::{MultigridParts, SolidMultigridParams};
 pub use operator::SolidMatrixFree;

@@ -41,7 +41,7 @@ use crate::solid::setup::{COMPONENTS, SolidForce, SolidSetup};
 /// # Errors
 /// See [`SolidMatrixFree::new`].
 pub struct SolidMatrixFree<G> {
-    pub(super) setup: SolidSetup<G>,
+    pub(crate) setup: SolidSetup<G>,
     tables: Tables,
     geometry: Vec<f64>,
     lambda: f64,
@@ -148,35 +148,58 @@ impl<G: ShellGeometry + Sync> SolidMatrixFree<G> {
             diagonal,
             rhs: Vec::new(),
         };
-        // the Dirichlet lifting: b_f = l_f - A_fd g_d,  b_d = A_dd g_d
-        let lift: Vec<f64> = op
+        op.rhs = op.lifted(load)?;
+        Ok(op)
+    }
+
+    /// The right-hand side of the same operator for other loads: `boundary` (with the same
+    /// Dirichlet conditions as the operator's, only its tractions and stresses read) and
+    /// `body_force`, with the operator's Dirichlet lifting.
+    ///
+    /// # Errors
+    /// Boundary-data errors as [`SolidMatrixFree::new`]; [`ElasticityError::NonFinite`].
+    pub fn rhs_for(
+        &self,
+        boundary: &SolidBoundary,
+        body_force: Option<&SolidForce>,
+    ) -> Result<Vec<f64>, ElasticityError> {
+        let load = self.setup.load(boundary, body_force)?;
+        self.lifted(load)
+    }
+
+    /// `load` with the Dirichlet lifting:
+    /// ```text
+    /// b_f = l_f - A_fd g_d,   b_d = A_dd g_d
+    /// ```
+    fn lifted(&self, load: Vec<f64>) -> Result<Vec<f64>, ElasticityError> {
+        let lift: Vec<f64> = self
             .setup
             .dirichlet
             .iter()
             .map(|g| g.unwrap_or(0.0))
             .collect();
         let mut a_lift = vec![0.0; lift.len()];
-        op.apply_elements(&lift, &mut a_lift, false);
-        op.rhs = load
+        self.apply_elements(&lift, &mut a_lift, false);
+        let rhs: Vec<f64> = load
             .iter()
             .zip(&a_lift)
             .enumerate()
-            .map(|(d, (l, a))| match op.setup.dirichlet[d] {
-                Some(g) => op.diagonal[d] * g,
+            .map(|(d, (l, a))| match self.setup.dirichlet[d] {
+                Some(g) => self.diagonal[d] * g,
                 None => l - a,
             })
             .collect();
-        if let Some(d) = op.rhs.iter().position(|v| !v.is_finite()) {
-            let x = op
+        if let Some(d) = rhs.iter().position(|v| !v.is_finite()) {
+            let x = self
                 .setup
                 .grid
-                .coordinates(op.setup.grid.node(d / COMPONENTS));
+                .coordinates(self.setup.grid.node(d / COMPONENTS));
             return Err(ElasticityError::NonFinite {
                 what: "matrix-free right-hand side",
                 at: [x[1], x[2]],
             });
         }
-        Ok(op)
+        Ok(rhs)
     }
 
     /// The L2 error norms of `v` against `exact` (see [`crate::solid::SolidNavier::l2_errors`]).
