@@ -485,13 +485,11 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.unilateral.is_some()
     }
 
-    /// Whether the bulk operator is matrix-free ([`ContactOperator::matrix_free`]): then
-    /// [`ContactModel::system`] holds only the right-hand side, and only the matrix-free
-    /// Newton ([`crate::contact::MatrixFreeNewton`]) solves the model.
+    /// Whether the bulk is matrix-free ([`ContactOperator::matrix_free`]; [`ContactModel::system`]
+    /// holds only the right-hand side; solved by [`crate::contact::MatrixFreeNewton`]).
     pub fn is_matrix_free(&self) -> bool {
         self.bulk.is_some()
     }
-
     /// The matrix-free bulk operator, `None` when it is assembled.
     pub fn matrix_free_bulk(&self) -> Option<&(dyn MatrixFreeBulk + Send + Sync)> {
         self.bulk.as_deref()
