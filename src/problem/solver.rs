@@ -1,6 +1,8 @@
 //! The contact solver of a [`super::Problem`] and its work budgets.
 
-use capstan_elasticity::contact::{Body, ContactSettings, Dimension, FullSystemSettings};
+use capstan_elasticity::contact::{
+    Body, ContactSettings, Dimension, FullSystemSettings, MatrixFreeSettings,
+};
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 
 /// How the contact problem is solved (`solver.nonlinear`, `solver.linear` in scenes).
@@ -102,6 +104,21 @@ impl Solver {
             method,
             ..Default::default()
         }
+    }
+
+    /// The settings of the matrix-free Newton (`full-newton` with `matrix-free-mg`) with the
+    /// budgets: Newton steps and continuation as [`Solver::budgets`], `solver.max_sweeps` the
+    /// Krylov iterations summed over one Newton solve.
+    pub fn matrix_free_settings(&self) -> MatrixFreeSettings {
+        let mut s = MatrixFreeSettings::default();
+        s.continuation = ContactSettings {
+            tolerance: s.continuation.tolerance,
+            ..self.budgets
+        };
+        if let Some(sweeps) = self.max_sweeps {
+            s.max_linear_iterations = sweeps;
+        }
+        s
     }
 
     /// The settings of the full-system solvers (`full-newton`, `jacobi-newton`) with the

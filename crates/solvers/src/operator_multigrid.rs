@@ -7,6 +7,7 @@ use crate::csr_matrix::CsrMatrix;
 use crate::error::SolverError;
 use crate::krylov::Preconditioner;
 use crate::linear_operator::LinearOperator;
+use crate::linear_registration::{BackendKind, Parameter, RegisteredLinearSolver};
 use crate::multigrid::{LevelData, Multigrid, MultigridParams, power_estimate, smooth};
 
 /// A matrix-free level of an [`OperatorMultigrid`]: its operator and the prolongation from
@@ -196,6 +197,47 @@ impl Preconditioner for OperatorMultigrid {
         self.cycle(0, r, z);
     }
 }
+
+/// The `matrix-free-mg` entry of [`crate::linear_registry`]: the Newton steps of a caller
+/// that never assembles its matrix (the 3-D contact body's matrix-free full-system Newton,
+/// `capstan_elasticity::contact::MatrixFreeNewton`), GMRES preconditioned by an
+/// [`OperatorMultigrid`] whose fine level is the operator's action. It has no assembled
+/// matrix to work on, so building it as a [`crate::LinearSolver`] is refused: the caller
+/// dispatches on the name ([`BackendKind::MatrixFree`]).
+pub(crate) const MATRIX_FREE_REGISTRATION: RegisteredLinearSolver = RegisteredLinearSolver {
+    name: "matrix-free-mg",
+    summary: "matrix-free Newton-Krylov (3-D body): GMRES on the operator's action with a p-multigrid/semi-coarsening V-cycle, Eisenstat-Walker forcing",
+    parameters: &[
+        Parameter {
+            key: "krylov.max_iterations",
+            default: "500",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "krylov.restart",
+            default: "100",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "multigrid.smoothing_steps",
+            default: "1",
+            allowed: "[1, inf)",
+        },
+        Parameter {
+            key: "multigrid.coarsest_unknowns",
+            default: "5000",
+            allowed: "[1, inf)",
+        },
+    ],
+    kind: BackendKind::MatrixFree,
+    build: |_, _| {
+        Err(SolverError::InvalidParameter {
+            field: "linear",
+            value: f64::NAN,
+            allowed: "`matrix-free-mg` only for the full-system Newton of the 3-D body (body.dimension = 3), which never assembles its matrix",
+        })
+    },
+};
 
 #[cfg(test)]
 mod tests {

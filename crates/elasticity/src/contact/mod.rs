@@ -80,7 +80,7 @@ pub use matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
 pub use model::{BODY_FORCE, ContactModel, END_LOADS, EndLoads, SiteTraction};
 pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
-pub use solid_matrix_free::SolidMatrixFreeBody;
+pub use solid_matrix_free::{MatrixFreeLoads, SolidMatrixFreeBody};
 pub use solution::{
     ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
     classify, state_intervals,

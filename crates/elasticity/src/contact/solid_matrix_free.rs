@@ -196,23 +196,48 @@ impl<G: ShellGeometry + Send + Sync + 'static> ContactOperator for SolidMatrixFr
     }
 }
 
+/// The matrix-free operator of one body for every pair of end loads: the shared operator and
+/// the unit-load right-hand sides ([`SolidBody::matrix_free_loads`]).
+pub struct MatrixFreeLoads<G> {
+    shared: Arc<Shared<G>>,
+    rhs: [Vec<f64>; 2],
+}
+
+impl<G> MatrixFreeLoads<G> {
+    /// The body with end loads `tau0`, `tau_max` (right-hand sides by superposition:
+    /// `b = tau0 b(1, 0) + tau_max b(0, 1)`).
+    pub fn at(&self, tau0: f64, tau_max: f64) -> SolidMatrixFreeBody<G> {
+        SolidMatrixFreeBody {
+            shared: Arc::clone(&self.shared),
+            rhs: self.rhs[0]
+                .iter()
+                .zip(&self.rhs[1])
+                .map(|(a, b)| tau0 * a + tau_max * b)
+                .collect(),
+        }
+    }
+
+    /// Bytes held by the operator, its V-cycle's transfers and coarse level, and the two
+    /// right-hand sides.
+    pub fn bytes(&self) -> usize
+    where
+        G: ShellGeometry + Send + Sync + 'static,
+    {
+        self.shared.bytes() + 16 * self.rhs[0].len()
+    }
+}
+
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
-    /// The contact model with the bulk operator matrix-free
-    /// ([`crate::solid::SolidMatrixFree`], one operator for both end loads, the right-hand
-    /// sides by superposition) and the V-cycle's transfers and coarse level by `multigrid`;
-    /// solved by [`crate::contact::MatrixFreeNewton`].
+    /// The matrix-free operator of the body ([`crate::solid::SolidMatrixFree`], one for both
+    /// end loads) with the V-cycle's transfers and coarse level by `multigrid`.
     ///
     /// # Errors
     /// The operator's errors ([`SolidMatrixFree::new`]: e.g. reduced integration is refused
-    /// naming `discretisation.volumetric`), the multigrid's ([`SolidMultigridParams::parts`]),
-    /// [`ContactModel::new`]'s.
-    pub fn matrix_free_model<L: FrictionLaw<f64>>(
+    /// naming `discretisation.volumetric`), the multigrid's ([`SolidMultigridParams::parts`]).
+    pub fn matrix_free_loads(
         &self,
-        law: L,
-        params: L::Params,
-        slip_threshold: f64,
         multigrid: SolidMultigridParams,
-    ) -> Result<ContactModel<SolidMatrixFreeBody<ShellChart<S>>, L>, ContactError> {
+    ) -> Result<MatrixFreeLoads<ShellChart<S>>, ElasticityError> {
         let unit = self.boundary(1.0, 0.0);
         let operator = SolidMatrixFree::new(
             ShellChart::new(self.surface.clone()),
@@ -237,17 +262,24 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
             below: parts.below,
             multigrid: multigrid.multigrid,
         });
+        Ok(MatrixFreeLoads { shared, rhs })
+    }
+
+    /// The contact model with the bulk operator matrix-free ([`SolidBody::matrix_free_loads`]),
+    /// solved by [`crate::contact::MatrixFreeNewton`].
+    ///
+    /// # Errors
+    /// [`SolidBody::matrix_free_loads`]'s, [`ContactModel::new`]'s.
+    pub fn matrix_free_model<L: FrictionLaw<f64>>(
+        &self,
+        law: L,
+        params: L::Params,
+        slip_threshold: f64,
+        multigrid: SolidMultigridParams,
+    ) -> Result<ContactModel<SolidMatrixFreeBody<ShellChart<S>>, L>, ContactError> {
+        let loads = self.matrix_free_loads(multigrid)?;
         ContactModel::new(
-            |tau0, tau_max| {
-                Ok(SolidMatrixFreeBody {
-                    shared: Arc::clone(&shared),
-                    rhs: rhs[0]
-                        .iter()
-                        .zip(&rhs[1])
-                        .map(|(a, b)| tau0 * a + tau_max * b)
-                        .collect(),
-                })
-            },
+            |tau0, tau_max| Ok(loads.at(tau0, tau_max)),
             law,
             params,
             slip_threshold,
