@@ -682,6 +682,12 @@ impl SolverSpec {
     pub fn condenses(&self) -> bool {
         matches!(self.nonlinear.as_str(), "newton" | "auto")
     }
+
+    /// Whether the contact problem is solved by the matrix-free Newton
+    /// (`solver.linear = "matrix-free-mg"` with `full-newton`).
+    pub fn matrix_free(&self) -> bool {
+        self.nonlinear == "full-newton" && self.linear == "matrix-free-mg"
+    }
 }
 
 impl Default for SolverSpec {
@@ -791,5 +797,6 @@ pub use memory::{
     MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN,
     PETSC_REPLICATED_BYTES_PER_UNKNOWN, SOLID_BYTES_PER_N_4_3, available_memory, human_bytes,
     memory_estimate, mpi_ranks, petsc_memory_estimate_per_rank, solid_fill_factor,
-    solid_memory_estimate, solid_multigrid_memory_estimate,
+    solid_matrix_free_bytes_per_unknown, solid_matrix_free_memory_estimate, solid_memory_estimate,
+    solid_multigrid_memory_estimate,
 };

@@ -551,19 +551,22 @@ impl Scene {
         }
         let condensed = self.solver.condenses();
         let multigrid = self.solver.linear == "multigrid";
-        let need = if multigrid {
+        let matrix_free = self.solver.matrix_free();
+        let settings = capstan_elasticity::registration::DiscretisationSettings {
+            order,
+            ..Default::default()
+        };
+        let degree = self
+            .discretisation
+            .method
+            .scheme(&settings)
+            .and_then(|s| s.solid_element())
+            .map_or(1, |e| e.degree());
+        let need = if matrix_free {
+            solid_matrix_free_memory_estimate([g.n1, g.n2, g.n3], degree)
+        } else if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
         } else {
-            let settings = capstan_elasticity::registration::DiscretisationSettings {
-                order,
-                ..Default::default()
-            };
-            let degree = self
-                .discretisation
-                .method
-                .scheme(&settings)
-                .and_then(|s| s.solid_element())
-                .map_or(1, |e| e.degree());
             solid_memory_estimate([g.n1, g.n2, g.n3], condensed, degree)
         };
         check_memory(at, "grid.n1", need, |have| {
@@ -573,7 +576,9 @@ impl Scene {
                 g.n2,
                 g.n3,
                 human_bytes(need),
-                if multigrid {
+                if matrix_free {
+                    "the matrix-free operator's quadrature data, its assembled coarse level and the GMRES vectors"
+                } else if multigrid {
                     "the sparse Jacobian, its multigrid hierarchy and the GMRES vectors"
                 } else if condensed {
                     "dense condensed contact matrices of 2 n1 n2 rows and the sparse LU"
@@ -581,12 +586,12 @@ impl Scene {
                     "the sparse LU factors"
                 },
                 human_bytes(have),
-                if multigrid {
+                if matrix_free {
                     ""
-                } else if condensed {
-                    " or solver.nonlinear = \"full-newton\" with solver.linear = \"multigrid\""
+                } else if condensed || multigrid {
+                    " or solver.nonlinear = \"full-newton\" with solver.linear = \"matrix-free-mg\""
                 } else {
-                    " or solver.linear = \"multigrid\" (no factorisation)"
+                    " or solver.linear = \"matrix-free-mg\" (no matrix, no factorisation)"
                 }
             )
         })

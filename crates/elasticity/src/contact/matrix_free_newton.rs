@@ -39,7 +39,7 @@ impl Default for MatrixFreeSettings {
                 method: KrylovMethod::Gmres,
                 tolerance: 1e-8,
                 max_iterations: 500,
-                restart: 100,
+                restart: 40,
             },
             forcing: EisenstatWalker::default(),
             max_linear_iterations: 20_000,
