@@ -112,6 +112,11 @@ pub(crate) struct LevelData {
 }
 
 impl LevelData {
+    /// `lambda_max(D^-1 A)` as estimated.
+    pub(crate) fn lambda(&self) -> f64 {
+        self.lambda
+    }
+
     /// The smoother data of a level of `n` unknowns: `D^-1` and `lambda_max(D^-1 A)`.
     pub(crate) fn new(n: usize, inv_diag: Vec<f64>, lambda: f64) -> Self {
         Self {

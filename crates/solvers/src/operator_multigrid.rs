@@ -78,7 +78,35 @@ impl OperatorMultigrid {
         coarse_prolongations: Arc<[CsrMatrix]>,
         params: MultigridParams,
     ) -> Result<Self, SolverError> {
+        Self::with_estimates(levels, coarse, coarse_prolongations, params, None)
+    }
+
+    /// [`OperatorMultigrid::new`] with the largest eigenvalues of `D^-1 A` of the matrix-free
+    /// levels given (`Some`, one per level: e.g. [`OperatorMultigrid::estimates`] of an
+    /// earlier cycle of a nearby operator, such as the Jacobian of the previous Newton step)
+    /// instead of estimated by power iteration (`None`): saves `power_iterations` operator
+    /// applications per level.
+    ///
+    /// # Errors
+    /// As [`OperatorMultigrid::new`]; [`SolverError::DimensionMismatch`] for a wrong number
+    /// of estimates.
+    pub fn with_estimates(
+        levels: Vec<OperatorLevel>,
+        coarse: CsrMatrix,
+        coarse_prolongations: Arc<[CsrMatrix]>,
+        params: MultigridParams,
+        estimates: Option<&[f64]>,
+    ) -> Result<Self, SolverError> {
         params.validate()?;
+        if let Some(e) = estimates
+            && e.len() != levels.len()
+        {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "eigenvalue estimates",
+                expected: levels.len(),
+                found: e.len(),
+            });
+        }
         if levels.is_empty() {
             return Err(SolverError::invalid(
                 "operator multigrid levels",
@@ -103,7 +131,8 @@ impl OperatorMultigrid {
         inner.setup(&coarse)?;
         let levels = levels
             .into_iter()
-            .map(|level| -> Result<Level, SolverError> {
+            .enumerate()
+            .map(|(l, level)| -> Result<Level, SolverError> {
                 let op = level.operator.as_ref();
                 let n = op.dimension();
                 let inv_diag = op
@@ -118,7 +147,10 @@ impl OperatorMultigrid {
                         }
                     })
                     .collect::<Result<Vec<_>, _>>()?;
-                let lambda = power_estimate(op, &inv_diag, params.power_iterations);
+                let lambda = match estimates {
+                    Some(e) => e[l],
+                    None => power_estimate(op, &inv_diag, params.power_iterations),
+                };
                 let restriction = level.prolongation.transpose();
                 Ok(Level {
                     level,
@@ -156,6 +188,11 @@ impl OperatorMultigrid {
             .sum::<usize>()
             + self.coarse.bytes()
             + self.inner.bytes()
+    }
+
+    /// The largest eigenvalue of `D^-1 A` of every matrix-free level (as estimated or given).
+    pub fn estimates(&self) -> Vec<f64> {
+        self.levels.iter().map(|l| l.data.lambda()).collect()
     }
 
     /// The finest operator `A_0`.

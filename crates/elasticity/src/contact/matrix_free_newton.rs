@@ -54,12 +54,16 @@ struct Step<'m, D, L: FrictionLaw<f64>> {
     bulk: &'m (dyn MatrixFreeBulk + Send + Sync),
     rhs: Vec<f64>,
     values: Vec<f64>,
+    /// The smoothers' eigenvalue estimates of the first Newton step, reused by the later
+    /// steps of the same solve (the face term changes little of the spectrum of
+    /// `D^-1 (A + F)`; a power iteration per step costs as much as a few Krylov iterations).
+    estimates: Option<Vec<f64>>,
 }
 
 impl<D, L: FrictionLaw<f64>> Step<'_, D, L> {
     /// GMRES on `A + F` with the V-cycle of `A + F`.
     fn solve_with(
-        &self,
+        &mut self,
         face: CsrMatrix,
         b: &[f64],
         d: &mut [f64],
@@ -69,8 +73,15 @@ impl<D, L: FrictionLaw<f64>> Step<'_, D, L> {
         let step = self.bulk.step_operator(face.clone());
         let mut pre = self
             .bulk
-            .preconditioner(std::sync::Arc::clone(&step), &face)
+            .preconditioner(
+                std::sync::Arc::clone(&step),
+                &face,
+                self.estimates.as_deref(),
+            )
             .map_err(|e| SolverError::problem("preconditioner", e))?;
+        if self.estimates.is_none() {
+            self.estimates = Some(pre.estimates());
+        }
         krylov_solve_operator(step.as_ref(), b, d, &mut pre, params, observer)
     }
 }
@@ -176,16 +187,18 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
             values[slot] += 1e4 * diagonal[dof].abs().max(1.0);
         }
         let face = CsrMatrix::from_pattern(&ext.pattern, &values)?;
-        let step = Step {
+        let mut step = Step {
             model,
             bulk: self.bulk,
-            rhs: model.rhs(loads),
+            rhs: Vec::new(),
             values: Vec::new(),
+            estimates: None,
         };
+        let rhs = model.rhs(loads);
         let mut v = vec![0.0; model.dof_count()];
         let report = step.solve_with(
             face,
-            &step.rhs,
+            &rhs,
             &mut v,
             &self.settings.krylov,
             &mut SilentObserver,
@@ -217,6 +230,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
             bulk: self.bulk,
             rhs,
             values: vec![0.0; self.model.extended().pattern.nnz()],
+            estimates: None,
         };
         let mut counting = CountKrylov {
             inner: observer,

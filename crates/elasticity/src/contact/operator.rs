@@ -108,7 +108,9 @@ pub trait MatrixFreeBulk: Sync {
     fn bulk(&self) -> &dyn LinearOperator;
     /// `A + F`, owned (the fine level of the preconditioner and the Krylov operator).
     fn step_operator(&self, face: CsrMatrix) -> Arc<dyn LinearOperator + Send>;
-    /// The V-cycle for `step = step_operator(face)`.
+    /// The V-cycle for `step = step_operator(face)`, with the smoothers' eigenvalue
+    /// estimates given (`Some`: e.g. the previous Newton step's,
+    /// [`OperatorMultigrid::estimates`]) or by power iteration (`None`).
     ///
     /// # Errors
     /// A singular diagonal or coarsest operator.
@@ -116,6 +118,7 @@ pub trait MatrixFreeBulk: Sync {
         &self,
         step: Arc<dyn LinearOperator + Send>,
         face: &CsrMatrix,
+        estimates: Option<&[f64]>,
     ) -> Result<OperatorMultigrid, ElasticityError>;
     /// Bytes held (operator data, transfers, the assembled coarse level).
     fn bytes(&self) -> usize;

@@ -122,10 +122,11 @@ impl<G: ShellGeometry + Send + Sync + 'static> MatrixFreeBulk for Shared<G> {
         &self,
         step: Arc<dyn LinearOperator + Send>,
         face: &CsrMatrix,
+        estimates: Option<&[f64]>,
     ) -> Result<OperatorMultigrid, ElasticityError> {
         let coarse_face = face.galerkin(&self.prolongation, &self.restriction);
         let coarse = sum(&self.coarse, &coarse_face)?;
-        Ok(OperatorMultigrid::new(
+        Ok(OperatorMultigrid::with_estimates(
             vec![OperatorLevel {
                 operator: step,
                 prolongation: self.prolongation.clone(),
@@ -133,6 +134,7 @@ impl<G: ShellGeometry + Send + Sync + 'static> MatrixFreeBulk for Shared<G> {
             coarse,
             Arc::clone(&self.below),
             self.multigrid,
+            estimates,
         )?)
     }
 
