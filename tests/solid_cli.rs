@@ -358,7 +358,7 @@ fn matrix_free_newton_reproduces_the_direct_contact_and_is_refused_where_it_does
 }
 
 #[test]
-fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
+fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_the_matrix_free_path() {
     // 33 x 321 x 33 Q1: 1,048,707 unknowns, the LU estimate 77 GiB (docs/solid.md)
     let available = std::fs::read_to_string("/proc/meminfo")
         .ok()
@@ -385,7 +385,7 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
     let (code, _, stderr) = capstan_status(&[&SOLID_Q1_CONTACT[..], &large[..]].concat());
     assert_eq!(code, Some(2), "{stderr}");
     assert!(
-        stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"multigrid\""),
+        stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"matrix-free-mg\""),
         "{stderr}"
     );
 }

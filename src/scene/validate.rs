@@ -549,9 +549,18 @@ impl Scene {
         if self.solver.linear == "petsc" {
             return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
         }
-        let condensed = self.solver.condenses();
+        // what `auto` picks (crate::problem::Solver::resolved)
+        let auto_mf = self.solver.nonlinear == "auto"
+            && crate::problem::auto_matrix_free(
+                true,
+                2 * g.n1 * g.n2,
+                self.contact.kind == "unilateral",
+                self.loads.body_force.is_some(),
+                self.discretisation.volumetric == VolumetricIntegration::Full,
+            );
+        let matrix_free = self.solver.matrix_free() || auto_mf;
+        let condensed = self.solver.condenses() && !auto_mf;
         let multigrid = self.solver.linear == "multigrid";
-        let matrix_free = self.solver.matrix_free();
         let settings = capstan_elasticity::registration::DiscretisationSettings {
             order,
             ..Default::default()
