@@ -100,7 +100,7 @@ impl Solver {
 /// unknowns, 2,500 contact unknowns) the condensed solver took 254 s (207 s of set-up for the
 /// dense condensation), the matrix-free Newton 74 CPU-s (docs/solid.md); small bodies keep
 /// the condensed solver (it also gives the limiting ratios).
-pub const AUTO_MATRIX_FREE_CONTACT_UNKNOWNS: usize = 1_000;
+pub const AUTO_MATRIX_FREE_CONTACT_UNKNOWNS: usize = 2_000;
 
 /// Whether `auto` picks the matrix-free full-system Newton (`matrix-free-mg`): a 3-D body
 /// (`solid`) with more than [`AUTO_MATRIX_FREE_CONTACT_UNKNOWNS`] contact unknowns (`m`),
