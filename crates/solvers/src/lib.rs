@@ -70,8 +70,12 @@
 //! use capstan_solvers::{LinearBackend, samples::Poisson2d};
 //! let system = Poisson2d::new(16).system();
 //! let mut solutions = Vec::new();
-//! // every registered backend that needs nothing from the caller (`multigrid` needs a hierarchy)
-//! for backend in LinearBackend::all().into_iter().filter(|b| b.name() != "multigrid") {
+//! // every registered backend that needs nothing from the caller (`multigrid` needs a
+//! // hierarchy; `matrix-free-mg` is run by its caller on an operator, never on a matrix)
+//! for backend in LinearBackend::all()
+//!     .into_iter()
+//!     .filter(|b| b.name() != "multigrid" && b.kind() != capstan_solvers::BackendKind::MatrixFree)
+//! {
 //!     let mut solver = backend.build(&Default::default(), &()).unwrap();
 //!     solver.analyse(&system.pattern).unwrap();
 //!     solver.factor(&system.values).unwrap();
