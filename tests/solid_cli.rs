@@ -302,7 +302,63 @@ fn multigrid_bulk_solver_reproduces_the_direct_contact_and_is_refused_in_plane_s
 }
 
 #[test]
-fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
+fn matrix_free_newton_reproduces_the_direct_contact_and_is_refused_where_it_does_not_apply() {
+    let run = |linear: &str| {
+        capstan_json(
+            &[
+                &[
+                    "contact",
+                    "--set",
+                    "body.dimension=3",
+                    "--set",
+                    "solver.nonlinear=full-newton",
+                    "--set",
+                    &format!("solver.linear={linear}"),
+                ][..],
+                &ELLIPSE[..],
+            ]
+            .concat(),
+        )
+    };
+    let (lu, mf) = (run("lu"), run("matrix-free-mg"));
+    assert_eq!(mf["status"], "converged");
+    assert_eq!(mf["solver_choice"]["linear"], "matrix-free-mg");
+    let (a, b) = (
+        values(&lu["solid"]["contact"]["v1"]),
+        values(&mf["solid"]["contact"]["v1"]),
+    );
+    let scale = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(
+        a.iter().zip(&b).all(|(x, y)| (x - y).abs() <= 1e-8 * scale),
+        "{a:?} {b:?}"
+    );
+    for (set, key) in [
+        (&["--set", "body.dimension=2"][..], "solver.linear"),
+        (
+            &[
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "solver.nonlinear=newton",
+            ][..],
+            "solver.linear",
+        ),
+    ] {
+        let (code, _, stderr) = capstan_status(
+            &[
+                &["contact", "--set", "solver.linear=matrix-free-mg"][..],
+                set,
+                &ELLIPSE[..],
+            ]
+            .concat(),
+        );
+        assert_eq!(code, Some(2), "{set:?}: {stderr}");
+        assert!(stderr.contains(key), "{set:?}: {stderr}");
+    }
+}
+
+#[test]
+fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_the_matrix_free_path() {
     // 33 x 321 x 33 Q1: 1,048,707 unknowns, the LU estimate 77 GiB (docs/solid.md)
     let available = std::fs::read_to_string("/proc/meminfo")
         .ok()
@@ -329,7 +385,7 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_multigrid() {
     let (code, _, stderr) = capstan_status(&[&SOLID_Q1_CONTACT[..], &large[..]].concat());
     assert_eq!(code, Some(2), "{stderr}");
     assert!(
-        stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"multigrid\""),
+        stderr.contains("33 x 321 x 33") && stderr.contains("solver.linear = \"matrix-free-mg\""),
         "{stderr}"
     );
 }
@@ -381,8 +437,8 @@ fn fem_qp_solves_a_three_dimensional_body_and_refuses_bad_node_counts() {
         ]
         .concat(),
     );
-    assert_eq!(code, Some(2), "{stderr}");
-    assert!(stderr.contains("solver.linear"), "{stderr}");
+    // fem-qp of order >= 3 has the p-multigrid transfer now (it was refused before)
+    assert_eq!(code, Some(0), "{stderr}");
 }
 
 /// Regression: the SVD returns the rigid sliding mode with either sign. On this grid it came

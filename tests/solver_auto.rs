@@ -10,14 +10,15 @@ use capstan::solvers::LinearBackend;
 use common::capstan_json;
 
 #[test]
-fn auto_condenses_plane_and_3d_bodies_and_keeps_named_methods() {
+fn auto_condenses_plane_and_small_3d_bodies_goes_matrix_free_on_large_ones_and_keeps_named_methods()
+{
     let mut problem = Problem::paper();
     let (method, choice) = problem.solver.resolved(&problem.body);
     assert_eq!(method, SolveMethod::Condensed);
     assert!(choice.auto);
     assert_eq!((choice.nonlinear, choice.linear), ("newton", "lu"));
-    // the first 3-D try (5 x 250 nodes on the face): full-newton with lu runs out of memory
-    // there, multigrid does not coarsen its grid: condensed
+    // the first 3-D try (5 x 250 nodes on the face, 2,500 contact unknowns): the condensed
+    // solver took 254 s there, full-newton with lu ran out of memory: the matrix-free Newton
     problem.body.method = "fem-q1".parse().unwrap();
     problem.body.dimension = Dimension::Solid {
         x1: [0.5, 1.5],
@@ -25,12 +26,23 @@ fn auto_condenses_plane_and_3d_bodies_and_keeps_named_methods() {
         sides: SideFaces::PlaneStrain,
     };
     let (method, choice) = problem.solver.resolved(&problem.body);
-    assert_eq!(method, SolveMethod::Condensed);
+    assert_eq!(
+        method,
+        SolveMethod::FullNewton(LinearBackend::MATRIX_FREE_MG)
+    );
+    assert_eq!(
+        (choice.nonlinear, choice.linear),
+        ("full-newton", "matrix-free-mg")
+    );
     assert!(
-        choice.reason.starts_with("2500 contact unknowns"),
+        choice.reason.contains("2500 contact unknowns"),
         "{}",
         choice.reason
     );
+    // a small 3-D body keeps the condensed solver (and its limiting ratios)
+    problem.body.n2 = 41;
+    let (method, _) = problem.solver.resolved(&problem.body);
+    assert_eq!(method, SolveMethod::Condensed);
     let named = Solver::new(SolveMethod::FullNewton(LinearBackend::LU));
     let (method, choice) = named.resolved(&problem.body);
     assert_eq!(method, SolveMethod::FullNewton(LinearBackend::LU));

@@ -46,5 +46,7 @@ pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
 pub use friction::Friction;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
-pub use solver::{SolveMethod, Solver, SolverChoice};
+pub use solver::{
+    AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,
+};
 pub use target::{AccuracyTarget, Refined, Scaled, Step};

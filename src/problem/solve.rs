@@ -5,12 +5,12 @@ use std::time::Instant;
 use capstan_elasticity::PlaneOperator;
 use capstan_elasticity::contact::{
     BodyOperator, BoundarySolver, ContactError, ContactModel, ContactOperator, ContactSettings,
-    ContactSolution, FullSystemSolver, ThresholdResult, ThresholdSettings, solve_sequenced,
-    threshold_ratio,
+    ContactSolution, FullSystemSolver, MatrixFreeNewton, ThresholdResult, ThresholdSettings,
+    solve_sequenced, threshold_ratio,
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
-use capstan_elasticity::solid::SolidOutput;
-use capstan_elasticity::solvers::{Observer, Progress, SetUpPhase, SilentObserver};
+use capstan_elasticity::solid::{SolidMultigridParams, SolidOutput};
+use capstan_elasticity::solvers::{LinearBackend, Observer, Progress, SetUpPhase, SilentObserver};
 use capstan_elasticity::{Discretisation, ElasticityError};
 use capstan_friction::FrictionError;
 use capstan_geometry::Surface;
@@ -232,6 +232,31 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     model: SolvedModel::Body(model),
                     solution,
                     limiting,
+                    grid_sequence: None,
+                    choice,
+                    times,
+                    coarser: None,
+                })
+            }
+            SolveMethod::FullNewton(linear) if linear == LinearBackend::MATRIX_FREE_MG => {
+                let (law, params, eps) = self.friction.build()?;
+                observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 0, 1));
+                let model = self.body.matrix_free_model(
+                    law,
+                    params,
+                    eps,
+                    SolidMultigridParams::default(),
+                )?;
+                observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 1, 1));
+                let solver = MatrixFreeNewton::new(&model, self.solver.matrix_free_settings())?;
+                let setup = t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
+                let solution = solver.solve_observed(loads, observer)?;
+                let times = [setup, t1.elapsed().as_secs_f64()];
+                Ok(Solved {
+                    model: SolvedModel::Body(model),
+                    solution,
+                    limiting: None,
                     grid_sequence: None,
                     choice,
                     times,

@@ -1,6 +1,9 @@
 //! The contact solver of a [`super::Problem`] and its work budgets.
 
-use capstan_elasticity::contact::{Body, ContactSettings, Dimension, FullSystemSettings};
+use capstan_elasticity::contact::{
+    Body, ContactSettings, Dimension, FullSystemSettings, MatrixFreeSettings,
+};
+use capstan_elasticity::finite_element::VolumetricIntegration;
 use capstan_elasticity::solvers::{LinearBackend, NonlinearMethod};
 
 /// How the contact problem is solved (`solver.nonlinear`, `solver.linear` in scenes).
@@ -59,10 +62,24 @@ impl Solver {
             Dimension::Plane => body.n2,
             Dimension::Solid { n1, .. } => 2 * n1 * body.n2,
         };
+        let solid = matches!(body.dimension, Dimension::Solid { .. });
+        let matrix_free = auto_matrix_free(
+            solid,
+            m,
+            body.contact.is_unilateral(),
+            body.body_force.is_some(),
+            body.settings.volumetric == VolumetricIntegration::Full,
+        );
         let (method, reason) = match self.method {
+            SolveMethod::Auto if matrix_free => (
+                SolveMethod::FullNewton(LinearBackend::MATRIX_FREE_MG),
+                format!(
+                    "3-D body with {m} contact unknowns: the matrix-free full-system Newton (inexact Newton-Krylov, p-multigrid)"
+                ),
+            ),
             // the condensed solver keeps v^3 = 0: unilateral contact needs the full system
             SolveMethod::Auto if body.contact.is_unilateral() => (
-                SolveMethod::FullNewton(capstan_elasticity::solvers::LinearBackend::LU),
+                SolveMethod::FullNewton(LinearBackend::LU),
                 "unilateral contact: the full-system (semismooth) Newton, sparse LU".into(),
             ),
             SolveMethod::Auto => (
@@ -84,6 +101,27 @@ impl Solver {
         };
         (method, choice)
     }
+}
+
+/// Contact unknowns of a 3-D body above which `auto` solves by the matrix-free full-system
+/// Newton rather than condensing: measured on the first 3-D try (Q1, 5 x 250 x 41, 153,750
+/// unknowns, 2,500 contact unknowns) the condensed solver took 254 s (207 s of set-up for the
+/// dense condensation), the matrix-free Newton 74 CPU-s (docs/solid.md); small bodies keep
+/// the condensed solver (it also gives the limiting ratios).
+pub const AUTO_MATRIX_FREE_CONTACT_UNKNOWNS: usize = 2_000;
+
+/// Whether `auto` picks the matrix-free full-system Newton (`matrix-free-mg`): a 3-D body
+/// (`solid`) with more than [`AUTO_MATRIX_FREE_CONTACT_UNKNOWNS`] contact unknowns (`m`),
+/// bilateral contact, no body force, full volumetric integration (what the matrix-free path
+/// supports).
+pub fn auto_matrix_free(
+    solid: bool,
+    m: usize,
+    unilateral: bool,
+    body_force: bool,
+    full_integration: bool,
+) -> bool {
+    solid && m > AUTO_MATRIX_FREE_CONTACT_UNKNOWNS && !unilateral && !body_force && full_integration
 }
 
 /// The contact solver with its work budgets.
@@ -110,6 +148,21 @@ impl Solver {
             method,
             ..Default::default()
         }
+    }
+
+    /// The settings of the matrix-free Newton (`full-newton` with `matrix-free-mg`) with the
+    /// budgets: Newton steps and continuation as [`Solver::budgets`], `solver.max_sweeps` the
+    /// Krylov iterations summed over one Newton solve.
+    pub fn matrix_free_settings(&self) -> MatrixFreeSettings {
+        let mut s = MatrixFreeSettings::default();
+        s.continuation = ContactSettings {
+            tolerance: s.continuation.tolerance,
+            ..self.budgets
+        };
+        if let Some(sweeps) = self.max_sweeps {
+            s.max_linear_iterations = sweeps;
+        }
+        s
     }
 
     /// The settings of the full-system solvers (`full-newton`, `jacobi-newton`) with the

@@ -96,7 +96,9 @@ impl Scene {
                 message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
             });
         }
-        if matches!(s.linear.as_str(), "multigrid" | "petsc") && s.nonlinear != "full-newton" {
+        if matches!(s.linear.as_str(), "multigrid" | "petsc" | "matrix-free-mg")
+            && s.nonlinear != "full-newton"
+        {
             return Err(CliError::Scene {
                 origin: "solver.linear".into(),
                 message: format!(

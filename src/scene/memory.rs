@@ -134,6 +134,36 @@ pub fn solid_multigrid_memory_estimate([n1, n2, n3]: [usize; 3]) -> f64 {
     SOLID_MULTIGRID_BYTES_PER_UNKNOWN * n + 128.0 * 1024.0 * 1024.0
 }
 
+/// Bytes per unknown of a 3-D contact solve by the matrix-free Newton
+/// (`solver.linear = "matrix-free-mg"`) with elements of `degree` (1: Q1, 2: Q2, `p`: Qp),
+/// fitted above measured peaks (see [`solid_matrix_free_memory_estimate`]).
+pub fn solid_matrix_free_bytes_per_unknown(degree: usize) -> f64 {
+    match degree {
+        0 | 1 => 3_000.0,
+        2 => 2_000.0,
+        _ => 1_500.0,
+    }
+}
+
+/// The memory a 3-D contact solve on an `n1 x n2 x n3` grid of elements of `degree` needs
+/// with the matrix-free Newton, bytes: linear in the unknowns, no matrix of the fine level.
+///
+/// # Math
+/// ```text
+/// N     = 3 n1 n2 n3
+/// bytes = solid_matrix_free_bytes_per_unknown(degree) N + 2^27
+/// ```
+/// The terms per unknown: the chart at the quadrature points (`(p + 1)^3` points per element,
+/// 0.66 KB at Q1, less at higher order: fewer points per node), the assembled Q1 level at 1/8
+/// (Q1) or `1/p^3` of the unknowns with its Galerkin hierarchy, the transfers, GMRES(40) and
+/// about twelve Newton vectors. Measured peaks (VmHWM, release, `capstan contact` and
+/// `bench_solid_contact`): Q1 5 x 250 x 41 (153,750 unknowns) 549 MiB, i.e. 2.8 KB per
+/// unknown above the 128 MiB (estimate 3.0 KB); see docs/solid.md.
+pub fn solid_matrix_free_memory_estimate([n1, n2, n3]: [usize; 3], degree: usize) -> f64 {
+    let n = (3 * n1 * n2 * n3) as f64;
+    solid_matrix_free_bytes_per_unknown(degree) * n + 128.0 * 1024.0 * 1024.0
+}
+
 /// Bytes per unknown that every rank holds with `solver.linear = "petsc"`: Newton and the
 /// contact bookkeeping run replicated, so each rank keeps the assembled model, the Jacobian on
 /// the extended pattern, the element matrices of the assembly and the gathered solution

@@ -683,6 +683,12 @@ impl SolverSpec {
             .and_then(|m| (m.build)(&settings).ok())
             .is_some_and(|m| m.condenses())
     }
+
+    /// Whether the contact problem is solved by the matrix-free Newton
+    /// (`solver.linear = "matrix-free-mg"` with `full-newton`).
+    pub fn matrix_free(&self) -> bool {
+        self.nonlinear == "full-newton" && self.linear == "matrix-free-mg"
+    }
 }
 
 impl Default for SolverSpec {
@@ -832,6 +838,7 @@ pub use memory::{
     MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN,
     PETSC_REPLICATED_BYTES_PER_UNKNOWN, SOLID_BYTES_PER_N_4_3, available_memory, human_bytes,
     memory_estimate, mpi_ranks, petsc_memory_estimate_per_rank, solid_fill_factor,
-    solid_memory_estimate, solid_multigrid_memory_estimate,
+    solid_matrix_free_bytes_per_unknown, solid_matrix_free_memory_estimate, solid_memory_estimate,
+    solid_multigrid_memory_estimate,
 };
 pub use origins::Origins;

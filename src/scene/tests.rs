@@ -165,6 +165,24 @@ fn solid_memory_estimates_refuse_the_direct_path_at_a_million_unknowns() {
 }
 
 #[test]
+fn matrix_free_memory_estimate_admits_a_million_unknowns_and_refuses_a_hundred_million() {
+    let gib = |b: f64| b / (1u64 << 30) as f64;
+    // the measured peak of the default 3-D scene (Q1 5 x 250 x 41, 153,750 unknowns): 549 MiB;
+    // the estimate above it by less than 1.25x
+    let first = gib(solid_matrix_free_memory_estimate([5, 250, 41], 1)) * 1024.0;
+    assert!((549.0..549.0 * 1.25).contains(&first), "{first} MiB");
+    // 33 x 321 x 33 (1,048,707 unknowns) fits a 24 GiB machine many times over, Q1 and Q2
+    for degree in [1, 2, 4] {
+        assert!(gib(solid_matrix_free_memory_estimate([33, 321, 33], degree)) < 3.5);
+    }
+    // 1e8 unknowns (~ 149 x 1491 x 149) does not
+    assert!(gib(solid_matrix_free_memory_estimate([149, 1491, 149], 2)) > 24.0);
+    // higher order holds less per unknown (fewer quadrature points per node)
+    assert!(solid_matrix_free_bytes_per_unknown(1) > solid_matrix_free_bytes_per_unknown(2));
+    assert!(solid_matrix_free_bytes_per_unknown(2) > solid_matrix_free_bytes_per_unknown(4));
+}
+
+#[test]
 fn solid_memory_estimate_lies_above_the_measured_peaks_of_every_element_order() {
     // VmHWM of `capstan contact` (default scene, boundary-only Newton, release), KiB; the
     // estimate within 25 % above each

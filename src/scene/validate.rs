@@ -369,13 +369,6 @@ impl Scene {
                 "4 (the default) unless discretisation.method = \"fem-qp\": only fem-qp has an order",
             ));
         }
-        if qp && b.dimension == 3 && order > 2 && self.solver.linear == "multigrid" {
-            return Err(bad(
-                "solver.linear",
-                "\"multigrid\"".into(),
-                "`lu` with fem-qp of order 3 and more in 3-D (the box multigrid's trilinear prolongations assume uniformly spaced nodes, not the GLL nodes)",
-            ));
-        }
         if qp {
             for (key, n) in [("grid.n2", self.grid.n2), ("grid.n3", self.grid.n3)] {
                 if n < 2 || !(n - 1).is_multiple_of(order) {
@@ -556,21 +549,33 @@ impl Scene {
         if self.solver.linear == "petsc" {
             return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
         }
-        let condensed = self.solver.condenses();
+        // what `auto` picks (crate::problem::Solver::resolved)
+        let auto_mf = self.solver.nonlinear == "auto"
+            && crate::problem::auto_matrix_free(
+                true,
+                2 * g.n1 * g.n2,
+                self.contact.kind == "unilateral",
+                self.loads.body_force.is_some(),
+                self.discretisation.volumetric == VolumetricIntegration::Full,
+            );
+        let matrix_free = self.solver.matrix_free() || auto_mf;
+        let condensed = self.solver.condenses() && !auto_mf;
         let multigrid = self.solver.linear == "multigrid";
-        let need = if multigrid {
+        let settings = capstan_elasticity::registration::DiscretisationSettings {
+            order,
+            ..Default::default()
+        };
+        let degree = self
+            .discretisation
+            .method
+            .scheme(&settings)
+            .and_then(|s| s.solid_element())
+            .map_or(1, |e| e.degree());
+        let need = if matrix_free {
+            solid_matrix_free_memory_estimate([g.n1, g.n2, g.n3], degree)
+        } else if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
         } else {
-            let settings = capstan_elasticity::registration::DiscretisationSettings {
-                order,
-                ..Default::default()
-            };
-            let degree = self
-                .discretisation
-                .method
-                .scheme(&settings)
-                .and_then(|s| s.solid_element())
-                .map_or(1, |e| e.degree());
             solid_memory_estimate([g.n1, g.n2, g.n3], condensed, degree)
         };
         check_memory(at, "grid.n1", need, |have| {
@@ -580,7 +585,9 @@ impl Scene {
                 g.n2,
                 g.n3,
                 human_bytes(need),
-                if multigrid {
+                if matrix_free {
+                    "the matrix-free operator's quadrature data, its assembled coarse level and the GMRES vectors"
+                } else if multigrid {
                     "the sparse Jacobian, its multigrid hierarchy and the GMRES vectors"
                 } else if condensed {
                     "dense condensed contact matrices of 2 n1 n2 rows and the sparse LU"
@@ -588,12 +595,12 @@ impl Scene {
                     "the sparse LU factors"
                 },
                 human_bytes(have),
-                if multigrid {
+                if matrix_free {
                     ""
-                } else if condensed {
-                    " or solver.nonlinear = \"full-newton\" with solver.linear = \"multigrid\""
+                } else if condensed || multigrid {
+                    " or solver.nonlinear = \"full-newton\" with solver.linear = \"matrix-free-mg\""
                 } else {
-                    " or solver.linear = \"multigrid\" (no factorisation)"
+                    " or solver.linear = \"matrix-free-mg\" (no matrix, no factorisation)"
                 }
             )
         })

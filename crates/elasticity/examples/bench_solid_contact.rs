@@ -9,6 +9,9 @@
 //! cargo run --release -p capstan-elasticity --example bench_solid_contact -- 5 41 5 condensed --sweep
 //! cargo run --release -p capstan-elasticity --example bench_solid_contact -- 9 257 17 multigrid
 //! ```
+//! `mf` is the matrix-free full-system Newton (`solver.linear = "matrix-free-mg"`:
+//! inexact Newton-Krylov on the sum-factorised operator, p-multigrid/semi-coarsening V-cycle),
+//! any element by `--order q1|q2|qpP`, `--width w` the body's width (aspect of the cells).
 //! `multigrid` is the full-system Newton with GMRES and the geometric multigrid of the box
 //! (`--krylov-tol 1e-8` the relative tolerance of each linear solve, `--smoother jacobi` damped
 //! Jacobi instead of Chebyshev, `--power 12` power iterations of its eigenvalue estimate, `--restart m` of GMRES). `--save FILE` writes the
@@ -27,10 +30,13 @@ use std::time::Instant;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
 };
+use capstan_elasticity::contact::{MatrixFreeNewton, MatrixFreeSettings};
+use capstan_elasticity::finite_element::ElementOrder;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
-use capstan_elasticity::solid::SolidBody;
+use capstan_elasticity::solid::{HexElement, SolidBody, SolidMultigridParams};
 use capstan_elasticity::solvers::{
-    KrylovParams, LinearBackend, MultigridParams, Progress, Smoother, max_abs, max_abs_difference,
+    KrylovParams, LinearBackend, MultigridParams, Progress, Smoother, SolveStage, max_abs,
+    max_abs_difference,
 };
 use capstan_elasticity::verification::peak_memory_mib;
 use capstan_geometry::{EllipticalPrism, Obstacle};
@@ -62,9 +68,21 @@ fn main() {
         .option("--power")
         .map_or(12, |t| t.parse().expect("a count"));
     let obstacle = Obstacle::Ellipse(EllipticalPrism::new(2.0, 1.5).expect("valid"));
-    let body = SolidBody::new(obstacle, [-0.5, 0.5], nodes);
+    let width: f64 = args
+        .option("--width")
+        .map_or(1.0, |t| t.parse().expect("a number"));
+    let mut body = SolidBody::new(obstacle, [-0.5 * width, 0.5 * width], nodes);
+    body.order = match args.option("--order").unwrap_or("q1") {
+        "q1" => HexElement::Uniform(ElementOrder::Q1),
+        "q2" => HexElement::Uniform(ElementOrder::Q2),
+        qp => HexElement::Gll(qp.trim_start_matches("qp").parse().expect("q1, q2 or qpP")),
+    };
     let eps = 1e-5;
     let params = RegularisedCoulombParams::new(0.5, eps).expect("valid");
+    if solver == "mf" {
+        matrix_free(&body, params, eps, progress, args.option("--reference"));
+        return;
+    }
     let t = Instant::now();
     let model = body
         .model(RegularisedCoulomb, params, eps)
@@ -163,6 +181,85 @@ fn main() {
         model.relative_residual(loads, v),
         difference.map_or("null".to_owned(), |d| format!("{d:.2e}")),
         last.max_azimuthal_displacement.value,
+        cpu_seconds(),
+        peak_memory_mib()
+    );
+}
+
+/// The matrix-free path: model (operator, V-cycle transfers and coarse level), solve; one
+/// JSON line as the assembled paths print (`vm_hwm_mib` the whole process).
+fn matrix_free(
+    body: &SolidBody<Obstacle>,
+    params: RegularisedCoulombParams<f64>,
+    eps: f64,
+    progress: bool,
+    reference: Option<&str>,
+) {
+    let t = Instant::now();
+    let model = body
+        .matrix_free_model(
+            RegularisedCoulomb,
+            params,
+            eps,
+            SolidMultigridParams::default(),
+        )
+        .expect("a valid model");
+    let model_seconds = t.elapsed().as_secs_f64();
+    let solver = MatrixFreeNewton::new(&model, MatrixFreeSettings::default()).expect("settings");
+    let t = Instant::now();
+    let mut newton_steps: Vec<(usize, usize)> = Vec::new();
+    let mut krylov_in_step = 0;
+    let start = Instant::now();
+    let mut log = |p: &Progress<f64>| {
+        match p.stage {
+            SolveStage::Krylov => krylov_in_step += 1,
+            SolveStage::Newton => {
+                newton_steps.push((p.iteration, krylov_in_step));
+                krylov_in_step = 0;
+            }
+            _ => {}
+        }
+        if progress && p.stage != SolveStage::Krylov {
+            eprintln!(
+                "{:8.1} s  {} {:3}  residual {:.3e}  step {:.3}",
+                start.elapsed().as_secs_f64(),
+                p.stage,
+                p.iteration,
+                p.residual_norm,
+                p.step_length
+            );
+        }
+    };
+    let loads = EndLoads::ratio(1.5);
+    let sol = solver.solve_observed(loads, &mut log).expect("a solution");
+    let solve_seconds = t.elapsed().as_secs_f64();
+    let v = &sol.displacement;
+    let difference = reference.map(|path| {
+        let bytes = std::fs::read(path).expect("a readable --reference file");
+        let reference: Vec<f64> = bytes
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+            .collect();
+        assert_eq!(reference.len(), v.len(), "the reference is of this grid");
+        max_abs_difference(&reference, v) / max_abs(&reference)
+    });
+    // Krylov iterations of each Newton step (the first event of a solve is its start)
+    let per_step: Vec<usize> = newton_steps
+        .iter()
+        .filter(|s| s.0 > 0)
+        .map(|s| s.1)
+        .collect();
+    println!(
+        "{{\"nodes\":{:?},\"order\":{:?},\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"mf\",\"model_seconds\":{model_seconds:.3},\"solve_seconds\":{solve_seconds:.3},\"newton_iterations\":{},\"krylov_iterations\":{},\"krylov_per_newton_step\":{per_step:?},\"relative_residual\":{:.2e},\"difference_to_reference\":{},\"max_v2\":{:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
+        body.nodes,
+        body.order,
+        model.dof_count(),
+        model.active().len(),
+        sol.stats.newton_iterations,
+        sol.stats.linear_iterations,
+        model.relative_residual(loads, v),
+        difference.map_or("null".to_owned(), |d| format!("{d:.2e}")),
+        sol.max_azimuthal_displacement.value,
         cpu_seconds(),
         peak_memory_mib()
     );

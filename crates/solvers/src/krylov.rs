@@ -3,6 +3,7 @@
 
 use crate::csr_matrix::CsrMatrix;
 use crate::error::SolverError;
+use crate::linear_operator::LinearOperator;
 use crate::observer::{Observer, Progress, SolveStage};
 
 /// The field a spent Krylov budget names ([`SolverError::BudgetSpent`]).
@@ -127,7 +128,7 @@ impl KrylovReport {
 
 /// One Krylov solve from `x = 0` with `b != 0`: the inputs, `|b|_2` and the report so far.
 struct Run<'s> {
-    a: &'s CsrMatrix,
+    a: &'s dyn LinearOperator,
     b: &'s [f64],
     preconditioner: &'s mut dyn Preconditioner,
     params: &'s KrylovParams,
@@ -204,6 +205,28 @@ pub fn krylov_solve(
     params: &KrylovParams,
     observer: &mut dyn Observer<f64>,
 ) -> Result<KrylovReport, SolverError> {
+    if a.nrows() != a.ncols() {
+        return Err(SolverError::NotSquare {
+            nrows: a.nrows(),
+            ncols: a.ncols(),
+        });
+    }
+    krylov_solve_operator(a, b, x, preconditioner, params, observer)
+}
+
+/// [`krylov_solve`] for an operator known only by its action ([`LinearOperator`]: a
+/// matrix-free finite-element operator, or a [`CsrMatrix`]).
+///
+/// # Errors
+/// See [`krylov_solve`].
+pub fn krylov_solve_operator(
+    a: &dyn LinearOperator,
+    b: &[f64],
+    x: &mut [f64],
+    preconditioner: &mut dyn Preconditioner,
+    params: &KrylovParams,
+    observer: &mut dyn Observer<f64>,
+) -> Result<KrylovReport, SolverError> {
     check(a, b, x, params)?;
     x.fill(0.0);
     let bn = norm(b);
@@ -224,19 +247,18 @@ pub fn krylov_solve(
     }
 }
 
-fn check(a: &CsrMatrix, b: &[f64], x: &[f64], params: &KrylovParams) -> Result<(), SolverError> {
+fn check(
+    a: &dyn LinearOperator,
+    b: &[f64],
+    x: &[f64],
+    params: &KrylovParams,
+) -> Result<(), SolverError> {
     params.validate()?;
-    if a.nrows() != a.ncols() {
-        return Err(SolverError::NotSquare {
-            nrows: a.nrows(),
-            ncols: a.ncols(),
-        });
-    }
     for (quantity, len) in [("rhs", b.len()), ("x", x.len())] {
-        if len != a.nrows() {
+        if len != a.dimension() {
             return Err(SolverError::DimensionMismatch {
                 quantity,
-                expected: a.nrows(),
+                expected: a.dimension(),
                 found: len,
             });
         }
@@ -263,7 +285,7 @@ impl Run<'_> {
                 self.a.residual(x, self.b, &mut true_r);
                 return Err(spent(self.params, k, norm(&true_r) / self.bn));
             }
-            self.a.mul_vec(&p, &mut ap);
+            self.a.apply(&p, &mut ap);
             let pap = dot(&p, &ap);
             if pap.is_nan() || pap <= 0.0 {
                 return Err(if pap.is_finite() {
@@ -329,7 +351,7 @@ impl Run<'_> {
             let mut j = 0;
             while j < m && report.iterations < self.params.max_iterations {
                 self.preconditioner.apply(&basis[j], &mut z);
-                self.a.mul_vec(&z, &mut w);
+                self.a.apply(&z, &mut w);
                 let mut col = vec![0.0; j + 2];
                 for (i, v) in basis.iter().enumerate() {
                     let hij = dot(&w, v);

@@ -70,8 +70,12 @@
 //! use capstan_solvers::{LinearBackend, samples::Poisson2d};
 //! let system = Poisson2d::new(16).system();
 //! let mut solutions = Vec::new();
-//! // every registered backend that needs nothing from the caller (`multigrid` needs a hierarchy)
-//! for backend in LinearBackend::all().into_iter().filter(|b| b.name() != "multigrid") {
+//! // every registered backend that needs nothing from the caller (`multigrid` needs a
+//! // hierarchy; `matrix-free-mg` is run by its caller on an operator, never on a matrix)
+//! for backend in LinearBackend::all()
+//!     .into_iter()
+//!     .filter(|b| b.name() != "multigrid" && b.kind() != capstan_solvers::BackendKind::MatrixFree)
+//! {
 //!     let mut solver = backend.build(&Default::default(), &()).unwrap();
 //!     solver.analyse(&system.pattern).unwrap();
 //!     solver.factor(&system.values).unwrap();
@@ -92,11 +96,13 @@ mod csr_matrix;
 mod direct_params;
 mod direct_solve;
 mod error;
+mod inexact_newton;
 mod iterative_params;
 mod jacobi_newton;
 mod krylov;
 mod krylov_solver;
 mod linear_backend;
+mod linear_operator;
 mod linear_registration;
 pub mod linear_registry;
 mod linear_solver;
@@ -107,6 +113,7 @@ mod newton;
 mod nonlinear_method;
 mod nonlinear_solver;
 mod observer;
+mod operator_multigrid;
 mod ordering;
 mod problem;
 mod relaxation;
@@ -121,14 +128,19 @@ mod sparsity_pattern;
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
+pub use inexact_newton::{
+    EisenstatWalker, INEXACT_NEWTON_BUDGET_FIELD, InexactNewtonParams, NewtonKrylovProblem,
+    inexact_newton,
+};
 pub use iterative_params::IterativeParams;
 pub use jacobi_newton::JacobiNewton;
 pub use krylov::{
     IdentityPreconditioner, KRYLOV_BUDGET_FIELD, KrylovMethod, KrylovParams, KrylovReport,
-    Preconditioner, krylov_solve,
+    Preconditioner, krylov_solve, krylov_solve_operator,
 };
 pub use krylov_solver::KrylovSolver;
 pub use linear_backend::LinearBackend;
+pub use linear_operator::LinearOperator;
 pub use linear_registration::{
     BackendKind, BoxedLinearSolver, LinearContext, LinearSettings, NearNullSpace, Parameter,
     RegisteredLinearSolver,
@@ -142,6 +154,7 @@ pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{
     ActiveSet, Observer, Progress, SetUpPhase, SetUpWork, SilentObserver, SolveStage,
 };
+pub use operator_multigrid::{OperatorLevel, OperatorMultigrid};
 pub use ordering::{
     ColumnOrdering, GridShape, amd_compressed, amd_symmetrised, is_permutation,
     nested_dissection_elements, nested_dissection_grid,

@@ -42,6 +42,9 @@ impl LinearBackend {
     /// [`crate::KrylovSolver`] preconditioned by a V-cycle on the caller's hierarchy
     /// ([`LinearContext::prolongations`]).
     pub const MULTIGRID: Self = Self(&crate::krylov_solver::REGISTRATION);
+    /// The matrix-free Newton–Krylov of the 3-D body (`matrix-free-mg`,
+    /// [`BackendKind::MatrixFree`]).
+    pub const MATRIX_FREE_MG: Self = Self(&crate::operator_multigrid::MATRIX_FREE_REGISTRATION);
 
     /// The handle of a registered entry.
     pub fn of(entry: &'static RegisteredLinearSolver) -> Self {

@@ -135,6 +135,9 @@ pub enum BackendKind {
     /// systems; solvers use it where it was asked for (the Newton steps), not for their setup
     /// solves.
     Stationary,
+    /// A matrix-free solve the caller runs itself on an operator's action (no assembled
+    /// matrix: building it as a [`crate::LinearSolver`] is refused).
+    MatrixFree,
 }
 
 /// A linear backend that scenes (`solver.linear`) and both contact solvers can name.

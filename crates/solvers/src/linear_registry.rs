@@ -71,6 +71,7 @@ fn builtin() -> Vec<&'static RegisteredLinearSolver> {
         &crate::relaxation::JACOBI_REGISTRATION,
         &crate::relaxation::GAUSS_SEIDEL_REGISTRATION,
         &crate::krylov_solver::REGISTRATION,
+        &crate::operator_multigrid::MATRIX_FREE_REGISTRATION,
     ]
 }
 

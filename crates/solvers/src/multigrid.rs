@@ -6,6 +6,7 @@ use std::sync::Arc;
 use crate::csr_matrix::CsrMatrix;
 use crate::error::SolverError;
 use crate::krylov::Preconditioner;
+use crate::linear_operator::LinearOperator;
 use crate::linear_solver::LinearSolver;
 use crate::sparse_lu::SparseLu;
 use crate::sparsity_pattern::SparsityPattern;
@@ -101,13 +102,32 @@ impl MultigridParams {
 
 /// One level's smoother data and work vectors.
 #[derive(Debug, Default)]
-struct LevelData {
+pub(crate) struct LevelData {
     inv_diag: Vec<f64>,
     lambda: f64,
-    r: Vec<f64>,
-    d: Vec<f64>,
+    pub(crate) r: Vec<f64>,
+    pub(crate) d: Vec<f64>,
     b: Vec<f64>,
     x: Vec<f64>,
+}
+
+impl LevelData {
+    /// `lambda_max(D^-1 A)` as estimated.
+    pub(crate) fn lambda(&self) -> f64 {
+        self.lambda
+    }
+
+    /// The smoother data of a level of `n` unknowns: `D^-1` and `lambda_max(D^-1 A)`.
+    pub(crate) fn new(n: usize, inv_diag: Vec<f64>, lambda: f64) -> Self {
+        Self {
+            inv_diag,
+            lambda,
+            r: vec![0.0; n],
+            d: vec![0.0; n],
+            b: Vec::new(),
+            x: Vec::new(),
+        }
+    }
 }
 
 /// A geometric (or any given-hierarchy) multigrid V-cycle.
@@ -335,8 +355,8 @@ impl Multigrid {
 }
 
 /// One smoothing step on `x` for `A x = b` (`zero`: `x` is known to be 0).
-fn smooth(
-    a: &CsrMatrix,
+pub(crate) fn smooth(
+    a: &dyn LinearOperator,
     d: &mut LevelData,
     params: &MultigridParams,
     b: &[f64],
@@ -399,8 +419,8 @@ fn smooth(
 
 /// The largest eigenvalue of `D^-1 A` by `iterations` power iterations from a fixed
 /// pseudo-random start (an estimate from below; the smoothers add 10 %).
-fn power_estimate(a: &CsrMatrix, inv_diag: &[f64], iterations: usize) -> f64 {
-    let n = a.nrows();
+pub(crate) fn power_estimate(a: &dyn LinearOperator, inv_diag: &[f64], iterations: usize) -> f64 {
+    let n = a.dimension();
     let mut v: Vec<f64> = (0..n)
         .map(|i| {
             let h = (i as u64 + 1).wrapping_mul(0x9E37_79B9_7F4A_7C15);
@@ -415,7 +435,7 @@ fn power_estimate(a: &CsrMatrix, inv_diag: &[f64], iterations: usize) -> f64 {
             break;
         }
         v.iter_mut().for_each(|x| *x /= vn);
-        a.mul_vec(&v, &mut w);
+        a.apply(&v, &mut w);
         w.iter_mut().zip(inv_diag).for_each(|(wi, di)| *wi *= di);
         lambda = v.iter().zip(&w).map(|(x, y)| x * y).sum::<f64>().abs();
         let wn = w.iter().map(|x| x * x).sum::<f64>().sqrt();

@@ -271,6 +271,49 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
     }
 }
 
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
+    /// The contact model with the bulk operator matrix-free (the 3-D body only,
+    /// [`SolidBody::matrix_free_loads`]), solved by [`crate::contact::MatrixFreeNewton`].
+    ///
+    /// # Errors
+    /// [`ContactError::Unsupported`] naming `solver.linear` for a plane-strain body, naming
+    /// `contact.kind` for unilateral contact, naming `loads.body_force` with a body force; the
+    /// body's and the model's errors.
+    pub fn matrix_free_model<L: FrictionLaw<f64>>(
+        &self,
+        law: L,
+        params: L::Params,
+        slip_threshold: f64,
+        multigrid: crate::solid::SolidMultigridParams,
+    ) -> Result<ContactModel<BodyOperator, L>, ContactError> {
+        let Some(solid) = self.solid()? else {
+            return Err(ContactError::Unsupported {
+                field: "solver.linear",
+                message: "`matrix-free-mg` is the 3-D body's (body.dimension = 3); in plane strain use \"lu\"",
+            });
+        };
+        if self.contact.is_unilateral() {
+            return Err(ContactError::Unsupported {
+                field: "contact.kind",
+                message: "unilateral contact is not solved matrix-free yet; use solver.linear = \"lu\" or \"multigrid\"",
+            });
+        }
+        if self.body_force.is_some() {
+            return Err(ContactError::Unsupported {
+                field: "loads.body_force",
+                message: "a body force is not applied matrix-free yet; use solver.linear = \"lu\" or \"multigrid\"",
+            });
+        }
+        let loads = solid.matrix_free_loads(multigrid)?;
+        ContactModel::new(
+            |tau0, tau_max| Ok(Box::new(loads.at(tau0, tau_max)) as BodyOperator),
+            law,
+            params,
+            slip_threshold,
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -80,6 +80,15 @@ pub(crate) fn build_backend<D: ContactOperator + ?Sized>(
         symmetric_positive_definite,
     };
     backend.build(&settings, &context).map_err(|e| match e {
+        capstan_solvers::SolverError::InvalidParameter { field: "linear", .. }
+            if backend.kind() == capstan_solvers::BackendKind::MatrixFree =>
+        {
+            ContactError::from(ElasticityError::InvalidParameter {
+                field: "solver.linear",
+                value: f64::NAN,
+                allowed: "`matrix-free-mg` only with solver.nonlinear = \"full-newton\" or \"auto\" on the 3-D body (body.dimension = 3)",
+            })
+        }
         capstan_solvers::SolverError::InvalidParameter { field: "linear", .. } => {
             ContactError::from(ElasticityError::InvalidParameter {
                 field: "solver.linear",

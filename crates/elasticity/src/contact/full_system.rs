@@ -167,6 +167,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     ) -> Result<Self, ContactError> {
         settings.continuation.validate()?;
         settings.newton.validate()?;
+        model.require_assembled(
+            "a matrix-free model is solved by the matrix-free Newton (capstan_elasticity::contact::MatrixFreeNewton)",
+        )?;
         let solver = Self {
             model,
             settings,

@@ -58,11 +58,13 @@ mod error;
 mod exact_friction;
 mod full_system;
 mod loads;
+mod matrix_free_newton;
 mod model;
 mod operator;
 mod pattern;
 mod quantities;
 mod solid_body;
+mod solid_matrix_free;
 mod solid_operator;
 mod solution;
 mod threshold;
@@ -78,9 +80,11 @@ pub use full_system::{
     solve_sequenced,
 };
 pub use loads::{BODY_FORCE, END_LOADS, EndLoads};
+pub use matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
 pub use model::{ContactModel, SiteTraction};
-pub use operator::{BodyOperator, ContactOperator, Extremum};
+pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
+pub use solid_matrix_free::{MatrixFreeLoads, SolidMatrixFreeBody};
 pub use solution::{
     ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
     classify, state_intervals,

@@ -8,7 +8,7 @@ use capstan_solvers::row_distribution::RowDistribution;
 
 use crate::contact::error::ContactError;
 use crate::contact::exact_friction::{ContactRows, ExactFriction};
-use crate::contact::operator::ContactOperator;
+use crate::contact::operator::{ContactOperator, MatrixFreeBulk};
 use crate::contact::pattern::{ExtendedPattern, Sites, extended_pattern};
 use crate::contact::unilateral::{Gap, Unilateral};
 use crate::discretisation::{ContactNode, LinearSystem};
@@ -103,6 +103,8 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     /// `system` holds this process's rows only ([`ContactOperator::row_distribution`]):
     /// residuals are completed by gathering the owners' rows.
     distribution: Option<(Arc<dyn RowDistribution>, usize)>,
+    /// The matrix-free bulk operator ([`ContactOperator::matrix_free`]), `None`: assembled.
+    bulk: Option<std::sync::Arc<dyn MatrixFreeBulk + Send + Sync>>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -221,6 +223,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
         let sites = Sites::new(&nodes, &active)?;
         let ext = extended_pattern(&system.pattern, &nodes, &active, &sites)?;
         let distribution = disc.row_distribution();
+        let bulk = disc.matrix_free();
         Ok(Self {
             disc: std::sync::Arc::new(disc),
             law,
@@ -237,6 +240,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             unilateral: None,
             exact: None,
             distribution,
+            bulk,
         })
     }
 
@@ -360,6 +364,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             unilateral: self.unilateral.clone(),
             exact: self.exact.clone(),
             distribution: self.distribution.clone(),
+            bulk: self.bulk.clone(),
         }
     }
 
@@ -474,6 +479,28 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// Whether the model has unilateral (Signorini) contact.
     pub fn is_unilateral(&self) -> bool {
         self.unilateral.is_some()
+    }
+
+    /// Whether the bulk is matrix-free ([`ContactOperator::matrix_free`]; [`ContactModel::system`]
+    /// holds only the right-hand side; solved by [`crate::contact::MatrixFreeNewton`]).
+    pub fn is_matrix_free(&self) -> bool {
+        self.bulk.is_some()
+    }
+    /// The matrix-free bulk operator, `None` when it is assembled.
+    pub fn matrix_free_bulk(&self) -> Option<&(dyn MatrixFreeBulk + Send + Sync)> {
+        self.bulk.as_deref()
+    }
+
+    /// [`ContactError::Unsupported`] naming `solver.linear` for a matrix-free model, which
+    /// `solver` (a solver that reads the assembled matrix) cannot solve.
+    pub(crate) fn require_assembled(&self, solver: &'static str) -> Result<(), ContactError> {
+        if self.is_matrix_free() {
+            return Err(ContactError::Unsupported {
+                field: "solver.linear",
+                message: solver,
+            });
+        }
+        Ok(())
     }
 
     /// Per contact site (in site order), whether it has separated from the obstacle at `v`
@@ -730,6 +757,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         penalty: Option<f64>,
     ) {
         self.system.pattern.matvec(&self.system.values, v, r);
+        if let Some(bulk) = &self.bulk {
+            // the bulk operator by its action (the assembled pattern is empty)
+            let mut av = vec![0.0; r.len()];
+            bulk.bulk().apply(v, &mut av);
+            r.iter_mut().zip(&av).for_each(|(ri, a)| *ri += a);
+        }
         for (ri, bi) in r.iter_mut().zip(rhs) {
             *ri -= bi;
         }

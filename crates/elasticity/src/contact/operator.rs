@@ -5,7 +5,9 @@
 use std::sync::Arc;
 
 use capstan_solvers::row_distribution::RowDistribution;
-use capstan_solvers::{ColumnOrdering, CsrMatrix, NearNullSpace};
+use capstan_solvers::{
+    ColumnOrdering, CsrMatrix, LinearOperator, NearNullSpace, OperatorMultigrid,
+};
 
 use crate::boundary::Component;
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
@@ -98,6 +100,46 @@ pub trait ContactOperator {
     fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
         None
     }
+
+    /// The bulk operator known by its action when the discretisation is matrix-free: then
+    /// [`ContactOperator::contact_system`] has an empty pattern (only its right-hand side
+    /// counts) and the model adds `A v` to its residual. `None` (the default): `A` is the
+    /// assembled matrix of `contact_system`.
+    fn matrix_free(&self) -> Option<Arc<dyn MatrixFreeBulk + Send + Sync>> {
+        None
+    }
+}
+
+/// A bulk operator `A` that is never assembled, with the preconditioner of the contact
+/// problem's Newton steps ([`crate::contact::MatrixFreeNewton`]).
+///
+/// # Math
+/// A Newton step solves `(A + F) d = -R` with `F` the friction Jacobian of the contact face (a
+/// sparse matrix with entries only in the tangential rows of contact nodes):
+/// ```text
+/// step_operator(F):    x -> A x + F x,  diagonal diag(A) + diag(F)
+/// preconditioner(F):   a V-cycle whose fine level is step_operator(F) and whose assembled
+///                      coarse level is A_c + P^T F P
+/// ```
+pub trait MatrixFreeBulk: Sync {
+    /// `A`.
+    fn bulk(&self) -> &dyn LinearOperator;
+    /// `A + F`, owned (the fine level of the preconditioner and the Krylov operator).
+    fn step_operator(&self, face: CsrMatrix) -> Arc<dyn LinearOperator + Send>;
+    /// The V-cycle for `step = step_operator(face)`, with the smoothers' eigenvalue
+    /// estimates given (`Some`: e.g. the previous Newton step's,
+    /// [`OperatorMultigrid::estimates`]) or by power iteration (`None`).
+    ///
+    /// # Errors
+    /// A singular diagonal or coarsest operator.
+    fn preconditioner(
+        &self,
+        step: Arc<dyn LinearOperator + Send>,
+        face: &CsrMatrix,
+        estimates: Option<&[f64]>,
+    ) -> Result<OperatorMultigrid, ElasticityError>;
+    /// Bytes held (operator data, transfers, the assembled coarse level).
+    fn bytes(&self) -> usize;
 }
 
 /// A contact operator of either dimension, as [`crate::contact::Body::operator`] builds it.
@@ -155,6 +197,10 @@ impl ContactOperator for BodyOperator {
 
     fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
         (**self).solid()
+    }
+
+    fn matrix_free(&self) -> Option<Arc<dyn MatrixFreeBulk + Send + Sync>> {
+        (**self).matrix_free()
     }
 }
 

@@ -9,31 +9,34 @@ use crate::discretisation::{ContactNode, LinearSystem, SparseRow};
 use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
 use crate::solid::SolidNavier;
+use crate::solid::setup::SolidSetup;
 
-impl<G: ShellGeometry + Sync> SolidNavier<G> {
-    /// The gradient-recovery stencil at a node: `(node, [value, d_1, d_2, d_3])` weights
-    /// (Q1/Q2: second-order differences of the nodal values, one-sided at the faces; Qp: the
-    /// element polynomials' derivatives averaged over the elements sharing the node; see
-    /// [`super::element::LineTables`]).
-    pub(crate) fn node_stencil(&self, node: [usize; 3]) -> Vec<([usize; 3], [f64; 4])> {
-        let counts = self.grid.counts();
-        let spacing = self.grid.spacing();
-        let periodic = [false, self.grid.is_periodic(), false];
-        let mut out = Vec::with_capacity(16);
-        out.push((node, [1.0, 0.0, 0.0, 0.0]));
-        for q in 0..3 {
-            for (i, w) in self
-                .lines
-                .derivative(node[q], counts[q], spacing[q], periodic[q])
-            {
-                let mut at = node;
-                at[q] = i;
-                let mut weights = [0.0; 4];
-                weights[1 + q] = w;
-                out.push((at, weights));
+impl<G: ShellGeometry + Sync> SolidSetup<G> {
+    /// The contact entries of every node of the face `x3 = 0` ([`SolidSetup::contact_pair`]).
+    pub(crate) fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
+        let [n1, n2, _] = self.grid.counts();
+        let mut out = Vec::with_capacity(2 * n1 * n2);
+        for i1 in 0..n1 {
+            for i2 in 0..n2 {
+                out.extend(self.contact_pair(i1, i2)?);
             }
         }
-        out
+        Ok(out)
+    }
+
+    /// The largest `v^2`, `v^3` over the nodes and where they are.
+    pub(crate) fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
+        let nodes = self.grid.node_count();
+        [1, 2].map(|c| {
+            extremum(
+                nodes,
+                |m| v[3 * m + c],
+                |m| {
+                    let x = self.grid.coordinates(self.grid.node(m));
+                    (Some(x[0]), x[1], x[2])
+                },
+            )
+        })
     }
 
     /// The contact entries of node `(i1, i2, 0)`: `v^1` and `v^2`.
@@ -47,7 +50,11 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     /// frame_1 = [sqrt(a_11), 0],  frame_2 = [a_12 / sqrt(a_11), 1 / sqrt(a^22)]
     /// ```
     /// in the frame `e_1 = a_1/|a_1|`, `e_2 = a^2/|a^2|`: `|F v|^2 = a_ab v^a v^b`.
-    fn contact_pair(&self, i1: usize, i2: usize) -> Result<[ContactNode; 2], ElasticityError> {
+    pub(crate) fn contact_pair(
+        &self,
+        i1: usize,
+        i2: usize,
+    ) -> Result<[ContactNode; 2], ElasticityError> {
         let [n1, n2, _] = self.grid.counts();
         let [d1, d2, _] = self.grid.spacing();
         let node = [i1, i2, 0];
@@ -124,8 +131,8 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     /// + c` makes a column consecutive): the separators cut through the whole thickness. AMD
     /// for a periodic `x2`.
     fn lu_ordering(&self) -> ColumnOrdering {
-        let [n1, n2, n3] = self.grid.counts();
-        if self.grid.is_periodic() {
+        let [n1, n2, n3] = self.setup.grid.counts();
+        if self.setup.grid.is_periodic() {
             return ColumnOrdering::Auto;
         }
         ColumnOrdering::ElementNestedDissection {
@@ -140,16 +147,34 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     /// The trilinear hierarchy of the box ([`crate::solid::box_hierarchy`]), Dirichlet dofs
-    /// constrained; `None` for Qp elements of degree 3 and more (GLL nodes: the
-    /// trilinear interpolation between uniform grids does not apply).
+    /// constrained; for Qp elements of degree 3 and more (GLL nodes, where the trilinear
+    /// interpolation between uniform grids does not apply) first the p-multigrid transfer
+    /// from the Q1 field on the element vertices, then the box hierarchy of the vertex grid.
     fn multigrid_prolongations(
         &self,
         coarsest_unknowns: usize,
     ) -> Option<std::sync::Arc<[capstan_solvers::CsrMatrix]>> {
-        if self.element().degree() > 2 {
-            return None;
+        if self.element().degree() <= 2 {
+            return Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations);
         }
-        Some(self.multigrid_hierarchy(coarsest_unknowns).prolongations)
+        let constrained: Vec<bool> = self.setup.dirichlet.iter().map(Option::is_some).collect();
+        let grid = &self.setup.grid;
+        let (first, counts, mask) =
+            crate::solid::matrix_free::p_prolongation(grid, self.element(), &constrained);
+        let vertices = crate::solid::BoxGrid::new(
+            grid.x1_range(),
+            grid.x2_range(),
+            grid.thickness(),
+            counts,
+            grid.is_periodic(),
+        )
+        .ok()?;
+        let rest = crate::solid::box_hierarchy(&vertices, &mask, coarsest_unknowns);
+        Some(
+            core::iter::once(first)
+                .chain(rest.prolongations.iter().cloned())
+                .collect(),
+        )
     }
 
     /// The three rigid translations of space in the contravariant components
@@ -166,22 +191,23 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     /// ellipse of `docs/solid.md` at 111,843 unknowns on one rank and at 15,795 on two; with
     /// the translations alone it converges everywhere tried (`docs/scale-out.md`).
     fn near_null_space(&self) -> Option<capstan_solvers::NearNullSpace> {
-        let [n1, n2, n3] = self.grid.counts();
+        let [n1, n2, n3] = self.setup.grid.counts();
         let n = self.dof_count();
         let mut vectors = vec![vec![0.0; n]; 3];
         let heights: Vec<f64> = (0..n3)
-            .map(|k| self.grid.coordinates([0, 0, k])[2])
+            .map(|k| self.setup.grid.coordinates([0, 0, k])[2])
             .collect();
         let mut column = Vec::with_capacity(n3);
         for i1 in 0..n1 {
             for i2 in 0..n2 {
-                let x = self.grid.coordinates([i1, i2, 0]);
+                let x = self.setup.grid.coordinates([i1, i2, 0]);
                 column.clear();
-                self.chart
+                self.setup
+                    .chart
                     .shell_column([x[0], x[1]], &heights, &mut column)
                     .ok()?;
                 for (i3, p) in column.iter().enumerate() {
-                    let m = self.grid.node_index([i1, i2, i3]);
+                    let m = self.setup.grid.node_index([i1, i2, i3]);
                     for (i, gi) in p.contravariant_basis.iter().enumerate() {
                         for (d, z) in vectors.iter_mut().enumerate() {
                             z[3 * m + i] = gi[d];
@@ -190,7 +216,7 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
                 }
             }
         }
-        for (d, g) in self.dirichlet.iter().enumerate() {
+        for (d, g) in self.setup.dirichlet.iter().enumerate() {
             if g.is_some() {
                 vectors.iter_mut().for_each(|z| z[d] = 0.0);
             }
@@ -215,28 +241,11 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidNavier<G> {
     }
 
     fn contact_entries(&self) -> Result<Vec<ContactNode>, ElasticityError> {
-        let [n1, n2, _] = self.grid.counts();
-        let mut out = Vec::with_capacity(2 * n1 * n2);
-        for i1 in 0..n1 {
-            for i2 in 0..n2 {
-                out.extend(self.contact_pair(i1, i2)?);
-            }
-        }
-        Ok(out)
+        self.setup.contact_entries()
     }
 
     fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
-        let nodes = self.grid.node_count();
-        [1, 2].map(|c| {
-            extremum(
-                nodes,
-                |m| v[3 * m + c],
-                |m| {
-                    let x = self.grid.coordinates(self.grid.node(m));
-                    (Some(x[0]), x[1], x[2])
-                },
-            )
-        })
+        self.setup.extremes(v)
     }
 
     fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {

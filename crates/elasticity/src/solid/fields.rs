@@ -3,7 +3,9 @@
 //! Qp: the element polynomials).
 
 use super::grid::BoxGrid;
+use super::matrix_free::SolidMatrixFree;
 use super::operator::SolidNavier;
+use super::setup::SolidSetup;
 use crate::continuum::{SOLID, mixed_strains};
 use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
@@ -80,8 +82,28 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
     ///
     /// # Errors
     /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
-    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
     pub fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
+        self.setup.fields(v)
+    }
+}
+
+impl<G: ShellGeometry + Sync> SolidOutput for SolidMatrixFree<G> {
+    fn box_grid(&self) -> &BoxGrid {
+        self.grid()
+    }
+
+    fn nodal_fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
+        self.setup.fields(v)
+    }
+}
+
+impl<G: ShellGeometry + Sync> SolidSetup<G> {
+    /// The nodal fields of the solution `v` (see [`SolidFields`]).
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
+    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+    pub(crate) fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let n = self.grid.node_count();
         let mut out = SolidFields {

@@ -37,13 +37,16 @@ mod boundary;
 mod element;
 mod fields;
 mod grid;
+pub(crate) mod matrix_free;
 mod multigrid;
 mod operator;
+pub(crate) mod setup;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 pub use element::HexElement;
 pub use fields::{SolidFields, SolidOutput};
 pub use grid::BoxGrid;
-pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count};
+pub use matrix_free::{MultigridParts, SolidMatrixFree, SolidMultigridParams};
+pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count, semicoarsening_hierarchy};
 pub use operator::{SolidForce, SolidNavier};

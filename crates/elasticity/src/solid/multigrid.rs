@@ -41,7 +41,7 @@ pub fn coarser_count(n: usize, periodic: bool) -> Option<usize> {
 /// fine 2I+1  <- coarse I, I + 1       (weights 1/2, 1/2; I + 1 taken mod n/2 when periodic)
 /// ```
 /// A direction that is not halved is the identity.
-fn interpolation_1d(n: usize, periodic: bool, halve: bool) -> Vec<Vec<(usize, f64)>> {
+pub(super) fn interpolation_1d(n: usize, periodic: bool, halve: bool) -> Vec<Vec<(usize, f64)>> {
     if !halve {
         return (0..n).map(|i| vec![(i, 1.0)]).collect();
     }
@@ -78,14 +78,25 @@ fn prolongation(
     constrained: &[bool],
 ) -> (CsrMatrix, [usize; 3], Vec<bool>) {
     let per = [false, periodic, false];
-    let w: Vec<Vec<Vec<(usize, f64)>>> = (0..3)
-        .map(|d| interpolation_1d(fine[d], per[d], halve[d]))
-        .collect();
+    let w: [Vec<Vec<(usize, f64)>>; 3] =
+        core::array::from_fn(|d| interpolation_1d(fine[d], per[d], halve[d]));
+    tensor_prolongation(fine, &w, constrained)
+}
+
+/// The prolongation of the tensor product of the 1-D interpolations `w` (per direction, for
+/// each fine node line its `(coarse line, weight)` pairs, no zero weights; a fine line with a
+/// single pair of weight 1 lies on a coarse line), with the constraints of [`prolongation`].
+pub(super) fn tensor_prolongation(
+    fine: [usize; 3],
+    w: &[Vec<Vec<(usize, f64)>>; 3],
+    constrained: &[bool],
+) -> (CsrMatrix, [usize; 3], Vec<bool>) {
     let coarse: [usize; 3] =
         core::array::from_fn(|d| w[d].iter().flatten().map(|e| e.0 + 1).max().unwrap_or(0));
     let node = |n: [usize; 3], [i, j, k]: [usize; 3]| (i * n[1] + j) * n[2] + k;
     let mut coarse_constrained = vec![false; COMPONENTS * coarse.iter().product::<usize>()];
-    let is_coarse_node = |i: [usize; 3]| (0..3).all(|d| w[d][i[d]].len() == 1);
+    let is_coarse_node =
+        |i: [usize; 3]| (0..3).all(|d| w[d][i[d]].len() == 1 && w[d][i[d]][0].1 == 1.0);
     let to_coarse = |i: [usize; 3]| -> [usize; 3] { core::array::from_fn(|d| w[d][i[d]][0].0) };
     for i1 in 0..fine[0] {
         for i2 in 0..fine[1] {
@@ -169,12 +180,51 @@ pub fn box_hierarchy(
     constrained: &[bool],
     coarsest_unknowns: usize,
 ) -> BoxHierarchy {
-    let mut counts = vec![grid.counts()];
     assert_eq!(
         constrained.len(),
         COMPONENTS * grid.node_count(),
         "one constrained flag per dof"
     );
+    coarsen(grid, constrained, coarsest_unknowns, None)
+}
+
+/// [`box_hierarchy`] with semi-coarsening for stretched cells: `cell` is the physical size of
+/// a fine cell per direction (e.g. `dx_d sqrt(g_dd)` at the centre of the body); a level
+/// halves only the directions whose cells are shorter than twice the shortest cell among
+/// the directions that can be halved, so cells of aspect 4 are first made cubic.
+///
+/// # Math
+/// ```text
+/// halve d  iff  d can be halved (coarser_count)  and  h_d < 2 min_{d' halvable} h_d'
+/// h_d <- 2 h_d for every halved d
+/// ```
+///
+/// # Panics
+/// If `constrained` does not have `3 n1 n2 n3` entries.
+#[track_caller]
+pub fn semicoarsening_hierarchy(
+    grid: &BoxGrid,
+    constrained: &[bool],
+    coarsest_unknowns: usize,
+    cell: [f64; 3],
+) -> BoxHierarchy {
+    assert_eq!(
+        constrained.len(),
+        COMPONENTS * grid.node_count(),
+        "one constrained flag per dof"
+    );
+    coarsen(grid, constrained, coarsest_unknowns, Some(cell))
+}
+
+/// The coarsening loop of [`box_hierarchy`] (`cell = None`: every halvable direction) and
+/// [`semicoarsening_hierarchy`].
+fn coarsen(
+    grid: &BoxGrid,
+    constrained: &[bool],
+    coarsest_unknowns: usize,
+    mut cell: Option<[f64; 3]>,
+) -> BoxHierarchy {
+    let mut counts = vec![grid.counts()];
     let periodic = grid.is_periodic();
     let mut mask = constrained.to_vec();
     let mut prolongations = Vec::new();
@@ -184,9 +234,21 @@ pub fn box_hierarchy(
             break;
         }
         let per = [false, periodic, false];
-        let halve: [bool; 3] = core::array::from_fn(|d| coarser_count(n[d], per[d]).is_some());
+        let mut halve: [bool; 3] = core::array::from_fn(|d| coarser_count(n[d], per[d]).is_some());
         if !halve.iter().any(|&h| h) {
             break;
+        }
+        if let Some(h) = cell.as_mut() {
+            let shortest = (0..3)
+                .filter(|&d| halve[d])
+                .map(|d| h[d])
+                .fold(f64::INFINITY, f64::min);
+            for d in 0..3 {
+                halve[d] = halve[d] && h[d] < 2.0 * shortest;
+                if halve[d] {
+                    h[d] *= 2.0;
+                }
+            }
         }
         let (p, coarse, coarse_mask) = prolongation(n, halve, periodic, &mask);
         prolongations.push(p);
@@ -203,8 +265,8 @@ impl<G> SolidNavier<G> {
     /// The geometric multigrid hierarchy of the operator's grid ([`box_hierarchy`]) with its
     /// Dirichlet dofs constrained.
     pub fn multigrid_hierarchy(&self, coarsest_unknowns: usize) -> BoxHierarchy {
-        let constrained: Vec<bool> = self.dirichlet.iter().map(Option::is_some).collect();
-        box_hierarchy(&self.grid, &constrained, coarsest_unknowns)
+        let constrained: Vec<bool> = self.setup.dirichlet.iter().map(Option::is_some).collect();
+        box_hierarchy(&self.setup.grid, &constrained, coarsest_unknowns)
     }
 }
 

@@ -17,7 +17,7 @@ use crate::shell_geometry::ShellGeometry;
 use crate::solid::BoxGrid;
 use crate::solid::HexElement;
 use crate::solid::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
-use crate::solid::{SolidForce, SolidNavier};
+use crate::solid::{SolidForce, SolidMatrixFree, SolidNavier};
 
 /// The chart of the 3-D sample problems (as `crate::studies::SampleChart`).
 type SampleChart = ShellChart<Obstacle>;
@@ -213,32 +213,10 @@ impl SolidMms {
         })
     }
 
-    /// The operator on an `n = [n1, n2, n3]` grid with elements of `order`.
-    ///
-    /// # Errors
-    /// Grid, geometry or element-count errors.
-    pub fn operator(
-        &self,
-        n: [usize; 3],
-        order: impl Into<HexElement>,
-    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
-        self.operator_with_force(n, order, |f| f)
-    }
-
-    /// [`SolidMms::operator`] with the exact covariant forcing handed through `force` first
-    /// (e.g. to a physical-component [`crate::contact::BodyForceField`] and back: a test of
-    /// that path against the manufactured solution).
-    ///
-    /// # Errors
-    /// As [`SolidMms::operator`].
-    pub fn operator_with_force(
-        &self,
-        n: [usize; 3],
-        order: impl Into<HexElement>,
-        force: impl FnOnce(SolidForce) -> SolidForce,
-    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
+    /// The boundary conditions (the exact field on the `x1`, `x2` faces, its tractions on the
+    /// `x3` faces) and the body force of the problem.
+    pub fn boundary(&self) -> (SolidBoundary, SolidForce) {
         let exact = self.exact();
-        let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
         let dirichlet = || {
             FaceCondition([0, 1, 2].map(|c| {
                 let ex = exact.clone();
@@ -268,8 +246,60 @@ impl SolidMms {
             pinned: vec![],
         };
         let ex = exact.clone();
-        let force = force(Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 3])));
+        let force: SolidForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 3]));
+        (boundary, force)
+    }
+
+    /// The operator on an `n = [n1, n2, n3]` grid with elements of `order`.
+    ///
+    /// # Errors
+    /// Grid, geometry or element-count errors.
+    pub fn operator(
+        &self,
+        n: [usize; 3],
+        order: impl Into<HexElement>,
+    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
+        self.operator_with_force(n, order, |f| f)
+    }
+
+    /// [`SolidMms::operator`] with the exact covariant forcing handed through `force` first
+    /// (e.g. to a physical-component [`crate::contact::BodyForceField`] and back: a test of
+    /// that path against the manufactured solution).
+    ///
+    /// # Errors
+    /// As [`SolidMms::operator`].
+    pub fn operator_with_force(
+        &self,
+        n: [usize; 3],
+        order: impl Into<HexElement>,
+        force: impl FnOnce(SolidForce) -> SolidForce,
+    ) -> Result<SolidNavier<SampleChart>, ElasticityError> {
+        let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
+        let (boundary, force0) = self.boundary();
+        let force = force(force0);
         SolidNavier::new(
+            ShellChart::new(self.obstacle.clone()),
+            self.material,
+            grid,
+            &boundary,
+            Some(&force),
+            order,
+            VolumetricIntegration::Full,
+        )
+    }
+
+    /// The matrix-free operator of the same problem ([`SolidMatrixFree`]).
+    ///
+    /// # Errors
+    /// See [`SolidMms::operator`].
+    pub fn matrix_free(
+        &self,
+        n: [usize; 3],
+        order: impl Into<HexElement>,
+    ) -> Result<SolidMatrixFree<SampleChart>, ElasticityError> {
+        let grid = BoxGrid::new(self.x1, self.x2, self.thickness, n, false)?;
+        let (boundary, force) = self.boundary();
+        SolidMatrixFree::new(
             ShellChart::new(self.obstacle.clone()),
             self.material,
             grid,

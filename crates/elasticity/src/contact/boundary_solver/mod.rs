@@ -147,6 +147,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
     ) -> Result<Self, ContactError> {
         settings.validate()?;
         refuse_unilateral(model)?;
+        model.require_assembled(
+            "the condensed solver needs the assembled bulk operator: solver.linear = \"matrix-free-mg\" runs with solver.nonlinear = \"full-newton\" or \"auto\"",
+        )?;
         let ext = model.extended();
         let m = model.active().len();
         let n = model.dof_count();

@@ -1,0 +1,197 @@
+//! Benchmark of the matrix-free 3-D operator against the assembled one: the finite-width
+//! body on the elliptical prism `a = 2`, `b = 1.5` (width 1, `h = 1`, `E = 1e3`, `nu = 1/4`,
+//! `x2 in [-pi/2, pi/2]`, end stresses 1 and 1.5) with the contact face clamped (`v = 0` on
+//! `x3 = 0`: the bulk problem of the stuck start, symmetric positive definite), solved by CG
+//! to `1e-8` with a multigrid V-cycle.
+//!
+//! Run one size and path per process so the peak memory (VmHWM) belongs to it:
+//! ```text
+//! cargo run --release -p capstan-elasticity --example bench_matrix_free -- 17 129 17 1 mf
+//! cargo run --release -p capstan-elasticity --example bench_matrix_free -- 17 129 17 1 assembled
+//! ```
+//! Arguments: nodes `n1 n2 n3`, the order `p` (Qp hexahedra with GLL nodes; 1 and 2 are
+//! Q1 and Q2), the path: `mf` (matrix-free operator, p-multigrid / semi-coarsening to an
+//! assembled Q1 level, Galerkin below) or `assembled` (the assembled operator with the box's
+//! Galerkin multigrid, as `solver.linear = "multigrid"`; `p <= 2`).
+//! Prints one JSON line: unknowns, set-up seconds (operator and multigrid), seconds per
+//! operator application (20 applications), CG iterations and seconds, the relative residual,
+//! max `|v^2|`, CPU seconds and VmHWM in MiB.
+
+mod common;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use capstan_elasticity::finite_element::VolumetricIntegration;
+use capstan_elasticity::solid::{
+    FaceComponent, FaceCondition, HexElement, SolidBody, SolidMatrixFree, SolidMultigridParams,
+};
+use capstan_elasticity::solvers::{
+    CsrMatrix, KrylovMethod, KrylovParams, LinearOperator, Multigrid, MultigridParams,
+    Preconditioner, SilentObserver, krylov_solve_operator,
+};
+use capstan_elasticity::verification::peak_memory_mib;
+use capstan_geometry::{EllipticalPrism, ShellChart};
+use common::ExampleArgs;
+
+fn main() {
+    let args = ExampleArgs::from_env();
+    let nodes = [
+        args.positional(0, 17),
+        args.positional(1, 129),
+        args.positional(2, 17),
+    ];
+    let p: usize = args.positional(3, 1);
+    let path = args.word(4).unwrap_or("mf").to_string();
+    let mut body = SolidBody::new(EllipticalPrism::new(2.0, 1.5).unwrap(), [-0.5, 0.5], nodes);
+    body.order = HexElement::Gll(p);
+    let mut boundary = body.boundary(1.0, 1.5);
+    boundary.faces[4] = FaceCondition([
+        FaceComponent::fixed(),
+        FaceComponent::fixed(),
+        FaceComponent::fixed(),
+    ]);
+    let start = Instant::now();
+    // the operator, its right-hand side and a preconditioner, behind one interface
+    let (op, rhs, mut pc, levels): Path = match path.as_str() {
+        "mf" => {
+            let op = Arc::new(
+                SolidMatrixFree::new(
+                    ShellChart::new(body.surface),
+                    body.material,
+                    body.grid().unwrap(),
+                    &boundary,
+                    None,
+                    body.order,
+                    VolumetricIntegration::Full,
+                )
+                .unwrap(),
+            );
+            let mg = SolidMultigridParams::default()
+                .build(&op, &boundary)
+                .unwrap();
+            let rhs = op.rhs().to_vec();
+            let levels = mg.level_sizes();
+            (Box::new(Shared(op)), rhs, Box::new(mg), levels)
+        }
+        _ => {
+            let navier = capstan_elasticity::solid::SolidNavier::new(
+                ShellChart::new(body.surface),
+                body.material,
+                body.grid().unwrap(),
+                &boundary,
+                None,
+                body.order,
+                VolumetricIntegration::Full,
+            )
+            .unwrap();
+            let system = navier.system();
+            let a = Arc::new(CsrMatrix::from_pattern(&system.pattern, &system.values).unwrap());
+            let rhs = system.rhs.clone();
+            let hierarchy = navier.multigrid_hierarchy(5_000);
+            drop(navier);
+            let mut mg =
+                Multigrid::new(hierarchy.prolongations, MultigridParams::default()).unwrap();
+            mg.setup(&a).unwrap();
+            let levels = mg.level_sizes();
+            (
+                Box::new(Shared(Arc::clone(&a))),
+                rhs,
+                Box::new(Bound { a, mg }),
+                levels,
+            )
+        }
+    };
+    let setup_seconds = start.elapsed().as_secs_f64();
+    let n = rhs.len();
+    let x0: Vec<f64> = (0..n).map(|i| ((i * 37) % 101) as f64 / 101.0).collect();
+    let mut y = vec![0.0; n];
+    let t = Instant::now();
+    for _ in 0..20 {
+        op.apply(&x0, &mut y);
+    }
+    let apply_seconds = t.elapsed().as_secs_f64() / 20.0;
+    let params = KrylovParams {
+        method: KrylovMethod::Cg,
+        tolerance: 1e-8,
+        max_iterations: 500,
+        ..Default::default()
+    };
+    let mut x = vec![0.0; n];
+    let t = Instant::now();
+    let report = krylov_solve_operator(
+        op.as_ref(),
+        &rhs,
+        &mut x,
+        pc.as_mut(),
+        &params,
+        &mut SilentObserver,
+    )
+    .unwrap();
+    let solve_seconds = t.elapsed().as_secs_f64();
+    let mut r = vec![0.0; n];
+    op.residual(&x, &rhs, &mut r);
+    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let max_v2 = x
+        .iter()
+        .skip(1)
+        .step_by(3)
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    println!(
+        "{{\"nodes\":{nodes:?},\"order\":{p},\"path\":\"{path}\",\"unknowns\":{n},\"levels\":{levels:?},\"setup_seconds\":{setup_seconds:.3},\"apply_seconds\":{apply_seconds:.4},\"unknowns_per_second\":{:.3e},\"cg_iterations\":{},\"solve_seconds\":{solve_seconds:.3},\"relative_residual\":{:.2e},\"max_v2\":{max_v2:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
+        n as f64 / apply_seconds,
+        report.iterations,
+        norm(&r) / norm(&rhs),
+        cpu_seconds(),
+        peak_memory_mib(),
+    );
+}
+
+/// A path: the operator, its right-hand side, its preconditioner and the level sizes.
+type Path = (
+    Box<dyn LinearOperator>,
+    Vec<f64>,
+    Box<dyn Preconditioner>,
+    Vec<usize>,
+);
+
+/// An operator shared with its preconditioner.
+struct Shared<T>(Arc<T>);
+
+impl<T: LinearOperator + Send> LinearOperator for Shared<T> {
+    fn dimension(&self) -> usize {
+        self.0.dimension()
+    }
+    fn apply(&self, x: &[f64], y: &mut [f64]) {
+        self.0.apply(x, y);
+    }
+    fn diagonal(&self) -> Vec<f64> {
+        self.0.diagonal()
+    }
+}
+
+/// The assembled path's V-cycle bound to its matrix.
+struct Bound {
+    a: Arc<CsrMatrix>,
+    mg: Multigrid,
+}
+
+impl Preconditioner for Bound {
+    fn apply(&mut self, r: &[f64], z: &mut [f64]) {
+        self.mg.with(&self.a).apply(r, z);
+    }
+}
+
+/// User + system CPU seconds of this process (`/proc/self/stat`, 100 ticks a second).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let tick = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (tick(11) + tick(12)) / 100.0
+}

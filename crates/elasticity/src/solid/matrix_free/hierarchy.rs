@@ -1,0 +1,229 @@
+//! The multigrid of the matrix-free 3-D operator: p-multigrid to Q1 (or one geometric
+//! halving of Q1) onto an assembled Q1 operator, then the box's Galerkin hierarchy with
+//! semi-coarsening for stretched cells.
+
+use std::sync::Arc;
+
+use capstan_solvers::{CsrMatrix, MultigridParams, OperatorLevel, OperatorMultigrid};
+
+use super::operator::SolidMatrixFree;
+use crate::error::ElasticityError;
+use crate::finite_element::{ElementOrder, VolumetricIntegration};
+use crate::shell_geometry::ShellGeometry;
+use crate::solid::boundary::SolidBoundary;
+use crate::solid::element::HexElement;
+use crate::solid::grid::BoxGrid;
+use crate::solid::multigrid::{
+    coarser_count, interpolation_1d, semicoarsening_hierarchy, tensor_prolongation,
+};
+use crate::solid::operator::SolidNavier;
+
+/// Settings of the multigrid of a [`SolidMatrixFree`] operator ([`SolidMultigridParams::build`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolidMultigridParams {
+    /// Smoother (Chebyshev–Jacobi by default, its diagonal computed matrix-free on the fine
+    /// level), smoothing steps and power iterations of every level.
+    pub multigrid: MultigridParams,
+    /// The assembled hierarchy below the matrix-free level coarsens until a level has at most
+    /// this many unknowns (solved by a sparse LU).
+    pub coarsest_unknowns: usize,
+}
+
+/// The pieces of the V-cycle of a [`SolidMatrixFree`] operator
+/// ([`SolidMultigridParams::parts`]).
+#[derive(Debug, Clone)]
+pub struct MultigridParts {
+    /// `P_0` from the assembled Q1 level to the matrix-free fine level.
+    pub prolongation: CsrMatrix,
+    /// The assembled Q1 operator of the coarse level (rediscretised).
+    pub coarse: CsrMatrix,
+    /// The box's (semi-coarsening) prolongations below the coarse level, finest first.
+    pub below: Arc<[CsrMatrix]>,
+}
+
+impl Default for SolidMultigridParams {
+    fn default() -> Self {
+        Self {
+            multigrid: MultigridParams::default(),
+            coarsest_unknowns: 5_000,
+        }
+    }
+}
+
+/// The 1-D interpolation of the Q1 field on the element boundaries (`elements + 1` lines,
+/// `elements` when `periodic`) at the node lines of elements of degree `k` with reference
+/// nodes `nodes`: for each fine line its `(coarse line, weight)` pairs, zero weights dropped.
+///
+/// # Math
+/// ```text
+/// fine line i = k e + a  (a = 0 .. k),  xi_a the reference node:
+///   coarse e <- (1 - xi_a) / 2,   coarse e + 1 <- (1 + xi_a) / 2     (mod elements if periodic)
+/// ```
+fn p_interpolation(n: usize, k: usize, nodes: &[f64], periodic: bool) -> Vec<Vec<(usize, f64)>> {
+    let elements = if periodic { n / k } else { (n - 1) / k };
+    (0..n)
+        .map(|i| {
+            let e = (i / k).min(elements.saturating_sub(1));
+            let xi = nodes[i - k * e];
+            let right = if periodic { (e + 1) % elements } else { e + 1 };
+            [(e, 0.5 * (1.0 - xi)), (right, 0.5 * (1.0 + xi))]
+                .into_iter()
+                .filter(|&(_, w)| w != 0.0)
+                .collect()
+        })
+        .collect()
+}
+
+/// The p-multigrid transfer of `grid` (node lines of elements of `element`) to the Q1 grid
+/// of the element vertices: the prolongation, the vertex grid's node counts and its
+/// constrained dofs (see [`p_interpolation`] and [`tensor_prolongation`]).
+pub(crate) fn p_prolongation(
+    grid: &BoxGrid,
+    element: HexElement,
+    constrained: &[bool],
+) -> (CsrMatrix, [usize; 3], Vec<bool>) {
+    let n = grid.counts();
+    let per = [false, grid.is_periodic(), false];
+    let nodes = element.reference_nodes();
+    let k = element.degree();
+    let w: [Vec<Vec<(usize, f64)>>; 3] =
+        core::array::from_fn(|d| p_interpolation(n[d], k, &nodes, per[d]));
+    tensor_prolongation(n, &w, constrained)
+}
+
+/// The physical cell sizes `dx_d sqrt(g_dd)` of `grid` at its centre.
+fn cell_sizes<G: ShellGeometry>(chart: &G, grid: &BoxGrid) -> Result<[f64; 3], ElasticityError> {
+    let [a, b] = grid.x1_range();
+    let [c, d] = grid.x2_range();
+    let p = chart.shell_point([0.5 * (a + b), 0.5 * (c + d), 0.5 * grid.thickness()])?;
+    let h = grid.spacing();
+    Ok(core::array::from_fn(|k| h[k] * p.metric[k][k].sqrt()))
+}
+
+impl SolidMultigridParams {
+    /// The V-cycle of `fine` with the boundary conditions it was built with (only which dofs
+    /// are prescribed matters: the coarse operators are rediscretised on them).
+    ///
+    /// # Math
+    /// ```text
+    /// level 0:  A_0 = fine (matrix-free), Chebyshev on D^-1 A_0 (D computed matrix-free)
+    /// P_0:      p > 1: the Q1 field on the element vertices interpolated at the GLL (or
+    ///           uniform) nodes (p-multigrid straight to Q1: (n - 1)/p + 1 nodes per direction)
+    ///           p = 1: trilinear from the grid with every halvable direction halved (semi-
+    ///           coarsening of stretched cells); the same grid if none can be halved
+    /// level 1:  A_1 = the Q1 operator rediscretised on the coarse grid (assembled)
+    /// below:    Galerkin P^T A P on the box's semi-coarsening hierarchy, sparse LU at
+    ///           `coarsest_unknowns`
+    /// ```
+    /// Prolongations honour the Dirichlet dofs as the box hierarchy does (injection at coarse
+    /// nodes, dropped weights of constrained coarse dofs).
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] for bad multigrid settings (naming the setting);
+    /// [`ElasticityError::InconsistentBoundary`] for a pinned node off the coarse grid; the
+    /// coarse operator's errors; a singular coarsest operator.
+    pub fn build<G: ShellGeometry + Clone + Send + Sync + 'static>(
+        &self,
+        fine: &Arc<SolidMatrixFree<G>>,
+        boundary: &SolidBoundary,
+    ) -> Result<OperatorMultigrid, ElasticityError> {
+        let parts = self.parts(fine, boundary)?;
+        let level = OperatorLevel {
+            operator: Arc::clone(fine) as Arc<dyn capstan_solvers::LinearOperator + Send>,
+            prolongation: parts.prolongation,
+        };
+        Ok(OperatorMultigrid::new(
+            vec![level],
+            parts.coarse,
+            parts.below,
+            self.multigrid,
+        )?)
+    }
+
+    /// What [`SolidMultigridParams::build`] builds the V-cycle from (the transfers and the
+    /// assembled coarse level), for callers that put another operator on the fine level
+    /// (the Jacobian of the contact problem: the bulk plus a face term).
+    ///
+    /// # Errors
+    /// See [`SolidMultigridParams::build`].
+    pub fn parts<G: ShellGeometry + Clone + Send + Sync + 'static>(
+        &self,
+        fine: &SolidMatrixFree<G>,
+        boundary: &SolidBoundary,
+    ) -> Result<MultigridParts, ElasticityError> {
+        self.multigrid.validate()?;
+        let grid = fine.grid();
+        let n = grid.counts();
+        let periodic = grid.is_periodic();
+        let per = [false, periodic, false];
+        let element = fine.element();
+        let k = element.degree();
+        let chart = fine.setup.chart.clone();
+        let w: [Vec<Vec<(usize, f64)>>; 3] = if k > 1 {
+            let nodes = element.reference_nodes();
+            core::array::from_fn(|d| p_interpolation(n[d], k, &nodes, per[d]))
+        } else {
+            // one semi-coarsening step of the box (or none: the same grid, assembled)
+            let h =
+                semicoarsening_hierarchy(grid, fine.constrained(), 0, cell_sizes(&chart, grid)?);
+            let halve: [bool; 3] = match h.counts.get(1) {
+                Some(c) => core::array::from_fn(|d| c[d] != n[d]),
+                None => [false; 3],
+            };
+            debug_assert!((0..3).all(|d| !halve[d] || coarser_count(n[d], per[d]).is_some()));
+            core::array::from_fn(|d| interpolation_1d(n[d], per[d], halve[d]))
+        };
+        let (prolongation, coarse_counts, coarse_mask) =
+            tensor_prolongation(n, &w, fine.constrained());
+        let coarse_grid = BoxGrid::new(
+            grid.x1_range(),
+            grid.x2_range(),
+            grid.thickness(),
+            coarse_counts,
+            periodic,
+        )?;
+        let mut coarse_boundary = boundary.clone();
+        for (node, _, _) in &mut coarse_boundary.pinned {
+            for d in 0..3 {
+                match w[d].get(node[d]).map(|v| &v[..]) {
+                    Some([(c, 1.0)]) => node[d] = *c,
+                    _ => {
+                        return Err(ElasticityError::InconsistentBoundary {
+                            what: "a pinned node is off the coarse grid of the multigrid",
+                        });
+                    }
+                }
+            }
+        }
+        let coarse = SolidNavier::new(
+            chart.clone(),
+            fine.material(),
+            coarse_grid,
+            &coarse_boundary,
+            None,
+            HexElement::Uniform(ElementOrder::Q1),
+            VolumetricIntegration::Full,
+        )?;
+        let coarse_constrained: Vec<bool> =
+            coarse.setup.dirichlet.iter().map(Option::is_some).collect();
+        if coarse_constrained != coarse_mask {
+            return Err(ElasticityError::InconsistentBoundary {
+                what: "the coarse grid's Dirichlet dofs differ from the fine grid's at its nodes",
+            });
+        }
+        let system = coarse.system();
+        let matrix = CsrMatrix::from_pattern(&system.pattern, &system.values)?;
+        let below = semicoarsening_hierarchy(
+            coarse.grid(),
+            &coarse_constrained,
+            self.coarsest_unknowns,
+            cell_sizes(&chart, coarse.grid())?,
+        );
+        drop(coarse);
+        Ok(MultigridParts {
+            prolongation,
+            coarse: matrix,
+            below: below.prolongations,
+        })
+    }
+}

@@ -1,0 +1,12 @@
+//! The matrix-free 3-D operator: the curvilinear Navier operator of [`super::SolidNavier`]
+//! applied element by element by sum factorisation, with the chart stored once at the
+//! quadrature points and no matrix assembled; and the multigrid built on it
+//! ([`SolidMultigridParams::build`]).
+
+mod hierarchy;
+mod kernel;
+mod operator;
+
+pub(crate) use hierarchy::p_prolongation;
+pub use hierarchy::{MultigridParts, SolidMultigridParams};
+pub use operator::SolidMatrixFree;

@@ -1,0 +1,91 @@
+//! The log-log plot of docs/solid.md: CPU time and peak memory against unknowns of the 3-D
+//! contact solve, matrix-free Newton (`solver.linear = "matrix-free-mg"`) beside the assembled
+//! full-system Newton with GMRES and multigrid, from the measurements in
+//! `docs/data/matrix_free_scaling.csv` (rows `path,unknowns,cpu_seconds,peak_mib`, `#`
+//! comments), with the ratio assembled / matrix-free printed where both were measured.
+//!
+//! Run: `cargo run --example matrix_free_scaling_plot -- [CSV] [SVG]` (defaults
+//! `docs/data/matrix_free_scaling.csv`, `docs/figures/matrix-free-scaling.svg`).
+
+use plotters::prelude::*;
+
+type Row = (String, f64, f64, f64);
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let csv = args
+        .first()
+        .map_or("docs/data/matrix_free_scaling.csv", String::as_str);
+    let svg = args
+        .get(1)
+        .map_or("docs/figures/matrix-free-scaling.svg", String::as_str);
+    let rows: Vec<Row> = std::fs::read_to_string(csv)?
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .map(|l| -> Result<Row, Box<dyn std::error::Error>> {
+            let f: Vec<&str> = l.split(',').collect();
+            if f.len() != 4 {
+                return Err(
+                    format!("{csv}: `{l}` is not path,unknowns,cpu_seconds,peak_mib").into(),
+                );
+            }
+            Ok((f[0].to_owned(), f[1].parse()?, f[2].parse()?, f[3].parse()?))
+        })
+        .collect::<Result<_, _>>()?;
+    for (n, a) in rows.iter().filter(|r| r.0 == "assembled").map(|r| (r.1, r)) {
+        if let Some(m) = rows.iter().find(|r| r.0 == "matrix-free" && r.1 == n) {
+            println!(
+                "{n} unknowns: assembled / matrix-free  time {:.2}x  memory {:.2}x",
+                a.2 / m.2,
+                a.3 / m.3
+            );
+        }
+    }
+    let root = SVGBackend::new(svg, (900, 400)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let panels = root.split_evenly((1, 2));
+    for (panel, (title, column)) in panels
+        .iter()
+        .zip([("CPU seconds", 2usize), ("peak memory (MiB)", 3)])
+    {
+        let value = |r: &Row| if column == 2 { r.2 } else { r.3 };
+        let ys: Vec<f64> = rows.iter().map(value).collect();
+        let (lo, hi) = ys
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
+        let mut chart = ChartBuilder::on(panel)
+            .caption(title, ("sans-serif", 18))
+            .margin(10)
+            .x_label_area_size(35)
+            .y_label_area_size(55)
+            .build_cartesian_2d(
+                (5e3f64..3e6f64).log_scale(),
+                (lo / 2.0..hi * 2.0).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("unknowns")
+            .x_label_formatter(&|x| format!("{x:.0e}"))
+            .draw()?;
+        for (path, colour) in [("matrix-free", BLUE), ("assembled", RED)] {
+            let points: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.0 == path)
+                .map(|r| (r.1, value(r)))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), colour))?
+                .label(path)
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], colour));
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()?;
+    }
+    root.present()?;
+    println!("wrote {svg}");
+    Ok(())
+}
