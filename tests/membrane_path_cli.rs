@@ -101,15 +101,19 @@ fn bad_input_and_no_equilibrium_have_their_exit_codes() {
         common::capstan_status(&["membrane-path", &scene, "--set", "loads.path=[2.7]"]);
     assert_eq!(code, Some(3), "{err}");
     assert!(err.contains("slides as a whole"), "{err}");
-    // the thick body does not take a nonsmooth law: exit 2, not a panic
+    // the thick body takes the nonsmooth law too, by the full-system semismooth Newton
+    // (tests/exact_friction_scene.rs); the condensed solver refuses it: exit 2, not a panic
     let (code, _, err) = common::capstan_status(&[
         "contact",
         "--set",
         "friction.law=exact-coulomb",
+        "--set",
+        "solver.nonlinear=newton",
         "--set",
         "grid.n2=20",
         "--set",
         "grid.n3=5",
     ]);
     assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("solver.nonlinear"), "{err}");
 }
