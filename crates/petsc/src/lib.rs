@@ -3,8 +3,8 @@
 //! blocks, solved by PETSc's KSP with the options of `solver.petsc_options`.
 //!
 //! Status: the linear algebra is distributed, each rank owning whole nodes
-//! ([`owned_blocks`]); GAMG is given the caller's near-null space and block size. A
-//! [`PetscDistribution`] installed as the process's row distribution lets the 3-D body
+//! (`owned_blocks`); GAMG is given the caller's near-null space and block size. A
+//! `PetscDistribution` installed as the process's row distribution lets the 3-D body
 //! assemble only its rows and the contact model gather its residuals; the caller's Newton
 //! iteration runs on whole vectors on every rank, each rank inserting its rows and receiving
 //! the whole solution. Built only with the system PETSc (Debian: `petsc-dev`, PETSc 3.18 on
