@@ -41,51 +41,58 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
-    let root = SVGBackend::new(svg, (900, 400)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((1, 2));
-    for (panel, (title, column)) in panels
-        .iter()
-        .zip([("CPU seconds", 2usize), ("peak memory (MiB)", 3)])
+    // capstan's bundled fonts (plotters' ab_glyph backend has none of its own); the figure is
+    // drawn into memory and written whole, so a failed run leaves no partial file
+    capstan::output::register_fonts();
+    let mut text = String::new();
     {
-        let value = |r: &Row| if column == 2 { r.2 } else { r.3 };
-        let ys: Vec<f64> = rows.iter().map(value).collect();
-        let (lo, hi) = ys
+        let root = SVGBackend::with_string(&mut text, (900, 400)).into_drawing_area();
+        root.fill(&WHITE)?;
+        let panels = root.split_evenly((1, 2));
+        for (panel, (title, column)) in panels
             .iter()
-            .fold((f64::INFINITY, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
-        let mut chart = ChartBuilder::on(panel)
-            .caption(title, ("sans-serif", 18))
-            .margin(10)
-            .x_label_area_size(35)
-            .y_label_area_size(55)
-            .build_cartesian_2d(
-                (5e3f64..3e6f64).log_scale(),
-                (lo / 2.0..hi * 2.0).log_scale(),
-            )?;
-        chart
-            .configure_mesh()
-            .x_desc("unknowns")
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .draw()?;
-        for (path, colour) in [("matrix-free", BLUE), ("assembled", RED)] {
-            let points: Vec<(f64, f64)> = rows
+            .zip([("CPU seconds", 2usize), ("peak memory (MiB)", 3)])
+        {
+            let value = |r: &Row| if column == 2 { r.2 } else { r.3 };
+            let ys: Vec<f64> = rows.iter().map(value).collect();
+            let (lo, hi) = ys
                 .iter()
-                .filter(|r| r.0 == path)
-                .map(|r| (r.1, value(r)))
-                .collect();
+                .fold((f64::INFINITY, 0.0f64), |(a, b), &y| (a.min(y), b.max(y)));
+            let mut chart = ChartBuilder::on(panel)
+                .caption(title, ("sans-serif", 18))
+                .margin(10)
+                .x_label_area_size(35)
+                .y_label_area_size(55)
+                .build_cartesian_2d(
+                    (5e3f64..3e6f64).log_scale(),
+                    (lo / 2.0..hi * 2.0).log_scale(),
+                )?;
             chart
-                .draw_series(LineSeries::new(points.clone(), colour))?
-                .label(path)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], colour));
-            chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+                .configure_mesh()
+                .x_desc("unknowns")
+                .x_label_formatter(&|x| format!("{x:.0e}"))
+                .draw()?;
+            for (path, colour) in [("matrix-free", BLUE), ("assembled", RED)] {
+                let points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.0 == path)
+                    .map(|r| (r.1, value(r)))
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(points.clone(), colour))?
+                    .label(path)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 15, y)], colour));
+                chart.draw_series(points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?;
+            }
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.8))
+                .border_style(BLACK)
+                .draw()?;
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()?;
+        root.present()?;
     }
-    root.present()?;
+    std::fs::write(svg, text)?;
     println!("wrote {svg}");
     Ok(())
 }
