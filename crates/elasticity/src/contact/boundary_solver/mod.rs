@@ -187,15 +187,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             } else {
                 None
             };
-        let (mut pz, mut nz) = condense(
-            model,
-            ext,
-            &values,
-            &spring,
-            &mut lu,
-            schur.as_ref(),
-            observer,
-        )?;
+        // `(P Z, N Z)` for a spring, with the bulk factorised (again) for it
+        let mut condense_with = |spring: &[f64], lu: &mut dyn LinearSolver<f64>| {
+            condense(model, ext, &values, spring, lu, schur.as_ref(), observer)
+        };
+        let (mut pz, mut nz) = condense_with(&spring, &mut lu)?;
         let mut factorisations = 1;
         // A spring far stiffer than every boundary mode of the body (thin bodies: the diagonal
         // grows like 1 / dx3^2, the boundary stiffness like h) makes `s - C x` cancel to
@@ -205,15 +201,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             for c in &mut spring {
                 *c *= top;
             }
-            (pz, nz) = condense(
-                model,
-                ext,
-                &values,
-                &spring,
-                &mut lu,
-                schur.as_ref(),
-                observer,
-            )?;
+            (pz, nz) = condense_with(&spring, &mut lu)?;
             factorisations += 1;
         }
         let mut unit_state = |mut v: Vec<f64>| -> Result<(Vec<f64>, Vec<f64>), ContactError> {
