@@ -471,3 +471,49 @@ fn limiting_range_does_not_depend_on_the_sign_the_svd_gives_the_sliding_mode() {
         limits[0]
     );
 }
+
+#[test]
+fn default_cone_past_its_runaway_ratio_exits_three_and_threshold_reports_it() {
+    // the scene's default cone (ubar = 0.5 sin t: the band also slides to the apex), small grid;
+    // its run-off ratio is 3.863754 (crates/elasticity/tests/solid_threshold.rs)
+    let cone = [
+        "--set",
+        "obstacle.shape=cone",
+        "--set",
+        "grid.n1=3",
+        "--set",
+        "grid.n2=20",
+        "--set",
+        "grid.n3=3",
+    ];
+    let (code, _, stderr) = capstan_status(
+        &[
+            &SOLID_Q1_CONTACT[..],
+            &cone[..],
+            &["--set", "loads.tau_max=4"][..],
+        ]
+        .concat(),
+    );
+    assert_eq!(code, Some(3), "{stderr}");
+    assert!(
+        stderr.contains("no static equilibrium") && stderr.contains("3.863754"),
+        "{stderr}"
+    );
+    let t = capstan_json(
+        &[
+            &[
+                "threshold",
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "discretisation.method=fem-q1",
+            ][..],
+            &cone[..],
+        ]
+        .concat(),
+    );
+    let limiting = t["limiting_ratio"].as_f64().unwrap();
+    assert!((limiting - 3.863754).abs() < 1e-6, "{t}");
+    let ratio = t["threshold_ratio"].as_f64().unwrap();
+    assert!(ratio > 1.0 && ratio < limiting, "{t}");
+}

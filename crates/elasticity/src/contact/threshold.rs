@@ -2,7 +2,7 @@
 
 use capstan_friction::FrictionLaw;
 
-use crate::contact::boundary_solver::BoundarySolver;
+use crate::contact::boundary_solver::{BoundarySolver, SlidingMode};
 use crate::contact::error::ContactError;
 use crate::contact::loads::EndLoads;
 use crate::contact::operator::ContactOperator;
@@ -50,7 +50,9 @@ pub struct ThresholdResult {
     pub above_is_no_equilibrium: bool,
     /// Contact solves done.
     pub solves: usize,
-    /// The limiting ratio from the sliding mode's solvability condition, when the bulk has one.
+    /// The limiting ratio from the sliding mode's solvability condition, when the bulk has one
+    /// (on a 3-D body whose bound is unbounded, the run-off ratio
+    /// [`SlidingMode::runaway_ratios`]: no equilibrium past it along the load path).
     pub limiting_ratio: Option<f64>,
 }
 
@@ -74,12 +76,22 @@ pub fn solve_below_threshold<D: ContactOperator, L: FrictionLaw<f64>>(
         Err(ContactError::NotConverged { .. })
             if solver
                 .sliding()
-                .is_some_and(|m| ratio >= m.upper_ratio * (1.0 - 1e-3)) =>
+                .and_then(|m| limiting_upper_ratio(&m))
+                .is_some_and(|upper| ratio >= upper * (1.0 - 1e-3)) =>
         {
             Ok(None)
         }
         Err(e) => Err(e),
     }
+}
+
+/// The sliding mode's finite upper limit: the bound `upper_ratio`, else on a 3-D body the
+/// run-off ratio ([`SlidingMode::runaway_ratios`]).
+fn limiting_upper_ratio(mode: &SlidingMode) -> Option<f64> {
+    Some(mode.upper_ratio)
+        .filter(|r| r.is_finite())
+        .or_else(|| mode.runaway_ratios.map(|[_, upper]| upper))
+        .filter(|r| r.is_finite())
 }
 
 /// Finds the smallest `tau_max / tau0 >= 1` (with `tau0 = 1`) at which every contact node slides
@@ -117,10 +129,7 @@ pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
                 }),
             )
         };
-    let limiting_ratio = solver
-        .sliding()
-        .map(|m| m.upper_ratio)
-        .filter(|r| r.is_finite());
+    let limiting_ratio = solver.sliding().and_then(|m| limiting_upper_ratio(&m));
     let mut lo = 1.0;
     let mut slip_lo = match probe(lo, &mut warm)? {
         Some((s, _)) => s,
@@ -183,7 +192,12 @@ pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
             }
         }
     }
-    let above_is_no_equilibrium = solver.check_equilibrium(EndLoads::ratio(hi)).is_err();
+    let past_runaway = solver
+        .sliding()
+        .and_then(|m| m.runaway_ratios)
+        .is_some_and(|[_, upper]| hi > upper * (1.0 + 1e-9));
+    let above_is_no_equilibrium =
+        past_runaway || solver.check_equilibrium(EndLoads::ratio(hi)).is_err();
     Ok(ThresholdResult {
         ratio: hi,
         below: lo,

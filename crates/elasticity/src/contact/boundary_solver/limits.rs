@@ -8,6 +8,7 @@ use faer::linalg::solvers::Solve;
 use super::condensation::frictionless_operator;
 use super::{BoundarySolver, SlidingMode};
 use crate::contact::error::ContactError;
+use crate::contact::loads::EndLoads;
 use crate::contact::operator::ContactOperator;
 
 /// Relative singular value below which the frictionless bulk counts as having a sliding mode.
@@ -18,6 +19,12 @@ pub(super) const SLIDING_MODE_THRESHOLD: f64 = 1e-8;
 /// The corner nodes next to the loaded ends carry a resolution artefact of this kind
 /// (measured: below `1e-3` of the total on 125 x 21 to 500 x 81 of the default circle).
 pub(super) const WRONG_WAY_SHARE_LIMIT: f64 = 1e-2;
+
+/// Largest wrong-way share (as [`WRONG_WAY_SHARE_LIMIT`]) of a 3-D full slip whose balance
+/// still counts as a run-off ratio: below one half the friction resists the sliding as a
+/// whole. (Measured: 0.322 on the default cone, `6 x 40 x 5`, where the solutions run off
+/// at the balance 1.9363.)
+pub(super) const RUNAWAY_WRONG_WAY_SHARE: f64 = 0.5;
 
 /// Newton iterations of the full-slip limit (one suffices for laws affine in `sigma_n`).
 pub(super) const FULL_SLIP_ITERATIONS: usize = 50;
@@ -85,6 +92,35 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         limits.map(Some)
     }
 
+    /// [`ContactError::NoEquilibrium`] with the run-off range when `loads` lie past a 3-D body's
+    /// run-off ratios ([`SlidingMode::runaway_ratios`], relative tolerance `1e-9`), `None`
+    /// otherwise (inside, no such ratios, or `tau0 <= 0`). Called once plain Newton has failed:
+    /// the load continuation from `tau_max = tau0` would have to cross the run-off.
+    ///
+    /// # Errors
+    /// The full-slip Newton iteration of [`BoundarySolver::sliding_at`].
+    pub(super) fn past_runaway(
+        &self,
+        loads: EndLoads,
+    ) -> Result<Option<ContactError>, ContactError> {
+        if loads.tau0 <= 0.0 {
+            return Ok(None);
+        }
+        let Some([lower, upper]) = self.sliding_at(loads.tau0)?.and_then(|m| m.runaway_ratios)
+        else {
+            return Ok(None);
+        };
+        let ratio = loads.tension_ratio();
+        let tol = 1e-9 * ratio.abs().max(1.0);
+        Ok(
+            (ratio > upper + tol || ratio < lower - tol).then_some(ContactError::NoEquilibrium {
+                ratio,
+                lower,
+                upper,
+            }),
+        )
+    }
+
     /// Whether the law's saturated traction is homogeneous of degree 1 in the normal stress
     /// (`t(2 sigma) = 2 t(sigma)`, `t(0) = 0`: Coulomb-type laws). Then the limiting ratios do
     /// not depend on `tau0`; otherwise (Tresca, power laws) they are recomputed per `tau0`.
@@ -138,12 +174,18 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         }
     }
 
-    /// The limiting ratios `tau_max / tau0` of rigid sliding for the given `tau0`.
+    /// The limiting ratios `tau_max / tau0` of rigid sliding for the given `tau0`, and on a
+    /// 3-D body the run-off ratios ([`SlidingMode::runaway_ratios`]).
     pub(super) fn limits_at(&self, tau0: f64, relative: f64) -> Result<SlidingMode, ContactError> {
         let mut ratios = [f64::NEG_INFINITY, f64::INFINITY];
+        let mut runaway = ratios;
+        let mut any_runaway = false;
         if self.mode_is_driven() {
-            for (r, direction) in ratios.iter_mut().zip([-1.0, 1.0]) {
-                *r = self.full_slip_limit(direction, tau0)?;
+            for ((r, run), direction) in ratios.iter_mut().zip(&mut runaway).zip([-1.0, 1.0]) {
+                let limit = self.full_slip_limit(direction, tau0)?;
+                *r = limit.bound;
+                *run = limit.runaway.unwrap_or(limit.bound);
+                any_runaway |= limit.runaway.is_some();
             }
         }
         Ok(SlidingMode {
@@ -151,6 +193,8 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             lower_ratio: ratios[0].min(ratios[1]),
             upper_ratio: ratios[0].max(ratios[1]),
             tau0,
+            runaway_ratios: any_runaway
+                .then(|| [runaway[0].min(runaway[1]), runaway[0].max(runaway[1])]),
         })
     }
 
@@ -171,7 +215,15 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// regularised Coulomb law, `t = mu sigma_n u / |u|` pushes *along* the slip where the contact
     /// is in tension, so a full-slip state whose wrong-way friction carries more than
     /// [`WRONG_WAY_SHARE_LIMIT`] of `sum_k w_k |t_k|` is no bound (`direction * inf`).
-    pub(super) fn full_slip_limit(&self, direction: f64, tau0: f64) -> Result<f64, ContactError> {
+    ///
+    /// On a 3-D body, a balance `r` refused by the wrong-way share only is kept as
+    /// [`FullSlipLimit::runaway`] when the friction as a whole resists the sliding (the
+    /// wrong-way share below one half).
+    pub(super) fn full_slip_limit(
+        &self,
+        direction: f64,
+        tau0: f64,
+    ) -> Result<FullSlipLimit, ContactError> {
         let m = self.bulk.pz.nrows();
         let u = 1e6 * self.model.slip_threshold();
         let z = &self.rigid_mode;
@@ -217,7 +269,13 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             g[m] = z.iter().zip(&s).map(|(a, b)| a * b).sum();
             residual = g[..m].iter().fold(0.0f64, |a, x| a.max(x.abs())) / size.max(1e-300);
             if it > 0 && residual <= 1e-11 {
-                return Ok(self.bound_or_unbounded(direction, r, &t, &along));
+                let bound = self.bound_or_unbounded(direction, r, &t, &along);
+                let solid = sites.members.iter().any(|m| m.len() == 2);
+                let runaway = (solid && bound.is_infinite() && r.is_finite() && r > 0.0)
+                    .then(|| self.wrong_way_share(&t, &along))
+                    .filter(|share| *share < RUNAWAY_WRONG_WAY_SHARE)
+                    .map(|_| r);
+                return Ok(FullSlipLimit { bound, runaway });
             }
             if it == FULL_SLIP_ITERATIONS {
                 break;
@@ -267,6 +325,18 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         t: &[f64],
         along: &[bool],
     ) -> f64 {
+        // no friction at all (mu = 0, share 0): the frictionless balance itself is the limit
+        let resists = self.wrong_way_share(t, along) <= WRONG_WAY_SHARE_LIMIT;
+        if r.is_finite() && r > 0.0 && resists {
+            r
+        } else {
+            direction * f64::INFINITY
+        }
+    }
+
+    /// The share of `sum_k w_k |t_k|` carried by the entries whose site's friction pushes
+    /// `along` the slip (`0` without friction).
+    fn wrong_way_share(&self, t: &[f64], along: &[bool]) -> f64 {
         let (mut wrong, mut total) = (0.0, 0.0);
         for (k, (tk, pushes)) in t.iter().zip(along).enumerate() {
             let w = self.model.active_node(k).traction_weight * tk.abs();
@@ -275,12 +345,16 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
                 wrong += w;
             }
         }
-        // no friction at all (mu = 0): the frictionless balance itself is the limit
-        let resists = wrong <= WRONG_WAY_SHARE_LIMIT * total;
-        if r.is_finite() && r > 0.0 && resists {
-            r
-        } else {
-            direction * f64::INFINITY
-        }
+        if total > 0.0 { wrong / total } else { 0.0 }
     }
+}
+
+/// The full-slip balance of one direction: the bound it puts on the loads (`direction * inf`
+/// if none) and, on a 3-D body, the run-off ratio ([`SlidingMode::runaway_ratios`]).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct FullSlipLimit {
+    /// The limiting ratio, or `direction * inf`.
+    pub bound: f64,
+    /// The balance `r` where `bound` is infinite by the wrong-way share only (3-D).
+    pub runaway: Option<f64>,
 }

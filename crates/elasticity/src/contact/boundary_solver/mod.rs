@@ -468,6 +468,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             Err(Failure::Interrupted(it)) => return Err(interrupted(it)),
             Err(Failure::NotConverged(it, _)) => {
                 iterations += it;
+                if let Some(no_equilibrium) = self.past_runaway(loads)? {
+                    return Err(no_equilibrium);
+                }
                 match self.slip_homotopy(loads, observer) {
                     Ok((it, st, sh)) => {
                         iterations += it;

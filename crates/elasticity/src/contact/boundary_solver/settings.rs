@@ -89,6 +89,21 @@ pub struct SlidingMode {
     /// The `tau0` of these ratios (they depend on it unless the law is homogeneous in the
     /// normal stress, as Coulomb's is; [`BoundarySolver::sliding`](super::BoundarySolver::sliding) reports `tau0 = 1`).
     pub tau0: f64,
+    /// 3-D bodies only: the ratios `[lower, upper]` at which full slip along the rigid mode
+    /// balances the loads where `lower_ratio` / `upper_ratio` is unbounded because some of
+    /// that full slip's friction pushes *along* the slip (bilateral contact in tension, more
+    /// than the wrong-way share the 2-D bound allows) while the friction as a whole resists
+    /// it (`-sum_k w_k t_k . u_k > 0`); `None` in 2-D, or when the bound itself is finite
+    /// each way, or when neither way has such a balance. A 3-D body whose full slip is not
+    /// rigid (a band on a cone also slides towards the apex) runs off along the rigid mode as
+    /// the ratio approaches this balance: its displacements grow like `c / (r_L - r)`
+    /// (measured on the default cone, see docs/solid.md), so no equilibrium is reached past
+    /// it along the load path. [`BoundarySolver`](super::BoundarySolver) does not refuse
+    /// these ratios up front (friction may still hold them in another state); it reports
+    /// [`ContactError::NoEquilibrium`](crate::contact::ContactError::NoEquilibrium) with
+    /// this range when plain Newton fails past them, instead of running the load
+    /// continuation, whose path would cross the run-off.
+    pub runaway_ratios: Option<[f64; 2]>,
 }
 
 /// Work done once by [`BoundarySolver::new`](super::BoundarySolver::new).
