@@ -71,3 +71,27 @@ fn the_condensed_solver_refuses_exact_friction_naming_the_key() {
         "{err}"
     );
 }
+
+#[test]
+fn exact_coulomb_starts_from_its_regularisation_without_load_continuation() {
+    // the semismooth Newton starts from the condensed solver's regularised solution
+    // (src/problem/exact_start.rs): before, its own regularised start stagnated at full load
+    // from the stuck state and the load continuation ran (29 iterations on the default scene)
+    let exact = scene("exact-coulomb", 1e-5, &[])
+        .build()
+        .unwrap()
+        .solve()
+        .unwrap();
+    let regularised = scene("coulomb", 1e-5, &[])
+        .build()
+        .unwrap()
+        .solve()
+        .unwrap();
+    let (e, r) = (&exact.solution.stats, &regularised.solution.stats);
+    assert_eq!(e.continuation_steps, 1, "{e:?}");
+    // the regularised solve's iterations (counted in) and a few semismooth ones
+    assert!(
+        e.newton_iterations > r.newton_iterations && e.newton_iterations <= r.newton_iterations + 6,
+        "exact {e:?}, regularised {r:?}"
+    );
+}

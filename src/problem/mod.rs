@@ -36,6 +36,7 @@
 
 mod accuracy;
 mod builder;
+mod exact_start;
 mod friction;
 pub mod nonlinear_registry;
 mod solve;

@@ -318,7 +318,21 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let solver = FullSystemSolver::new(&model, full)?;
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
-                let solved = solver.solve_observed(loads, observer);
+                // exact friction starts from its regularisation's solution (exact_start.rs)
+                let start = if exact {
+                    self.regularised_start(observer)
+                } else {
+                    None
+                };
+                let solved = match &start {
+                    Some(s) => solver
+                        .solve_from_observed(loads, &s.displacement, observer)
+                        .map(|mut solution| {
+                            solution.stats.newton_iterations += s.iterations;
+                            solution
+                        }),
+                    None => solver.solve_observed(loads, observer),
+                };
                 let times = [setup, t1.elapsed().as_secs_f64()];
                 drop(solver);
                 match solved {
