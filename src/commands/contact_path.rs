@@ -230,7 +230,8 @@ pub fn table(r: &ContactPathReport) -> String {
 /// `profiles.csv` (one row per step and contact node: `x2`, `v2`, `v3`, `normal_stress`,
 /// `slip` (increment), `friction_traction`, `state`), one VTU per step `step_NNNN.vtu` with
 /// their time series `path.pvd` (time = the step number), and the hysteresis loop
-/// `hysteresis.{svg,png}` (end displacement against tension ratio, from rest).
+/// `hysteresis.{svg,png}` (end displacement from rest against tension ratio, one point per
+/// step).
 ///
 /// # Errors
 /// Geometry or output errors.
@@ -286,10 +287,8 @@ pub fn write_out(dir: &Path, r: &ContactPathReport, scene: &Scene) -> Result<(),
         }
         out.write("path.pvd", |w| pvd.write(w))?;
     }
-    let mut x = vec![0.0];
-    let mut y = vec![0.0];
-    x.extend(col(|p| p.tension_ratio));
-    y.extend(col(|p| p.end_displacement));
+    let x = col(|p| p.tension_ratio);
+    let y = col(|p| p.end_displacement);
     let plot = LinePlot::new("Thick body: end displacement along the load path")
         .x_label("tau_max / tau0")
         .y_label("end displacement sqrt(g22) v2 at theta_max")

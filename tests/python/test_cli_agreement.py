@@ -165,5 +165,5 @@ def test_contact_path_matches_cli(cli):
     # the loop: unloading lowers the end displacement, reloading restores it
     assert r.steps[2].end_displacement < r.steps[1].end_displacement
     np.testing.assert_allclose(r.steps[3].end_displacement, r.steps[1].end_displacement, rtol=1e-9)
-    assert all(step.dissipation >= 0.0 for step in r.steps)
+    assert all(step.dissipation >= -1e-15 for step in r.steps)  # >= 0 to round-off
     assert r.solver_choice.nonlinear == "full-newton"
