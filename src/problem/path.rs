@@ -87,7 +87,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             }
             .full_settings();
             let setup = t0.elapsed().as_secs_f64();
-            let steps = solve_path(&model, PathSolver::FullSystem(full), path, observer)?;
+            let steps = solve_path(
+                &model,
+                PathSolver::FullSystem(Box::new(full)),
+                path,
+                observer,
+            )?;
             (steps, setup)
         };
         Ok(SolvedPath {

@@ -41,12 +41,7 @@ fn full_path<L: FrictionLaw<f64> + Clone>(
     model: &ContactModel<capstan_elasticity::contact::BodyOperator, L>,
     path: &[EndLoads],
 ) -> Vec<PathStep> {
-    solve_path_silent(
-        model,
-        PathSolver::FullSystem(FullSystemSettings::default()),
-        path,
-    )
-    .unwrap()
+    solve_path_silent(model, PathSolver::FullSystem(Box::default()), path).unwrap()
 }
 
 fn ratios(tau_max: &[f64]) -> Vec<EndLoads> {
@@ -247,12 +242,7 @@ fn three_dimensional_path_is_consistent() {
     let statics = solver.solve(path[0]).unwrap();
     let d = relative_difference(&condensed[0].solution.displacement, &statics.displacement);
     assert!(d <= 1e-12, "{d:e}");
-    let full = solve_path_silent(
-        &model,
-        PathSolver::FullSystem(FullSystemSettings::default()),
-        &path,
-    )
-    .unwrap();
+    let full = solve_path_silent(&model, PathSolver::FullSystem(Box::default()), &path).unwrap();
     for (c, f) in condensed.iter().zip(&full) {
         let d = relative_difference(&c.solution.displacement, &f.solution.displacement);
         assert!(d < 1e-7, "{d:e}");

@@ -17,7 +17,7 @@ use crate::discretisation::ContactNode;
 use crate::error::ElasticityError;
 
 /// Which contact solver runs the steps of a load path.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug)]
 pub enum PathSolver<'s, 'm, D, L: FrictionLaw<f64>> {
     /// The condensed solver, whose factorisation and condensation serve every step (the fast
     /// path: a step costs dense `m x m` Newton work and one sparse solve for the field).
@@ -25,7 +25,7 @@ pub enum PathSolver<'s, 'm, D, L: FrictionLaw<f64>> {
     Condensed(&'s BoundarySolver<'m, D, L>),
     /// The full-system Newton (sparse LU or another backend each step): every law, unilateral
     /// contact and exact (nonsmooth) friction.
-    FullSystem(FullSystemSettings),
+    FullSystem(Box<FullSystemSettings>),
 }
 
 /// One solved load state of a path.
@@ -121,7 +121,7 @@ pub fn solve_path<D: ContactOperator, L: FrictionLaw<f64> + Clone>(
                 solver.solve_from_observed(loads, guess, observer)
             }
             PathSolver::FullSystem(settings) => {
-                let solver = FullSystemSolver::new(step_model, *settings).map_err(at_step)?;
+                let solver = FullSystemSolver::new(step_model, **settings).map_err(at_step)?;
                 match previous {
                     Some(p) => solver.solve_from_observed(loads, &p.displacement, observer),
                     None => solver.solve_observed(loads, observer),
