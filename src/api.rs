@@ -1,7 +1,7 @@
 //! The studies a researcher runs on a scene, as library calls: each takes a [`Scene`] and
 //! returns a typed, serialisable report (the JSON of the command of the same name). The
 //! command line (`capstan tension`, `infer-mu`, `threshold`, `geometry`, `sweep`, `contact`,
-//! `membrane-path`)
+//! `membrane-path`, `contact-path`)
 //! and the Python package are thin layers over these functions; [`crate::Problem`] is the
 //! contact problem itself, built in code or by [`Scene::build`].
 //!
@@ -34,6 +34,7 @@ use crate::scene::Scene;
 
 pub use crate::commands::compare::{CompareReport, CompareRow};
 pub use crate::commands::contact::{ContactReport, ContactRun, Solved as PlaneSolved};
+pub use crate::commands::contact_path::{ContactPathReport, ContactPathStep};
 pub use crate::commands::geometry::{GeometryDetail, GeometryReport};
 pub use crate::commands::infer_mu::{FrictionModel, InferMuReport};
 pub use crate::commands::membrane_path::{MembranePathReport, PathStepReport};
@@ -99,6 +100,42 @@ pub fn write_membrane_path(
     scene: &Scene,
 ) -> Result<(), CliError> {
     commands::membrane_path::write_out(dir, report, scene)
+}
+
+/// The thick body (2-D or 3-D) along the load path `loads.path` (the end tractions `tau_max`
+/// in turn, `loads.tau0` held), the first state from rest and each later one from the state
+/// before it, with friction on each step's slip increment: per-step end displacement,
+/// stick/slip zones of the increment, dissipated energy and contact fields (hysteresis).
+///
+/// # Errors
+/// No `loads.path` and the scene's errors (bad input); a step without equilibrium or not
+/// converging, named by its number.
+pub fn contact_path(scene: &Scene) -> Result<ContactPathReport, CliError> {
+    commands::contact_path::report(scene)
+}
+
+/// [`contact_path`] reporting every Newton iterate of every step to `observer`.
+///
+/// # Errors
+/// As [`contact_path`].
+pub fn contact_path_observed(
+    scene: &Scene,
+    observer: &mut dyn Observer<f64>,
+) -> Result<ContactPathReport, CliError> {
+    commands::contact_path::report_observed(scene, observer)
+}
+
+/// Writes a load path's `contact-path.json`, `scene.toml`, `path.csv`, `profiles.csv`, one
+/// VTU per step with `path.pvd`, and the hysteresis plot into `dir`.
+///
+/// # Errors
+/// Output errors.
+pub fn write_contact_path(
+    dir: &Path,
+    report: &ContactPathReport,
+    scene: &Scene,
+) -> Result<(), CliError> {
+    commands::contact_path::write_out(dir, report, scene)
 }
 
 /// The threshold tension ratio `tau_max / tau0` beyond which the thick body has no static

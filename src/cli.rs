@@ -55,6 +55,10 @@ pub enum Command {
     /// theta_max) with exact Coulomb friction on each step's slip increment: belt creep and
     /// its hysteresis loop.
     MembranePath(OutSceneArgs),
+    /// The thick body (2-D or 3-D) along a load path `loads.path` (end tractions tau_max at
+    /// theta_max, loads.tau0 held), each state from the previous one with friction on the
+    /// slip increment: stick/slip history and the hysteresis loop.
+    ContactPath(OutSceneArgs),
     /// Thick body on a rough prism under regularised Coulomb friction (paper section 3).
     Contact(ContactArgs),
     /// One scene key swept over a range: Slip and the contact numbers per point (parallel).
@@ -131,6 +135,14 @@ pub const SUBCOMMAND_HELP: &[SubcommandHelp] = &[
         examples: &[
             "capstan membrane-path examples/scenes/belt_creep.toml --out out/belt-creep",
             "capstan membrane-path --set friction.law=exact-coulomb --set obstacle.shape=cylinder --set 'loads.path=[2.0, 1.0, 2.0]' --json",
+        ],
+        arguments: &[],
+    },
+    SubcommandHelp {
+        name: "contact-path",
+        examples: &[
+            "capstan contact-path examples/scenes/contact_path.toml --out out/contact-path",
+            "capstan contact-path --set friction.law=exact-coulomb --set grid.n2=41 --set grid.n3=9 --set 'loads.path=[2.0, 1.5, 2.0]' --json",
         ],
         arguments: &[],
     },
@@ -385,6 +397,13 @@ fn run_command(cli: Cli) -> Result<String, CliError> {
             commands::membrane_path::report,
             commands::membrane_path::write_out,
             |r, _| Ok(commands::membrane_path::table(r)),
+        ),
+        Some(Command::ContactPath(args)) => scene_command(
+            &args.scene,
+            args.out.as_deref(),
+            commands::contact_path::report,
+            commands::contact_path::write_out,
+            |r, _| Ok(commands::contact_path::table(r)),
         ),
         Some(Command::Contact(args)) => contact(&args),
         Some(Command::Sweep(args)) => sweep(&args),

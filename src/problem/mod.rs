@@ -39,6 +39,7 @@ mod builder;
 mod exact_start;
 mod friction;
 pub mod nonlinear_registry;
+mod path;
 mod solve;
 mod solver;
 mod target;
@@ -46,6 +47,7 @@ mod target;
 pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
 pub use friction::Friction;
+pub use path::SolvedPath;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{
     AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,

@@ -139,3 +139,31 @@ def test_membrane_path_matches_cli(cli):
     assert r.steps[2].end_displacement == r.steps[0].end_displacement
     np.testing.assert_allclose(r.profiles["displacement"][2], r.profiles["displacement"][0], rtol=1e-12)
     assert set(np.unique(r.profiles["state"])) <= {0.0, 1.0}
+
+
+def test_contact_path_matches_cli(cli):
+    keys = {
+        "friction.law": "exact-coulomb",
+        "body.thickness": 0.25,
+        "grid.n2": 41,
+        "grid.n3": 5,
+        "loads.path": [1.0, 2.0, 1.5, 2.0],
+    }
+    r = capstan.contact_path(capstan.Scene(keys))
+    same(
+        r,
+        cli(
+            "contact-path",
+            "--set", "friction.law=exact-coulomb",
+            "--set", "body.thickness=0.25",
+            "--set", "grid.n2=41",
+            "--set", "grid.n3=5",
+            "--set", "loads.path=[1.0, 2.0, 1.5, 2.0]",
+        ),
+    )
+    assert len(r.steps) == 4
+    # the loop: unloading lowers the end displacement, reloading restores it
+    assert r.steps[2].end_displacement < r.steps[1].end_displacement
+    np.testing.assert_allclose(r.steps[3].end_displacement, r.steps[1].end_displacement, rtol=1e-9)
+    assert all(step.dissipation >= -1e-15 for step in r.steps)  # >= 0 to round-off
+    assert r.solver_choice.nonlinear == "full-newton"

@@ -322,6 +322,28 @@ fn membrane_path(
     result
 }
 
+/// `capstan contact-path --json`: the thick body along `loads.path`, each step's contact
+/// fields included. `callback(progress: dict)` sees every Newton iterate of every step.
+#[pyfunction]
+#[pyo3(signature = (scene, callback = None))]
+fn contact_path(py: Python<'_>, scene: &PyScene, callback: Option<Py<PyAny>>) -> PyResult<String> {
+    let s = scene.scene.clone();
+    let error = Arc::new(Mutex::new(None));
+    let seen = Arc::clone(&error);
+    let result = run(py, move |stop| {
+        let mut observer = PyObserver {
+            callback,
+            error: seen,
+            stop,
+        };
+        stamped(&api::contact_path_observed(&s, &mut observer)?, &s)
+    });
+    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
+        return Err(e);
+    }
+    result
+}
+
 /// The geometry at the points `x2`: the keys of `capstan geometry --json` and the tensors.
 #[pyfunction]
 fn geometry(py: Python<'_>, scene: &PyScene, x2: Vec<f64>) -> PyResult<String> {
@@ -512,6 +534,7 @@ fn _capstan(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(contact, m)?)?;
     m.add_function(wrap_pyfunction!(membrane_path, m)?)?;
+    m.add_function(wrap_pyfunction!(contact_path, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

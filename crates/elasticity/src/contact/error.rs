@@ -80,6 +80,15 @@ pub enum ContactError {
         /// Newton iterations spent before the stop.
         iterations: usize,
     },
+    /// A step of a load path failed ([`crate::contact::solve_path`]); its kind is the kind of
+    /// `source`.
+    #[error("load path step {step}: {source}")]
+    PathStep {
+        /// The step, from 1 (the first load state of the path).
+        step: usize,
+        /// Why the step failed.
+        source: Box<ContactError>,
+    },
     /// The elasticity layer failed (assembly, geometry), or a parameter of the contact problem
     /// (loads, settings) is outside its allowed range: [`ElasticityError::InvalidParameter`],
     /// the field named as in a scene file where there is one.
@@ -118,6 +127,7 @@ impl ContactError {
     /// Which kind of failure this is.
     pub fn kind(&self) -> ContactErrorKind {
         match self {
+            Self::PathStep { source, .. } => source.kind(),
             Self::NoEquilibrium { .. } | Self::LiftedOff { .. } => ContactErrorKind::NoEquilibrium,
             Self::NotConverged { .. } => ContactErrorKind::NotConverged,
             Self::Interrupted { .. } | Self::Solver(SolverError::Interrupted { .. }) => {

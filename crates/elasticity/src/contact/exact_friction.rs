@@ -27,6 +27,8 @@ pub(crate) trait ContactRows {
     fn bulk(&self) -> &LinearSystem;
     /// The extended pattern of the full-system Jacobian.
     fn pattern(&self) -> &ExtendedPattern;
+    /// The slip reference of unknown `dof` (a load path's previous state; zero from rest).
+    fn reference(&self, dof: usize) -> f64;
 }
 
 /// The state of a site after the projection, its physical slip and friction traction.
@@ -238,9 +240,11 @@ impl ExactFriction {
         for (e, &k) in site.entries.iter().enumerate() {
             let node = rows.node(k);
             let t = free[e] / node.traction_weight;
+            // the slip increment over a load-path step (from rest: the displacement)
+            let increment_from = rows.reference(node.tangential_dof);
             for c in 0..2 {
                 tau[c] += site.inverse[e][c] * t;
-                slip[c] += node.frame[c] * v[node.tangential_dof];
+                slip[c] += node.frame[c] * (v[node.tangential_dof] - increment_from);
             }
         }
         let first = rows.node(site.entries[0]);

@@ -39,6 +39,12 @@
 //! semismooth Newton method and reports each iterate's active set (stick, slip, separated);
 //! [`BoundarySolver`] refuses it.
 //!
+//! # Load paths with memory
+//! [`solve_path`] solves a sequence of load states quasi-statically, each from the previous
+//! state, with friction acting on the slip increment of each step
+//! ([`ContactModel::with_slip_reference`]): on the condensed solver, whose condensation serves
+//! every step, or on the full-system Newton (exact friction, unilateral contact).
+//!
 //! # Limitations
 //! One friction law with one parameter set for the whole contact surface; tensile normal
 //! stress on the bilateral contact is not excluded (counted in
@@ -61,6 +67,7 @@ mod loads;
 mod matrix_free_newton;
 mod model;
 mod operator;
+mod path;
 mod pattern;
 mod quantities;
 mod solid_body;
@@ -83,6 +90,7 @@ pub use loads::{BODY_FORCE, END_LOADS, EndLoads};
 pub use matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
 pub use model::{ContactModel, SiteTraction};
 pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
+pub use path::{PathSolver, PathStep, solve_path, solve_path_silent};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
 pub use solid_matrix_free::{MatrixFreeLoads, SolidMatrixFreeBody};
 pub use solution::{

@@ -17,6 +17,11 @@ use crate::error::ElasticityError;
 use crate::contact::loads::{END_LOADS, EndLoads};
 use capstan_friction::nonsmooth_law::DynNonsmoothLaw;
 
+// the slip reference of a load path: a child module (it sets the model's private field),
+// kept in its own file beside the path solver
+#[path = "slip_reference.rs"]
+mod slip_reference;
+
 /// The friction law at one contact site (a contact node; one or two tangential entries, see
 /// [`ContactNode`]): the physical slip and traction, and for each entry of the site the
 /// covariant traction and its derivatives, which enter the discrete balance rows.
@@ -105,6 +110,9 @@ pub struct ContactModel<D, L: FrictionLaw<f64>> {
     distribution: Option<(Arc<dyn RowDistribution>, usize)>,
     /// The matrix-free bulk operator ([`ContactOperator::matrix_free`]), `None`: assembled.
     bulk: Option<std::sync::Arc<dyn MatrixFreeBulk + Send + Sync>>,
+    /// The displacement of the previous load state of a path ([`ContactModel::with_slip_reference`]):
+    /// the law sees the slip increment from it; `None`: from rest.
+    reference: Option<Arc<Vec<f64>>>,
 }
 
 impl<D, L: FrictionLaw<f64>> core::fmt::Debug for ContactModel<D, L> {
@@ -241,6 +249,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ContactModel<D, L> {
             exact: None,
             distribution,
             bulk,
+            reference: None,
         })
     }
 
@@ -365,6 +374,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             exact: self.exact.clone(),
             distribution: self.distribution.clone(),
             bulk: self.bulk.clone(),
+            reference: self.reference.clone(),
         }
     }
 
@@ -717,17 +727,6 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         out
     }
 
-    /// The physical slip `u = sum_e (beta frame_e) x_e` of site `j` for the entries' values
-    /// `x(k)` (`k` an active index).
-    #[track_caller]
-    pub fn site_slip(&self, j: usize, beta: f64, x: impl Fn(usize) -> f64) -> [f64; 2] {
-        let mut u = [0.0; 2];
-        for &k in &self.sites.members[j] {
-            add_slip(&mut u, beta, self.active_node(k).frame, x(k));
-        }
-        u
-    }
-
     /// The law at site `j` for the displacement `v`.
     #[track_caller]
     pub fn site_traction(&self, j: usize, v: &[f64]) -> SiteTraction {
@@ -891,5 +890,8 @@ impl<D, L: FrictionLaw<f64>> ContactRows for ContactModel<D, L> {
     }
     fn pattern(&self) -> &ExtendedPattern {
         &self.ext
+    }
+    fn reference(&self, dof: usize) -> f64 {
+        self.reference_of(dof)
     }
 }

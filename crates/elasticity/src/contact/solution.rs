@@ -44,7 +44,8 @@ pub struct ContactProfile {
     pub normal_stress: Vec<f64>,
     /// `T^3_2` (covariant shear; the tangential traction on the body is `t_2 = -T^3_2`).
     pub shear_stress: Vec<f64>,
-    /// Physical tangential displacement `u = sqrt(g_22) v^2`.
+    /// Physical tangential displacement `u = sqrt(g_22) v^2`: the slip the law sees (on a load
+    /// path, [`ContactModel::with_slip_reference`], its increment over the step).
     pub slip: Vec<f64>,
     /// Physical friction traction on the body, `t_2 / sqrt(g_22)`, from the law.
     pub friction_traction: Vec<f64>,
@@ -192,7 +193,12 @@ impl ContactSolution {
             }
             let mut u = [0.0; 2];
             for e in entries {
-                add_slip(&mut u, 1.0, e.frame, v[e.tangential_dof]);
+                add_slip(
+                    &mut u,
+                    1.0,
+                    e.frame,
+                    v[e.tangential_dof] - model.reference_of(e.tangential_dof),
+                );
             }
             let first = entries[0];
             let sigma = first.normal_stress.dot(&v);

@@ -1,7 +1,7 @@
 """capstan from Python: friction between elastic bodies and rough rigid curved obstacles.
 
 The functions mirror the command line (``capstan tension|infer-mu|contact|threshold|sweep|geometry|
-membrane-path --json``): the same scene keys, the same result keys, the same digits. Results are objects whose
+membrane-path|contact-path --json``): the same scene keys, the same result keys, the same digits. Results are objects whose
 arrays are numpy arrays; ``result.to_dict()`` and ``result.to_json()`` give what ``--json`` prints.
 
 >>> import capstan
@@ -39,6 +39,7 @@ __all__ = [
     "sweep",
     "geometry",
     "membrane_path",
+    "contact_path",
     "CapstanError",
     "InvalidInputError",
     "NoEquilibriumError",
@@ -232,6 +233,23 @@ def membrane_path(
     >>> [step.end_displacement for step in r.steps]                           # doctest: +SKIP
     """
     return MembranePathResult(*_capstan.membrane_path(scene, callback))
+
+
+def contact_path(scene: Scene, callback: Optional[Callable[[dict], Any]] = None) -> Result:
+    """The thick body (2-D or 3-D) along the load path ``loads.path`` (end tractions
+    ``tau_max``, ``loads.tau0`` held), the first state from rest and each later one from the
+    state before it, with friction on the slip increment (``capstan contact-path --json``):
+    ``steps`` (per step ``end_displacement``, ``dissipation``, ``stick_nodes``, ``slip_nodes``,
+    ``slip_intervals`` and the ``contact`` arrays, whose ``slip`` and ``state`` are those of the
+    step's increment) and the total ``dissipation``. ``callback(progress)`` sees every Newton
+    iterate as for ``contact``; an exception in it is raised here.
+
+    >>> s = capstan.Scene({"friction.law": "exact-coulomb", "body.thickness": 0.25,
+    ...                    "grid.n2": 41, "grid.n3": 5,
+    ...                    "loads.path": [1.0, 2.0, 1.5, 2.0]})                  # doctest: +SKIP
+    >>> [step.end_displacement for step in capstan.contact_path(s).steps]       # doctest: +SKIP
+    """
+    return Result(_capstan.contact_path(scene, callback))
 
 
 def contact(

@@ -66,7 +66,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         // unbounded lower limit was reported as +inf: the range [3.51, inf] refused the
         // default ratio 2 as "no static equilibrium".)
         let toward_x2: f64 = (0..self.model.sites().members.len())
-            .map(|j| self.model.site_slip(j, 1.0, |k| self.rigid_shift[k])[1])
+            .map(|j| self.model.site_frame_slip(j, 1.0, |k| self.rigid_shift[k])[1])
             .sum();
         if toward_x2 < 0.0 {
             self.rigid_mode.iter_mut().for_each(|z| *z = -*z);
@@ -162,7 +162,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// whenever the SVD returned `x_r` with negative slip.) A site the mode does not move
     /// (`F x_r = 0`) slides along `x2`.
     fn full_slip(&self, j: usize, direction: f64, size: f64) -> [f64; 2] {
-        let w = self.model.site_slip(j, 1.0, |k| self.rigid_shift[k]);
+        let w = self.model.site_frame_slip(j, 1.0, |k| self.rigid_shift[k]);
         let norm = (w[0] * w[0] + w[1] * w[1]).sqrt();
         if norm > 0.0 && norm.is_finite() {
             [
