@@ -218,8 +218,8 @@ impl PetscMemory {
 /// `replicated`). Fitted above the per-rank peaks (VmHWM) of the 3-D ellipse (Q1): 111,843
 /// unknowns (17 x 129 x 17) 1,111 MiB on one rank and 629 MiB on each of two (9.0 KB a unknown
 /// distributed; 147 MiB replicated and fixed together), and 1,048,707 unknowns
-/// (33 x 321 x 33) 5,095 MiB on each of two at the first Newton iterate. The estimate lies
-/// 11 %, 12 % and 9 % above the three; see docs/scale-out.md.
+/// (33 x 321 x 33) 5,116 MiB on each of two after three Newton steps. The estimate lies
+/// 11 %, 12 % and 8 % above the three; see docs/scale-out.md.
 pub const PETSC_MEMORY_SOLID: PetscMemory = PetscMemory {
     replicated: 400.0,
     distributed: 10_000.0,
