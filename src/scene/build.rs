@@ -93,7 +93,7 @@ impl Scene {
         if s.linear == "petsc" && !crate::features::PETSC_ENABLED {
             return Err(CliError::Scene {
                 origin: "solver.linear".into(),
-                message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc)".into(),
+                message: "`solver.linear` = \"petsc\" needs a build with the cargo feature `petsc` (cargo build --release --features petsc); the Python package is built without it (its wheel links no system PETSc or Open MPI, and the PETSc session lives for one CLI command: MPI cannot start again in a process once it has ended, so a Python process could solve once at most); from Python, run the CLI under mpirun: subprocess.run([\"mpirun\", \"-n\", \"2\", \"capstan\", \"contact\", ...]) (docs/scale-out.md, Python)".into(),
             });
         }
         if matches!(s.linear.as_str(), "multigrid" | "petsc" | "matrix-free-mg")

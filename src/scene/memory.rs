@@ -164,36 +164,136 @@ pub fn solid_matrix_free_memory_estimate([n1, n2, n3]: [usize; 3], degree: usize
     solid_matrix_free_bytes_per_unknown(degree) * n + 128.0 * 1024.0 * 1024.0
 }
 
-/// Bytes per unknown that every rank holds with `solver.linear = "petsc"`: Newton and the
-/// contact bookkeeping run replicated, so each rank keeps the assembled model, the Jacobian on
-/// the extended pattern, the element matrices of the assembly and the gathered solution
-/// (see [`petsc_memory_estimate_per_rank`] for the fit).
-pub const PETSC_REPLICATED_BYTES_PER_UNKNOWN: f64 = 10_000.0;
-
-/// Bytes per unknown that PETSc splits over the ranks: its AIJ copy of the Jacobian rows
-/// (81 entries a row in 3-D Q1, 12 bytes an entry), the GAMG hierarchy and the GMRES(100)
-/// Krylov vectors (see [`petsc_memory_estimate_per_rank`] for the fit).
-pub const PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN: f64 = 1_500.0;
-
-/// The peak memory of one rank of a full-system solve of `unknowns` unknowns with
-/// `solver.linear = "petsc"` on `ranks` MPI ranks, bytes.
+/// The per-rank memory of a full-system solve with `solver.linear = "petsc"`: what every
+/// rank holds whole, what is split over the ranks, and a fixed part, fitted above measured
+/// per-rank peaks (maximum resident set of each rank).
 ///
 /// # Math
 /// ```text
-/// bytes(N, K) = PETSC_REPLICATED_BYTES_PER_UNKNOWN N
-///             + PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN N / K  + 2^28   (PETSc and MPI themselves)
+/// bytes per rank (N unknowns, K ranks)      = replicated N + distributed N / K + fixed
+/// bytes per node (L of the K ranks on it)   = L (replicated N + distributed N / K + fixed)
+/// fewest ranks at one a node, budget B      = ceil(distributed N / (B - replicated N - fixed))
+///                                             (none when B <= replicated N + fixed)
 /// ```
-/// The replicated term does not shrink with `K`: the first version distributes the linear
-/// algebra only. Fitted above the per-rank peaks (maximum resident set) of the 3-D ellipse at
-/// 111,843 unknowns (Q1, 17 x 129 x 17): 1,319 MiB on one rank, 1,267 MiB on each of two,
-/// i.e. 9.0 KB replicated and 0.97 KB distributed per unknown above the 256 MiB; the
-/// constants (10 KB, 1.5 KB) lie 12 % and 11 % above the two peaks. Used for the plane-strain
-/// body too, where a row has 18 entries instead of 81 (an over-estimate there).
-pub fn petsc_memory_estimate_per_rank(unknowns: usize, ranks: usize) -> f64 {
-    let n = unknowns as f64;
-    PETSC_REPLICATED_BYTES_PER_UNKNOWN * n
-        + PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN * n / ranks.max(1) as f64
-        + 268_435_456.0
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PetscMemory {
+    /// Bytes per unknown that every rank holds whatever the number of ranks.
+    pub replicated: f64,
+    /// Bytes per unknown split over the ranks (`1/K` of them on each).
+    pub distributed: f64,
+    /// Bytes per rank independent of the unknowns (the binary, PETSc and MPI themselves).
+    pub fixed: f64,
+}
+
+impl PetscMemory {
+    /// The peak memory of one of `ranks` ranks (0 is read as 1) solving `unknowns`, bytes.
+    pub fn per_rank(&self, unknowns: usize, ranks: usize) -> f64 {
+        let n = unknowns as f64;
+        self.replicated * n + self.distributed * n / ranks.max(1) as f64 + self.fixed
+    }
+
+    /// The peak memory of the `local` ranks (of `ranks`) on one node together, bytes.
+    pub fn per_node(&self, unknowns: usize, ranks: usize, local: usize) -> f64 {
+        local.max(1) as f64 * self.per_rank(unknowns, ranks)
+    }
+
+    /// The fewest ranks, one a node, that fit `unknowns` in `budget` bytes a node; `None` when
+    /// no number does (the replicated part and the fixed part alone exceed the budget).
+    pub fn fewest_ranks(&self, unknowns: usize, budget: f64) -> Option<usize> {
+        let n = unknowns as f64;
+        let room = budget - self.replicated * n - self.fixed;
+        if room <= 0.0 {
+            return None;
+        }
+        let k = (self.distributed * n / room).ceil().max(1.0);
+        (k < 1e12).then_some(k as usize)
+    }
+}
+
+/// [`PetscMemory`] of the 3-D body, whose assembly is split over the ranks
+/// (`ElementAssembly::for_rows`): each rank holds the element matrices, the pattern and the
+/// Jacobian of its rows, PETSc's `MATMPIAIJ` copy of them, its share of the GAMG hierarchy
+/// and of the GMRES(100) vectors (`distributed`); every rank holds the whole vectors of the
+/// Newton iteration, the line search and the gathered residual (about 40 of them,
+/// `replicated`). Fitted above the per-rank peaks (VmHWM) of the 3-D ellipse (Q1): 111,843
+/// unknowns (17 x 129 x 17) 1,111 MiB on one rank and 629 MiB on each of two (9.0 KB a unknown
+/// distributed; 147 MiB replicated and fixed together), and 1,048,707 unknowns
+/// (33 x 321 x 33) 5,116 MiB on each of two after three Newton steps. The estimate lies
+/// 11 %, 12 % and 8 % above the three; see docs/scale-out.md.
+pub const PETSC_MEMORY_SOLID: PetscMemory = PetscMemory {
+    replicated: 400.0,
+    distributed: 10_000.0,
+    fixed: 134_217_728.0,
+};
+
+/// [`PetscMemory`] of the plane-strain body, assembled whole on every rank (small by nature):
+/// the model, its Jacobian on the extended pattern and the Newton vectors are `replicated`;
+/// PETSc's `MATMPIAIJ` rows, GAMG and GMRES(100) are `distributed`. The first version's fit
+/// (every rank holding the whole model, measured on the 3-D body at 111,843 unknowns: 9.0 KB
+/// replicated, 0.97 KB distributed), kept as a bound from above: a 2-D run at 1000 x 161
+/// (322,000 unknowns) had reached 981 MiB on one rank when stopped, a quarter of this
+/// estimate; see docs/scale-out.md.
+pub const PETSC_MEMORY_PLANE: PetscMemory = PetscMemory {
+    replicated: 10_000.0,
+    distributed: 1_500.0,
+    fixed: 134_217_728.0,
+};
+
+/// The memory model of `solver.linear = "petsc"` on a body of `dimension` (3: the 3-D body,
+/// [`PETSC_MEMORY_SOLID`]; otherwise plane strain, [`PETSC_MEMORY_PLANE`]).
+pub fn petsc_memory(dimension: usize) -> PetscMemory {
+    if dimension == 3 {
+        PETSC_MEMORY_SOLID
+    } else {
+        PETSC_MEMORY_PLANE
+    }
+}
+
+/// The peak memory of one rank of a full-system solve of `unknowns` unknowns on a body of
+/// `dimension` with `solver.linear = "petsc"` on `ranks` MPI ranks, bytes
+/// (`petsc_memory(dimension).per_rank(unknowns, ranks)`, see [`PetscMemory`]).
+pub fn petsc_memory_estimate_per_rank(unknowns: usize, dimension: usize, ranks: usize) -> f64 {
+    petsc_memory(dimension).per_rank(unknowns, ranks)
+}
+
+/// Why a `solver.linear = "petsc"` solve does not fit on its node (see [`petsc_memory_check`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PetscMemoryRefusal {
+    /// Bytes one rank needs.
+    pub per_rank: f64,
+    /// Bytes the ranks of this node need together.
+    pub per_node: f64,
+    /// Bytes available on this node.
+    pub available: f64,
+    /// The fewest ranks, one a node, on which it would fit; `None` if on none.
+    pub fewest_ranks: Option<usize>,
+}
+
+/// Whether `unknowns` on a body of `dimension` fit on `ranks` MPI ranks, `local` of them on
+/// this node, with `available` bytes on the node (`None`: unknown, accepted): refused only
+/// when the local ranks together need more than the node has.
+///
+/// # Errors
+/// [`PetscMemoryRefusal`] with the per-rank and per-node needs and the fewest ranks (one a
+/// node) that would fit.
+pub fn petsc_memory_check(
+    unknowns: usize,
+    dimension: usize,
+    ranks: usize,
+    local: usize,
+    available: Option<f64>,
+) -> Result<(), PetscMemoryRefusal> {
+    let model = petsc_memory(dimension);
+    let per_node = model.per_node(unknowns, ranks, local);
+    match available {
+        Some(have) if per_node > have => Err(PetscMemoryRefusal {
+            per_rank: model.per_rank(unknowns, ranks),
+            per_node,
+            available: have,
+            fewest_ranks: model.fewest_ranks(unknowns, have),
+        }),
+        _ => Ok(()),
+    }
 }
 
 /// The MPI ranks of this run and those of them on this node, from the launcher's environment

@@ -321,17 +321,57 @@ fn petsc_is_refused_outside_full_newton_and_without_the_feature() {
 #[test]
 fn petsc_memory_per_rank_shrinks_only_in_its_distributed_part() {
     let n = 1_048_707;
-    let one = petsc_memory_estimate_per_rank(n, 1);
-    let two = petsc_memory_estimate_per_rank(n, 2);
-    // halving the distributed part only
-    let half = PETSC_DISTRIBUTED_BYTES_PER_UNKNOWN * n as f64 / 2.0;
-    assert!((one - two - half).abs() < 1e-6 * one);
-    // many ranks: the replicated model is the floor
-    let floor = PETSC_REPLICATED_BYTES_PER_UNKNOWN * n as f64;
-    assert!(petsc_memory_estimate_per_rank(n, 1 << 20) > floor);
-    assert!(petsc_memory_estimate_per_rank(n, 0) == one); // no ranks: one
+    for (dimension, model) in [(3, PETSC_MEMORY_SOLID), (2, PETSC_MEMORY_PLANE)] {
+        assert_eq!(petsc_memory(dimension), model);
+        let one = petsc_memory_estimate_per_rank(n, dimension, 1);
+        let two = petsc_memory_estimate_per_rank(n, dimension, 2);
+        // halving the distributed part only
+        let half = model.distributed * n as f64 / 2.0;
+        assert!((one - two - half).abs() < 1e-12 * one);
+        // many ranks: the replicated and fixed parts are the floor
+        let floor = model.replicated * n as f64 + model.fixed;
+        let many = petsc_memory_estimate_per_rank(n, dimension, 1 << 20);
+        assert!(many > floor && many < floor * 1.001);
+        assert!(petsc_memory_estimate_per_rank(n, dimension, 0) == one); // no ranks: one
+        // the node holds its local ranks
+        assert!((model.per_node(n, 4, 2) - 2.0 * model.per_rank(n, 4)).abs() < 1e-6);
+    }
+    // the 3-D body splits its assembly: far less per rank on many ranks than the plane body
+    const { assert!(PETSC_MEMORY_SOLID.replicated < 0.1 * PETSC_MEMORY_PLANE.replicated) };
     let (ranks, local) = mpi_ranks();
     assert!(ranks >= 1 && (1..=ranks).contains(&local));
+}
+
+#[test]
+fn a_petsc_scene_refused_on_one_rank_fits_on_more_ranks_one_a_node() {
+    // the 3-D ellipse of docs/solid.md at 33 x 321 x 33, a budget 10 % short of one rank
+    let n = 3 * 33 * 321 * 33;
+    let budget = 0.9 * petsc_memory_estimate_per_rank(n, 3, 1);
+    let refused = petsc_memory_check(n, 3, 1, 1, Some(budget)).unwrap_err();
+    assert!(refused.per_rank > budget && refused.per_node == refused.per_rank);
+    let k = refused.fewest_ranks.expect("fits on some ranks");
+    assert!(k >= 2, "{k}");
+    // K ranks, one a node: accepted; K - 1: refused; unknown memory: accepted
+    assert_eq!(petsc_memory_check(n, 3, k, 1, Some(budget)), Ok(()));
+    assert!(petsc_memory_check(n, 3, k - 1, 1, Some(budget)).is_err());
+    assert_eq!(petsc_memory_check(n, 3, 1, 1, None), Ok(()));
+    // the same K ranks all on the one node need more than one rank: refused
+    let crowded = petsc_memory_check(n, 3, k, k, Some(budget)).unwrap_err();
+    assert!(crowded.per_node > refused.per_node);
+    // a budget below the replicated and fixed parts fits on no number of ranks
+    let floor = PETSC_MEMORY_SOLID.replicated * n as f64 + PETSC_MEMORY_SOLID.fixed;
+    let none = petsc_memory_check(n, 3, 64, 1, Some(0.99 * floor)).unwrap_err();
+    assert_eq!(none.fewest_ranks, None);
+    // the plane body at 2000 x 321 (assembled whole on every rank): fits on 2 ranks at a
+    // budget between its 2-rank and 1-rank needs
+    let n2 = 2 * 2000 * 321;
+    let (one, two) = (
+        petsc_memory_estimate_per_rank(n2, 2, 1),
+        petsc_memory_estimate_per_rank(n2, 2, 2),
+    );
+    let budget = 0.5 * (one + two);
+    assert!(petsc_memory_check(n2, 2, 1, 1, Some(budget)).is_err());
+    assert_eq!(petsc_memory_check(n2, 2, 2, 1, Some(budget)), Ok(()));
 }
 
 #[test]

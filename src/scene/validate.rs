@@ -418,7 +418,7 @@ impl Scene {
                 return Err(bad(
                     "solver.linear",
                     format!("{:?}", self.solver.linear),
-                    "`petsc` only in a build with the cargo feature `petsc` (cargo build --release --features petsc; needs petsc-dev); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid`",
+                    "`petsc` only in a build with the cargo feature `petsc` (cargo build --release --features petsc; needs petsc-dev; the Python package is built without it (its wheel links no system PETSc or Open MPI, and the PETSc session lives for one CLI command: MPI cannot start again in a process once it has ended, so a Python process could solve once at most); from Python, run the CLI under mpirun: subprocess.run([\"mpirun\", \"-n\", \"2\", \"capstan\", \"contact\", ...]) (docs/scale-out.md, Python)); otherwise `lu`, `cholesky`, `jacobi`, `gauss-seidel`, `multigrid`",
                 ));
             }
         } else if self.solver.linear.parse::<LinearBackend>().is_err() {
@@ -449,19 +449,34 @@ impl Scene {
     }
 
     /// `solver.linear = "petsc"`: the ranks of this node together
-    /// ([`petsc_memory_estimate_per_rank`] times the local ranks of [`mpi_ranks`]) against the
-    /// memory available, so a scene is refused only when it does not fit on its ranks.
+    /// ([`petsc_memory_check`]: the per-rank estimate of the body's dimension times the local
+    /// ranks of [`mpi_ranks`]) against the memory available, so a scene is refused only when
+    /// it does not fit on its ranks.
     fn check_petsc_memory(&self, at: &Origins, key: &str, unknowns: usize) -> Result<(), CliError> {
         let (ranks, local) = mpi_ranks();
-        let per_rank = petsc_memory_estimate_per_rank(unknowns, ranks);
-        let need = per_rank * local as f64;
-        check_memory(at, key, need, |have| {
-            format!(
-                "{unknowns} unknowns on {ranks} MPI rank(s), {local} of them on this node, need about {} per rank ({} on this node: the replicated model and Newton, and PETSc's share of the matrix, GAMG and GMRES), more than the {} available (MemAvailable in /proc/meminfo); spread the ranks over more nodes or use a coarser grid",
-                human_bytes(per_rank),
-                human_bytes(need),
-                human_bytes(have)
-            )
+        let dimension = usize::from(self.body.dimension);
+        petsc_memory_check(unknowns, dimension, ranks, local, available_memory()).map_err(|r| {
+            let advice = match r.fewest_ranks {
+                Some(k) if k > ranks => format!(
+                    "it fits on {k} or more ranks with one a node (mpirun -n {k} --map-by ppr:1:node), or use a coarser grid"
+                ),
+                Some(_) => "put fewer ranks on each node, or use a coarser grid".to_string(),
+                None => "the part every rank holds alone exceeds a node: use a coarser grid".to_string(),
+            };
+            CliError::Scene {
+                origin: at.locate(key),
+                message: format!(
+                    "{unknowns} unknowns on {ranks} MPI rank(s), {local} of them on this node, need about {} per rank ({} on this node: {}), more than the {} available (MemAvailable in /proc/meminfo); {advice}",
+                    human_bytes(r.per_rank),
+                    human_bytes(r.per_node),
+                    if dimension == 3 {
+                        "the whole Newton vectors, and this rank's share of the assembly, PETSc's matrix, GAMG and GMRES"
+                    } else {
+                        "the plane body assembled whole on every rank, and this rank's share of PETSc's matrix, GAMG and GMRES"
+                    },
+                    human_bytes(r.available)
+                ),
+            }
         })
     }
 

@@ -77,3 +77,17 @@ def test_tension_without_limiting_equilibrium_is_no_equilibrium():
 def test_grading_off_fem_qp_is_a_value_error_naming_the_key():
     with pytest.raises(ValueError, match="discretisation.grading"):
         capstan.contact(capstan.Scene({"discretisation.grading": 0.4}))
+
+
+def test_petsc_backend_is_refused_with_the_reason_and_the_cli_route():
+    # The wheel is built without the cargo feature `petsc`: a typed InvalidInputError that says
+    # why and how to run a PETSc solve from Python (the CLI under mpirun).
+    keys = {"solver.nonlinear": "full-newton", "solver.linear": "petsc"}
+    with pytest.raises(capstan.InvalidInputError) as e:
+        capstan.Scene(keys)
+    text = str(e.value)
+    assert "solver.linear" in text and "--features petsc" in text, text
+    assert "Python package is built without it" in text and "mpirun" in text, text
+    scene = capstan.Scene({"solver.nonlinear": "full-newton"})
+    with pytest.raises(capstan.InvalidInputError, match="Python package is built without it"):
+        scene.set("solver.linear", "petsc")
