@@ -344,20 +344,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
             Some(w0) if w0.len() == n => w0.to_vec(),
             _ => self.initial_guess(pr, &c),
         };
-        let policy = NewtonPolicy {
-            max_iterations: newton.max_iterations,
-            absolute_tolerance: newton.tolerance * scale,
-            relative_tolerance: 0.0,
-            norm: ResidualNorm::Max,
-            step: StepControl::Backtracking {
-                merit: Merit::Norm { armijo: 1e-4 },
-                min_step: 1e-10,
-                short_step: ShortStep::Take,
-            },
-            divergence_limit: None,
-            step_stagnation: false,
-            check_finite: false,
-        };
+        let policy = membrane_policy(newton.max_iterations, newton.tolerance * scale, 1e-10);
         let mut system = DisplacementSystem {
             membrane: self,
             problem: pr,
@@ -372,33 +359,12 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         };
         let (iterations, norm) = match newton_drive(&mut system, &mut w, &policy) {
             Ok(done) => (done.iterations, done.residuals[done.iterations]),
-            Err(NewtonFailure::Problem(e)) => return Err(e),
-            Err(
-                NewtonFailure::NotConverged {
-                    iterations,
-                    residual,
-                }
-                | NewtonFailure::LineSearch {
-                    iterations,
-                    residual,
-                    ..
-                }
-                | NewtonFailure::Stagnated {
-                    iterations,
-                    residual,
-                }
-                | NewtonFailure::Diverged {
-                    iteration: iterations,
-                    residual,
-                },
-            ) => {
+            Err(failure) => {
+                let (iterations, residual) = spent(failure, pr.theta0)?;
                 return Err(FrictionError::NewtonNotConverged {
                     iterations,
                     residual,
                 });
-            }
-            Err(NewtonFailure::Interrupted { .. } | NewtonFailure::NonFinite { .. }) => {
-                return Err(step_failed(pr.theta0));
             }
         };
         // Node tensions and reactions.
@@ -552,6 +518,64 @@ pub(crate) fn thomas(jac: &[[f64; 3]], rhs: &mut [f64]) -> Option<()> {
         rhs[i] -= cp[i] * rhs[i + 1];
     }
     rhs.iter().all(|x| x.is_finite()).then_some(())
+}
+
+/// The membrane models' Newton policy: the residual's max norm, a strict decrease of it by
+/// `1e-4 alpha` relative, the trial taken once `alpha < min_step`, converged below
+/// `tolerance` (or the problem's round-off floor).
+pub(crate) fn membrane_policy(
+    max_iterations: usize,
+    tolerance: f64,
+    min_step: f64,
+) -> NewtonPolicy {
+    NewtonPolicy {
+        max_iterations,
+        absolute_tolerance: tolerance,
+        relative_tolerance: 0.0,
+        norm: ResidualNorm::Max,
+        step: StepControl::Backtracking {
+            merit: Merit::Norm { armijo: 1e-4 },
+            min_step,
+            short_step: ShortStep::Take,
+        },
+        divergence_limit: None,
+        step_stagnation: false,
+        check_finite: false,
+    }
+}
+
+/// `(iterations, residual)` of a membrane Newton solve that spent its budget; the problem's
+/// own error, or a non-finite step (on the interval from `theta0`), as errors.
+///
+/// # Errors
+/// Those two.
+pub(crate) fn spent(
+    failure: NewtonFailure<FrictionError>,
+    theta0: f64,
+) -> Result<(usize, f64), FrictionError> {
+    match failure {
+        NewtonFailure::Problem(e) => Err(e),
+        NewtonFailure::NotConverged {
+            iterations,
+            residual,
+        }
+        | NewtonFailure::LineSearch {
+            iterations,
+            residual,
+            ..
+        }
+        | NewtonFailure::Stagnated {
+            iterations,
+            residual,
+        }
+        | NewtonFailure::Diverged {
+            iteration: iterations,
+            residual,
+        } => Ok((iterations, residual)),
+        NewtonFailure::Interrupted { .. } | NewtonFailure::NonFinite { .. } => {
+            Err(step_failed(theta0))
+        }
+    }
 }
 
 /// The error of a Newton step that could not be computed.

@@ -3,14 +3,11 @@
 
 use capstan_geometry::ProfileCurve;
 
-use capstan_solvers::{
-    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
-    ResidualNorm, ShortStep, StepControl, newton_drive,
-};
+use capstan_solvers::{Flow, NewtonDirection, NewtonIterate, NewtonSystem, newton_drive};
 
 use crate::error::{FrictionError, check};
 use crate::membrane_displacement::{
-    EndCondition, MembraneDisplacementProblem, MembraneGrid, thomas,
+    EndCondition, MembraneDisplacementProblem, MembraneGrid, membrane_policy, spent, thomas,
 };
 use crate::nonsmooth_law::{FrictionState, NonsmoothFrictionLaw};
 
@@ -217,21 +214,12 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
         }
         let mut u = w;
         u.append(&mut t);
-        let policy = NewtonPolicy {
-            max_iterations: settings.max_iterations,
-            absolute_tolerance: settings.tolerance * self.grid.scale,
-            relative_tolerance: 0.0,
-            norm: ResidualNorm::Max,
-            // backtracking on the residual's max norm
-            step: StepControl::Backtracking {
-                merit: Merit::Norm { armijo: 1e-4 },
-                min_step: 1e-3,
-                short_step: ShortStep::Take,
-            },
-            divergence_limit: None,
-            step_stagnation: false,
-            check_finite: false,
-        };
+        // backtracking on the residual's max norm
+        let policy = membrane_policy(
+            settings.max_iterations,
+            settings.tolerance * self.grid.scale,
+            1e-3,
+        );
         let mut system = SemismoothSystem {
             solver: self,
             previous,
@@ -247,36 +235,12 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
         let (changes, current) = (system.changes, system.current);
         let iterations = match result {
             Ok(done) => done.iterations,
-            Err(NewtonFailure::Problem(e)) => return Err(e),
-            Err(
-                NewtonFailure::NotConverged {
-                    iterations,
-                    residual,
-                }
-                | NewtonFailure::LineSearch {
-                    iterations,
-                    residual,
-                    ..
-                }
-                | NewtonFailure::Stagnated {
-                    iterations,
-                    residual,
-                }
-                | NewtonFailure::Diverged {
-                    iteration: iterations,
-                    residual,
-                },
-            ) => {
+            Err(failure) => {
+                let (iterations, residual) = spent(failure, self.problem.theta0)?;
                 return Err(FrictionError::SemismoothNotConverged {
                     iterations,
                     residual,
                     changes,
-                });
-            }
-            Err(NewtonFailure::Interrupted { .. } | NewtonFailure::NonFinite { .. }) => {
-                return Err(FrictionError::NonFinite {
-                    what: "semismooth Newton step",
-                    angle: self.problem.theta0,
                 });
             }
         };
