@@ -263,26 +263,6 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             .collect())
     }
 
-    fn newton(
-        &self,
-        loads: EndLoads,
-        v: &mut [f64],
-        stats: &mut SolveStats,
-        observer: &mut dyn Observer<f64>,
-    ) -> Result<f64, SolverError> {
-        if self.model.is_exact_friction() {
-            let penalty =
-                FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
-            self.newton_on(&penalty, v, stats, observer)?;
-        }
-        self.newton_on(
-            &FullSystemProblem::new(self.model, loads),
-            v,
-            stats,
-            observer,
-        )
-    }
-
     /// Newton on `problem` from `v`.
     fn newton_on(
         &self,
@@ -355,7 +335,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut stats = self.fresh_stats(0);
         let mut v = start.to_vec();
         if start.iter().all(|x| x.is_finite()) {
-            match self.newton(loads, &mut v, &mut stats, observer) {
+            match LoadSteps::newton(self, loads, &mut v, &mut stats, observer) {
                 Ok(_) => {
                     check_lift_off(self.model, loads, &v)?;
                     return Ok(ContactSolution::new(self.model, loads, v, stats));
@@ -444,7 +424,17 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for FullSystemSolv
         stats: &mut SolveStats,
         observer: &mut dyn Observer<f64>,
     ) -> Result<f64, SolverError> {
-        FullSystemSolver::newton(self, loads, v, stats, observer)
+        if self.model.is_exact_friction() {
+            let penalty =
+                FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
+            self.newton_on(&penalty, v, stats, observer)?;
+        }
+        self.newton_on(
+            &FullSystemProblem::new(self.model, loads),
+            v,
+            stats,
+            observer,
+        )
     }
 }
 

@@ -209,43 +209,6 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
         Ok((v, report.iterations))
     }
 
-    /// One inexact Newton solve for `loads` from `v`; the work into `stats`.
-    fn newton(
-        &self,
-        loads: EndLoads,
-        v: &mut [f64],
-        stats: &mut SolveStats,
-        observer: &mut dyn Observer<f64>,
-    ) -> Result<f64, SolverError> {
-        let rhs = self.model.rhs(loads);
-        let b = rhs.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let params = InexactNewtonParams {
-            max_iterations: self.settings.continuation.max_iterations,
-            absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
-            max_linear_iterations: self.settings.max_linear_iterations,
-            krylov: self.settings.krylov,
-            forcing: self.settings.forcing,
-            line_search: LineSearch::default(),
-            divergence_limit: 1e8,
-        };
-        let mut step = Step {
-            model: self.model,
-            bulk: self.bulk,
-            rhs,
-            values: vec![0.0; self.model.extended().pattern.nnz()],
-            estimates: None,
-        };
-        let mut counting = CountKrylov {
-            inner: observer,
-            iterations: 0,
-        };
-        let result = inexact_newton(&mut step, v, &params, &mut counting);
-        if result.is_err() {
-            stats.linear_iterations += counting.iterations;
-        }
-        tally(result, stats)
-    }
-
     /// Solves for the loads ([`MatrixFreeNewton::solve_observed`] with no observer).
     ///
     /// # Errors
@@ -309,7 +272,33 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for MatrixFreeNewt
         stats: &mut SolveStats,
         observer: &mut dyn Observer<f64>,
     ) -> Result<f64, SolverError> {
-        MatrixFreeNewton::newton(self, loads, v, stats, observer)
+        let rhs = self.model.rhs(loads);
+        let b = rhs.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let params = InexactNewtonParams {
+            max_iterations: self.settings.continuation.max_iterations,
+            absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
+            max_linear_iterations: self.settings.max_linear_iterations,
+            krylov: self.settings.krylov,
+            forcing: self.settings.forcing,
+            line_search: LineSearch::default(),
+            divergence_limit: 1e8,
+        };
+        let mut step = Step {
+            model: self.model,
+            bulk: self.bulk,
+            rhs,
+            values: vec![0.0; self.model.extended().pattern.nnz()],
+            estimates: None,
+        };
+        let mut counting = CountKrylov {
+            inner: observer,
+            iterations: 0,
+        };
+        let result = inexact_newton(&mut step, v, &params, &mut counting);
+        if result.is_err() {
+            stats.linear_iterations += counting.iterations;
+        }
+        tally(result, stats)
     }
 }
 
