@@ -207,13 +207,7 @@ pub fn inexact_newton(
         previous: None,
         linear_iterations: 0,
     };
-    let done = newton_drive(&mut system, u, &policy)?;
-    Ok(SolveReport::new(
-        done.iterations,
-        done.residuals,
-        done.factorisations,
-        done.linear_iterations,
-    ))
+    Ok(newton_drive(&mut system, u, &policy)?.into())
 }
 
 /// [`inexact_newton`]'s problem for the driver: each direction a Krylov solve to the forcing

@@ -435,13 +435,7 @@ impl NonlinearSolver<f64> for Newton {
             observer,
             stage: self.stage,
         };
-        let done = newton_drive(&mut system, u, &policy)?;
-        Ok(SolveReport::new(
-            done.iterations,
-            done.residuals,
-            done.factorisations,
-            done.linear_iterations,
-        ))
+        Ok(newton_drive(&mut system, u, &policy)?.into())
     }
 }
 

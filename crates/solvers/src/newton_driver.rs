@@ -5,6 +5,7 @@
 //! above run their own Newton methods through it, see docs/architecture.md) is this loop with
 //! its own settings.
 
+use crate::nonlinear_solver::SolveReport;
 use crate::scalar::{first_non_finite, norm2};
 
 /// How the driver measures a residual vector `r` (its convergence test, progress and
@@ -283,6 +284,17 @@ pub struct NewtonDriven {
     pub factorisations: usize,
     /// Inner linear iterations summed over the directions.
     pub linear_iterations: usize,
+}
+
+impl From<NewtonDriven> for SolveReport<f64> {
+    fn from(done: NewtonDriven) -> Self {
+        SolveReport::new(
+            done.iterations,
+            done.residuals,
+            done.factorisations,
+            done.linear_iterations,
+        )
+    }
 }
 
 /// Damped Newton on `problem` from `u` (which holds the solution on success and the last
