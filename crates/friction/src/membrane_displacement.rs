@@ -43,6 +43,11 @@
 
 use capstan_geometry::ProfileCurve;
 
+use capstan_solvers::{
+    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
+    ResidualNorm, ShortStep, StepControl, newton_drive,
+};
+
 use crate::error::{FrictionError, check, check_wrap};
 use crate::friction_law::{ContactState, FrictionLaw};
 use crate::membrane::ProfilePoint;
@@ -339,44 +344,29 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
             Some(w0) if w0.len() == n => w0.to_vec(),
             _ => self.initial_guess(pr, &c),
         };
-        let mut r = vec![0.0; n];
-        let mut jac = vec![[0.0; 3]; n];
-        let mut norm = self.assemble(pr, &nodes, &c, d, &origin, &w, &mut r, Some(&mut jac));
-        let mut iterations = 0;
-        progress(0, norm, 0.0);
-        // Round-off floor of the residual: differences c (w_{i+1} - w_i) of large terms.
-        let c_max = c.iter().fold(0.0f64, |m, x| m.max(*x));
-        let floor =
-            |w: &[f64]| 100.0 * f64::EPSILON * c_max * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        while norm > (newton.tolerance * scale).max(floor(&w)) {
-            if iterations == newton.max_iterations {
+        let policy = membrane_policy(newton.max_iterations, newton.tolerance * scale, 1e-10);
+        let mut system = DisplacementSystem {
+            membrane: self,
+            problem: pr,
+            nodes: &nodes,
+            c: &c,
+            d,
+            origin: &origin,
+            jac: vec![[0.0; 3]; n],
+            r: vec![0.0; n],
+            c_max: c.iter().fold(0.0f64, |m, x| m.max(*x)),
+            progress,
+        };
+        let (iterations, norm) = match newton_drive(&mut system, &mut w, &policy) {
+            Ok(done) => (done.iterations, done.residuals[done.iterations]),
+            Err(failure) => {
+                let (iterations, residual) = spent(failure, pr.theta0)?;
                 return Err(FrictionError::NewtonNotConverged {
                     iterations,
-                    residual: norm,
+                    residual,
                 });
             }
-            iterations += 1;
-            let mut dw: Vec<f64> = r.iter().map(|x| -x).collect();
-            thomas(&jac, &mut dw).ok_or(FrictionError::NonFinite {
-                what: "Newton step (singular tridiagonal Jacobian)",
-                angle: pr.theta0,
-            })?;
-            let mut step = 1.0;
-            let mut trial = vec![0.0; n];
-            loop {
-                for i in 0..n {
-                    trial[i] = w[i] + step * dw[i];
-                }
-                let tn = self.assemble(pr, &nodes, &c, d, &origin, &trial, &mut r, None);
-                if tn < (1.0 - 1e-4 * step) * norm || step < 1e-10 {
-                    break;
-                }
-                step *= 0.5;
-            }
-            w.copy_from_slice(&trial);
-            norm = self.assemble(pr, &nodes, &c, d, &origin, &w, &mut r, Some(&mut jac));
-            progress(iterations, norm, step);
-        }
+        };
         // Node tensions and reactions.
         let half: Vec<f64> = (0..n - 1).map(|i| c[i] * (w[i + 1] - w[i])).collect();
         let mut tension = vec![0.0; n];
@@ -406,6 +396,7 @@ impl<'a, C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> MembraneDisplacemen
         })
     }
 
+    /// The start's straight line (see [`MembraneDisplacement::solve`]).
     fn initial_guess(&self, pr: &MembraneDisplacementProblem, c: &[f64]) -> Vec<f64> {
         let n = c.len() + 1;
         let mut w = vec![0.0; n];
@@ -527,4 +518,132 @@ pub(crate) fn thomas(jac: &[[f64; 3]], rhs: &mut [f64]) -> Option<()> {
         rhs[i] -= cp[i] * rhs[i + 1];
     }
     rhs.iter().all(|x| x.is_finite()).then_some(())
+}
+
+/// The membrane models' Newton policy: the residual's max norm, a strict decrease of it by
+/// `1e-4 alpha` relative, the trial taken once `alpha < min_step`, converged below
+/// `tolerance` (or the problem's round-off floor).
+pub(crate) fn membrane_policy(
+    max_iterations: usize,
+    tolerance: f64,
+    min_step: f64,
+) -> NewtonPolicy {
+    NewtonPolicy {
+        max_iterations,
+        absolute_tolerance: tolerance,
+        relative_tolerance: 0.0,
+        norm: ResidualNorm::Max,
+        step: StepControl::Backtracking {
+            merit: Merit::Norm { armijo: 1e-4 },
+            min_step,
+            short_step: ShortStep::Take,
+        },
+        divergence_limit: None,
+        step_stagnation: false,
+        check_finite: false,
+    }
+}
+
+/// `(iterations, residual)` of a membrane Newton solve that spent its budget; the problem's
+/// own error, or a non-finite step (on the interval from `theta0`), as errors.
+///
+/// # Errors
+/// Those two.
+pub(crate) fn spent(
+    failure: NewtonFailure<FrictionError>,
+    theta0: f64,
+) -> Result<(usize, f64), FrictionError> {
+    match failure {
+        NewtonFailure::Problem(e) => Err(e),
+        NewtonFailure::NotConverged {
+            iterations,
+            residual,
+        }
+        | NewtonFailure::LineSearch {
+            iterations,
+            residual,
+            ..
+        }
+        | NewtonFailure::Stagnated {
+            iterations,
+            residual,
+        }
+        | NewtonFailure::Diverged {
+            iteration: iterations,
+            residual,
+        } => Ok((iterations, residual)),
+        NewtonFailure::Interrupted { .. } | NewtonFailure::NonFinite { .. } => {
+            Err(step_failed(theta0))
+        }
+    }
+}
+
+/// The error of a Newton step that could not be computed.
+fn step_failed(theta0: f64) -> FrictionError {
+    FrictionError::NonFinite {
+        what: "Newton step (singular tridiagonal Jacobian)",
+        angle: theta0,
+    }
+}
+
+/// [`MembraneDisplacement::solve_from`]'s problem for the Newton driver: the node residuals,
+/// the tridiagonal Jacobian by Thomas elimination, the round-off floor of the residual.
+struct DisplacementSystem<'m, 'a, 'p, C: ?Sized, L: FrictionLaw<f64>> {
+    membrane: &'m MembraneDisplacement<'a, C, L>,
+    problem: &'m MembraneDisplacementProblem,
+    nodes: &'m [(f64, f64)],
+    c: &'m [f64],
+    d: f64,
+    origin: &'m [f64],
+    jac: Vec<[f64; 3]>,
+    r: Vec<f64>,
+    /// `max_i c_{i+1/2}`.
+    c_max: f64,
+    progress: &'p mut dyn FnMut(usize, f64, f64),
+}
+
+impl<C: ProfileCurve<f64> + ?Sized, L: FrictionLaw<f64>> NewtonSystem
+    for DisplacementSystem<'_, '_, '_, C, L>
+{
+    type Error = FrictionError;
+
+    fn residual(&mut self, w: &[f64], r: &mut [f64]) -> Result<(), FrictionError> {
+        let (pr, nodes, c) = (self.problem, self.nodes, self.c);
+        self.membrane
+            .assemble(pr, nodes, c, self.d, self.origin, w, r, None);
+        Ok(())
+    }
+
+    fn direction(
+        &mut self,
+        at: &NewtonIterate<'_>,
+        dw: &mut [f64],
+    ) -> Result<NewtonDirection, FrictionError> {
+        let (pr, nodes, c) = (self.problem, self.nodes, self.c);
+        self.membrane.assemble(
+            pr,
+            nodes,
+            c,
+            self.d,
+            self.origin,
+            at.u,
+            &mut self.r,
+            Some(&mut self.jac),
+        );
+        for (d, r) in dw.iter_mut().zip(&self.r) {
+            *d = -r;
+        }
+        thomas(&self.jac, dw).ok_or_else(|| step_failed(pr.theta0))?;
+        Ok(NewtonDirection::default())
+    }
+
+    /// Round-off floor of the residual: differences `c (w_{i+1} - w_i)` of large terms.
+    fn floor(&self, w: &[f64]) -> f64 {
+        100.0 * f64::EPSILON * self.c_max * w.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+    }
+
+    fn accepted(&mut self, at: &NewtonIterate<'_>) -> Result<Flow, FrictionError> {
+        (self.progress)(at.iteration, at.norm, at.step);
+        Ok(Flow::Continue)
+    }
 }

@@ -4,9 +4,11 @@
 use crate::error::SolverError;
 use crate::krylov::{KrylovParams, KrylovReport};
 use crate::newton::LineSearch;
+use crate::newton_driver::{
+    Flow, NewtonDirection, NewtonIterate, NewtonPolicy, NewtonSystem, ResidualNorm, newton_drive,
+};
 use crate::nonlinear_solver::SolveReport;
 use crate::observer::{Observer, Progress, SolveStage};
-use crate::scalar::{first_non_finite, norm2};
 
 /// The setting that bounds the Krylov iterations summed over one inexact Newton solve.
 pub const INEXACT_NEWTON_BUDGET_FIELD: &str = "solver.max_sweeps";
@@ -187,136 +189,125 @@ pub fn inexact_newton(
             "(0, inf)",
         ));
     }
-    let n = u.len();
-    let non_finite = |quantity, index, iteration| SolverError::NonFinite {
-        quantity,
-        index,
-        iteration: Some(iteration),
+    let policy = NewtonPolicy {
+        max_iterations: params.max_iterations,
+        absolute_tolerance: params.absolute_tolerance,
+        relative_tolerance: 0.0,
+        norm: ResidualNorm::Two,
+        step: params.line_search.step_control(),
+        divergence_limit: Some(params.divergence_limit),
+        step_stagnation: false,
+        check_finite: true,
     };
-    if let Some(index) = first_non_finite(u) {
-        return Err(non_finite("initial guess", index, 0));
+    let mut system = KrylovSystem {
+        problem,
+        params,
+        observer,
+        b: vec![0.0; u.len()],
+        previous: None,
+        linear_iterations: 0,
+    };
+    Ok(newton_drive(&mut system, u, &policy)?.into())
+}
+
+/// [`inexact_newton`]'s problem for the driver: each direction a Krylov solve to the forcing
+/// term's tolerance, the Krylov total kept within its budget.
+struct KrylovSystem<'a> {
+    problem: &'a mut dyn NewtonKrylovProblem,
+    params: &'a InexactNewtonParams,
+    observer: &'a mut dyn Observer<f64>,
+    /// The right-hand side `-r` of the step.
+    b: Vec<f64>,
+    /// `(|r|, eta)` of the last step.
+    previous: Option<(f64, f64)>,
+    /// Krylov iterations so far.
+    linear_iterations: usize,
+}
+
+impl NewtonSystem for KrylovSystem<'_> {
+    type Error = SolverError;
+
+    fn residual(&mut self, u: &[f64], r: &mut [f64]) -> Result<(), SolverError> {
+        self.problem.residual(u, r)
     }
-    let mut r = vec![0.0; n];
-    problem.residual(u, &mut r)?;
-    if let Some(index) = first_non_finite(&r) {
-        return Err(non_finite("residual", index, 0));
-    }
-    let mut rn = norm2(&r);
-    let divergence = params.divergence_limit * rn.max(params.absolute_tolerance);
-    let mut report = SolveReport::new(0, vec![rn], 0, 0);
-    observer.iteration(&Progress::new(SolveStage::Newton, 0, rn, 0.0));
-    let mut d = vec![0.0; n];
-    let mut b = vec![0.0; n];
-    let mut trial = vec![0.0; n];
-    let mut r_trial = vec![0.0; n];
-    let mut previous: Option<(f64, f64)> = None;
-    loop {
-        let k = report.iterations;
-        if rn <= params.absolute_tolerance {
-            return Ok(report);
-        }
-        if k == params.max_iterations {
-            return Err(SolverError::NotConverged {
-                iterations: k,
-                residual: rn,
-            });
-        }
-        let left = params.max_linear_iterations - report.linear_iterations;
-        let eta = params.forcing.next(rn, previous, params.absolute_tolerance);
+
+    fn direction(
+        &mut self,
+        at: &NewtonIterate<'_>,
+        d: &mut [f64],
+    ) -> Result<NewtonDirection, SolverError> {
+        let params = self.params;
+        let left = params.max_linear_iterations - self.linear_iterations;
+        let eta = params
+            .forcing
+            .next(at.norm, self.previous, params.absolute_tolerance);
         let krylov = KrylovParams {
             tolerance: eta,
             max_iterations: params.krylov.max_iterations.min(left),
             ..params.krylov
         };
-        b.iter_mut().zip(&r).for_each(|(bi, ri)| *bi = -ri);
+        self.b.iter_mut().zip(at.r).for_each(|(bi, ri)| *bi = -ri);
         d.fill(0.0);
-        report.factorisations += 1;
-        match problem.solve_step(u, &b, &mut d, &krylov, observer) {
-            Ok(step) => report.linear_iterations += step.iterations,
+        let iterations = match self
+            .problem
+            .solve_step(at.u, &self.b, d, &krylov, self.observer)
+        {
+            Ok(step) => step.iterations,
             Err(SolverError::BudgetSpent {
                 iterations,
                 residual,
                 ..
             }) => {
-                report.linear_iterations += iterations;
+                let total = self.linear_iterations + iterations;
                 // a spent inner budget: the outer total, or a step that would not get below 1
-                if report.linear_iterations >= params.max_linear_iterations || residual >= 1.0 {
+                if total >= params.max_linear_iterations || residual >= 1.0 {
                     return Err(SolverError::BudgetSpent {
                         field: INEXACT_NEWTON_BUDGET_FIELD,
-                        iterations: report.linear_iterations,
+                        iterations: total,
                         residual,
                         tolerance: eta,
                     });
                 }
                 // the step is inexact but still a descent direction for |r|^2
+                iterations
             }
             Err(e) => return Err(e),
-        }
-        if let Some(index) = first_non_finite(&d) {
-            return Err(non_finite("step", index, k + 1));
-        }
-        let mut alpha = 1.0;
-        let rn_trial = loop {
-            for ((t, ui), di) in trial.iter_mut().zip(u.iter()).zip(&d) {
-                *t = ui + alpha * di;
-            }
-            problem.residual(&trial, &mut r_trial)?;
-            let bad = first_non_finite(&r_trial);
-            let value = if bad.is_some() {
-                f64::NAN
-            } else {
-                norm2(&r_trial)
-            };
-            match params.line_search {
-                LineSearch::None => match bad {
-                    Some(index) => return Err(non_finite("residual", index, k + 1)),
-                    None => break value,
-                },
-                LineSearch::Backtracking { armijo, min_step } => {
-                    // the inexact step decreases |r|^2 by at least (1 - eta^2) of the exact one
-                    let c = armijo * (1.0 - eta * eta).max(0.0);
-                    if value * value <= (1.0 - 2.0 * c * alpha) * rn * rn {
-                        break value;
-                    }
-                    alpha *= 0.5;
-                    if alpha < min_step {
-                        return Err(match bad {
-                            Some(index) => non_finite("residual", index, k + 1),
-                            None => SolverError::Stagnated {
-                                iterations: k,
-                                residual: rn,
-                            },
-                        });
-                    }
-                }
-            }
         };
-        u.copy_from_slice(&trial);
-        core::mem::swap(&mut r, &mut r_trial);
-        previous = Some((rn, eta));
-        rn = rn_trial;
-        report.iterations = k + 1;
-        report.residuals.push(rn);
-        observer.iteration(&Progress::new(SolveStage::Newton, k + 1, rn, alpha));
-        if observer.interrupted() {
-            return Err(SolverError::Interrupted { iteration: k + 1 });
+        self.linear_iterations += iterations;
+        self.previous = Some((at.norm, eta));
+        Ok(NewtonDirection {
+            // the inexact step decreases |r|^2 by at least (1 - eta^2) of the exact one
+            armijo_scale: (1.0 - eta * eta).max(0.0),
+            factorisations: 1,
+            linear_iterations: iterations,
+            ..NewtonDirection::default()
+        })
+    }
+
+    fn accepted(&mut self, at: &NewtonIterate<'_>) -> Result<Flow, SolverError> {
+        self.observer.iteration(&Progress::new(
+            SolveStage::Newton,
+            at.iteration,
+            at.norm,
+            at.step,
+        ));
+        if at.iteration == 0 {
+            return Ok(Flow::Continue);
         }
-        if rn > divergence {
-            return Err(SolverError::Diverged {
-                iteration: k + 1,
-                residual: rn,
-            });
+        if self.observer.interrupted() {
+            return Ok(Flow::Interrupt);
         }
-        if report.linear_iterations >= params.max_linear_iterations
-            && rn > params.absolute_tolerance
+        if self.linear_iterations >= self.params.max_linear_iterations
+            && at.norm > self.params.absolute_tolerance
         {
             return Err(SolverError::BudgetSpent {
                 field: INEXACT_NEWTON_BUDGET_FIELD,
-                iterations: report.linear_iterations,
-                residual: rn,
-                tolerance: params.absolute_tolerance,
+                iterations: self.linear_iterations,
+                residual: at.norm,
+                tolerance: self.params.absolute_tolerance,
             });
         }
+        Ok(Flow::Continue)
     }
 }
 
@@ -326,6 +317,7 @@ mod tests {
     use crate::csr_matrix::CsrMatrix;
     use crate::krylov::{IdentityPreconditioner, KrylovMethod, krylov_solve_operator};
     use crate::observer::SilentObserver;
+    use crate::scalar::norm2;
 
     /// `r(u) = A u + u^3 - f` with `A` the 1-D Laplacian `tridiag(-1, 2, -1) (n + 1)^2`
     /// (Bratu-like, monotone: a unique root), its Jacobian `A + 3 diag(u^2)` assembled each

@@ -110,6 +110,7 @@ mod lu_kind;
 mod multifrontal_lu;
 mod multigrid;
 mod newton;
+mod newton_driver;
 mod nonlinear_method;
 mod nonlinear_solver;
 mod observer;
@@ -149,6 +150,10 @@ pub use linear_solver::LinearSolver;
 pub use lu_kind::LuKind;
 pub use multigrid::{Multigrid, MultigridParams, MultigridPreconditioner, Smoother};
 pub use newton::{LineSearch, Newton, NewtonParams};
+pub use newton_driver::{
+    Flow, Merit, NewtonDirection, NewtonDriven, NewtonFailure, NewtonIterate, NewtonPolicy,
+    NewtonSystem, ResidualNorm, ShortStep, StepControl, newton_drive,
+};
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{

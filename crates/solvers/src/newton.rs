@@ -1,4 +1,5 @@
-//! Newton's method with a backtracking line search.
+//! Newton's method with a backtracking line search (the driver's loop, [`crate::newton_drive`],
+//! over a sparse Jacobian and a linear backend).
 
 use core::fmt;
 
@@ -10,10 +11,14 @@ use crate::linear_backend::LinearBackend;
 use crate::linear_registration::LinearSettings;
 use crate::linear_solver::LinearSolver;
 use crate::multigrid::MultigridParams;
+use crate::newton_driver::{
+    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
+    ResidualNorm, ShortStep, StepControl, newton_drive,
+};
 use crate::nonlinear_solver::{NonlinearSolver, SolveReport};
 use crate::observer::{Observer, Progress, SolveStage};
 use crate::problem::Jacobian;
-use crate::scalar::{first_non_finite, norm2};
+use crate::scalar::first_non_finite;
 use crate::sparsity_pattern::SparsityPattern;
 
 /// Step-length control along the Newton direction.
@@ -248,11 +253,133 @@ macro_rules! solve_with_newton {
 }
 pub(crate) use solve_with_newton;
 
-fn non_finite(quantity: &'static str, index: usize, iteration: usize) -> SolverError {
-    SolverError::NonFinite {
-        quantity,
-        index,
-        iteration: Some(iteration),
+/// [`Newton`]'s problem for the driver: the Jacobian refilled, refactorised and solved by the
+/// linear backend at every step, every iterate reported to the observer.
+struct SparseSystem<'a, P: ?Sized> {
+    problem: &'a P,
+    linear: &'a mut (dyn LinearSolver<f64> + Send),
+    values: Vec<f64>,
+    observer: &'a mut dyn Observer<f64>,
+    stage: SolveStage,
+}
+
+impl<P: Jacobian<f64> + ?Sized> NewtonSystem for SparseSystem<'_, P> {
+    type Error = SolverError;
+
+    fn residual(&mut self, u: &[f64], r: &mut [f64]) -> Result<(), SolverError> {
+        self.problem
+            .residual(u, r)
+            .map_err(|e| SolverError::problem("residual", e))
+    }
+
+    fn direction(
+        &mut self,
+        at: &NewtonIterate<'_>,
+        du: &mut [f64],
+    ) -> Result<NewtonDirection, SolverError> {
+        self.values.fill(0.0);
+        self.problem
+            .jacobian(at.u, &mut self.values)
+            .map_err(|e| SolverError::problem("jacobian", e))?;
+        if let Some(index) = first_non_finite(&self.values) {
+            return Err(SolverError::NonFinite {
+                quantity: "jacobian",
+                index,
+                iteration: Some(at.iteration + 1),
+            });
+        }
+        self.linear.factor(&self.values)?;
+        for (d, ri) in du.iter_mut().zip(at.r) {
+            *d = -ri;
+        }
+        self.linear.solve_in_place_observed(du, self.observer)?;
+        Ok(NewtonDirection {
+            factorisations: 1,
+            linear_iterations: self.linear.last_iterations().unwrap_or(0),
+            ..NewtonDirection::default()
+        })
+    }
+
+    fn accepted(&mut self, at: &NewtonIterate<'_>) -> Result<Flow, SolverError> {
+        self.observer
+            .iteration(&Progress::new(self.stage, at.iteration, at.norm, at.step));
+        Ok(if at.iteration > 0 && self.observer.interrupted() {
+            Flow::Interrupt
+        } else {
+            Flow::Continue
+        })
+    }
+}
+
+impl LineSearch {
+    /// The driver's step control for this line search: Armijo on `|r|_2^2`, failing below
+    /// `min_step`.
+    pub(crate) fn step_control(self) -> StepControl {
+        match self {
+            Self::None => StepControl::Full,
+            Self::Backtracking { armijo, min_step } => StepControl::Backtracking {
+                merit: Merit::SquaredNorm { armijo },
+                min_step,
+                short_step: ShortStep::Fail,
+            },
+        }
+    }
+}
+
+impl From<NewtonFailure<SolverError>> for SolverError {
+    /// The driver's failure as a solver error: a failed line search is
+    /// [`SolverError::Stagnated`] (or [`SolverError::NonFinite`] when its last trial residual
+    /// was not finite).
+    fn from(failure: NewtonFailure<SolverError>) -> Self {
+        match failure {
+            NewtonFailure::Problem(e) => e,
+            NewtonFailure::NotConverged {
+                iterations,
+                residual,
+            } => SolverError::NotConverged {
+                iterations,
+                residual,
+            },
+            NewtonFailure::LineSearch {
+                iterations,
+                residual,
+                non_finite,
+            } => match non_finite {
+                Some(index) => SolverError::NonFinite {
+                    quantity: "residual",
+                    index,
+                    iteration: Some(iterations + 1),
+                },
+                None => SolverError::Stagnated {
+                    iterations,
+                    residual,
+                },
+            },
+            NewtonFailure::Stagnated {
+                iterations,
+                residual,
+            } => SolverError::Stagnated {
+                iterations,
+                residual,
+            },
+            NewtonFailure::Diverged {
+                iteration,
+                residual,
+            } => SolverError::Diverged {
+                iteration,
+                residual,
+            },
+            NewtonFailure::Interrupted { iteration } => SolverError::Interrupted { iteration },
+            NewtonFailure::NonFinite {
+                quantity,
+                index,
+                iteration,
+            } => SolverError::NonFinite {
+                quantity,
+                index,
+                iteration: Some(iteration),
+            },
+        }
     }
 }
 
@@ -280,125 +407,35 @@ impl NonlinearSolver<f64> for Newton {
             });
         }
         if let Some(index) = first_non_finite(u) {
-            return Err(non_finite("initial guess", index, 0));
+            return Err(SolverError::NonFinite {
+                quantity: "initial guess",
+                index,
+                iteration: Some(0),
+            });
         }
         if self.analysed.as_ref() != Some(pattern) {
             self.analysed = None;
             self.linear.analyse(pattern)?;
             self.analysed = Some(pattern.clone());
         }
-
-        let evaluate = |u: &[f64], r: &mut [f64]| {
-            problem
-                .residual(u, r)
-                .map_err(|e| SolverError::problem("residual", e))
+        let policy = NewtonPolicy {
+            max_iterations: params.max_iterations,
+            absolute_tolerance: params.absolute_tolerance,
+            relative_tolerance: params.relative_tolerance,
+            norm: ResidualNorm::Two,
+            step: params.line_search.step_control(),
+            divergence_limit: Some(params.divergence_limit),
+            step_stagnation: true,
+            check_finite: true,
         };
-        let mut r = vec![0.0; n];
-        evaluate(u, &mut r)?;
-        if let Some(index) = first_non_finite(&r) {
-            return Err(non_finite("residual", index, 0));
-        }
-        let mut rn = norm2(&r);
-        let r0 = rn;
-        let target = params
-            .absolute_tolerance
-            .max(params.relative_tolerance * r0);
-        let divergence = params.divergence_limit * r0.max(params.absolute_tolerance);
-        let mut report = SolveReport::new(0, vec![rn], 0, 0);
-        observer.iteration(&Progress::new(self.stage, 0, rn, 0.0));
-
-        let mut values = vec![0.0; pattern.nnz()];
-        let mut du = vec![0.0; n];
-        let mut u_trial = vec![0.0; n];
-        let mut r_trial = vec![0.0; n];
-        loop {
-            let k = report.iterations;
-            if rn <= target {
-                return Ok(report);
-            }
-            if k == params.max_iterations {
-                return Err(SolverError::NotConverged {
-                    iterations: k,
-                    residual: rn,
-                });
-            }
-            values.fill(0.0);
-            problem
-                .jacobian(u, &mut values)
-                .map_err(|e| SolverError::problem("jacobian", e))?;
-            if let Some(index) = first_non_finite(&values) {
-                return Err(non_finite("jacobian", index, k + 1));
-            }
-            self.linear.factor(&values)?;
-            report.factorisations += 1;
-            for (d, ri) in du.iter_mut().zip(&r) {
-                *d = -ri;
-            }
-            let solved = self.linear.solve_in_place_observed(&mut du, observer);
-            report.linear_iterations += self.linear.last_iterations().unwrap_or(0);
-            solved?;
-            if let Some(index) = first_non_finite(&du) {
-                return Err(non_finite("step", index, k + 1));
-            }
-
-            // Line search on phi(alpha) = |r(u + alpha du)|^2.
-            let mut alpha = 1.0;
-            let rn_trial = loop {
-                for ((t, ui), di) in u_trial.iter_mut().zip(u.iter()).zip(&du) {
-                    *t = ui + alpha * di;
-                }
-                evaluate(&u_trial, &mut r_trial)?;
-                let bad = first_non_finite(&r_trial);
-                let trial = if bad.is_some() {
-                    f64::NAN
-                } else {
-                    norm2(&r_trial)
-                };
-                match params.line_search {
-                    LineSearch::None => match bad {
-                        Some(index) => return Err(non_finite("residual", index, k + 1)),
-                        None => break trial,
-                    },
-                    LineSearch::Backtracking { armijo, min_step } => {
-                        if trial * trial <= (1.0 - 2.0 * armijo * alpha) * rn * rn {
-                            break trial;
-                        }
-                        alpha *= 0.5;
-                        if alpha < min_step {
-                            return Err(match bad {
-                                Some(index) => non_finite("residual", index, k + 1),
-                                None => SolverError::Stagnated {
-                                    iterations: k,
-                                    residual: rn,
-                                },
-                            });
-                        }
-                    }
-                }
-            };
-            let step = alpha * norm2(&du);
-            u.copy_from_slice(&u_trial);
-            core::mem::swap(&mut r, &mut r_trial);
-            rn = rn_trial;
-            report.iterations = k + 1;
-            report.residuals.push(rn);
-            observer.iteration(&Progress::new(self.stage, k + 1, rn, alpha));
-            if observer.interrupted() {
-                return Err(SolverError::Interrupted { iteration: k + 1 });
-            }
-            if rn > divergence {
-                return Err(SolverError::Diverged {
-                    iteration: k + 1,
-                    residual: rn,
-                });
-            }
-            if rn > target && step <= f64::EPSILON * norm2(u) {
-                return Err(SolverError::Stagnated {
-                    iterations: k + 1,
-                    residual: rn,
-                });
-            }
-        }
+        let mut system = SparseSystem {
+            problem,
+            linear: self.linear.as_mut(),
+            values: vec![0.0; pattern.nnz()],
+            observer,
+            stage: self.stage,
+        };
+        Ok(newton_drive(&mut system, u, &policy)?.into())
     }
 }
 

@@ -16,6 +16,7 @@ use crate::contact::body::ThickBody;
 use crate::contact::boundary_solver::{BoundarySolver, ContactSettings};
 use crate::contact::bulk_multigrid::{BackendCache, build_backend};
 use crate::contact::error::{ContactError, ContactErrorKind};
+use crate::contact::load_continuation::{LoadSteps, check_lift_off, solve_continued, tally};
 use crate::contact::loads::EndLoads;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
@@ -262,26 +263,6 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             .collect())
     }
 
-    fn newton(
-        &self,
-        loads: EndLoads,
-        v: &mut [f64],
-        stats: &mut SolveStats,
-        observer: &mut dyn Observer<f64>,
-    ) -> Result<f64, SolverError> {
-        if self.model.is_exact_friction() {
-            let penalty =
-                FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
-            self.newton_on(&penalty, v, stats, observer)?;
-        }
-        self.newton_on(
-            &FullSystemProblem::new(self.model, loads),
-            v,
-            stats,
-            observer,
-        )
-    }
-
     /// Newton on `problem` from `v`.
     fn newton_on(
         &self,
@@ -313,23 +294,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             }
             method => method.build(params)?.solve(problem, v, observer),
         };
-        match result {
-            Ok(report) => {
-                stats.newton_iterations += report.iterations;
-                stats.factorisations += report.factorisations;
-                stats.linear_iterations += report.linear_iterations;
-                Ok(report.residuals.last().copied().unwrap_or(0.0))
-            }
-            Err(e) => {
-                // (an inner Jacobi failure also reports `NotConverged`: not counted)
-                stats.newton_iterations += match &e {
-                    SolverError::Stagnated { iterations, .. } => *iterations,
-                    SolverError::Diverged { iteration, .. } => *iteration,
-                    _ => 0,
-                };
-                Err(e)
-            }
-        }
+        tally(result, stats)
     }
 
     /// Solves for the loads by Newton from `start` (one value per unknown, e.g. a coarser
@@ -370,9 +335,9 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         let mut stats = self.fresh_stats(0);
         let mut v = start.to_vec();
         if start.iter().all(|x| x.is_finite()) {
-            match self.newton(loads, &mut v, &mut stats, observer) {
+            match LoadSteps::newton(self, loads, &mut v, &mut stats, observer) {
                 Ok(_) => {
-                    self.check_lift_off(loads, &v)?;
+                    check_lift_off(self.model, loads, &v)?;
                     return Ok(ContactSolution::new(self.model, loads, v, stats));
                 }
                 Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
@@ -429,99 +394,47 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     ) -> Result<ContactSolution, ContactError> {
         loads.check()?;
         // the stuck start's sparse LU, unless an earlier solve made it
-        let mut stats = self.fresh_stats(usize::from(self.stuck.get().is_none()));
-        let mut v = self.stuck(loads)?;
-        let first = self.newton(loads, &mut v, &mut stats, observer);
-        if let Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) = first
-        {
-            return Err(e.into());
-        }
-        if first.is_err() {
-            let c = self.settings.continuation;
-            let mut lambda = 0.0;
-            let mut current = vec![0.0; v.len()];
-            let mut step = c.initial_load_step;
-            stats.continuation_steps = 0;
-            let mut last = f64::INFINITY;
-            let mut lifted_off = self.all_separated(loads, &v);
-            while lambda < 1.0 && stats.continuation_steps < c.max_continuation_steps {
-                stats.continuation_steps += 1;
-                let next = (lambda + step).min(1.0);
-                let mut trial: Vec<f64> = if lambda > 0.0 {
-                    current.iter().map(|x| x * next / lambda).collect()
-                } else {
-                    self.stuck(loads.scaled(next))?
-                };
-                match self.newton(loads.scaled(next), &mut trial, &mut stats, observer) {
-                    Ok(residual) => {
-                        observer.iteration(&Progress::new(
-                            SolveStage::Continuation,
-                            stats.continuation_steps,
-                            residual,
-                            next - lambda,
-                        ));
-                        lambda = next;
-                        current = trial;
-                        step = (step * 1.5).min(1.0);
-                    }
-                    Err(
-                        e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. }),
-                    ) => {
-                        return Err(e.into());
-                    }
-                    Err(e) => {
-                        lifted_off = self.all_separated(loads.scaled(next), &trial);
-                        last = match e {
-                            SolverError::Stagnated { residual, .. }
-                            | SolverError::NotConverged { residual, .. }
-                            | SolverError::Diverged { residual, .. } => residual,
-                            _ => f64::INFINITY,
-                        };
-                        step *= 0.5;
-                        if step < c.min_load_step {
-                            break;
-                        }
-                    }
-                }
-            }
-            if lambda < 1.0 {
-                if lifted_off {
-                    // the last attempt ended with the body off the obstacle
-                    return Err(ContactError::LiftedOff {
-                        ratio: loads.tension_ratio(),
-                        nodes: self.model.unilateral().map_or(0, |u| u.rows.len()),
-                    });
-                }
-                return Err(ContactError::NotConverged {
-                    iterations: stats.newton_iterations,
-                    residual: last,
-                    load_factor: lambda,
-                });
-            }
-            v = current;
-        }
-        self.check_lift_off(loads, &v)?;
-        Ok(ContactSolution::new(self.model, loads, v, stats))
+        let stats = self.fresh_stats(usize::from(self.stuck.get().is_none()));
+        let v = self.stuck(loads)?;
+        solve_continued(self, loads, v, stats, observer)
+    }
+}
+
+impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for FullSystemSolver<'_, D, L> {
+    fn model(&self) -> &ContactModel<D, L> {
+        self.model
     }
 
-    /// Whether the model is unilateral and every contact node has separated at `v`.
-    fn all_separated(&self, loads: EndLoads, v: &[f64]) -> bool {
-        self.model.unilateral().is_some_and(|u| {
-            let rhs = self.model.rhs(loads);
-            !u.contact_set(v, &rhs).iter().any(|&c| c)
-        })
+    fn continuation(&self) -> ContactSettings {
+        self.settings.continuation
     }
 
-    /// [`ContactError::LiftedOff`] if every contact node has separated at `v`
-    /// ([`FullSystemSolver::all_separated`]).
-    fn check_lift_off(&self, loads: EndLoads, v: &[f64]) -> Result<(), ContactError> {
-        if self.all_separated(loads, v) {
-            return Err(ContactError::LiftedOff {
-                ratio: loads.tension_ratio(),
-                nodes: self.model.unilateral().map_or(0, |u| u.rows.len()),
-            });
+    fn stuck_start(
+        &self,
+        loads: EndLoads,
+        _stats: &mut SolveStats,
+    ) -> Result<Vec<f64>, ContactError> {
+        self.stuck(loads)
+    }
+
+    fn newton(
+        &self,
+        loads: EndLoads,
+        v: &mut [f64],
+        stats: &mut SolveStats,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<f64, SolverError> {
+        if self.model.is_exact_friction() {
+            let penalty =
+                FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
+            self.newton_on(&penalty, v, stats, observer)?;
         }
-        Ok(())
+        self.newton_on(
+            &FullSystemProblem::new(self.model, loads),
+            v,
+            stats,
+            observer,
+        )
     }
 }
 

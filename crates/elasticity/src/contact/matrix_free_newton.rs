@@ -11,6 +11,7 @@ use capstan_solvers::{
 
 use crate::contact::boundary_solver::ContactSettings;
 use crate::contact::error::ContactError;
+use crate::contact::load_continuation::{LoadSteps, solve_continued, tally};
 use crate::contact::loads::EndLoads;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::{ContactOperator, MatrixFreeBulk};
@@ -208,7 +209,62 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
         Ok((v, report.iterations))
     }
 
-    /// One inexact Newton solve for `loads` from `v`; the work into `stats`.
+    /// Solves for the loads ([`MatrixFreeNewton::solve_observed`] with no observer).
+    ///
+    /// # Errors
+    /// See [`MatrixFreeNewton::solve_observed`].
+    pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
+        self.solve_observed(loads, &mut SilentObserver)
+    }
+
+    /// Solves for the loads from the stuck start, with load continuation (halving and
+    /// growing the load step as the assembled full-system Newton) if Newton fails; every
+    /// Newton iterate ([`SolveStage::Newton`]), Krylov iteration ([`SolveStage::Krylov`]) and
+    /// converged load step ([`SolveStage::Continuation`]) goes to `observer`.
+    ///
+    /// # Errors
+    /// Invalid loads; [`ContactError::NotConverged`] when the continuation fails;
+    /// [`SolverError::BudgetSpent`] (inside [`ContactError::Solver`]) naming
+    /// `solver.max_sweeps` when the Krylov total of a Newton solve is spent, or
+    /// `krylov.max_iterations` for the stuck start; an interrupted solve.
+    pub fn solve_observed(
+        &self,
+        loads: EndLoads,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
+        loads.check()?;
+        let (v, start_iterations) = self.stuck(loads)?;
+        let stats = SolveStats {
+            method: "full-newton",
+            newton_iterations: 0,
+            continuation_steps: 1,
+            residual: 0.0,
+            linear_iterations: start_iterations,
+            factorisations: 1,
+        };
+        solve_continued(self, loads, v, stats, observer)
+    }
+}
+
+impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for MatrixFreeNewton<'_, D, L> {
+    fn model(&self) -> &ContactModel<D, L> {
+        self.model
+    }
+
+    fn continuation(&self) -> ContactSettings {
+        self.settings.continuation
+    }
+
+    fn stuck_start(
+        &self,
+        loads: EndLoads,
+        stats: &mut SolveStats,
+    ) -> Result<Vec<f64>, ContactError> {
+        let (v, iterations) = self.stuck(loads)?;
+        stats.linear_iterations += iterations;
+        Ok(v)
+    }
+
     fn newton(
         &self,
         loads: EndLoads,
@@ -239,119 +295,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
             iterations: 0,
         };
         let result = inexact_newton(&mut step, v, &params, &mut counting);
-        match result {
-            Ok(report) => {
-                stats.newton_iterations += report.iterations;
-                stats.factorisations += report.factorisations;
-                stats.linear_iterations += report.linear_iterations;
-                Ok(report.residuals.last().copied().unwrap_or(0.0))
-            }
-            Err(e) => {
-                stats.newton_iterations += match &e {
-                    SolverError::Stagnated { iterations, .. } => *iterations,
-                    SolverError::Diverged { iteration, .. } => *iteration,
-                    _ => 0,
-                };
-                stats.linear_iterations += counting.iterations;
-                Err(e)
-            }
+        if result.is_err() {
+            stats.linear_iterations += counting.iterations;
         }
-    }
-
-    /// Solves for the loads ([`MatrixFreeNewton::solve_observed`] with no observer).
-    ///
-    /// # Errors
-    /// See [`MatrixFreeNewton::solve_observed`].
-    pub fn solve(&self, loads: EndLoads) -> Result<ContactSolution, ContactError> {
-        self.solve_observed(loads, &mut SilentObserver)
-    }
-
-    /// Solves for the loads from the stuck start, with load continuation (halving and
-    /// growing the load step as the assembled full-system Newton) if Newton fails; every
-    /// Newton iterate ([`SolveStage::Newton`]), Krylov iteration ([`SolveStage::Krylov`]) and
-    /// converged load step ([`SolveStage::Continuation`]) goes to `observer`.
-    ///
-    /// # Errors
-    /// Invalid loads; [`ContactError::NotConverged`] when the continuation fails;
-    /// [`SolverError::BudgetSpent`] (inside [`ContactError::Solver`]) naming
-    /// `solver.max_sweeps` when the Krylov total of a Newton solve is spent, or
-    /// `krylov.max_iterations` for the stuck start; an interrupted solve.
-    pub fn solve_observed(
-        &self,
-        loads: EndLoads,
-        observer: &mut dyn Observer<f64>,
-    ) -> Result<ContactSolution, ContactError> {
-        loads.check()?;
-        let (mut v, start_iterations) = self.stuck(loads)?;
-        let mut stats = SolveStats {
-            method: "full-newton",
-            newton_iterations: 0,
-            continuation_steps: 1,
-            residual: 0.0,
-            linear_iterations: start_iterations,
-            factorisations: 1,
-        };
-        let first = self.newton(loads, &mut v, &mut stats, observer);
-        if let Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) = first
-        {
-            return Err(e.into());
-        }
-        if first.is_err() {
-            let c = self.settings.continuation;
-            let mut lambda = 0.0;
-            let mut current = vec![0.0; v.len()];
-            let mut step = c.initial_load_step;
-            stats.continuation_steps = 0;
-            let mut last = f64::INFINITY;
-            while lambda < 1.0 && stats.continuation_steps < c.max_continuation_steps {
-                stats.continuation_steps += 1;
-                let next = (lambda + step).min(1.0);
-                let mut trial: Vec<f64> = if lambda > 0.0 {
-                    current.iter().map(|x| x * next / lambda).collect()
-                } else {
-                    let (s, its) = self.stuck(loads.scaled(next))?;
-                    stats.linear_iterations += its;
-                    s
-                };
-                match self.newton(loads.scaled(next), &mut trial, &mut stats, observer) {
-                    Ok(residual) => {
-                        observer.iteration(&Progress::new(
-                            SolveStage::Continuation,
-                            stats.continuation_steps,
-                            residual,
-                            next - lambda,
-                        ));
-                        lambda = next;
-                        current = trial;
-                        step = (step * 1.5).min(1.0);
-                    }
-                    Err(
-                        e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. }),
-                    ) => return Err(e.into()),
-                    Err(e) => {
-                        last = match e {
-                            SolverError::Stagnated { residual, .. }
-                            | SolverError::NotConverged { residual, .. }
-                            | SolverError::Diverged { residual, .. } => residual,
-                            _ => f64::INFINITY,
-                        };
-                        step *= 0.5;
-                        if step < c.min_load_step {
-                            break;
-                        }
-                    }
-                }
-            }
-            if lambda < 1.0 {
-                return Err(ContactError::NotConverged {
-                    iterations: stats.newton_iterations,
-                    residual: last,
-                    load_factor: lambda,
-                });
-            }
-            v = current;
-        }
-        Ok(ContactSolution::new(self.model, loads, v, stats))
+        tally(result, stats)
     }
 }
 

@@ -63,6 +63,7 @@ mod bulk_multigrid;
 mod error;
 mod exact_friction;
 mod full_system;
+mod load_continuation;
 mod loads;
 mod matrix_free_newton;
 mod model;

@@ -3,9 +3,11 @@
 
 use capstan_geometry::ProfileCurve;
 
+use capstan_solvers::{Flow, NewtonDirection, NewtonIterate, NewtonSystem, newton_drive};
+
 use crate::error::{FrictionError, check};
 use crate::membrane_displacement::{
-    EndCondition, MembraneDisplacementProblem, MembraneGrid, thomas,
+    EndCondition, MembraneDisplacementProblem, MembraneGrid, membrane_policy, spent, thomas,
 };
 use crate::nonsmooth_law::{FrictionState, NonsmoothFrictionLaw};
 
@@ -210,73 +212,44 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
         if let EndCondition::Displacement(v) = self.problem.end {
             w[n - 1] = v;
         }
-        let c_max = self.grid.c.iter().fold(0.0f64, |m, x| m.max(*x));
-        let floor =
-            |w: &[f64]| 100.0 * f64::EPSILON * c_max * w.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let count = |s: &[FrictionState], k: FrictionState| s.iter().filter(|&&x| x == k).count();
-        let report =
-            |iteration: usize, ev: &Evaluation, step: f64, changes: usize| SemismoothIteration {
-                iteration,
-                residual: ev.norm,
-                step,
-                stick: count(&ev.states, FrictionState::Stick),
-                slip: count(&ev.states, FrictionState::Slip),
-                separated: count(&ev.states, FrictionState::Separated),
-                changes,
-            };
-        let mut iterations = 0;
-        let mut ev = self.evaluate(&w, &t, previous, settings)?;
-        progress(&report(0, &ev, 0.0, 0));
-        let mut changes = 0;
-        // iterations in a row at which every free node slides
-        let mut sliding = 0;
-        while ev.norm > (settings.tolerance * self.grid.scale).max(floor(&w)) {
-            if iterations == settings.max_iterations {
+        let mut u = w;
+        u.append(&mut t);
+        // backtracking on the residual's max norm
+        let policy = membrane_policy(
+            settings.max_iterations,
+            settings.tolerance * self.grid.scale,
+            1e-3,
+        );
+        let mut system = SemismoothSystem {
+            solver: self,
+            previous,
+            settings,
+            progress,
+            c_max: self.grid.c.iter().fold(0.0f64, |m, x| m.max(*x)),
+            last: None,
+            current: None,
+            changes: 0,
+            sliding: 0,
+        };
+        let result = newton_drive(&mut system, &mut u, &policy);
+        let (changes, current) = (system.changes, system.current);
+        let iterations = match result {
+            Ok(done) => done.iterations,
+            Err(failure) => {
+                let (iterations, residual) = spent(failure, self.problem.theta0)?;
                 return Err(FrictionError::SemismoothNotConverged {
                     iterations,
-                    residual: ev.norm,
+                    residual,
                     changes,
                 });
             }
-            iterations += 1;
-            let (dw, dt) = self.newton_step(&ev, settings)?;
-            // backtracking on the residual's max norm
-            let mut step = 1.0;
-            let (mut wt, mut tt) = (w.clone(), t.clone());
-            let trial = loop {
-                for i in 0..n {
-                    wt[i] = w[i] + step * dw[i];
-                    tt[i] = t[i] + step * dt[i];
-                }
-                let trial = self.evaluate(&wt, &tt, previous, settings)?;
-                if trial.norm < (1.0 - 1e-4 * step) * ev.norm || step < 1e-3 {
-                    break trial;
-                }
-                step *= 0.5;
-            };
-            changes = trial
-                .states
-                .iter()
-                .zip(&ev.states)
-                .filter(|(a, b)| a != b)
-                .count();
-            w = wt;
-            t = tt;
-            ev = trial;
-            progress(&report(iterations, &ev, step, changes));
-            if (0..n).all(|i| self.is_fixed(i) || ev.states[i] != FrictionState::Stick) {
-                sliding += 1;
-                if sliding == RIGID_SLIDING_ITERATIONS {
-                    return Err(FrictionError::RigidSliding {
-                        theta0: self.problem.theta0,
-                        theta1: self.problem.theta1,
-                    });
-                }
-            } else {
-                sliding = 0;
-            }
-        }
-        Ok(self.finish(w, t, wp, ev, iterations))
+        };
+        let t = u.split_off(n);
+        let ev = current.ok_or(FrictionError::NonFinite {
+            what: "semismooth Newton evaluation",
+            angle: self.problem.theta0,
+        })?;
+        Ok(self.finish(u, t, wp, ev, iterations))
     }
 
     /// The capstan sweep: the start of a step between two tension ends `t0`, `te`. From the
@@ -467,5 +440,112 @@ impl<L: NonsmoothFrictionLaw<f64>> StepSolver<'_, L> {
             residual: ev.norm,
             dissipation,
         }
+    }
+}
+
+/// One load step as a problem of the Newton driver: the unknowns `(w, t)` in one vector, the
+/// residual `(E_i, l_i F_i)` (its max norm the step's residual), the semismooth Newton step,
+/// the active set reported and the rigid sliding detected after every accepted iterate.
+struct SemismoothSystem<'s, 'a, 'p, L: NonsmoothFrictionLaw<f64>> {
+    solver: &'s StepSolver<'a, L>,
+    previous: &'s MembraneState,
+    settings: &'s SemismoothSettings,
+    progress: &'p mut dyn FnMut(&SemismoothIteration),
+    /// `max_i c_{i+1/2}`.
+    c_max: f64,
+    /// The evaluation of the last residual (a trial point).
+    last: Option<Evaluation>,
+    /// The evaluation of the accepted iterate.
+    current: Option<Evaluation>,
+    /// Nodes whose state changed in the last accepted step.
+    changes: usize,
+    /// Iterations in a row at which every free node slides.
+    sliding: usize,
+}
+
+impl<L: NonsmoothFrictionLaw<f64>> NewtonSystem for SemismoothSystem<'_, '_, '_, L> {
+    type Error = FrictionError;
+
+    fn residual(&mut self, u: &[f64], r: &mut [f64]) -> Result<(), FrictionError> {
+        let n = u.len() / 2;
+        let ev = self
+            .solver
+            .evaluate(&u[..n], &u[n..], self.previous, self.settings)?;
+        for i in 0..n {
+            r[i] = ev.equilibrium[i];
+            // a displacement end has no friction row
+            r[n + i] = if ev.tension[i].is_nan() {
+                0.0
+            } else {
+                self.solver.cell(i) * ev.friction[i]
+            };
+        }
+        self.last = Some(ev);
+        Ok(())
+    }
+
+    fn direction(
+        &mut self,
+        _at: &NewtonIterate<'_>,
+        d: &mut [f64],
+    ) -> Result<NewtonDirection, FrictionError> {
+        let ev = self.current.as_ref().ok_or(FrictionError::NonFinite {
+            what: "semismooth Newton evaluation",
+            angle: self.solver.problem.theta0,
+        })?;
+        let (dw, dt) = self.solver.newton_step(ev, self.settings)?;
+        let n = dw.len();
+        d[..n].copy_from_slice(&dw);
+        d[n..].copy_from_slice(&dt);
+        Ok(NewtonDirection::default())
+    }
+
+    /// The round-off floor of the residual: differences `c (w_{i+1} - w_i)` of large terms.
+    fn floor(&self, u: &[f64]) -> f64 {
+        let w = &u[..u.len() / 2];
+        100.0 * f64::EPSILON * self.c_max * w.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+    }
+
+    fn accepted(&mut self, at: &NewtonIterate<'_>) -> Result<Flow, FrictionError> {
+        let ev = self.last.take().ok_or(FrictionError::NonFinite {
+            what: "semismooth Newton evaluation",
+            angle: self.solver.problem.theta0,
+        })?;
+        if let Some(old) = &self.current {
+            self.changes = ev
+                .states
+                .iter()
+                .zip(&old.states)
+                .filter(|(a, b)| a != b)
+                .count();
+        }
+        let count = |k: FrictionState| ev.states.iter().filter(|&&x| x == k).count();
+        (self.progress)(&SemismoothIteration {
+            iteration: at.iteration,
+            residual: ev.norm,
+            step: at.step,
+            stick: count(FrictionState::Stick),
+            slip: count(FrictionState::Slip),
+            separated: count(FrictionState::Separated),
+            changes: self.changes,
+        });
+        let solver = self.solver;
+        let free_sliding = (0..ev.states.len())
+            .all(|i| solver.is_fixed(i) || ev.states[i] != FrictionState::Stick);
+        self.current = Some(ev);
+        if at.iteration > 0 {
+            if free_sliding {
+                self.sliding += 1;
+                if self.sliding == RIGID_SLIDING_ITERATIONS {
+                    return Err(FrictionError::RigidSliding {
+                        theta0: solver.problem.theta0,
+                        theta1: solver.problem.theta1,
+                    });
+                }
+            } else {
+                self.sliding = 0;
+            }
+        }
+        Ok(Flow::Continue)
     }
 }

@@ -1,7 +1,10 @@
 //! Damped Newton on the condensed contact equations `G(s) = 0`.
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::{Observer, Progress, SolveStage};
+use capstan_solvers::{
+    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
+    Observer, Progress, ResidualNorm, ShortStep, SolveStage, StepControl, newton_drive,
+};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
@@ -196,12 +199,14 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         self.newton_with(&self.settings, beta, loads, s, observer)
     }
 
-    /// Damped Newton on `G(s) = 0` from `s`. Converged when `max |G| <= tolerance * scale`,
-    /// or, once no step decreases `|G|` (or the iterations run out), when `max |G|` is within
-    /// [`ROUNDOFF_FACTOR`] of the rounding floor of its own evaluation
-    /// ([`BoundarySolver::roundoff_floor`]). Every iterate is reported to `observer`
-    /// ([`SolveStage::CondensedNewton`]: the relative residual `max |G| / scale`, the step
-    /// length and the stick/slip counts the law sees), which may stop the iteration.
+    /// Damped Newton on `G(s) = 0` from `s` ([`capstan_solvers::newton_drive`]: max-norm
+    /// residual, Armijo on `|G|_2^2` from the slip-capped step [`BoundarySolver::slip_step_cap`],
+    /// every trial rebalanced along the rigid mode). Converged when
+    /// `max |G| <= tolerance * scale`, or, once no step decreases `|G|` (or the iterations run
+    /// out), when `max |G|` is within [`ROUNDOFF_FACTOR`] of the rounding floor of its own
+    /// evaluation ([`BoundarySolver::roundoff_floor`]). Every iterate is reported to
+    /// `observer` ([`SolveStage::CondensedNewton`]: the relative residual `max |G| / scale`,
+    /// the step length and the stick/slip counts the law sees), which may stop the iteration.
     pub(super) fn newton_with(
         &self,
         settings: &ContactSettings,
@@ -217,72 +222,75 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             .fold(0.0f64, f64::max);
         let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
         let tol = settings.tolerance * scale;
-        let mut g = vec![0.0; m];
-        let mut trial = vec![0.0; m];
-        let mut gt = vec![0.0; m];
-        let mut jac = Mat::<f64>::zeros(m, m);
         // the rounding floor may excuse a residual up to 1e-6 relative, never more (a state
         // drifting along a sliding mode has a huge floor and is no solution)
         let accept_floor =
             |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
-        let norm2 = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>();
-        let max_norm = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         self.rebalance(beta, &x0, &n0, s);
-        let mut step = 0.0;
-        for it in 0..settings.max_iterations {
-            self.eval(beta, &x0, &n0, s, &mut g, Some(&mut jac));
-            let r = max_norm(&g);
-            let (stick, slip) = self.active_counts(beta, &x0, s);
-            observer.iteration(
-                &Progress::new(SolveStage::CondensedNewton, it, r / scale, step)
-                    .with_active(stick, slip),
-            );
-            if observer.interrupted() {
-                return Err(Failure::Interrupted(it));
-            }
-            if !r.is_finite() {
-                return Err(Failure::NotConverged(it, f64::INFINITY));
-            }
-            if r <= tol {
-                return Ok((it, r / scale));
-            }
-            let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -g[i]);
-            let ds = jac.partial_piv_lu().solve(&rhs);
-            if (0..m).any(|i| !ds[(i, 0)].is_finite()) {
-                return Err(Failure::NotConverged(it, r / scale));
-            }
-            let phi0 = norm2(&g);
-            let alpha0 = self.slip_step_cap(beta, &x0, s, &ds);
-            let mut alpha = alpha0;
-            loop {
-                for i in 0..m {
-                    trial[i] = s[i] + alpha * ds[(i, 0)];
-                }
-                self.rebalance(beta, &x0, &n0, &mut trial);
-                self.eval(beta, &x0, &n0, &trial, &mut gt, None);
-                let phi = norm2(&gt);
-                if phi.is_finite() && phi <= (1.0 - 1e-4 * alpha) * phi0 {
-                    break;
-                }
-                alpha *= 0.5;
-                if alpha < 1e-8 * alpha0 {
-                    // no descent left: accept if the residual is at its rounding floor
-                    return if r <= accept_floor(self.roundoff_floor(beta, &x0, &n0, s)) {
-                        Ok((it, r / scale))
-                    } else {
-                        Err(Failure::NotConverged(it + 1, r / scale))
-                    };
+        let policy = NewtonPolicy {
+            max_iterations: settings.max_iterations,
+            absolute_tolerance: tol,
+            relative_tolerance: 0.0,
+            norm: ResidualNorm::Max,
+            step: StepControl::Backtracking {
+                merit: Merit::SumOfSquares { armijo: 1e-4 },
+                min_step: 1e-8,
+                short_step: ShortStep::Fail,
+            },
+            divergence_limit: None,
+            step_stagnation: false,
+            check_finite: false,
+        };
+        let mut system = CondensedSystem {
+            solver: self,
+            beta,
+            x0: &x0,
+            n0: &n0,
+            scale,
+            max_iterations: settings.max_iterations,
+            jac: Mat::<f64>::zeros(m, m),
+            g: vec![0.0; m],
+            observer,
+        };
+        match newton_drive(&mut system, s, &policy) {
+            Ok(done) => Ok((done.iterations, done.residuals[done.iterations] / scale)),
+            Err(NewtonFailure::Problem(failure)) => Err(failure),
+            Err(NewtonFailure::Interrupted { iteration }) => Err(Failure::Interrupted(iteration)),
+            // no descent left: accept if the residual is at its rounding floor
+            Err(NewtonFailure::LineSearch {
+                iterations: it,
+                residual: r,
+                ..
+            }) => {
+                if r <= accept_floor(self.roundoff_floor(beta, &x0, &n0, s)) {
+                    Ok((it, r / scale))
+                } else {
+                    Err(Failure::NotConverged(it + 1, r / scale))
                 }
             }
-            s.copy_from_slice(&trial);
-            step = alpha;
-        }
-        self.eval(beta, &x0, &n0, s, &mut g, None);
-        let r = max_norm(&g);
-        if r <= tol.max(accept_floor(self.roundoff_floor(beta, &x0, &n0, s))) {
-            Ok((settings.max_iterations, r / scale))
-        } else {
-            Err(Failure::NotConverged(settings.max_iterations, r / scale))
+            Err(NewtonFailure::NotConverged {
+                iterations: it,
+                residual: r,
+            }) => {
+                if r <= tol.max(accept_floor(self.roundoff_floor(beta, &x0, &n0, s))) {
+                    Ok((it, r / scale))
+                } else {
+                    Err(Failure::NotConverged(it, r / scale))
+                }
+            }
+            Err(
+                NewtonFailure::Stagnated {
+                    iterations: it,
+                    residual: r,
+                }
+                | NewtonFailure::Diverged {
+                    iteration: it,
+                    residual: r,
+                },
+            ) => Err(Failure::NotConverged(it, r / scale)),
+            Err(NewtonFailure::NonFinite { iteration, .. }) => {
+                Err(Failure::NotConverged(iteration, f64::INFINITY))
+            }
         }
     }
 
@@ -331,5 +339,86 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             self.bulk.pz.as_ref().as_ref() * s,
             self.bulk.nz.as_ref().as_ref() * s,
         )
+    }
+}
+
+/// [`BoundarySolver::newton_with`]'s problem for the driver: `G(s)` at one slip homotopy
+/// parameter and load, the dense Newton step by LU, the trials rebalanced along the rigid mode.
+struct CondensedSystem<'s, 'b, 'o, D, L: FrictionLaw<f64>> {
+    solver: &'s BoundarySolver<'b, D, L>,
+    beta: f64,
+    x0: &'s [f64],
+    n0: &'s [f64],
+    /// `max |G|` is reported relative to it.
+    scale: f64,
+    /// The iteration cap (its iterate is not reported).
+    max_iterations: usize,
+    jac: Mat<f64>,
+    g: Vec<f64>,
+    observer: &'o mut dyn Observer<f64>,
+}
+
+impl<D: ContactOperator, L: FrictionLaw<f64>> NewtonSystem for CondensedSystem<'_, '_, '_, D, L> {
+    type Error = Failure;
+
+    fn residual(&mut self, s: &[f64], g: &mut [f64]) -> Result<(), Failure> {
+        self.solver.eval(self.beta, self.x0, self.n0, s, g, None);
+        Ok(())
+    }
+
+    fn direction(
+        &mut self,
+        at: &NewtonIterate<'_>,
+        ds: &mut [f64],
+    ) -> Result<NewtonDirection, Failure> {
+        let (solver, beta) = (self.solver, self.beta);
+        solver.eval(
+            beta,
+            self.x0,
+            self.n0,
+            at.u,
+            &mut self.g,
+            Some(&mut self.jac),
+        );
+        let m = ds.len();
+        let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -self.g[i]);
+        let step = self.jac.partial_piv_lu().solve(&rhs);
+        if (0..m).any(|i| !step[(i, 0)].is_finite()) {
+            return Err(Failure::NotConverged(at.iteration, at.norm / self.scale));
+        }
+        for (i, d) in ds.iter_mut().enumerate() {
+            *d = step[(i, 0)];
+        }
+        Ok(NewtonDirection {
+            max_step: solver.slip_step_cap(beta, self.x0, at.u, &step),
+            ..NewtonDirection::default()
+        })
+    }
+
+    fn project(&mut self, trial: &mut [f64]) {
+        self.solver.rebalance(self.beta, self.x0, self.n0, trial);
+    }
+
+    fn accepted(&mut self, at: &NewtonIterate<'_>) -> Result<Flow, Failure> {
+        if at.iteration == self.max_iterations {
+            return Ok(Flow::Continue);
+        }
+        let (stick, slip) = self.solver.active_counts(self.beta, self.x0, at.u);
+        self.observer.iteration(
+            &Progress::new(
+                SolveStage::CondensedNewton,
+                at.iteration,
+                at.norm / self.scale,
+                at.step,
+            )
+            .with_active(stick, slip),
+        );
+        if self.observer.interrupted() {
+            return Ok(Flow::Interrupt);
+        }
+        if !at.norm.is_finite() {
+            return Err(Failure::NotConverged(at.iteration, f64::INFINITY));
+        }
+        Ok(Flow::Continue)
     }
 }
