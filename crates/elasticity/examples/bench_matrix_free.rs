@@ -12,9 +12,12 @@
 //! Arguments: nodes `n1 n2 n3`, the order `p` (Qp hexahedra with GLL nodes; 1 and 2 are
 //! Q1 and Q2), the path: `mf` (matrix-free operator, p-multigrid / semi-coarsening to an
 //! assembled Q1 level, Galerkin below) or `assembled` (the assembled operator with the box's
-//! Galerkin multigrid, as `solver.linear = "multigrid"`; `p <= 2`).
+//! Galerkin multigrid, as `solver.linear = "multigrid"`; `p <= 2`), or `compare` (both
+//! operators in one process: their actions compared and their applications timed
+//! alternately, see [`compare`]).
 //! Prints one JSON line: unknowns, set-up seconds (operator and multigrid), seconds per
-//! operator application (20 applications), CG iterations and seconds, the relative residual,
+//! operator application (at least 20 applications and 2e7 unknowns' worth: wall and CPU; with `RAYON_NUM_THREADS=1` the CPU
+//! time is the one to compare on a loaded machine), CG iterations and seconds, the relative residual,
 //! max `|v^2|`, CPU seconds and VmHWM in MiB.
 
 mod common;
@@ -24,7 +27,8 @@ use std::time::Instant;
 
 use capstan_elasticity::finite_element::VolumetricIntegration;
 use capstan_elasticity::solid::{
-    FaceComponent, FaceCondition, HexElement, SolidBody, SolidMatrixFree, SolidMultigridParams,
+    FaceComponent, FaceCondition, HexElement, SolidBody, SolidBoundary, SolidMatrixFree,
+    SolidMultigridParams,
 };
 use capstan_elasticity::solvers::{
     CsrMatrix, KrylovMethod, KrylovParams, LinearOperator, Multigrid, MultigridParams,
@@ -51,6 +55,10 @@ fn main() {
         FaceComponent::fixed(),
         FaceComponent::fixed(),
     ]);
+    if path == "compare" {
+        compare(&body, &boundary, nodes, p);
+        return;
+    }
     let start = Instant::now();
     // the operator, its right-hand side and a preconditioner, behind one interface
     let (op, rhs, mut pc, levels): Path = match path.as_str() {
@@ -106,11 +114,14 @@ fn main() {
     let n = rhs.len();
     let x0: Vec<f64> = (0..n).map(|i| ((i * 37) % 101) as f64 / 101.0).collect();
     let mut y = vec![0.0; n];
-    let t = Instant::now();
-    for _ in 0..20 {
+    // at least 20 applications and 2e7 unknowns' worth (CPU time is counted in 10 ms ticks)
+    let reps = 20.max(20_000_000 / n);
+    let (t, cpu) = (Instant::now(), cpu_seconds());
+    for _ in 0..reps {
         op.apply(&x0, &mut y);
     }
-    let apply_seconds = t.elapsed().as_secs_f64() / 20.0;
+    let apply_seconds = t.elapsed().as_secs_f64() / reps as f64;
+    let apply_cpu_seconds = (cpu_seconds() - cpu) / reps as f64;
     let params = KrylovParams {
         method: KrylovMethod::Cg,
         tolerance: 1e-8,
@@ -138,12 +149,83 @@ fn main() {
         .step_by(3)
         .fold(0.0f64, |m, v| m.max(v.abs()));
     println!(
-        "{{\"nodes\":{nodes:?},\"order\":{p},\"path\":\"{path}\",\"unknowns\":{n},\"levels\":{levels:?},\"setup_seconds\":{setup_seconds:.3},\"apply_seconds\":{apply_seconds:.4},\"unknowns_per_second\":{:.3e},\"cg_iterations\":{},\"solve_seconds\":{solve_seconds:.3},\"relative_residual\":{:.2e},\"max_v2\":{max_v2:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
+        "{{\"nodes\":{nodes:?},\"order\":{p},\"path\":\"{path}\",\"unknowns\":{n},\"levels\":{levels:?},\"setup_seconds\":{setup_seconds:.3},\"apply_seconds\":{apply_seconds:.4},\"apply_cpu_seconds\":{apply_cpu_seconds:.4},\"unknowns_per_second\":{:.3e},\"cg_iterations\":{},\"solve_seconds\":{solve_seconds:.3},\"relative_residual\":{:.2e},\"max_v2\":{max_v2:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
         n as f64 / apply_seconds,
         report.iterations,
         norm(&r) / norm(&rhs),
         cpu_seconds(),
         peak_memory_mib(),
+    );
+}
+
+/// The `compare` path: the matrix-free operator and the assembled matrix of the same grid
+/// in one process, their actions on one vector compared (`max |A_mf x - A x| / max |A x|`),
+/// then ten rounds of five applications of each, alternating, timed in CPU seconds (run it
+/// with `RAYON_NUM_THREADS=1` on a loaded machine: the ratio is the number to read).
+fn compare(
+    body: &SolidBody<EllipticalPrism<f64>>,
+    boundary: &SolidBoundary,
+    nodes: [usize; 3],
+    p: usize,
+) {
+    let build = || {
+        SolidMatrixFree::new(
+            ShellChart::new(body.surface),
+            body.material,
+            body.grid().unwrap(),
+            boundary,
+            None,
+            body.order,
+            VolumetricIntegration::Full,
+        )
+        .unwrap()
+    };
+    let mf = build();
+    let navier = capstan_elasticity::solid::SolidNavier::new(
+        ShellChart::new(body.surface),
+        body.material,
+        body.grid().unwrap(),
+        boundary,
+        None,
+        body.order,
+        VolumetricIntegration::Full,
+    )
+    .unwrap();
+    let system = navier.system();
+    let a = CsrMatrix::from_pattern(&system.pattern, &system.values).unwrap();
+    drop(navier);
+    let n = a.nrows();
+    let x: Vec<f64> = (0..n)
+        .map(|i| ((i * 37) % 101) as f64 / 101.0 - 0.5)
+        .collect();
+    let (mut y, mut z) = (vec![0.0; n], vec![0.0; n]);
+    mf.apply(&x, &mut y);
+    a.mul_vec(&x, &mut z);
+    let max = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, |m, t| m.max(t.abs()));
+    let difference = max(&mut y.iter().zip(&z).map(|(a, b)| a - b)) / max(&mut z.iter().copied());
+    let reps = 5.max(4_000_000 / n);
+    let (mut t_mf, mut t_csr) = (0.0, 0.0);
+    for _ in 0..10 {
+        let c = cpu_seconds();
+        for _ in 0..reps {
+            mf.apply(&x, &mut y);
+        }
+        let m = cpu_seconds();
+        for _ in 0..reps {
+            a.mul_vec(&x, &mut z);
+        }
+        t_mf += m - c;
+        t_csr += cpu_seconds() - m;
+    }
+    let count = (10 * reps) as f64;
+    println!(
+        "{{\"nodes\":{nodes:?},\"order\":{p},\"path\":\"compare\",\"unknowns\":{n},\"threads\":{},\"difference\":{difference:.2e},\"mf_apply_cpu_seconds\":{:.3e},\"csr_apply_cpu_seconds\":{:.3e},\"mf_over_csr\":{:.3},\"mf_bytes\":{},\"csr_bytes\":{}}}",
+        rayon::current_num_threads(),
+        t_mf / count,
+        t_csr / count,
+        t_mf / t_csr,
+        mf.bytes(),
+        a.bytes(),
     );
 }
 

@@ -3,6 +3,8 @@
 
 use capstan_geometry::ShellPoint;
 
+use super::lanes::{Lane, Lanes};
+
 /// Numbers stored per quadrature point: `s = sqrt(g) w det`, `g_ij` and `g^ij` (upper
 /// triangles: `00, 01, 02, 11, 12, 22`) and `Gamma^n_im` (`n` outer, `(i, m)` upper triangle).
 pub(super) const GEOMETRY: usize = 31;
@@ -40,52 +42,53 @@ pub(super) fn pack(p: &ShellPoint<f64>, weight: f64, out: &mut [f64]) {
 /// [`crate::continuum::energy_matrix`] (`tr(M_u M_w) = M_u[j][n] nabla_j w^n`, `tr M_w =
 /// nabla_j w^j`, for symmetric `g`).
 #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
-#[inline]
-pub(super) fn stress(
-    geo: &[f64],
+#[inline(always)]
+pub(super) fn stress<T: Lane>(
+    geo: &[T],
     lambda: f64,
     two_mu: f64,
-    v: [f64; 3],
-    d: [[f64; 3]; 3],
-) -> ([f64; 3], [[f64; 3]; 3]) {
+    v: [T; 3],
+    d: [[T; 3]; 3],
+) -> ([T; 3], [[T; 3]; 3]) {
     let s = geo[0];
     let g = |i: usize, j: usize| geo[1 + SYM[i][j]];
     let gi = |i: usize, j: usize| geo[7 + SYM[i][j]];
     let gamma = |n: usize, i: usize, m: usize| geo[13 + 6 * n + SYM[i][m]];
+    let zero = T::default();
     let mut nab = d;
     for i in 0..3 {
         for n in 0..3 {
             nab[i][n] += gamma(n, i, 0) * v[0] + gamma(n, i, 1) * v[1] + gamma(n, i, 2) * v[2];
         }
     }
-    let mut h = [[0.0; 3]; 3];
+    let mut h = [[zero; 3]; 3];
     for i in 0..3 {
         for l in 0..3 {
             h[i][l] = nab[i][0] * g(0, l) + nab[i][1] * g(1, l) + nab[i][2] * g(2, l);
         }
     }
-    let mut e = [[0.0; 3]; 3];
+    let mut e = [[zero; 3]; 3];
     for i in 0..3 {
         for l in 0..3 {
-            e[i][l] = 0.5 * (h[i][l] + h[l][i]);
+            e[i][l] = (h[i][l] + h[l][i]) * 0.5;
         }
     }
-    let mut m = [[0.0; 3]; 3];
+    let mut m = [[zero; 3]; 3];
     for i in 0..3 {
         for l in 0..3 {
             m[i][l] = gi(i, 0) * e[0][l] + gi(i, 1) * e[1][l] + gi(i, 2) * e[2][l];
         }
     }
     let tr = m[0][0] + m[1][1] + m[2][2];
-    let mut t = [[0.0; 3]; 3];
+    let mut t = [[zero; 3]; 3];
     for i in 0..3 {
         for n in 0..3 {
-            t[i][n] = s * (two_mu * m[i][n] + if i == n { lambda * tr } else { 0.0 });
+            t[i][n] = s * (m[i][n] * two_mu + if i == n { tr * lambda } else { zero });
         }
     }
-    let mut out_v = [0.0; 3];
+    let mut out_v = [zero; 3];
     for (mm, o) in out_v.iter_mut().enumerate() {
-        let mut acc = 0.0;
+        let mut acc = zero;
         for i in 0..3 {
             for n in 0..3 {
                 acc += t[i][n] * gamma(n, i, mm);
@@ -97,15 +100,16 @@ pub(super) fn stress(
 }
 
 /// `y (+)= M x` along `axis` of the row-major array `x` of dimensions `dims`: `M` is
-/// `rows x dims[axis]` (row-major), `y` has `dims` with `dims[axis] = rows`.
-#[inline]
-pub(super) fn along(
+/// `rows x dims[axis]` (row-major), `y` has `dims` with `dims[axis] = rows`. Always inlined:
+/// with constant `rows` and `dims` (the Q1 and Q2 kernels) the loops unroll.
+#[inline(always)]
+pub(super) fn along<T: Lane>(
     m: &[f64],
     rows: usize,
-    x: &[f64],
+    x: &[T],
     dims: [usize; 3],
     axis: usize,
-    y: &mut [f64],
+    y: &mut [T],
     add: bool,
 ) {
     let k = dims[axis];
@@ -118,9 +122,9 @@ pub(super) fn along(
         for i in 0..rows {
             let mi = &m[i * k..(i + 1) * k];
             for r in 0..inner {
-                let mut s = 0.0;
-                for (j, mij) in mi.iter().enumerate() {
-                    s += mij * x[(o * k + j) * inner + r];
+                let mut s = T::default();
+                for (j, &mij) in mi.iter().enumerate() {
+                    s += x[(o * k + j) * inner + r] * mij;
                 }
                 let at = &mut y[(o * rows + i) * inner + r];
                 if add {
@@ -147,6 +151,8 @@ pub(super) struct Tables {
     dt: Vec<f64>,
     /// `2 / L_p`: reference to parameter derivative per direction.
     scale: [f64; 3],
+    /// The CPU has AVX2: the batched kernels run compiled for it (4 lanes a register).
+    avx2: bool,
 }
 
 /// Work arrays of one element application.
@@ -195,6 +201,10 @@ impl Tables {
             b,
             d,
             scale: lengths.map(|l| 2.0 / l),
+            #[cfg(target_arch = "x86_64")]
+            avx2: std::arch::is_x86_feature_detected!("avx2"),
+            #[cfg(not(target_arch = "x86_64"))]
+            avx2: false,
         }
     }
 
@@ -212,9 +222,138 @@ impl Tables {
         }
     }
 
-    /// `y = sum_q B_q^T K_q B_q u` for one element: `u` the local values (`3` components of
-    /// `np^3`, component outer), `geo` its points' [`GEOMETRY`] numbers, `y` the local result
-    /// (same layout).
+    /// `y = sum_q B_q^T K_q B_q u` for a batch of [`super::lanes::LANES`] elements of `NP` nodes and `NQ`
+    /// points per direction known at compile time (`NN = NP^3`, `QQ = NQ^3`,
+    /// `NP * NQ <= 9`: Q1 and Q2), one element per lane: `u` and `y` as in
+    /// [`Tables::element`], `geo` the points' [`GEOMETRY`] numbers (point outer). The same
+    /// contractions and pointwise kernel as [`Tables::element`], lane by lane, with the
+    /// tables and work arrays on the stack.
+    pub(super) fn element_batch<
+        const NP: usize,
+        const NQ: usize,
+        const NN: usize,
+        const QQ: usize,
+    >(
+        &self,
+        geo: &[Lanes],
+        lambda: f64,
+        two_mu: f64,
+        u: &[Lanes],
+        y: &mut [Lanes],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU reports AVX2 (`Tables::new`).
+            unsafe { self.batch_avx2::<NP, NQ, NN, QQ>(geo, lambda, two_mu, u, y) };
+            return;
+        }
+        self.batch::<NP, NQ, NN, QQ>(geo, lambda, two_mu, u, y);
+    }
+
+    /// [`Tables::batch`] compiled for AVX2 (the same operations, wider registers).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn batch_avx2<const NP: usize, const NQ: usize, const NN: usize, const QQ: usize>(
+        &self,
+        geo: &[Lanes],
+        lambda: f64,
+        two_mu: f64,
+        u: &[Lanes],
+        y: &mut [Lanes],
+    ) {
+        self.batch::<NP, NQ, NN, QQ>(geo, lambda, two_mu, u, y);
+    }
+
+    /// The body of [`Tables::element_batch`].
+    #[inline(always)]
+    fn batch<const NP: usize, const NQ: usize, const NN: usize, const QQ: usize>(
+        &self,
+        geo: &[Lanes],
+        lambda: f64,
+        two_mu: f64,
+        u: &[Lanes],
+        y: &mut [Lanes],
+    ) {
+        const MAX: usize = 27;
+        debug_assert!(NN == NP * NP * NP && QQ == NQ * NQ * NQ && NP * NQ <= 9);
+        debug_assert!(self.np == NP && self.nq == NQ);
+        let geo = &geo[..QQ * GEOMETRY];
+        let u = &u[..3 * NN];
+        let y = &mut y[..3 * NN];
+        let mut b = [0.0; 9];
+        let mut d = [0.0; 9];
+        let mut bt = [0.0; 9];
+        let mut dt = [0.0; 9];
+        b[..NP * NQ].copy_from_slice(&self.b[..NP * NQ]);
+        d[..NP * NQ].copy_from_slice(&self.d[..NP * NQ]);
+        bt[..NP * NQ].copy_from_slice(&self.bt[..NP * NQ]);
+        dt[..NP * NQ].copy_from_slice(&self.dt[..NP * NQ]);
+        let (b, d, bt, dt) = (&b[..NP * NQ], &d[..NP * NQ], &bt[..NP * NQ], &dt[..NP * NQ]);
+        // intermediate arrays have at most NP NQ^2 <= MAX entries
+        let zero = Lanes::default();
+        let mut t0 = [zero; MAX];
+        let mut t1 = [zero; MAX];
+        let mut s00 = [zero; MAX];
+        let mut s10 = [zero; MAX];
+        let mut s01 = [zero; MAX];
+        // [v, d_1 v, d_2 v, d_3 v] of each component at the points
+        let mut fields = [[zero; QQ]; 12];
+        let (pn, qn) = ([NP, NP, NP], [NQ, NQ, NQ]);
+        for c in 0..3 {
+            let uc = &u[c * NN..(c + 1) * NN];
+            along(b, NQ, uc, pn, 2, &mut t0, false);
+            along(d, NQ, uc, pn, 2, &mut t1, false);
+            along(b, NQ, &t0, [NP, NP, NQ], 1, &mut s00, false);
+            along(d, NQ, &t0, [NP, NP, NQ], 1, &mut s10, false);
+            along(b, NQ, &t1, [NP, NP, NQ], 1, &mut s01, false);
+            let [val, g1, g2, g3] = &mut fields[4 * c..4 * c + 4] else {
+                unreachable!("four fields per component")
+            };
+            along(b, NQ, &s00, [NP, NQ, NQ], 0, val, false);
+            along(d, NQ, &s00, [NP, NQ, NQ], 0, g1, false);
+            along(b, NQ, &s10, [NP, NQ, NQ], 0, g2, false);
+            along(b, NQ, &s01, [NP, NQ, NQ], 0, g3, false);
+        }
+        let sc = self.scale;
+        for q in 0..QQ {
+            let v = [fields[0][q], fields[4][q], fields[8][q]];
+            let dv: [[Lanes; 3]; 3] = core::array::from_fn(|i| {
+                core::array::from_fn(|n| fields[4 * n + 1 + i][q] * sc[i])
+            });
+            let (ov, od) = stress(
+                &geo[q * GEOMETRY..(q + 1) * GEOMETRY],
+                lambda,
+                two_mu,
+                v,
+                dv,
+            );
+            for c in 0..3 {
+                fields[4 * c][q] = ov[c];
+                for i in 0..3 {
+                    fields[4 * c + 1 + i][q] = od[i][c] * sc[i];
+                }
+            }
+        }
+        for c in 0..3 {
+            let [val, g1, g2, g3] = &fields[4 * c..4 * c + 4] else {
+                unreachable!("four fields per component")
+            };
+            along(bt, NP, val, qn, 0, &mut s00, false);
+            along(dt, NP, g1, qn, 0, &mut s00, true);
+            along(bt, NP, g2, qn, 0, &mut s10, false);
+            along(bt, NP, g3, qn, 0, &mut s01, false);
+            along(bt, NP, &s00, [NP, NQ, NQ], 1, &mut t0, false);
+            along(dt, NP, &s10, [NP, NQ, NQ], 1, &mut t0, true);
+            along(bt, NP, &s01, [NP, NQ, NQ], 1, &mut t1, false);
+            let yc = &mut y[c * NN..(c + 1) * NN];
+            along(bt, NP, &t0, [NP, NP, NQ], 2, yc, false);
+            along(dt, NP, &t1, [NP, NP, NQ], 2, yc, true);
+        }
+    }
+
+    /// `y = sum_q B_q^T K_q B_q u` for one element of any order: `u` the local values (`3`
+    /// components of `np^3`, component outer), `geo` its points' [`GEOMETRY`] numbers, `y`
+    /// the local result (same layout), work arrays in `w`.
     pub(super) fn element(
         &self,
         geo: &[f64],

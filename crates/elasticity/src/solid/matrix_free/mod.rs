@@ -5,6 +5,7 @@
 
 mod hierarchy;
 mod kernel;
+mod lanes;
 mod operator;
 
 pub(crate) use hierarchy::p_prolongation;
