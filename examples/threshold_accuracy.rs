@@ -11,7 +11,7 @@
 //! `tol` relative. The ladder converges geometrically (a factor `q` per step), so the limit is
 //! extrapolated from the tightest run's last two values as
 //! ```text
-//! Q_inf = Q_k - (Q_k - Q_{k-1}) / (q - 1),   q = (Q_{k-1} - Q_{k-2}) / (Q_k - Q_{k-1})
+//! Q_inf = Q_k + (Q_k - Q_{k-1}) / (q - 1),   q = (Q_{k-1} - Q_{k-2}) / (Q_k - Q_{k-1})
 //! ```
 //!
 //! Run: `cargo run --release --example threshold_accuracy -- [TOL ...]` (default
@@ -57,7 +57,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let limit = match ladder[..] {
         [.., a, b, c] if (c - b) != 0.0 => {
             let q = (b - a) / (c - b);
-            Some(c - (c - b) / (q - 1.0))
+            // the remaining differences d / q + d / q^2 + ... = d / (q - 1), d = c - b
+            Some(c + (c - b) / (q - 1.0))
         }
         _ => None,
     };
