@@ -530,13 +530,40 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// d_2 v (node) = (1 / #E2) sum_(e2 in E2) (2 / L2) sum_b l_b'(xi_a) v(p e2 + b, i3)
     /// ```
     /// and likewise in `x3`: exact for polynomials of degree `p` in the direction.
-    pub(super) fn node_terms(&self, [i2, i3]: [usize; 2]) -> Vec<(usize, [f64; 3])> {
+    pub(super) fn node_terms(&self, node: [usize; 2]) -> Vec<(usize, [f64; 3])> {
+        self.node_terms_weighted(node, |_, _| 1.0)
+    }
+
+    /// [`Self::node_terms`] with the one-sided `x2` derivatives of the elements sharing the
+    /// node weighted as the contact face's quadrature weighs them: `w_a L2_e / 2` (the GLL
+    /// weight of the node in element `e` times its half-length), normalised. A contact
+    /// traction linear in `T^3_j` then sums over the face to the elementwise GLL quadrature
+    /// of the one-sided traction,
+    /// ```text
+    /// sum_e w_a (L2_e / 2) t(T_e) = (sum_e w_a L2_e / 2) t(sum_e theta_e T_e),
+    /// theta_e = w_a L2_e / sum_f w_a L2_f
+    /// ```
+    /// where the plain average (`theta_e = 1 / #E2`) weighs a small element's one-sided stress
+    /// as much as its large neighbour's and so misplaces `(theta_e - 1 / 2) [T] L2` of
+    /// traction at every node between elements of unequal size (graded meshes).
+    pub(super) fn contact_node_terms(&self, node: [usize; 2]) -> Vec<(usize, [f64; 3])> {
+        self.node_terms_weighted(node, |e2, a2| self.gll_weights[a2] * self.span(0, e2).1)
+    }
+
+    /// [`Self::node_terms`] with the elements along `x2` weighted by `weight(e2, a2)`
+    /// (normalised to sum 1).
+    fn node_terms_weighted(
+        &self,
+        [i2, i3]: [usize; 2],
+        weight: impl Fn(usize, usize) -> f64,
+    ) -> Vec<(usize, [f64; 3])> {
         let (p, np) = (self.degree, self.np());
         let n2 = self.problem.grid.n2();
         let mut terms = vec![(self.problem.grid.node_index([i2, i3]), [1.0, 0.0, 0.0])];
         let along2 = self.elements_along(i2, self.elements[0], self.problem.grid.is_periodic());
-        let w2 = 1.0 / along2.len() as f64;
+        let total: f64 = along2.iter().map(|&(e2, a2)| weight(e2, a2)).sum();
         for (e2, a2) in along2 {
+            let w2 = weight(e2, a2) / total;
             for b in 0..np {
                 let d = self.derivative_at_nodes[b * np + a2] * 2.0 / self.span(0, e2).1 * w2;
                 terms.push((

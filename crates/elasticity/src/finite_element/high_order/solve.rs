@@ -388,7 +388,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
                 let p = self.problem.chart.shell_point(at)?;
                 crate::continuum::check_plane_strain(&p, at)?;
                 let c = mixed_stress_coefficients(&p, &self.problem.material);
-                let terms = self.node_terms([i, 0]);
+                let terms = self.contact_node_terms([i, 0]);
                 let row = |j: usize| {
                     let mut t: Vec<(usize, f64)> = terms
                         .iter()
