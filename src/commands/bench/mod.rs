@@ -106,7 +106,7 @@ pub struct WorkPrecisionArgs {
     #[arg(long, value_delimiter = ',', value_enum)]
     pub problems: Vec<Problem>,
     /// capstan methods to run (e.g. `fem-qp6,fem-qp7`; `fem-qpP` also selects the graded
-    /// `fem-qpP-graded` series of `paper`); default: all.
+    /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper`); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
         "fem-qp7", "fem-qp8",
