@@ -106,7 +106,9 @@ fn paper_corner_series_converges_with_the_layers() {
     assert_eq!(corner.len(), 3, "{:?}", r.runs);
     assert!(corner.iter().map(|x| x.n3).eq([1, 2, 3])); // layers
     assert!(
-        corner.windows(2).all(|w| w[1].error < w[0].error && w[1].dofs > w[0].dofs),
+        corner
+            .windows(2)
+            .all(|w| w[1].error < w[0].error && w[1].dofs > w[0].dofs),
         "{corner:?}"
     );
     // 3 layers: 5.4e-6 against the p = 10 reference (docs/high-order.md), here the quick p = 8
