@@ -72,7 +72,7 @@ impl CornerSettings {
 }
 
 /// One side of the parameter rectangle an element edge may lie on, in the order of
-/// [`crate::boundary::Side`]'s normal index and sign.
+/// `Side`'s normal index and sign.
 pub(super) type SideMask = u8;
 
 /// The quadrilaterals and the Qp node numbering.

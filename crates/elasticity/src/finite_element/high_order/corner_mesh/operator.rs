@@ -1,4 +1,4 @@
-//! [`CornerRefinedNavier`]: the Qp elements on the corner-refined mesh ([`super::Layout`]),
+//! [`CornerRefinedNavier`]: the Qp elements on the corner-refined mesh (`Layout`),
 //! its geometry at the quadrature points, loads, Dirichlet data, statically condensed solve
 //! and error norms.
 
@@ -36,7 +36,7 @@ use crate::shell_geometry::ShellGeometry;
 /// ```text
 /// k_ref = T^T k(x) T |det J| w_q,   z = T zeta,   T = diag(I_2, J^-T (x) I_2)
 /// ```
-/// and the sum-factorised kernel of the tensor elements ([`X3Factors`]) runs unchanged on the
+/// and the sum-factorised kernel of the tensor elements (`X3Factors`) runs unchanged on the
 /// reference tables (Gauss rule of `p + 1` points per direction). The element interiors are
 /// condensed as for the tensor elements ([`CondensedElement`]); the skeleton (vertices and
 /// the `p - 1` nodes of every edge) carries the global system.
@@ -71,7 +71,7 @@ impl<G> core::fmt::Debug for CornerRefinedNavier<G> {
 /// Per quadrature point: the reference energy matrix and the body force times the weight.
 type PointData = ([[f64; 6]; 6], [f64; 2]);
 
-/// The rectangle's sides with their bit in [`sides_of`], in the order Dirichlet data is looked
+/// The rectangle's sides with their bit in `sides_of`, in the order Dirichlet data is looked
 /// up ([`crate::BoundaryConditions::dirichlet_value_at`]: `x3` sides first).
 const SIDES: [(Side, u8); 4] = [
     (Side::X3Min, 4),
@@ -348,7 +348,7 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
         Ok(())
     }
 
-    /// The stiffness matrix of element `e` in tensor form ([`X3Factors::add_tensor_matrix`]).
+    /// The stiffness matrix of element `e` in tensor form (`X3Factors::add_tensor_matrix`).
     fn tensor_matrix(&self, e: usize, tt: &mut Vec<f64>, m: &mut [f64]) {
         let f = &self.factors;
         m.fill(0.0);
