@@ -85,6 +85,39 @@ fn work_precision_runs_can_be_restricted() {
 }
 
 #[test]
+fn paper_corner_series_converges_with_the_layers() {
+    // fem-qp6 on `paper` (quick): the corner-refined rows, 1, 2, 3 layers of 0.3 on 12 x 2
+    // cells, beside the uniform and graded ones
+    let dir = common::scratch_dir("wp-corner");
+    let r = report(&WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        problems: vec![Problem::Paper],
+        methods: vec!["fem-qp6".to_owned()],
+        ..Default::default()
+    })
+    .unwrap();
+    let corner: Vec<_> = r
+        .runs
+        .iter()
+        .filter(|x| x.method == "fem-qp6-corner")
+        .collect();
+    assert_eq!(corner.len(), 3, "{:?}", r.runs);
+    assert!(corner.iter().map(|x| x.n3).eq([1, 2, 3])); // layers
+    assert!(
+        corner
+            .windows(2)
+            .all(|w| w[1].error < w[0].error && w[1].dofs > w[0].dofs),
+        "{corner:?}"
+    );
+    // 3 layers: 5.4e-6 against the p = 10 reference (docs/high-order.md), here the quick p = 8
+    assert!(corner[2].error < 2e-5, "{corner:?}");
+    assert!(r.series.iter().any(|s| s.method == "fem-qp6-corner"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 #[ignore = "runs every method on three grids per problem: several seconds"]
 fn quick_work_precision_writes_csv_and_plots() {
     let dir = common::scratch_dir("wp");

@@ -32,6 +32,7 @@
 //! Every run, the time of every series to each of [`TARGETS`] (log-log interpolation), and
 //! the fastest capstan series per thread count against the fastest peer at each target.
 
+mod corner;
 mod high_order;
 mod peer_error;
 mod peers;
@@ -105,7 +106,7 @@ pub struct WorkPrecisionArgs {
     #[arg(long, value_delimiter = ',', value_enum)]
     pub problems: Vec<Problem>,
     /// capstan methods to run (e.g. `fem-qp6,fem-qp7`; `fem-qpP` also selects the graded
-    /// `fem-qpP-graded` series of `paper`); default: all.
+    /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper`); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
         "fem-qp7", "fem-qp8",
@@ -618,7 +619,7 @@ fn capstan_pass(
         }
     }
     // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs;
-    // on `paper` also graded meshes
+    // on `paper` also graded meshes, and corner-refined ones (corner.rs)
     for (problem, reference) in selected() {
         for p in high_order::ORDERS.filter(|&p| {
             WorkPrecisionArgs::selects(
@@ -639,6 +640,11 @@ fn capstan_pass(
             }
             for mesh in meshes {
                 runs.push(high_order::run_qp(problem, mesh, p, *reference, use_vmhwm)?);
+            }
+            if problem == Problem::Paper {
+                for &n in corner::corner_layers(quick) {
+                    runs.push(corner::run_corner(p, n, *reference, use_vmhwm)?);
+                }
             }
         }
     }

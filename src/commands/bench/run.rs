@@ -16,9 +16,9 @@ pub struct Run {
     pub backend: String,
     /// Threads of the run: capstan's rayon pool (element loops and faer); 1 for the peers.
     pub threads: usize,
-    /// Nodes in `x2` (scikit-fem: cells around; NGSolve: triangles).
+    /// Nodes in `x2` (scikit-fem: cells around; NGSolve: triangles; `fem-qpP-corner`: elements).
     pub n2: usize,
-    /// Nodes in `x3` (scikit-fem: nodes through; NGSolve: 0).
+    /// Nodes in `x3` (scikit-fem: nodes through; NGSolve: 0; `fem-qpP-corner`: layers per corner).
     pub n3: usize,
     /// Unknowns (NGSolve: all dofs of the space, element bubbles included).
     pub dofs: usize,

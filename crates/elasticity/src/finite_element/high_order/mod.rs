@@ -14,6 +14,8 @@
 //!   forward substitution, triangular product) and the back-substitution
 //!   ([`CondensedElement`]).
 //! - `skeleton`: numbering and pattern of the condensed system on the element edges.
+//! - `corner_mesh`: the same elements on a conforming mesh refined toward the four corners
+//!   only ([`CornerRefinedNavier`], [`CornerSettings`]).
 //! - `mesh`: the element boundaries, uniform or geometrically graded ([`Grading`],
 //!   [`QpSettings`]).
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
@@ -45,6 +47,7 @@
 //! (`discretisation.volumetric = "reduced"`); the contact rows keep the pointwise stress.
 
 mod condensation;
+pub mod corner_mesh;
 mod gll;
 #[cfg(test)]
 mod graded_tests;
@@ -58,6 +61,7 @@ mod tensor_kernel;
 mod tests;
 
 pub use condensation::CondensedElement;
+pub use corner_mesh::{CornerRefinedNavier, CornerSettings};
 pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{ElementTables, add_element_matrix};
 pub use mesh::{Grading, QpSettings};
