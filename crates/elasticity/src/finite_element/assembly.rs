@@ -14,8 +14,13 @@ use crate::error::ElasticityError;
 const NO_SLOT: u32 = u32::MAX;
 
 /// Element matrices computed in parallel per batch before one sequential scatter (in element
-/// order, so the values are bitwise reproducible).
-const BATCH: usize = 256;
+/// order, so the values are bitwise reproducible): batches of about 4 MiB of element
+/// matrices, at least 256 and at most 4096 elements (few fork-joins for the small 2-D
+/// elements, a bounded buffer for the large 3-D ones).
+fn batch(local_entries: usize) -> usize {
+    const BYTES: usize = 4 << 20;
+    (BYTES / (8 * local_entries.max(1))).clamp(256, 4096)
+}
 
 /// The pattern of an operator assembled from elements, with `components` unknowns per node
 /// (dof `components * node + c`) and the slot of every local entry.
@@ -341,9 +346,10 @@ impl ElementAssembly {
         let ne = self.element_count();
         let mut values = vec![0.0; self.pattern.nnz()];
         let mut rhs = load.to_vec();
-        let mut buffer = vec![0.0; BATCH.min(ne.max(1)) * l * l];
-        for first in (0..ne).step_by(BATCH) {
-            let last = (first + BATCH).min(ne);
+        let batch = batch(l * l);
+        let mut buffer = vec![0.0; batch.min(ne.max(1)) * l * l];
+        for first in (0..ne).step_by(batch) {
+            let last = (first + batch).min(ne);
             let buf = &mut buffer[..(last - first) * l * l];
             buf.par_chunks_mut(l * l).enumerate().for_each(|(i, out)| {
                 out.iter_mut().for_each(|x| *x = 0.0);

@@ -37,7 +37,7 @@ pub use crate::plane_problem::PlaneProblem;
 pub use assembly::ElementAssembly;
 pub use element::{ElementOrder, gauss_rule};
 pub(crate) use element::{check_whole_elements, lumped_weight};
-pub use high_order::{Grading, HighOrderNavier, QpSettings, gll_rule};
+pub use high_order::{Grading, HighOrderNavier, NodalRecovery, QpSettings, gll_rule};
 pub use method::DiscretisationMethod;
 pub use navier::FiniteElementNavier;
 pub use navier::norms::DisplacementErrors;

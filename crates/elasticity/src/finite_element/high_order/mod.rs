@@ -51,6 +51,7 @@ mod graded_tests;
 mod kernel;
 mod mesh;
 mod operator;
+mod recovery;
 mod skeleton;
 mod solve;
 mod tensor_kernel;
@@ -59,7 +60,10 @@ mod tests;
 
 pub use condensation::CondensedElement;
 pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
-pub use kernel::{ElementTables, add_element_matrix};
+pub use kernel::{
+    DIRECT_KERNEL_ORDERS, ElementTables, add_element_matrix, add_element_matrix_direct,
+};
 pub use mesh::{Grading, QpSettings};
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
+pub use recovery::NodalRecovery;
 pub use solve::CondensedSystem;

@@ -9,11 +9,13 @@ use rayon::prelude::*;
 use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
 use super::mesh::{Grading, QpSettings};
+use super::recovery::NodalRecovery;
 use super::skeleton::Skeleton;
 use crate::boundary::Side;
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
 use crate::error::ElasticityError;
 use crate::finite_element::assembly::ElementAssembly;
+use crate::finite_element::element::ElementOrder;
 use crate::finite_element::navier::boundary_terms::add_side_point_load;
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_problem::{BodyForce, PlaneProblem};
@@ -142,6 +144,11 @@ pub struct HighOrderNavier<G> {
     pub(super) kq: Vec<[[f64; 6]; 6]>,
     /// Volumetric part at the reduced points (SRI), index `e nr^2 + r`.
     pub(super) kv: Vec<[[f64; 6]; 6]>,
+    /// The divergence coefficients `t_k = tr M_k` at the reduced points (SRI), index
+    /// `e nr^2 + r`, for the reduced-point divergence of [`NodalRecovery::Differences`].
+    pub(super) reduced_divergence: Vec<[f64; 6]>,
+    /// How nodal values and gradients are recovered (contact rows, output fields).
+    pub(super) recovery: NodalRecovery,
     pub(super) dirichlet: Vec<Option<f64>>,
     pub(super) load: Vec<f64>,
     /// The full pattern, built on first use.
@@ -188,6 +195,47 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         Self::with_settings(problem, settings)
     }
 
+    /// The Q1 or Q2 element (`fem-q1`, `fem-q2`): order 1 or 2 on uniform elements with the
+    /// volumetric part integrated as `volumetric` says and the nodal-difference recovery
+    /// ([`QpSettings::element`], [`NodalRecovery::Differences`]).
+    ///
+    /// # Errors
+    /// See [`HighOrderNavier::new`].
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Grid, Material};
+    /// use capstan_elasticity::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
+    /// use capstan_elasticity::PlaneProblem;
+    /// use capstan_geometry::{EllipticalPrism, ShellChart};
+    /// use capstan_solvers::SparseCholesky;
+    /// let problem = PlaneProblem {
+    ///     chart: ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap()),
+    ///     material: Material::new(1e3, 0.25).unwrap(),
+    ///     grid: Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap(),
+    ///     boundary: BoundaryConditions::paper_clamped(1.0, 1.0),
+    ///     body_force: None,
+    /// };
+    /// let q2 = ElementOrder::Q2;
+    /// let op = HighOrderNavier::with_element(problem, q2, VolumetricIntegration::Full).unwrap();
+    /// assert_eq!(op.method(), "fem-q2");
+    /// let v = op.solve(&mut SparseCholesky::default()).unwrap(); // symmetric positive definite
+    /// // equal end tensions: the tangential displacement is odd in x2
+    /// let (left, right) = (v[op.dof([0, 4], Component::X2)], v[op.dof([24, 4], Component::X2)]);
+    /// assert!(left < 0.0 && (left + right).abs() < 1e-10);
+    /// ```
+    pub fn with_element(
+        problem: PlaneProblem<G>,
+        order: ElementOrder,
+        volumetric: VolumetricIntegration,
+    ) -> Result<Self, ElasticityError> {
+        let settings = QpSettings {
+            volumetric,
+            ..QpSettings::element(order)
+        };
+        Self::with_settings(problem, settings)
+    }
+
     /// As [`HighOrderNavier::with_volumetric`], with the element boundaries spaced as
     /// `settings.grading` says ([`Grading`]: geometric layers toward both ends of `x2`, unless
     /// periodic, and of `x3`). The grid still fixes the element counts (`n = p e + 1`); its
@@ -203,8 +251,10 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             order: p,
             volumetric,
             grading,
+            recovery,
         } = settings;
         check_order(p)?;
+        recovery.check(p, grading.is_uniform())?;
         let grid = problem.grid;
         problem.boundary.check_grid(&grid)?;
         let periodic = grid.is_periodic();
@@ -275,6 +325,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             derivative_at_nodes: dn.into_iter().flatten().collect(),
             kq: vec![],
             kv: vec![],
+            reduced_divergence: vec![],
+            recovery,
             dirichlet: vec![],
             load: vec![],
             full: OnceLock::new(),
@@ -294,6 +346,21 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// The order `p`.
     pub fn degree(&self) -> usize {
         self.degree
+    }
+
+    /// How nodal values and gradients are recovered for the contact rows and output fields.
+    pub fn recovery(&self) -> NodalRecovery {
+        self.recovery
+    }
+
+    /// The settings the operator was built with.
+    pub fn settings(&self) -> QpSettings {
+        QpSettings {
+            order: self.degree,
+            volumetric: self.volumetric,
+            grading: self.grading,
+            recovery: self.recovery,
+        }
     }
 
     /// How the volumetric part is integrated.
@@ -454,12 +521,13 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         self.kq = points.into_iter().map(|(k, _)| k).collect();
         if self.volumetric == VolumetricIntegration::Reduced {
             let (rp, rw) = gauss_legendre(self.degree);
-            self.kv = self.walk_points(&rp, &rw, |p, _, w, size| {
+            let points = self.walk_points(&rp, &rw, |p, _, w, size| {
                 let t = divergence_coefficients(p, &PLANE_STRAIN);
                 let c = lambda * p.sqrt_g * w;
                 let k = core::array::from_fn(|a| core::array::from_fn(|b| c * t[a] * t[b]));
-                Ok(scale_to_element(k, size))
+                Ok((scale_to_element(k, size), t))
             })?;
+            (self.kv, self.reduced_divergence) = points.into_iter().unzip();
         }
         Ok(())
     }

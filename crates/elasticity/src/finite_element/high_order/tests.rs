@@ -90,6 +90,59 @@ fn qp1_and_qp2_reproduce_fem_q1_and_fem_q2() {
 }
 
 #[test]
+fn with_element_reproduces_q1_q2_contact_rows_and_fields() {
+    use crate::samples::LameCylinder;
+    for volumetric in VolumetricIntegration::ALL {
+        for order in [ElementOrder::Q1, ElementOrder::Q2] {
+            let (mms_parts, _) = mms_parts(&mms(), GridLevel { n2: 13, n3: 5 }).unwrap();
+            let lame = lame_parts(&LameCylinder::default(), GridLevel { n2: 16, n3: 5 }).unwrap();
+            for parts in [mms_parts, lame] {
+                let q =
+                    FiniteElementNavier::with_volumetric(parts.clone(), order, volumetric).unwrap();
+                let qp = HighOrderNavier::with_element(parts, order, volumetric).unwrap();
+                assert_eq!(qp.method(), q.method());
+                let v = q.solve(&mut SparseCholesky::default()).unwrap();
+                let w = qp.solve(&mut SparseCholesky::default()).unwrap();
+                let scale = max_abs(&v);
+                let diff = v
+                    .iter()
+                    .zip(&w)
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f64::max);
+                assert!(diff < 1e-12 * scale, "{order:?} {volumetric:?}: {diff:e}");
+                let (ca, cb) = (q.contact_nodes().unwrap(), qp.contact_nodes().unwrap());
+                for (x, y) in ca.iter().zip(&cb) {
+                    for (r, s) in [
+                        (&x.normal_stress, &y.normal_stress),
+                        (&x.shear_stress, &y.shear_stress),
+                    ] {
+                        let (a, b) = (r.dot(&v), s.dot(&v));
+                        assert!(
+                            (a - b).abs() < 1e-11 * (1.0 + a.abs()),
+                            "{order:?} {volumetric:?}: {a} vs {b}"
+                        );
+                    }
+                    assert!((x.traction_weight - y.traction_weight).abs() < 1e-14);
+                }
+                let (fa, fb) = (q.fields(&v).unwrap(), qp.fields(&v).unwrap());
+                for (a, b) in fa
+                    .stress
+                    .iter()
+                    .flatten()
+                    .flatten()
+                    .zip(fb.stress.iter().flatten().flatten())
+                {
+                    assert!(
+                        (a - b).abs() < 1e-11 * (1.0 + a.abs()),
+                        "{order:?} {volumetric:?}: {a} vs {b}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
 fn static_condensation_equals_the_full_solve() {
     for p in [2, 3, 5, 8] {
         for volumetric in VolumetricIntegration::ALL {
