@@ -121,6 +121,8 @@ impl ElementAssembly {
         };
         let l = components * nen;
         let mut slots = vec![NO_SLOT; ne * l * l];
+        // one search per (row, element node): a node's kept columns are consecutive in the
+        // sorted column (the pattern is symmetric: column r lists the columns of row r)
         slots
             .par_chunks_mut(l * l.max(1))
             .enumerate()
@@ -128,16 +130,24 @@ impl ElementAssembly {
                 let nodes = &connectivity[e * nen..(e + 1) * nen];
                 for a in 0..l {
                     let r = components * nodes[a / components] + a % components;
-                    for b in 0..l {
-                        let c = components * nodes[b / components] + b % components;
-                        let keep = if dirichlet[r].is_some() {
-                            r == c
-                        } else {
-                            dirichlet[c].is_none()
-                        };
-                        if keep {
-                            let s = slot(r, c).expect("element entry in the pattern");
-                            out[a * l + b] = s as u32;
+                    let base = col_ptr[r];
+                    let row = &row_idx[base..col_ptr[r + 1]];
+                    let out = &mut out[a * l..(a + 1) * l];
+                    for (bn, &m) in nodes.iter().enumerate() {
+                        let first = components * m;
+                        let mut pos = row.partition_point(|&c| c < first);
+                        for d in 0..components {
+                            let c = first + d;
+                            let keep = if dirichlet[r].is_some() {
+                                r == c
+                            } else {
+                                dirichlet[c].is_none()
+                            };
+                            if keep {
+                                assert!(row.get(pos) == Some(&c), "element entry in the pattern");
+                                out[components * bn + d] = (base + pos) as u32;
+                                pos += 1;
+                            }
                         }
                     }
                 }

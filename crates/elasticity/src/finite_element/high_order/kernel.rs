@@ -153,18 +153,28 @@ pub const DIRECT_KERNEL_ORDERS: usize = 2;
 /// For elements of more than 9 nodes (a programmer error: use [`add_element_matrix`]).
 #[track_caller]
 pub fn add_element_matrix_direct(t: &ElementTables, kq: &[[[f64; 6]; 6]], out: &mut [f64]) {
+    // the sizes as constants: loops of known length, the upper triangle on the stack
+    match t.n {
+        2 => direct::<4, 64>(t, kq, out),
+        3 => direct::<9, 324>(t, kq, out),
+        n => panic!("add_element_matrix_direct: {} nodes (4 or 9)", n * n),
+    }
+}
+
+/// [`add_element_matrix_direct`] for `NEN` nodes, `LL = (2 NEN)^2` local entries.
+fn direct<const NEN: usize, const LL: usize>(
+    t: &ElementTables,
+    kq: &[[[f64; 6]; 6]],
+    out: &mut [f64],
+) {
     let (n, nq) = (t.n, t.nq);
-    let nen = n * n;
-    assert!(
-        nen <= 9,
-        "add_element_matrix_direct: {nen} nodes (at most 9)"
-    );
-    let l = 2 * nen;
+    let l = 2 * NEN;
+    debug_assert_eq!((n * n, l * l), (NEN, LL));
     debug_assert_eq!(kq.len(), nq * nq);
-    debug_assert_eq!(out.len(), l * l);
-    let mut upper = [0.0f64; 18 * 18];
-    let mut phi = [[0.0f64; 3]; 9];
-    let mut kb = [[[0.0f64; 2]; 6]; 9];
+    debug_assert_eq!(out.len(), LL);
+    let mut upper = [0.0f64; LL];
+    let mut phi = [[0.0f64; 3]; NEN];
+    let mut kb = [[[0.0f64; 2]; 6]; NEN];
     for q2 in 0..nq {
         for q3 in 0..nq {
             let k = &kq[q2 * nq + q3];
@@ -175,18 +185,18 @@ pub fn add_element_matrix_direct(t: &ElementTables, kq: &[[[f64; 6]; 6]], out: &
                     phi[a2 * n + a3] = [x * y, dx * y, x * dy];
                 }
             }
-            for (f, kbb) in phi.iter().zip(kb.iter_mut()).take(nen) {
+            for (f, kbb) in phi.iter().zip(kb.iter_mut()) {
                 for (kr, krow) in kbb.iter_mut().zip(k) {
                     for (d, x) in kr.iter_mut().enumerate() {
                         *x = krow[d] * f[0] + krow[2 + d] * f[1] + krow[4 + d] * f[2];
                     }
                 }
             }
-            for (a, f) in phi.iter().enumerate().take(nen) {
+            for (a, f) in phi.iter().enumerate() {
                 for c in 0..2 {
                     let r = 2 * a + c;
                     let row = &mut upper[r * l..(r + 1) * l];
-                    for (b, kbb) in kb.iter().enumerate().take(nen).skip(a) {
+                    for (b, kbb) in kb.iter().enumerate().skip(a) {
                         for d in usize::from(b == a && c == 1)..2 {
                             row[2 * b + d] +=
                                 f[0] * kbb[c][d] + f[1] * kbb[2 + c][d] + f[2] * kbb[4 + c][d];
