@@ -19,7 +19,7 @@ use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_element::DisplacementErrors;
 use crate::finite_element::ElementAssembly;
-use crate::finite_element::navier::norms::{TensorElements, tensor_displacement_errors};
+use crate::finite_element::norms::{TensorElements, tensor_displacement_errors};
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
@@ -295,9 +295,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     }
 
     /// Interpolates the discrete and the exact displacement over every element with a
-    /// `(p + 2)`-point Gauss rule per direction and returns the error norms (as
-    /// [`crate::finite_element::FiniteElementNavier::displacement_errors`]; the max error is
-    /// over the GLL nodes at their own coordinates).
+    /// `(p + 2)`-point Gauss rule per direction and returns the error norms
+    /// ([`crate::finite_element::DisplacementErrors`]; the max error is over the GLL nodes at
+    /// their own coordinates).
     ///
     /// # Errors
     /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
