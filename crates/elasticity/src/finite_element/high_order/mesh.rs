@@ -2,7 +2,7 @@
 //! graded toward both ends (hp meshes for corner singularities), and the search of the
 //! element containing a point.
 
-use super::recovery::NodalRecovery;
+use super::nodal_recovery::NodalRecovery;
 use crate::error::ElasticityError;
 use crate::finite_element::element::ElementOrder;
 use crate::finite_element::volumetric::VolumetricIntegration;

@@ -20,7 +20,7 @@
 //! - `mesh`: the element boundaries, uniform or geometrically graded ([`Grading`],
 //!   [`QpSettings`]).
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
-//! - `recovery`: values and gradients at the nodes for the contact rows and output fields
+//! - `nodal_recovery`, `recovery`: values and gradients at the nodes for the contact rows and output fields
 //!   ([`NodalRecovery`]: the element polynomials for `fem-qp`, second-order nodal differences
 //!   and the reduced-point divergence for `fem-q1`, `fem-q2`).
 //! - the convergence studies (in `crate::studies`) of `capstan verify` ([`crate::studies::high_order_studies`]).
@@ -57,6 +57,7 @@ mod gll;
 mod graded_tests;
 mod kernel;
 mod mesh;
+mod nodal_recovery;
 mod operator;
 mod recovery;
 #[cfg(test)]
@@ -73,6 +74,6 @@ pub use kernel::{
     DIRECT_KERNEL_ORDERS, ElementTables, add_element_matrix, add_element_matrix_direct,
 };
 pub use mesh::{Grading, QpSettings};
+pub use nodal_recovery::NodalRecovery;
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
-pub use recovery::NodalRecovery;
 pub use solve::CondensedSystem;

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
 use super::mesh::{Grading, QpSettings};
-use super::recovery::NodalRecovery;
+use super::nodal_recovery::NodalRecovery;
 use super::skeleton::Skeleton;
 use crate::boundary::Side;
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
