@@ -20,9 +20,9 @@
 //! - `mesh`: the element boundaries, uniform or geometrically graded ([`Grading`],
 //!   [`QpSettings`]).
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
-//! - `nodal_recovery`, `recovery`: values and gradients at the nodes for the contact rows and output fields
-//!   ([`NodalRecovery`]: the element polynomials for `fem-qp`, second-order nodal differences
-//!   and the reduced-point divergence for `fem-q1`, `fem-q2`).
+//! - `nodal_recovery`, `recovery`: values and gradients at the nodes for the contact rows and
+//!   output fields ([`NodalRecovery`]: the element polynomials for `fem-qp`, second-order
+//!   nodal differences and the reduced-point divergence for `fem-q1`, `fem-q2`).
 //! - the convergence studies (in `crate::studies`) of `capstan verify` ([`crate::studies::high_order_studies`]).
 //!
 //! # Nodes and the grid
