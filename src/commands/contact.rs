@@ -1,6 +1,8 @@
 //! `capstan contact`: the thick body on a rough prism under the scene's friction law
 //! (`friction.law` through `AnyFrictionLaw`; regularised Coulomb by default, paper section 3).
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
 use capstan_elasticity::contact::{ContactQuantities, ContactSolution, EndLoads, ThickBody};
 use capstan_elasticity::solvers::Observer;
 use capstan_elasticity::{Discretisation, Material};
@@ -444,17 +446,39 @@ pub fn solve_observed(
         return Ok((report, run_of(scene, solved)?));
     }
     let problem = scene.build()?;
-    let solved = problem.solve_observed(observer).map_err(named)?;
+    let coarse = match scene.output.error_estimate {
+        true => problem.coarser()?,
+        false => None,
+    };
+    // The level one grid coarser for the error estimate: grid sequencing solves it on the way;
+    // otherwise it is solved on a second thread beside the fine solve (the second core), and
+    // stopped when the fine solve fails or is interrupted.
+    let (solved, coarse_solved) = match coarse.as_ref() {
+        Some(coarse) if !problem.sequences_grids() => {
+            let stop = AtomicBool::new(false);
+            std::thread::scope(|scope| {
+                let side = scope.spawn(|| coarse.solve_observed(&mut StopFlag(&stop)));
+                let fine = problem.solve_observed(observer);
+                if fine.is_err() {
+                    stop.store(true, Ordering::Relaxed);
+                }
+                let side = side
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                (fine, Some(side))
+            })
+        }
+        _ => (problem.solve_observed(observer), None),
+    };
+    let solved = solved.map_err(named)?;
     let mut report = report_of(scene, &solved);
     let scalars = solved.scalars(&probes)?;
     report.quantities = Some(solved.quantities(&probes)?);
-    if scene.output.error_estimate
-        && let Some(coarse) = problem.coarser()?
-    {
-        // grid sequencing solved the coarser level already: no second solve
-        let coarse_scalars = match &solved.coarser {
-            Some(level) => level.scalars(&probes)?,
-            None => coarse
+    if let Some(coarse) = coarse {
+        let coarse_scalars = match (&solved.coarser, coarse_solved) {
+            (Some(level), _) => level.scalars(&probes)?,
+            (None, Some(side)) => side.map_err(named)?.scalars(&probes)?,
+            (None, None) => coarse
                 .solve_observed(&mut accuracy::StopOnly(observer))
                 .map_err(named)?
                 .scalars(&probes)?,
@@ -466,6 +490,18 @@ pub fn solve_observed(
         ));
     }
     Ok((report, run_of(scene, solved)?))
+}
+
+/// An observer that reports nothing and stops when `flag` is set (the side solve of the error
+/// estimate, stopped when the fine solve fails).
+struct StopFlag<'a>(&'a AtomicBool);
+
+impl Observer<f64> for StopFlag<'_> {
+    fn iteration(&mut self, _progress: &capstan_elasticity::solvers::Progress<f64>) {}
+
+    fn interrupted(&mut self) -> bool {
+        self.0.load(Ordering::Relaxed)
+    }
 }
 
 /// The outputs' view of a solved problem.

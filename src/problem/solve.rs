@@ -181,6 +181,19 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         self.solve_observed(&mut SilentObserver)
     }
 
+    /// Whether [`Problem::solve_observed`] solves the problem one grid level coarser on the way
+    /// (grid sequencing of the plane full-system Newton with sparse backends and smooth
+    /// friction, bilateral contact), so that [`Solved::coarser`] comes for free.
+    pub fn sequences_grids(&self) -> bool {
+        let plane = matches!(self.body.dimension, Dimension::Plane);
+        let exact = self.friction.is_nonsmooth();
+        let (method, _) = self.solver.resolved(&self.body);
+        plane
+            && !self.body.contact.is_unilateral()
+            && !exact
+            && matches!(method, SolveMethod::FullNewton(l) if l != LinearBackend::MATRIX_FREE_MG)
+    }
+
     /// Solves the problem with its solver, reporting every iteration to `observer` (which may
     /// stop the solve).
     ///
