@@ -19,6 +19,8 @@
 //! leaves (run with one rayon thread to count no idle spinning). Prints one JSON line per
 //! kernel order and per element.
 
+mod common;
+
 use capstan_elasticity::contact::ThickBody;
 use capstan_elasticity::finite_element::high_order::{
     DIRECT_KERNEL_ORDERS, ElementTables, add_element_matrix, add_element_matrix_direct,
@@ -27,20 +29,7 @@ use capstan_elasticity::finite_element::high_order::{
 use capstan_elasticity::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
 use capstan_elasticity::solvers::{DirectParams, LinearSolver, SparseLu};
 use capstan_elasticity::{BoundaryConditions, Discretisation};
-
-/// User + system CPU seconds of this process (`/proc/self/stat`, 100 ticks a second).
-fn cpu_seconds() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
-    let fields: Vec<&str> = after.split_whitespace().collect();
-    let tick = |i: usize| {
-        fields
-            .get(i)
-            .and_then(|v| v.parse::<f64>().ok())
-            .unwrap_or(0.0)
-    };
-    (tick(11) + tick(12)) / 100.0
-}
+use common::{ExampleArgs, cpu_seconds};
 
 /// An element kernel: tables, point matrices, element matrix (added to).
 type Kernel = fn(&ElementTables, &[[[f64; 6]; 6]], &mut [f64]);
@@ -112,11 +101,8 @@ fn time_pipeline(op: impl Fn() -> Box<dyn Discretisation>, reps: usize) -> ([f64
 }
 
 fn main() {
-    let args: Vec<usize> = std::env::args()
-        .skip(1)
-        .map(|a| a.parse().expect("a whole number"))
-        .collect();
-    let arg = |i: usize, d: usize| args.get(i).copied().unwrap_or(d);
+    let args = ExampleArgs::from_env();
+    let arg = |i: usize, d: usize| args.positional(i, d);
     let reps = arg(4, 20).max(1);
     for (order, n2, n3) in [
         (ElementOrder::Q1, arg(0, 250), arg(1, 41)),
