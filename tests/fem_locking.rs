@@ -11,9 +11,7 @@
 //! (`cargo test --release --test fem_locking -- --ignored --nocapture`).
 
 use capstan_elasticity::Material;
-use capstan_elasticity::finite_element::{
-    ElementOrder, FiniteElementNavier, VolumetricIntegration,
-};
+use capstan_elasticity::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
 use capstan_elasticity::samples::{LameCylinder, MmsBoundaries, PrismMms};
 use capstan_elasticity::studies::{FemProblem, FemStudy};
 use capstan_elasticity::verification::{GridLevel, Study, observed_order};
@@ -287,7 +285,7 @@ fn lame_contact_stress_errors(
     let mut levels = FemStudy::new(FemProblem::Lame(lame), order).levels();
     levels.truncate(count);
     let build = |l: GridLevel, v: VolumetricIntegration| {
-        FiniteElementNavier::with_volumetric(lame_parts(&lame, l).unwrap(), order, v).unwrap()
+        HighOrderNavier::with_element(lame_parts(&lame, l).unwrap(), order, v).unwrap()
     };
     levels
         .into_iter()
@@ -388,7 +386,7 @@ fn mms_contact_normal_stress_with_sri_is_second_order() {
             .into_iter()
             .map(|(n2, n3)| {
                 let (p, exact) = mms_parts(&mms, GridLevel { n2, n3 }).unwrap();
-                let op = FiniteElementNavier::with_volumetric(p, order, volumetric).unwrap();
+                let op = HighOrderNavier::with_element(p, order, volumetric).unwrap();
                 let v = op.solve(&mut SparseLu::default()).unwrap();
                 let nodes = op.contact_nodes().unwrap();
                 let e = nodes[1..nodes.len() - 1].iter().fold(0.0f64, |e, n| {

@@ -52,8 +52,8 @@
 //! - Discretisations: the [`Discretisation`] trait of plane-strain operators (dof numbering,
 //!   assembly into a [`LinearSystem`] whose pattern is built once, contact rows
 //!   [`ContactNode`], output [`NodalFields`]) and the [`registry`] that names them in scenes
-//!   (`fd` [`FiniteDifferenceNavier`], `fem-q1`/`fem-q2`
-//!   [`finite_element::FiniteElementNavier`], `fem-qp` [`finite_element::HighOrderNavier`]),
+//!   (`fd` [`FiniteDifferenceNavier`]; `fem-q1`, `fem-q2` and `fem-qp` one element family,
+//!   [`finite_element::HighOrderNavier`] of order 1, 2 or `p`),
 //!   each registered once with its parameters and a builder that validates; 3-D hexahedra of
 //!   any order in [`solid`].
 //! - Contact ([`contact`]): the model on the face `x3 = 0` of any

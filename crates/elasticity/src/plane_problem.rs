@@ -17,8 +17,8 @@ use crate::shell_geometry::{SharedChart, ShellGeometry};
 pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
 
 /// A plane-strain elasticity problem on the parameter rectangle of a shell chart `G`: what
-/// [`crate::FiniteDifferenceNavier`], [`crate::finite_element::FiniteElementNavier`] and
-/// [`crate::finite_element::HighOrderNavier`] are built from.
+/// [`crate::FiniteDifferenceNavier`] and [`crate::finite_element::HighOrderNavier`] (Q1, Q2
+/// and Qp) are built from.
 ///
 /// # Math
 /// ```text
@@ -31,7 +31,7 @@ pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
 ///
 /// # Example
 /// ```
-/// use capstan_elasticity::finite_element::{ElementOrder, FiniteElementNavier, HighOrderNavier};
+/// use capstan_elasticity::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
 /// use capstan_elasticity::{BoundaryConditions, Discretisation, FiniteDifferenceNavier, Grid};
 /// use capstan_elasticity::{Material, PlaneProblem};
 /// use capstan_geometry::{EllipticalPrism, ShellChart};
@@ -44,7 +44,8 @@ pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
 /// };
 /// // one problem, three discretisations on the same nodes
 /// let fd = FiniteDifferenceNavier::new(problem.clone()).unwrap();
-/// let q2 = FiniteElementNavier::new(problem.clone(), ElementOrder::Q2).unwrap();
+/// let full = VolumetricIntegration::Full;
+/// let q2 = HighOrderNavier::with_element(problem.clone(), ElementOrder::Q2, full).unwrap();
 /// let qp = HighOrderNavier::new(problem, 4).unwrap();
 /// assert_eq!(fd.dof_count(), 2 * 25 * 5);
 /// assert!(fd.dof_count() == q2.dof_count() && q2.dof_count() == qp.dof_count());

@@ -1,9 +1,7 @@
 //! The 3-D body: manufactured solutions on cones and a prism (observed L2 orders; Q1, Q2 and
 //! the Qp hexahedra), and the reduction to the plane-strain operator on prisms.
 
-use capstan_elasticity::finite_element::{
-    ElementOrder, FiniteElementNavier, VolumetricIntegration,
-};
+use capstan_elasticity::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
 use capstan_elasticity::samples::{LameCylinder, PaperEllipse};
 use capstan_elasticity::solid::{BoxGrid, FaceCondition, HexElement, SolidBoundary, SolidNavier};
 use capstan_elasticity::solvers::SparseCholesky;
@@ -103,9 +101,9 @@ fn reduction_difference(
     let chart = parts.chart.clone();
     let material = parts.material;
     let plane: Box<dyn Discretisation> = match element {
-        HexElement::Uniform(order) => Box::new(FiniteElementNavier::with_volumetric(
-            parts, order, volumetric,
-        )?),
+        HexElement::Uniform(order) => {
+            Box::new(HighOrderNavier::with_element(parts, order, volumetric)?)
+        }
         HexElement::Gll(p) => Box::new(parts.high_order(p, volumetric)?),
     };
     let v2 = plane.solve(&mut SparseCholesky::default())?;

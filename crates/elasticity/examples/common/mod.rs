@@ -1,5 +1,6 @@
 //! The command line of the benchmark examples: positional values, `--flag`s and
-//! `--option VALUE` pairs, read from `std::env::args()` without the program name.
+//! `--option VALUE` pairs, read from `std::env::args()` without the program name; and the
+//! process's CPU seconds.
 #![allow(dead_code)] // every example uses a part of it
 
 use std::str::FromStr;
@@ -40,4 +41,19 @@ impl ExampleArgs {
             .and_then(|k| self.0.get(k + 1))
             .map(String::as_str)
     }
+}
+
+/// User + system CPU seconds of this process (`/proc/self/stat`, 100 ticks a second; 0 where
+/// it cannot be read).
+pub fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let tick = |i: usize| {
+        fields
+            .get(i)
+            .and_then(|v| v.parse::<f64>().ok())
+            .unwrap_or(0.0)
+    };
+    (tick(11) + tick(12)) / 100.0
 }

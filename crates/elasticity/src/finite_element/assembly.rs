@@ -14,8 +14,13 @@ use crate::error::ElasticityError;
 const NO_SLOT: u32 = u32::MAX;
 
 /// Element matrices computed in parallel per batch before one sequential scatter (in element
-/// order, so the values are bitwise reproducible).
-const BATCH: usize = 256;
+/// order, so the values are bitwise reproducible): batches of about 4 MiB of element
+/// matrices, at least 256 and at most 4096 elements (few fork-joins for the small 2-D
+/// elements, a bounded buffer for the large 3-D ones).
+fn batch(local_entries: usize) -> usize {
+    const BYTES: usize = 4 << 20;
+    (BYTES / (8 * local_entries.max(1))).clamp(256, 4096)
+}
 
 /// The pattern of an operator assembled from elements, with `components` unknowns per node
 /// (dof `components * node + c`) and the slot of every local entry.
@@ -116,6 +121,8 @@ impl ElementAssembly {
         };
         let l = components * nen;
         let mut slots = vec![NO_SLOT; ne * l * l];
+        // one search per (row, element node): a node's kept columns are consecutive in the
+        // sorted column (the pattern is symmetric: column r lists the columns of row r)
         slots
             .par_chunks_mut(l * l.max(1))
             .enumerate()
@@ -123,16 +130,24 @@ impl ElementAssembly {
                 let nodes = &connectivity[e * nen..(e + 1) * nen];
                 for a in 0..l {
                     let r = components * nodes[a / components] + a % components;
-                    for b in 0..l {
-                        let c = components * nodes[b / components] + b % components;
-                        let keep = if dirichlet[r].is_some() {
-                            r == c
-                        } else {
-                            dirichlet[c].is_none()
-                        };
-                        if keep {
-                            let s = slot(r, c).expect("element entry in the pattern");
-                            out[a * l + b] = s as u32;
+                    let base = col_ptr[r];
+                    let row = &row_idx[base..col_ptr[r + 1]];
+                    let out = &mut out[a * l..(a + 1) * l];
+                    for (bn, &m) in nodes.iter().enumerate() {
+                        let first = components * m;
+                        let mut pos = row.partition_point(|&c| c < first);
+                        for d in 0..components {
+                            let c = first + d;
+                            let keep = if dirichlet[r].is_some() {
+                                r == c
+                            } else {
+                                dirichlet[c].is_none()
+                            };
+                            if keep {
+                                assert!(row.get(pos) == Some(&c), "element entry in the pattern");
+                                out[components * bn + d] = (base + pos) as u32;
+                                pos += 1;
+                            }
                         }
                     }
                 }
@@ -341,9 +356,10 @@ impl ElementAssembly {
         let ne = self.element_count();
         let mut values = vec![0.0; self.pattern.nnz()];
         let mut rhs = load.to_vec();
-        let mut buffer = vec![0.0; BATCH.min(ne.max(1)) * l * l];
-        for first in (0..ne).step_by(BATCH) {
-            let last = (first + BATCH).min(ne);
+        let batch = batch(l * l);
+        let mut buffer = vec![0.0; batch.min(ne.max(1)) * l * l];
+        for first in (0..ne).step_by(batch) {
+            let last = (first + batch).min(ne);
             let buf = &mut buffer[..(last - first) * l * l];
             buf.par_chunks_mut(l * l).enumerate().for_each(|(i, out)| {
                 out.iter_mut().for_each(|x| *x = 0.0);

@@ -274,6 +274,23 @@ mod tests {
     }
 
     #[test]
+    fn lagrange_weights_extrapolate_from_the_gauss_points() {
+        assert_eq!(lagrange_weights(&[0.0], -1.0), vec![1.0]);
+        let (gp, _) = gauss_rule(2);
+        let s3 = 3.0f64.sqrt();
+        for (s, want) in [
+            (-1.0, [0.5 * (1.0 + s3), 0.5 * (1.0 - s3)]),
+            (0.0, [0.5, 0.5]),
+            (1.0, [0.5 * (1.0 - s3), 0.5 * (1.0 + s3)]),
+        ] {
+            let w = lagrange_weights(&gp, s);
+            for (a, b) in w.iter().zip(want) {
+                assert!((a - b).abs() < 1e-15, "{s}: {w:?}"); // closed form: round-off
+            }
+        }
+    }
+
+    #[test]
     fn q2_rejects_even_bounded_and_odd_periodic_node_counts() {
         assert!(ElementOrder::Q2.check_nodes("grid.n2", 10, false).is_err());
         assert!(ElementOrder::Q2.check_nodes("grid.n2", 11, false).is_ok());

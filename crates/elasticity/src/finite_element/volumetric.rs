@@ -7,7 +7,7 @@
 /// integration, SRI).
 ///
 /// # Math
-/// The point energy of [`crate::finite_element::FiniteElementNavier`] splits into a
+/// The point energy of [`crate::finite_element::HighOrderNavier`] splits into a
 /// volumetric and a shear part (the Lamé split of Hughes' selective integration):
 /// ```text
 /// a(v, w) = a_vol(v, w) + a_dev(v, w)
@@ -37,9 +37,10 @@
 /// Ciarlet's criterion asks of a quadrature to keep the H1 order `k` and (Aubin–Nitsche) the L2
 /// order `k + 1`; tested on the manufactured solutions and the Lamé cylinder.
 ///
-/// Stresses: the contact rows and the nodal output take `lambda div v` from the reduced points
-/// (extrapolated to the nodes), not from the pointwise divergence, which SRI leaves
-/// unpenalised; see the contact rows of [`crate::finite_element::FiniteElementNavier`].
+/// Stresses: with the nodal-difference recovery of `fem-q1`, `fem-q2` the contact rows and the
+/// nodal output take `lambda div v` from the reduced points (extrapolated to the nodes), not
+/// from the pointwise divergence, which SRI leaves unpenalised; see
+/// [`crate::finite_element::NodalRecovery::Differences`].
 ///
 /// # References
 /// T. J. R. Hughes, *The Finite Element Method*, §4.4 (selective reduced integration,

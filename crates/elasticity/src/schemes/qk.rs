@@ -1,10 +1,10 @@
-//! `fem-q1`, `fem-q2` in the registry: the Q1/Q2 variants with their data (order,
-//! volumetric integration).
+//! `fem-q1`, `fem-q2` in the registry: orders 1 and 2 of the Qp family with their data
+//! (order, volumetric integration) and the nodal-difference recovery.
 
 use std::sync::Arc;
 
 use crate::error::ElasticityError;
-use crate::finite_element::{ElementOrder, FiniteElementNavier, VolumetricIntegration};
+use crate::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
 use crate::plane_problem::PlaneProblem;
 use crate::registration::{
     DiscretisationScheme, DiscretisationSettings, PlaneOperator, RegisteredDiscretisation,
@@ -13,8 +13,9 @@ use crate::registration::{
 use crate::shell_geometry::SharedChart;
 use crate::solid::HexElement;
 
-/// `fem-q1`, `fem-q2`: [`FiniteElementNavier`] of `order` with the volumetric part integrated
-/// as `volumetric` says, on the grid's uniform nodes.
+/// `fem-q1`, `fem-q2`: [`HighOrderNavier`] of order 1 or 2 on the grid's uniform elements,
+/// the volumetric part integrated as `volumetric` says, contact rows and fields by nodal
+/// differences ([`HighOrderNavier::with_element`], [`crate::finite_element::NodalRecovery`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FemQk {
     /// Q1 or Q2.
@@ -51,7 +52,7 @@ impl DiscretisationScheme for FemQk {
     }
 
     fn build(&self, problem: PlaneProblem<SharedChart>) -> Result<PlaneOperator, ElasticityError> {
-        Ok(Box::new(FiniteElementNavier::with_volumetric(
+        Ok(Box::new(HighOrderNavier::with_element(
             problem,
             self.order,
             self.volumetric,

@@ -108,9 +108,9 @@ pub(crate) const REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisati
         check_order(s.order)?;
         Ok(Arc::new(FemQp {
             settings: QpSettings {
-                order: s.order,
                 volumetric: s.volumetric,
                 grading: s.grading,
+                ..QpSettings::order(s.order)
             },
         }))
     },

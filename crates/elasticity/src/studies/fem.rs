@@ -10,7 +10,7 @@ use super::samples::{
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_element::{
-    DisplacementErrors, ElementOrder, FiniteElementNavier, VolumetricIntegration,
+    DisplacementErrors, ElementOrder, HighOrderNavier, VolumetricIntegration,
 };
 use crate::verification::{GridLevel, Study, StudyPoint};
 
@@ -67,7 +67,8 @@ pub enum FemProblem {
 }
 
 /// A finite-element convergence study: the problem of a finite-difference study, same grids,
-/// with Q1 or Q2 elements. The L2 error is the RMS over the parameter rectangle of the
+/// with Q1 or Q2 elements (orders 1 and 2 of [`HighOrderNavier`],
+/// [`HighOrderNavier::with_element`]). The L2 error is the RMS over the parameter rectangle of the
 /// Cartesian displacement error of the finite-element interpolant, integrated by a
 /// `(k + 2)`-point Gauss rule per direction; the max error is over the nodes.
 #[derive(Debug, Clone)]
@@ -96,7 +97,7 @@ impl FemStudy {
     }
 
     /// Solves on one grid (sparse Cholesky) and returns `dx3` and every error norm of
-    /// [`FiniteElementNavier::displacement_errors`](crate::finite_element::FiniteElementNavier::displacement_errors) (the relative L2 error is
+    /// [`HighOrderNavier::displacement_errors`] (the relative L2 error is
     /// `l2 / l2_exact`).
     ///
     /// # Errors
@@ -105,7 +106,7 @@ impl FemStudy {
         let (op, errors) = match &self.problem {
             FemProblem::Mms(m) => {
                 let (parts, exact) = mms_parts(m, level)?;
-                let op = FiniteElementNavier::with_volumetric(parts, self.order, self.volumetric)?;
+                let op = HighOrderNavier::with_element(parts, self.order, self.volumetric)?;
                 let v = solve_backward_stable(&op)?;
                 let f = |x: [f64; 2]| exact.field.displacement(x).value;
                 let e = op.displacement_errors(&v, &f)?;
@@ -113,7 +114,7 @@ impl FemStudy {
             }
             FemProblem::Lame(l) => {
                 let parts = lame_parts(l, level)?;
-                let op = FiniteElementNavier::with_volumetric(parts, self.order, self.volumetric)?;
+                let op = HighOrderNavier::with_element(parts, self.order, self.volumetric)?;
                 let v = solve_backward_stable(&op)?;
                 let field = l.field();
                 let f = |x: [f64; 2]| field.displacement(x).value;

@@ -5,9 +5,7 @@ use capstan_geometry::{Obstacle, ShellChart};
 
 use crate::error::ElasticityError;
 use crate::finite_difference::FiniteDifferenceNavier;
-use crate::finite_element::{
-    ElementOrder, FiniteElementNavier, HighOrderNavier, QpSettings, VolumetricIntegration,
-};
+use crate::finite_element::{ElementOrder, HighOrderNavier, QpSettings, VolumetricIntegration};
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 
@@ -27,15 +25,16 @@ impl<G: ShellGeometry + Sync> PlaneProblem<G> {
         FiniteDifferenceNavier::new(self)
     }
 
-    /// The finite-element discretisation of `order`.
+    /// The Q1 or Q2 elements of `order` with full integration (`fem-q1`, `fem-q2`: orders 1
+    /// and 2 of [`HighOrderNavier`], [`HighOrderNavier::with_element`]).
     ///
     /// # Errors
-    /// See [`FiniteElementNavier::new`].
+    /// See [`HighOrderNavier::new`].
     pub fn finite_element(
         self,
         order: ElementOrder,
-    ) -> Result<FiniteElementNavier<G>, ElasticityError> {
-        FiniteElementNavier::new(self, order)
+    ) -> Result<HighOrderNavier<G>, ElasticityError> {
+        HighOrderNavier::with_element(self, order, VolumetricIntegration::Full)
     }
 
     /// The tensor-product elements of order `p` ([`HighOrderNavier`]; the grid's `n - 1`

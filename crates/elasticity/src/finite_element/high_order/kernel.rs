@@ -129,6 +129,93 @@ pub fn add_element_matrix(t: &ElementTables, kq: &[[[f64; 6]; 6]], out: &mut [f6
     }
 }
 
+/// The orders up to which [`add_element_matrix_direct`] is the faster kernel (measured with
+/// `examples/bench_qp_vs_qk.rs`: at `p = 1, 2` the sum factorisation's bookkeeping costs more
+/// than the products it saves).
+pub const DIRECT_KERNEL_ORDERS: usize = 2;
+
+/// Adds the element matrix of the pointwise energy matrices `kq` to `out` as
+/// [`add_element_matrix`] does, by the direct quadrature loop over the nodes' inputs, for
+/// small elements (`(p + 1)^2 <= 9` nodes: `p <= 2`); the fast path of Q1 and Q2.
+///
+/// # Math
+/// With `phi_a = [N_a, d_2 N_a, d_3 N_a]` at point `q` (reference tables, `kq` scaled to
+/// the reference element) and `Kq` the point's energy matrix,
+/// ```text
+/// B[b][r][d] = sum_s Kq[r][2 s + d] phi_b[s]
+/// K[(a c), (b d)] += sum_t phi_a[t] B[b][2 t + c][d]        (b d) >= (a c) only
+/// ```
+/// `36 n^2 + 6 n^2 (2 n^2 + 1)` multiply-adds per point: fewer loops and no scratch
+/// allocation against the sum factorisation at these sizes. The upper triangle is computed
+/// and added to both triangles, so the result is symmetric as computed.
+///
+/// # Panics
+/// For elements of more than 9 nodes (a programmer error: use [`add_element_matrix`]).
+#[track_caller]
+pub fn add_element_matrix_direct(t: &ElementTables, kq: &[[[f64; 6]; 6]], out: &mut [f64]) {
+    // the sizes as constants: loops of known length, the upper triangle on the stack
+    match t.n {
+        2 => direct::<4, 64>(t, kq, out),
+        3 => direct::<9, 324>(t, kq, out),
+        n => panic!("add_element_matrix_direct: {} nodes (4 or 9)", n * n),
+    }
+}
+
+/// [`add_element_matrix_direct`] for `NEN` nodes, `LL = (2 NEN)^2` local entries.
+fn direct<const NEN: usize, const LL: usize>(
+    t: &ElementTables,
+    kq: &[[[f64; 6]; 6]],
+    out: &mut [f64],
+) {
+    let (n, nq) = (t.n, t.nq);
+    let l = 2 * NEN;
+    debug_assert_eq!((n * n, l * l), (NEN, LL));
+    debug_assert_eq!(kq.len(), nq * nq);
+    debug_assert_eq!(out.len(), LL);
+    let mut upper = [0.0f64; LL];
+    let mut phi = [[0.0f64; 3]; NEN];
+    let mut kb = [[[0.0f64; 2]; 6]; NEN];
+    for q2 in 0..nq {
+        for q3 in 0..nq {
+            let k = &kq[q2 * nq + q3];
+            for a2 in 0..n {
+                let (x, dx) = (t.value[a2 * nq + q2], t.d2[a2 * nq + q2]);
+                for a3 in 0..n {
+                    let (y, dy) = (t.value[a3 * nq + q3], t.d3[a3 * nq + q3]);
+                    phi[a2 * n + a3] = [x * y, dx * y, x * dy];
+                }
+            }
+            for (f, kbb) in phi.iter().zip(kb.iter_mut()) {
+                for (kr, krow) in kbb.iter_mut().zip(k) {
+                    for (d, x) in kr.iter_mut().enumerate() {
+                        *x = krow[d] * f[0] + krow[2 + d] * f[1] + krow[4 + d] * f[2];
+                    }
+                }
+            }
+            for (a, f) in phi.iter().enumerate() {
+                for c in 0..2 {
+                    let r = 2 * a + c;
+                    let row = &mut upper[r * l..(r + 1) * l];
+                    for (b, kbb) in kb.iter().enumerate().skip(a) {
+                        for d in usize::from(b == a && c == 1)..2 {
+                            row[2 * b + d] +=
+                                f[0] * kbb[c][d] + f[1] * kbb[2 + c][d] + f[2] * kbb[4 + c][d];
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for r in 0..l {
+        out[r * l + r] += upper[r * l + r];
+        for c in r + 1..l {
+            let x = upper[r * l + c];
+            out[r * l + c] += x;
+            out[c * l + r] += x;
+        }
+    }
+}
+
 /// `out <- (out + out^T) / 2`: bitwise symmetric element matrices (the assembly and the
 /// Cholesky backend rely on it).
 pub fn symmetrise(out: &mut [f64], l: usize) {
@@ -198,6 +285,28 @@ pub(super) mod tests {
             }
         }
         out
+    }
+
+    #[test]
+    fn direct_kernel_equals_the_sum_factorisation_for_p_1_and_2() {
+        for p in 1..=DIRECT_KERNEL_ORDERS {
+            let (x, _) = gll_rule(p);
+            // the full rule and the reduced one of selective reduced integration
+            for nq in [p + 1, p] {
+                let (g, _) = gauss_legendre(nq);
+                let t = ElementTables::new(&x, &g, [0.3, 0.7]);
+                let kq = sample_point_matrices(nq * nq);
+                let l = 2 * (p + 1) * (p + 1);
+                let start: Vec<f64> = (0..l * l).map(|i| (i as f64 * 0.37).cos()).collect();
+                let (mut direct, mut factorised) = (start.clone(), start);
+                add_element_matrix_direct(&t, &kq, &mut direct);
+                add_element_matrix(&t, &kq, &mut factorised);
+                let scale = factorised.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                for (a, b) in direct.iter().zip(&factorised) {
+                    assert!((a - b).abs() < 1e-13 * scale, "p {p}: {a} vs {b}"); // summation order only
+                }
+            }
+        }
     }
 
     #[test]

@@ -2,7 +2,9 @@
 //! graded toward both ends (hp meshes for corner singularities), and the search of the
 //! element containing a point.
 
+use super::nodal_recovery::NodalRecovery;
 use crate::error::ElasticityError;
+use crate::finite_element::element::ElementOrder;
 use crate::finite_element::volumetric::VolumetricIntegration;
 
 /// How the element boundaries of [`super::HighOrderNavier`] are spaced along each
@@ -172,7 +174,11 @@ impl Grading {
 }
 
 /// What the Qp operator is built with besides the problem: the order `p`, the integration of
-/// the volumetric part and the grading of the element boundaries.
+/// the volumetric part, the grading of the element boundaries and the nodal recovery.
+///
+/// `fem-qp` is [`QpSettings::order`] with the scene's volumetric rule and grading; `fem-q1`
+/// and `fem-q2` are [`QpSettings::element`]: orders 1 and 2 on uniform elements with the
+/// nodal-difference recovery.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QpSettings {
     /// The order `p` (`discretisation.order`, [`super::ORDERS`]).
@@ -181,15 +187,46 @@ pub struct QpSettings {
     pub volumetric: VolumetricIntegration,
     /// The element boundaries (`discretisation.grading`).
     pub grading: Grading,
+    /// How nodal values and gradients are recovered for the contact rows and output fields.
+    pub recovery: NodalRecovery,
 }
 
 impl QpSettings {
-    /// Order `p`, full integration, uniform elements.
+    /// Order `p`, full integration, uniform elements, the element recovery (`fem-qp`).
     pub fn order(p: usize) -> Self {
         Self {
             order: p,
             volumetric: VolumetricIntegration::Full,
             grading: Grading::UNIFORM,
+            recovery: NodalRecovery::Element,
+        }
+    }
+
+    /// The Q1 or Q2 element (`fem-q1`, `fem-q2`): order `k` of `order`, full integration,
+    /// uniform elements, the nodal-difference recovery ([`NodalRecovery::Differences`]).
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_elasticity::finite_element::{ElementOrder, NodalRecovery, QpSettings};
+    /// let q2 = QpSettings::element(ElementOrder::Q2);
+    /// assert_eq!((q2.order, q2.recovery), (2, NodalRecovery::Differences));
+    /// assert_eq!(q2.method_name(), "fem-q2");
+    /// assert_eq!(QpSettings::order(2).method_name(), "fem-qp");
+    /// ```
+    pub fn element(order: ElementOrder) -> Self {
+        Self {
+            recovery: NodalRecovery::Differences,
+            ..Self::order(order.degree())
+        }
+    }
+
+    /// The registered name of the discretisation these settings build: `fem-q1` or `fem-q2`
+    /// with the nodal-difference recovery at order 1 or 2, `fem-qp` otherwise.
+    pub fn method_name(&self) -> &'static str {
+        match (self.recovery, self.order) {
+            (NodalRecovery::Differences, 1) => ElementOrder::Q1.method_name(),
+            (NodalRecovery::Differences, 2) => ElementOrder::Q2.method_name(),
+            _ => "fem-qp",
         }
     }
 }

@@ -1,13 +1,16 @@
 //! Arbitrary-order tensor-product elements Qp (`p = 1 ... 10`) for the plane-strain
 //! curvilinear Navier operator: Gauss–Lobatto–Legendre (GLL) nodes, sum-factorised element
 //! kernels, static condensation of the element interiors, geometry from the chart at every
-//! quadrature point (`discretisation.method = "fem-qp"`, `discretisation.order = p`).
+//! quadrature point (`discretisation.method = "fem-qp"`, `discretisation.order = p`). The one
+//! element family of the 2-D body: `fem-q1` and `fem-q2` are its orders 1 and 2 with the
+//! nodal-difference recovery ([`NodalRecovery::Differences`]).
 //!
 //! # Rooms
 //! - `gll`: GLL nodes and weights (Newton on `P_p'`), Gauss–Legendre rules of any size, the
 //!   Lagrange basis and its derivative ([`gll_rule`], [`gauss_legendre`], [`lagrange_basis`]).
 //! - `kernel`: the element stiffness by sum factorisation ([`ElementTables`],
-//!   [`add_element_matrix`]).
+//!   [`add_element_matrix`]), and by the direct quadrature loop for `p <= 2`
+//!   ([`add_element_matrix_direct`], the fast path of Q1/Q2).
 //! - `tensor_kernel`: the same element matrix in tensor form, its `x3` contraction as faer
 //!   GEMMs, read entry by entry by the condensation (tested against `kernel`).
 //! - `condensation`: the Schur complement of each element's interior block (faer Cholesky,
@@ -19,6 +22,9 @@
 //! - `mesh`: the element boundaries, uniform or geometrically graded ([`Grading`],
 //!   [`QpSettings`]).
 //! - `operator`, `solve`: [`HighOrderNavier`], its assembly and its [`crate::Discretisation`].
+//! - `nodal_recovery`, `recovery`: values and gradients at the nodes for the contact rows and
+//!   output fields ([`NodalRecovery`]: the element polynomials for `fem-qp`, second-order
+//!   nodal differences and the reduced-point divergence for `fem-q1`, `fem-q2`).
 //! - the convergence studies (in `crate::studies`) of `capstan verify` ([`crate::studies::high_order_studies`]).
 //!
 //! # Nodes and the grid
@@ -42,9 +48,10 @@
 //! to the full solve to round-off (tested to `1e-10`).
 //!
 //! # Near incompressibility
-//! Selective reduced integration as for Q1/Q2: `lambda (div v)(div w) sqrt(g)` with the
-//! `p x p` Gauss rule, the shear part with the full `(p + 1) x (p + 1)` rule
-//! (`discretisation.volumetric = "reduced"`); the contact rows keep the pointwise stress.
+//! Selective reduced integration: `lambda (div v)(div w) sqrt(g)` with the `p x p` Gauss
+//! rule, the shear part with the full `(p + 1) x (p + 1)` rule
+//! (`discretisation.volumetric = "reduced"`); the contact rows keep the pointwise stress with
+//! the element recovery and take the reduced-point divergence with the nodal differences.
 
 mod condensation;
 pub mod corner_mesh;
@@ -53,7 +60,11 @@ mod gll;
 mod graded_tests;
 mod kernel;
 mod mesh;
+mod nodal_recovery;
 mod operator;
+mod recovery;
+#[cfg(test)]
+mod recovery_tests;
 mod skeleton;
 mod solve;
 mod tensor_kernel;
@@ -63,7 +74,10 @@ mod tests;
 pub use condensation::CondensedElement;
 pub use corner_mesh::{CornerRefinedNavier, CornerSettings};
 pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
-pub use kernel::{ElementTables, add_element_matrix};
+pub use kernel::{
+    DIRECT_KERNEL_ORDERS, ElementTables, add_element_matrix, add_element_matrix_direct,
+};
 pub use mesh::{Grading, QpSettings};
+pub use nodal_recovery::NodalRecovery;
 pub use operator::{HighOrderNavier, ORDERS, check_order, order_name};
 pub use solve::CondensedSystem;

@@ -9,12 +9,14 @@ use rayon::prelude::*;
 use super::gll::{gauss_legendre, gll_rule};
 use super::kernel::ElementTables;
 use super::mesh::{Grading, QpSettings};
+use super::nodal_recovery::NodalRecovery;
 use super::skeleton::Skeleton;
 use crate::boundary::Side;
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, divergence_coefficients, energy_matrix};
 use crate::error::ElasticityError;
 use crate::finite_element::assembly::ElementAssembly;
-use crate::finite_element::navier::boundary_terms::add_side_point_load;
+use crate::finite_element::boundary_terms::add_side_point_load;
+use crate::finite_element::element::ElementOrder;
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_problem::{BodyForce, PlaneProblem};
 use crate::plane_strain_operator::setup_accessors;
@@ -60,27 +62,56 @@ pub fn check_order(p: usize) -> Result<(), ElasticityError> {
 /// [`Grid`](crate::Grid): `n2 = p e2 + 1` (periodic: `p e2`), `n3 = p e3 + 1` nodes.
 ///
 /// # Math
-/// The weak form is that of [`crate::finite_element::FiniteElementNavier`]:
+/// Weak form on the parameter rectangle `Omega = [theta0, theta1] x [0, h]` (per unit `x1`):
 /// ```text
-/// a(v, w) = int_Omega A^ijkl E_kl(v) E_ij(w) sqrt(g) dx2 dx3,  l(w) = int f_j w^j sqrt(g) + int_sides phi_j w^j ds
+/// a(v, w) = int_Omega T^i_j(v) nabla_i w^j sqrt(g) dx2 dx3
+///         = int_Omega A^ijkl E_kl(v) E_ij(w) sqrt(g) dx2 dx3            (symmetric)
+/// l(w)    = int_Omega f_j w^j sqrt(g) dx2 dx3 + int_{sides} phi_j w^j ds
+/// nabla_i w^j = d_i w^j + Gamma^j_im w^m                              (d_1 = 0, w^1 = 0)
 /// ```
+/// with the boundary flux `phi_j = sqrt(g) sqrt(g^aa) t_j` for a traction
+/// (`t_j = n_i T^i_j`, `dS = sqrt(g) sqrt(g^aa) ds` per unit `x1`) and `phi_j = s sqrt(g) f`
+/// for a stress condition `T^a_j = f` (`s = +-1` the outward sign), exactly the fluxes of the
+/// finite differences. In the six local inputs `u = [v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2,
+/// d_3 v^3]` the integrand is `u^T K_q w` with `K_q` the symmetric 6 x 6 energy matrix
+/// ([`energy_matrix`]), evaluated from the chart once per quadrature point and reused by
+/// every refill (Newton steps, sweeps).
+///
 /// Element `(e2, e3)` is the parameter rectangle of the grid's element boundaries (every
 /// `p`-th node line of the uniform grid); inside it node `(a2, a3)` sits at the GLL points
 /// `xi_a2`, `xi_a3` of [`gll_rule`]:
 /// ```text
 /// x2(p e2 + a2) = theta0 + (e2 + (1 + xi_a2) / 2) L2,   x3(p e3 + a3) = (e3 + (1 + xi_a3) / 2) L3
 /// ```
-/// so grid node `(i2, i3)` is **not** at the uniform grid's `grid.coordinates`: use
+/// so grid node `(i2, i3)` is **not** at the uniform grid's `grid.coordinates` for `p >= 3`
+/// (for `p = 1, 2` the GLL points `-1, 1` and `-1, 0, 1` are the uniform ones): use
 /// [`HighOrderNavier::node_coordinates`] (the contact entries, output fields and error norms
 /// do). The basis is the Lagrange basis through the GLL nodes; the stiffness uses the
-/// `(p + 1)^2` Gauss–Legendre rule (exact for the constant-coefficient integrand; as Q1/Q2,
-/// which it reproduces for `p = 1, 2`), the geometry (`sqrt(g)`, `A^ijkl` through
-/// [`energy_matrix`]) evaluated from the chart at every quadrature point, and the element
-/// matrix is formed by sum factorisation ([`super::kernel::add_element_matrix`], `O(p^5)`).
+/// `(p + 1)^2` Gauss–Legendre rule (exact for the constant-coefficient integrand; the
+/// quadrature error `O(h^(2p+2))` stays below the `O(h^(p+1))` L2 error with the smooth
+/// curvilinear coefficients), and the element matrix is formed by sum factorisation
+/// ([`super::kernel::add_element_matrix`], `O(p^5)`), or for `p <= 2` by the direct loop
+/// ([`super::kernel::add_element_matrix_direct`], faster at these sizes). Element matrices
+/// are computed in parallel in batches and scattered in element order, so the values are
+/// bitwise reproducible.
+///
+/// Dirichlet conditions are imposed strongly and symmetrically
+/// ([`crate::finite_element::ElementAssembly`]): the row and column of a prescribed dof keep
+/// only the diagonal `K_dd`, the column's contribution `K_rc g_c` moves to the right-hand side
+/// and the row becomes `K_dd v_d = K_dd g_d`. The matrix is symmetric (bitwise) and, with
+/// enough Dirichlet conditions to stop the rigid motions, positive definite, so
+/// [`capstan_solvers::SparseCholesky`] applies; LU works too. Corner rules are those of
+/// [`crate::FiniteDifferenceNavier`] (a displacement on either side wins; pinned dofs first).
 ///
 /// Selective reduced integration ([`VolumetricIntegration::Reduced`]): the volumetric part
 /// `lambda sqrt(g) (div v)(div w)` with the `p x p` Gauss rule, the shear part with the full
-/// rule, exactly as Q1 (1 point) and Q2 (2 x 2) do.
+/// rule (Q1: one point, Q2: 2 x 2).
+///
+/// # Contact rows and fields
+/// [`crate::ContactNode::traction_weight`] is the lumped boundary weight
+/// `sqrt(g) sqrt(g^33) int N_i dx2` at the node; the stresses `T^3_3`, `T^3_2` at the node
+/// and the output fields are recovered from the nodal values as [`NodalRecovery`] says
+/// (`Element` for `fem-qp`, `Differences` for `fem-q1`, `fem-q2`).
 ///
 /// # Unknowns and solves
 /// [`crate::Discretisation`] sees every node (`dof = 2 node_index + c`, the numbering of the
@@ -142,6 +173,11 @@ pub struct HighOrderNavier<G> {
     pub(super) kq: Vec<[[f64; 6]; 6]>,
     /// Volumetric part at the reduced points (SRI), index `e nr^2 + r`.
     pub(super) kv: Vec<[[f64; 6]; 6]>,
+    /// The divergence coefficients `t_k = tr M_k` at the reduced points (SRI), index
+    /// `e nr^2 + r`, for the reduced-point divergence of [`NodalRecovery::Differences`].
+    pub(super) reduced_divergence: Vec<[f64; 6]>,
+    /// How nodal values and gradients are recovered (contact rows, output fields).
+    pub(super) recovery: NodalRecovery,
     pub(super) dirichlet: Vec<Option<f64>>,
     pub(super) load: Vec<f64>,
     /// The full pattern, built on first use.
@@ -163,10 +199,13 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// # Errors
     /// [`ElasticityError::InvalidParameter`] for `p` outside [`ORDERS`] (field
     /// `discretisation.order`) or a grid that is not a whole number of elements (`n - 1`,
-    /// periodic `n`, a multiple of `p`; at least two elements around a periodic direction);
-    /// [`ElasticityError::InconsistentBoundary`], [`ElasticityError::Geometry`],
-    /// [`ElasticityError::NotPlaneStrain`], [`ElasticityError::NonFinite`] as
-    /// [`crate::finite_element::FiniteElementNavier::new`].
+    /// periodic `n`, a multiple of `p`; at least two elements around a periodic direction), and
+    /// naming `recovery` for [`NodalRecovery::Differences`] with `p > 2` or graded elements;
+    /// [`ElasticityError::InconsistentBoundary`] if periodicity of grid and conditions differ
+    /// or a pinned node is outside the grid; [`ElasticityError::Geometry`] where the chart
+    /// cannot be evaluated; [`ElasticityError::NotPlaneStrain`] for a chart that is not
+    /// `x1`-invariant; [`ElasticityError::NonFinite`] for non-finite boundary data or body
+    /// force.
     pub fn new(problem: PlaneProblem<G>, p: usize) -> Result<Self, ElasticityError> {
         Self::with_volumetric(problem, p, VolumetricIntegration::Full)
     }
@@ -188,6 +227,47 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         Self::with_settings(problem, settings)
     }
 
+    /// The Q1 or Q2 element (`fem-q1`, `fem-q2`): order 1 or 2 on uniform elements with the
+    /// volumetric part integrated as `volumetric` says and the nodal-difference recovery
+    /// ([`QpSettings::element`], [`NodalRecovery::Differences`]).
+    ///
+    /// # Errors
+    /// See [`HighOrderNavier::new`].
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_elasticity::{BoundaryConditions, Component, Discretisation, Grid, Material};
+    /// use capstan_elasticity::finite_element::{ElementOrder, HighOrderNavier, VolumetricIntegration};
+    /// use capstan_elasticity::PlaneProblem;
+    /// use capstan_geometry::{EllipticalPrism, ShellChart};
+    /// use capstan_solvers::SparseCholesky;
+    /// let problem = PlaneProblem {
+    ///     chart: ShellChart::new(EllipticalPrism::new(2.0, 2.0).unwrap()),
+    ///     material: Material::new(1e3, 0.25).unwrap(),
+    ///     grid: Grid::new([-1.5707963, 1.5707963], 1.0, 25, 5, false).unwrap(),
+    ///     boundary: BoundaryConditions::paper_clamped(1.0, 1.0),
+    ///     body_force: None,
+    /// };
+    /// let q2 = ElementOrder::Q2;
+    /// let op = HighOrderNavier::with_element(problem, q2, VolumetricIntegration::Full).unwrap();
+    /// assert_eq!(op.method(), "fem-q2");
+    /// let v = op.solve(&mut SparseCholesky::default()).unwrap(); // symmetric positive definite
+    /// // equal end tensions: the tangential displacement is odd in x2
+    /// let (left, right) = (v[op.dof([0, 4], Component::X2)], v[op.dof([24, 4], Component::X2)]);
+    /// assert!(left < 0.0 && (left + right).abs() < 1e-10);
+    /// ```
+    pub fn with_element(
+        problem: PlaneProblem<G>,
+        order: ElementOrder,
+        volumetric: VolumetricIntegration,
+    ) -> Result<Self, ElasticityError> {
+        let settings = QpSettings {
+            volumetric,
+            ..QpSettings::element(order)
+        };
+        Self::with_settings(problem, settings)
+    }
+
     /// As [`HighOrderNavier::with_volumetric`], with the element boundaries spaced as
     /// `settings.grading` says ([`Grading`]: geometric layers toward both ends of `x2`, unless
     /// periodic, and of `x3`). The grid still fixes the element counts (`n = p e + 1`); its
@@ -203,8 +283,10 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             order: p,
             volumetric,
             grading,
+            recovery,
         } = settings;
         check_order(p)?;
+        recovery.check(p, grading.is_uniform())?;
         let grid = problem.grid;
         problem.boundary.check_grid(&grid)?;
         let periodic = grid.is_periodic();
@@ -275,6 +357,8 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             derivative_at_nodes: dn.into_iter().flatten().collect(),
             kq: vec![],
             kv: vec![],
+            reduced_divergence: vec![],
+            recovery,
             dirichlet: vec![],
             load: vec![],
             full: OnceLock::new(),
@@ -294,6 +378,21 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// The order `p`.
     pub fn degree(&self) -> usize {
         self.degree
+    }
+
+    /// How nodal values and gradients are recovered for the contact rows and output fields.
+    pub fn recovery(&self) -> NodalRecovery {
+        self.recovery
+    }
+
+    /// The settings the operator was built with.
+    pub fn settings(&self) -> QpSettings {
+        QpSettings {
+            order: self.degree,
+            volumetric: self.volumetric,
+            grading: self.grading,
+            recovery: self.recovery,
+        }
     }
 
     /// How the volumetric part is integrated.
@@ -454,12 +553,13 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         self.kq = points.into_iter().map(|(k, _)| k).collect();
         if self.volumetric == VolumetricIntegration::Reduced {
             let (rp, rw) = gauss_legendre(self.degree);
-            self.kv = self.walk_points(&rp, &rw, |p, _, w, size| {
+            let points = self.walk_points(&rp, &rw, |p, _, w, size| {
                 let t = divergence_coefficients(p, &PLANE_STRAIN);
                 let c = lambda * p.sqrt_g * w;
                 let k = core::array::from_fn(|a| core::array::from_fn(|b| c * t[a] * t[b]));
-                Ok(scale_to_element(k, size))
+                Ok((scale_to_element(k, size), t))
             })?;
+            (self.kv, self.reduced_divergence) = points.into_iter().unzip();
         }
         Ok(())
     }

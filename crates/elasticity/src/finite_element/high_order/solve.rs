@@ -5,20 +5,22 @@ use rayon::prelude::*;
 
 use super::condensation::{CondensationScratch, CondensedElement};
 use super::gll::{gauss_legendre, lagrange_basis};
-use super::kernel::{add_element_matrix, symmetrise};
+use super::kernel::{
+    DIRECT_KERNEL_ORDERS, add_element_matrix, add_element_matrix_direct, symmetrise,
+};
 use super::mesh::locate;
 use super::operator::HighOrderNavier;
 use super::skeleton::Skeleton;
 use super::tensor_kernel::{TensorIndex, X3Factors};
-use crate::continuum::kinematics::{
-    LocalDisplacement, contravariant_stress, mixed_stress_coefficients,
-};
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
+use crate::continuum::kinematics::contravariant_stress;
+use crate::continuum::{PLANE_STRAIN, divergence_coefficients};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_element::DisplacementErrors;
 use crate::finite_element::ElementAssembly;
-use crate::finite_element::navier::norms::{TensorElements, tensor_displacement_errors};
+use crate::finite_element::norms::{TensorElements, tensor_displacement_errors};
+use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::LinearSolver;
@@ -40,14 +42,25 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
 
     /// Adds the (symmetric) stiffness matrix of element `e` to `out` (`l x l`, local dof
     /// `2 a + c`).
+    /// The kernel is the direct quadrature loop for `p <= 2`
+    /// ([`super::add_element_matrix_direct`], symmetric as computed) and the sum
+    /// factorisation above.
     pub(super) fn element_matrix(&self, e: usize, out: &mut [f64]) {
         let nq2 = self.tables.nq * self.tables.nq;
-        add_element_matrix(&self.tables, &self.kq[e * nq2..(e + 1) * nq2], out);
+        let direct = self.degree <= DIRECT_KERNEL_ORDERS;
+        let kernel = if direct {
+            add_element_matrix_direct
+        } else {
+            add_element_matrix
+        };
+        kernel(&self.tables, &self.kq[e * nq2..(e + 1) * nq2], out);
         if let Some(rt) = &self.reduced_tables {
             let nr2 = rt.nq * rt.nq;
-            add_element_matrix(rt, &self.kv[e * nr2..(e + 1) * nr2], out);
+            kernel(rt, &self.kv[e * nr2..(e + 1) * nr2], out);
         }
-        symmetrise(out, self.local_dofs());
+        if !direct {
+            symmetrise(out, self.local_dofs());
+        }
     }
 
     /// The `x3` factors of the full rule and of the reduced rule (SRI), for
@@ -254,21 +267,6 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         }
     }
 
-    /// The local displacement (value and gradient) at a node ([`Self::node_terms`]).
-    fn local(&self, node: [usize; 2], v: &[f64]) -> LocalDisplacement {
-        let mut s = [[0.0; 2]; 3];
-        for (m, w) in self.node_terms(node) {
-            for (t, wt) in w.iter().enumerate() {
-                s[t][0] += wt * v[2 * m];
-                s[t][1] += wt * v[2 * m + 1];
-            }
-        }
-        LocalDisplacement {
-            value: s[0],
-            gradient: [s[1], s[2]],
-        }
-    }
-
     /// The element containing `x` (clamped to the rectangle) and the reference coordinates
     /// there.
     fn locate(&self, [x2, x3]: [f64; 2]) -> (usize, [f64; 2]) {
@@ -297,9 +295,9 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     }
 
     /// Interpolates the discrete and the exact displacement over every element with a
-    /// `(p + 2)`-point Gauss rule per direction and returns the error norms (as
-    /// [`crate::finite_element::FiniteElementNavier::displacement_errors`]; the max error is
-    /// over the GLL nodes at their own coordinates).
+    /// `(p + 2)`-point Gauss rule per direction and returns the error norms
+    /// ([`crate::finite_element::DisplacementErrors`]; the max error is over the GLL nodes at
+    /// their own coordinates).
     ///
     /// # Errors
     /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
@@ -326,8 +324,10 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
 }
 
 impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
+    /// `fem-qp`, or `fem-q1` / `fem-q2` for orders 1, 2 with the nodal-difference recovery
+    /// ([`super::QpSettings::method_name`]).
     fn method(&self) -> &'static str {
-        "fem-qp"
+        self.settings().method_name()
     }
 
     /// Nested dissection along element boundaries of degree `p`: it eliminates the element
@@ -377,9 +377,10 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     /// # Math
     /// Traction weight `sqrt(g) sqrt(g^33) int N_i dx2` with `int N_i dx2 = w_a L2 / 2` per
     /// element sharing the node (`w_a` the GLL weight: exact, the GLL rule integrates degree
-    /// `2p - 1`); `T^3_3`, `T^3_2` from the element polynomials' value and derivatives at the
-    /// node (`HighOrderNavier::node_terms`, averaged over the elements sharing it), with the
-    /// pointwise stress also under SRI. The entry's `x2` is the node's GLL position.
+    /// `2p - 1`; for `p = 1, 2` the trapezoid and Simpson's `1/3, 4/3` pattern); `T^3_3`,
+    /// `T^3_2` from the node's value and derivatives by the operator's [`super::NodalRecovery`]
+    /// (`Element`: the pointwise stress also under SRI; `Differences` with SRI: `T^3_3` with
+    /// the reduced-point divergence). The entry's `x2` is the node's GLL position.
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
         (0..self.problem.grid.n2())
             .map(|i| {
@@ -387,20 +388,6 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
                 let at = [0.0, x2, 0.0];
                 let p = self.problem.chart.shell_point(at)?;
                 crate::continuum::check_plane_strain(&p, at)?;
-                let c = mixed_stress_coefficients(&p, &self.problem.material);
-                let terms = self.contact_node_terms([i, 0]);
-                let row = |j: usize| {
-                    let mut t: Vec<(usize, f64)> = terms
-                        .iter()
-                        .flat_map(|&(m, w)| {
-                            (0..2).map(move |comp| {
-                                let coef: f64 = (0..3).map(|t| w[t] * c[2 * t + comp][2][j]).sum();
-                                (2 * m + comp, coef)
-                            })
-                        })
-                        .collect();
-                    SparseRow::from_terms(&mut t)
-                };
                 let length: f64 = self
                     .elements_along(i, self.elements[0], self.problem.grid.is_periodic())
                     .iter()
@@ -413,7 +400,7 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
                     &self.dirichlet,
                     weight,
                     p.metric[1][1].sqrt(),
-                    [row(1), row(2)],
+                    self.contact_rows(i, &p),
                 );
                 node.x2 = x2;
                 Ok(node)
@@ -422,17 +409,39 @@ impl<G: ShellGeometry + Sync> Discretisation for HighOrderNavier<G> {
     }
 
     /// Fields at the GLL nodes (at their own coordinates; `NodalFields::grid` is the uniform
-    /// grid of the same node counts): value and gradient of the element polynomials,
-    /// averaged over the elements sharing a node.
+    /// grid of the same node counts): value and gradient by the operator's
+    /// [`super::NodalRecovery`]; with `Differences` and SRI the stress
+    /// `T^ij = lambda g^ij div_h v + 2 mu E^ij` with the reduced-point divergence (so its
+    /// `T^33 g_33` on `x3 = 0` is the contact row's `T^3_3`).
     fn fields(&self, v: &[f64]) -> Result<NodalFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
+        let split = self.recovery == super::NodalRecovery::Differences
+            && self.volumetric == VolumetricIntegration::Reduced;
         NodalFields::from_nodes_at(
             self.problem.grid,
             |node| self.node_coordinates(node),
             &self.problem.chart,
             |node, p| {
                 let u = self.local(node, v);
-                Ok((u, contravariant_stress(p, &self.problem.material, &u)))
+                let mut stress = contravariant_stress(p, &self.problem.material, &u);
+                if split {
+                    // T^ij = lambda g^ij div v + 2 mu E^ij: the divergence from the reduced points
+                    let inputs = u.to_inputs();
+                    let t = divergence_coefficients(p, &PLANE_STRAIN);
+                    let pointwise: f64 = (0..6).map(|q| t[q] * inputs[q]).sum();
+                    let reduced: f64 = self
+                        .reduced_divergence_terms(node)
+                        .iter()
+                        .map(|&(d, w)| w * v[d])
+                        .sum();
+                    let jump = self.problem.material.lambda() * (reduced - pointwise);
+                    for (row, gi) in stress.iter_mut().zip(&p.inverse_metric) {
+                        for (x, g) in row.iter_mut().zip(gi) {
+                            *x += jump * g;
+                        }
+                    }
+                }
+                Ok((u, stress))
             },
         )
     }

@@ -16,9 +16,9 @@ use crate::boundary::{Component, ComponentCondition, Side};
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, energy_matrix};
 use crate::discretisation::LinearSystem;
 use crate::error::ElasticityError;
+use crate::finite_element::DisplacementErrors;
 use crate::finite_element::ElementAssembly;
-use crate::finite_element::navier::boundary_terms::add_side_point_load;
-use crate::finite_element::navier::norms::DisplacementErrors;
+use crate::finite_element::boundary_terms::add_side_point_load;
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 

@@ -1,11 +1,10 @@
-//! Error norms of a discrete displacement against an exact one.
+//! Error norms of a discrete displacement against an exact one, element by element for any
+//! tensor-product Lagrange discretisation ([`super::HighOrderNavier::displacement_errors`]).
 
 use capstan_geometry::ShellPoint;
 use rayon::prelude::*;
 
-use super::FiniteElementNavier;
 use crate::error::ElasticityError;
-use crate::finite_element::element::gauss_rule;
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 
@@ -22,40 +21,6 @@ pub struct DisplacementErrors {
     pub l2: f64,
     /// `sqrt(int |U|^2 dA)`, for relative errors.
     pub l2_exact: f64,
-}
-
-impl<G: ShellGeometry + Sync> FiniteElementNavier<G> {
-    /// Interpolates the discrete displacement `[v^2, v^3]` and the exact one over every
-    /// element with a `(k + 2)`-point Gauss rule per direction and returns the error norms.
-    ///
-    /// # Errors
-    /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
-    pub fn displacement_errors(
-        &self,
-        v: &[f64],
-        exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
-    ) -> Result<DisplacementErrors, ElasticityError> {
-        let (gp, gw) = gauss_rule(self.order.nodes_per_direction() + 1);
-        let np = self.order.nodes_per_direction();
-        let basis: Vec<Vec<f64>> = gp
-            .iter()
-            .map(|&x| self.order.shape_1d(x).0[..np].to_vec())
-            .collect();
-        let element = |e: usize| {
-            let mut nodes = [0; 9];
-            self.element_nodes(e, &mut nodes);
-            let size = self.element_size();
-            (self.element_origin(e), size, nodes[..np * np].to_vec())
-        };
-        let elements = TensorElements {
-            count: self.elements[0] * self.elements[1],
-            rule: (&gp, &gw),
-            basis: &basis,
-            element: &element,
-        };
-        let position = |node: [usize; 2]| self.problem.grid.coordinates(node);
-        tensor_displacement_errors(&self.problem, &elements, &position, v, exact)
-    }
 }
 
 /// A tensor-product Lagrange discretisation element by element, for
