@@ -36,7 +36,7 @@ use capstan_elasticity::solvers::{
 };
 use capstan_elasticity::verification::peak_memory_mib;
 use capstan_geometry::{EllipticalPrism, ShellChart};
-use common::ExampleArgs;
+use common::{ExampleArgs, cpu_seconds};
 
 fn main() {
     let args = ExampleArgs::from_env();
@@ -262,18 +262,4 @@ impl Preconditioner for Bound {
     fn apply(&mut self, r: &[f64], z: &mut [f64]) {
         self.mg.with(&self.a).apply(r, z);
     }
-}
-
-/// User + system CPU seconds of this process (`/proc/self/stat`, 100 ticks a second).
-fn cpu_seconds() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
-    let fields: Vec<&str> = after.split_whitespace().collect();
-    let tick = |i: usize| {
-        fields
-            .get(i)
-            .and_then(|v| v.parse::<f64>().ok())
-            .unwrap_or(0.0)
-    };
-    (tick(11) + tick(12)) / 100.0
 }
