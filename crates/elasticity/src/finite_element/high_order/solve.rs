@@ -19,7 +19,7 @@ use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::finite_element::DisplacementErrors;
 use crate::finite_element::ElementAssembly;
-use crate::finite_element::norms::{TensorElements, tensor_displacement_errors};
+use crate::finite_element::norms::{ElementMap, LagrangeElements, displacement_errors};
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
@@ -308,18 +308,30 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     ) -> Result<DisplacementErrors, ElasticityError> {
         let (gp, gw) = gauss_legendre(self.degree + 2);
         let basis: Vec<Vec<f64>> = gp.iter().map(|&x| lagrange_basis(&self.gll, x).0).collect();
-        let element = |e: usize| {
-            let (origin, size) = self.element_box(e);
-            (origin, size, self.element_nodes(e))
+        let element = |e: usize| -> (Vec<usize>, ElementMap<'_>) {
+            let ([x0, y0], [l2, l3]) = self.element_box(e);
+            let map = move |[xi, eta]: [f64; 2]| {
+                let x = [x0 + 0.5 * (xi + 1.0) * l2, y0 + 0.5 * (eta + 1.0) * l3];
+                (x, 0.25 * l2 * l3)
+            };
+            (self.element_nodes(e), Box::new(map))
         };
-        let elements = TensorElements {
+        let elements = LagrangeElements {
             count: self.element_count(),
             rule: (&gp, &gw),
             basis: &basis,
             element: &element,
         };
-        let position = |node: [usize; 2]| self.node_coordinates(node);
-        tensor_displacement_errors(&self.problem, &elements, &position, v, exact)
+        let grid = &self.problem.grid;
+        let position = |k: usize| self.node_coordinates(grid.node(k));
+        displacement_errors(
+            &self.problem,
+            &elements,
+            grid.node_count(),
+            &position,
+            v,
+            exact,
+        )
     }
 }
 

@@ -2,7 +2,6 @@
 //! its geometry at the quadrature points, loads, Dirichlet data, statically condensed solve
 //! and error norms.
 
-use capstan_geometry::ShellPoint;
 use capstan_solvers::LinearSolver;
 use faer::MatMut;
 use rayon::prelude::*;
@@ -19,6 +18,7 @@ use crate::error::ElasticityError;
 use crate::finite_element::DisplacementErrors;
 use crate::finite_element::ElementAssembly;
 use crate::finite_element::boundary_terms::add_side_point_load;
+use crate::finite_element::norms::{ElementMap, LagrangeElements, displacement_errors};
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
 
@@ -502,63 +502,31 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
         v: &[f64],
         exact: &(dyn Fn([f64; 2]) -> [f64; 2] + Sync),
     ) -> Result<DisplacementErrors, ElasticityError> {
-        ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
-        let chart = &self.problem.chart;
-        let norm2 = |p: &ShellPoint<f64>, e: [f64; 2]| {
-            let g = &p.metric;
-            g[1][1] * e[0] * e[0] + 2.0 * g[1][2] * e[0] * e[1] + g[2][2] * e[1] * e[1]
-        };
-        let max = (0..self.layout.node_count)
-            .into_par_iter()
-            .map(|m| -> Result<f64, ElasticityError> {
-                let x = self.positions[m];
-                let p = chart.shell_point([0.0, x[0], x[1]])?;
-                let u = exact(x);
-                Ok(norm2(&p, [v[2 * m] - u[0], v[2 * m + 1] - u[1]]).sqrt())
-            })
-            .try_reduce(|| 0.0, |a, b| Ok(a.max(b)))?;
-        let np = self.np();
         let (gp, gw) = gauss_legendre(self.settings.order + 2);
         let basis: Vec<Vec<f64>> = gp.iter().map(|&x| lagrange_basis(&self.gll, x).0).collect();
-        let sums = (0..self.element_count())
-            .into_par_iter()
-            .map(|e| -> Result<[f64; 3], ElasticityError> {
-                let vx = self.element_vertices(e);
-                let nodes = self.nodes(e);
-                let mut s = [0.0; 3];
-                for (i, &xi) in gp.iter().enumerate() {
-                    for (j, &eta) in gp.iter().enumerate() {
-                        let (x, jac) = bilinear(&vx, [xi, eta]);
-                        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
-                        let mut uh = [0.0; 2];
-                        for (a, &m) in nodes.iter().enumerate() {
-                            let n = basis[i][a / np] * basis[j][a % np];
-                            uh[0] += n * v[2 * m];
-                            uh[1] += n * v[2 * m + 1];
-                        }
-                        let p = chart.shell_point([0.0, x[0], x[1]])?;
-                        let u = exact(x);
-                        let w = gw[i] * gw[j] * det;
-                        let err2 = norm2(&p, [uh[0] - u[0], uh[1] - u[1]]);
-                        s[0] += w * err2;
-                        s[1] += w * p.sqrt_g * err2;
-                        s[2] += w * p.sqrt_g * norm2(&p, u);
-                    }
-                }
-                Ok(s)
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let s = sums.iter().fold([0.0; 3], |acc, x| {
-            [acc[0] + x[0], acc[1] + x[1], acc[2] + x[2]]
-        });
-        let [t0, t1] = self.problem.grid.theta();
-        let area = (t1 - t0) * self.problem.grid.thickness();
-        Ok(DisplacementErrors {
-            max,
-            rms: (s[0] / area).sqrt(),
-            l2: s[1].sqrt(),
-            l2_exact: s[2].sqrt(),
-        })
+        let element = |e: usize| -> (Vec<usize>, ElementMap<'_>) {
+            let vx = self.element_vertices(e);
+            let map = move |xi: [f64; 2]| {
+                let (x, jac) = bilinear(&vx, xi);
+                (x, jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0])
+            };
+            (self.nodes(e).to_vec(), Box::new(map))
+        };
+        let elements = LagrangeElements {
+            count: self.element_count(),
+            rule: (&gp, &gw),
+            basis: &basis,
+            element: &element,
+        };
+        let position = |m: usize| self.positions[m];
+        displacement_errors(
+            &self.problem,
+            &elements,
+            self.layout.node_count,
+            &position,
+            v,
+            exact,
+        )
     }
 }
 
