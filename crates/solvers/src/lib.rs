@@ -92,6 +92,7 @@
 #[macro_use]
 mod named;
 
+mod condensation;
 mod csr_matrix;
 mod direct_params;
 mod direct_solve;
@@ -121,11 +122,11 @@ mod relaxation;
 pub mod row_distribution;
 pub mod samples;
 mod scalar;
-mod schur_complement;
 mod sparse_cholesky;
 mod sparse_lu;
 mod sparsity_pattern;
 
+pub use condensation::{CondensationScratch, CondensedBlock, schur_complement};
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
 pub use error::SolverError;
@@ -167,7 +168,6 @@ pub use ordering::{
 pub use problem::{Jacobian, Residual};
 pub use relaxation::{GaussSeidel, Jacobi, Relaxation};
 pub use scalar::{SolverScalar, max_abs, max_abs_difference};
-pub use schur_complement::schur_complement;
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_lu::SparseLu;
 pub use sparsity_pattern::SparsityPattern;

@@ -13,9 +13,9 @@
 //!   ([`add_element_matrix_direct`], the fast path of Q1/Q2).
 //! - `tensor_kernel`: the same element matrix in tensor form, its `x3` contraction as faer
 //!   GEMMs, read entry by entry by the condensation (tested against `kernel`).
-//! - `condensation`: the Schur complement of each element's interior block (faer Cholesky,
-//!   forward substitution, triangular product) and the back-substitution
-//!   ([`CondensedElement`]).
+//! - the static condensation of each element's interior block is the solver room's dense
+//!   kernel, [`capstan_solvers::CondensedBlock`] (here as [`CondensedElement`]: faer Cholesky,
+//!   forward substitution, triangular product, and the back-substitution).
 //! - `skeleton`: numbering and pattern of the condensed system on the element edges.
 //! - `corner_mesh`: the same elements on a conforming mesh refined toward the four corners
 //!   only ([`CornerRefinedNavier`], [`CornerSettings`]).
@@ -53,7 +53,6 @@
 //! (`discretisation.volumetric = "reduced"`); the contact rows keep the pointwise stress with
 //! the element recovery and take the reduced-point divergence with the nodal differences.
 
-mod condensation;
 pub mod corner_mesh;
 mod gll;
 #[cfg(test)]
@@ -71,7 +70,10 @@ mod tensor_kernel;
 #[cfg(test)]
 mod tests;
 
-pub use condensation::CondensedElement;
+/// One element after the static condensation of its interior unknowns: the solver room's
+/// dense condensation, `S = K_BB - K_BI K_II^-1 K_IB` by a Cholesky factorisation of `K_II`
+/// (see [`capstan_solvers::CondensedBlock`]).
+pub type CondensedElement = capstan_solvers::CondensedBlock;
 pub use corner_mesh::{CornerRefinedNavier, CornerSettings};
 pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{

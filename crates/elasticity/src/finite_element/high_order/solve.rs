@@ -3,7 +3,6 @@
 
 use rayon::prelude::*;
 
-use super::condensation::{CondensationScratch, CondensedElement};
 use super::gll::{gauss_legendre, lagrange_basis};
 use super::kernel::{
     DIRECT_KERNEL_ORDERS, add_element_matrix, add_element_matrix_direct, symmetrise,
@@ -24,6 +23,7 @@ use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::LinearSolver;
+use capstan_solvers::{CondensationScratch, CondensedBlock};
 
 /// The statically condensed system of a [`HighOrderNavier`]: the skeleton system and what
 /// each element needs to recover its interior values.
@@ -31,7 +31,7 @@ use capstan_solvers::LinearSolver;
 pub struct CondensedSystem {
     /// `S u_B = f_B + g` on the skeleton dofs (`2 s + c`, skeleton node `s`).
     pub system: LinearSystem,
-    elements: Vec<CondensedElement>,
+    elements: Vec<CondensedBlock>,
 }
 
 impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
@@ -150,7 +150,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     }
 
     /// Condenses the element interiors: the element Schur complements (in parallel) and the
-    /// skeleton system they assemble into ([`super::condensation::CondensedElement`]).
+    /// skeleton system they assemble into ([`CondensedBlock`]).
     ///
     /// # Errors
     /// [`ElasticityError::InconsistentBoundary`] for a prescribed dof inside an element;
@@ -179,13 +179,14 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                         .iter()
                         .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
                         .collect();
-                    CondensedElement::from_entries(
+                    CondensedBlock::from_entries(
                         |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
                         &bd,
                         &id,
                         &f,
                         scratch,
                     )
+                    .map_err(ElasticityError::from)
                 },
             )
             .collect::<Result<Vec<_>, _>>()?;

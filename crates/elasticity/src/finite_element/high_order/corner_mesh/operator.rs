@@ -6,7 +6,6 @@ use capstan_solvers::LinearSolver;
 use faer::MatMut;
 use rayon::prelude::*;
 
-use super::super::condensation::{CondensationScratch, CondensedElement};
 use super::super::gll::{gauss_legendre, gll_rule, lagrange_basis};
 use super::super::kernel::{ElementTables, add_element_matrix, symmetrise};
 use super::super::tensor_kernel::{TensorIndex, X3Factors};
@@ -21,6 +20,7 @@ use crate::finite_element::boundary_terms::add_side_point_load;
 use crate::finite_element::norms::{ElementMap, LagrangeElements, displacement_errors};
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
+use capstan_solvers::{CondensationScratch, CondensedBlock};
 
 /// The plane-strain curvilinear Navier operator by Qp elements (GLL nodes) on a mesh refined
 /// geometrically toward the four corners of the parameter rectangle only
@@ -38,7 +38,7 @@ use crate::shell_geometry::ShellGeometry;
 /// ```
 /// and the sum-factorised kernel of the tensor elements (`X3Factors`) runs unchanged on the
 /// reference tables (Gauss rule of `p + 1` points per direction). The element interiors are
-/// condensed as for the tensor elements ([`CondensedElement`]); the skeleton (vertices and
+/// condensed as for the tensor elements ([`CondensedBlock`]); the skeleton (vertices and
 /// the `p - 1` nodes of every edge) carries the global system.
 ///
 /// Scope: the whole rectangle (no periodic `x2`), Dirichlet data from the sides (no pinned
@@ -412,13 +412,14 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
                         .iter()
                         .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
                         .collect();
-                    CondensedElement::from_entries(
+                    CondensedBlock::from_entries(
                         |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
                         &bd,
                         &id,
                         &fi,
                         scratch,
                     )
+                    .map_err(ElasticityError::from)
                 },
             )
             .collect::<Result<Vec<_>, _>>()?;
@@ -537,7 +538,7 @@ pub struct CornerCondensed {
     /// The skeleton system.
     pub system: LinearSystem,
     /// Per element: Schur complement, condensed load, interior factor and coupling.
-    pub elements: Vec<CondensedElement>,
+    pub elements: Vec<CondensedBlock>,
 }
 
 /// `T^T k T` for the plane-strain inputs (`[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]`)

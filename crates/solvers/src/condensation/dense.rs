@@ -1,6 +1,6 @@
-//! Static condensation of the element-interior unknowns: the Schur complement of each
-//! element's interior block (a small dense Cholesky) and the back-substitution of the interior
-//! values after the global solve.
+//! Static condensation of a small dense symmetric positive definite block (e.g. a high-order
+//! element's interior unknowns): its Schur complement by a dense Cholesky factorisation, and
+//! the back-substitution of the eliminated values after the solve of the condensed system.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
@@ -8,9 +8,9 @@ use faer::linalg::matmul::triangular::{BlockStructure, matmul};
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Accum, MatMut, MatRef, Par};
 
-use crate::error::ElasticityError;
+use crate::error::SolverError;
 
-/// Per-worker scratch of [`CondensedElement::from_entries`]: faer's workspace of the
+/// Per-worker scratch of [`CondensedBlock::from_entries`]: faer's workspace of the
 /// Cholesky factorisation of an `ni x ni` block.
 pub struct CondensationScratch {
     mem: MemBuffer,
@@ -36,7 +36,7 @@ impl CondensationScratch {
     }
 }
 
-/// One element after condensation.
+/// One dense block (e.g. one element's matrix) after condensation of its interior unknowns.
 ///
 /// # Math
 /// With the element dofs split into boundary `B` (on the element's edges) and interior `I`,
@@ -53,7 +53,7 @@ impl CondensationScratch {
 /// vanish on the element's edges), so its Cholesky factor exists. Only the lower triangles of
 /// `K_II` and `K_BB` are read.
 #[derive(Debug, Clone)]
-pub struct CondensedElement {
+pub struct CondensedBlock {
     /// `S`, `nb x nb` (bitwise symmetric, so row- and column-major alike).
     pub schur: Vec<f64>,
     /// `g`, `nb`.
@@ -64,19 +64,19 @@ pub struct CondensedElement {
     pub coupling: Vec<f64>,
 }
 
-impl CondensedElement {
+impl CondensedBlock {
     /// Condenses the element matrix `k` (`l x l` row-major) onto the local dofs `boundary`,
     /// eliminating `interior` (whose load is `f_interior`).
     ///
     /// # Errors
-    /// [`ElasticityError::Solver`] if `K_II` is not positive definite.
+    /// [`SolverError::Singular`] if `K_II` is not positive definite.
     pub fn new(
         k: &[f64],
         l: usize,
         boundary: &[usize],
         interior: &[usize],
         f_interior: &[f64],
-    ) -> Result<Self, ElasticityError> {
+    ) -> Result<Self, SolverError> {
         let mut scratch = CondensationScratch::new(interior.len());
         Self::from_entries(
             |i, j| k[i * l + j],
@@ -92,14 +92,14 @@ impl CondensedElement {
     /// (in the order of `interior` and `boundary`).
     ///
     /// # Errors
-    /// [`ElasticityError::Solver`] if `K_II` is not positive definite (or not finite).
+    /// [`SolverError::Singular`] if `K_II` is not positive definite (or not finite).
     pub fn from_entries(
         entry: impl Fn(usize, usize) -> f64,
         boundary: &[usize],
         interior: &[usize],
         f_interior: &[f64],
         scratch: &mut CondensationScratch,
-    ) -> Result<Self, ElasticityError> {
+    ) -> Result<Self, SolverError> {
         let (nb, ni) = (boundary.len(), interior.len());
         let mut factor = vec![0.0; ni * ni];
         for (c, &j) in interior.iter().enumerate() {
@@ -123,9 +123,7 @@ impl CondensedElement {
         }
         let mut load = vec![0.0; nb];
         if ni > 0 {
-            let singular = |j| -> ElasticityError {
-                capstan_solvers::SolverError::Singular { pivot: Some(j) }.into()
-            };
+            let singular = |j| SolverError::Singular { pivot: Some(j) };
             let stack = MemStack::new(&mut scratch.mem);
             let mut l = MatMut::from_column_major_slice_mut(&mut factor, ni, ni);
             cholesky_in_place(
@@ -216,7 +214,7 @@ mod tests {
         }
         let f = [1.0, -2.0, 0.5, 3.0, 1.5];
         let (b, i) = ([0, 3], [1, 2, 4]);
-        let e = CondensedElement::new(&k, n, &b, &i, &[f[1], f[2], f[4]]).unwrap();
+        let e = CondensedBlock::new(&k, n, &b, &i, &[f[1], f[2], f[4]]).unwrap();
         // S u_B = f_B + g
         let s = &e.schur;
         let rb = [f[0] + e.load[0], f[3] + e.load[1]];
@@ -237,12 +235,7 @@ mod tests {
     fn an_indefinite_interior_block_is_a_typed_error() {
         // K_II = [[1, 2], [2, 1]] (eigenvalues 3, -1), boundary {0}
         let k = [4.0, 1.0, 0.0, 1.0, 1.0, 2.0, 0.0, 2.0, 1.0];
-        let e = CondensedElement::new(&k, 3, &[0], &[1, 2], &[0.0, 0.0]);
-        assert!(matches!(
-            e,
-            Err(ElasticityError::Solver(
-                capstan_solvers::SolverError::Singular { .. }
-            ))
-        ));
+        let e = CondensedBlock::new(&k, 3, &[0], &[1, 2], &[0.0, 0.0]);
+        assert!(matches!(e, Err(SolverError::Singular { .. })));
     }
 }
