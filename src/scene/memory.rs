@@ -134,34 +134,71 @@ pub fn solid_multigrid_memory_estimate([n1, n2, n3]: [usize; 3]) -> f64 {
     SOLID_MULTIGRID_BYTES_PER_UNKNOWN * n + 128.0 * 1024.0 * 1024.0
 }
 
-/// Bytes per unknown of a 3-D contact solve by the matrix-free Newton
-/// (`solver.linear = "matrix-free-mg"`) with elements of `degree` (1: Q1, 2: Q2, `p`: Qp),
-/// fitted above measured peaks (see [`solid_matrix_free_memory_estimate`]).
+/// Bytes per fine unknown of a 3-D contact solve by the matrix-free Newton
+/// (`solver.linear = "matrix-free-mg"`) with elements of `degree` (1: Q1, 2: Q2, `p`: Qp):
+/// the Newton and GMRES(40) vectors, the operator's diagonal and right-hand sides, the
+/// prolongation to the coarse level and the face terms; fitted with
+/// [`SOLID_MATRIX_FREE_BYTES_PER_COARSE_UNKNOWN`] and [`SOLID_MATRIX_FREE_BYTES_PER_CHART_POINT`]
+/// above the measured peaks (see [`solid_matrix_free_memory_estimate`]).
 pub fn solid_matrix_free_bytes_per_unknown(degree: usize) -> f64 {
     match degree {
-        0 | 1 => 3_000.0,
-        2 => 2_000.0,
-        _ => 1_500.0,
+        0..=2 => 370.0,
+        _ => 920.0,
     }
 }
 
+/// Bytes per unknown of the assembled Q1 coarse level of the matrix-free V-cycle (the
+/// rediscretised operator while it is assembled, its compressed rows, the Galerkin levels
+/// below it): fitted above the Q1 ellipse at aspect 1 (coarse level 1/8 of the unknowns) and
+/// aspect 4 (1/2) together with [`solid_matrix_free_bytes_per_unknown`].
+pub const SOLID_MATRIX_FREE_BYTES_PER_COARSE_UNKNOWN: f64 = 4_500.0;
+
+/// Bytes per stored quadrature point of the chart (31 numbers of 8 bytes, held twice while
+/// the operator is built): the whole body's points when the chart varies along `x1` (a cone),
+/// one slab's on a prism.
+pub const SOLID_MATRIX_FREE_BYTES_PER_CHART_POINT: f64 = 2.0 * 31.0 * 8.0;
+
 /// The memory a 3-D contact solve on an `n1 x n2 x n3` grid of elements of `degree` needs
-/// with the matrix-free Newton, bytes: linear in the unknowns, no matrix of the fine level.
+/// with the matrix-free Newton, bytes: linear in the fine unknowns, the coarse level's
+/// unknowns and the stored chart points; no matrix of the fine level.
 ///
 /// # Math
 /// ```text
-/// N     = 3 n1 n2 n3
-/// bytes = solid_matrix_free_bytes_per_unknown(degree) N + 2^27
+/// N      = 3 n1 n2 n3                       fine unknowns
+/// N_c    = 3 prod(coarse_level_nodes(nodes, p, cell))   the assembled Q1 level
+///          (capstan_elasticity::solid::coarse_level_nodes; cell: the body's cell sizes at its
+///          centre, capstan_elasticity::solid::cell_sizes)
+/// Q      = (n1 - 1)/p (n2 - 1)/p (n3 - 1)/p (p + 1)^3   chart points, or that / ((n1 - 1)/p)
+///          when the chart does not vary along x1 (one slab stored)
+/// bytes  = b(p) N + 4,500 N_c + 496 Q + 2^27
+///          b = 370 (Q1, Q2), 920 (Qp, p >= 3; measured at p = 4)
 /// ```
-/// The terms per unknown: the chart at the quadrature points (`(p + 1)^3` points per element,
-/// 0.66 KB at Q1, less at higher order: fewer points per node), the assembled Q1 level at 1/8
-/// (Q1) or `1/p^3` of the unknowns with its Galerkin hierarchy, the transfers, GMRES(40) and
-/// about twelve Newton vectors. Measured peaks (VmHWM, release, `capstan contact` and
-/// `bench_solid_contact`): Q1 5 x 250 x 41 (153,750 unknowns) 549 MiB, i.e. 2.8 KB per
-/// unknown above the 128 MiB (estimate 3.0 KB); see docs/solid.md.
-pub fn solid_matrix_free_memory_estimate([n1, n2, n3]: [usize; 3], degree: usize) -> f64 {
-    let n = (3 * n1 * n2 * n3) as f64;
-    solid_matrix_free_bytes_per_unknown(degree) * n + 128.0 * 1024.0 * 1024.0
+/// Fitted to the measured peaks (VmHWM of `capstan contact`, release, `full-newton` +
+/// `matrix-free-mg`) at 1,048,707 unknowns (33 x 321 x 33), 12-16 % above each: the ellipse
+/// `a = 2, b = 1.5` body of width 1 and thickness 1 at Q1 1,011 MiB (N_c = N/7.5), Q2
+/// 979 MiB, Qp4 1,020 MiB, Q1 of width 0.25 (aspect 4: the coarse level halves x1 only,
+/// N_c = N/1.9) 2,509 MiB, and the cone band of examples/scenes/contact_solid_cone.toml
+/// (chart stored whole, N_c = N/3.9) 2,497 MiB; at 111,843 unknowns (17 x 129 x 17) the
+/// fixed 128 MiB puts the estimate 1.4-1.8x above the peaks (134-308 MiB). See docs/solid.md.
+pub fn solid_matrix_free_memory_estimate(
+    nodes: [usize; 3],
+    degree: usize,
+    cell: [f64; 3],
+    chart_varies_in_x1: bool,
+) -> f64 {
+    let n = (3 * nodes.iter().product::<usize>()) as f64;
+    let coarse = 3 * capstan_elasticity::solid::coarse_level_nodes(nodes, degree, cell)
+        .iter()
+        .product::<usize>();
+    let coarse = coarse as f64;
+    let p = degree.max(1);
+    let elements = nodes.map(|n| ((n - 1) / p).max(1));
+    let slabs = if chart_varies_in_x1 { elements[0] } else { 1 };
+    let points = (slabs * elements[1] * elements[2] * (p + 1).pow(3)) as f64;
+    solid_matrix_free_bytes_per_unknown(degree) * n
+        + SOLID_MATRIX_FREE_BYTES_PER_COARSE_UNKNOWN * coarse
+        + SOLID_MATRIX_FREE_BYTES_PER_CHART_POINT * points
+        + 128.0 * 1024.0 * 1024.0
 }
 
 /// The per-rank memory of a full-system solve with `solver.linear = "petsc"`: what every

@@ -587,7 +587,8 @@ impl Scene {
             .and_then(|s| s.solid_element())
             .map_or(1, |e| e.degree());
         let need = if matrix_free {
-            solid_matrix_free_memory_estimate([g.n1, g.n2, g.n3], degree)
+            let (cell, varies) = self.solid_cells(at)?;
+            solid_matrix_free_memory_estimate([g.n1, g.n2, g.n3], degree, cell, varies)
         } else if multigrid {
             solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
         } else {
@@ -624,6 +625,32 @@ impl Scene {
 
 /// Refuses, at `key`, a grid whose estimated need (bytes) exceeds the memory available
 /// ([`available_memory`]; nothing is refused where it cannot be read), with `message(have)`.
+impl Scene {
+    /// The physical cell sizes of the 3-D body's grid at its centre (as the matrix-free
+    /// V-cycle measures them, [`capstan_elasticity::solid::cell_sizes`]) and whether the
+    /// obstacle's chart varies along `x1` (not a prism), for the matrix-free memory estimate.
+    pub(crate) fn solid_cells(&self, at: &Origins) -> Result<([f64; 3], bool), CliError> {
+        let g = &self.grid;
+        let obstacle = self.obstacle.build()?;
+        let b = &self.body;
+        let grid = capstan_elasticity::solid::BoxGrid::new(
+            [b.x1 - 0.5 * b.width, b.x1 + 0.5 * b.width],
+            [self.membrane.theta0, self.membrane.theta_max],
+            b.thickness,
+            [g.n1, g.n2, g.n3],
+            false,
+        );
+        let chart = capstan_geometry::ShellChart::new(obstacle.clone());
+        let cell = grid
+            .and_then(|grid| capstan_elasticity::solid::cell_sizes(&chart, &grid))
+            .map_err(|e| CliError::Scene {
+                origin: at.locate("grid.n1"),
+                message: format!("the 3-D body's grid at its centre: {e}"),
+            })?;
+        Ok((cell, !obstacle.is_prism()))
+    }
+}
+
 fn check_memory(
     at: &Origins,
     key: &str,

@@ -11,7 +11,10 @@
 //! ```
 //! `mf` is the matrix-free full-system Newton (`solver.linear = "matrix-free-mg"`:
 //! inexact Newton-Krylov on the sum-factorised operator, p-multigrid/semi-coarsening V-cycle),
-//! any element by `--order q1|q2|qpP`, `--width w` the body's width (aspect of the cells).
+//! any element by `--order q1|q2|qpP`, `--width w` the body's width (aspect of the cells),
+//! `--forcing eta` every Newton step solved to the same relative tolerance `eta` (Eisenstat-
+//! Walker off: `eta_min = eta_max = eta`), so iterations per step compare across sizes at
+//! matched forcing.
 //! `multigrid` is the full-system Newton with GMRES and the geometric multigrid of the box
 //! (`--krylov-tol 1e-8` the relative tolerance of each linear solve, `--smoother jacobi` damped
 //! Jacobi instead of Chebyshev, `--power 12` power iterations of its eigenvalue estimate, `--restart m` of GMRES). `--save FILE` writes the
@@ -80,7 +83,17 @@ fn main() {
     let eps = 1e-5;
     let params = RegularisedCoulombParams::new(0.5, eps).expect("valid");
     if solver == "mf" {
-        matrix_free(&body, params, eps, progress, args.option("--reference"));
+        let forcing: Option<f64> = args
+            .option("--forcing")
+            .map(|s| s.parse().expect("--forcing eta in (0, 1)"));
+        matrix_free(
+            &body,
+            params,
+            eps,
+            progress,
+            args.option("--reference"),
+            forcing,
+        );
         return;
     }
     let t = Instant::now();
@@ -194,6 +207,7 @@ fn matrix_free(
     eps: f64,
     progress: bool,
     reference: Option<&str>,
+    forcing: Option<f64>,
 ) {
     let t = Instant::now();
     let model = body
@@ -205,7 +219,12 @@ fn matrix_free(
         )
         .expect("a valid model");
     let model_seconds = t.elapsed().as_secs_f64();
-    let solver = MatrixFreeNewton::new(&model, MatrixFreeSettings::default()).expect("settings");
+    let mut settings = MatrixFreeSettings::default();
+    if let Some(eta) = forcing {
+        settings.forcing.eta_max = eta;
+        settings.forcing.eta_min = eta;
+    }
+    let solver = MatrixFreeNewton::new(&model, settings).expect("settings");
     let t = Instant::now();
     let mut newton_steps: Vec<(usize, usize)> = Vec::new();
     let mut krylov_in_step = 0;

@@ -47,6 +47,8 @@ pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBounda
 pub use element::HexElement;
 pub use fields::{SolidFields, SolidOutput};
 pub use grid::BoxGrid;
-pub use matrix_free::{MultigridParts, SolidMatrixFree, SolidMultigridParams};
+pub use matrix_free::{
+    MultigridParts, SolidMatrixFree, SolidMultigridParams, cell_sizes, coarse_level_nodes,
+};
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count, semicoarsening_hierarchy};
 pub use operator::{SolidForce, SolidNavier};

@@ -91,13 +91,46 @@ pub(crate) fn p_prolongation(
     tensor_prolongation(n, &w, constrained)
 }
 
-/// The physical cell sizes `dx_d sqrt(g_dd)` of `grid` at its centre.
-fn cell_sizes<G: ShellGeometry>(chart: &G, grid: &BoxGrid) -> Result<[f64; 3], ElasticityError> {
+/// The physical cell sizes `dx_d sqrt(g_dd)` of `grid` at its centre (mid-thickness), which
+/// decide the semi-coarsening of the matrix-free V-cycle ([`coarse_level_nodes`]).
+///
+/// # Errors
+/// The chart's at the centre ([`ElasticityError::Geometry`]).
+pub fn cell_sizes<G: ShellGeometry>(
+    chart: &G,
+    grid: &BoxGrid,
+) -> Result<[f64; 3], ElasticityError> {
     let [a, b] = grid.x1_range();
     let [c, d] = grid.x2_range();
     let p = chart.shell_point([0.5 * (a + b), 0.5 * (c + d), 0.5 * grid.thickness()])?;
     let h = grid.spacing();
     Ok(core::array::from_fn(|k| h[k] * p.metric[k][k].sqrt()))
+}
+
+/// The node counts of the assembled Q1 level of the matrix-free V-cycle below a grid of
+/// `nodes` (non-periodic) of elements of `degree` with cell sizes `cell` ([`cell_sizes`]):
+/// what [`SolidMultigridParams::parts`] builds, for memory estimates before any assembly.
+///
+/// # Math
+/// ```text
+/// p > 1:  (n_d - 1) / p + 1          (the element vertices: p-multigrid straight to Q1)
+/// p = 1:  the first semi-coarsening step: each halvable direction (coarser_count) whose cell
+///         is shorter than twice the shortest halvable one, n_d -> (n_d - 1) / 2 + 1; the
+///         other directions keep n_d
+/// ```
+pub fn coarse_level_nodes(nodes: [usize; 3], degree: usize, cell: [f64; 3]) -> [usize; 3] {
+    if degree > 1 {
+        return nodes.map(|n| (n - 1) / degree + 1);
+    }
+    let coarser = nodes.map(|n| coarser_count(n, false));
+    let shortest = (0..3)
+        .filter(|&d| coarser[d].is_some())
+        .map(|d| cell[d])
+        .fold(f64::INFINITY, f64::min);
+    core::array::from_fn(|d| match coarser[d] {
+        Some(c) if cell[d] < 2.0 * shortest => c,
+        _ => nodes[d],
+    })
 }
 
 impl SolidMultigridParams {
@@ -175,6 +208,10 @@ impl SolidMultigridParams {
         };
         let (prolongation, coarse_counts, coarse_mask) =
             tensor_prolongation(n, &w, fine.constrained());
+        debug_assert!(
+            periodic || coarse_counts == coarse_level_nodes(n, k, cell_sizes(&chart, grid)?),
+            "the memory estimate's coarse level is the one built"
+        );
         let coarse_grid = BoxGrid::new(
             grid.x1_range(),
             grid.x2_range(),

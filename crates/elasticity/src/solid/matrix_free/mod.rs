@@ -9,5 +9,5 @@ mod lanes;
 mod operator;
 
 pub(crate) use hierarchy::p_prolongation;
-pub use hierarchy::{MultigridParts, SolidMultigridParams};
+pub use hierarchy::{MultigridParts, SolidMultigridParams, cell_sizes, coarse_level_nodes};
 pub use operator::SolidMatrixFree;
