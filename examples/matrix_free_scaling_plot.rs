@@ -64,7 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .x_label_area_size(35)
                 .y_label_area_size(55)
                 .build_cartesian_2d(
-                    (5e3f64..3e7f64).log_scale(),
+                    (5e3f64..3e6f64).log_scale(),
                     (lo / 2.0..hi * 2.0).log_scale(),
                 )?;
             chart

@@ -317,6 +317,41 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_the_matrix_fr
 }
 
 #[test]
+fn a_hundred_million_unknowns_are_refused_by_the_matrix_free_memory_estimate() {
+    // 141 x 1601 x 141 Q1: 9.5e7 unknowns, the estimate above 75 GiB (docs/solid.md)
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        })
+        .map(|kib| kib * 1024.0);
+    if available.is_none_or(|b| b > 75.0 * (1u64 << 30) as f64) {
+        eprintln!("skipped: more than 75 GiB available, the solve might be attempted");
+        return;
+    }
+    let large = [
+        "--set",
+        "solver.nonlinear=full-newton",
+        "--set",
+        "solver.linear=matrix-free-mg",
+        "--set",
+        "grid.n1=141",
+        "--set",
+        "grid.n2=1601",
+        "--set",
+        "grid.n3=141",
+    ];
+    let (code, _, stderr) = capstan_status(&[&SOLID_Q1_CONTACT[..], &large[..]].concat());
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(
+        stderr.contains("141 x 1601 x 141 (grid.n1 x grid.n2 x grid.n3)"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn fem_qp_solves_a_three_dimensional_body_and_refuses_bad_node_counts() {
     // 1 x 4 x 1 elements of degree 3 on the finite-width ellipse
     let qp: [&str; 12] = [

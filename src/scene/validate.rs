@@ -596,7 +596,7 @@ impl Scene {
         };
         check_memory(at, "grid.n1", need, |have| {
             format!(
-                "3-D grid {} x {} x {} needs about {} ({}), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid{}",
+                "3-D grid {} x {} x {} (grid.n1 x grid.n2 x grid.n3) needs about {} ({}), more than the {} available (MemAvailable in /proc/meminfo); use a coarser grid{}",
                 g.n1,
                 g.n2,
                 g.n3,
