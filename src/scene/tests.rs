@@ -246,16 +246,21 @@ fn matrix_free_memory_estimate_lies_above_the_measured_peaks_and_admits_ten_mill
     ];
     for (sets, nodes, peak) in measured {
         let estimate = matrix_free_estimate_gib(sets, nodes) * 1024.0;
-        // above every peak; within 40 % of it at 1e6 (1e5 carries the fixed 128 MiB)
-        let high = if nodes == million { 1.4 } else { 2.2 };
+        // above every peak; within 1.5x of it at 1e6 (1e5 carries the fixed 128 MiB; both the
+        // full GMRES basis the runs did not fill)
+        let high = if nodes == million { 1.5 } else { 2.6 };
         assert!(
             (1.05 * peak..high * peak).contains(&estimate),
             "{sets:?} {nodes:?}: {estimate} MiB against {peak} MiB measured"
         );
     }
-    // 65 x 801 x 65 (1.0e7 unknowns) fits a 24 GiB machine: 9-13 GiB measured-scale
+    // 65 x 801 x 65 (1.0e7 unknowns) fits a 24 GiB machine, above the 10.24 GiB the stopped
+    // run had reached
     let ten_million = matrix_free_estimate_gib(&ELLIPSE, [65, 801, 65]);
-    assert!((9.0..16.0).contains(&ten_million), "{ten_million} GiB");
+    assert!(
+        (10.24 * 1.1..16.0).contains(&ten_million),
+        "{ten_million} GiB"
+    );
     // 1e8 unknowns (~ 141 x 1601 x 141) does not, at any order
     for sets in [&ELLIPSE[..], &Q2[..]] {
         assert!(matrix_free_estimate_gib(sets, [141, 1601, 141]) > 24.0);
