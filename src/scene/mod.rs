@@ -836,9 +836,10 @@ mod validate;
 use memory::EXPRESSION_CHECK_SAMPLES;
 pub use memory::{
     MAX_N2, MAX_N3, MAX_SAMPLES, MEMORY_BYTES_PER_N_LOG_N, PETSC_MEMORY_PLANE, PETSC_MEMORY_SOLID,
-    PetscMemory, PetscMemoryRefusal, SOLID_BYTES_PER_N_4_3, available_memory, human_bytes,
-    memory_estimate, mpi_ranks, petsc_memory, petsc_memory_check, petsc_memory_estimate_per_rank,
-    solid_fill_factor, solid_matrix_free_bytes_per_unknown, solid_matrix_free_memory_estimate,
-    solid_memory_estimate, solid_multigrid_memory_estimate,
+    PetscMemory, PetscMemoryRefusal, SOLID_BYTES_PER_N_4_3,
+    SOLID_MATRIX_FREE_BYTES_PER_CHART_POINT, SOLID_MATRIX_FREE_BYTES_PER_COARSE_UNKNOWN,
+    available_memory, human_bytes, memory_estimate, mpi_ranks, petsc_memory, petsc_memory_check,
+    petsc_memory_estimate_per_rank, solid_fill_factor, solid_matrix_free_bytes_per_unknown,
+    solid_matrix_free_memory_estimate, solid_memory_estimate, solid_multigrid_memory_estimate,
 };
 pub use origins::Origins;
