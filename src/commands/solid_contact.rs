@@ -43,7 +43,8 @@ pub fn body_fields(
 
 /// Writes `body.vtu`: the 3-D body's fields on its hexahedra
 /// ([`crate::output::body::VTU_ARRAYS`] and
-/// [`crate::output::solid_body::SOLID_EXTRA_VTU_ARRAYS`]).
+/// [`crate::output::solid_body::SOLID_EXTRA_VTU_ARRAYS`]); under unilateral contact also
+/// `body_separated.{svg,png}` ([`crate::output::solid_body::separated_face_map`]).
 ///
 /// # Errors
 /// Geometry or output errors.
@@ -63,5 +64,8 @@ pub fn write_body(
         &solution.contact,
         scene.output.vtu_compression,
     )?;
+    if let Some(map) = crate::output::solid_body::separated_face_map(&solution.contact)? {
+        out.write_plot("body_separated", &map)?;
+    }
     Ok(())
 }

@@ -51,6 +51,97 @@ pub fn write_solid_body(
     Ok(())
 }
 
+/// The contact face of a 3-D body flattened onto its parameters `(x1, x2)`, each cell with
+/// the fraction of its four nodes that have lifted off.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SeparatedFace {
+    /// `(x1, x2)` of the face nodes (profile order).
+    pub points: Vec<[f64; 2]>,
+    /// The face cells (node numbers into `points`), `x1` line by `x1` line.
+    pub cells: Vec<[usize; 4]>,
+    /// Per cell, the fraction (0, 1/4, ..., 1) of its nodes separated.
+    pub fraction: Vec<f64>,
+    /// `sum_cells fraction * (parametric cell area)`: the separated parametric area
+    /// `int int [separated] dx1 dx2` by the trapezoid rule on the nodal indicator.
+    pub area: f64,
+    /// The parametric area of the whole face.
+    pub face_area: f64,
+}
+
+impl SeparatedFace {
+    /// From the contact face nodes `(x1[k], x2[k])`, listed `x1` line by `x1` line (`n2`
+    /// nodes of equal `x1` each, as a 3-D contact profile lists them), and their
+    /// `separated` flags.
+    ///
+    /// # Errors
+    /// [`OutputError::LengthMismatch`] for columns of different lengths or a face that is not
+    /// whole lines of at least two nodes, two lines at least.
+    pub fn new(x1: &[f64], x2: &[f64], separated: &[bool]) -> Result<Self, OutputError> {
+        let n = separated.len();
+        let n2 = x1.iter().take_while(|&&a| a == x1[0]).count();
+        if n2 < 2 || !n.is_multiple_of(n2) || n / n2 < 2 || x1.len() != n || x2.len() != n {
+            return Err(OutputError::length_mismatch(
+                "contact face nodes (whole x1 lines of n2 >= 2 nodes, n1 >= 2 lines)",
+                n2.max(2) * (n / n2.max(1)).max(2),
+                n,
+            ));
+        }
+        let n1 = n / n2;
+        let points: Vec<[f64; 2]> = (0..n).map(|k| [x1[k], x2[k]]).collect();
+        let mut cells = Vec::with_capacity((n1 - 1) * (n2 - 1));
+        let mut fraction = Vec::with_capacity(cells.capacity());
+        let (mut area, mut face_area) = (0.0, 0.0);
+        for i1 in 0..n1 - 1 {
+            for i2 in 0..n2 - 1 {
+                let c = [
+                    i1 * n2 + i2,
+                    (i1 + 1) * n2 + i2,
+                    (i1 + 1) * n2 + i2 + 1,
+                    i1 * n2 + i2 + 1,
+                ];
+                let f = 0.25 * c.iter().filter(|&&k| separated[k]).count() as f64;
+                let cell = (x1[c[1]] - x1[c[0]]).abs() * (x2[c[3]] - x2[c[0]]).abs();
+                area += f * cell;
+                face_area += cell;
+                fraction.push(f);
+                cells.push(c);
+            }
+        }
+        Ok(Self {
+            points,
+            cells,
+            fraction,
+            area,
+            face_area,
+        })
+    }
+}
+
+/// The map of [`SeparatedFace`] for a 3-D body in unilateral contact (`body_separated` of
+/// `capstan contact --out`; the title states the separated area); `None` for bilateral contact
+/// (no `separated` column) or a profile that is not a 3-D one.
+///
+/// # Errors
+/// See [`SeparatedFace::new`].
+pub fn separated_face_map(
+    contact: &ContactProfile,
+) -> Result<Option<super::ColourMap>, OutputError> {
+    let (Some(separated), Some(solid)) = (&contact.separated, &contact.solid) else {
+        return Ok(None);
+    };
+    let face = SeparatedFace::new(&solid.x1, &contact.x2, separated)?;
+    let title = format!(
+        "Contact face lifted off: area {:.4} of {:.4}",
+        face.area, face.face_area
+    );
+    Ok(Some(
+        super::ColourMap::new(title, face.points, face.cells, face.fraction)
+            .label("separated fraction of the cell's nodes")
+            .axis_labels("x1", "x2 (rad on an angular chart)")
+            .range(0.0, 1.0),
+    ))
+}
+
 /// The VTU of [`write_solid_body`] (its point arrays are also what the Python package returns
 /// as the whole-body fields).
 pub fn solid_vtu<'g>(
@@ -83,4 +174,26 @@ pub fn solid_vtu<'g>(
     )
     .point_scalars("contact_slip_1", slip_1)
     .point_scalars("x1", coordinate(0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_separated_face_is_the_trapezoid_rule_on_the_nodal_flags() {
+        // 3 x1 lines (0, 0.5, 1) of 4 nodes (x2 = 0, 1, 2, 3), separated for x2 >= 2
+        let x1: Vec<f64> = (0..12).map(|k| 0.5 * (k / 4) as f64).collect();
+        let x2: Vec<f64> = (0..12).map(|k| (k % 4) as f64).collect();
+        let separated: Vec<bool> = x2.iter().map(|&y| y >= 2.0).collect();
+        let face = SeparatedFace::new(&x1, &x2, &separated).unwrap();
+        assert_eq!(face.cells.len(), 6);
+        assert_eq!(face.fraction, [0.0, 0.5, 1.0, 0.0, 0.5, 1.0]);
+        // the indicator's trapezoid rule: half of the middle strip and the last strip
+        assert!((face.area - 1.5).abs() < 1e-15, "{}", face.area);
+        assert!((face.face_area - 3.0).abs() < 1e-15);
+        // a broken face is refused, not drawn
+        assert!(SeparatedFace::new(&x1[..11], &x2[..11], &separated[..11]).is_err());
+        assert!(SeparatedFace::new(&x1, &x2[..11], &separated).is_err());
+    }
 }

@@ -12,11 +12,13 @@ mod parts;
 pub mod samples;
 pub mod signorini;
 pub mod solid;
+pub mod solid_signorini;
 
 pub use fem::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use high_order::{HighOrderStudy, high_order_studies};
 pub use parts::{ProblemParts, SampleChart};
 pub use signorini::{SignoriniMms, SignoriniPoint};
+pub use solid_signorini::{SolidSignoriniMms, SolidSignoriniPoint};
 
 use crate::finite_element::ElementOrder;
 use crate::verification::Study;
