@@ -33,7 +33,7 @@ pub use distribution::PetscDistribution;
 #[cfg(feature = "petsc")]
 pub use error::PetscError;
 #[cfg(feature = "petsc")]
-pub use policy::{FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
+pub use policy::{FORCING_ETA_MAX_OPTION, FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
 #[cfg(feature = "petsc")]
 pub use session::{DEFAULT_OPTIONS, MUMPS_OPTIONS, Session, running};
 #[cfg(feature = "petsc")]

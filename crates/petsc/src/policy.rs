@@ -8,6 +8,10 @@ use capstan_solvers::{EisenstatWalker, SolverError};
 /// (`solver.petsc_options = "-capstan_forcing false"`; default in [`crate::DEFAULT_OPTIONS`]).
 pub const FORCING_OPTION: &str = "-capstan_forcing";
 
+/// The PETSc option of the loosest forcing term `eta_max` in `(0, 1)` (default 0.9, also the
+/// first step's): a hard first Newton step may need it tighter.
+pub const FORCING_ETA_MAX_OPTION: &str = "-capstan_forcing_eta_max";
+
 /// The PETSc option of the preconditioner lagging: `g >= 1` keeps GAMG's hierarchy across
 /// Jacobians until a solve needs more than `g` times the Krylov iterations per decade of the
 /// solve that built it; `0` rebuilds it at every Jacobian (PETSc's own behaviour).
@@ -19,7 +23,7 @@ pub const PC_LAG_OPTION: &str = "-capstan_pc_lag_growth";
 /// Forcing (the first solve after each new matrix: the Newton direction `J_k d = -r_k`, whose
 /// right-hand side norm is the Newton residual `|r_k|_2`):
 /// ```text
-/// eta_k = EisenstatWalker { gamma 0.9, alpha 2, eta_max 0.9, eta_min rtol }.next(|r_k|, ...)
+/// eta_k = EisenstatWalker { gamma 0.9, alpha 2, eta_max (0.9), eta_min rtol }.next(|r_k|, ...)
 /// KSP relative tolerance of step k = max(eta_k, rtol)   (rtol: -ksp_rtol, the floor)
 /// ```
 /// every further solve with the same matrix (the stuck start's unit loads) uses `rtol`.
@@ -42,12 +46,23 @@ pub struct StepPolicy {
 }
 
 impl StepPolicy {
-    /// A policy: forcing on or off, lagging with growth `lag_growth` (0: off).
+    /// A policy: forcing with the loosest term `eta_max` (`None`: off), lagging with growth
+    /// `lag_growth` (0: off).
     ///
     /// # Errors
     /// [`SolverError::InvalidParameter`] naming `solver.petsc_options -capstan_pc_lag_growth`
-    /// unless `lag_growth` is 0 or in `[1, inf)`.
-    pub fn new(forcing: bool, lag_growth: f64) -> Result<Self, SolverError> {
+    /// unless `lag_growth` is 0 or in `[1, inf)`, or `-capstan_forcing_eta_max` unless
+    /// `eta_max` is in `(0, 1)`.
+    pub fn new(forcing: Option<f64>, lag_growth: f64) -> Result<Self, SolverError> {
+        if let Some(eta_max) = forcing
+            && !(eta_max > 0.0 && eta_max < 1.0)
+        {
+            return Err(SolverError::InvalidParameter {
+                field: "solver.petsc_options -capstan_forcing_eta_max",
+                value: eta_max,
+                allowed: "(0, 1)",
+            });
+        }
         if !(lag_growth == 0.0 || (lag_growth >= 1.0 && lag_growth.is_finite())) {
             return Err(SolverError::InvalidParameter {
                 field: "solver.petsc_options -capstan_pc_lag_growth",
@@ -56,7 +71,10 @@ impl StepPolicy {
             });
         }
         Ok(Self {
-            forcing: forcing.then(EisenstatWalker::default),
+            forcing: forcing.map(|eta_max| EisenstatWalker {
+                eta_max,
+                ..EisenstatWalker::default()
+            }),
             lag_growth,
             ..Self::off()
         })
@@ -157,16 +175,23 @@ mod tests {
     #[test]
     fn bad_growth_is_refused_naming_the_option() {
         for g in [-1.0, 0.5, f64::NAN, f64::INFINITY] {
-            let e = StepPolicy::new(true, g).unwrap_err().to_string();
+            let e = StepPolicy::new(Some(0.9), g).unwrap_err().to_string();
             assert!(e.contains("-capstan_pc_lag_growth"), "{e}");
         }
-        assert!(StepPolicy::new(true, 0.0).is_ok());
-        assert!(StepPolicy::new(false, 1.0).is_ok());
+        assert!(StepPolicy::new(Some(0.9), 0.0).is_ok());
+        for eta in [0.0, 1.0, -0.1, f64::NAN] {
+            let e = StepPolicy::new(Some(eta), 0.0).unwrap_err().to_string();
+            assert!(e.contains("-capstan_forcing_eta_max"), "{e}");
+        }
+        let mut tight = StepPolicy::new(Some(0.1), 0.0).unwrap();
+        tight.reuse_for_new_matrix();
+        assert_eq!(tight.tolerance(1.0, 1e-8), 0.1);
+        assert!(StepPolicy::new(None, 1.0).is_ok());
     }
 
     #[test]
     fn forcing_follows_eisenstat_walker_with_rtol_as_floor() {
-        let mut p = StepPolicy::new(true, 0.0).unwrap();
+        let mut p = StepPolicy::new(Some(0.9), 0.0).unwrap();
         assert!(!p.reuse_for_new_matrix());
         assert_eq!(p.tolerance(1.0, 1e-8), 0.9); // eta_0 = eta_max
         // a second solve with the same matrix is not a Newton direction: the floor
@@ -188,14 +213,14 @@ mod tests {
         // safeguard 0.9 * 0.206^2 = 0.038 < 0.1: choice 2 alone, floored at rtol
         assert_eq!(eta4, 1e-8);
         // without forcing: always rtol
-        let mut q = StepPolicy::new(false, 0.0).unwrap();
+        let mut q = StepPolicy::new(None, 0.0).unwrap();
         q.reuse_for_new_matrix();
         assert_eq!(q.tolerance(1.0, 1e-6), 1e-6);
     }
 
     #[test]
     fn lagging_keeps_the_hierarchy_until_the_rate_per_decade_grows() {
-        let mut p = StepPolicy::new(false, 2.0).unwrap();
+        let mut p = StepPolicy::new(None, 2.0).unwrap();
         // first matrix: built
         assert!(!p.reuse_for_new_matrix());
         assert!(p.fresh());
@@ -222,7 +247,7 @@ mod tests {
         p.solved(0, 1.0, false);
         assert!(p.reuse_for_new_matrix());
         // lagging off: never kept; reset: rebuilt
-        let mut off = StepPolicy::new(true, 0.0).unwrap();
+        let mut off = StepPolicy::new(Some(0.9), 0.0).unwrap();
         off.reuse_for_new_matrix();
         off.solved(10, 1e-8, false);
         assert!(!off.reuse_for_new_matrix());

@@ -11,7 +11,7 @@ use capstan_solvers::{
 };
 
 use crate::error::{PetscError, check, diverged_name};
-use crate::policy::{FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
+use crate::policy::{FORCING_ETA_MAX_OPTION, FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
 use crate::session::running;
 
 /// The name of the backend in `solver.linear`.
@@ -269,10 +269,12 @@ impl PetscSolver {
     }
 
     /// The forcing and lagging policy of the options database ([`FORCING_OPTION`], default
-    /// false; [`PC_LAG_OPTION`], default 0: off).
+    /// false, with [`FORCING_ETA_MAX_OPTION`], default 0.9; [`PC_LAG_OPTION`], default 0: off).
     fn read_policy_options(&mut self) -> Result<(), SolverError> {
         let forcing_name = CString::new(FORCING_OPTION).expect("no NUL");
         let lag_name = CString::new(PC_LAG_OPTION).expect("no NUL");
+        let eta_name = CString::new(FORCING_ETA_MAX_OPTION).expect("no NUL");
+        let (mut eta_max, mut eta_set) = (0.9, 0);
         let (mut forcing, mut forcing_set) = (0, 0);
         let (mut lag, mut lag_set) = (0.0, 0);
         // SAFETY: PETSc is running (checked in `new`); the names outlive the calls.
@@ -297,8 +299,19 @@ impl PetscSolver {
                 ),
                 "PetscOptionsGetReal",
             )?;
+            check(
+                sys::PetscOptionsGetReal(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    eta_name.as_ptr(),
+                    &mut eta_max,
+                    &mut eta_set,
+                ),
+                "PetscOptionsGetReal",
+            )?;
         }
-        self.policy = StepPolicy::new(forcing_set != 0 && forcing != 0, lag)?;
+        let forcing = (forcing_set != 0 && forcing != 0).then_some(eta_max);
+        self.policy = StepPolicy::new(forcing, lag)?;
         Ok(())
     }
 
