@@ -5,7 +5,7 @@
 use capstan_solvers::{EisenstatWalker, SolverError};
 
 /// The PETSc option switching the Eisenstat–Walker forcing on or off
-/// (`solver.petsc_options = "-capstan_forcing false"`; default in [`crate::DEFAULT_OPTIONS`]).
+/// (`solver.petsc_options = "-capstan_forcing true"`; default false).
 pub const FORCING_OPTION: &str = "-capstan_forcing";
 
 /// The PETSc option of the loosest forcing term `eta_max` in `(0, 1)` (default 0.9, also the
