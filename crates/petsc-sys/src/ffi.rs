@@ -105,6 +105,15 @@ unsafe extern "C" {
         value: *mut PetscBool,
         set: *mut PetscBool,
     ) -> PetscErrorCode;
+    /// `PetscOptionsGetReal(NULL, NULL, "-name", &value, &set)`: a real option of the global
+    /// database (`set` false when absent; `value` then untouched).
+    pub fn PetscOptionsGetReal(
+        options: *mut c_void,
+        prefix: *const c_char,
+        name: *const c_char,
+        value: *mut PetscReal,
+        set: *mut PetscBool,
+    ) -> PetscErrorCode;
     /// `PetscMemoryGetMaximumUsage(&bytes)`: peak resident memory, once enabled by
     /// `PetscMemorySetGetMaximumUsage()`.
     pub fn PetscMemoryGetMaximumUsage(bytes: *mut PetscLogDouble) -> PetscErrorCode;
@@ -251,6 +260,17 @@ unsafe extern "C" {
         dtol: *mut PetscReal,
         maxits: *mut PetscInt,
     ) -> PetscErrorCode;
+    /// `KSPSetTolerances(ksp, rtol, abstol, dtol, maxits)`.
+    pub fn KSPSetTolerances(
+        ksp: KSP,
+        rtol: PetscReal,
+        abstol: PetscReal,
+        dtol: PetscReal,
+        maxits: PetscInt,
+    ) -> PetscErrorCode;
+    /// `KSPSetReusePreconditioner(ksp, flag)`: with `PETSC_TRUE` the next solves keep the
+    /// preconditioner built for earlier operator values (no new set-up when the matrix changes).
+    pub fn KSPSetReusePreconditioner(ksp: KSP, flag: PetscBool) -> PetscErrorCode;
     /// `KSPDestroy(&ksp)`.
     pub fn KSPDestroy(ksp: *mut KSP) -> PetscErrorCode;
 }

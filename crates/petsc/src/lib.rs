@@ -22,6 +22,8 @@ mod distribution;
 #[cfg(feature = "petsc")]
 mod error;
 #[cfg(feature = "petsc")]
+mod policy;
+#[cfg(feature = "petsc")]
 mod session;
 #[cfg(feature = "petsc")]
 mod solver;
@@ -30,6 +32,8 @@ mod solver;
 pub use distribution::PetscDistribution;
 #[cfg(feature = "petsc")]
 pub use error::PetscError;
+#[cfg(feature = "petsc")]
+pub use policy::{FORCING_ETA_MAX_OPTION, FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
 #[cfg(feature = "petsc")]
 pub use session::{DEFAULT_OPTIONS, MUMPS_OPTIONS, Session, running};
 #[cfg(feature = "petsc")]

@@ -11,6 +11,7 @@ use capstan_solvers::{
 };
 
 use crate::error::{PetscError, check, diverged_name};
+use crate::policy::{FORCING_ETA_MAX_OPTION, FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
 use crate::session::running;
 
 /// The name of the backend in `solver.linear`.
@@ -159,6 +160,8 @@ pub struct PetscSolver {
     near_null_space: Option<Arc<NearNullSpace>>,
     /// Whether `MatSetBlockSize` is called (not under `-capstan_near_null_space false`).
     tell_block_size: bool,
+    /// Eisenstat–Walker forcing and preconditioner lagging across the Newton steps.
+    policy: StepPolicy,
 }
 
 // SAFETY: the PETSc handles are owned by this value alone and used from one thread at a time
@@ -213,6 +216,7 @@ impl PetscSolver {
             size: size as usize,
             near_null_space: None,
             tell_block_size: true,
+            policy: StepPolicy::off(),
         })
     }
 
@@ -261,6 +265,53 @@ impl PetscSolver {
             });
             self.tell_block_size = false;
         }
+        Ok(())
+    }
+
+    /// The forcing and lagging policy of the options database ([`FORCING_OPTION`], default
+    /// false, with [`FORCING_ETA_MAX_OPTION`], default 0.9; [`PC_LAG_OPTION`], default 0: off).
+    fn read_policy_options(&mut self) -> Result<(), SolverError> {
+        let forcing_name = CString::new(FORCING_OPTION).expect("no NUL");
+        let lag_name = CString::new(PC_LAG_OPTION).expect("no NUL");
+        let eta_name = CString::new(FORCING_ETA_MAX_OPTION).expect("no NUL");
+        let (mut eta_max, mut eta_set) = (0.9, 0);
+        let (mut forcing, mut forcing_set) = (0, 0);
+        let (mut lag, mut lag_set) = (0.0, 0);
+        // SAFETY: PETSc is running (checked in `new`); the names outlive the calls.
+        unsafe {
+            check(
+                sys::PetscOptionsGetBool(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    forcing_name.as_ptr(),
+                    &mut forcing,
+                    &mut forcing_set,
+                ),
+                "PetscOptionsGetBool",
+            )?;
+            check(
+                sys::PetscOptionsGetReal(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    lag_name.as_ptr(),
+                    &mut lag,
+                    &mut lag_set,
+                ),
+                "PetscOptionsGetReal",
+            )?;
+            check(
+                sys::PetscOptionsGetReal(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    eta_name.as_ptr(),
+                    &mut eta_max,
+                    &mut eta_set,
+                ),
+                "PetscOptionsGetReal",
+            )?;
+        }
+        let forcing = (forcing_set != 0 && forcing != 0).then_some(eta_max);
+        self.policy = StepPolicy::new(forcing, lag)?;
         Ok(())
     }
 
@@ -447,8 +498,6 @@ impl PetscSolver {
                 iteration: None,
             });
         }
-        self.monitor.norms.clear();
-        let (mut reason, mut iterations): (c_int, sys::PetscInt) = (0, 0);
         let (mut rtol, mut atol, mut dtol, mut max_it) = (0.0, 0.0, 0.0, 0);
         // SAFETY: the handles are live; the arrays are borrowed between Get/Restore only and
         // have the local (or, for `all`, global) length PETSc created them with.
@@ -458,21 +507,35 @@ impl PetscSolver {
             core::slice::from_raw_parts_mut(b, self.rows.len())
                 .copy_from_slice(&rhs[self.rows.clone()]);
             check(sys::VecRestoreArray(o.b, &mut b), "VecRestoreArray")?;
-            check(sys::KSPSolve(o.ksp, o.b, o.x), "KSPSolve")?;
-            check(
-                sys::KSPGetConvergedReason(o.ksp, &mut reason),
-                "KSPGetConvergedReason",
-            )?;
-            check(
-                sys::KSPGetIterationNumber(o.ksp, &mut iterations),
-                "KSPGetIterationNumber",
-            )?;
             check(
                 sys::KSPGetTolerances(o.ksp, &mut rtol, &mut atol, &mut dtol, &mut max_it),
                 "KSPGetTolerances",
             )?;
         }
-        let iterations = iterations as usize;
+        // the forcing term (rhs is whole on every rank: the same on all)
+        let rhs_norm = rhs.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let eta = self.policy.tolerance(rhs_norm, rtol);
+        let (mut reason, mut iterations) =
+            ksp_solve(o, &mut self.monitor, eta, (rtol, atol, dtol, max_it))?;
+        let mut reduction = reduction(&self.monitor.norms);
+        self.policy.solved(iterations, reduction, reason < 0);
+        if reason < 0 && !self.policy.fresh() {
+            // a kept preconditioner that no longer serves: rebuild it and solve again
+            let previous = iterations;
+            // SAFETY: the KSP is live.
+            unsafe {
+                check(
+                    sys::KSPSetReusePreconditioner(o.ksp, 0),
+                    "KSPSetReusePreconditioner",
+                )?;
+            }
+            self.policy.rebuilt();
+            (reason, iterations) =
+                ksp_solve(o, &mut self.monitor, eta, (rtol, atol, dtol, max_it))?;
+            reduction = self::reduction(&self.monitor.norms);
+            self.policy.solved(iterations, reduction, reason < 0);
+            iterations += previous;
+        }
         self.last_iterations = Some(iterations);
         let norms = &self.monitor.norms;
         let r0 = norms.first().copied().unwrap_or(0.0);
@@ -556,6 +619,7 @@ impl LinearSolver<f64> for PetscSolver {
         self.factored = false;
         self.n = pattern.nrows();
         self.read_near_null_option()?;
+        self.read_policy_options()?;
         if let Some(space) = &self.near_null_space {
             space.check(self.n)?;
         }
@@ -631,6 +695,11 @@ impl LinearSolver<f64> for PetscSolver {
             )?;
             check(sys::KSPSetOperators(o.ksp, o.mat, o.mat), "KSPSetOperators")?;
             check(sys::KSPSetFromOptions(o.ksp), "KSPSetFromOptions")?;
+            let reuse = self.policy.reuse_for_new_matrix();
+            check(
+                sys::KSPSetReusePreconditioner(o.ksp, sys::PetscBool::from(reuse)),
+                "KSPSetReusePreconditioner",
+            )?;
         }
         self.factored = true;
         Ok(())
@@ -650,5 +719,48 @@ impl LinearSolver<f64> for PetscSolver {
 
     fn last_iterations(&self) -> Option<usize> {
         self.last_iterations
+    }
+}
+
+/// One `KSPSolve` of the right-hand side in `o.b` to the relative tolerance `eta` (the other
+/// tolerances as `(rtol, atol, dtol, max_it)`, restored afterwards): the converged reason and
+/// the iterations.
+fn ksp_solve(
+    o: &Objects,
+    monitor: &mut Monitor,
+    eta: f64,
+    (rtol, atol, dtol, max_it): (f64, f64, f64, sys::PetscInt),
+) -> Result<(c_int, usize), PetscError> {
+    let (mut reason, mut iterations): (c_int, sys::PetscInt) = (0, 0);
+    monitor.norms.clear();
+    // SAFETY: the handles are live.
+    unsafe {
+        check(
+            sys::KSPSetTolerances(o.ksp, eta, atol, dtol, max_it),
+            "KSPSetTolerances",
+        )?;
+        let solved = check(sys::KSPSolve(o.ksp, o.b, o.x), "KSPSolve");
+        check(
+            sys::KSPSetTolerances(o.ksp, rtol, atol, dtol, max_it),
+            "KSPSetTolerances",
+        )?;
+        solved?;
+        check(
+            sys::KSPGetConvergedReason(o.ksp, &mut reason),
+            "KSPGetConvergedReason",
+        )?;
+        check(
+            sys::KSPGetIterationNumber(o.ksp, &mut iterations),
+            "KSPGetIterationNumber",
+        )?;
+    }
+    Ok((reason, iterations as usize))
+}
+
+/// The monitored residual's reduction `r_last / r_0` of a solve (1 without iterations).
+fn reduction(norms: &[f64]) -> f64 {
+    match (norms.first(), norms.last()) {
+        (Some(&r0), Some(&r)) if r0 > 0.0 => r / r0,
+        _ => 1.0,
     }
 }
