@@ -166,6 +166,23 @@ pub struct ContactArrays {
     pub separated: Option<Vec<bool>>,
 }
 
+impl ContactArrays {
+    /// The fields of a solution's contact profile.
+    pub fn of(c: &capstan_elasticity::contact::ContactProfile) -> Self {
+        Self {
+            x2: c.x2.clone(),
+            v2: c.v2.clone(),
+            v3: c.v3.clone(),
+            normal_stress: c.normal_stress.clone(),
+            shear_stress: c.shear_stress.clone(),
+            state: c.state.clone(),
+            slip: c.slip.clone(),
+            friction_traction: c.friction_traction.clone(),
+            separated: c.separated.clone(),
+        }
+    }
+}
+
 /// `capstan contact --json` (keys are a public contract).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactReport {
@@ -278,17 +295,7 @@ impl ContactReport {
                 .collect(),
             max_azimuthal_displacement: sol.max_azimuthal_displacement,
             max_radial_displacement: sol.max_radial_displacement,
-            contact: ContactArrays {
-                x2: c.x2.clone(),
-                v2: c.v2.clone(),
-                v3: c.v3.clone(),
-                normal_stress: c.normal_stress.clone(),
-                shear_stress: c.shear_stress.clone(),
-                state: c.state.clone(),
-                slip: c.slip.clone(),
-                friction_traction: c.friction_traction.clone(),
-                separated: c.separated.clone(),
-            },
+            contact: ContactArrays::of(c),
             tau0: sol.loads.tau0,
             tau_max: sol.loads.tau_max,
             tension_ratio: sol.loads.tension_ratio(),

@@ -169,17 +169,7 @@ fn step_report(step: usize, s: &PathStep) -> ContactPathStep {
         newton_iterations: sol.stats.newton_iterations,
         residual: sol.stats.residual,
         solve_seconds: s.seconds,
-        contact: ContactArrays {
-            x2: c.x2.clone(),
-            v2: c.v2.clone(),
-            v3: c.v3.clone(),
-            normal_stress: c.normal_stress.clone(),
-            shear_stress: c.shear_stress.clone(),
-            state: c.state.clone(),
-            slip: c.slip.clone(),
-            friction_traction: c.friction_traction.clone(),
-            separated: c.separated.clone(),
-        },
+        contact: ContactArrays::of(c),
     }
 }
 
