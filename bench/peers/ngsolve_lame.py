@@ -175,18 +175,10 @@ def run_level(a, m, lam, mu):
     error = relative_error(
         mesh, best[0], a.order, lam, mu, a.radius, a.thickness, a.pressure
     )
-    return level_record(
-        a,
-        m,
-        mesh,
-        best,
-        runs,
-        (t_mesh, t_curve),
-        ngsolve.__version__,
-        backend=a.inverse + ("" if a.condense else "-full"),
-        maxh=a.thickness / m,
-        error=float(error),
-    )
+    record = level_record(a, m, mesh, best, runs, (t_mesh, t_curve), ngsolve.__version__)
+    backend = a.inverse + ("" if a.condense else "-full")
+    record.update(backend=backend, maxh=a.thickness / m, error=float(error))
+    return record
 
 
 def main():

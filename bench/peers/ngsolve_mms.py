@@ -197,17 +197,9 @@ def run_level(a, m, lam, mu, expr):
         a, lambda: solve(mesh, a.order, lam, mu, exact, grad, a.inverse)
     )
     error = relative_error(mesh, best[0], exact, a.order)
-    return level_record(
-        a,
-        m,
-        mesh,
-        best,
-        runs,
-        (t_mesh, t_curve),
-        ngsolve.__version__,
-        maxh=THICKNESS / m,
-        error=float(error),
-    )
+    record = level_record(a, m, mesh, best, runs, (t_mesh, t_curve), ngsolve.__version__)
+    record.update(maxh=THICKNESS / m, error=float(error))
+    return record
 
 
 def main():

@@ -175,20 +175,10 @@ def run_level(a, m, lam, mu):
         rows = quadrature_points(mesh, best[0], 2 * a.order + 4)
         points = os.path.join(a.error_points, f"ngsolve-p{a.order}-m{m}.f64")
         rows.astype("<f8").tofile(points)
-    return level_record(
-        a,
-        m,
-        mesh,
-        best,
-        runs,
-        (t_mesh, t_curve),
-        ngsolve.__version__,
-        maxh=a.maxh,
-        factor=a.factor,
-        corner_maxh=corner_maxh if m > 0 else None,
-        error=None,
-        error_points=points,
-    )
+    record = level_record(a, m, mesh, best, runs, (t_mesh, t_curve), ngsolve.__version__)
+    record.update(maxh=a.maxh, factor=a.factor, error=None, error_points=points)
+    record.update(corner_maxh=corner_maxh if m > 0 else None)
+    return record
 
 
 def main():

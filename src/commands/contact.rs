@@ -141,6 +141,18 @@ pub struct IntervalReport {
     pub nodes: [f64; 2],
 }
 
+impl IntervalReport {
+    /// The report of one interval of a solution's contact surface.
+    pub fn of(i: &capstan_elasticity::contact::StateInterval) -> Self {
+        Self {
+            state: i.state,
+            from: i.from,
+            to: i.to,
+            nodes: i.nodes,
+        }
+    }
+}
+
 /// The contact surface fields.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ContactArrays {
@@ -284,15 +296,7 @@ impl ContactReport {
             slip_fraction: sol.slip_fraction,
             stick_interval: sol.stick_interval.map(|i| [i.from, i.to]),
             stick_nodes: sol.stick_interval.map(|i| i.nodes),
-            slip_intervals: sol
-                .slip_intervals()
-                .map(|i| IntervalReport {
-                    state: i.state,
-                    from: i.from,
-                    to: i.to,
-                    nodes: i.nodes,
-                })
-                .collect(),
+            slip_intervals: sol.slip_intervals().map(IntervalReport::of).collect(),
             max_azimuthal_displacement: sol.max_azimuthal_displacement,
             max_radial_displacement: sol.max_radial_displacement,
             contact: ContactArrays::of(c),

@@ -156,15 +156,7 @@ fn step_report(step: usize, s: &PathStep) -> ContactPathStep {
         slip_fraction: sol.slip_fraction,
         stick_nodes: count(|x| x == 0),
         slip_nodes: count(|x| x == 1 || x == -1),
-        slip_intervals: sol
-            .slip_intervals()
-            .map(|i| IntervalReport {
-                state: i.state,
-                from: i.from,
-                to: i.to,
-                nodes: i.nodes,
-            })
-            .collect(),
+        slip_intervals: sol.slip_intervals().map(IntervalReport::of).collect(),
         dissipation: s.dissipation,
         newton_iterations: sol.stats.newton_iterations,
         residual: sol.stats.residual,

@@ -53,20 +53,11 @@ pub(super) fn run_corner(
             Ok(CornerRefinedNavier::new(parts, corner_settings(p, layers))?)
         })?;
         let name = capstan_elasticity::finite_element::high_order::order_name(p);
-        Ok(Run {
-            problem: Problem::Paper.name(),
-            method: format!("{name}-corner"),
-            backend: "cholesky".to_owned(),
-            n2: op.element_count(),
-            n3: layers,
-            dofs: op.dof_count(),
-            threads: rayon::current_num_threads(),
-            setup_seconds: t.setup,
-            assemble_seconds: t.assemble,
-            solve_seconds: t.solve,
-            seconds: t.total,
-            error: t.error,
-            peak_mib: t.peak_mib,
-        })
+        Ok(t.run(
+            Problem::Paper,
+            format!("{name}-corner"),
+            [op.element_count(), layers],
+            op.dof_count(),
+        ))
     })
 }

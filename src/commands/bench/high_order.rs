@@ -159,24 +159,11 @@ pub(super) fn run_qp(
         let (op, t) = timed_condensed(use_vmhwm, reference, || Ok(build(problem, p, mesh)?))?;
         let grid = op.grid();
         let name = capstan_elasticity::finite_element::high_order::order_name(p);
-        Ok(Run {
-            problem: problem.name(),
-            method: match mesh {
-                QpMesh::Uniform(_) => name.to_owned(),
-                QpMesh::Graded(_) => format!("{name}-graded"),
-            },
-            backend: "cholesky".to_owned(),
-            n2: grid.n2(),
-            n3: grid.n3(),
-            dofs: op.dof_count(),
-            threads: rayon::current_num_threads(),
-            setup_seconds: t.setup,
-            assemble_seconds: t.assemble,
-            solve_seconds: t.solve,
-            seconds: t.total,
-            error: t.error,
-            peak_mib: t.peak_mib,
-        })
+        let method = match mesh {
+            QpMesh::Uniform(_) => name.to_owned(),
+            QpMesh::Graded(_) => format!("{name}-graded"),
+        };
+        Ok(t.run(problem, method, [grid.n2(), grid.n3()], op.dof_count()))
     })
 }
 
@@ -251,6 +238,28 @@ pub(super) struct CondensedTimes {
     pub peak_mib: f64,
     /// Relative L2 error against `reference`.
     pub error: f64,
+}
+
+impl CondensedTimes {
+    /// The bench row of this run on `problem` (`n`: the row's `n2`, `n3`; backend
+    /// `cholesky`, the threads of the current rayon pool).
+    pub(super) fn run(self, problem: Problem, method: String, n: [usize; 2], dofs: usize) -> Run {
+        Run {
+            problem: problem.name(),
+            method,
+            backend: "cholesky".to_owned(),
+            n2: n[0],
+            n3: n[1],
+            dofs,
+            threads: rayon::current_num_threads(),
+            setup_seconds: self.setup,
+            assemble_seconds: self.assemble,
+            solve_seconds: self.solve,
+            seconds: self.total,
+            error: self.error,
+            peak_mib: self.peak_mib,
+        }
+    }
 }
 
 /// One run: `build` (timed as setup), condense, solve the skeleton by sparse Cholesky and
