@@ -41,13 +41,8 @@ pub(super) struct Condensation {
 }
 
 /// Factorises the stabilised bulk `A + sum_k w_k c_k e_row_k e_tdof_k^T` (`values` holds `A` on
-/// the extended pattern) and returns `(P Z, N Z)`, `Z = A~^-1 W`: from the Schur complements
-/// `schur` when given (dense work only), else by blocked multi-right-hand-side solves (at most
-/// [`CONDENSATION_BLOCK_ENTRIES`] doubles of workspace per block).
-///
-/// Reports the factorisation and every block of solves to `observer` as
-/// [`capstan_solvers::SolveStage::SetUp`] events and stops with
-/// [`ContactError::Interrupted`] after the factorisation or between blocks when it asks to.
+/// the extended pattern) and returns `(P Z, N Z)`, `Z = A~^-1 W` ([`factor_stabilised`], then
+/// [`condense_factored`]), reporting the factorisation to `observer`.
 pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     model: &ContactModel<D, L>,
     ext: &ExtendedPattern,
@@ -57,15 +52,46 @@ pub(super) fn condense<D: ContactOperator, L: FrictionLaw<f64>>(
     schur: Option<&ContactSchur>,
     observer: &mut dyn Observer<f64>,
 ) -> Result<(Mat<f64>, Mat<f64>), ContactError> {
-    let m = spring.len();
-    let n = model.dof_count();
+    observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 0, 1));
+    factor_stabilised(model, ext, values, spring, lu)?;
+    observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 1, 1));
+    condense_factored(model, spring, lu, schur, observer)
+}
+
+/// Factorises the stabilised bulk `A~ = A + sum_k w_k c_k e_row_k e_tdof_k^T` (`values` holds
+/// `A` on the extended pattern, `c` is `spring`, `w_k` the traction weights) into `lu`.
+pub(super) fn factor_stabilised<D: ContactOperator, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+    ext: &ExtendedPattern,
+    values: &[f64],
+    spring: &[f64],
+    lu: &mut dyn LinearSolver<f64>,
+) -> Result<(), ContactError> {
     let mut values = values.to_vec();
     for (k, c) in spring.iter().enumerate() {
         values[ext.tangential_slot[k]] += model.active_node(k).traction_weight * c;
     }
-    observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 0, 1));
     lu.factor(&values)?;
-    observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 1, 1));
+    Ok(())
+}
+
+/// `(P Z, N Z)`, `Z = A~^-1 W`, with `A~` factorised in `lu` ([`factor_stabilised`] for
+/// `spring`): from the Schur complements `schur` when given and they agree with a solve
+/// (dense work only), else by blocked multi-right-hand-side solves (at most
+/// [`CONDENSATION_BLOCK_ENTRIES`] doubles of workspace per block).
+///
+/// Reports every block of solves to `observer` as [`capstan_solvers::SolveStage::SetUp`]
+/// events and stops with [`ContactError::Interrupted`] before the condensation or between
+/// blocks when it asks to.
+pub(super) fn condense_factored<D: ContactOperator, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+    spring: &[f64],
+    lu: &mut dyn LinearSolver<f64>,
+    schur: Option<&ContactSchur>,
+    observer: &mut dyn Observer<f64>,
+) -> Result<(Mat<f64>, Mat<f64>), ContactError> {
+    let m = spring.len();
+    let n = model.dof_count();
     if observer.interrupted() {
         return Err(ContactError::Interrupted { iterations: 0 });
     }
@@ -239,15 +265,30 @@ pub(super) struct ContactSchur {
     dof_at: Vec<usize>,
 }
 
-impl ContactSchur {
-    /// The Schur complements of `model`'s bulk; `None` when the interior needs pivoting
-    /// across fronts (condense by solves then).
+/// What [`ContactSchur`] is computed from, gathered from the model: the bordered matrix
+/// `E = [A 0; N 1]` (pattern and values), the trailing unknowns `T` and the interior's order.
+/// Plain data (`Send`), so that the partial factorisation ([`SchurInput::compute`]) can run on
+/// another thread beside the factorisation of the stabilised bulk.
+pub(super) struct SchurInput {
+    pattern: capstan_solvers::SparsityPattern,
+    values: Vec<f64>,
+    trailing: Vec<usize>,
+    order: Option<Vec<usize>>,
+    /// `t = |T|` without the normal-stress rows.
+    t: usize,
+    m: usize,
+    row_at: Vec<usize>,
+    dof_at: Vec<usize>,
+}
+
+impl SchurInput {
+    /// Gathers the input of [`ContactSchur`] from `model`.
     ///
     /// # Errors
-    /// A singular interior; faer's analysis out of memory.
+    /// Pattern errors; the operator's ordering failing.
     pub(super) fn new<D: ContactOperator, L: FrictionLaw<f64>>(
         model: &ContactModel<D, L>,
-    ) -> Result<Option<Self>, ContactError> {
+    ) -> Result<Self, ContactError> {
         let system = model.system();
         let n = model.dof_count();
         let m = model.active().len();
@@ -297,18 +338,55 @@ impl ContactSchur {
                 order.extend(n..n + m);
                 order
             });
-        let Some(schur) =
-            capstan_solvers::schur_complement(&pattern, &placed, &trailing, order.as_deref())?
+        Ok(Self {
+            pattern,
+            values: placed,
+            trailing,
+            order,
+            t,
+            m,
+            row_at,
+            dof_at,
+        })
+    }
+
+    /// The Schur complements (one partial factorisation); `None` when the interior needs
+    /// pivoting across fronts (condense by solves then).
+    ///
+    /// # Errors
+    /// A singular interior; faer's analysis out of memory.
+    pub(super) fn compute(self) -> Result<Option<ContactSchur>, ContactError> {
+        let Some(schur) = capstan_solvers::schur_complement(
+            &self.pattern,
+            &self.values,
+            &self.trailing,
+            self.order.as_deref(),
+        )?
         else {
             return Ok(None);
         };
+        let (t, m) = (self.t, self.m);
         let size = t + m;
-        Ok(Some(Self {
+        Ok(Some(ContactSchur {
             s: Mat::from_fn(t, t, |i, j| schur[i + size * j]),
             k: Mat::from_fn(m, t, |i, j| schur[t + i + size * j]),
-            row_at,
-            dof_at,
+            row_at: self.row_at,
+            dof_at: self.dof_at,
         }))
+    }
+}
+
+impl ContactSchur {
+    /// The Schur complements of `model`'s bulk; `None` when the interior needs pivoting
+    /// across fronts (condense by solves then).
+    ///
+    /// # Errors
+    /// A singular interior; faer's analysis out of memory.
+    #[cfg(test)]
+    pub(super) fn new<D: ContactOperator, L: FrictionLaw<f64>>(
+        model: &ContactModel<D, L>,
+    ) -> Result<Option<Self>, ContactError> {
+        SchurInput::new(model)?.compute()
     }
 
     /// `(P Z, N Z)` for the spring `spring` (see [`ContactSchur`]).

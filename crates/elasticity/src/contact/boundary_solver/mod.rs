@@ -14,7 +14,9 @@ pub use settings::{ContactSettings, SetupStats, SlidingMode};
 use std::sync::{Arc, Mutex};
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::{LinearBackend, LinearSettings, LinearSolver, Observer, SilentObserver};
+use capstan_solvers::{
+    LinearBackend, LinearSettings, LinearSolver, Observer, Progress, SetUpPhase, SilentObserver,
+};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 
@@ -25,8 +27,8 @@ use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use condensation::{
-    Condensation, ContactSchur, condense, frictionless_operator, largest_singular_value, project,
-    row_max,
+    Condensation, SchurInput, condense, condense_factored, factor_stabilised,
+    frictionless_operator, largest_singular_value, project, row_max,
 };
 
 /// A converged condensed Newton run: `(iterations, relative residual)`.
@@ -181,17 +183,33 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         // factorisation, no solves); other backends and 3-D bodies by `m` solves (on a 3-D Q2
         // box with a rigid sliding mode the Schur route moved a limiting ratio by 2%: the
         // near-singular frictionless operator amplifies its round-off; to be understood)
-        let schur =
+        let schur_input =
             if settings.linear == LinearBackend::LU && model.discretisation().plane().is_some() {
-                ContactSchur::new(model)?
+                Some(SchurInput::new(model)?)
             } else {
                 None
             };
+        // the partial factorisation for the Schur complements on a second thread, beside the
+        // factorisation of the stabilised bulk on this one
+        observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 0, 1));
+        let (schur, factored) = std::thread::scope(|scope| {
+            let side = schur_input.map(|input| scope.spawn(move || input.compute()));
+            let factored = factor_stabilised(model, ext, &values, &spring, &mut *lu);
+            let schur = side.map(|side| {
+                side.join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
+            });
+            (schur, factored)
+        });
+        factored?;
+        let schur = schur.transpose()?.flatten();
+        observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 1, 1));
+        let (mut pz, mut nz) =
+            condense_factored(model, &spring, &mut *lu, schur.as_ref(), observer)?;
         // `(P Z, N Z)` for a spring, with the bulk factorised (again) for it
         let mut condense_with = |spring: &[f64], lu: &mut dyn LinearSolver<f64>| {
             condense(model, ext, &values, spring, lu, schur.as_ref(), observer)
         };
-        let (mut pz, mut nz) = condense_with(&spring, &mut lu)?;
         let mut factorisations = 1;
         // A spring far stiffer than every boundary mode of the body (thin bodies: the diagonal
         // grows like 1 / dx3^2, the boundary stiffness like h) makes `s - C x` cancel to
