@@ -18,7 +18,7 @@ use crate::error::CliError;
 /// `shape` names a registered obstacle ([`capstan_geometry::registry`]); the fields below are
 /// the parameters of the paper's obstacles, and any other key of the table (a parameter of an
 /// obstacle registered elsewhere, a number or an expression) is in `extra`. Unknown keys are
-/// refused by the scene's key check ([`known_keys`]).
+/// refused by the scene's key check ([`known_keys`](super::known_keys)).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct ObstacleSpec {
@@ -112,7 +112,7 @@ impl ObstacleSpec {
 
 /// `[friction]`.
 ///
-/// Unknown keys are refused by the scene's key check ([`known_keys`]: the fields below and the
+/// Unknown keys are refused by the scene's key check ([`known_keys`](super::known_keys): the fields below and the
 /// parameters of every registered law, [`capstan_friction::registry`]), so `extra` holds only
 /// parameters of laws registered outside the friction crate.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
