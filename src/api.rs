@@ -208,7 +208,7 @@ pub fn write_contact(
     run: &ContactRun,
     scene: &Scene,
 ) -> Result<(), CliError> {
-    commands::contact::write_run(dir, report, run, scene)
+    commands::contact_output::write_run(dir, report, run, scene)
 }
 
 /// The 3-D body's hexahedra (node positions in space), its displacement, strain and stress at

@@ -492,12 +492,12 @@ fn contact(args: &ContactArgs) -> Result<String, CliError> {
         _petsc = _petsc.map(crate::scale::petsc::PetscRun::end_unless_root);
     }
     if let Some(dir) = &args.out {
-        commands::contact::write_run(dir, &report, &run, &scene)?;
+        commands::contact_output::write_run(dir, &report, &run, &scene)?;
     }
     render(
         args.scene.json,
         &Stamped::new(&report, Some(&scene)),
-        || Ok(commands::contact::table(&report)),
+        || Ok(commands::contact_output::table(&report)),
     )
 }
 
@@ -615,6 +615,6 @@ fn default_job() -> Result<String, CliError> {
          Membrane (generalised capstan equation, section 2)\n{}\n\
          Thick body (Kikuchi-Oden regularised Coulomb, section 3)\n{}",
         commands::tension::table(&tension, &scene),
-        commands::contact::table(&contact)
+        commands::contact_output::table(&contact)
     ))
 }

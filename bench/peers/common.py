@@ -64,3 +64,57 @@ def lame_parameters(young, poisson):
         young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson)),
         young / (2.0 * (1.0 + poisson)),
     )
+
+
+def one_thread():
+    """One thread for the BLAS and OpenMP pools of the peer (call before importing it)."""
+    import os
+
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[var] = "1"
+
+
+def fastest_solve(a, solve):
+    """The fastest of the runs of `solve()` (returning `(solution, dofs, global_dofs, t)`,
+    `t` the list of timed phases) that the repeat rule in `a` asks for, with the growth of the
+    peak resident set over that run in MiB appended: `((solution, dofs, global_dofs, t,
+    peak_mib), runs)`."""
+
+    def once():
+        reset_peak()
+        base = vm_kib("VmRSS")
+        gfu, dofs, global_dofs, t = solve()
+        return gfu, dofs, global_dofs, t, max(vm_kib("VmHWM") - base, 0) / 1024.0
+
+    return fastest(a, once, lambda r: sum(r[3]))
+
+
+def level_record(a, m, mesh, best, runs, mesh_times, version, **extra):
+    """The JSON record of one level of an NGSolve peer: `best` and `runs` from
+    `fastest_solve`, `mesh_times` = (meshing, curving) seconds (not timed), the timed phases
+    `t` = (setup, assemble, solve), and the script's own keys in `extra` (backend, maxh,
+    error, ...)."""
+    _, dofs, global_dofs, t, peak_mib = best
+    record = {
+        "method": f"ngsolve-p{a.order}",
+        "backend": a.inverse,
+        "order": a.order,
+        "m": m,
+        "n2": mesh.ne,
+        "n3": 0,
+        "elements": mesh.ne,
+        "vertices": mesh.nv,
+        "dofs": dofs,
+        "global_dofs": global_dofs,
+        "setup_seconds": t[0],
+        "assemble_seconds": t[1],
+        "solve_seconds": t[2],
+        "seconds": sum(t),
+        "mesh_seconds": mesh_times[0],
+        "curve_seconds": mesh_times[1],
+        "peak_mib": peak_mib,
+        "repeats": runs,
+        "version": version,
+    }
+    record.update(extra)
+    return record

@@ -47,10 +47,15 @@ the factorised system; setup: space, pins and forms; assemble: K and f; solve: f
 and solve with the condensation steps).
 """
 
-import os
+from common import (
+    add_lame_args,
+    fastest_solve,
+    lame_parameters,
+    level_record,
+    one_thread,
+)
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ[_var] = "1"
+one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402
@@ -79,17 +84,8 @@ from ngsolve import (  # noqa: E402
 )
 from ngsolve import Grad  # noqa: E402
 
-from common import add_lame_args, fastest, reset_peak, vm_kib  # noqa: E402
 
 ngsolve.SetNumThreads(1)
-
-
-def lame_parameters(young, poisson):
-    """Plane strain (as scikit-fem's `lame_parameters`)."""
-    return (
-        young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson)),
-        young / (2.0 * (1.0 + poisson)),
-    )
 
 
 def annulus_mesh(m, order, radius, thickness):
@@ -172,44 +168,17 @@ def relative_error(mesh, gfu, order, lam, mu, radius, thickness, pressure):
 
 def run_level(a, m, lam, mu):
     mesh, pins, t_mesh, t_curve = annulus_mesh(m, a.order, a.radius, a.thickness)
-
-    def once():
-        reset_peak()
-        base = vm_kib("VmRSS")
-        gfu, dofs, global_dofs, t = solve(
-            mesh, pins, a.order, lam, mu, a.pressure, a.inverse, a.condense
-        )
-        peak_mib = max(vm_kib("VmHWM") - base, 0) / 1024.0
-        return (gfu, dofs, global_dofs, t, peak_mib)
-
-    best, runs = fastest(a, once, lambda r: sum(r[3]))
-    gfu, dofs, global_dofs, t, peak_mib = best
-    error = relative_error(
-        mesh, gfu, a.order, lam, mu, a.radius, a.thickness, a.pressure
+    best, runs = fastest_solve(
+        a,
+        lambda: solve(mesh, pins, a.order, lam, mu, a.pressure, a.inverse, a.condense),
     )
-    return {
-        "method": f"ngsolve-p{a.order}",
-        "backend": a.inverse + ("" if a.condense else "-full"),
-        "order": a.order,
-        "m": m,
-        "maxh": a.thickness / m,
-        "n2": mesh.ne,
-        "n3": 0,
-        "elements": mesh.ne,
-        "vertices": mesh.nv,
-        "dofs": dofs,
-        "global_dofs": global_dofs,
-        "setup_seconds": t[0],
-        "assemble_seconds": t[1],
-        "solve_seconds": t[2],
-        "seconds": sum(t),
-        "mesh_seconds": t_mesh,
-        "curve_seconds": t_curve,
-        "error": float(error),
-        "peak_mib": peak_mib,
-        "repeats": runs,
-        "version": ngsolve.__version__,
-    }
+    error = relative_error(
+        mesh, best[0], a.order, lam, mu, a.radius, a.thickness, a.pressure
+    )
+    record = level_record(a, m, mesh, best, runs, (t_mesh, t_curve), ngsolve.__version__)
+    backend = a.inverse + ("" if a.condense else "-full")
+    record.update(backend=backend, maxh=a.thickness / m, error=float(error))
+    return record
 
 
 def main():

@@ -42,10 +42,15 @@ Usage:
 Prints one JSON object per line as ngsolve_lame.py.
 """
 
-import os
+from common import (
+    add_repeat_args,
+    fastest_solve,
+    lame_parameters,
+    level_record,
+    one_thread,
+)
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ[_var] = "1"
+one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402
@@ -73,7 +78,6 @@ from ngsolve import (  # noqa: E402
     y,
 )
 
-from common import add_repeat_args, fastest, lame_parameters, reset_peak, vm_kib  # noqa: E402
 
 ngsolve.SetNumThreads(1)
 
@@ -189,39 +193,13 @@ def relative_error(mesh, gfu, exact, order):
 
 def run_level(a, m, lam, mu, expr):
     mesh, exact, grad, t_mesh, t_curve, _deformation = mms_mesh(m, a.order, expr)
-
-    def once():
-        reset_peak()
-        base = vm_kib("VmRSS")
-        gfu, dofs, global_dofs, t = solve(mesh, a.order, lam, mu, exact, grad, a.inverse)
-        return gfu, dofs, global_dofs, t, max(vm_kib("VmHWM") - base, 0) / 1024.0
-
-    best, runs = fastest(a, once, lambda r: sum(r[3]))
-    gfu, dofs, global_dofs, t, peak_mib = best
-    error = relative_error(mesh, gfu, exact, a.order)
-    return {
-        "method": f"ngsolve-p{a.order}",
-        "backend": a.inverse,
-        "order": a.order,
-        "m": m,
-        "maxh": THICKNESS / m,
-        "n2": mesh.ne,
-        "n3": 0,
-        "elements": mesh.ne,
-        "vertices": mesh.nv,
-        "dofs": dofs,
-        "global_dofs": global_dofs,
-        "setup_seconds": t[0],
-        "assemble_seconds": t[1],
-        "solve_seconds": t[2],
-        "seconds": sum(t),
-        "mesh_seconds": t_mesh,
-        "curve_seconds": t_curve,
-        "error": float(error),
-        "peak_mib": peak_mib,
-        "repeats": runs,
-        "version": ngsolve.__version__,
-    }
+    best, runs = fastest_solve(
+        a, lambda: solve(mesh, a.order, lam, mu, exact, grad, a.inverse)
+    )
+    error = relative_error(mesh, best[0], exact, a.order)
+    record = level_record(a, m, mesh, best, runs, (t_mesh, t_curve), ngsolve.__version__)
+    record.update(maxh=THICKNESS / m, error=float(error))
+    return record
 
 
 def main():

@@ -46,8 +46,15 @@ Prints one JSON object per line as ngsolve_lame.py (m: the RefineHP levels), wit
 
 import os
 
-for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ[_var] = "1"
+from common import (
+    add_repeat_args,
+    fastest_solve,
+    lame_parameters,
+    level_record,
+    one_thread,
+)
+
+one_thread()
 
 import argparse  # noqa: E402
 import json  # noqa: E402
@@ -78,7 +85,6 @@ from ngsolve import (  # noqa: E402
 )
 from ngsolve.fem import specialcf  # noqa: E402
 
-from common import add_repeat_args, fastest, lame_parameters, reset_peak, vm_kib  # noqa: E402
 
 ngsolve.SetNumThreads(1)
 
@@ -161,48 +167,18 @@ def quadrature_points(mesh, gfu, order):
 def run_level(a, m, lam, mu):
     corner_maxh = a.corner_maxh / m if m > 0 else 1e99
     mesh, t_mesh, t_curve = paper_mesh(a.maxh, m, a.factor, a.order, corner_maxh)
-
-    def once():
-        reset_peak()
-        base = vm_kib("VmRSS")
-        gfu, dofs, global_dofs, t = solve(
-            mesh, a.order, lam, mu, a.tau0, a.tau_max, a.inverse
-        )
-        return gfu, dofs, global_dofs, t, max(vm_kib("VmHWM") - base, 0) / 1024.0
-
-    best, runs = fastest(a, once, lambda r: sum(r[3]))
-    gfu, dofs, global_dofs, t, peak_mib = best
+    best, runs = fastest_solve(
+        a, lambda: solve(mesh, a.order, lam, mu, a.tau0, a.tau_max, a.inverse)
+    )
     points = None
     if a.error_points:
-        rows = quadrature_points(mesh, gfu, 2 * a.order + 4)
+        rows = quadrature_points(mesh, best[0], 2 * a.order + 4)
         points = os.path.join(a.error_points, f"ngsolve-p{a.order}-m{m}.f64")
         rows.astype("<f8").tofile(points)
-    return {
-        "method": f"ngsolve-p{a.order}",
-        "backend": a.inverse,
-        "order": a.order,
-        "m": m,
-        "maxh": a.maxh,
-        "factor": a.factor,
-        "corner_maxh": corner_maxh if m > 0 else None,
-        "n2": mesh.ne,
-        "n3": 0,
-        "elements": mesh.ne,
-        "vertices": mesh.nv,
-        "dofs": dofs,
-        "global_dofs": global_dofs,
-        "setup_seconds": t[0],
-        "assemble_seconds": t[1],
-        "solve_seconds": t[2],
-        "seconds": sum(t),
-        "mesh_seconds": t_mesh,
-        "curve_seconds": t_curve,
-        "error": None,
-        "error_points": points,
-        "peak_mib": peak_mib,
-        "repeats": runs,
-        "version": ngsolve.__version__,
-    }
+    record = level_record(a, m, mesh, best, runs, (t_mesh, t_curve), ngsolve.__version__)
+    record.update(maxh=a.maxh, factor=a.factor, error=None, error_points=points)
+    record.update(corner_maxh=corner_maxh if m > 0 else None)
+    return record
 
 
 def main():

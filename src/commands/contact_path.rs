@@ -156,30 +156,12 @@ fn step_report(step: usize, s: &PathStep) -> ContactPathStep {
         slip_fraction: sol.slip_fraction,
         stick_nodes: count(|x| x == 0),
         slip_nodes: count(|x| x == 1 || x == -1),
-        slip_intervals: sol
-            .slip_intervals()
-            .map(|i| IntervalReport {
-                state: i.state,
-                from: i.from,
-                to: i.to,
-                nodes: i.nodes,
-            })
-            .collect(),
+        slip_intervals: sol.slip_intervals().map(IntervalReport::of).collect(),
         dissipation: s.dissipation,
         newton_iterations: sol.stats.newton_iterations,
         residual: sol.stats.residual,
         solve_seconds: s.seconds,
-        contact: ContactArrays {
-            x2: c.x2.clone(),
-            v2: c.v2.clone(),
-            v3: c.v3.clone(),
-            normal_stress: c.normal_stress.clone(),
-            shear_stress: c.shear_stress.clone(),
-            state: c.state.clone(),
-            slip: c.slip.clone(),
-            friction_traction: c.friction_traction.clone(),
-            separated: c.separated.clone(),
-        },
+        contact: ContactArrays::of(c),
     }
 }
 

@@ -160,16 +160,7 @@ pub fn report_for(scene: &Scene, model: FrictionModel) -> Result<InferMuReport, 
     match model {
         FrictionModel::Capstan => {}
         FrictionModel::Membrane => {
-            let profile = obstacle
-                .is_prism()
-                .then(|| obstacle.profile())
-                .flatten()
-                .ok_or_else(|| CliError::Scene {
-                origin: "obstacle.shape".into(),
-                message:
-                    "the membrane displacement model needs a prism (cylinder, ellipse, prism or a registered prism)"
-                        .into(),
-            })?;
+            let profile = crate::commands::membrane_path::membrane_profile(&obstacle)?;
             let b = &scene.body;
             let m = membrane_mu(
                 &profile,

@@ -98,14 +98,7 @@ pub fn report_observed(
         })?;
     check_no_loads(scene)?;
     let obstacle = scene.obstacle.build()?;
-    let profile = obstacle
-        .is_prism()
-        .then(|| obstacle.profile())
-        .flatten()
-        .ok_or_else(|| CliError::Scene {
-            origin: "obstacle.shape".into(),
-            message: "the membrane displacement model needs a prism (cylinder, ellipse, prism or a registered prism)".into(),
-        })?;
+    let profile = membrane_profile(&obstacle)?;
     let (m, b) = (&scene.membrane, &scene.body);
     let stiffness = b.young * b.thickness / (1.0 - b.poisson * b.poisson);
     let problem = MembraneDisplacementProblem {
@@ -287,4 +280,21 @@ pub fn write_out(dir: &Path, r: &MembranePathReport, scene: &Scene) -> Result<()
         .series(Series::line("path", x, y));
     out.write_plot("hysteresis", &plot)?;
     Ok(())
+}
+
+/// The profile curve of a prism obstacle, which the membrane displacement model needs.
+///
+/// # Errors
+/// [`CliError::Scene`] naming `obstacle.shape` for an obstacle that is not a prism.
+pub(crate) fn membrane_profile(
+    obstacle: &capstan_geometry::Obstacle,
+) -> Result<capstan_geometry::ObstacleProfile<'_>, CliError> {
+    obstacle
+        .is_prism()
+        .then(|| obstacle.profile())
+        .flatten()
+        .ok_or_else(|| CliError::Scene {
+            origin: "obstacle.shape".into(),
+            message: "the membrane displacement model needs a prism (cylinder, ellipse, prism or a registered prism)".into(),
+        })
 }

@@ -4,6 +4,7 @@ pub mod accuracy;
 pub mod bench;
 pub mod compare;
 pub mod contact;
+pub mod contact_output;
 pub mod contact_path;
 pub mod export_system;
 pub mod geometry;

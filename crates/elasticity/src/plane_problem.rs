@@ -16,6 +16,30 @@ use crate::shell_geometry::{SharedChart, ShellGeometry};
 /// A body force density: covariant components `[f_2, f_3]` at `(x2, x3)`.
 pub type BodyForce = Arc<dyn Fn([f64; 2]) -> [f64; 2] + Send + Sync>;
 
+/// The load of the body force `f` at one quadrature point `x` of weight `w`:
+/// `[f_2(x) sqrt(g) w, f_3(x) sqrt(g) w]`, zero without a body force.
+///
+/// # Errors
+/// [`ElasticityError::NonFinite`] where `f(x)` is not finite.
+pub(crate) fn body_force_load(
+    f: Option<&BodyForce>,
+    x: [f64; 2],
+    sqrt_g: f64,
+    w: f64,
+) -> Result<[f64; 2], ElasticityError> {
+    let Some(f) = f else {
+        return Ok([0.0; 2]);
+    };
+    let fx = f(x);
+    if !(fx[0].is_finite() && fx[1].is_finite()) {
+        return Err(ElasticityError::NonFinite {
+            what: "body force",
+            at: x,
+        });
+    }
+    Ok([fx[0] * sqrt_g * w, fx[1] * sqrt_g * w])
+}
+
 /// A plane-strain elasticity problem on the parameter rectangle of a shell chart `G`: what
 /// [`crate::FiniteDifferenceNavier`] and [`crate::finite_element::HighOrderNavier`] (Q1, Q2
 /// and Qp) are built from.

@@ -286,15 +286,8 @@ fn membrane_path(
     callback: Option<Py<PyAny>>,
 ) -> PyResult<(String, Vec<f64>, Vec<(String, Vec<f64>)>)> {
     let s = scene.scene.clone();
-    let error = Arc::new(Mutex::new(None));
-    let seen = Arc::clone(&error);
-    let result = run(py, move |stop| {
-        let mut observer = PyObserver {
-            callback,
-            error: seen,
-            stop,
-        };
-        let r = api::membrane_path_observed(&s, &mut observer)?;
+    run_observed(py, callback, move |observer| {
+        let r = api::membrane_path_observed(&s, observer)?;
         let names = [
             "displacement",
             "slip_increment",
@@ -315,11 +308,7 @@ fn membrane_path(
             })
             .collect();
         Ok((stamped(&r, &s)?, r.theta.clone(), profiles))
-    });
-    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
-        return Err(e);
-    }
-    result
+    })
 }
 
 /// `capstan contact-path --json`: the thick body along `loads.path`, each step's contact
@@ -328,20 +317,9 @@ fn membrane_path(
 #[pyo3(signature = (scene, callback = None))]
 fn contact_path(py: Python<'_>, scene: &PyScene, callback: Option<Py<PyAny>>) -> PyResult<String> {
     let s = scene.scene.clone();
-    let error = Arc::new(Mutex::new(None));
-    let seen = Arc::clone(&error);
-    let result = run(py, move |stop| {
-        let mut observer = PyObserver {
-            callback,
-            error: seen,
-            stop,
-        };
-        stamped(&api::contact_path_observed(&s, &mut observer)?, &s)
-    });
-    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
-        return Err(e);
-    }
-    result
+    run_observed(py, callback, move |observer| {
+        stamped(&api::contact_path_observed(&s, observer)?, &s)
+    })
 }
 
 /// The geometry at the points `x2`: the keys of `capstan geometry --json` and the tensors.
@@ -379,6 +357,29 @@ fn sweep(
 /// Forwards progress to a Python callback (under a brief GIL acquire) and stops the solve on
 /// Ctrl-C (the waiting interpreter sets `stop`) or an exception in the callback (kept in `error`
 /// and raised when the solve returns).
+/// [`run`] with a [`PyObserver`] over `callback` handed to `f`: where the callback raised,
+/// that Python error is returned, not the solver's `Interrupted`.
+fn run_observed<T: Send + 'static>(
+    py: Python<'_>,
+    callback: Option<Py<PyAny>>,
+    f: impl FnOnce(&mut PyObserver<'_>) -> Result<T, CliError> + Send + 'static,
+) -> PyResult<T> {
+    let error = Arc::new(Mutex::new(None));
+    let seen = Arc::clone(&error);
+    let result = run(py, move |stop| {
+        let mut observer = PyObserver {
+            callback,
+            error: seen,
+            stop,
+        };
+        f(&mut observer)
+    });
+    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
+        return Err(e);
+    }
+    result
+}
+
 struct PyObserver<'a> {
     callback: Option<Py<PyAny>>,
     error: Arc<Mutex<Option<PyErr>>>,
@@ -467,15 +468,8 @@ fn contact<'py>(
     Vec<usize>,
 )> {
     let s = scene.scene.clone();
-    let error = Arc::new(Mutex::new(None));
-    let caught = Arc::clone(&error);
-    let r = run(py, move |stop: &AtomicBool| {
-        let mut observer = PyObserver {
-            callback,
-            error: caught,
-            stop,
-        };
-        let (report, run) = api::contact_observed(&s, &mut observer)?;
+    let r = run_observed(py, callback, move |observer| {
+        let (report, run) = api::contact_observed(&s, observer)?;
         if let Some(dir) = &out {
             api::write_contact(dir, &report, &run, &s)?;
         }
@@ -506,10 +500,6 @@ fn contact<'py>(
             vec![grid.n2(), grid.n3()],
         ))
     });
-    if let Some(e) = error.lock().ok().and_then(|mut e| e.take()) {
-        // the callback raised: that error, not the solver's `Interrupted`
-        return Err(e);
-    }
     let (json, fields, shape) = r?;
     let fields = fields
         .into_iter()

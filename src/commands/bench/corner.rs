@@ -6,15 +6,13 @@
 //! condensation and skeleton assembly, analyse + factor + solve + interior recovery; error
 //! against the graded reference by Gauss quadrature over the run's own elements.
 
-use std::time::Instant;
-
 use capstan_elasticity::finite_element::{CornerRefinedNavier, CornerSettings};
 use capstan_elasticity::samples::PaperEllipse;
-use capstan_elasticity::solvers::SparseCholesky;
 use capstan_elasticity::studies::paper_parts;
 use capstan_elasticity::verification::GridLevel;
 
-use super::{Problem, REPEAT_RULE, Reference, Run, reset_peak, status_kib};
+use super::high_order::timed_condensed;
+use super::{Problem, REPEAT_RULE, Reference, Run};
 use crate::error::CliError;
 
 /// Ratio of successive corner layers (measured on `paper`, docs/high-order.md).
@@ -49,45 +47,17 @@ pub(super) fn run_corner(
     use_vmhwm: bool,
 ) -> Result<Run, CliError> {
     REPEAT_RULE.fastest(|| {
-        if use_vmhwm {
-            reset_peak();
-        }
-        let base = status_kib("VmRSS:").unwrap_or(0.0);
-        let start = Instant::now();
-        // the grid only gives the rectangle
-        let parts = paper_parts(&PaperEllipse::default(), GridLevel { n2: 3, n3: 3 })?;
-        let op = CornerRefinedNavier::new(parts, corner_settings(p, layers))?;
-        let t_setup = start.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let condensed = op.condensed_system()?;
-        let t_assemble = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let u = condensed.system.solve(&mut SparseCholesky::default())?;
-        let v = op.recover(&condensed, &u)?;
-        let t_solve = t.elapsed().as_secs_f64();
-        let total = start.elapsed().as_secs_f64();
-        let peak_mib = if use_vmhwm {
-            (status_kib("VmHWM:").unwrap_or(0.0) - base).max(0.0) / 1024.0
-        } else {
-            (12.0 * condensed.system.pattern.nnz() as f64 + 40.0 * op.dof_count() as f64)
-                / 1_048_576.0
-        };
-        let e = op.displacement_errors(&v, reference)?;
+        let (op, t) = timed_condensed(use_vmhwm, reference, || {
+            // the grid only gives the rectangle
+            let parts = paper_parts(&PaperEllipse::default(), GridLevel { n2: 3, n3: 3 })?;
+            Ok(CornerRefinedNavier::new(parts, corner_settings(p, layers))?)
+        })?;
         let name = capstan_elasticity::finite_element::high_order::order_name(p);
-        Ok(Run {
-            problem: Problem::Paper.name(),
-            method: format!("{name}-corner"),
-            backend: "cholesky".to_owned(),
-            n2: op.element_count(),
-            n3: layers,
-            dofs: op.dof_count(),
-            threads: rayon::current_num_threads(),
-            setup_seconds: t_setup,
-            assemble_seconds: t_assemble,
-            solve_seconds: t_solve,
-            seconds: total,
-            error: e.l2 / e.l2_exact,
-            peak_mib,
-        })
+        Ok(t.run(
+            Problem::Paper,
+            format!("{name}-corner"),
+            [op.element_count(), layers],
+            op.dof_count(),
+        ))
     })
 }

@@ -13,8 +13,11 @@
 
 use std::time::Instant;
 
+use capstan_elasticity::LinearSystem;
+use capstan_elasticity::finite_element::high_order::CondensedSystem;
+use capstan_elasticity::finite_element::high_order::corner_mesh::CornerCondensed;
 use capstan_elasticity::finite_element::{
-    Grading, HighOrderNavier, QpSettings, VolumetricIntegration,
+    CornerRefinedNavier, Grading, HighOrderNavier, QpSettings, VolumetricIntegration,
 };
 use capstan_elasticity::samples::PaperEllipse;
 use capstan_elasticity::solvers::SparseCholesky;
@@ -153,48 +156,150 @@ pub(super) fn run_qp(
     use_vmhwm: bool,
 ) -> Result<Run, CliError> {
     REPEAT_RULE.fastest(|| {
-        if use_vmhwm {
-            reset_peak();
-        }
-        let base = status_kib("VmRSS:").unwrap_or(0.0);
-        let start = Instant::now();
-        let op = build(problem, p, mesh)?;
-        let t_setup = start.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let condensed = op.condensed_system()?;
-        let t_assemble = t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        let u = condensed.system.solve(&mut SparseCholesky::default())?;
-        let v = op.recover(&condensed, &u)?;
-        let t_solve = t.elapsed().as_secs_f64();
-        let total = start.elapsed().as_secs_f64();
-        let peak_mib = if use_vmhwm {
-            (status_kib("VmHWM:").unwrap_or(0.0) - base).max(0.0) / 1024.0
-        } else {
-            (12.0 * condensed.system.pattern.nnz() as f64 + 40.0 * op.dof_count() as f64)
-                / 1_048_576.0
-        };
-        let e = op.displacement_errors(&v, reference)?;
-        let error = e.l2 / e.l2_exact;
+        let (op, t) = timed_condensed(use_vmhwm, reference, || Ok(build(problem, p, mesh)?))?;
         let grid = op.grid();
         let name = capstan_elasticity::finite_element::high_order::order_name(p);
-        Ok(Run {
-            problem: problem.name(),
-            method: match mesh {
-                QpMesh::Uniform(_) => name.to_owned(),
-                QpMesh::Graded(_) => format!("{name}-graded"),
-            },
-            backend: "cholesky".to_owned(),
-            n2: grid.n2(),
-            n3: grid.n3(),
-            dofs: op.dof_count(),
-            threads: rayon::current_num_threads(),
-            setup_seconds: t_setup,
-            assemble_seconds: t_assemble,
-            solve_seconds: t_solve,
-            seconds: total,
-            error,
-            peak_mib,
-        })
+        let method = match mesh {
+            QpMesh::Uniform(_) => name.to_owned(),
+            QpMesh::Graded(_) => format!("{name}-graded"),
+        };
+        Ok(t.run(problem, method, [grid.n2(), grid.n3()], op.dof_count()))
     })
+}
+
+/// An operator the bench solves by static condensation: the tensor-grid Qp
+/// ([`HighOrderNavier`]) and the corner mesh ([`CornerRefinedNavier`]).
+pub(super) trait CondensedSolve {
+    /// The condensed skeleton system and the element factors.
+    type Condensed;
+    /// Condenses the element interiors.
+    fn condense(&self) -> Result<Self::Condensed, ElasticityError>;
+    /// The skeleton system of `condensed`.
+    fn skeleton(condensed: &Self::Condensed) -> &LinearSystem;
+    /// Every node's displacement from the skeleton solution `u`.
+    fn recover(&self, condensed: &Self::Condensed, u: &[f64]) -> Result<Vec<f64>, ElasticityError>;
+    /// Unknowns of the whole system.
+    fn dofs(&self) -> usize;
+    /// `||v - reference|| / ||reference||` in L2 over the operator's elements.
+    fn relative_error(&self, v: &[f64], reference: Reference<'_>) -> Result<f64, ElasticityError>;
+}
+
+impl CondensedSolve for HighOrderNavier<SampleChart> {
+    type Condensed = CondensedSystem;
+    fn condense(&self) -> Result<CondensedSystem, ElasticityError> {
+        self.condensed_system()
+    }
+    fn skeleton(condensed: &CondensedSystem) -> &LinearSystem {
+        &condensed.system
+    }
+    fn recover(&self, condensed: &CondensedSystem, u: &[f64]) -> Result<Vec<f64>, ElasticityError> {
+        HighOrderNavier::recover(self, condensed, u)
+    }
+    fn dofs(&self) -> usize {
+        self.dof_count()
+    }
+    fn relative_error(&self, v: &[f64], reference: Reference<'_>) -> Result<f64, ElasticityError> {
+        let e = self.displacement_errors(v, reference)?;
+        Ok(e.l2 / e.l2_exact)
+    }
+}
+
+impl CondensedSolve for CornerRefinedNavier<SampleChart> {
+    type Condensed = CornerCondensed;
+    fn condense(&self) -> Result<CornerCondensed, ElasticityError> {
+        self.condensed_system()
+    }
+    fn skeleton(condensed: &CornerCondensed) -> &LinearSystem {
+        &condensed.system
+    }
+    fn recover(&self, condensed: &CornerCondensed, u: &[f64]) -> Result<Vec<f64>, ElasticityError> {
+        CornerRefinedNavier::recover(self, condensed, u)
+    }
+    fn dofs(&self) -> usize {
+        self.dof_count()
+    }
+    fn relative_error(&self, v: &[f64], reference: Reference<'_>) -> Result<f64, ElasticityError> {
+        let e = self.displacement_errors(v, reference)?;
+        Ok(e.l2 / e.l2_exact)
+    }
+}
+
+/// The times (s), peak memory (MiB) and error of one condensed run.
+pub(super) struct CondensedTimes {
+    /// Building the operator.
+    pub setup: f64,
+    /// Condensation and skeleton assembly.
+    pub assemble: f64,
+    /// Analyse, factor, solve and interior recovery.
+    pub solve: f64,
+    /// All three.
+    pub total: f64,
+    /// Growth of VmHWM over the run, or the estimate `12 nnz + 40 dofs` bytes.
+    pub peak_mib: f64,
+    /// Relative L2 error against `reference`.
+    pub error: f64,
+}
+
+impl CondensedTimes {
+    /// The bench row of this run on `problem` (`n`: the row's `n2`, `n3`; backend
+    /// `cholesky`, the threads of the current rayon pool).
+    pub(super) fn run(self, problem: Problem, method: String, n: [usize; 2], dofs: usize) -> Run {
+        Run {
+            problem: problem.name(),
+            method,
+            backend: "cholesky".to_owned(),
+            n2: n[0],
+            n3: n[1],
+            dofs,
+            threads: rayon::current_num_threads(),
+            setup_seconds: self.setup,
+            assemble_seconds: self.assemble,
+            solve_seconds: self.solve,
+            seconds: self.total,
+            error: self.error,
+            peak_mib: self.peak_mib,
+        }
+    }
+}
+
+/// One run: `build` (timed as setup), condense, solve the skeleton by sparse Cholesky and
+/// recover the interiors (timed), then the error against `reference` (not timed).
+pub(super) fn timed_condensed<O: CondensedSolve>(
+    use_vmhwm: bool,
+    reference: Reference<'_>,
+    build: impl FnOnce() -> Result<O, CliError>,
+) -> Result<(O, CondensedTimes), CliError> {
+    if use_vmhwm {
+        reset_peak();
+    }
+    let base = status_kib("VmRSS:").unwrap_or(0.0);
+    let start = Instant::now();
+    let op = build()?;
+    let setup = start.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let condensed = op.condense()?;
+    let assemble = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let skeleton = O::skeleton(&condensed);
+    let u = skeleton.solve(&mut SparseCholesky::default())?;
+    let v = op.recover(&condensed, &u)?;
+    let solve = t.elapsed().as_secs_f64();
+    let total = start.elapsed().as_secs_f64();
+    let peak_mib = if use_vmhwm {
+        (status_kib("VmHWM:").unwrap_or(0.0) - base).max(0.0) / 1024.0
+    } else {
+        (12.0 * skeleton.pattern.nnz() as f64 + 40.0 * op.dofs() as f64) / 1_048_576.0
+    };
+    let error = op.relative_error(&v, reference)?;
+    Ok((
+        op,
+        CondensedTimes {
+            setup,
+            assemble,
+            solve,
+            total,
+            peak_mib,
+            error,
+        },
+    ))
 }

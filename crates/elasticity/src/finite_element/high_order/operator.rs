@@ -18,7 +18,7 @@ use crate::finite_element::assembly::ElementAssembly;
 use crate::finite_element::boundary_terms::add_side_point_load;
 use crate::finite_element::element::ElementOrder;
 use crate::finite_element::volumetric::VolumetricIntegration;
-use crate::plane_problem::{BodyForce, PlaneProblem};
+use crate::plane_problem::{BodyForce, PlaneProblem, body_force_load};
 use crate::plane_strain_operator::setup_accessors;
 use crate::shell_geometry::ShellGeometry;
 
@@ -515,19 +515,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         };
         let points = self.walk_points(&gp, &gw, |p, x, w, size| {
             let k = scale_to_element(energy_matrix(p, &PLANE_STRAIN, full_lambda, mu, w), size);
-            let f = match body_force {
-                Some(f) => {
-                    let fx = f(x);
-                    if !(fx[0].is_finite() && fx[1].is_finite()) {
-                        return Err(ElasticityError::NonFinite {
-                            what: "body force",
-                            at: x,
-                        });
-                    }
-                    [fx[0] * p.sqrt_g * w, fx[1] * p.sqrt_g * w]
-                }
-                None => [0.0; 2],
-            };
+            let f = body_force_load(body_force, x, p.sqrt_g, w)?;
             Ok((k, f))
         })?;
         if body_force.is_some() {

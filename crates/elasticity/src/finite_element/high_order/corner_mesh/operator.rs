@@ -18,7 +18,7 @@ use crate::finite_element::DisplacementErrors;
 use crate::finite_element::ElementAssembly;
 use crate::finite_element::boundary_terms::add_side_point_load;
 use crate::finite_element::norms::{ElementMap, LagrangeElements, displacement_errors};
-use crate::plane_problem::PlaneProblem;
+use crate::plane_problem::{PlaneProblem, body_force_load};
 use crate::shell_geometry::ShellGeometry;
 use capstan_solvers::CondensedBlock;
 
@@ -150,19 +150,7 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
                         check_plane_strain(&pt, at)?;
                         let w = gw[q2] * gw[q3] * det;
                         let k = pull_back(energy_matrix(&pt, &PLANE_STRAIN, lambda, mu, w), &j);
-                        let f = match &body_force {
-                            Some(f) => {
-                                let fx = f(x);
-                                if !(fx[0].is_finite() && fx[1].is_finite()) {
-                                    return Err(ElasticityError::NonFinite {
-                                        what: "body force",
-                                        at: x,
-                                    });
-                                }
-                                [fx[0] * pt.sqrt_g * w, fx[1] * pt.sqrt_g * w]
-                            }
-                            None => [0.0; 2],
-                        };
+                        let f = body_force_load(body_force.as_ref(), x, pt.sqrt_g, w)?;
                         out.push((k, f));
                     }
                 }
