@@ -1,7 +1,10 @@
 //! Membrane capstan profiles of 1000 samples: the closed form (ellipse), quadrature
-//! (expression prism, no loads) and the ODE (expression prism with gravity and speed).
+//! (expression prism, no loads) and the ODE (expression prism with gravity and speed); and
+//! the default `capstan contact --json` run in process (FD 250 x 41, `auto` Newton: scene,
+//! assembly, condensation, solve and JSON output; issue 29's "fast by default" number).
 //!
-//! Run: `cargo bench --bench capstan`. Accuracy against the closed-form ellipse is printed
+//! Run: `cargo bench --bench capstan` (`cargo bench --bench capstan -- contact` for the
+//! default contact run alone). Accuracy against the closed-form ellipse is printed
 //! once before timing (the expression prism is the same ellipse given as expressions).
 
 use std::hint::black_box;
@@ -91,5 +94,22 @@ fn profiles(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, profiles);
+/// The default `capstan contact --json` (no scene file, no flags) through [`capstan::cli::run`].
+fn contact_default(c: &mut Criterion) {
+    use clap::Parser;
+    let run = || {
+        let cli = capstan::cli::Cli::parse_from(["capstan", "contact", "--json"]);
+        capstan::cli::run(cli).unwrap()
+    };
+    assert!(
+        run().contains("\"converged\": true"),
+        "the default run converges"
+    );
+    let mut g = c.benchmark_group("capstan/contact");
+    g.sample_size(10);
+    g.bench_function("default_json", |b| b.iter(|| black_box(run())));
+    g.finish();
+}
+
+criterion_group!(benches, profiles, contact_default);
 criterion_main!(benches);

@@ -2,6 +2,7 @@
 //! curvilinear Navier operator.
 
 use capstan_geometry::ShellPoint;
+use rayon::prelude::*;
 
 use crate::boundary::{Component, ComponentCondition, Side};
 use crate::continuum::check_plane_strain;
@@ -21,6 +22,18 @@ type Coefficients = [[f64; 6]; 2];
 
 /// Stencil weights `[value, d_2, d_3]` of one node in a local reconstruction.
 type Stencil = Vec<([usize; 2], [f64; 3])>;
+
+/// Rows per parallel block of [`FiniteDifferenceNavier`]'s assembly.
+const ROW_BLOCK: usize = 2048;
+
+/// The geometry cached at the grid column `x2_i` (see the fields of [`FiniteDifferenceNavier`]).
+struct CachedColumn {
+    source: Vec<Coefficients>,
+    node_scale: Vec<[f64; 3]>,
+    contact: Option<(Coefficients, f64)>,
+    east: Vec<Coefficients>,
+    north: Vec<Coefficients>,
+}
 
 /// The plane-strain curvilinear Navier operator by second-order finite differences on an
 /// `n2 x n3` grid, with the geometry cached once.
@@ -92,7 +105,7 @@ impl<G> core::fmt::Debug for FiniteDifferenceNavier<G> {
     }
 }
 
-impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
+impl<G: ShellGeometry + Sync> FiniteDifferenceNavier<G> {
     /// Builds the operator and caches the geometry at the nodes and face midpoints.
     ///
     /// # Errors
@@ -106,50 +119,78 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
         let (chart, material, grid) = (&problem.chart, problem.material, problem.grid);
         let (n2, n3) = (grid.n2(), grid.n3());
         let (dx2, dx3) = (grid.dx2(), grid.dx3());
-        let point = |x2: f64, x3: f64| -> Result<ShellPoint<f64>, ElasticityError> {
-            let at = [0.0, x2, x3];
-            let p = chart.shell_point(at)?;
-            check_plane_strain(&p, at)?;
-            Ok(p)
+        // One column of points above each `x2` (the chart's frame once per column), the
+        // columns in parallel: the same points bit for bit as `shell_point` one by one.
+        let nodes: Vec<f64> = (0..n3).map(|j| grid.x3(j)).collect();
+        let mids: Vec<f64> = (0..n3 - 1).map(|j| grid.x3(j) + 0.5 * dx3).collect();
+        let column = |x2: f64,
+                      heights: &[f64],
+                      out: &mut Vec<ShellPoint<f64>>|
+         -> Result<(), ElasticityError> {
+            out.clear();
+            chart.shell_column([0.0, x2], heights, out)?;
+            for (p, &x3) in out.iter().zip(heights) {
+                check_plane_strain(p, [0.0, x2, x3])?;
+            }
+            Ok(())
         };
         let flux = |p: &ShellPoint<f64>, a: usize| -> Coefficients {
             let c = mixed_stress_coefficients(p, &material);
             core::array::from_fn(|e| core::array::from_fn(|k| p.sqrt_g * c[k][a][e + 1]))
         };
+        let n_east = if grid.is_periodic() { n2 } else { n2 - 1 };
+        let columns = (0..n2)
+            .into_par_iter()
+            .map_init(
+                Vec::new,
+                |pts, i| -> Result<CachedColumn, ElasticityError> {
+                    column(grid.x2(i), &nodes, pts)?;
+                    let mut cached = CachedColumn {
+                        source: Vec::with_capacity(n3),
+                        node_scale: Vec::with_capacity(n3),
+                        contact: None,
+                        east: Vec::with_capacity(n3),
+                        north: Vec::with_capacity(n3 - 1),
+                    };
+                    for (j, p) in pts.iter().enumerate() {
+                        let c = mixed_stress_coefficients(p, &material);
+                        cached.source.push(core::array::from_fn(|e| {
+                            core::array::from_fn(|k| {
+                                p.sqrt_g * christoffel_contraction(p, &c[k], e + 1)
+                            })
+                        }));
+                        cached.node_scale.push([
+                            p.sqrt_g,
+                            p.inverse_metric[1][1].sqrt(),
+                            p.inverse_metric[2][2].sqrt(),
+                        ]);
+                        if j == 0 {
+                            let t3: Coefficients =
+                                core::array::from_fn(|e| core::array::from_fn(|k| c[k][2][e + 1]));
+                            cached.contact = Some((t3, p.metric[1][1].sqrt()));
+                        }
+                    }
+                    if i < n_east {
+                        column(grid.x2(i) + 0.5 * dx2, &nodes, pts)?;
+                        cached.east.extend(pts.iter().map(|p| flux(p, 1)));
+                    }
+                    column(grid.x2(i), &mids, pts)?;
+                    cached.north.extend(pts.iter().map(|p| flux(p, 2)));
+                    Ok(cached)
+                },
+            )
+            .collect::<Result<Vec<_>, _>>()?;
         let mut source = Vec::with_capacity(grid.node_count());
         let mut node_scale = Vec::with_capacity(grid.node_count());
         let mut contact = Vec::with_capacity(n2);
-        for i in 0..n2 {
-            for j in 0..n3 {
-                let p = point(grid.x2(i), grid.x3(j))?;
-                let c = mixed_stress_coefficients(&p, &material);
-                source.push(core::array::from_fn(|e| {
-                    core::array::from_fn(|k| p.sqrt_g * christoffel_contraction(&p, &c[k], e + 1))
-                }));
-                node_scale.push([
-                    p.sqrt_g,
-                    p.inverse_metric[1][1].sqrt(),
-                    p.inverse_metric[2][2].sqrt(),
-                ]);
-                if j == 0 {
-                    let t3: Coefficients =
-                        core::array::from_fn(|e| core::array::from_fn(|k| c[k][2][e + 1]));
-                    contact.push((t3, p.metric[1][1].sqrt()));
-                }
-            }
-        }
-        let n_east = if grid.is_periodic() { n2 } else { n2 - 1 };
         let mut east = Vec::with_capacity(n_east * n3);
-        for i in 0..n_east {
-            for j in 0..n3 {
-                east.push(flux(&point(grid.x2(i) + 0.5 * dx2, grid.x3(j))?, 1));
-            }
-        }
         let mut north = Vec::with_capacity(n2 * (n3 - 1));
-        for i in 0..n2 {
-            for j in 0..n3 - 1 {
-                north.push(flux(&point(grid.x2(i), grid.x3(j) + 0.5 * dx3)?, 2));
-            }
+        for c in columns {
+            source.extend(c.source);
+            node_scale.extend(c.node_scale);
+            contact.extend(c.contact);
+            east.extend(c.east);
+            north.extend(c.north);
         }
         let mut op = Self {
             dirichlet_scale: (material.lambda() + 2.0 * material.mu()) / (dx3 * dx3),
@@ -326,11 +367,20 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     }
 
     /// Visits every row in dof order with its merged, column-sorted terms.
-    fn visit(&self, mut f: impl FnMut(usize, &[(usize, f64)], f64)) -> Result<(), ElasticityError> {
+    fn visit(&self, f: impl FnMut(usize, &[(usize, f64)], f64)) -> Result<(), ElasticityError> {
+        self.visit_rows(0..self.dof_count(), f)
+    }
+
+    /// Visits the rows `rows` in dof order with their merged, column-sorted terms.
+    fn visit_rows(
+        &self,
+        rows: core::ops::Range<usize>,
+        mut f: impl FnMut(usize, &[(usize, f64)], f64),
+    ) -> Result<(), ElasticityError> {
         let mut terms = Vec::with_capacity(64);
         let mut st = Vec::with_capacity(16);
         let mut merged: Vec<(usize, f64)> = Vec::with_capacity(64);
-        for d in 0..self.dof_count() {
+        for d in rows {
             let rhs = self.row(d, &mut terms, &mut st)?;
             terms.sort_unstable_by_key(|t| t.0);
             merged.clear();
@@ -353,7 +403,7 @@ impl<G: ShellGeometry> FiniteDifferenceNavier<G> {
     }
 }
 
-impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
+impl<G: ShellGeometry + Sync> Discretisation for FiniteDifferenceNavier<G> {
     fn method(&self) -> &'static str {
         "fd"
     }
@@ -379,17 +429,35 @@ impl<G: ShellGeometry> Discretisation for FiniteDifferenceNavier<G> {
 
     /// One pass over the rows for the pattern, the values and the right-hand side (the
     /// default visits them twice: [`Discretisation::entries`], then
-    /// [`Discretisation::refill`]); the same system.
+    /// [`Discretisation::refill`]), blocks of [`ROW_BLOCK`] rows in parallel and concatenated
+    /// in row order; the same system, bit for bit, as one sequential pass.
     fn system(&self) -> Result<LinearSystem, ElasticityError> {
-        let mut entries = Vec::with_capacity(self.dof_count() * 20);
-        let mut values = Vec::with_capacity(self.dof_count() * 20);
-        let mut rhs = vec![0.0; self.dof_count()];
-        self.visit(|d, terms, b| {
-            entries.extend(terms.iter().map(|t| (d, t.0)));
-            values.extend(terms.iter().map(|t| t.1));
-            rhs[d] = b;
-        })?;
-        let mut system = LinearSystem::from_entries(self.dof_count(), &entries)?;
+        let n = self.dof_count();
+        let blocks = (0..n.div_ceil(ROW_BLOCK))
+            .into_par_iter()
+            .map(|b| {
+                let rows = b * ROW_BLOCK..n.min((b + 1) * ROW_BLOCK);
+                let mut entries = Vec::with_capacity(rows.len() * 20);
+                let mut values = Vec::with_capacity(rows.len() * 20);
+                let mut rhs = Vec::with_capacity(rows.len());
+                self.visit_rows(rows, |d, terms, b| {
+                    entries.extend(terms.iter().map(|t| (d, t.0)));
+                    values.extend(terms.iter().map(|t| t.1));
+                    rhs.push(b);
+                })?;
+                Ok((entries, values, rhs))
+            })
+            .collect::<Result<Vec<_>, ElasticityError>>()?;
+        let nnz = blocks.iter().map(|b| b.0.len()).sum();
+        let mut entries = Vec::with_capacity(nnz);
+        let mut values = Vec::with_capacity(nnz);
+        let mut rhs = Vec::with_capacity(n);
+        for (e, v, r) in blocks {
+            entries.extend(e);
+            values.extend(v);
+            rhs.extend(r);
+        }
+        let mut system = LinearSystem::from_entries(n, &entries)?;
         drop(entries);
         for (k, v) in values.into_iter().enumerate() {
             system.add_entry(k, v);
