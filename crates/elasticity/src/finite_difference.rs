@@ -429,7 +429,7 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteDifferenceNavier<G> {
 
     /// One pass over the rows for the pattern, the values and the right-hand side (the
     /// default visits them twice: [`Discretisation::entries`], then
-    /// [`Discretisation::refill`]), blocks of [`ROW_BLOCK`] rows in parallel and concatenated
+    /// [`Discretisation::refill`]), blocks of `ROW_BLOCK` (2048) rows in parallel and concatenated
     /// in row order; the same system, bit for bit, as one sequential pass.
     fn system(&self) -> Result<LinearSystem, ElasticityError> {
         let n = self.dof_count();
