@@ -182,7 +182,10 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         // box with a rigid sliding mode the Schur route moved a limiting ratio by 2%: the
         // near-singular frictionless operator amplifies its round-off; to be understood)
         let schur =
-            if settings.linear == LinearBackend::LU && model.discretisation().plane().is_some() {
+            if settings.linear == LinearBackend::LU
+                && (model.discretisation().plane().is_some()
+                    || model.discretisation().mesh().is_some())
+            {
                 ContactSchur::new(model)?
             } else {
                 None
