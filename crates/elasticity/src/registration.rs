@@ -8,8 +8,8 @@ use std::sync::Arc;
 
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::mesh_discretisation::MeshOperator;
 use crate::finite_element::{Grading, VolumetricIntegration};
+use crate::mesh_discretisation::MeshOperator;
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::SharedChart;
 use crate::solid::HexElement;

@@ -129,8 +129,12 @@ fn zero_corner_layers_give_the_tensor_grid_contact_answer() {
 #[test]
 fn corner_layers_add_face_nodes_in_x2_order_with_the_face_quadrature_weights() {
     let (p, n2, n3) = (3, 25, 7);
-    let flat = body("fem-qp-corner", p, n2, n3, 0).operator(1.0, 2.0).unwrap();
-    let layered = body("fem-qp-corner", p, n2, n3, 4).operator(1.0, 2.0).unwrap();
+    let flat = body("fem-qp-corner", p, n2, n3, 0)
+        .operator(1.0, 2.0)
+        .unwrap();
+    let layered = body("fem-qp-corner", p, n2, n3, 4)
+        .operator(1.0, 2.0)
+        .unwrap();
     let (a, b) = (
         flat.contact_entries().unwrap(),
         layered.contact_entries().unwrap(),

@@ -223,7 +223,10 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
     /// corner keys included); `None` for a method on the grid's nodes.
     fn mesh_operator(
         &self,
-        problem: impl FnOnce() -> Result<crate::plane_problem::PlaneProblem<crate::shell_geometry::SharedChart>, ElasticityError>,
+        problem: impl FnOnce() -> Result<
+            crate::plane_problem::PlaneProblem<crate::shell_geometry::SharedChart>,
+            ElasticityError,
+        >,
     ) -> Result<Option<BodyOperator>, ElasticityError> {
         let scheme = self.scheme()?;
         if !scheme.is_mesh() {

@@ -206,7 +206,10 @@ mod tests {
                 },
                 "discretisation.corner_ratio",
             ),
-            (DiscretisationSettings { order: 0, ..d() }, "discretisation.order"),
+            (
+                DiscretisationSettings { order: 0, ..d() },
+                "discretisation.order",
+            ),
         ];
         for (s, key) in cases {
             assert_eq!(field(build(s)), key);

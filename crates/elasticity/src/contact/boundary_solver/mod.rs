@@ -181,15 +181,13 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         // factorisation, no solves); other backends and 3-D bodies by `m` solves (on a 3-D Q2
         // box with a rigid sliding mode the Schur route moved a limiting ratio by 2%: the
         // near-singular frictionless operator amplifies its round-off; to be understood)
-        let schur =
-            if settings.linear == LinearBackend::LU
-                && (model.discretisation().plane().is_some()
-                    || model.discretisation().mesh().is_some())
-            {
-                ContactSchur::new(model)?
-            } else {
-                None
-            };
+        let schur = if settings.linear == LinearBackend::LU
+            && (model.discretisation().plane().is_some() || model.discretisation().mesh().is_some())
+        {
+            ContactSchur::new(model)?
+        } else {
+            None
+        };
         // `(P Z, N Z)` for a spring, with the bulk factorised (again) for it
         let mut condense_with = |spring: &[f64], lu: &mut dyn LinearSolver<f64>| {
             condense(model, ext, &values, spring, lu, schur.as_ref(), observer)
