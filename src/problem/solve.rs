@@ -95,6 +95,11 @@ impl SolvedModel {
         self.operator().plane()
     }
 
+    /// The plane-strain mesh discretisation (`fem-qp-corner`: nodes, cells), `None` on a grid.
+    pub fn mesh(&self) -> Option<&dyn capstan_elasticity::mesh_discretisation::MeshDiscretisation> {
+        self.operator().mesh()
+    }
+
     /// The 3-D body's box grid and nodal fields, `None` in plane strain.
     pub fn solid(&self) -> Option<&dyn SolidOutput> {
         self.operator().solid()
