@@ -151,6 +151,27 @@ fn corner_layers_add_face_nodes_in_x2_order_with_the_face_quadrature_weights() {
             "{total}"
         );
     }
+    // the plot cells: p^2 sub-quadrilaterals per element, positively oriented, tiling the
+    // rectangle [-pi/2, pi/2] x [0, 1] (shoelace areas)
+    let mesh = layered.mesh().expect("a mesh discretisation");
+    let cells = mesh.output_cells();
+    assert_eq!(cells.len(), (8 * 2 + 4 * 2 * 4) * p * p); // 8 x 2 cells + 8 elements per corner layer
+    let area: f64 = cells
+        .iter()
+        .map(|c| {
+            let x = c.map(|m| mesh.node_position(m));
+            let a = (0..4)
+                .map(|i| {
+                    let (u, v) = (x[i], x[(i + 1) % 4]);
+                    u[0] * v[1] - v[0] * u[1]
+                })
+                .sum::<f64>()
+                / 2.0;
+            assert!(a > 0.0, "{x:?}");
+            a
+        })
+        .sum();
+    assert!((area - core::f64::consts::PI).abs() < 1e-12, "{area}");
     let smallest = b[1].x2 - b[0].x2;
     assert!(smallest < 1e-2 * (a[1].x2 - a[0].x2), "{smallest}");
 }
