@@ -7,15 +7,7 @@ use std::f64::consts::{FRAC_PI_4, PI};
 use capstan::cli::{Cli, run};
 use clap::Parser;
 use common::json_array as array;
-use serde_json::Value;
-
-fn json(args: &[&str]) -> Value {
-    let mut argv = vec!["capstan"];
-    argv.extend_from_slice(args);
-    argv.push("--json");
-    let out = run(Cli::parse_from(argv)).unwrap();
-    serde_json::from_str(&out).unwrap()
-}
+use common::run_json as json;
 
 #[test]
 fn tension_on_an_ellipse_quarter_is_exp_2_mu_atan_b_over_a() {

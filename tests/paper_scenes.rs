@@ -8,15 +8,8 @@ use std::f64::consts::FRAC_PI_2;
 use capstan::cli::{Cli, run};
 use clap::Parser;
 use common::json_array as array;
+use common::run_json as json;
 use serde_json::Value;
-
-fn json(args: &[&str]) -> Value {
-    let mut argv = vec!["capstan"];
-    argv.extend_from_slice(args);
-    argv.push("--json");
-    let out = run(Cli::parse_from(argv)).unwrap();
-    serde_json::from_str(&out).unwrap()
-}
 
 fn tension(sets: &[&str]) -> Value {
     let mut args = vec!["tension"];

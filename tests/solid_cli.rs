@@ -246,25 +246,29 @@ fn plane_strain_only_commands_refuse_a_three_dimensional_body() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `capstan contact --json` on the 3-D ellipse body with the full-system Newton and the
+/// linear backend `linear`.
+fn ellipse_full_newton(linear: &str) -> serde_json::Value {
+    capstan_json(
+        &[
+            &[
+                "contact",
+                "--set",
+                "body.dimension=3",
+                "--set",
+                "solver.nonlinear=full-newton",
+                "--set",
+                &format!("solver.linear={linear}"),
+            ][..],
+            &ELLIPSE[..],
+        ]
+        .concat(),
+    )
+}
+
 #[test]
 fn multigrid_bulk_solver_reproduces_the_direct_contact_and_is_refused_in_plane_strain() {
-    let run = |linear: &str| {
-        capstan_json(
-            &[
-                &[
-                    "contact",
-                    "--set",
-                    "body.dimension=3",
-                    "--set",
-                    "solver.nonlinear=full-newton",
-                    "--set",
-                    &format!("solver.linear={linear}"),
-                ][..],
-                &ELLIPSE[..],
-            ]
-            .concat(),
-        )
-    };
+    let run = ellipse_full_newton;
     let (lu, mg) = (run("lu"), run("multigrid"));
     assert_eq!(mg["status"], "converged");
     assert_same_v1_and_refused_off_3d_full_newton(&lu, &mg, "multigrid");
@@ -272,23 +276,7 @@ fn multigrid_bulk_solver_reproduces_the_direct_contact_and_is_refused_in_plane_s
 
 #[test]
 fn matrix_free_newton_reproduces_the_direct_contact_and_is_refused_where_it_does_not_apply() {
-    let run = |linear: &str| {
-        capstan_json(
-            &[
-                &[
-                    "contact",
-                    "--set",
-                    "body.dimension=3",
-                    "--set",
-                    "solver.nonlinear=full-newton",
-                    "--set",
-                    &format!("solver.linear={linear}"),
-                ][..],
-                &ELLIPSE[..],
-            ]
-            .concat(),
-        )
-    };
+    let run = ellipse_full_newton;
     let (lu, mf) = (run("lu"), run("matrix-free-mg"));
     assert_eq!(mf["status"], "converged");
     assert_eq!(mf["solver_choice"]["linear"], "matrix-free-mg");

@@ -145,6 +145,27 @@ pub struct Solved {
     pub coarser: Option<Box<Solved>>,
 }
 
+impl Solved {
+    /// A body's solution with nothing more: no limiting ratios, no grid sequence, no coarser
+    /// level.
+    fn of_body(
+        model: SolvedModel,
+        solution: ContactSolution,
+        choice: SolverChoice,
+        times: [f64; 2],
+    ) -> Self {
+        Self {
+            model,
+            solution,
+            limiting: None,
+            grid_sequence: None,
+            choice,
+            times,
+            coarser: None,
+        }
+    }
+}
+
 impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     /// The contact model: the body's operator of either dimension with the friction law.
     ///
@@ -279,15 +300,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let t1 = Instant::now();
                 let solution = solver.solve_observed(loads, observer)?;
                 let times = [setup, t1.elapsed().as_secs_f64()];
-                Ok(Solved {
-                    model: SolvedModel::Body(model),
+                Ok(Solved::of_body(
+                    SolvedModel::Body(model),
                     solution,
-                    limiting: None,
-                    grid_sequence: None,
                     choice,
                     times,
-                    coarser: None,
-                })
+                ))
             }
             SolveMethod::FullNewton(_) if sequenced => {
                 // Grid sequencing: the model is assembled level by level inside.
@@ -298,15 +316,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 match solve_sequenced(&body, law, params, eps, loads, full, observer) {
                     Ok(seq) => {
                         let coarser = seq.coarser.map(|(model, solution)| {
-                            Box::new(Solved {
-                                model: SolvedModel::Sequenced(model),
+                            Box::new(Solved::of_body(
+                                SolvedModel::Sequenced(model),
                                 solution,
-                                limiting: None,
-                                grid_sequence: None,
-                                choice: choice.clone(),
-                                times: [0.0, 0.0],
-                                coarser: None,
-                            })
+                                choice.clone(),
+                                [0.0, 0.0],
+                            ))
                         });
                         Ok(Solved {
                             grid_sequence: Some(
@@ -349,15 +364,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let times = [setup, t1.elapsed().as_secs_f64()];
                 drop(solver);
                 match solved {
-                    Ok(solution) => Ok(Solved {
-                        model: SolvedModel::Body(model),
+                    Ok(solution) => Ok(Solved::of_body(
+                        SolvedModel::Body(model),
                         solution,
-                        limiting: None,
-                        grid_sequence: None,
                         choice,
                         times,
-                        coarser: None,
-                    }),
+                    )),
                     Err(e @ ContactError::NotConverged { .. }) if plane => {
                         Err(self.explain_not_converged(&model, e))
                     }

@@ -275,6 +275,20 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
 mod tests {
     use super::*;
 
+    /// The refinement value `q` and the one quantity `"q"` at scale 1.
+    fn one_quantity(q: f64) -> (f64, BTreeMap<String, Scaled>) {
+        (
+            q,
+            BTreeMap::from([(
+                "q".to_owned(),
+                Scaled {
+                    value: q,
+                    scale: 1.0,
+                },
+            )]),
+        )
+    }
+
     /// A manufactured quantity along the ladder: `Q_k = 1 + (-1)^k C 3^-k` (geometric with
     /// alternating sign, the worst case of the estimate), no solve.
     fn alternating(k: usize) -> f64 {
@@ -297,16 +311,7 @@ mod tests {
             let refined = problem
                 .refine_to(&target, |p| {
                     let q = alternating(step_of(p));
-                    Ok((
-                        q,
-                        BTreeMap::from([(
-                            "q".to_owned(),
-                            Scaled {
-                                value: q,
-                                scale: 1.0,
-                            },
-                        )]),
-                    ))
+                    Ok(one_quantity(q))
                 })
                 .unwrap();
             let e = refined.estimates["q"];
@@ -328,16 +333,7 @@ mod tests {
         let refined = Problem::paper()
             .refine_to(&target, |p| {
                 let q = values[step_of(p)];
-                Ok((
-                    q,
-                    BTreeMap::from([(
-                        "q".to_owned(),
-                        Scaled {
-                            value: q,
-                            scale: 1.0,
-                        },
-                    )]),
-                ))
+                Ok(one_quantity(q))
             })
             .unwrap();
         // step 2: e = 0.025; step 3: max(1e-9, 2.5e-10) meets 1e-3

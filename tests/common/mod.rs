@@ -77,6 +77,17 @@ pub fn capstan_json(args: &[&str]) -> serde_json::Value {
     serde_json::from_slice(&capstan(&[args, &["--json"]].concat()).stdout).unwrap()
 }
 
+/// `capstan ARGS --json` run in this process through the library (`capstan::cli::run`), which
+/// must succeed; its report.
+pub fn run_json(args: &[&str]) -> serde_json::Value {
+    use clap::Parser;
+    let mut argv = vec!["capstan"];
+    argv.extend_from_slice(args);
+    argv.push("--json");
+    let out = capstan::cli::run(capstan::cli::Cli::parse_from(argv)).unwrap();
+    serde_json::from_str(&out).unwrap()
+}
+
 /// The project's `.venv` Python when it can import `module`; `None` (with a skip note on
 /// stderr) otherwise.
 pub fn venv_python_with(module: &str) -> Option<PathBuf> {

@@ -18,6 +18,9 @@ use capstan_friction::{
 };
 use capstan_geometry::CircularCylinder;
 
+mod orders;
+use orders::{observed_order, table};
+
 const RADIUS: f64 = 2.0;
 const MU: f64 = 0.3;
 const K: f64 = 100.0;
@@ -87,23 +90,6 @@ fn zone_start(before: &[f64], step: &MembraneStep) -> f64 {
         .expect("a slip zone");
     let ((s0, l0), (s1, l1)) = (log[j], log[j + 1]);
     s0 - l0 * (s1 - s0) / (l1 - l0)
-}
-
-/// Least-squares slope of `ln e` against `ln h`.
-fn observed_order(study: &[(f64, f64)]) -> f64 {
-    let n = study.len() as f64;
-    let (xs, ys): (Vec<f64>, Vec<f64>) = study.iter().map(|(x, e)| (x.ln(), e.ln())).unzip();
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    sxy / sxx
-}
-
-fn table(study: &[(f64, f64)]) -> String {
-    study
-        .iter()
-        .map(|(h, e)| format!("{h:.4e} {e:.4e}\n"))
-        .collect()
 }
 
 /// Load 1 -> 2, unload 2 -> 1.2 on grids of 201 .. 3201 nodes: the zone ends and end

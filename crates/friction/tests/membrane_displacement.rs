@@ -10,6 +10,9 @@ use capstan_friction::membrane_displacement::{
 use capstan_friction::{FrictionLaw, RegularisedCoulomb, RegularisedCoulombParams, SmoothCoulomb};
 use capstan_geometry::{CircularCylinder, EllipticalPrism, ExpressionProfile, ProfileCurve};
 
+mod orders;
+use orders::{observed_order, table};
+
 const MU: f64 = 0.5;
 const STIFFNESS: f64 = 1e3; // E h l with the paper's E = 1e3, h = l = 1
 
@@ -29,23 +32,6 @@ fn psi<C: ProfileCurve<f64>>(profile: &C, theta: &[f64]) -> Vec<f64> {
     PrismMembrane::new(profile)
         .turning_angles(theta[0], theta)
         .unwrap()
-}
-
-/// Least-squares slope of `ln e` against `ln x`.
-fn observed_order(study: &[(f64, f64)]) -> f64 {
-    let n = study.len() as f64;
-    let (xs, ys): (Vec<f64>, Vec<f64>) = study.iter().map(|(x, e)| (x.ln(), e.ln())).unzip();
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx).powi(2)).sum();
-    sxy / sxx
-}
-
-fn table(study: &[(f64, f64)]) -> String {
-    study
-        .iter()
-        .map(|(x, e)| format!("{x:.4e} {e:.4e}\n"))
-        .collect()
 }
 
 /// Prints the `what` study of obstacle `name` and asserts its observed order is `expected`

@@ -10,7 +10,7 @@ use super::kernel::{
 use super::mesh::locate;
 use super::operator::HighOrderNavier;
 use super::skeleton::Skeleton;
-use super::tensor_kernel::{TensorIndex, X3Factors};
+use super::tensor_kernel::{X3Factors, condense_elements};
 use crate::continuum::kinematics::contravariant_stress;
 use crate::continuum::{PLANE_STRAIN, divergence_coefficients};
 use crate::discretisation::{ContactNode, Discretisation, LinearSystem};
@@ -22,8 +22,8 @@ use crate::finite_element::norms::{ElementMap, LagrangeElements, displacement_er
 use crate::finite_element::volumetric::VolumetricIntegration;
 use crate::plane_strain_operator::plane_strain_numbering;
 use crate::shell_geometry::ShellGeometry;
+use capstan_solvers::CondensedBlock;
 use capstan_solvers::LinearSolver;
-use capstan_solvers::{CondensationScratch, CondensedBlock};
 
 /// The statically condensed system of a [`HighOrderNavier`]: the skeleton system and what
 /// each element needs to recover its interior values.
@@ -157,39 +157,20 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
     /// [`ElasticityError::Solver`] if an interior block is not positive definite.
     pub fn condensed_system(&self) -> Result<CondensedSystem, ElasticityError> {
         let sk = self.skeleton()?;
-        let l = self.local_dofs();
         let local = |set: &[usize]| -> Vec<usize> {
             set.iter().flat_map(|&a| [2 * a, 2 * a + 1]).collect()
         };
         let (bd, id) = (local(&sk.boundary_local), local(&sk.interior_local));
         let np = self.np();
-        let dofs: Vec<TensorIndex> = (0..l).map(|d| TensorIndex::new(d, np)).collect();
         let factors = self.x3_factors();
-        let elements = (0..self.element_count())
-            .into_par_iter()
-            .map_init(
-                || {
-                    let m = vec![0.0; factors.0.rows() * factors.0.cols()];
-                    (vec![], m, CondensationScratch::new(id.len()))
-                },
-                |(tt, m, scratch), e| {
-                    self.tensor_matrix(e, &factors, tt, m);
-                    let nodes = self.element_nodes(e);
-                    let f: Vec<f64> = id
-                        .iter()
-                        .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
-                        .collect();
-                    CondensedBlock::from_entries(
-                        |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
-                        &bd,
-                        &id,
-                        &f,
-                        scratch,
-                    )
-                    .map_err(ElasticityError::from)
-                },
-            )
-            .collect::<Result<Vec<_>, _>>()?;
+        let elements = condense_elements(
+            self.element_count(),
+            np,
+            factors.0.rows() * factors.0.cols(),
+            (&bd, &id),
+            |e, tt, m| self.tensor_matrix(e, &factors, tt, m),
+            (&self.load, |e| self.element_nodes(e)),
+        )?;
         let mut load: Vec<f64> = sk
             .nodes
             .iter()

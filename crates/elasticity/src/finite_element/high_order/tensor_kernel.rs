@@ -5,7 +5,11 @@
 
 use faer::{Accum, MatMut, MatRef, Par};
 
+use capstan_solvers::{CondensationScratch, CondensedBlock};
+use rayon::prelude::*;
+
 use super::kernel::ElementTables;
+use crate::error::ElasticityError;
 
 /// The component pairs `(c, d)` computed; `(1, 0)` is the transpose of `(0, 1)`.
 const PAIRS: [(usize, usize); 3] = [(0, 0), (0, 1), (1, 1)];
@@ -176,6 +180,54 @@ impl TensorIndex {
             m[j.row + i.col]
         }
     }
+}
+
+/// The static condensation of every element's interior (in parallel, one scratch per worker):
+/// element `e`'s matrix in tensor form from `matrix(e, scratch, m)` (`m` of `matrix_len`
+/// entries, overwritten), its local dofs split into `boundary` and `interior`, its interior
+/// load from the global `load` (two components per node) at its nodes `nodes(e)`; see
+/// [`CondensedBlock`].
+///
+/// # Errors
+/// [`ElasticityError::Solver`] if an interior block is not positive definite.
+pub(crate) fn condense_elements<N>(
+    count: usize,
+    n: usize,
+    matrix_len: usize,
+    (boundary, interior): (&[usize], &[usize]),
+    matrix: impl Fn(usize, &mut Vec<f64>, &mut [f64]) + Sync,
+    (load, nodes): (&[f64], impl Fn(usize) -> N + Sync),
+) -> Result<Vec<CondensedBlock>, ElasticityError>
+where
+    N: AsRef<[usize]>,
+{
+    let dofs: Vec<TensorIndex> = (0..2 * n * n).map(|d| TensorIndex::new(d, n)).collect();
+    (0..count)
+        .into_par_iter()
+        .map_init(
+            || {
+                let m = vec![0.0; matrix_len];
+                (vec![], m, CondensationScratch::new(interior.len()))
+            },
+            |(tt, m, scratch), e| {
+                matrix(e, tt, m);
+                let nodes = nodes(e);
+                let nodes = nodes.as_ref();
+                let f: Vec<f64> = interior
+                    .iter()
+                    .map(|&d| load[2 * nodes[d / 2] + d % 2])
+                    .collect();
+                CondensedBlock::from_entries(
+                    |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
+                    boundary,
+                    interior,
+                    &f,
+                    scratch,
+                )
+                .map_err(ElasticityError::from)
+            },
+        )
+        .collect()
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::super::gll::{gauss_legendre, gll_rule, lagrange_basis};
 use super::super::kernel::{ElementTables, add_element_matrix, symmetrise};
-use super::super::tensor_kernel::{TensorIndex, X3Factors};
+use super::super::tensor_kernel::{X3Factors, condense_elements};
 use super::layout::{CornerSettings, Layout, bilinear, local_edges, sides_of};
 use crate::boundary::{Component, ComponentCondition, Side};
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, energy_matrix};
@@ -20,7 +20,7 @@ use crate::finite_element::boundary_terms::add_side_point_load;
 use crate::finite_element::norms::{ElementMap, LagrangeElements, displacement_errors};
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::ShellGeometry;
-use capstan_solvers::{CondensationScratch, CondensedBlock};
+use capstan_solvers::CondensedBlock;
 
 /// The plane-strain curvilinear Navier operator by Qp elements (GLL nodes) on a mesh refined
 /// geometrically toward the four corners of the parameter rectangle only
@@ -396,33 +396,15 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
             set.iter().flat_map(|&a| [2 * a, 2 * a + 1]).collect()
         };
         let (bd, id) = (local(&self.boundary_local), local(&self.interior_local));
-        let dofs: Vec<TensorIndex> = (0..2 * np * np).map(|d| TensorIndex::new(d, np)).collect();
         let f = &self.factors;
-        let elements = (0..self.element_count())
-            .into_par_iter()
-            .map_init(
-                || {
-                    let m = vec![0.0; f.rows() * f.cols()];
-                    (vec![], m, CondensationScratch::new(id.len()))
-                },
-                |(tt, m, scratch), e| {
-                    self.tensor_matrix(e, tt, m);
-                    let nodes = self.nodes(e);
-                    let fi: Vec<f64> = id
-                        .iter()
-                        .map(|&d| self.load[2 * nodes[d / 2] + d % 2])
-                        .collect();
-                    CondensedBlock::from_entries(
-                        |i, j| TensorIndex::entry(m, dofs[i], dofs[j]),
-                        &bd,
-                        &id,
-                        &fi,
-                        scratch,
-                    )
-                    .map_err(ElasticityError::from)
-                },
-            )
-            .collect::<Result<Vec<_>, _>>()?;
+        let elements = condense_elements(
+            self.element_count(),
+            np,
+            f.rows() * f.cols(),
+            (&bd, &id),
+            |e, tt, m| self.tensor_matrix(e, tt, m),
+            (&self.load, |e| self.nodes(e)),
+        )?;
         let ns = self.layout.skeleton_count;
         let connectivity: Vec<usize> = (0..self.element_count())
             .flat_map(|e| self.boundary_local.iter().map(move |&a| self.nodes(e)[a]))

@@ -38,9 +38,9 @@ fn paper_corner(s: CornerSettings) -> (CornerRefinedNavier<SampleChart>, Vec<f64
     (op, v)
 }
 
-/// The tensor-graded paper reference of `graded_tests` (`p = 8`, 8 layers of `0.4`).
-fn graded_reference() -> (HighOrderNavier<SampleChart>, Vec<f64>) {
-    let (p, n) = (8, 8);
+/// The paper problem on the tensor grid graded toward the corners: order `p`, `n` layers of
+/// `0.4`, and its solution.
+fn tensor_graded(p: usize, n: usize) -> (HighOrderNavier<SampleChart>, Vec<f64>) {
     let level = GridLevel {
         n2: (2 * n + 6) * p + 1,
         n3: (2 * n + 1) * p + 1,
@@ -55,6 +55,11 @@ fn graded_reference() -> (HighOrderNavier<SampleChart>, Vec<f64>) {
         .unwrap();
     let v = op.solve(&mut SparseCholesky::default()).unwrap();
     (op, v)
+}
+
+/// The tensor-graded paper reference of `graded_tests` (`p = 8`, 8 layers of `0.4`).
+fn graded_reference() -> (HighOrderNavier<SampleChart>, Vec<f64>) {
+    tensor_graded(8, 8)
 }
 
 fn distance(
@@ -139,19 +144,7 @@ fn corner_mesh_needs_fewer_unknowns_than_whole_line_grading() {
     // half the unknowns
     let reference = graded_reference();
     let (p, n) = (6, 6);
-    let level = GridLevel {
-        n2: (2 * n + 6) * p + 1,
-        n3: (2 * n + 1) * p + 1,
-    };
-    let settings = QpSettings {
-        grading: Grading::geometric(0.4, n).unwrap(),
-        ..QpSettings::order(p)
-    };
-    let tensor = paper_parts(&PaperEllipse::default(), level)
-        .unwrap()
-        .high_order_with(settings)
-        .unwrap();
-    let vt = tensor.solve(&mut SparseCholesky::default()).unwrap();
+    let (tensor, vt) = tensor_graded(p, n);
     let et = tensor
         .displacement_errors(&vt, &|x| reference.0.displacement_at(&reference.1, x))
         .unwrap();
