@@ -127,7 +127,7 @@ impl<G: ShellGeometry + Sync> MeshDiscretisation for CornerRefinedNavier<G> {
 
     /// The face's nodes in increasing `x2` (the corner layers add nodes near both ends).
     /// Traction weight `sqrt(g) sqrt(g^33) sum_e w_e L_e / 2` (the face quadrature), rows
-    /// `T^3_2`, `T^3_3` from [`Self::face_terms`] and the pointwise mixed-stress
+    /// `T^3_2`, `T^3_3` from the one-sided gradients of the face elements (`face_terms`) and the pointwise mixed-stress
     /// coefficients, as the tensor Qp elements build them.
     fn contact_nodes(&self) -> Result<Vec<ContactNode>, ElasticityError> {
         let mut face = self.face_shares();
