@@ -28,6 +28,21 @@ pub fn write_run(
             if let Some(solid) = model.solid() {
                 crate::commands::solid_contact::write_body(&out, scene, solid, solution)?;
             }
+            if let Some(mesh) = model.mesh() {
+                // a mesh discretisation (fem-qp-corner): the displacement at every mesh node
+                let nodes = (0..mesh.node_count()).map(|m| mesh.node_position(m));
+                let (x2, x3): (Vec<f64>, Vec<f64>) = nodes.map(|[a, b]| (a, b)).unzip();
+                let v = &solution.displacement;
+                let table = Table::new()
+                    .f64("x2", x2)
+                    .f64("x3", x3)
+                    .f64("v2", v.iter().step_by(2).copied().collect::<Vec<f64>>())
+                    .f64(
+                        "v3",
+                        v.iter().skip(1).step_by(2).copied().collect::<Vec<f64>>(),
+                    );
+                out.write_csv("displacement.csv", &table)?;
+            }
             Ok(())
         }
     }

@@ -95,6 +95,11 @@ impl SolvedModel {
         self.operator().plane()
     }
 
+    /// The plane-strain mesh discretisation (`fem-qp-corner`: nodes, cells), `None` on a grid.
+    pub fn mesh(&self) -> Option<&dyn capstan_elasticity::mesh_discretisation::MeshDiscretisation> {
+        self.operator().mesh()
+    }
+
     /// The 3-D body's box grid and nodal fields, `None` in plane strain.
     pub fn solid(&self) -> Option<&dyn SolidOutput> {
         self.operator().solid()
@@ -202,6 +207,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         self.solve_observed(&mut SilentObserver)
     }
 
+    /// Whether the body's discretisation is on a mesh rather than the grid's nodes
+    /// (`fem-qp-corner`): no grid sequencing (its transfers interpolate on grid nodes).
+    fn body_is_mesh(&self) -> bool {
+        self.body.scheme().is_ok_and(|s| s.is_mesh())
+    }
+
     /// Whether [`Problem::solve_observed`] solves the problem one grid level coarser on the way
     /// (grid sequencing of the plane full-system Newton with sparse backends and smooth
     /// friction, bilateral contact), so that [`Solved::coarser`] comes for free.
@@ -212,6 +223,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         plane
             && !self.body.contact.is_unilateral()
             && !exact
+            && !self.body_is_mesh()
             && matches!(method, SolveMethod::FullNewton(l) if l != LinearBackend::MATRIX_FREE_MG)
     }
 
@@ -231,7 +243,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         // grid sequencing starts from the condensed solver, which keeps v^3 = 0 and knows no
         // exact friction
         let exact = self.friction.is_nonsmooth();
-        let sequenced = plane && !self.body.contact.is_unilateral() && !exact;
+        let sequenced =
+            plane && !self.body.contact.is_unilateral() && !exact && !self.body_is_mesh();
         let (mut method, mut choice) = self.solver.resolved(&self.body);
         if exact && method == SolveMethod::Condensed && choice.auto {
             // the condensed solver refuses exact friction: auto takes the full system

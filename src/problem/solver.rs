@@ -82,6 +82,21 @@ impl Solver {
                 SolveMethod::FullNewton(LinearBackend::LU),
                 "unilateral contact: the full-system (semismooth) Newton, sparse LU".into(),
             ),
+            // measured (docs/high-order.md): the condensed Newton stalls at its first iterate
+            // once the corner layers' contact nodes are 1e-3 of a cell apart
+            SolveMethod::Auto
+                if body
+                    .method
+                    .scheme(&body.settings)
+                    .is_ok_and(|s| s.is_mesh()) =>
+            {
+                (
+                    SolveMethod::FullNewton(LinearBackend::LU),
+                    format!(
+                        "{m} grid contact nodes on a corner-refined mesh: the full-system Newton, sparse LU"
+                    ),
+                )
+            }
             SolveMethod::Auto => (
                 SolveMethod::Condensed,
                 format!("{m} contact unknowns: condensed onto the contact face (Schur complement)"),

@@ -1,7 +1,6 @@
 //! [`Scene::build`]: the one place a scene's values become the typed [`Problem`].
 
 use capstan_elasticity::Material;
-use capstan_elasticity::registration::DiscretisationSettings;
 
 use super::Scene;
 use crate::error::CliError;
@@ -60,12 +59,7 @@ impl Scene {
             n2: self.grid.n2,
             n3: self.grid.n3,
             method: d.method,
-            settings: DiscretisationSettings {
-                order: d.order,
-                volumetric: d.volumetric,
-                grading: d.grading()?,
-                ..Default::default()
-            },
+            settings: d.settings()?,
             body_force: self.loads.body_force_field(b.dimension)?,
             contact: self.contact.kind()?,
         };

@@ -308,6 +308,15 @@ pub struct DiscretisationSpec {
     /// needs `discretisation.grading` and at least `2 n` elements along `x2` and `x3`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub layers: Option<usize>,
+    /// Geometric layers per corner of `fem-qp-corner`, `0..=16` (absent: 5; `0` is the uniform
+    /// `fem-qp` mesh): each corner cell of the grid's `e2 x e3` element cells is cut into that
+    /// many L-shaped layers of two trapezoids. Only with `discretisation.method = "fem-qp-corner"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub corner_layers: Option<usize>,
+    /// The ratio of successive corner layers of `fem-qp-corner`, `0.05..=0.95` (absent: 0.3).
+    /// Only with `discretisation.method = "fem-qp-corner"`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub corner_ratio: Option<f64>,
 }
 
 impl Default for DiscretisationSpec {
@@ -318,6 +327,8 @@ impl Default for DiscretisationSpec {
             volumetric: VolumetricIntegration::default(),
             grading: None,
             layers: None,
+            corner_layers: None,
+            corner_ratio: None,
         }
     }
 }
@@ -335,6 +346,29 @@ impl DiscretisationSpec {
     /// [`ElasticityError::InvalidParameter`] naming `discretisation.grading` (ratio outside
     /// `[0.05, 1]`) or `discretisation.layers` (outside `1..=12`).
     pub fn grading(&self) -> Result<Grading, ElasticityError> {
+        self.grading_only()
+    }
+
+    /// The settings of the registered method (order, volumetric rule, grading, corner keys).
+    ///
+    /// # Errors
+    /// See [`DiscretisationSpec::grading`].
+    pub fn settings(
+        &self,
+    ) -> Result<capstan_elasticity::registration::DiscretisationSettings, ElasticityError> {
+        use capstan_elasticity::registration::DiscretisationSettings as S;
+        Ok(S {
+            order: self.order,
+            volumetric: self.volumetric,
+            grading: self.grading()?,
+            corner_layers: self.corner_layers.unwrap_or(S::DEFAULT_CORNER_LAYERS),
+            corner_ratio: self.corner_ratio.unwrap_or(S::DEFAULT_CORNER_RATIO),
+            ..Default::default()
+        })
+    }
+
+    /// [`DiscretisationSpec::grading`].
+    fn grading_only(&self) -> Result<Grading, ElasticityError> {
         match self.grading {
             None => Ok(Grading::UNIFORM),
             Some(ratio) => Grading::geometric(ratio, self.layers.unwrap_or(Self::DEFAULT_LAYERS)),
@@ -352,6 +386,8 @@ pub fn known_keys() -> Vec<String> {
         "solver.petsc_options".to_string(),
         "discretisation.grading".to_string(),
         "discretisation.layers".to_string(),
+        "discretisation.corner_layers".to_string(),
+        "discretisation.corner_ratio".to_string(),
         "loads.f_t".to_string(),
         "loads.f_n".to_string(),
         "loads.body_force".to_string(),

@@ -118,6 +118,62 @@ impl Scene {
         Ok(())
     }
 
+    /// `discretisation.corner_layers` in `0..=16` and `discretisation.corner_ratio` in
+    /// `[0.05, 0.95]`, only with `fem-qp-corner` on the plane-strain body, which needs `e >= 2`
+    /// element cells along `grid.n2` and `grid.n3` (each corner its own cell).
+    fn validate_corner(
+        &self,
+        bad: &dyn Fn(&str, String, &str) -> CliError,
+    ) -> Result<(), CliError> {
+        let d = &self.discretisation;
+        let corner = d.method == DiscretisationMethod::FemQpCorner;
+        let set = [
+            (
+                "discretisation.corner_layers",
+                d.corner_layers.map(|n| n.to_string()),
+            ),
+            (
+                "discretisation.corner_ratio",
+                d.corner_ratio.map(|r| r.to_string()),
+            ),
+        ];
+        for (key, value) in set.iter().filter_map(|(k, v)| Some((*k, v.clone()?))) {
+            if !corner {
+                return Err(bad(
+                    key,
+                    value,
+                    "what this scene allows: only discretisation.method = \"fem-qp-corner\" has corner layers (leave the key unset otherwise)",
+                ));
+            }
+        }
+        if !corner {
+            return Ok(());
+        }
+        if self.body.dimension != 2 {
+            return Err(bad(
+                "discretisation.method",
+                "\"fem-qp-corner\"".into(),
+                "a 3-D method with body.dimension = 3 (fem-q1, fem-q2, fem-qp): the corner mesh is plane strain only",
+            ));
+        }
+        let named = |e: ElasticityError| match e {
+            ElasticityError::InvalidParameter {
+                field,
+                value,
+                allowed,
+            } => bad(field, value.to_string(), allowed),
+            other => CliError::from(other),
+        };
+        let scheme = d
+            .settings()
+            .and_then(|s| d.method.scheme(&s))
+            .map_err(named)?;
+        for (key, n) in [("grid.n2", self.grid.n2), ("grid.n3", self.grid.n3)] {
+            scheme.check_nodes(key, n).map_err(named)?;
+        }
+        Ok(())
+    }
+
     pub(super) fn validate_with(&self, at: &Origins) -> Result<(), CliError> {
         let bad = |key: &str, value: String, allowed: &str| CliError::Scene {
             origin: at.locate(key),
@@ -353,7 +409,8 @@ impl Scene {
         real("body.width", b.width, "(0, inf)", b.width > 0.0)?;
         real("body.x1", b.x1, "finite values", true)?;
         self.validate_body_force()?;
-        let qp = self.discretisation.method == DiscretisationMethod::FemQp;
+        let corner = self.discretisation.method == DiscretisationMethod::FemQpCorner;
+        let qp = self.discretisation.method == DiscretisationMethod::FemQp || corner;
         let order = self.discretisation.order;
         if qp && !capstan_elasticity::finite_element::high_order::ORDERS.contains(&order) {
             return Err(bad(
@@ -366,7 +423,7 @@ impl Scene {
             return Err(bad(
                 "discretisation.order",
                 order.to_string(),
-                "4 (the default) unless discretisation.method = \"fem-qp\": only fem-qp has an order",
+                "4 (the default) unless discretisation.method = \"fem-qp\" or \"fem-qp-corner\": only they have an order",
             ));
         }
         if qp {
@@ -381,6 +438,7 @@ impl Scene {
             }
         }
         self.validate_grading(&bad)?;
+        self.validate_corner(&bad)?;
         if b.dimension == 3 && self.discretisation.method == DiscretisationMethod::Fd {
             return Err(bad(
                 "discretisation.method",

@@ -87,6 +87,7 @@ mod finite_difference;
 pub mod finite_element;
 mod grid;
 mod material;
+pub mod mesh_discretisation;
 mod plane_problem;
 mod plane_strain_operator;
 pub mod registration;
@@ -110,7 +111,7 @@ pub use grid::Grid;
 pub use material::Material;
 pub use plane_problem::{BodyForce, PlaneProblem};
 pub use registration::PlaneOperator;
-pub use schemes::{FemQk, FemQp, FiniteDifferences};
+pub use schemes::{FemQk, FemQp, FemQpCorner, FiniteDifferences};
 pub use shell_geometry::{SharedChart, ShellGeometry};
 pub use studies::{samples, studies};
 

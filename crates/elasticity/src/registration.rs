@@ -9,6 +9,7 @@ use std::sync::Arc;
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_element::{Grading, VolumetricIntegration};
+use crate::mesh_discretisation::MeshOperator;
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::SharedChart;
 use crate::solid::HexElement;
@@ -30,6 +31,12 @@ pub struct DiscretisationSettings {
     pub volumetric: VolumetricIntegration,
     /// `discretisation.grading`, `discretisation.layers`: the spacing of the element boundaries.
     pub grading: Grading,
+    /// `discretisation.corner_layers`: geometric layers per corner of `fem-qp-corner`
+    /// (default [`DiscretisationSettings::DEFAULT_CORNER_LAYERS`]; `0`: the uniform mesh).
+    pub corner_layers: usize,
+    /// `discretisation.corner_ratio`: the ratio of successive corner layers of
+    /// `fem-qp-corner` (default [`DiscretisationSettings::DEFAULT_CORNER_RATIO`]).
+    pub corner_ratio: f64,
     /// Every other key of `[discretisation]` (parameters of discretisations registered
     /// elsewhere).
     pub extra: BTreeMap<String, f64>,
@@ -41,12 +48,22 @@ impl Default for DiscretisationSettings {
             order: crate::finite_element::DiscretisationMethod::DEFAULT_ORDER,
             volumetric: VolumetricIntegration::Full,
             grading: Grading::UNIFORM,
+            corner_layers: Self::DEFAULT_CORNER_LAYERS,
+            corner_ratio: Self::DEFAULT_CORNER_RATIO,
             extra: BTreeMap::new(),
         }
     }
 }
 
 impl DiscretisationSettings {
+    /// Corner layers of `fem-qp-corner` by default: five layers of `0.3` (the smallest element
+    /// `2.4e-3` of a cell; beyond five the paper problem's error does not move,
+    /// docs/high-order.md).
+    pub const DEFAULT_CORNER_LAYERS: usize = 5;
+
+    /// The ratio of successive corner layers by default.
+    pub const DEFAULT_CORNER_RATIO: f64 = 0.3;
+
     /// Checks the settings of a method with neither a volumetric rule to reduce nor element
     /// boundaries to grade: `volumetric` must be full and `grading` uniform; the errors say
     /// `volumetric_allowed`, `grading_allowed`.
@@ -161,6 +178,32 @@ pub trait DiscretisationScheme: core::fmt::Debug + Send + Sync {
     /// factor of the `N log2 N` memory estimate of a 2-D solve). Default `1`.
     fn memory_width(&self) -> f64 {
         1.0
+    }
+
+    /// Whether the method's nodes are a mesh's rather than the grid's
+    /// ([`DiscretisationScheme::build_mesh`] builds it; [`DiscretisationScheme::build`]
+    /// refuses). Default `false`.
+    fn is_mesh(&self) -> bool {
+        false
+    }
+
+    /// The operator on a mesh whose nodes are not the grid's tensor product (the grid gives
+    /// the rectangle and the element counts): what the contact solvers and the outputs use for
+    /// a method with [`DiscretisationScheme::is_mesh`].
+    ///
+    /// # Errors
+    /// Default: [`ElasticityError::InvalidParameter`] naming `discretisation.method` (a
+    /// method on the grid's nodes: [`DiscretisationScheme::build`]); the constructor's errors.
+    fn build_mesh(
+        &self,
+        problem: PlaneProblem<SharedChart>,
+    ) -> Result<MeshOperator, ElasticityError> {
+        let _ = problem;
+        Err(ElasticityError::InvalidParameter {
+            field: "discretisation.method",
+            value: f64::NAN,
+            allowed: "a method on a mesh (fem-qp-corner): this one is on the grid's nodes",
+        })
     }
 
     /// The hexahedra of the 3-D body of this method.

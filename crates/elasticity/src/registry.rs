@@ -57,6 +57,7 @@ fn builtin() -> Vec<&'static RegisteredDiscretisation> {
         &crate::schemes::Q1_REGISTRATION,
         &crate::schemes::Q2_REGISTRATION,
         &crate::schemes::QP_REGISTRATION,
+        &crate::schemes::QP_CORNER_REGISTRATION,
     ]
 }
 

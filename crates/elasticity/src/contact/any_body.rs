@@ -206,8 +206,34 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
             Some(solid) => {
                 Box::new(solid.operator_with_force(magnitudes[0], magnitudes[1], force.as_ref())?)
             }
-            None => Box::new(self.plane().loaded_discretisation(magnitudes)?),
+            None => {
+                let plane = self.plane();
+                match self.mesh_operator(|| {
+                    plane.problem_scaled(magnitudes[0], magnitudes[1], force_scale)
+                })? {
+                    Some(mesh) => mesh,
+                    None => Box::new(plane.loaded_discretisation(magnitudes)?),
+                }
+            }
         })
+    }
+
+    /// The contact operator of a method on a mesh ([`DiscretisationScheme::is_mesh`]:
+    /// `fem-qp-corner`) over the plane problem `problem()`, with the body's own settings (the
+    /// corner keys included); `None` for a method on the grid's nodes.
+    fn mesh_operator(
+        &self,
+        problem: impl FnOnce() -> Result<
+            crate::plane_problem::PlaneProblem<crate::shell_geometry::SharedChart>,
+            ElasticityError,
+        >,
+    ) -> Result<Option<BodyOperator>, ElasticityError> {
+        let scheme = self.scheme()?;
+        if !scheme.is_mesh() {
+            return Ok(None);
+        }
+        let mesh = scheme.build_mesh(problem()?)?;
+        Ok(Some(Box::new(crate::contact::MeshContactOperator(mesh))))
     }
 
     /// The assembled contact operator with end loads `tau0`, `tau_max` and a traction-free
@@ -222,7 +248,18 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
     ) -> Result<BodyOperator, ElasticityError> {
         Ok(match self.solid()? {
             Some(solid) => Box::new(solid.operator_free_face(tau0, tau_max)?),
-            None => Box::new(self.plane().discretisation_free_face(tau0, tau_max)?),
+            None => {
+                let plane = self.plane();
+                let free = || {
+                    let mut problem = plane.problem(tau0, tau_max)?;
+                    problem.boundary = ThickBody::boundary_free_face(tau0, tau_max);
+                    Ok(problem)
+                };
+                match self.mesh_operator(free)? {
+                    Some(mesh) => mesh,
+                    None => Box::new(plane.discretisation_free_face(tau0, tau_max)?),
+                }
+            }
         })
     }
 

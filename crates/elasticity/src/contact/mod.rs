@@ -66,6 +66,7 @@ mod full_system;
 mod load_continuation;
 mod loads;
 mod matrix_free_newton;
+mod mesh_operator;
 mod model;
 mod operator;
 mod path;
@@ -89,6 +90,7 @@ pub use full_system::{
 };
 pub use loads::{BODY_FORCE, END_LOADS, EndLoads};
 pub use matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
+pub use mesh_operator::MeshContactOperator;
 pub use model::{ContactModel, SiteTraction};
 pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use path::{PathSolver, PathStep, solve_path, solve_path_silent};

@@ -101,6 +101,12 @@ pub trait ContactOperator {
         None
     }
 
+    /// The plane-strain mesh discretisation behind the operator (its nodes and cells, for
+    /// outputs), `None` (the default) for an operator on a grid.
+    fn mesh(&self) -> Option<&dyn crate::mesh_discretisation::MeshDiscretisation> {
+        None
+    }
+
     /// The bulk operator known by its action when the discretisation is matrix-free: then
     /// [`ContactOperator::contact_system`] has an empty pattern (only its right-hand side
     /// counts) and the model adds `A v` to its residual. `None` (the default): `A` is the
@@ -197,6 +203,10 @@ impl ContactOperator for BodyOperator {
 
     fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
         (**self).solid()
+    }
+
+    fn mesh(&self) -> Option<&dyn crate::mesh_discretisation::MeshDiscretisation> {
+        (**self).mesh()
     }
 
     fn matrix_free(&self) -> Option<Arc<dyn MatrixFreeBulk + Send + Sync>> {

@@ -44,8 +44,13 @@ impl DiscretisationMethod {
     /// `fem-qp`: [`super::HighOrderNavier`], tensor-product elements of order `p` with GLL
     /// nodes (`n - 1` a multiple of `p`), statically condensed.
     pub const FemQp: Self = Self("fem-qp");
+    /// `fem-qp-corner`: [`super::high_order::CornerRefinedNavier`], the Qp elements on the
+    /// grid's element cells with geometric layers toward the four corners only: a mesh
+    /// discretisation ([`crate::mesh_discretisation::MeshDiscretisation`]), not in [`Self::ALL`].
+    pub const FemQpCorner: Self = Self("fem-qp-corner");
 
-    /// The built-in methods, in registry order.
+    /// The built-in methods on the grid's nodes (what [`Self::build`] builds), in registry
+    /// order.
     pub const ALL: [Self; 4] = [Self::Fd, Self::FemQ1, Self::FemQ2, Self::FemQp];
 
     /// The order of `fem-qp` when none is given (`discretisation.order`).

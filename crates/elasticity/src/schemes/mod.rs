@@ -7,11 +7,14 @@
 mod fd;
 mod qk;
 mod qp;
+mod qp_corner;
 
 pub use fd::FiniteDifferences;
 pub use qk::FemQk;
 pub use qp::FemQp;
+pub use qp_corner::FemQpCorner;
 
 pub(crate) use fd::REGISTRATION as FD_REGISTRATION;
 pub(crate) use qk::{Q1_REGISTRATION, Q2_REGISTRATION};
 pub(crate) use qp::REGISTRATION as QP_REGISTRATION;
+pub(crate) use qp_corner::REGISTRATION as QP_CORNER_REGISTRATION;

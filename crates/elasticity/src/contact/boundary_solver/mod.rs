@@ -183,12 +183,13 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         // factorisation, no solves); other backends and 3-D bodies by `m` solves (on a 3-D Q2
         // box with a rigid sliding mode the Schur route moved a limiting ratio by 2%: the
         // near-singular frictionless operator amplifies its round-off; to be understood)
-        let schur_input =
-            if settings.linear == LinearBackend::LU && model.discretisation().plane().is_some() {
-                Some(SchurInput::new(model)?)
-            } else {
-                None
-            };
+        let schur_input = if settings.linear == LinearBackend::LU
+            && (model.discretisation().plane().is_some() || model.discretisation().mesh().is_some())
+        {
+            Some(SchurInput::new(model)?)
+        } else {
+            None
+        };
         // the partial factorisation for the Schur complements on a second thread, beside the
         // factorisation of the stabilised bulk on this one
         observer.iteration(&Progress::set_up(SetUpPhase::Factorisation, 0, 1));

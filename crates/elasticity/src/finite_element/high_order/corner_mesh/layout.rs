@@ -33,7 +33,7 @@ pub struct CornerSettings {
     pub order: usize,
     /// Coarse cells `[in x2, in x3]`, each at least 2.
     pub cells: [usize; 2],
-    /// Geometric layers per corner, `1 ... 16`.
+    /// Geometric layers per corner, `0 ... 16` (`0`: the uniform mesh of the cells).
     pub layers: usize,
     /// The ratio `sigma` of successive layers, `0.05 ... 0.95`.
     pub ratio: f64,
@@ -41,7 +41,7 @@ pub struct CornerSettings {
 
 impl CornerSettings {
     /// The allowed numbers of layers.
-    pub const LAYERS: core::ops::RangeInclusive<usize> = 1..=16;
+    pub const LAYERS: core::ops::RangeInclusive<usize> = 0..=16;
 
     /// Checks the ranges.
     ///
@@ -62,7 +62,7 @@ impl CornerSettings {
             return bad("cells", c as f64, "at least 2 cells per direction");
         }
         if !Self::LAYERS.contains(&self.layers) {
-            return bad("layers", self.layers as f64, "1..=16");
+            return bad("layers", self.layers as f64, "0..=16");
         }
         if !(0.05..=0.95).contains(&self.ratio) {
             return bad("ratio", self.ratio, "0.05 <= ratio <= 0.95");
@@ -344,7 +344,6 @@ mod tests {
                 },
                 "cells",
             ),
-            (CornerSettings { layers: 0, ..good }, "layers"),
             (CornerSettings { layers: 17, ..good }, "layers"),
             (CornerSettings { ratio: 0.0, ..good }, "ratio"),
             (

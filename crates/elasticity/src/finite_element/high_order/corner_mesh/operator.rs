@@ -44,21 +44,21 @@ use capstan_solvers::CondensedBlock;
 /// Scope: the whole rectangle (no periodic `x2`), Dirichlet data from the sides (no pinned
 /// dofs), full integration. The grid's `n2 x n3` only gives the rectangle.
 pub struct CornerRefinedNavier<G> {
-    problem: PlaneProblem<G>,
-    settings: CornerSettings,
-    layout: Layout,
-    gll: Vec<f64>,
-    tables: ElementTables,
-    factors: X3Factors,
+    pub(super) problem: PlaneProblem<G>,
+    pub(super) settings: CornerSettings,
+    pub(super) layout: Layout,
+    pub(super) gll: Vec<f64>,
+    pub(super) tables: ElementTables,
+    pub(super) factors: X3Factors,
     /// Position of every node.
-    positions: Vec<[f64; 2]>,
+    pub(super) positions: Vec<[f64; 2]>,
     /// Reference energy matrices, index `e nq^2 + q2 nq + q3`.
-    kq: Vec<[[f64; 6]; 6]>,
-    load: Vec<f64>,
-    dirichlet: Vec<Option<f64>>,
+    pub(super) kq: Vec<[[f64; 6]; 6]>,
+    pub(super) load: Vec<f64>,
+    pub(super) dirichlet: Vec<Option<f64>>,
     /// Local nodes on the element edges, and inside.
-    boundary_local: Vec<usize>,
-    interior_local: Vec<usize>,
+    pub(super) boundary_local: Vec<usize>,
+    pub(super) interior_local: Vec<usize>,
 }
 
 impl<G> core::fmt::Debug for CornerRefinedNavier<G> {
@@ -252,11 +252,11 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
         u
     }
 
-    fn np(&self) -> usize {
+    pub(super) fn np(&self) -> usize {
         self.settings.order + 1
     }
 
-    fn nodes(&self, e: usize) -> &[usize] {
+    pub(super) fn nodes(&self, e: usize) -> &[usize] {
         let l = self.np() * self.np();
         &self.layout.element_nodes[e * l..(e + 1) * l]
     }
