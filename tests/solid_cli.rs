@@ -283,17 +283,22 @@ fn matrix_free_newton_reproduces_the_direct_contact_and_is_refused_where_it_does
     assert_same_v1_and_refused_off_3d_full_newton(&lu, &mf, "matrix-free-mg");
 }
 
-#[test]
-fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_the_matrix_free_path() {
-    // 33 x 321 x 33 Q1: 1,048,707 unknowns, the LU estimate 77 GiB (docs/solid.md)
-    let available = std::fs::read_to_string("/proc/meminfo")
+/// `MemAvailable` of /proc/meminfo in bytes; `None` where it cannot be read.
+fn mem_available() -> Option<f64> {
+    std::fs::read_to_string("/proc/meminfo")
         .ok()
         .and_then(|t| {
             t.lines()
                 .find(|l| l.starts_with("MemAvailable:"))
                 .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
         })
-        .map(|kib| kib * 1024.0);
+        .map(|kib| kib * 1024.0)
+}
+
+#[test]
+fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_the_matrix_free_path() {
+    // 33 x 321 x 33 Q1: 1,048,707 unknowns, the LU estimate 77 GiB (docs/solid.md)
+    let available = mem_available();
     if available.is_none_or(|b| b > 77.0 * (1u64 << 30) as f64) {
         eprintln!("skipped: more than 77 GiB available, the LU would be attempted");
         return;
@@ -319,14 +324,7 @@ fn a_million_unknowns_are_refused_for_the_sparse_lu_with_a_hint_to_the_matrix_fr
 #[test]
 fn a_hundred_million_unknowns_are_refused_by_the_matrix_free_memory_estimate() {
     // 141 x 1601 x 141 Q1: 9.5e7 unknowns, the estimate above 75 GiB (docs/solid.md)
-    let available = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|t| {
-            t.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
-        })
-        .map(|kib| kib * 1024.0);
+    let available = mem_available();
     if available.is_none_or(|b| b > 75.0 * (1u64 << 30) as f64) {
         eprintln!("skipped: more than 75 GiB available, the solve might be attempted");
         return;
