@@ -228,6 +228,28 @@ pub(crate) fn nearest_element_nodes(n: usize, p: usize) -> usize {
     p * e.max(1) + 1
 }
 
+/// Checks that `n` nodes (at `field`) are `p e + 1` with `e >= min_elements` elements of order
+/// `p`; `allowed` is the error's description of the range.
+///
+/// # Errors
+/// [`ElasticityError::InvalidParameter`] naming `field` otherwise.
+pub(crate) fn check_element_nodes(
+    field: &'static str,
+    n: usize,
+    p: usize,
+    min_elements: usize,
+    allowed: &'static str,
+) -> Result<(), ElasticityError> {
+    if n < min_elements * p + 1 || n < 2 || !(n - 1).is_multiple_of(p) {
+        return Err(ElasticityError::InvalidParameter {
+            field,
+            value: n as f64,
+            allowed,
+        });
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

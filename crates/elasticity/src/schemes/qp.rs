@@ -8,7 +8,7 @@ use crate::finite_element::high_order::{Grading, HighOrderNavier, QpSettings, ch
 use crate::plane_problem::PlaneProblem;
 use crate::registration::{
     DiscretisationScheme, PlaneOperator, RegisteredDiscretisation, SchemeParameter,
-    nearest_element_nodes,
+    check_element_nodes, nearest_element_nodes,
 };
 use crate::shell_geometry::SharedChart;
 use crate::solid::HexElement;
@@ -39,15 +39,13 @@ impl DiscretisationScheme for FemQp {
 
     /// `n = p e + 1` (`e >= 1` elements of order `p`).
     fn check_nodes(&self, field: &'static str, n: usize) -> Result<(), ElasticityError> {
-        let p = self.settings.order;
-        if n < 2 || !(n - 1).is_multiple_of(p) {
-            return Err(ElasticityError::InvalidParameter {
-                field,
-                value: n as f64,
-                allowed: "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp",
-            });
-        }
-        Ok(())
+        check_element_nodes(
+            field,
+            n,
+            self.settings.order,
+            1,
+            "p e + 1 nodes (e elements of order p = discretisation.order) with fem-qp",
+        )
     }
 
     fn admissible_nodes(&self, n: usize) -> usize {
@@ -78,16 +76,19 @@ impl DiscretisationScheme for FemQp {
     }
 }
 
+/// `discretisation.order` of the Qp family: `1..=10`, default 4 (shared by `fem-qp-corner`).
+pub(crate) const ORDER_PARAMETER: SchemeParameter = SchemeParameter {
+    key: "order",
+    default: "4",
+    allowed: "1..=10",
+};
+
 /// `fem-qp` in the registry.
 pub(crate) const REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisation {
     name: "fem-qp",
     summary: "tensor-product elements of order p with GLL nodes, statically condensed (n = p e + 1)",
     parameters: &[
-        SchemeParameter {
-            key: "order",
-            default: "4",
-            allowed: "1..=10",
-        },
+        ORDER_PARAMETER,
         SchemeParameter {
             key: "volumetric",
             default: "full",

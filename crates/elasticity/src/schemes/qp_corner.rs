@@ -10,7 +10,7 @@ use crate::mesh_discretisation::MeshOperator;
 use crate::plane_problem::PlaneProblem;
 use crate::registration::{
     DiscretisationScheme, DiscretisationSettings, PlaneOperator, RegisteredDiscretisation,
-    SchemeParameter, nearest_element_nodes,
+    SchemeParameter, check_element_nodes, nearest_element_nodes,
 };
 use crate::shell_geometry::SharedChart;
 
@@ -110,15 +110,13 @@ impl DiscretisationScheme for FemQpCorner {
 
     /// `n = p e + 1` with `e >= 2` cells (each corner its own cell).
     fn check_nodes(&self, field: &'static str, n: usize) -> Result<(), ElasticityError> {
-        let p = self.order;
-        if n < 2 * p + 1 || !(n - 1).is_multiple_of(p) {
-            return Err(ElasticityError::InvalidParameter {
-                field,
-                value: n as f64,
-                allowed: "p e + 1 nodes, e >= 2 cells of order p = discretisation.order, with fem-qp-corner",
-            });
-        }
-        Ok(())
+        check_element_nodes(
+            field,
+            n,
+            self.order,
+            2,
+            "p e + 1 nodes, e >= 2 cells of order p = discretisation.order, with fem-qp-corner",
+        )
     }
 
     fn admissible_nodes(&self, n: usize) -> usize {
@@ -142,11 +140,7 @@ pub(crate) const REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisati
     name: "fem-qp-corner",
     summary: "Qp elements on the grid's p e + 1 cells with geometric layers toward the four corners only (plane strain)",
     parameters: &[
-        SchemeParameter {
-            key: "order",
-            default: "4",
-            allowed: "1..=10",
-        },
+        super::qp::ORDER_PARAMETER,
         SchemeParameter {
             key: "corner_layers",
             default: "5",
