@@ -246,8 +246,27 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let sequenced =
             plane && !self.body.contact.is_unilateral() && !exact && !self.body_is_mesh();
         let (mut method, mut choice) = self.solver.resolved(&self.body);
+        if exact && method == SolveMethod::Condensed && !self.body.contact.is_unilateral() {
+            // exact friction on the condensed solver: its regularisation, then semismooth
+            // Newton on the contact face (exact_start.rs)
+            let condensed = SolverChoice {
+                reason: format!(
+                    "exact friction (`{}`): its regularisation on the condensed solver, then semismooth Newton on the condensed contact face",
+                    self.friction.law
+                ),
+                ..choice.clone()
+            };
+            match self.solve_exact_condensed(observer, condensed) {
+                Ok(solved) => return Ok(solved),
+                Err(e @ ProblemError::Contact(ContactError::Interrupted { .. })) => return Err(e),
+                Err(e) if !choice.auto => return Err(e),
+                // auto: the full-system semismooth Newton below
+                Err(_) => {}
+            }
+        }
         if exact && method == SolveMethod::Condensed && choice.auto {
-            // the condensed solver refuses exact friction: auto takes the full system
+            // the condensed route failed (or the contact is unilateral): auto takes the full
+            // system
             let linear = capstan_elasticity::solvers::LinearBackend::LU;
             method = SolveMethod::FullNewton(linear);
             choice.nonlinear = "full-newton";

@@ -16,7 +16,7 @@ use crate::error::ElasticityError;
 
 /// The blend `delta` of the stick branch into the generalised Jacobian of a sliding site
 /// (see [`crate::contact::ContactModel::into_exact_friction`]).
-const SLIP_JACOBIAN_BLEND: f64 = 1e-6;
+pub(crate) const SLIP_JACOBIAN_BLEND: f64 = 1e-6;
 
 /// What exact friction reads of a contact model: its contact entries, bulk system and
 /// extended pattern.
@@ -217,6 +217,19 @@ fn extend_pattern(
         },
         slots[old..].to_vec(),
     ))
+}
+
+impl ExactFriction {
+    /// The bound law (the projection onto the friction set).
+    pub(crate) fn law(&self) -> &dyn DynNonsmoothLaw {
+        self.law.as_ref()
+    }
+
+    /// Site `j`'s columns of `F^{-T}` (`tau = sum_e inverse[e] t_e`) and its augmentation `r`.
+    pub(crate) fn site_data(&self, j: usize) -> (&[[f64; 2]], f64) {
+        let site = &self.sites[j];
+        (&site.inverse, site.augmentation)
+    }
 }
 
 impl ExactFriction {

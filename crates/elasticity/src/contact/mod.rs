@@ -82,7 +82,9 @@ mod unilateral;
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
 pub use body_force::BodyForceField;
-pub use boundary_solver::{BoundarySolver, ContactSettings, SetupStats, SlidingMode};
+pub use boundary_solver::{
+    BoundarySolver, CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode,
+};
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{
     FullSystemProblem, FullSystemSettings, FullSystemSolver, SEQUENCING_COARSEST_NODES, Sequenced,

@@ -7,8 +7,10 @@ mod continuation;
 mod limits;
 mod newton;
 mod rigid;
+mod semismooth;
 mod settings;
 
+pub use semismooth::CONDENSED_SEMISMOOTH;
 pub use settings::{ContactSettings, SetupStats, SlidingMode};
 
 use std::sync::{Arc, Mutex};
@@ -322,21 +324,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         model: &'b ContactModel<D, L2>,
     ) -> Result<BoundarySolver<'b, D, L2>, ContactError> {
         refuse_unilateral(model)?;
-        let (old, new) = (self.model, model);
-        let differs = if old.system().pattern != new.system().pattern {
-            Some("sparsity patterns")
-        } else if old.system().values != new.system().values {
-            Some("bulk operators")
-        } else if old.loads().len() != new.loads().len()
-            || (0..old.loads().len()).any(|i| old.rhs_basis(i) != new.rhs_basis(i))
-            || old.fixed_rhs() != new.fixed_rhs()
-        {
-            Some("unit-load right-hand sides")
-        } else if old.contact_nodes() != new.contact_nodes() || old.active() != new.active() {
-            Some("contact nodes")
-        } else {
-            None
-        };
+        let differs = body_difference(self.model, model);
         if let Some(what) = differs {
             return Err(ContactError::DifferentBody { what });
         }
@@ -506,19 +494,23 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 }
             }
         }
-        self.finish(loads, &s, iterations, steps)
+        self.finish_on(self.model, loads, &s, iterations, steps, "condensed")
     }
 
-    fn finish(
+    /// The solution of `model` (this solver's body) for the contact unknowns `s`:
+    /// `v = A~^{-1} (b + W s)`, checked against the full residual of `model`.
+    fn finish_on<L2: FrictionLaw<f64>>(
         &self,
+        model: &ContactModel<D, L2>,
         loads: EndLoads,
         s: &[f64],
         iterations: usize,
         steps: usize,
+        method: &'static str,
     ) -> Result<ContactSolution, ContactError> {
-        let mut v = self.model.rhs(loads);
+        let mut v = model.rhs(loads);
         for (k, sk) in s.iter().enumerate() {
-            let node = self.model.active_node(k);
+            let node = model.active_node(k);
             v[node.tangential_row.expect("active")] += node.traction_weight * sk;
         }
         self.bulk
@@ -527,11 +519,11 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             .unwrap_or_else(std::sync::PoisonError::into_inner)
             .solve_in_place(&mut v)?;
         let mut sol = ContactSolution::new(
-            self.model,
+            model,
             loads,
             v,
             SolveStats {
-                method: "condensed",
+                method,
                 newton_iterations: iterations,
                 continuation_steps: steps,
                 residual: 0.0,
@@ -548,6 +540,29 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         }
         sol.unknowns = s.to_vec();
         Ok(sol)
+    }
+}
+
+/// What differs between the bodies of two models (`None`: the same bulk operator, unit-load
+/// right-hand sides and contact nodes, compared exactly), so that a condensation of one is
+/// exact for the other.
+fn body_difference<D, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>(
+    old: &ContactModel<D, L>,
+    new: &ContactModel<D, L2>,
+) -> Option<&'static str> {
+    if old.system().pattern != new.system().pattern {
+        Some("sparsity patterns")
+    } else if old.system().values != new.system().values {
+        Some("bulk operators")
+    } else if old.loads().len() != new.loads().len()
+        || (0..old.loads().len()).any(|i| old.rhs_basis(i) != new.rhs_basis(i))
+        || old.fixed_rhs() != new.fixed_rhs()
+    {
+        Some("unit-load right-hand sides")
+    } else if old.contact_nodes() != new.contact_nodes() || old.active() != new.active() {
+        Some("contact nodes")
+    } else {
+        None
     }
 }
 

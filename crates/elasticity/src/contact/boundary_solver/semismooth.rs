@@ -1,0 +1,425 @@
+//! Semismooth Newton for exact (nonsmooth) friction on the condensed contact face: the
+//! Alart–Curnier rows of [`crate::contact::ContactModel::into_exact_friction`] written in the
+//! condensed unknowns, reusing a [`BoundarySolver`]'s factorisation and condensed matrices.
+
+use capstan_friction::{FrictionLaw, FrictionState, Projection};
+use capstan_solvers::{
+    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
+    Observer, Progress, ResidualNorm, ShortStep, SolveStage, StepControl, newton_drive,
+};
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+
+use super::newton::{MAX_ROUNDOFF_RESIDUAL, ROUNDOFF_FACTOR};
+use super::{BoundarySolver, body_difference};
+use crate::contact::error::ContactError;
+use crate::contact::exact_friction::{ExactFriction, SLIP_JACOBIAN_BLEND};
+use crate::contact::loads::EndLoads;
+use crate::contact::model::ContactModel;
+use crate::contact::operator::ContactOperator;
+use crate::contact::solution::ContactSolution;
+
+/// The method name of a solution by [`BoundarySolver::solve_exact_from_observed`].
+pub const CONDENSED_SEMISMOOTH: &str = "condensed-semismooth";
+
+impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
+    /// Exact (nonsmooth) friction on the condensed contact face: semismooth Newton on the
+    /// Alart–Curnier rows of `exact` ([`ContactModel::into_exact_friction`], bilateral), in
+    /// the condensed unknowns `s` of this solver, from `start` (the unknowns of a nearby
+    /// solution, [`ContactSolution::unknowns`]: typically this solver's own solution of the
+    /// law's regularisation). No sparse work but one solve for the field at the end.
+    ///
+    /// # Math
+    /// With the condensed maps of [`BoundarySolver`] (`x = x0 + P Z s` the tangential
+    /// displacements, `sigma = n0 + N Z s` the normal stresses at the contact entries) the
+    /// covariant friction traction an entry's row carries is `t = s - C x` (the free row
+    /// `q = A v - b = W (s - C x)`), and per site (frames `f_e`, `F = [f_e]`)
+    /// ```text
+    /// tau = F^{-T} t,   u = F (x - x_ref),   G_e(s) = t_e - f_e . P_C(sigma)(tau - r u)
+    /// ```
+    /// (`r` the site's augmentation): `G = 0` is exactly the full system `R(v) = 0` of
+    /// [`ContactModel::into_exact_friction`] at `v = A~^{-1} (b + W s)`. The generalised
+    /// Jacobian (`J = dP/dtrial`, blended `(1 - delta) J + delta I` at sliding sites as on the
+    /// full system) is dense `m x m`:
+    /// ```text
+    /// dG_e/ds = (e_e - c_e PZ_e) - sum_f (f_e^T J F^{-T}_f) (e_f - c_f PZ_f)
+    ///           + r sum_f (f_e^T J f_f) PZ_f - (f_e . dP/dsigma) NZ_site
+    /// ```
+    /// so each semismooth step is one dense LU of size `m` (no sparse factorisation). With a
+    /// rigid sliding mode `z` the residual is evaluated as in [`BoundarySolver`]'s Newton
+    /// (`s = s_p + a z`, `a` only in the displacement), the Jacobian being the same matrix.
+    /// Damped by Armijo backtracking on `|G|_2^2`; converged when `max |G| <= tolerance *
+    /// scale` (the condensed Newton's test and scale), or at the rounding floor of `G`. Every
+    /// iterate reports its active set (stick and slip sites of the projection) to `observer`
+    /// ([`SolveStage::CondensedNewton`]).
+    ///
+    /// # Errors
+    /// [`ContactError::Unsupported`] naming `friction.law` when `exact` has no exact friction,
+    /// or `contact.kind` when it is unilateral; [`ContactError::DifferentBody`] unless `exact`
+    /// has this solver's body (bulk operator, unit loads, contact nodes);
+    /// [`crate::ElasticityError::DimensionMismatch`] for a start of the wrong length;
+    /// [`ContactError::NotConverged`] when the budget `max_iterations` is spent or no step
+    /// descends; [`ContactError::Interrupted`] when `observer` stops it.
+    pub fn solve_exact_from_observed<L2: FrictionLaw<f64>>(
+        &self,
+        exact: &ContactModel<D, L2>,
+        loads: EndLoads,
+        start: &[f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
+        loads.check()?;
+        let Some(friction) = exact.exact_friction() else {
+            return Err(ContactError::Unsupported {
+                field: "friction.law",
+                message: "the condensed semismooth Newton solves exact (nonsmooth) friction only (`exact-coulomb`, `exact-orthotropic-coulomb`); smooth laws run on the condensed Newton",
+            });
+        };
+        if exact.is_unilateral() {
+            return Err(ContactError::Unsupported {
+                field: "contact.kind",
+                message: "the condensed semismooth Newton keeps v^3 = 0 on the contact face; unilateral contact needs `full-newton`",
+            });
+        }
+        if let Some(what) = body_difference(self.model, exact) {
+            return Err(ContactError::DifferentBody { what });
+        }
+        let m = self.bulk.pz.nrows();
+        if start.len() != m {
+            return Err(crate::ElasticityError::DimensionMismatch {
+                quantity: "contact unknowns",
+                expected: m,
+                found: start.len(),
+            }
+            .into());
+        }
+        let (x0, n0) = self.loaded_base(loads);
+        let gmax = (0..m)
+            .map(|k| exact.active_node(k).sqrt_g22)
+            .fold(0.0f64, f64::max);
+        let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
+        let settings = &self.settings;
+        let tol = settings.tolerance * scale;
+        let policy = NewtonPolicy {
+            max_iterations: settings.max_iterations,
+            absolute_tolerance: tol,
+            relative_tolerance: 0.0,
+            norm: ResidualNorm::Max,
+            step: StepControl::Backtracking {
+                merit: Merit::SumOfSquares { armijo: 1e-4 },
+                min_step: 1e-8,
+                short_step: ShortStep::Fail,
+            },
+            divergence_limit: None,
+            step_stagnation: false,
+            check_finite: false,
+        };
+        let mut system = ExactFace {
+            solver: self,
+            exact,
+            friction,
+            x0: &x0,
+            n0: &n0,
+            scale,
+            max_iterations: settings.max_iterations,
+            jac: Mat::<f64>::zeros(m, m),
+            g: vec![0.0; m],
+            observer,
+        };
+        let mut s = start.to_vec();
+        let accept_floor =
+            |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
+        let not_converged = |iterations, residual: f64| ContactError::NotConverged {
+            iterations,
+            residual: residual / scale,
+            load_factor: 1.0,
+        };
+        let iterations = match newton_drive(&mut system, &mut s, &policy) {
+            Ok(done) => done.iterations,
+            Err(NewtonFailure::Problem(e)) => return Err(e),
+            Err(NewtonFailure::Interrupted { iteration }) => {
+                return Err(ContactError::Interrupted {
+                    iterations: iteration,
+                });
+            }
+            Err(
+                NewtonFailure::LineSearch {
+                    iterations: it,
+                    residual: r,
+                    ..
+                }
+                | NewtonFailure::NotConverged {
+                    iterations: it,
+                    residual: r,
+                },
+            ) => {
+                if r <= accept_floor(system.roundoff_floor(&s)) {
+                    it
+                } else {
+                    return Err(not_converged(it, r));
+                }
+            }
+            Err(
+                NewtonFailure::Stagnated {
+                    iterations: it,
+                    residual: r,
+                }
+                | NewtonFailure::Diverged {
+                    iteration: it,
+                    residual: r,
+                },
+            ) => return Err(not_converged(it, r)),
+            Err(NewtonFailure::NonFinite { iteration, .. }) => {
+                return Err(not_converged(iteration, f64::INFINITY));
+            }
+        };
+        self.finish_on(exact, loads, &s, iterations, 1, CONDENSED_SEMISMOOTH)
+    }
+}
+
+/// [`BoundarySolver::solve_exact_from_observed`]'s problem for the Newton driver.
+struct ExactFace<'s, 'b, 'o, D, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> {
+    solver: &'s BoundarySolver<'b, D, L>,
+    exact: &'s ContactModel<D, L2>,
+    friction: &'s ExactFriction,
+    x0: &'s [f64],
+    n0: &'s [f64],
+    /// `max |G|` is reported relative to it.
+    scale: f64,
+    /// The iteration cap (its iterate is not reported).
+    max_iterations: usize,
+    jac: Mat<f64>,
+    g: Vec<f64>,
+    observer: &'o mut dyn Observer<f64>,
+}
+
+/// The condensed quantities at `s`: `x = x0 + P Z s_p + a x_r`, the covariant tractions
+/// `t = s_p - C (x0 + P Z s_p)` and the normal stresses `sigma = n0 + N Z s_p`.
+struct FaceFields {
+    x: Vec<f64>,
+    t: Vec<f64>,
+    sigma: Vec<f64>,
+    /// `|x0| + sum_j |PZ_ij s_p,j|` per entry (the rounding scale of `x`).
+    x_abs: Vec<f64>,
+    /// `|s_p|` per entry.
+    s_abs: Vec<f64>,
+}
+
+impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
+    ExactFace<'_, '_, '_, D, L, L2>
+{
+    fn fields(&self, s: &[f64]) -> FaceFields {
+        let solver = self.solver;
+        let m = s.len();
+        let (a, sp) = solver.split_rigid(s);
+        let (pzs, nzs) = solver.condensed_products(&sp);
+        let spring = &solver.bulk.spring;
+        let mut f = FaceFields {
+            x: vec![0.0; m],
+            t: vec![0.0; m],
+            sigma: vec![0.0; m],
+            x_abs: vec![0.0; m],
+            s_abs: sp.iter().map(|v| v.abs()).collect(),
+        };
+        for i in 0..m {
+            let xb = self.x0[i] + pzs[i];
+            f.x[i] = xb + solver.rigid_shift.get(i).map_or(0.0, |r| a * r);
+            f.t[i] = sp[i] - spring[i] * xb;
+            f.sigma[i] = self.n0[i] + nzs[i];
+        }
+        for (i, xa) in f.x_abs.iter_mut().enumerate() {
+            *xa = self.x0[i].abs()
+                + (0..m)
+                    .map(|j| (solver.bulk.pz[(i, j)] * sp[j]).abs())
+                    .sum::<f64>();
+        }
+        f
+    }
+
+    /// The projection at site `j`: `P_C(sigma)(tau - r u)` with `tau`, `u` of the site.
+    fn project(&self, j: usize, f: &FaceFields) -> (Projection<f64>, [f64; 2], [f64; 2]) {
+        let members = &self.exact.sites().members[j];
+        let (inverse, r) = self.friction.site_data(j);
+        let mut tau = [0.0; 2];
+        for (e, &i) in members.iter().enumerate() {
+            for c in 0..2 {
+                tau[c] += inverse[e][c] * f.t[i];
+            }
+        }
+        let u = self.exact.site_slip(j, 1.0, |k| f.x[k]);
+        let trial = [tau[0] - r * u[0], tau[1] - r * u[1]];
+        let sigma = f.sigma[members[0]];
+        let projection = self
+            .friction
+            .law()
+            .project(trial, sigma)
+            .unwrap_or_else(|_| {
+                // a non-finite iterate: a non-finite residual, which the line search rejects
+                Projection::new([f64::NAN; 2], [[0.0; 2]; 2], [0.0; 2], FrictionState::Slip)
+            });
+        (projection, tau, u)
+    }
+
+    /// `G(s)` into `g` and, optionally, the generalised Jacobian into `jac`; returns the
+    /// `(stick, slip)` site counts of the projection.
+    #[allow(clippy::needless_range_loop)] // mirrors f_e^T J F^{-T}_f
+    fn eval(&self, s: &[f64], g: &mut [f64], mut jac: Option<&mut Mat<f64>>) -> (usize, usize) {
+        let m = s.len();
+        let f = self.fields(s);
+        let bulk = &self.solver.bulk;
+        let sites = self.exact.sites();
+        let (mut stick, mut slip) = (0, 0);
+        if let Some(jac) = jac.as_deref_mut() {
+            for j in 0..m {
+                for i in 0..m {
+                    jac[(i, j)] = f64::from(u8::from(i == j)) - bulk.spring[i] * bulk.pz[(i, j)];
+                }
+            }
+        }
+        for (j, members) in sites.members.iter().enumerate() {
+            let (pr, _, _) = self.project(j, &f);
+            match pr.state {
+                FrictionState::Stick => stick += 1,
+                FrictionState::Slip => slip += 1,
+                FrictionState::Separated => {}
+            }
+            for &i in members {
+                let fe = self.exact.active_node(i).frame;
+                g[i] = f.t[i] - (fe[0] * pr.traction[0] + fe[1] * pr.traction[1]);
+            }
+            let Some(jac) = jac.as_deref_mut() else {
+                continue;
+            };
+            let mut jp = pr.d_trial;
+            if pr.state == FrictionState::Slip {
+                let delta = SLIP_JACOBIAN_BLEND;
+                for c in 0..2 {
+                    for d in 0..2 {
+                        jp[c][d] = (1.0 - delta) * jp[c][d] + if c == d { delta } else { 0.0 };
+                    }
+                }
+            }
+            let (inverse, r) = self.friction.site_data(j);
+            let first = members[0];
+            for &i in members {
+                let fe = self.exact.active_node(i).frame;
+                for (ff, &k) in members.iter().enumerate() {
+                    let fk = self.exact.active_node(k).frame;
+                    let (mut mt, mut su) = (0.0, 0.0);
+                    for c in 0..2 {
+                        for d in 0..2 {
+                            mt += fe[c] * jp[c][d] * inverse[ff][d];
+                            su += fe[c] * jp[c][d] * fk[d];
+                        }
+                    }
+                    // - mt (e_k - c_k PZ_k) + r su PZ_k
+                    jac[(i, k)] -= mt;
+                    let coefficient = mt * bulk.spring[k] + r * su;
+                    if coefficient != 0.0 {
+                        for col in 0..m {
+                            jac[(i, col)] += coefficient * bulk.pz[(k, col)];
+                        }
+                    }
+                }
+                let dp = fe[0] * pr.d_pressure[0] + fe[1] * pr.d_pressure[1];
+                if dp != 0.0 {
+                    for col in 0..m {
+                        jac[(i, col)] -= dp * bulk.nz[(first, col)];
+                    }
+                }
+            }
+        }
+        (stick, slip)
+    }
+
+    /// The rounding-error bound of evaluating `G(s)` (max over the entries):
+    /// `u (|s_p| + c X + |t| + |f| (|tau| + r |f| X))` with `X = |x0| + sum_j |PZ_ij s_p,j|`.
+    fn roundoff_floor(&self, s: &[f64]) -> f64 {
+        let f = self.fields(s);
+        let sites = self.exact.sites();
+        let mut floor = 0.0f64;
+        for (j, members) in sites.members.iter().enumerate() {
+            let (_, tau, _) = self.project(j, &f);
+            let (_, r) = self.friction.site_data(j);
+            for &i in members {
+                let fe = self.exact.active_node(i).frame;
+                let fnorm = fe[0].hypot(fe[1]);
+                let c = self.solver.bulk.spring[i];
+                let value = f.s_abs[i]
+                    + c * f.x_abs[i]
+                    + f.t[i].abs()
+                    + fnorm * (tau[0].hypot(tau[1]) + r * fnorm * f.x_abs[i]);
+                floor = floor.max(f64::EPSILON * value);
+            }
+        }
+        floor
+    }
+}
+
+impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> NewtonSystem
+    for ExactFace<'_, '_, '_, D, L, L2>
+{
+    type Error = ContactError;
+
+    fn residual(&mut self, s: &[f64], g: &mut [f64]) -> Result<(), ContactError> {
+        self.eval(s, g, None);
+        Ok(())
+    }
+
+    fn direction(
+        &mut self,
+        at: &NewtonIterate<'_>,
+        ds: &mut [f64],
+    ) -> Result<NewtonDirection, ContactError> {
+        let mut g = std::mem::take(&mut self.g);
+        let mut jac = std::mem::replace(&mut self.jac, Mat::<f64>::zeros(0, 0));
+        self.eval(at.u, &mut g, Some(&mut jac));
+        let m = ds.len();
+        let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -g[i]);
+        let step = jac.partial_piv_lu().solve(&rhs);
+        self.g = g;
+        self.jac = jac;
+        if (0..m).any(|i| !step[(i, 0)].is_finite()) {
+            return Err(ContactError::NotConverged {
+                iterations: at.iteration,
+                residual: at.norm / self.scale,
+                load_factor: 1.0,
+            });
+        }
+        for (i, d) in ds.iter_mut().enumerate() {
+            *d = step[(i, 0)];
+        }
+        Ok(NewtonDirection {
+            max_step: 1.0,
+            ..NewtonDirection::default()
+        })
+    }
+
+    fn accepted(&mut self, at: &NewtonIterate<'_>) -> Result<Flow, ContactError> {
+        if at.iteration == self.max_iterations {
+            return Ok(Flow::Continue);
+        }
+        let mut g = std::mem::take(&mut self.g);
+        let (stick, slip) = self.eval(at.u, &mut g, None);
+        self.g = g;
+        self.observer.iteration(
+            &Progress::new(
+                SolveStage::CondensedNewton,
+                at.iteration,
+                at.norm / self.scale,
+                at.step,
+            )
+            .with_active(stick, slip),
+        );
+        if self.observer.interrupted() {
+            return Ok(Flow::Interrupt);
+        }
+        if !at.norm.is_finite() {
+            return Err(ContactError::NotConverged {
+                iterations: at.iteration,
+                residual: f64::INFINITY,
+                load_factor: 1.0,
+            });
+        }
+        Ok(Flow::Continue)
+    }
+}

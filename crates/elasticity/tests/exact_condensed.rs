@@ -1,0 +1,252 @@
+//! Exact Coulomb friction on the condensed contact face
+//! (`BoundarySolver::solve_exact_from_observed`): the same solution as the full-system
+//! semismooth Newton, the `eps -> 0` limit of regularised Coulomb, the active set per
+//! iteration, and the typed errors.
+
+use capstan_elasticity::contact::{
+    Body, BoundarySolver, CONDENSED_SEMISMOOTH, ContactError, ContactModel, ContactSettings,
+    ContactSolution, EndLoads, FullSystemSettings, FullSystemSolver, Gap,
+};
+use capstan_elasticity::finite_element::DiscretisationMethod;
+use capstan_friction::nonsmooth_law::bind_nonsmooth;
+use capstan_friction::{
+    ExactCoulomb, ExactCoulombParams, Frictionless, RegularisedCoulomb, RegularisedCoulombParams,
+};
+use capstan_geometry::{EllipticalPrism, Obstacle};
+use capstan_solvers::{ActiveSet, Observer, Progress, SilentObserver};
+
+fn body(a: f64, b: f64, n2: usize, n3: usize) -> Body {
+    let obstacle = Obstacle::Ellipse(EllipticalPrism::new(a, b).unwrap());
+    let mut body = Body::new(obstacle, n2, n3);
+    body.method = DiscretisationMethod::Fd;
+    body
+}
+
+fn solid(mut b: Body, n1: usize) -> Body {
+    use capstan_elasticity::contact::Dimension;
+    use capstan_elasticity::solid::SideFaces;
+    b.method = DiscretisationMethod::FemQ1;
+    b.dimension = Dimension::Solid {
+        x1: [-0.5, 0.5],
+        n1,
+        sides: SideFaces::Free,
+    };
+    b
+}
+
+fn exact_law() -> std::sync::Arc<dyn capstan_friction::nonsmooth_law::DynNonsmoothLaw> {
+    bind_nonsmooth(ExactCoulomb, ExactCoulombParams::new(0.5).unwrap())
+}
+
+fn regularised_model(
+    b: &Body,
+    eps: f64,
+) -> ContactModel<capstan_elasticity::contact::BodyOperator, RegularisedCoulomb> {
+    b.model(
+        RegularisedCoulomb,
+        RegularisedCoulombParams::new(0.5, eps).unwrap(),
+        eps,
+    )
+    .unwrap()
+}
+
+/// The full-system semismooth Newton (from its own regularised start).
+fn full_system(b: &Body, loads: EndLoads) -> ContactSolution {
+    let model = b
+        .model(Frictionless, (), 1e-5)
+        .unwrap()
+        .into_exact_friction(exact_law())
+        .unwrap();
+    FullSystemSolver::new(&model, FullSystemSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap()
+}
+
+/// The condensed route: regularised Coulomb of width `eps` on the condensed solver, then
+/// semismooth Newton on the contact face from its unknowns; `(exact, regularised)`.
+fn condensed(
+    b: &Body,
+    eps: f64,
+    loads: EndLoads,
+    observer: &mut dyn Observer<f64>,
+) -> (ContactSolution, ContactSolution) {
+    let model = regularised_model(b, eps);
+    let exact = model
+        .with_params(*model.params())
+        .into_exact_friction(exact_law())
+        .unwrap();
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let start = solver.solve(loads).unwrap();
+    let x = solver
+        .solve_exact_from_observed(&exact, loads, &start.unknowns, observer)
+        .unwrap();
+    (x, start)
+}
+
+/// `max |a - b| / max |b|` over the displacement.
+fn relative_difference(a: &ContactSolution, b: &ContactSolution) -> f64 {
+    let scale = b.displacement.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .displacement
+        .iter()
+        .zip(&b.displacement)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    diff / scale
+}
+
+/// The condensed semismooth Newton gives the full-system semismooth Newton's solution to
+/// 1e-10 (displacement, max-norm relative), with the same stick/slip states, on the paper's
+/// circle (a rigid sliding mode, one sticking node) at two ratios, on an ellipse and on a
+/// 3-D body (two-component slip, the friction disc); in a few dense steps.
+#[test]
+fn condensed_semismooth_newton_equals_the_full_system_one() {
+    let cases = [
+        ("circle 81 x 17, ratio 2", body(2.0, 2.0, 81, 17), 2.0),
+        ("circle 81 x 17, ratio 1.5", body(2.0, 2.0, 81, 17), 1.5),
+        (
+            "ellipse 2 x 1.5, 61 x 13, ratio 1.8",
+            body(2.0, 1.5, 61, 13),
+            1.8,
+        ),
+        (
+            "3-D Q1 3 x 21 x 5, ratio 1.5",
+            solid(body(2.0, 2.0, 21, 5), 3),
+            1.5,
+        ),
+    ];
+    for (name, b, ratio) in cases {
+        let loads = EndLoads::new(1.0, ratio);
+        let full = full_system(&b, loads);
+        let (x, start) = condensed(&b, 1e-5, loads, &mut SilentObserver);
+        let d = relative_difference(&x, &full);
+        let semismooth = x.stats.newton_iterations;
+        println!(
+            "{name}: |v_condensed - v_full| / |v| = {d:.2e}, semismooth steps {semismooth} (after {} regularised), full-system iterations {}, residuals {:.1e} / {:.1e}",
+            start.stats.newton_iterations,
+            full.stats.newton_iterations,
+            x.stats.residual,
+            full.stats.residual
+        );
+        assert_eq!(x.stats.method, CONDENSED_SEMISMOOTH);
+        assert!(d < 1e-10, "{name}: {d:e}");
+        assert!(x.stats.residual < 1e-9, "{name}: {:e}", x.stats.residual);
+        assert!((1..=8).contains(&semismooth), "{name}: {semismooth}");
+        assert_eq!(x.contact.state, full.contact.state, "{name}");
+        assert_eq!(x.slip_fraction, full.slip_fraction, "{name}");
+    }
+}
+
+/// The existing limit check on the condensed path: regularised Coulomb (condensed) converges
+/// to the condensed exact solution at first order in `eps` (max `|v2|`, the paper's body),
+/// whose stick set is the one neutral node.
+#[test]
+fn condensed_exact_coulomb_is_the_limit_of_regularised_coulomb() {
+    let b = body(2.0, 2.0, 81, 17);
+    let loads = EndLoads::new(1.0, 2.0);
+    let (x, _) = condensed(&b, 1e-5, loads, &mut SilentObserver);
+    let stick = x.stick_interval.unwrap();
+    assert_eq!(stick.count, 1, "{stick:?}");
+    let v2 = x.max_azimuthal_displacement.value;
+    let errors: Vec<(f64, f64)> = [1e-5, 1e-6, 1e-7]
+        .into_iter()
+        .map(|eps| {
+            let model = regularised_model(&b, eps);
+            let s = BoundarySolver::new(&model, ContactSettings::default())
+                .unwrap()
+                .solve(loads)
+                .unwrap();
+            (eps, (s.max_azimuthal_displacement.value - v2).abs())
+        })
+        .collect();
+    let p = capstan_elasticity::verification::observed_order(&errors);
+    println!("max |v2| errors {errors:?}, order {p:.4}");
+    // full-system path: 1.9802e-6, 1.9802e-7, 1.9802e-8 (order 1.000)
+    assert!((p - 1.0).abs() < 0.02, "{p}: {errors:?}");
+    assert!(errors[2].1 < 1e-5 * v2.abs(), "{errors:?}");
+}
+
+/// Every condensed semismooth iterate reports its active set; the last one sticks at one
+/// site and slides at the other 40.
+#[test]
+fn condensed_semismooth_newton_reports_its_active_set_per_iteration() {
+    struct Sets(Vec<ActiveSet>);
+    impl Observer<f64> for Sets {
+        fn iteration(&mut self, p: &Progress<f64>) {
+            if let Some(set) = p.active {
+                self.0.push(set);
+            }
+        }
+    }
+    let b = body(2.0, 2.0, 41, 9);
+    let mut sets = Sets(Vec::new());
+    let (x, _) = condensed(&b, 1e-5, EndLoads::new(1.0, 2.0), &mut sets);
+    assert!(sets.0.len() >= x.stats.newton_iterations, "{:?}", sets.0);
+    let last = sets.0.last().unwrap();
+    assert_eq!((last.stick, last.slip), (1, 40), "{last:?}");
+}
+
+/// Typed errors: a model without exact friction (`friction.law`), a unilateral one
+/// (`contact.kind`), another body, a start of the wrong length, and the budget.
+#[test]
+fn condensed_semismooth_newton_refuses_what_it_cannot_solve() {
+    let b = body(2.0, 2.0, 41, 9);
+    let loads = EndLoads::new(1.0, 2.0);
+    let model = regularised_model(&b, 1e-5);
+    let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+    let start = solver.solve(loads).unwrap().unknowns;
+    let unsupported = |e: ContactError| match e {
+        ContactError::Unsupported { field, .. } => field,
+        other => panic!("{other:?}"),
+    };
+    let e = solver
+        .solve_exact_from_observed(&model, loads, &start, &mut SilentObserver)
+        .unwrap_err();
+    assert_eq!(unsupported(e), "friction.law");
+    let unilateral = model
+        .with_params(*model.params())
+        .into_unilateral(&Gap::zero())
+        .unwrap()
+        .into_exact_friction(exact_law())
+        .unwrap();
+    let e = solver
+        .solve_exact_from_observed(&unilateral, loads, &start, &mut SilentObserver)
+        .unwrap_err();
+    assert_eq!(unsupported(e), "contact.kind");
+    let other = regularised_model(&body(2.0, 2.0, 41, 11), 1e-5)
+        .into_exact_friction(exact_law())
+        .unwrap();
+    let e = solver
+        .solve_exact_from_observed(&other, loads, &start, &mut SilentObserver)
+        .unwrap_err();
+    assert!(matches!(e, ContactError::DifferentBody { .. }), "{e:?}");
+    let exact = model
+        .with_params(*model.params())
+        .into_exact_friction(exact_law())
+        .unwrap();
+    let e = solver
+        .solve_exact_from_observed(&exact, loads, &start[1..], &mut SilentObserver)
+        .unwrap_err();
+    assert!(e.to_string().contains("contact unknowns"), "{e}");
+    // one semismooth step from the stuck state is not enough: the budget's typed error
+    let tight = BoundarySolver::new(
+        &model,
+        ContactSettings {
+            max_iterations: 1,
+            ..ContactSettings::default()
+        },
+    )
+    .unwrap();
+    let stuck = tight.stuck_unknowns(loads);
+    match tight.solve_exact_from_observed(&exact, loads, &stuck, &mut SilentObserver) {
+        Err(ContactError::NotConverged {
+            iterations,
+            residual,
+            ..
+        }) => assert!(
+            iterations <= 1 && residual > 1e-10,
+            "{iterations} {residual}"
+        ),
+        other => panic!("{other:?}"),
+    }
+}
