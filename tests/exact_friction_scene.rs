@@ -1,7 +1,8 @@
 //! Exact (nonsmooth) Coulomb friction on the thick body, named by a scene:
-//! `friction.law = "exact-coulomb"` solves by the full-system semismooth Newton (what `auto`
-//! picks), agrees with regularised Coulomb as `eps -> 0`, and the condensed solver refuses it
-//! naming `solver.nonlinear`.
+//! `friction.law = "exact-coulomb"` solves by semismooth Newton on the condensed contact face
+//! (what `auto` picks on bilateral contact), gives the full-system semismooth Newton's answer,
+//! agrees with regularised Coulomb as `eps -> 0`, and the condensed solver refuses unilateral
+//! exact friction naming `solver.nonlinear`.
 
 mod common;
 
@@ -41,8 +42,11 @@ fn max_v2(scene: &Scene) -> (f64, String, String) {
 #[test]
 fn exact_coulomb_from_a_scene_is_the_eps_to_zero_limit_of_regularised_coulomb() {
     let (exact, nonlinear, reason) = max_v2(&scene("exact-coulomb", 1e-5, &[]));
-    assert_eq!(nonlinear, "full-newton");
-    assert!(reason.contains("exact friction"), "{reason}");
+    assert_eq!(nonlinear, "newton");
+    assert!(
+        reason.contains("exact friction") && reason.contains("condensed contact face"),
+        "{reason}"
+    );
     // regularised Coulomb approaches it at first order in eps (h27: 1.98e-6 at 1e-5)
     let errors: Vec<f64> = [1e-5, 1e-6]
         .iter()
@@ -57,11 +61,46 @@ fn exact_coulomb_from_a_scene_is_the_eps_to_zero_limit_of_regularised_coulomb() 
 }
 
 #[test]
-fn the_condensed_solver_refuses_exact_friction_naming_the_key() {
+fn the_condensed_route_gives_the_full_system_answer() {
+    // auto and `newton` run the condensed semismooth Newton, `full-newton` the full system
+    let solve = |sets: &[(&str, &str)]| {
+        scene("exact-coulomb", 1e-5, sets)
+            .build()
+            .unwrap()
+            .solve()
+            .unwrap()
+    };
+    let auto = solve(&[]);
+    let named = solve(&[("solver.nonlinear", "\"newton\"")]);
+    let full = solve(&[("solver.nonlinear", "\"full-newton\"")]);
+    assert_eq!(auto.solution.stats.method, "condensed-semismooth");
+    assert_eq!(named.solution.stats.method, "condensed-semismooth");
+    assert_eq!(full.solution.stats.method, "full-newton");
+    assert_eq!(auto.solution.displacement, named.solution.displacement);
+    let scale = full
+        .solution
+        .displacement
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = auto
+        .solution
+        .displacement
+        .iter()
+        .zip(&full.solution.displacement)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(diff < 1e-10 * scale, "{:e}", diff / scale);
+    assert_eq!(auto.solution.contact.state, full.solution.contact.state);
+    assert!(auto.limiting.is_some());
+}
+
+#[test]
+fn the_condensed_solver_refuses_unilateral_exact_friction_naming_the_key() {
     let (code, _, err) = common::capstan_status(&[
         "contact",
         "--set",
         "friction.law=\"exact-coulomb\"",
+        "--set",
+        "contact.kind=\"unilateral\"",
         "--set",
         "solver.nonlinear=\"newton\"",
     ]);
@@ -76,7 +115,8 @@ fn the_condensed_solver_refuses_exact_friction_naming_the_key() {
 fn exact_coulomb_starts_from_its_regularisation_without_load_continuation() {
     // the semismooth Newton starts from the condensed solver's regularised solution
     // (src/problem/exact_start.rs): before, its own regularised start stagnated at full load
-    // from the stuck state and the load continuation ran (29 iterations on the default scene)
+    // from the stuck state and the load continuation ran (29 iterations on the default scene);
+    // on the condensed face it takes 2 semismooth steps here
     let exact = scene("exact-coulomb", 1e-5, &[])
         .build()
         .unwrap()
