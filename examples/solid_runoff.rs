@@ -1,0 +1,75 @@
+//! The 3-D run-off ratio of the default cone (`obstacle.shape = "cone"`, `ubar = 0.5 sin t`,
+//! width 1, `h = 1`, `mu = 0.5`, Q1) under unilateral or bilateral contact, by continuation in
+//! the tension ratio on the full-system Newton: from ratio 1 up, each solve starting from the
+//! last converged one (a static problem each time, no load path), the ratio step halved on
+//! failure until it is below `1e-3`; the run-off is bracketed by the last converged ratio and
+//! the first failed one. Prints per converged ratio the Slip measure, `max |v|` on the contact
+//! face and the separated sites.
+//!
+//! Run: `cargo run --release --example solid_runoff -- N1 N2 N3 [unilateral|bilateral]`
+//! (default 3 20 3 unilateral). Look at: the bracket, and `max |v|` growing towards it.
+
+use capstan::Scene;
+use capstan_elasticity::contact::{EndLoads, FullSystemSolver};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let n = |i: usize, d: &str| args.get(i).cloned().unwrap_or_else(|| d.to_owned());
+    let kind = n(3, "unilateral");
+    let mut scene = Scene::default();
+    for (key, value) in [
+        ("body.dimension", "3".to_owned()),
+        ("discretisation.method", "\"fem-q1\"".to_owned()),
+        ("obstacle.shape", "\"cone\"".to_owned()),
+        ("grid.n1", n(0, "3")),
+        ("grid.n2", n(1, "20")),
+        ("grid.n3", n(2, "3")),
+        ("contact.kind", format!("\"{kind}\"")),
+        ("solver.nonlinear", "\"full-newton\"".to_owned()),
+    ] {
+        scene = scene.with_raw(key, &value, "runoff")?;
+    }
+    let problem = scene.build()?;
+    let model = problem.model()?;
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings())?;
+    let tau0 = problem.loads.tau0;
+    let (mut ratio, mut step) = (1.0, 0.05);
+    let mut last = solver.solve(EndLoads::new(tau0, tau0 * ratio))?;
+    let mut failed = f64::INFINITY;
+    println!("| ratio | Newton iterations | Slip | max |v| on the face | separated sites |");
+    println!("|---|---|---|---|---|");
+    let report = |r: f64, s: &capstan_elasticity::contact::ContactSolution| {
+        let p = &s.contact;
+        let vmax =
+            p.v2.iter()
+                .zip(&p.v3)
+                .map(|(a, b)| a.hypot(*b))
+                .fold(0.0f64, f64::max);
+        let separated = p
+            .separated
+            .as_ref()
+            .map_or(0, |s| s.iter().filter(|&&x| x).count());
+        println!(
+            "| {r:.6} | {} | {:.4} | {vmax:.6e} | {separated} |",
+            s.stats.newton_iterations, s.slip_fraction
+        );
+    };
+    report(ratio, &last);
+    while step >= 1e-3 && ratio < 10.0 {
+        let trial = ratio + step;
+        match solver.solve_from(EndLoads::new(tau0, tau0 * trial), &last.displacement) {
+            Ok(s) => {
+                ratio = trial;
+                report(ratio, &s);
+                last = s;
+            }
+            Err(e) => {
+                failed = failed.min(trial);
+                eprintln!("ratio {trial:.6}: {e}");
+                step /= 2.0;
+            }
+        }
+    }
+    println!("run-off bracket ({kind}): [{ratio:.6}, {failed:.6}]");
+    Ok(())
+}
