@@ -10,8 +10,7 @@ mod rigid;
 mod semismooth;
 mod settings;
 
-pub use semismooth::CONDENSED_SEMISMOOTH;
-pub use settings::{ContactSettings, SetupStats, SlidingMode};
+pub use settings::{CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode};
 
 use std::sync::{Arc, Mutex};
 

@@ -11,6 +11,7 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 use super::newton::{MAX_ROUNDOFF_RESIDUAL, ROUNDOFF_FACTOR};
+use super::settings::CONDENSED_SEMISMOOTH;
 use super::{BoundarySolver, body_difference};
 use crate::contact::error::ContactError;
 use crate::contact::exact_friction::{ExactFriction, SLIP_JACOBIAN_BLEND};
@@ -18,9 +19,6 @@ use crate::contact::loads::EndLoads;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::ContactSolution;
-
-/// The method name of a solution by [`BoundarySolver::solve_exact_from_observed`].
-pub const CONDENSED_SEMISMOOTH: &str = "condensed-semismooth";
 
 impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// Exact (nonsmooth) friction on the condensed contact face: semismooth Newton on the

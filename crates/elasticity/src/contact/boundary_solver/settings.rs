@@ -120,3 +120,7 @@ pub struct SetupStats {
     /// Schur complements (the `lu` default), `m` per factorisation `+ 2` by solves.
     pub bulk_solves: usize,
 }
+
+/// The method name (`stats.method`) of a solution by
+/// [`super::BoundarySolver::solve_exact_from_observed`].
+pub const CONDENSED_SEMISMOOTH: &str = "condensed-semismooth";
