@@ -48,7 +48,7 @@ mod targets;
 
 pub use contact::{
     CONTACT_PROBLEMS, CONTACT_TARGETS, ContactBench, ContactFastest, ContactReference,
-    ContactValues,
+    ContactValues, THRESHOLD_TOLERANCE,
 };
 use outputs::write_outputs;
 pub use peer_error::{Rectangle, points_error, points_error_of};
