@@ -159,6 +159,19 @@ impl ContactNode {
     }
 }
 
+/// Consecutive rows of a matrix for [`LinearSystem::from_row_blocks`]: row `i` of the block
+/// holds the columns `cols[ends[i - 1]..ends[i]]` (strictly increasing; `ends[-1] = 0`) with
+/// the values at the same places.
+#[derive(Debug, Clone, Default)]
+pub struct RowBlock {
+    /// Column of every entry, row after row.
+    pub cols: Vec<usize>,
+    /// Value of every entry, in the order of `cols`.
+    pub values: Vec<f64>,
+    /// End (exclusive) in `cols` of every row.
+    pub ends: Vec<usize>,
+}
+
 /// An assembled linear system `A v = b` on a sparsity pattern built once.
 #[derive(Debug, Clone)]
 pub struct LinearSystem {
@@ -236,6 +249,101 @@ impl LinearSystem {
             values,
             rhs,
             slots: None,
+        })
+    }
+
+    /// The system of rows listed in row order, each row's columns strictly increasing: the
+    /// same pattern, entry slots and values, bit for bit, as [`LinearSystem::from_entries`] on
+    /// the entries `(row, column)` in that order followed by `add_entry(k, value_k)`, built by
+    /// one counting pass over the columns instead of the general sort (no entry list, no
+    /// permutation: about half the memory touched).
+    ///
+    /// # Math
+    /// With `count_c` the entries of column `c`, `col_ptr[c + 1] = col_ptr[c] + count_c`; entry
+    /// `k = (r, c)` takes the next free slot of column `c`, so rows increase within a column
+    /// because rows come in order, and `values[slot_k] = 0 + value_k`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] when the blocks hold other than `rhs.len()` rows
+    /// or a block's columns and values differ in length; [`ElasticityError::Solver`] for a
+    /// column out of range or a row whose columns are not strictly increasing;
+    /// `InvalidParameter` if the pattern has more than `u32::MAX` nonzeros.
+    pub fn from_row_blocks(blocks: &[RowBlock], rhs: Vec<f64>) -> Result<Self, ElasticityError> {
+        let n = rhs.len();
+        let rows: usize = blocks.iter().map(|b| b.ends.len()).sum();
+        ElasticityError::check_length("rows of the row blocks", n, rows)?;
+        let mut col_ptr = vec![0usize; n + 1];
+        let mut row = 0;
+        for block in blocks {
+            ElasticityError::check_length(
+                "values of a row block",
+                block.cols.len(),
+                block.values.len(),
+            )?;
+            if block.ends.last().copied().unwrap_or(0) != block.cols.len()
+                || block.ends.windows(2).any(|w| w[0] > w[1])
+            {
+                return Err(ElasticityError::InvalidParameter {
+                    field: "row block ends",
+                    value: block.cols.len() as f64,
+                    allowed: "non-decreasing row ends, the last equal to the block's entries",
+                });
+            }
+            let mut start = 0;
+            for &end in &block.ends {
+                for &c in &block.cols[start..end] {
+                    if c >= n {
+                        return Err(capstan_solvers::SolverError::EntryOutOfBounds {
+                            row,
+                            col: c,
+                            nrows: n,
+                            ncols: n,
+                        }
+                        .into());
+                    }
+                    col_ptr[c + 1] += 1;
+                }
+                start = end;
+                row += 1;
+            }
+        }
+        for c in 0..n {
+            col_ptr[c + 1] += col_ptr[c];
+        }
+        let nnz = col_ptr[n];
+        if nnz > u32::MAX as usize {
+            return Err(ElasticityError::InvalidParameter {
+                field: "pattern nonzeros",
+                value: nnz as f64,
+                allowed: "[0, 2^32)",
+            });
+        }
+        let mut next = col_ptr[..n].to_vec();
+        let mut row_idx = vec![0usize; nnz];
+        let mut values = vec![0.0; nnz];
+        let mut slots = Vec::with_capacity(nnz);
+        let mut row = 0;
+        for block in blocks {
+            let mut start = 0;
+            for &end in &block.ends {
+                for (&c, &v) in block.cols[start..end].iter().zip(&block.values[start..end]) {
+                    let slot = next[c];
+                    next[c] += 1;
+                    row_idx[slot] = row;
+                    values[slot] += v;
+                    slots.push(slot as u32);
+                }
+                start = end;
+                row += 1;
+            }
+        }
+        // rows strictly increasing within every column holds iff no row repeats a column
+        let pattern = SparsityPattern::from_compressed_columns(n, n, col_ptr, row_idx)?;
+        Ok(Self {
+            pattern,
+            values,
+            rhs,
+            slots: Some(slots),
         })
     }
 

@@ -9,7 +9,7 @@ use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
 };
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem, RowBlock, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::plane_problem::PlaneProblem;
@@ -25,6 +25,54 @@ type Stencil = Vec<([usize; 2], [f64; 3])>;
 
 /// Rows per parallel block of [`FiniteDifferenceNavier`]'s assembly.
 const ROW_BLOCK: usize = 2048;
+
+/// Rows remembered by [`SortOrders`]: one per row shape of a grid's stencils (interior,
+/// edges, corners, both equations) fits.
+const SORT_ORDER_CACHE: usize = 16;
+
+/// The order in which `terms.sort_unstable_by_key(|t| t.0)` puts a row's terms, remembered
+/// per row shape: rows whose columns are the same offsets from the row (the interior rows of
+/// a grid) are put in the same order without sorting again.
+///
+/// # Math
+/// An unstable sort's permutation is a function of its comparisons' outcomes alone, and
+/// those depend on the keys' order alone, which a common shift `c -> c + d` keeps. Sorting
+/// `(column, position as f64)` pairs (the same element type, the same key) therefore moves
+/// the positions exactly as the sort moves the terms, including the order of equal columns:
+/// the merged row, sums included, is the same bit for bit as after sorting the terms.
+#[derive(Default)]
+struct SortOrders {
+    /// `(column - row offsets, positions in sorted order)` per remembered shape, the most
+    /// recently used first.
+    shapes: Vec<(Vec<isize>, Vec<u32>)>,
+    /// Scratch for a new shape.
+    pairs: Vec<(usize, f64)>,
+}
+
+impl SortOrders {
+    /// The positions of `terms` (row `d`) in the order of their sort by column.
+    fn order(&mut self, d: usize, terms: &[(usize, f64)]) -> &[u32] {
+        let offset = |c: usize| c as isize - d as isize;
+        let same = |shape: &[isize]| {
+            shape.len() == terms.len() && shape.iter().zip(terms).all(|(&o, t)| o == offset(t.0))
+        };
+        if let Some(at) = self.shapes.iter().position(|(shape, _)| same(shape)) {
+            self.shapes[..=at].rotate_right(1);
+        } else {
+            self.pairs.clear();
+            self.pairs
+                .extend(terms.iter().enumerate().map(|(k, t)| (t.0, k as f64)));
+            self.pairs.sort_unstable_by_key(|t| t.0);
+            let shape = terms.iter().map(|t| offset(t.0)).collect();
+            let order = self.pairs.iter().map(|t| t.1 as u32).collect();
+            if self.shapes.len() == SORT_ORDER_CACHE {
+                self.shapes.pop();
+            }
+            self.shapes.insert(0, (shape, order));
+        }
+        &self.shapes[0].1
+    }
+}
 
 /// The geometry cached at the grid column `x2_i` (see the fields of [`FiniteDifferenceNavier`]).
 struct CachedColumn {
@@ -380,11 +428,13 @@ impl<G: ShellGeometry + Sync> FiniteDifferenceNavier<G> {
         let mut terms = Vec::with_capacity(64);
         let mut st = Vec::with_capacity(16);
         let mut merged: Vec<(usize, f64)> = Vec::with_capacity(64);
+        let mut orders = SortOrders::default();
         for d in rows {
             let rhs = self.row(d, &mut terms, &mut st)?;
-            terms.sort_unstable_by_key(|t| t.0);
+            let order = orders.order(d, &terms);
             merged.clear();
-            for &(c, v) in &terms {
+            for &k in order {
+                let (c, v) = terms[k as usize];
                 match merged.last_mut() {
                     Some(last) if last.0 == c => last.1 += v,
                     _ => merged.push((c, v)),
@@ -429,41 +479,32 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteDifferenceNavier<G> {
 
     /// One pass over the rows for the pattern, the values and the right-hand side (the
     /// default visits them twice: [`Discretisation::entries`], then
-    /// [`Discretisation::refill`]), blocks of `ROW_BLOCK` (2048) rows in parallel and concatenated
-    /// in row order; the same system, bit for bit, as one sequential pass.
+    /// [`Discretisation::refill`]), blocks of `ROW_BLOCK` (2048) rows in parallel, placed into
+    /// compressed columns in row order ([`LinearSystem::from_row_blocks`]); the same system,
+    /// bit for bit, as one sequential pass through [`LinearSystem::from_entries`].
     fn system(&self) -> Result<LinearSystem, ElasticityError> {
         let n = self.dof_count();
         let blocks = (0..n.div_ceil(ROW_BLOCK))
             .into_par_iter()
             .map(|b| {
                 let rows = b * ROW_BLOCK..n.min((b + 1) * ROW_BLOCK);
-                let mut entries = Vec::with_capacity(rows.len() * 20);
-                let mut values = Vec::with_capacity(rows.len() * 20);
+                let mut block = RowBlock {
+                    cols: Vec::with_capacity(rows.len() * 20),
+                    values: Vec::with_capacity(rows.len() * 20),
+                    ends: Vec::with_capacity(rows.len()),
+                };
                 let mut rhs = Vec::with_capacity(rows.len());
-                self.visit_rows(rows, |d, terms, b| {
-                    entries.extend(terms.iter().map(|t| (d, t.0)));
-                    values.extend(terms.iter().map(|t| t.1));
+                self.visit_rows(rows, |_, terms, b| {
+                    block.cols.extend(terms.iter().map(|t| t.0));
+                    block.values.extend(terms.iter().map(|t| t.1));
+                    block.ends.push(block.cols.len());
                     rhs.push(b);
                 })?;
-                Ok((entries, values, rhs))
+                Ok((block, rhs))
             })
             .collect::<Result<Vec<_>, ElasticityError>>()?;
-        let nnz = blocks.iter().map(|b| b.0.len()).sum();
-        let mut entries = Vec::with_capacity(nnz);
-        let mut values = Vec::with_capacity(nnz);
-        let mut rhs = Vec::with_capacity(n);
-        for (e, v, r) in blocks {
-            entries.extend(e);
-            values.extend(v);
-            rhs.extend(r);
-        }
-        let mut system = LinearSystem::from_entries(n, &entries)?;
-        drop(entries);
-        for (k, v) in values.into_iter().enumerate() {
-            system.add_entry(k, v);
-        }
-        system.rhs = rhs;
-        Ok(system)
+        let (blocks, rhs): (Vec<RowBlock>, Vec<Vec<f64>>) = blocks.into_iter().unzip();
+        LinearSystem::from_row_blocks(&blocks, rhs.concat())
     }
 
     fn fill_values(
