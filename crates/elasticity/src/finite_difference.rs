@@ -557,3 +557,101 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteDifferenceNavier<G> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BoundaryConditions, Grid, Material};
+    use capstan_geometry::{EllipticalPrism, ShellChart};
+
+    /// The system by the plain per-row sort and the general pattern builder: what
+    /// [`FiniteDifferenceNavier::system`] replaced.
+    fn sorted_reference<G: ShellGeometry + Sync>(fd: &FiniteDifferenceNavier<G>) -> LinearSystem {
+        let n = fd.dof_count();
+        let (mut terms, mut st) = (Vec::new(), Vec::new());
+        let (mut entries, mut values, mut rhs) = (Vec::new(), Vec::new(), Vec::new());
+        for d in 0..n {
+            rhs.push(fd.row(d, &mut terms, &mut st).unwrap());
+            terms.sort_unstable_by_key(|t| t.0);
+            let mut merged: Vec<(usize, f64)> = Vec::new();
+            for &(c, v) in &terms {
+                match merged.last_mut() {
+                    Some(last) if last.0 == c => last.1 += v,
+                    _ => merged.push((c, v)),
+                }
+            }
+            entries.extend(merged.iter().map(|t| (d, t.0)));
+            values.extend(merged.iter().map(|t| t.1));
+        }
+        let mut system = LinearSystem::from_entries(n, &entries).unwrap();
+        for (k, v) in values.into_iter().enumerate() {
+            system.add_entry(k, v);
+        }
+        system.rhs = rhs;
+        system
+    }
+
+    #[test]
+    fn system_matches_the_sorted_rows_bit_for_bit() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        // more rows than one parallel block, and a grid with edge and corner rows of every kind
+        for (a, b, n2, n3) in [(2.0, 1.2, 25, 5), (2.0, 2.0, 301, 9)] {
+            let problem = PlaneProblem {
+                chart: ShellChart::new(EllipticalPrism::new(a, b).unwrap()),
+                material: Material::new(1e3, 0.25).unwrap(),
+                grid: Grid::new([-1.5707963, 1.5707963], 1.0, n2, n3, false).unwrap(),
+                boundary: BoundaryConditions::paper_clamped(1.0, 2.0),
+                body_force: None,
+            };
+            let fd = FiniteDifferenceNavier::new(problem).unwrap();
+            let system = fd.system().unwrap();
+            let reference = sorted_reference(&fd);
+            assert_eq!(system.pattern, reference.pattern);
+            assert_eq!(bits(&system.values), bits(&reference.values));
+            assert_eq!(bits(&system.rhs), bits(&reference.rhs));
+            // the refill path (entries, then values by entry number) agrees as well
+            let entries = fd.entries().unwrap();
+            let mut refilled = LinearSystem::from_entries(fd.dof_count(), &entries).unwrap();
+            let mut rhs = vec![0.0; fd.dof_count()];
+            let mut add = |k: usize, v: f64| refilled.add_entry(k, v);
+            fd.fill_values(&mut add, &mut rhs).unwrap();
+            assert_eq!(bits(&refilled.values), bits(&reference.values));
+            assert_eq!(bits(&rhs), bits(&reference.rhs));
+        }
+    }
+
+    #[test]
+    fn sort_orders_repeat_the_sort_of_every_shape() {
+        // rows of shifted shapes with repeated columns (the sort is unstable among them) and
+        // values whose sums depend on the order of addition
+        let mut orders = SortOrders::default();
+        let shapes: [&[isize]; 3] = [
+            &[
+                4, -2, 0, 4, 2, -2, 0, 6, 4, -4, 2, 0, 4, 8, -2, 6, 0, 2, 4, -2, 0, 4, 2, 6,
+            ],
+            &[
+                1, 0, 1, 3, 0, 1, 5, 3, 1, 0, 1, 5, 3, 0, 1, 3, 1, 0, 5, 3, 1, 0,
+            ],
+            &[0, 0, 0],
+        ];
+        for d in 10..60 {
+            let shape = shapes[d % 3];
+            let terms: Vec<(usize, f64)> = shape
+                .iter()
+                .enumerate()
+                .map(|(k, &o)| ((d as isize + o) as usize, 0.1 + 1e-3 * (k * k) as f64 / 3.0))
+                .collect();
+            let mut sorted = terms.clone();
+            sorted.sort_unstable_by_key(|t| t.0);
+            let again: Vec<(usize, f64)> = orders
+                .order(d, &terms)
+                .iter()
+                .map(|&k| terms[k as usize])
+                .collect();
+            let bits =
+                |v: &[(usize, f64)]| v.iter().map(|t| (t.0, t.1.to_bits())).collect::<Vec<_>>();
+            assert_eq!(bits(&again), bits(&sorted), "row {d}");
+        }
+        assert_eq!(orders.shapes.len(), 3);
+    }
+}
