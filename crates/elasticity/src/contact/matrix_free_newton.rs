@@ -90,7 +90,7 @@ impl<D, L: FrictionLaw<f64>> Step<'_, D, L> {
 
 impl<D, L: FrictionLaw<f64>> NewtonKrylovProblem for Step<'_, D, L> {
     fn residual(&mut self, u: &[f64], r: &mut [f64]) -> Result<(), SolverError> {
-        self.model.residual_into(&self.rhs, u, r);
+        self.model.residual_into(&self.rhs, u, r)?;
         Ok(())
     }
 
