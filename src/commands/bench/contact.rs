@@ -41,8 +41,8 @@ use capstan_elasticity::solvers::LinearBackend;
 use serde::{Deserialize, Serialize};
 
 use super::run::Run;
+use super::run::{REPEAT_RULE, reset_peak, seconds_cell, status_kib};
 use super::targets::{SeriesTimes, series_times_at};
-use super::{REPEAT_RULE, WorkPrecisionArgs, reset_peak, status_kib};
 use crate::error::CliError;
 use crate::output::OutputDir;
 use crate::problem::{Problem, SolveMethod, Solved};
@@ -315,7 +315,7 @@ struct ContactSeries {
 
 /// Every series selected by `--methods` (`fd`, `fem-q1`, `fem-q2`, `fem-qp-hp`,
 /// `fem-qp-corner`).
-fn contact_series(args: &WorkPrecisionArgs) -> Result<Vec<ContactSeries>, CliError> {
+fn contact_series(quick: bool, methods: &[String]) -> Result<Vec<ContactSeries>, CliError> {
     let base = default_problem()?;
     let mut out = vec![];
     for (name, method) in [
@@ -323,7 +323,7 @@ fn contact_series(args: &WorkPrecisionArgs) -> Result<Vec<ContactSeries>, CliErr
         ("fem-q1", DiscretisationMethod::FemQ1),
         ("fem-q2", DiscretisationMethod::FemQ2),
     ] {
-        let problems = grid_levels(args.quick)
+        let problems = grid_levels(quick)
             .into_iter()
             .map(|m| {
                 let mut p = base.clone().with_grid(6 * m + 1, m + 1);
@@ -336,14 +336,14 @@ fn contact_series(args: &WorkPrecisionArgs) -> Result<Vec<ContactSeries>, CliErr
             problems,
         });
     }
-    let steps = if args.quick { 0..=1 } else { 0..=5 };
+    let steps = if quick { 0..=1 } else { 0..=5 };
     out.push(ContactSeries {
         method: "fem-qp-hp",
         problems: steps
             .map(|k| base.accuracy_step(k))
             .collect::<Result<_, _>>()?,
     });
-    let orders = if args.quick { 2..=3 } else { 2..=6 };
+    let orders = if quick { 2..=3 } else { 2..=6 };
     out.push(ContactSeries {
         method: "fem-qp-corner",
         problems: orders
@@ -355,7 +355,7 @@ fn contact_series(args: &WorkPrecisionArgs) -> Result<Vec<ContactSeries>, CliErr
             })
             .collect(),
     });
-    out.retain(|s| WorkPrecisionArgs::selects(&args.methods, s.method));
+    out.retain(|s| methods.is_empty() || methods.iter().any(|m| m == s.method));
     Ok(out)
 }
 
@@ -422,13 +422,15 @@ fn run_of(
     }
 }
 
-/// Every contact run of the series selected by `args`, in the current rayon pool; failures
+/// Every contact run of the series selected by `quick` (the coarse levels only) and `methods`
+/// (`--methods`; empty: all), in the current rayon pool; failures
 /// (non-convergence on a mesh) are appended to `failures` and left out.
 ///
 /// # Errors
 /// Errors other than a solve's (the series' construction).
 pub fn pass(
-    args: &WorkPrecisionArgs,
+    quick: bool,
+    methods: &[String],
     reference: &ContactReference,
     use_vmhwm: bool,
     failures: &mut Vec<String>,
@@ -438,7 +440,7 @@ pub fn pass(
     let r_threshold = r.threshold_ratio.unwrap_or(f64::NAN);
     let mut runs = vec![];
     let reported = failures.len();
-    for series in contact_series(args)? {
+    for series in contact_series(quick, methods)? {
         for (solver, method) in SOLVERS {
             for p in &series.problems {
                 let mut p = p.clone();
@@ -571,7 +573,7 @@ pub fn table(c: &ContactBench) -> String {
             x.problem, x.method, x.backend, x.threads
         );
         for &t in &x.seconds {
-            s += &format!(" {:>9}", super::seconds_cell(t));
+            s += &format!(" {:>9}", seconds_cell(t));
         }
         s.push('\n');
     }

@@ -25,7 +25,8 @@ use capstan_elasticity::studies::{SampleChart, paper_parts};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError};
 
-use super::{PaperReferenceReport, Problem, REPEAT_RULE, Reference, Run, reset_peak, status_kib};
+use super::run::{reset_peak, status_kib};
+use super::{PaperReferenceReport, Problem, REPEAT_RULE, Reference, Run};
 use crate::error::CliError;
 
 /// The orders of the bench.

@@ -54,6 +54,7 @@ use outputs::write_outputs;
 pub use peer_error::{Rectangle, points_error, points_error_of};
 pub use peers::{PEERS, Peer, PeerOrder, PeerProblem, PeerSelection, PeerStatus};
 pub use run::{REPEAT_RULE, RepeatRule, Run, SeriesKey};
+use run::{reset_peak, seconds_cell, status_kib};
 pub use targets::{Headline, SeriesTimes, TARGETS, time_to_error};
 
 use std::path::PathBuf;
@@ -254,19 +255,6 @@ impl Problem {
 
 fn mms() -> PrismMms {
     PrismMms::ellipse(2.0, MmsBoundaries::TractionContact)
-}
-
-/// Resets the peak resident set (Linux `clear_refs` 5); false if unavailable.
-fn reset_peak() -> bool {
-    std::fs::write("/proc/self/clear_refs", "5").is_ok()
-}
-
-fn status_kib(field: &str) -> Option<f64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    s.lines()
-        .find(|l| l.starts_with(field))
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|v| v.parse().ok())
 }
 
 // What the error of a solution is measured against: a field `x -> [v^2, v^3]` (exact, or
@@ -538,9 +526,15 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             })?;
         runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm, args))?);
         if let Some(reference) = &contact_reference {
-            runs.extend(
-                pool.install(|| contact::pass(args, reference, use_vmhwm, &mut contact_failures))?,
-            );
+            runs.extend(pool.install(|| {
+                contact::pass(
+                    args.quick,
+                    &args.methods,
+                    reference,
+                    use_vmhwm,
+                    &mut contact_failures,
+                )
+            })?);
         }
     }
     let mut statuses = vec![];
@@ -708,10 +702,6 @@ fn capstan_pass(
 
 fn rayon_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
-}
-
-fn seconds_cell(t: Option<f64>) -> String {
-    t.map_or_else(|| "-".to_owned(), |t| format!("{t:.4}"))
 }
 
 /// A plain-text table of the runs, the times to the targets and the headline ratios.

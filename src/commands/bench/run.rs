@@ -104,6 +104,25 @@ impl RepeatRule {
     }
 }
 
+/// Resets the peak resident set (Linux `clear_refs` 5); false if unavailable.
+pub(super) fn reset_peak() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+/// A field of `/proc/self/status` in KiB (e.g. `VmHWM:`); `None` if unavailable.
+pub(super) fn status_kib(field: &str) -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    s.lines()
+        .find(|l| l.starts_with(field))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|v| v.parse().ok())
+}
+
+/// A time cell of the tables: seconds to 4 decimals, `-` when the target was not reached.
+pub(super) fn seconds_cell(t: Option<f64>) -> String {
+    t.map_or_else(|| "-".to_owned(), |t| format!("{t:.4}"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
