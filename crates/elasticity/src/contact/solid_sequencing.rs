@@ -1,0 +1,162 @@
+//! Grid sequencing (nested iteration) of the 3-D matrix-free Newton: the body solved on the
+//! grids of its V-cycle's coarse levels first, each solution prolonged as the next finer
+//! grid's Newton start.
+
+use capstan_friction::FrictionLaw;
+use capstan_geometry::{ShellChart, Surface};
+use capstan_solvers::{Observer, Progress, SolveStage};
+
+use crate::contact::error::ContactError;
+use crate::contact::loads::EndLoads;
+use crate::contact::matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
+use crate::contact::model::ContactModel;
+use crate::contact::solid_matrix_free::SolidMatrixFreeBody;
+use crate::contact::solution::ContactSolution;
+use crate::error::ElasticityError;
+use crate::finite_element::ElementOrder;
+use crate::solid::{HexElement, SolidBody, SolidMultigridParams, cell_sizes, coarse_level_nodes};
+
+/// The coarsest grid of [`SolidBody::solve_matrix_free_sequenced`] by default: the sequence
+/// stops at the first grid of at most this many unknowns (its stuck start then costs
+/// little).
+pub const SEQUENCE_COARSEST_UNKNOWNS: usize = 20_000;
+
+/// The result of [`SolidBody::solve_matrix_free_sequenced`]: the body's own model and
+/// solution, and the grids solved on the way.
+pub struct MatrixFreeSequenced<S: Surface<f64> + Clone, L: FrictionLaw<f64>> {
+    /// The contact model on the body's own grid.
+    pub model: ContactModel<SolidMatrixFreeBody<ShellChart<S>>, L>,
+    /// Its solution (statistics of the finest level only; see `levels`).
+    pub solution: ContactSolution,
+    /// `(nodes [n1, n2, n3], Newton steps, Krylov iterations)` of every level, coarsest
+    /// first (the last is the body's own grid).
+    pub levels: Vec<([usize; 3], usize, usize)>,
+}
+
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
+    /// The body on the grid of its matrix-free V-cycle's assembled coarse level (Q1 hexahedra
+    /// on [`coarse_level_nodes`]: the element vertices for `p > 1`, one semi-coarsening step
+    /// for Q1), `None` when that is the body itself (no direction can be halved).
+    ///
+    /// # Errors
+    /// Grid or geometry errors ([`cell_sizes`]).
+    pub fn sequence_coarser(&self) -> Result<Option<Self>, ElasticityError> {
+        let degree = self.order.degree();
+        let chart = ShellChart::new(self.surface.clone());
+        let nodes = coarse_level_nodes(self.nodes, degree, cell_sizes(&chart, &self.grid()?)?);
+        if degree == 1 && nodes == self.nodes {
+            return Ok(None);
+        }
+        let mut coarse = self.clone();
+        coarse.nodes = nodes;
+        coarse.order = HexElement::Uniform(ElementOrder::Q1);
+        Ok(Some(coarse))
+    }
+
+    /// The matrix-free Newton ([`MatrixFreeNewton`]) with grid sequencing: the bodies of
+    /// [`SolidBody::sequence_coarser`] down to the first of at most `coarsest_unknowns`
+    /// unknowns, the coarsest solved from its stuck start, each finer one by Newton from the
+    /// coarser solution prolonged by its V-cycle's `P` ([`crate::contact::MatrixFreeBulk::prolongation`]:
+    /// trilinear on the halved grid, or the Q1-to-Qp interpolation).
+    ///
+    /// # Math
+    /// ```text
+    /// bodies B_0 (coarsest) .. B_m (this body),  B_{k-1} = sequence_coarser(B_k)
+    /// v_0 = MatrixFreeNewton(B_0) from the stuck start
+    /// v_k = MatrixFreeNewton(B_k) from P_k v_{k-1}
+    /// ```
+    /// The prolonged start is within `O(h^2)` of the fine solution but for the nodes whose
+    /// stick/slip state changes, so the fine grid, where every step costs most, takes a few
+    /// Newton steps instead of those a stuck start takes; its stuck start (a penalised solve
+    /// whose Krylov count grows with the grid) is never made. The answer is the fine
+    /// problem's (the same residual and tolerance; only the start differs), and a level
+    /// whose Newton fails from its start falls back to the stuck start and load continuation.
+    ///
+    /// Every level reports to `observer`: its solver's iterations, then one
+    /// [`SolveStage::GridLevel`] event (`iteration` the level, coarsest 0; `residual_norm`
+    /// the level's final Newton residual; `step_length` its unknowns).
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `solver.coarsest_unknowns` for
+    /// `coarsest_unknowns == 0`; model and solver errors of any level.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_matrix_free_sequenced<L: FrictionLaw<f64> + Clone>(
+        &self,
+        law: L,
+        params: L::Params,
+        slip_threshold: f64,
+        multigrid: SolidMultigridParams,
+        settings: MatrixFreeSettings,
+        coarsest_unknowns: usize,
+        loads: EndLoads,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<MatrixFreeSequenced<S, L>, ContactError>
+    where
+        L::Params: Clone,
+    {
+        if coarsest_unknowns == 0 {
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
+                field: "solver.coarsest_unknowns",
+                value: 0.0,
+                allowed: "[1, inf)",
+            }));
+        }
+        let unknowns = |b: &Self| 3 * b.nodes.iter().product::<usize>();
+        let mut bodies = vec![self.clone()];
+        while let Some(last) = bodies.last()
+            && unknowns(last) > coarsest_unknowns
+            && let Some(c) = last.sequence_coarser()?
+        {
+            bodies.push(c);
+        }
+        bodies.reverse();
+        let mut levels = Vec::with_capacity(bodies.len());
+        let mut previous: Option<Vec<f64>> = None;
+        let mut last = None;
+        for (k, body) in bodies.iter().enumerate() {
+            let model =
+                body.matrix_free_model(law.clone(), params.clone(), slip_threshold, multigrid)?;
+            let solver = MatrixFreeNewton::new(&model, settings)?;
+            let solution = match previous.take() {
+                None => solver.solve_observed(loads, observer)?,
+                Some(coarse) => {
+                    let p = model
+                        .matrix_free_bulk()
+                        .expect("a matrix-free model")
+                        .prolongation();
+                    if p.ncols() != coarse.len() {
+                        return Err(ContactError::from(ElasticityError::InconsistentBoundary {
+                            what: "the sequence's coarser grid is not the V-cycle's coarse level",
+                        }));
+                    }
+                    let mut start = vec![0.0; model.dof_count()];
+                    p.mul_vec(&coarse, &mut start);
+                    drop(coarse);
+                    solver.solve_from_observed(loads, &start, observer)?
+                }
+            };
+            observer.iteration(&Progress::new(
+                SolveStage::GridLevel,
+                k,
+                solution.stats.residual,
+                unknowns(body) as f64,
+            ));
+            levels.push((
+                body.nodes,
+                solution.stats.newton_iterations,
+                solution.stats.linear_iterations,
+            ));
+            if k + 1 < bodies.len() {
+                previous = Some(solution.displacement);
+            } else {
+                last = Some((model, solution));
+            }
+        }
+        let (model, solution) = last.expect("at least the body's own level");
+        Ok(MatrixFreeSequenced {
+            model,
+            solution,
+            levels,
+        })
+    }
+}
