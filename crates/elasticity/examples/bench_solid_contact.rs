@@ -223,6 +223,7 @@ fn matrix_free(
         settings.forcing.eta_min = eta;
     }
     let mut newton_steps: Vec<(usize, usize)> = Vec::new();
+    let mut level_steps: Vec<(usize, usize)> = Vec::new();
     let mut krylov_in_step = 0;
     let start = Instant::now();
     let mut start_seconds: Option<f64> = None;
@@ -236,8 +237,8 @@ fn matrix_free(
                 newton_steps.push((p.iteration, krylov_in_step));
                 krylov_in_step = 0;
             }
-            // a grid level of the sequence is done: count the next (finer) level's steps
-            SolveStage::GridLevel => newton_steps.clear(),
+            // a grid level of the sequence is done: its steps (the last level's are reported)
+            SolveStage::GridLevel => level_steps = std::mem::take(&mut newton_steps),
             _ => {}
         }
         if progress && p.stage != SolveStage::Krylov {
@@ -294,11 +295,8 @@ fn matrix_free(
         max_abs_difference(&reference, v) / max_abs(&reference)
     });
     // Krylov iterations of each Newton step (the first event of a solve is its start)
-    let per_step: Vec<usize> = newton_steps
-        .iter()
-        .filter(|s| s.0 > 0)
-        .map(|s| s.1)
-        .collect();
+    let steps = if sequence { level_steps } else { newton_steps };
+    let per_step: Vec<usize> = steps.iter().filter(|s| s.0 > 0).map(|s| s.1).collect();
     // the start's Krylov iterations: those of the solve not inside a Newton step
     let start_iterations = sol.stats.linear_iterations - per_step.iter().sum::<usize>();
     // every grid level's [nodes, Newton steps, Krylov iterations], coarsest first

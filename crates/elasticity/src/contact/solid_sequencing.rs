@@ -6,10 +6,11 @@ use capstan_friction::FrictionLaw;
 use capstan_geometry::{ShellChart, Surface};
 use capstan_solvers::{Observer, Progress, SolveStage};
 
-use crate::contact::error::ContactError;
+use crate::contact::error::{ContactError, ContactErrorKind};
 use crate::contact::loads::EndLoads;
 use crate::contact::matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
 use crate::contact::model::ContactModel;
+use crate::contact::operator::ContactOperator;
 use crate::contact::solid_matrix_free::SolidMatrixFreeBody;
 use crate::contact::solution::ContactSolution;
 use crate::error::ElasticityError;
@@ -23,13 +24,13 @@ pub const SEQUENCE_COARSEST_UNKNOWNS: usize = 20_000;
 
 /// The result of [`SolidBody::solve_matrix_free_sequenced`]: the body's own model and
 /// solution, and the grids solved on the way.
-pub struct MatrixFreeSequenced<S: Surface<f64> + Clone, L: FrictionLaw<f64>> {
+pub struct MatrixFreeSequenced<D, L: FrictionLaw<f64>> {
     /// The contact model on the body's own grid.
-    pub model: ContactModel<SolidMatrixFreeBody<ShellChart<S>>, L>,
+    pub model: ContactModel<D, L>,
     /// Its solution (statistics of the finest level only; see `levels`).
     pub solution: ContactSolution,
-    /// `(nodes [n1, n2, n3], Newton steps, Krylov iterations)` of every level, coarsest
-    /// first (the last is the body's own grid).
+    /// `(nodes [n1, n2, n3], Newton steps, Krylov iterations)` of every level solved,
+    /// coarsest first (the last is the body's own grid; a skipped level is not listed).
     pub levels: Vec<([usize; 3], usize, usize)>,
 }
 
@@ -56,8 +57,9 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
     /// The matrix-free Newton ([`MatrixFreeNewton`]) with grid sequencing: the bodies of
     /// [`SolidBody::sequence_coarser`] down to the first of at most `coarsest_unknowns`
     /// unknowns, the coarsest solved from its stuck start, each finer one by Newton from the
-    /// coarser solution prolonged by its V-cycle's `P` ([`crate::contact::MatrixFreeBulk::prolongation`]:
-    /// trilinear on the halved grid, or the Q1-to-Qp interpolation).
+    /// coarser solution prolonged by its V-cycle's `P`
+    /// ([`crate::contact::MatrixFreeBulk::prolongation`]: trilinear on the halved grid, or
+    /// the Q1-to-Qp interpolation).
     ///
     /// # Math
     /// ```text
@@ -70,7 +72,9 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
     /// Newton steps instead of those a stuck start takes; its stuck start (a penalised solve
     /// whose Krylov count grows with the grid) is never made. The answer is the fine
     /// problem's (the same residual and tolerance; only the start differs), and a level
-    /// whose Newton fails from its start falls back to the stuck start and load continuation.
+    /// whose Newton fails from its start falls back to the stuck start and load continuation;
+    /// a coarse level that does not converge at all is skipped (the next one starts from its
+    /// stuck start), so a coarse level's non-convergence never fails the solve.
     ///
     /// Every level reports to `observer`: its solver's iterations, then one
     /// [`SolveStage::GridLevel`] event (`iteration` the level, coarsest 0; `residual_norm`
@@ -90,9 +94,38 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
         coarsest_unknowns: usize,
         loads: EndLoads,
         observer: &mut dyn Observer<f64>,
-    ) -> Result<MatrixFreeSequenced<S, L>, ContactError>
+    ) -> Result<MatrixFreeSequenced<SolidMatrixFreeBody<ShellChart<S>>, L>, ContactError>
     where
         L::Params: Clone,
+    {
+        self.solve_sequenced_with(
+            |body: &Self| {
+                body.matrix_free_model(law.clone(), params.clone(), slip_threshold, multigrid)
+            },
+            settings,
+            coarsest_unknowns,
+            loads,
+            observer,
+        )
+    }
+
+    /// [`SolidBody::solve_matrix_free_sequenced`] with the matrix-free model of each level
+    /// built by `model` (e.g. boxed as [`crate::contact::BodyOperator`]).
+    ///
+    /// # Errors
+    /// See [`SolidBody::solve_matrix_free_sequenced`].
+    pub fn solve_sequenced_with<D, L, F>(
+        &self,
+        model: F,
+        settings: MatrixFreeSettings,
+        coarsest_unknowns: usize,
+        loads: EndLoads,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<MatrixFreeSequenced<D, L>, ContactError>
+    where
+        D: ContactOperator,
+        L: FrictionLaw<f64>,
+        F: Fn(&Self) -> Result<ContactModel<D, L>, ContactError>,
     {
         if coarsest_unknowns == 0 {
             return Err(ContactError::from(ElasticityError::InvalidParameter {
@@ -114,15 +147,27 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
         let mut previous: Option<Vec<f64>> = None;
         let mut last = None;
         for (k, body) in bodies.iter().enumerate() {
-            let model =
-                body.matrix_free_model(law.clone(), params.clone(), slip_threshold, multigrid)?;
+            let model = model(body)?;
             let solver = MatrixFreeNewton::new(&model, settings)?;
             let solution = match previous.take() {
-                None => solver.solve_observed(loads, observer)?,
+                None => match solver.solve_observed(loads, observer) {
+                    Ok(solution) => solution,
+                    // a coarse level that does not converge is skipped: the next level
+                    // starts from its own stuck start
+                    Err(e)
+                        if k + 1 < bodies.len() && e.kind() == ContactErrorKind::NotConverged =>
+                    {
+                        continue;
+                    }
+                    Err(e) => return Err(e),
+                },
                 Some(coarse) => {
                     let p = model
                         .matrix_free_bulk()
-                        .expect("a matrix-free model")
+                        .ok_or(ContactError::Unsupported {
+                            field: "solver.linear",
+                            message: "grid sequencing of the 3-D Newton needs a matrix-free model",
+                        })?
                         .prolongation();
                     if p.ncols() != coarse.len() {
                         return Err(ContactError::from(ElasticityError::InconsistentBoundary {
