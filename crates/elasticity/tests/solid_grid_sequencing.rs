@@ -172,3 +172,35 @@ fn the_fine_grid_start_and_newton_work_stay_flat_under_refinement() {
     assert!(within(fine[0].0, fine[1].0), "Newton steps {fine:?}");
     assert!(within(fine[0].1, fine[1].1), "Krylov iterations {fine:?}");
 }
+
+#[test]
+fn a_coarse_level_of_more_than_a_quarter_of_the_unknowns_ends_the_sequence() {
+    // 3 x 9 x 9: only x3 is halved (x1 cannot be, the x2 cells are the long ones), so the
+    // V-cycle's coarse grid keeps more than half the unknowns and is not solved first
+    let body = ellipse([3, 9, 9], HexElement::Uniform(ElementOrder::Q1));
+    let coarse = body.sequence_coarser().unwrap().unwrap();
+    assert_eq!(coarse.nodes, [3, 9, 5]);
+    let loads = EndLoads::ratio(1.5);
+    let seq = body
+        .solve_matrix_free_sequenced(
+            RegularisedCoulomb,
+            coulomb(),
+            EPS,
+            multigrid(),
+            settings(),
+            100,
+            loads,
+            &mut SilentObserver,
+        )
+        .unwrap();
+    assert_eq!(seq.levels.len(), 1, "{:?}", seq.levels);
+    let model = body
+        .matrix_free_model(RegularisedCoulomb, coulomb(), EPS, multigrid())
+        .unwrap();
+    let plain = MatrixFreeNewton::new(&model, settings())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    // one level: the unsequenced solve itself
+    assert_eq!(plain.displacement, seq.solution.displacement);
+}

@@ -56,7 +56,10 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
 
     /// The matrix-free Newton ([`MatrixFreeNewton`]) with grid sequencing: the bodies of
     /// [`SolidBody::sequence_coarser`] down to the first of at most `coarsest_unknowns`
-    /// unknowns, the coarsest solved from its stuck start, each finer one by Newton from the
+    /// unknowns, or to the last one of at most a quarter of the unknowns of the one above it
+    /// (a semi-coarsening step that halves one direction only ends the sequence: its level
+    /// would cost half the finer one's solve, and save less), the coarsest solved from its
+    /// stuck start, each finer one by Newton from the
     /// coarser solution prolonged by its V-cycle's `P`
     /// ([`crate::contact::MatrixFreeBulk::prolongation`]: trilinear on the halved grid, or
     /// the Q1-to-Qp interpolation).
@@ -66,6 +69,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
     /// bodies B_0 (coarsest) .. B_m (this body),  B_{k-1} = sequence_coarser(B_k)
     /// v_0 = MatrixFreeNewton(B_0) from the stuck start
     /// v_k = MatrixFreeNewton(B_k) from P_k v_{k-1}
+    /// unknowns(B_{k-1}) <= unknowns(B_k) / 4     (work of all coarse levels <= 1/3 of the finest's)
     /// ```
     /// The prolonged start is within `O(h^2)` of the fine solution but for the nodes whose
     /// stick/slip state changes, so the fine grid, where every step costs most, takes a few
@@ -139,6 +143,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
         while let Some(last) = bodies.last()
             && unknowns(last) > coarsest_unknowns
             && let Some(c) = last.sequence_coarser()?
+            && 4 * unknowns(&c) <= unknowns(last)
         {
             bodies.push(c);
         }
