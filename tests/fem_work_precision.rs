@@ -30,7 +30,15 @@ fn work_precision_arguments_parse() {
     assert_eq!(a.out.as_deref(), Some(std::path::Path::new("x")));
     let a = parse(&["--threads", "1,2"]).unwrap();
     assert_eq!(a.threads, [1, 2]);
-    assert!(a.problems.is_empty()); // all three
+    assert!(a.problems.is_empty()); // all four
+    let a = parse(&[
+        "--problems",
+        "contact",
+        "--methods",
+        "fem-qp-hp,fem-qp-corner",
+    ])
+    .unwrap();
+    assert_eq!(a.problems, [Problem::Contact]);
     let a = parse(&["--problems", "paper,lame"]).unwrap();
     assert_eq!(a.problems, [Problem::Paper, Problem::Lame]);
     assert!(parse(&["--problems", "x"]).is_err());
@@ -81,6 +89,62 @@ fn work_precision_runs_can_be_restricted() {
     );
     assert!(dir.join("work-precision-lame.svg").exists());
     assert!(!dir.join("work-precision-mms.svg").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn contact_series_measure_three_quantities_against_a_cached_reference() {
+    // the contact problem at its quick size: the first two hp-ladder steps (p = 2, 3), both
+    // solvers, against the quick reference (p = 4, 4 layers, 32 x 8 elements)
+    let dir = common::scratch_dir("wp-contact");
+    let args = |method: &str| WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        problems: vec![Problem::Contact],
+        methods: vec![method.to_owned()],
+        ..Default::default()
+    };
+    let r = report(&args("fem-qp-hp")).unwrap();
+    let c = r.contact.as_ref().expect("contact ran");
+    assert!(!c.reference.cached);
+    assert!(r.runs.iter().all(|x| x.method == "fem-qp-hp"));
+    for (quantity, solvers) in [
+        ("contact-slip", 2),
+        ("contact-threshold", 1),
+        ("contact-v2", 2),
+    ] {
+        let rows: Vec<_> = r.runs.iter().filter(|x| x.problem == quantity).collect();
+        assert_eq!(rows.len(), 2 * solvers, "{quantity}: {rows:?}");
+        assert!(rows.iter().all(|x| x.error.is_finite() && x.seconds > 0.0));
+    }
+    // the threshold converges along the ladder: 3.3471 -> 3.3435 against ~3.3430 (1e-3
+    // -> 1e-4 relative)
+    let threshold: Vec<_> = r
+        .runs
+        .iter()
+        .filter(|x| x.problem == "contact-threshold")
+        .collect();
+    assert!(
+        threshold[1].error < 0.5 * threshold[0].error,
+        "{threshold:?}"
+    );
+    assert!(threshold[0].error > 1e-4 && threshold[0].error < 3e-3);
+    // both solvers give the same quantities (same discretisation, Newton to 1e-10)
+    let slip: Vec<_> = r
+        .runs
+        .iter()
+        .filter(|x| x.problem == "contact-slip")
+        .collect();
+    assert!((slip[0].error - slip[2].error).abs() < 1e-6, "{slip:?}");
+    assert_eq!(c.series.len(), 5); // slip, v2: 2 solvers; threshold: 1
+    assert_eq!(c.fastest.len(), 9);
+    assert!(dir.join("work-precision-contact-threshold.svg").exists());
+    // the reference is read back from the output directory
+    let again = report(&args("fd")).unwrap();
+    let c2 = again.contact.unwrap();
+    assert!(c2.reference.cached);
+    assert_eq!(c2.reference.values, c.reference.values);
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

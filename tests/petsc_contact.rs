@@ -186,6 +186,51 @@ fn cone_band_on_1_2_4_ranks_matches_the_serial_solve() {
     }
 }
 
+/// `PETSC_OPTIONS=-log_view` on 2 ranks (the 3-D band, 9 x 33 x 9: each rank assembles its
+/// rows, the residuals are gathered) with the default error estimate: once an MPI error in the first
+/// gather (`MPI_ERR_TRUNCATE`) and a panic, because the coarser grid of the estimate was
+/// solved on a second thread beside the fine solve and the two threads' collectives
+/// interleaved differently on the two ranks. Now the coarser grid is solved after the fine
+/// one on the same thread (another thread's PETSc call is a typed error), the answer is the
+/// serial one, and PETSc's log goes to stderr: stdout stays one JSON document.
+#[test]
+fn log_view_on_2_ranks_with_the_error_estimate_gives_the_serial_answer() {
+    if !have_mpirun() {
+        return;
+    }
+    // 9 points through the thickness: the coarser grid of the estimate exists (5 x 17 x 5)
+    let scene = [&CONE[..], &["--set", "grid.n3=9"]].concat();
+    let serial = capstan_json(&[&["contact"][..], &scene].concat());
+    let out = succeed(
+        mpirun(2)
+            .env("PETSC_OPTIONS", "-log_view")
+            .arg("contact")
+            .args(&scene)
+            .args(PETSC)
+            .arg("--json"),
+    );
+    let parallel = json(&out);
+    assert_eq!(parallel["status"], "converged");
+    let d = relative_difference(&serial, &parallel);
+    assert!(d < 1e-8, "relative difference {d:.3e}");
+    // the coarser grid was solved too: the same estimate as the serial run's
+    let (a, b) = (&serial["estimated_error"], &parallel["estimated_error"]);
+    assert!(a.is_object() && b.is_object(), "{a} {b}");
+    let (mut ea, mut eb) = (Vec::new(), Vec::new());
+    numbers(a, "estimated_error", &mut ea);
+    numbers(b, "estimated_error", &mut eb);
+    assert_eq!(ea.len(), eb.len());
+    assert!(!ea.is_empty());
+    for ((p, x), (_, y)) in ea.iter().zip(&eb) {
+        assert!(
+            (x - y).abs() <= 1e-6 * x.abs().max(1e-12),
+            "{p}: {x} vs {y}"
+        );
+    }
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("Performance Summary"), "{stderr}");
+}
+
 #[test]
 fn rank_0_alone_writes_and_reports_krylov_iterations() {
     if !have_mpirun() {

@@ -461,9 +461,14 @@ pub fn solve_observed(
     };
     // The level one grid coarser for the error estimate: grid sequencing solves it on the way;
     // otherwise it is solved on a second thread beside the fine solve (the second core), and
-    // stopped when the fine solve fails or is interrupted.
+    // stopped when the fine solve fails or is interrupted. A collective backend (`petsc`:
+    // every rank must make the same MPI calls in one order, from one thread) solves it after
+    // the fine solve, on this thread (below).
     let (solved, coarse_solved) = match coarse.as_ref() {
-        Some(coarse) if !problem.sequences_grids() => {
+        Some(coarse)
+            if !problem.sequences_grids()
+                && !crate::features::collective_backend(&scene.solver.linear) =>
+        {
             let stop = AtomicBool::new(false);
             std::thread::scope(|scope| {
                 let side = scope.spawn(|| coarse.solve_observed(&mut StopFlag(&stop)));

@@ -126,12 +126,10 @@ pub fn run(args: &ExportSystemArgs) -> Result<SystemReport, CliError> {
     let pattern = problem.pattern();
     let mut values = vec![0.0; pattern.nnz()];
     let mut r = vec![0.0; n];
-    match (
-        problem.jacobian(&v, &mut values),
-        problem.residual(&v, &mut r),
-    ) {
-        (Ok(()), Ok(())) => {}
-    }
+    problem
+        .jacobian(&v, &mut values)
+        .and_then(|()| problem.residual(&v, &mut r))
+        .map_err(capstan_elasticity::contact::ContactError::from)?;
     let mut b = vec![0.0; n];
     pattern.matvec(&values, &v, &mut b);
     for (bi, ri) in b.iter_mut().zip(&r) {

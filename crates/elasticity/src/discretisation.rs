@@ -159,6 +159,19 @@ impl ContactNode {
     }
 }
 
+/// Consecutive rows of a matrix for [`LinearSystem::from_row_blocks`]: row `i` of the block
+/// holds the columns `cols[ends[i - 1]..ends[i]]` (distinct; `ends[-1] = 0`) with
+/// the values at the same places.
+#[derive(Debug, Clone, Default)]
+pub struct RowBlock {
+    /// Column of every entry, row after row.
+    pub cols: Vec<usize>,
+    /// Value of every entry, in the order of `cols`.
+    pub values: Vec<f64>,
+    /// End (exclusive) in `cols` of every row.
+    pub ends: Vec<usize>,
+}
+
 /// An assembled linear system `A v = b` on a sparsity pattern built once.
 #[derive(Debug, Clone)]
 pub struct LinearSystem {
@@ -236,6 +249,101 @@ impl LinearSystem {
             values,
             rhs,
             slots: None,
+        })
+    }
+
+    /// The system of rows listed in row order, no column twice in a row: the
+    /// same pattern, entry slots and values, bit for bit, as [`LinearSystem::from_entries`] on
+    /// the entries `(row, column)` in that order followed by `add_entry(k, value_k)`, built by
+    /// one counting pass over the columns instead of the general sort (no entry list, no
+    /// permutation: about half the memory touched).
+    ///
+    /// # Math
+    /// With `count_c` the entries of column `c`, `col_ptr[c + 1] = col_ptr[c] + count_c`; entry
+    /// `k = (r, c)` takes the next free slot of column `c`, so rows increase within a column
+    /// because rows come in order, and `values[slot_k] = 0 + value_k`.
+    ///
+    /// # Errors
+    /// [`ElasticityError::DimensionMismatch`] when the blocks hold other than `rhs.len()` rows
+    /// or a block's columns and values differ in length; [`ElasticityError::Solver`] for a
+    /// column out of range or a column repeated in a row;
+    /// `InvalidParameter` if the pattern has more than `u32::MAX` nonzeros.
+    pub fn from_row_blocks(blocks: &[RowBlock], rhs: Vec<f64>) -> Result<Self, ElasticityError> {
+        let n = rhs.len();
+        let rows: usize = blocks.iter().map(|b| b.ends.len()).sum();
+        ElasticityError::check_length("rows of the row blocks", n, rows)?;
+        let mut col_ptr = vec![0usize; n + 1];
+        let mut row = 0;
+        for block in blocks {
+            ElasticityError::check_length(
+                "values of a row block",
+                block.cols.len(),
+                block.values.len(),
+            )?;
+            if block.ends.last().copied().unwrap_or(0) != block.cols.len()
+                || block.ends.windows(2).any(|w| w[0] > w[1])
+            {
+                return Err(ElasticityError::InvalidParameter {
+                    field: "row block ends",
+                    value: block.cols.len() as f64,
+                    allowed: "non-decreasing row ends, the last equal to the block's entries",
+                });
+            }
+            let mut start = 0;
+            for &end in &block.ends {
+                for &c in &block.cols[start..end] {
+                    if c >= n {
+                        return Err(capstan_solvers::SolverError::EntryOutOfBounds {
+                            row,
+                            col: c,
+                            nrows: n,
+                            ncols: n,
+                        }
+                        .into());
+                    }
+                    col_ptr[c + 1] += 1;
+                }
+                start = end;
+                row += 1;
+            }
+        }
+        for c in 0..n {
+            col_ptr[c + 1] += col_ptr[c];
+        }
+        let nnz = col_ptr[n];
+        if nnz > u32::MAX as usize {
+            return Err(ElasticityError::InvalidParameter {
+                field: "pattern nonzeros",
+                value: nnz as f64,
+                allowed: "[0, 2^32)",
+            });
+        }
+        let mut next = col_ptr[..n].to_vec();
+        let mut row_idx = vec![0usize; nnz];
+        let mut values = vec![0.0; nnz];
+        let mut slots = Vec::with_capacity(nnz);
+        let mut row = 0;
+        for block in blocks {
+            let mut start = 0;
+            for &end in &block.ends {
+                for (&c, &v) in block.cols[start..end].iter().zip(&block.values[start..end]) {
+                    let slot = next[c];
+                    next[c] += 1;
+                    row_idx[slot] = row;
+                    values[slot] += v;
+                    slots.push(slot as u32);
+                }
+                start = end;
+                row += 1;
+            }
+        }
+        // rows strictly increasing within every column holds iff no row repeats a column
+        let pattern = SparsityPattern::from_compressed_columns(n, n, col_ptr, row_idx)?;
+        Ok(Self {
+            pattern,
+            values,
+            rhs,
+            slots: Some(slots),
         })
     }
 
@@ -535,4 +643,105 @@ where
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows of a 7 x 7 matrix with scattered columns, split into blocks of `sizes` rows.
+    fn rows() -> Vec<Vec<(usize, f64)>> {
+        (0..7)
+            .map(|r| {
+                let mut row: Vec<(usize, f64)> = (0..7)
+                    .filter(|c| (r * 3 + c * 5) % 4 != 0)
+                    .map(|c| (c, 1.0 / (1.0 + (r * 7 + c) as f64) - 0.1))
+                    .collect();
+                row.push((r, -0.0)); // a signed zero, placed as `0 + v` like `add_entry`
+                row.sort_by_key(|t| t.0);
+                row.dedup_by_key(|t| t.0);
+                row
+            })
+            .collect()
+    }
+
+    fn blocks(rows: &[Vec<(usize, f64)>], sizes: &[usize]) -> Vec<RowBlock> {
+        let mut out = Vec::new();
+        let mut next = 0;
+        for &size in sizes {
+            let mut block = RowBlock::default();
+            for row in &rows[next..next + size] {
+                block.cols.extend(row.iter().map(|t| t.0));
+                block.values.extend(row.iter().map(|t| t.1));
+                block.ends.push(block.cols.len());
+            }
+            out.push(block);
+            next += size;
+        }
+        out
+    }
+
+    #[test]
+    fn from_row_blocks_matches_from_entries_bit_for_bit() {
+        let rows = rows();
+        let entries: Vec<(usize, usize)> = rows
+            .iter()
+            .enumerate()
+            .flat_map(|(r, row)| row.iter().map(move |t| (r, t.0)))
+            .collect();
+        let mut filled = LinearSystem::from_entries(7, &entries).unwrap();
+        let values: Vec<f64> = rows.iter().flatten().map(|t| t.1).collect();
+        for (k, &v) in values.iter().enumerate() {
+            filled.add_entry(k, v);
+        }
+        let rhs: Vec<f64> = (0..7).map(|r| r as f64).collect();
+        for sizes in [&[7][..], &[3, 0, 4], &[1, 1, 1, 1, 1, 1, 1]] {
+            let mut reference = filled.clone();
+            let mut system =
+                LinearSystem::from_row_blocks(&blocks(&rows, sizes), rhs.clone()).unwrap();
+            assert_eq!(system.pattern, reference.pattern);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&system.values), bits(&reference.values));
+            assert_eq!(system.rhs, rhs);
+            // entry k lands in the same slot: a refill by entry number agrees too
+            system.clear();
+            reference.clear();
+            for (k, &v) in values.iter().enumerate() {
+                system.add_entry(k, 2.0 * v);
+                reference.add_entry(k, 2.0 * v);
+            }
+            assert_eq!(bits(&system.values), bits(&reference.values));
+        }
+    }
+
+    #[test]
+    fn from_row_blocks_rejects_bad_rows() {
+        let block = |cols: Vec<usize>, ends: Vec<usize>| RowBlock {
+            values: vec![1.0; cols.len()],
+            cols,
+            ends,
+        };
+        let rhs = vec![0.0; 2];
+        // a repeated column, a column out of range, too few rows, decreasing ends
+        for (blocks, what) in [
+            (vec![block(vec![0, 0], vec![2, 2])], "repeated column"),
+            (vec![block(vec![0, 2], vec![1, 2])], "column out of range"),
+            (vec![block(vec![0], vec![1])], "one row of two"),
+            (vec![block(vec![0, 1], vec![2, 1])], "decreasing ends"),
+        ] {
+            assert!(
+                LinearSystem::from_row_blocks(&blocks, rhs.clone()).is_err(),
+                "{what} accepted"
+            );
+        }
+        let mismatched = RowBlock {
+            cols: vec![0, 1],
+            values: vec![1.0],
+            ends: vec![1, 2],
+        };
+        assert!(matches!(
+            LinearSystem::from_row_blocks(&[mismatched], rhs),
+            Err(ElasticityError::DimensionMismatch { .. })
+        ));
+    }
 }

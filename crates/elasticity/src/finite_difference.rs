@@ -9,7 +9,7 @@ use crate::continuum::check_plane_strain;
 use crate::continuum::kinematics::{
     LocalDisplacement, christoffel_contraction, contravariant_stress, mixed_stress_coefficients,
 };
-use crate::discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow};
+use crate::discretisation::{ContactNode, Discretisation, LinearSystem, RowBlock, SparseRow};
 use crate::error::ElasticityError;
 use crate::fields::NodalFields;
 use crate::plane_problem::PlaneProblem;
@@ -25,6 +25,54 @@ type Stencil = Vec<([usize; 2], [f64; 3])>;
 
 /// Rows per parallel block of [`FiniteDifferenceNavier`]'s assembly.
 const ROW_BLOCK: usize = 2048;
+
+/// Rows remembered by [`SortOrders`]: one per row shape of a grid's stencils (interior,
+/// edges, corners, both equations) fits.
+const SORT_ORDER_CACHE: usize = 16;
+
+/// The order in which `terms.sort_unstable_by_key(|t| t.0)` puts a row's terms, remembered
+/// per row shape: rows whose columns are the same offsets from the row (the interior rows of
+/// a grid) are put in the same order without sorting again.
+///
+/// # Math
+/// An unstable sort's permutation is a function of its comparisons' outcomes alone, and
+/// those depend on the keys' order alone, which a common shift `c -> c + d` keeps. Sorting
+/// `(column, position as f64)` pairs (the same element type, the same key) therefore moves
+/// the positions exactly as the sort moves the terms, including the order of equal columns:
+/// the merged row, sums included, is the same bit for bit as after sorting the terms.
+#[derive(Default)]
+struct SortOrders {
+    /// `(column - row offsets, positions in sorted order)` per remembered shape, the most
+    /// recently used first.
+    shapes: Vec<(Vec<isize>, Vec<u32>)>,
+    /// Scratch for a new shape.
+    pairs: Vec<(usize, f64)>,
+}
+
+impl SortOrders {
+    /// The positions of `terms` (row `d`) in the order of their sort by column.
+    fn order(&mut self, d: usize, terms: &[(usize, f64)]) -> &[u32] {
+        let offset = |c: usize| c as isize - d as isize;
+        let same = |shape: &[isize]| {
+            shape.len() == terms.len() && shape.iter().zip(terms).all(|(&o, t)| o == offset(t.0))
+        };
+        if let Some(at) = self.shapes.iter().position(|(shape, _)| same(shape)) {
+            self.shapes[..=at].rotate_right(1);
+        } else {
+            self.pairs.clear();
+            self.pairs
+                .extend(terms.iter().enumerate().map(|(k, t)| (t.0, k as f64)));
+            self.pairs.sort_unstable_by_key(|t| t.0);
+            let shape = terms.iter().map(|t| offset(t.0)).collect();
+            let order = self.pairs.iter().map(|t| t.1 as u32).collect();
+            if self.shapes.len() == SORT_ORDER_CACHE {
+                self.shapes.pop();
+            }
+            self.shapes.insert(0, (shape, order));
+        }
+        &self.shapes[0].1
+    }
+}
 
 /// The geometry cached at the grid column `x2_i` (see the fields of [`FiniteDifferenceNavier`]).
 struct CachedColumn {
@@ -380,11 +428,13 @@ impl<G: ShellGeometry + Sync> FiniteDifferenceNavier<G> {
         let mut terms = Vec::with_capacity(64);
         let mut st = Vec::with_capacity(16);
         let mut merged: Vec<(usize, f64)> = Vec::with_capacity(64);
+        let mut orders = SortOrders::default();
         for d in rows {
             let rhs = self.row(d, &mut terms, &mut st)?;
-            terms.sort_unstable_by_key(|t| t.0);
+            let order = orders.order(d, &terms);
             merged.clear();
-            for &(c, v) in &terms {
+            for &k in order {
+                let (c, v) = terms[k as usize];
                 match merged.last_mut() {
                     Some(last) if last.0 == c => last.1 += v,
                     _ => merged.push((c, v)),
@@ -429,41 +479,32 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteDifferenceNavier<G> {
 
     /// One pass over the rows for the pattern, the values and the right-hand side (the
     /// default visits them twice: [`Discretisation::entries`], then
-    /// [`Discretisation::refill`]), blocks of `ROW_BLOCK` (2048) rows in parallel and concatenated
-    /// in row order; the same system, bit for bit, as one sequential pass.
+    /// [`Discretisation::refill`]), blocks of `ROW_BLOCK` (2048) rows in parallel, placed into
+    /// compressed columns in row order ([`LinearSystem::from_row_blocks`]); the same system,
+    /// bit for bit, as one sequential pass through [`LinearSystem::from_entries`].
     fn system(&self) -> Result<LinearSystem, ElasticityError> {
         let n = self.dof_count();
         let blocks = (0..n.div_ceil(ROW_BLOCK))
             .into_par_iter()
             .map(|b| {
                 let rows = b * ROW_BLOCK..n.min((b + 1) * ROW_BLOCK);
-                let mut entries = Vec::with_capacity(rows.len() * 20);
-                let mut values = Vec::with_capacity(rows.len() * 20);
+                let mut block = RowBlock {
+                    cols: Vec::with_capacity(rows.len() * 20),
+                    values: Vec::with_capacity(rows.len() * 20),
+                    ends: Vec::with_capacity(rows.len()),
+                };
                 let mut rhs = Vec::with_capacity(rows.len());
-                self.visit_rows(rows, |d, terms, b| {
-                    entries.extend(terms.iter().map(|t| (d, t.0)));
-                    values.extend(terms.iter().map(|t| t.1));
+                self.visit_rows(rows, |_, terms, b| {
+                    block.cols.extend(terms.iter().map(|t| t.0));
+                    block.values.extend(terms.iter().map(|t| t.1));
+                    block.ends.push(block.cols.len());
                     rhs.push(b);
                 })?;
-                Ok((entries, values, rhs))
+                Ok((block, rhs))
             })
             .collect::<Result<Vec<_>, ElasticityError>>()?;
-        let nnz = blocks.iter().map(|b| b.0.len()).sum();
-        let mut entries = Vec::with_capacity(nnz);
-        let mut values = Vec::with_capacity(nnz);
-        let mut rhs = Vec::with_capacity(n);
-        for (e, v, r) in blocks {
-            entries.extend(e);
-            values.extend(v);
-            rhs.extend(r);
-        }
-        let mut system = LinearSystem::from_entries(n, &entries)?;
-        drop(entries);
-        for (k, v) in values.into_iter().enumerate() {
-            system.add_entry(k, v);
-        }
-        system.rhs = rhs;
-        Ok(system)
+        let (blocks, rhs): (Vec<RowBlock>, Vec<Vec<f64>>) = blocks.into_iter().unzip();
+        LinearSystem::from_row_blocks(&blocks, rhs.concat())
     }
 
     fn fill_values(
@@ -514,5 +555,103 @@ impl<G: ShellGeometry + Sync> Discretisation for FiniteDifferenceNavier<G> {
             let u = self.local(node, v);
             Ok((u, contravariant_stress(p, &self.problem.material, &u)))
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BoundaryConditions, Grid, Material};
+    use capstan_geometry::{EllipticalPrism, ShellChart};
+
+    /// The system by the plain per-row sort and the general pattern builder: what
+    /// [`FiniteDifferenceNavier::system`] replaced.
+    fn sorted_reference<G: ShellGeometry + Sync>(fd: &FiniteDifferenceNavier<G>) -> LinearSystem {
+        let n = fd.dof_count();
+        let (mut terms, mut st) = (Vec::new(), Vec::new());
+        let (mut entries, mut values, mut rhs) = (Vec::new(), Vec::new(), Vec::new());
+        for d in 0..n {
+            rhs.push(fd.row(d, &mut terms, &mut st).unwrap());
+            terms.sort_unstable_by_key(|t| t.0);
+            let mut merged: Vec<(usize, f64)> = Vec::new();
+            for &(c, v) in &terms {
+                match merged.last_mut() {
+                    Some(last) if last.0 == c => last.1 += v,
+                    _ => merged.push((c, v)),
+                }
+            }
+            entries.extend(merged.iter().map(|t| (d, t.0)));
+            values.extend(merged.iter().map(|t| t.1));
+        }
+        let mut system = LinearSystem::from_entries(n, &entries).unwrap();
+        for (k, v) in values.into_iter().enumerate() {
+            system.add_entry(k, v);
+        }
+        system.rhs = rhs;
+        system
+    }
+
+    #[test]
+    fn system_matches_the_sorted_rows_bit_for_bit() {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        // more rows than one parallel block, and a grid with edge and corner rows of every kind
+        for (a, b, n2, n3) in [(2.0, 1.2, 25, 5), (2.0, 2.0, 301, 9)] {
+            let problem = PlaneProblem {
+                chart: ShellChart::new(EllipticalPrism::new(a, b).unwrap()),
+                material: Material::new(1e3, 0.25).unwrap(),
+                grid: Grid::new([-1.2, 1.4], 1.0, n2, n3, false).unwrap(),
+                boundary: BoundaryConditions::paper_clamped(1.0, 2.0),
+                body_force: None,
+            };
+            let fd = FiniteDifferenceNavier::new(problem).unwrap();
+            let system = fd.system().unwrap();
+            let reference = sorted_reference(&fd);
+            assert_eq!(system.pattern, reference.pattern);
+            assert_eq!(bits(&system.values), bits(&reference.values));
+            assert_eq!(bits(&system.rhs), bits(&reference.rhs));
+            // the refill path (entries, then values by entry number) agrees as well
+            let entries = fd.entries().unwrap();
+            let mut refilled = LinearSystem::from_entries(fd.dof_count(), &entries).unwrap();
+            let mut rhs = vec![0.0; fd.dof_count()];
+            let mut add = |k: usize, v: f64| refilled.add_entry(k, v);
+            fd.fill_values(&mut add, &mut rhs).unwrap();
+            assert_eq!(bits(&refilled.values), bits(&reference.values));
+            assert_eq!(bits(&rhs), bits(&reference.rhs));
+        }
+    }
+
+    #[test]
+    fn sort_orders_repeat_the_sort_of_every_shape() {
+        // rows of shifted shapes with repeated columns (the sort is unstable among them) and
+        // values whose sums depend on the order of addition
+        let mut orders = SortOrders::default();
+        let shapes: [&[isize]; 3] = [
+            &[
+                4, -2, 0, 4, 2, -2, 0, 6, 4, -4, 2, 0, 4, 8, -2, 6, 0, 2, 4, -2, 0, 4, 2, 6,
+            ],
+            &[
+                1, 0, 1, 3, 0, 1, 5, 3, 1, 0, 1, 5, 3, 0, 1, 3, 1, 0, 5, 3, 1, 0,
+            ],
+            &[0, 0, 0],
+        ];
+        for d in 10..60 {
+            let shape = shapes[d % 3];
+            let terms: Vec<(usize, f64)> = shape
+                .iter()
+                .enumerate()
+                .map(|(k, &o)| ((d as isize + o) as usize, 0.1 + 1e-3 * (k * k) as f64 / 3.0))
+                .collect();
+            let mut sorted = terms.clone();
+            sorted.sort_unstable_by_key(|t| t.0);
+            let again: Vec<(usize, f64)> = orders
+                .order(d, &terms)
+                .iter()
+                .map(|&k| terms[k as usize])
+                .collect();
+            let bits =
+                |v: &[(usize, f64)]| v.iter().map(|t| (t.0, t.1.to_bits())).collect::<Vec<_>>();
+            assert_eq!(bits(&again), bits(&sorted), "row {d}");
+        }
+        assert_eq!(orders.shapes.len(), 3);
     }
 }

@@ -103,7 +103,9 @@ pub use boundary::{
     Side, SideCondition, X2Ends,
 };
 pub use continuum::kinematics;
-pub use discretisation::{ContactNode, Discretisation, LinearSystem, SparseRow, interpolate_nodal};
+pub use discretisation::{
+    ContactNode, Discretisation, LinearSystem, RowBlock, SparseRow, interpolate_nodal,
+};
 pub use error::ElasticityError;
 pub use fields::NodalFields;
 pub use finite_difference::FiniteDifferenceNavier;

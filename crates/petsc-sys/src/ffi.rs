@@ -46,6 +46,11 @@ pub struct _p_PetscSF {
 pub struct _p_MatNullSpace {
     _private: [u8; 0],
 }
+/// Opaque C `FILE`.
+#[repr(C)]
+pub struct FILE {
+    _private: [u8; 0],
+}
 /// `Mat`.
 pub type Mat = *mut _p_Mat;
 /// `MatNullSpace`.
@@ -85,6 +90,12 @@ pub type MonitorDestroyFn = unsafe extern "C" fn(*mut *mut c_void) -> PetscError
 unsafe extern "C" {
     /// The communicator PETSc objects live on (`MPI_COMM_WORLD` unless set before init).
     pub static mut PETSC_COMM_WORLD: MPI_Comm;
+    /// Where PETSc prints what goes to standard output (`PetscPrintf`, the ASCII stdout
+    /// viewers of `-log_view`, `-ksp_view`, `-ksp_monitor`): `stdout`, set by
+    /// `PetscInitialize`; may be changed after it.
+    pub static mut PETSC_STDOUT: *mut FILE;
+    /// Where PETSc prints errors: `stderr`, set by `PetscInitialize`.
+    pub static mut PETSC_STDERR: *mut FILE;
 
     /// `PetscInitializeNoArguments()`: initialises PETSc (and MPI, unless already initialised).
     pub fn PetscInitializeNoArguments() -> PetscErrorCode;

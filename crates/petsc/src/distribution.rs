@@ -4,10 +4,11 @@
 use std::sync::Mutex;
 
 use capstan_petsc_sys as sys;
+use capstan_solvers::SolverError;
 use capstan_solvers::row_distribution::{RowDistribution, owned_blocks};
 
 use crate::error::{PetscError, check};
-use crate::session::{Session, running};
+use crate::session::{Session, on_session_thread, running};
 
 /// A distributed vector of one length and its scatter to a full copy on every rank.
 struct Gather {
@@ -40,6 +41,12 @@ impl Drop for Gather {
 /// ```text
 /// gather(x)_i = x_i on the rank owning row i       (every rank gets all n entries)
 /// ```
+/// A failing PETSc or MPI call is [`PetscError::Call`] naming it, inside
+/// [`SolverError::External`]. The gather is collective: every rank must call it in the same
+/// order as its other PETSc calls, from the thread that started the [`Session`] (PETSc is
+/// initialised without thread support); two solves on two threads at once (as the contact
+/// command's error estimate once ran its coarser grid) mix their messages and fail with
+/// `MPI_ERR_TRUNCATE` on one rank and a broken scatter on the other.
 pub struct PetscDistribution {
     rank: usize,
     size: usize,
@@ -79,6 +86,7 @@ impl PetscDistribution {
     }
 
     fn gather_checked(&self, all: &mut [f64], block: usize) -> Result<(), PetscError> {
+        on_session_thread("gathering a distributed vector")?;
         let n = all.len();
         let rows = owned_blocks(n, block, self.rank, self.size);
         let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
@@ -158,10 +166,7 @@ impl RowDistribution for PetscDistribution {
         self.size
     }
 
-    #[track_caller]
-    fn gather(&self, all: &mut [f64], block: usize) {
-        if let Err(e) = self.gather_checked(all, block) {
-            panic!("gathering a distributed vector failed: {e}");
-        }
+    fn gather(&self, all: &mut [f64], block: usize) -> Result<(), SolverError> {
+        self.gather_checked(all, block).map_err(SolverError::from)
     }
 }

@@ -18,6 +18,17 @@ pub enum PetscError {
         "PETSc is not running: start a `capstan_petsc::Session` first (solver.linear = \"petsc\")"
     )]
     NotStarted,
+    /// A PETSc object was used from a thread other than the one that started the
+    /// [`crate::Session`] (PETSc runs without thread support; every rank must make its
+    /// collective calls in one order).
+    #[error(
+        "{what} called from a thread other than the one that started PETSc: distributed solves \
+         run one at a time on that thread (PETSc is initialised without thread support)"
+    )]
+    WrongThread {
+        /// The operation refused.
+        what: &'static str,
+    },
     /// [`crate::Session::start`] was called a second time in this process (MPI cannot be
     /// initialised twice).
     #[error("PETSc was already started in this process")]

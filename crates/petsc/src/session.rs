@@ -1,7 +1,9 @@
 //! PETSc's lifetime in the process: one [`Session`], started once, finalised on drop.
 
 use std::ffi::CString;
+use std::sync::OnceLock;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::thread::ThreadId;
 
 use capstan_petsc_sys as sys;
 
@@ -24,6 +26,10 @@ pub const MUMPS_OPTIONS: &str = "-ksp_type preonly -pc_type lu -pc_factor_mat_so
 
 static STARTED: AtomicBool = AtomicBool::new(false);
 
+/// The thread that called [`Session::start`]: PETSc is initialised without thread support
+/// (`MPI_THREAD_SINGLE`), so every PETSc call of the process is made from it.
+static THREAD: OnceLock<ThreadId> = OnceLock::new();
+
 /// PETSc running in this process: `PetscInitialize` on [`Session::start`], `PetscFinalize` on
 /// drop.
 ///
@@ -39,7 +45,10 @@ pub struct Session {
 impl Session {
     /// Starts PETSc with [`DEFAULT_OPTIONS`] overridden by `options` (PETSc's command-line
     /// syntax, e.g. `"-ksp_type cg -pc_type gamg -ksp_monitor"`; also read: the environment
-    /// variable `PETSC_OPTIONS`).
+    /// variable `PETSC_OPTIONS`). What PETSc prints to standard output (`-log_view`,
+    /// `-ksp_view`, monitors) goes to standard error (`PETSC_STDOUT = PETSC_STDERR`): the
+    /// process's standard output is capstan's report. The calling thread becomes the one
+    /// every PETSc call must come from ([`PetscError::WrongThread`]).
     ///
     /// # Errors
     /// [`PetscError::AlreadyStarted`]; [`PetscError::InvalidOptions`] for a string with a NUL
@@ -52,6 +61,7 @@ impl Session {
         if STARTED.swap(true, Ordering::SeqCst) {
             return Err(PetscError::AlreadyStarted);
         }
+        let _ = THREAD.set(std::thread::current().id());
         let defaults = CString::new(DEFAULT_OPTIONS).expect("no NUL in the defaults");
         // SAFETY: called once per process (STARTED); the strings outlive the calls.
         unsafe {
@@ -59,6 +69,9 @@ impl Session {
                 sys::PetscInitializeNoArguments(),
                 "PetscInitializeNoArguments",
             )?;
+            // capstan's standard output is its report (one JSON document under `--json`):
+            // what PETSc prints (`-log_view`, `-ksp_view`, monitors) goes to standard error
+            sys::PETSC_STDOUT = sys::PETSC_STDERR;
             check(
                 sys::PetscOptionsInsertString(core::ptr::null_mut(), defaults.as_ptr()),
                 "PetscOptionsInsertString",
@@ -130,6 +143,19 @@ impl Session {
             )?;
         }
         Ok(bytes)
+    }
+}
+
+/// `Ok` on the thread that started the [`Session`] (or before any session), else
+/// [`PetscError::WrongThread`]: collective PETSc calls from a second thread would interleave
+/// with the first thread's differently on different ranks (an MPI error, or a hang).
+///
+/// # Errors
+/// [`PetscError::WrongThread`] naming `what`.
+pub(crate) fn on_session_thread(what: &'static str) -> Result<(), PetscError> {
+    match THREAD.get() {
+        Some(&id) if id != std::thread::current().id() => Err(PetscError::WrongThread { what }),
+        _ => Ok(()),
     }
 }
 

@@ -12,7 +12,7 @@ use capstan_solvers::{
 
 use crate::error::{PetscError, check, diverged_name};
 use crate::policy::{FORCING_ETA_MAX_OPTION, FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
-use crate::session::running;
+use crate::session::{on_session_thread, running};
 
 /// The name of the backend in `solver.linear`.
 pub const NAME: &str = "petsc";
@@ -184,11 +184,13 @@ impl PetscSolver {
     /// A solver on `PETSC_COMM_WORLD`.
     ///
     /// # Errors
-    /// [`PetscError::NotStarted`] without a running [`crate::Session`].
+    /// [`PetscError::NotStarted`] without a running [`crate::Session`];
+    /// [`PetscError::WrongThread`] on a thread other than the session's.
     pub fn new() -> Result<Self, PetscError> {
         if !running() {
             return Err(PetscError::NotStarted);
         }
+        on_session_thread("PetscSolver::new")?;
         let (mut rank, mut size): (c_int, c_int) = (0, 1);
         // SAFETY: PETSc (hence MPI) is running.
         unsafe {

@@ -3,7 +3,8 @@
 //! also runs under `mpirun -n K` (every rank runs the same calls; rows are split).
 #![cfg(feature = "petsc")]
 
-use capstan_petsc::{MUMPS_OPTIONS, PetscError, PetscSolver, Session};
+use capstan_petsc::{MUMPS_OPTIONS, PetscDistribution, PetscError, PetscSolver, Session};
+use capstan_solvers::row_distribution::RowDistribution;
 use capstan_solvers::samples::ConvectionDiffusion2d;
 use capstan_solvers::{
     LinearBackend, LinearSolver, NearNullSpace, Progress, SolveStage, SolverError,
@@ -120,6 +121,36 @@ fn petsc_solver_matches_lu_reports_krylov_and_spends_budget_typed() {
         Session::start(""),
         Err(PetscError::AlreadyStarted)
     ));
+
+    // The row distribution's gather: every rank's rows to every rank (its own rows hold the
+    // same values on every rank here, so the vector comes back unchanged).
+    let distribution = PetscDistribution::new(&session).unwrap();
+    let whole: Vec<f64> = (0..12).map(f64::from).collect();
+    let mut v = whole.clone();
+    distribution.gather(&mut v, 3).unwrap();
+    assert_eq!(v, whole);
+    // PETSc calls come from the session's thread: from another, a gather or a new solver is a
+    // typed error before any MPI message (two threads' collectives would interleave
+    // differently on different ranks: MPI_ERR_TRUNCATE, or a hang)
+    std::thread::scope(|scope| {
+        scope.spawn(|| {
+            let mut w = whole.clone();
+            match distribution.gather(&mut w, 3) {
+                Err(SolverError::External {
+                    backend: "petsc",
+                    source,
+                }) => assert!(source.to_string().contains("thread"), "{source}"),
+                other => panic!("expected a typed wrong-thread error, got {other:?}"),
+            }
+            assert!(matches!(
+                PetscSolver::new(),
+                Err(PetscError::WrongThread { .. })
+            ));
+        });
+    });
+    distribution.gather(&mut v, 3).unwrap();
+    assert_eq!(v, whole);
+    drop(distribution);
     drop(solver);
     drop(fresh);
     drop(session);

@@ -17,11 +17,15 @@ pub trait RowDistribution: Send + Sync {
 
     /// Every process's owned entries of `all` (its [`owned_blocks`] rows for `block`
     /// unknowns per node) to every process: on return `all` is the owners' vector everywhere.
-    /// Collective: every process calls it with a vector of the same length.
+    /// Collective: every process calls it with a vector of the same length, in the same
+    /// order as every other collective call, from one thread (a program keeps all its
+    /// distributed solves on the thread that started the engine: two solves at once on two
+    /// threads interleave their messages differently on different processes).
     ///
-    /// # Panics
-    /// If the communication fails (MPI is then unusable; the job cannot continue).
-    fn gather(&self, all: &mut [f64], block: usize);
+    /// # Errors
+    /// The engine's failure, as [`crate::SolverError::External`] (MPI is then usually
+    /// unusable and the job should end).
+    fn gather(&self, all: &mut [f64], block: usize) -> Result<(), crate::SolverError>;
 
     /// The rows this process owns among `n` with `block` unknowns per node.
     fn owned(&self, n: usize, block: usize) -> Range<usize> {

@@ -124,6 +124,108 @@ impl SparsityPattern {
         ))
     }
 
+    /// This pattern grown to `nrows x ncols` (at least its own size) with the `extra` entries
+    /// `(row, col)` (any order, repeats and entries already present allowed): the pattern
+    /// [`SparsityPattern::from_entries`] builds from `self.entries()` followed by `extra`,
+    /// with the same slots, but by merging the few extra entries into the columns instead of
+    /// sorting every entry again. Returns `(pattern, own_slots, extra_slots)`: the new slot of
+    /// every slot of `self`, and of every extra entry.
+    ///
+    /// # Math
+    /// Column `c` of the result is the sorted union of the rows of column `c` of `self` and the
+    /// rows of the extra entries in column `c`; cost `O(nnz + ncols + e log e)` for `e` extra
+    /// entries.
+    ///
+    /// # Errors
+    /// [`SolverError::EntryOutOfBounds`] if an extra entry lies outside `nrows x ncols`;
+    /// [`SolverError::InvalidParameter`] (field `nrows` or `ncols`) if the size is smaller
+    /// than this pattern's.
+    ///
+    /// # Example
+    /// ```
+    /// use capstan_solvers::SparsityPattern;
+    /// let (a, _) = SparsityPattern::from_entries(2, 2, &[(0, 0), (1, 1)]).unwrap();
+    /// let (b, own, extra) = a.with_entries(3, 3, &[(2, 0), (0, 0), (2, 2)]).unwrap();
+    /// assert_eq!(b.nnz(), 4);
+    /// assert_eq!(own, vec![0, 2]);
+    /// assert_eq!(extra, vec![1, 0, 3]); // an entry already present shares its slot
+    /// ```
+    pub fn with_entries(
+        &self,
+        nrows: usize,
+        ncols: usize,
+        extra: &[(usize, usize)],
+    ) -> Result<(Self, Vec<usize>, Vec<usize>), SolverError> {
+        for (field, size, own) in [("nrows", nrows, self.nrows), ("ncols", ncols, self.ncols)] {
+            if size < own {
+                return Err(SolverError::InvalidParameter {
+                    field,
+                    value: size as f64,
+                    allowed: "at least the pattern's own size",
+                });
+            }
+        }
+        if let Some(&(row, col)) = extra.iter().find(|&&(r, c)| r >= nrows || c >= ncols) {
+            return Err(SolverError::EntryOutOfBounds {
+                row,
+                col,
+                nrows,
+                ncols,
+            });
+        }
+        // extra entry indices by (col, row), repeats neighbours (stable: the first one leads)
+        let mut order: Vec<usize> = (0..extra.len()).collect();
+        order.sort_by_key(|&k| (extra[k].1, extra[k].0));
+        let mut col_ptr = Vec::with_capacity(ncols + 1);
+        col_ptr.push(0);
+        let mut row_idx = Vec::with_capacity(self.nnz() + extra.len());
+        let mut own_slots = vec![0usize; self.nnz()];
+        let mut extra_slots = vec![0usize; extra.len()];
+        let mut next = 0; // position in `order`
+        for c in 0..ncols {
+            let (start, end) = if c < self.ncols {
+                (self.col_ptr[c], self.col_ptr[c + 1])
+            } else {
+                (0, 0)
+            };
+            let mut s = start;
+            loop {
+                let own = (s < end).then(|| self.row_idx[s]);
+                let more =
+                    (next < order.len() && extra[order[next]].1 == c).then(|| extra[order[next]].0);
+                let take_own = match (own, more) {
+                    (None, None) => break,
+                    (Some(r), Some(e)) => r <= e,
+                    (own, _) => own.is_some(),
+                };
+                if take_own {
+                    own_slots[s] = row_idx.len();
+                    row_idx.push(self.row_idx[s]);
+                    s += 1;
+                } else {
+                    let r = extra[order[next]].0;
+                    // a repeat of the last row placed (own or extra) shares its slot
+                    if row_idx.len() == col_ptr[c] || row_idx[row_idx.len() - 1] != r {
+                        row_idx.push(r);
+                    }
+                    extra_slots[order[next]] = row_idx.len() - 1;
+                    next += 1;
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        Ok((
+            Self {
+                nrows,
+                ncols,
+                col_ptr,
+                row_idx,
+            },
+            own_slots,
+            extra_slots,
+        ))
+    }
+
     /// The pattern with the given compressed-column arrays: `col_ptr` of length `ncols + 1`
     /// from 0, non-decreasing, and in each column strictly increasing rows below `nrows` (the
     /// slot order of [`SparsityPattern::from_entries`], without its sort). Cost `O(nnz)`.
@@ -415,6 +517,41 @@ mod tests {
         assert_eq!(p.col_ptr(), &[0, 2, 2, 4]);
         assert_eq!(p.row_idx(), &[0, 2, 0, 1]);
         assert_eq!(slots, vec![2, 0, 3, 1, 1]);
+    }
+
+    #[test]
+    fn with_entries_matches_from_entries_on_all_the_entries() {
+        // a pseudo-random 9 x 9 pattern, then extras that repeat, overlap it and grow it
+        let mut seed = 12345u64;
+        let mut next = |m: usize| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as usize) % m
+        };
+        for _ in 0..20 {
+            let own: Vec<(usize, usize)> = (0..30).map(|_| (next(9), next(9))).collect();
+            let (a, _) = SparsityPattern::from_entries(9, 9, &own).unwrap();
+            for (nrows, ncols) in [(9, 9), (12, 9), (12, 12)] {
+                let extra: Vec<(usize, usize)> =
+                    (0..25).map(|_| (next(nrows), next(ncols))).collect();
+                let all: Vec<(usize, usize)> = a.entries().chain(extra.iter().copied()).collect();
+                let (reference, slots) = SparsityPattern::from_entries(nrows, ncols, &all).unwrap();
+                let (b, own_slots, extra_slots) = a.with_entries(nrows, ncols, &extra).unwrap();
+                assert_eq!(b, reference);
+                assert_eq!(own_slots, slots[..a.nnz()]);
+                assert_eq!(extra_slots, slots[a.nnz()..]);
+            }
+        }
+        let (a, _) = SparsityPattern::from_entries(2, 2, &[(0, 0)]).unwrap();
+        assert!(matches!(
+            a.with_entries(2, 2, &[(2, 0)]),
+            Err(SolverError::EntryOutOfBounds { row: 2, .. })
+        ));
+        assert!(matches!(
+            a.with_entries(1, 2, &[]),
+            Err(SolverError::InvalidParameter { field: "nrows", .. })
+        ));
     }
 
     #[test]

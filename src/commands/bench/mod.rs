@@ -11,7 +11,12 @@
 //! - `paper`: the paper's default linear stand-in ([`PaperEllipse`]), `n2 = 4m + 1`,
 //!   `n3 = m + 1`, against the graded `fem-qp` reference of `bench/high_order.rs`
 //!   (`high_order::paper_reference`: `p = 10`, 12 geometric layers per end, its change from
-//!   `p = 9`, 11 layers in the report), plus the graded `fem-qpP-graded` series.
+//!   `p = 9`, 11 layers in the report), plus the graded `fem-qpP-graded` series;
+//! - `contact`: the default scene's frictional contact problem, time against the error of the
+//!   slip measure, the threshold and max `|v2|` (series `contact-slip`, `contact-threshold`,
+//!   `contact-v2`) for FD, Q1, Q2, the `fem-qp` hp ladder and `fem-qp-corner` with both
+//!   nonlinear solvers, against a graded `fem-qp` reference (`contact.rs`), with its own
+//!   targets [`CONTACT_TARGETS`].
 //!
 //! # Measures
 //! - time: wall clock of building the discretisation (geometry, data, pattern), assembling,
@@ -32,6 +37,7 @@
 //! Every run, the time of every series to each of [`TARGETS`] (log-log interpolation), and
 //! the fastest capstan series per thread count against the fastest peer at each target.
 
+mod contact;
 mod corner;
 mod high_order;
 mod outputs;
@@ -40,6 +46,10 @@ mod peers;
 mod run;
 mod targets;
 
+pub use contact::{
+    CONTACT_PROBLEMS, CONTACT_TARGETS, ContactBench, ContactFastest, ContactReference,
+    ContactValues, THRESHOLD_TOLERANCE,
+};
 use outputs::write_outputs;
 pub use peer_error::{Rectangle, points_error, points_error_of};
 pub use peers::{PEERS, Peer, PeerOrder, PeerProblem, PeerSelection, PeerStatus};
@@ -104,14 +114,16 @@ pub struct WorkPrecisionArgs {
     /// all available cores (as does 0). The peers always run with one thread.
     #[arg(long, value_delimiter = ',')]
     pub threads: Vec<usize>,
-    /// Problems to run (e.g. `paper`); default: all three.
+    /// Problems to run (e.g. `paper`); default: all four.
     #[arg(long, value_delimiter = ',', value_enum)]
     pub problems: Vec<Problem>,
     /// capstan methods to run (e.g. `fem-qp6,fem-qp7`; `fem-qpP` also selects the graded
-    /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper`); default: all.
+    /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper`;
+    /// `fem-qp-hp` and `fem-qp-corner` are the `contact` problem's ladder and corner-mesh
+    /// series); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
-        "fem-qp7", "fem-qp8",
+        "fem-qp7", "fem-qp8", "fem-qp-hp", "fem-qp-corner",
     ])]
     pub methods: Vec<String>,
     /// Peers to run (e.g. `ngsolve`); default: all (`--no-peer` skips them all).
@@ -173,6 +185,9 @@ pub struct WorkPrecisionReport {
     pub series: Vec<SeriesTimes>,
     /// Fastest capstan series (per thread count) against the fastest peer at each target.
     pub headlines: Vec<Headline>,
+    /// The `contact` problem: its reference, the time of every series to each of
+    /// [`CONTACT_TARGETS`] and the fastest per quantity (`None` unless `contact` ran).
+    pub contact: Option<ContactBench>,
     /// Files written.
     pub files: Vec<PathBuf>,
 }
@@ -186,6 +201,8 @@ pub enum Problem {
     Mms,
     /// The paper's default linear stand-in (graded `fem-qp` reference).
     Paper,
+    /// The default scene's frictional contact problem (slip measure, threshold, max `|v2|`).
+    Contact,
 }
 
 impl Problem {
@@ -194,6 +211,7 @@ impl Problem {
             Self::Lame => "lame",
             Self::Mms => "mms",
             Self::Paper => "paper",
+            Self::Contact => "contact",
         }
     }
 
@@ -211,6 +229,10 @@ impl Problem {
                 n2: 4 * m + 1,
                 n3: m + 1,
             },
+            Self::Contact => GridLevel {
+                n2: 6 * m + 1,
+                n3: m + 1,
+            },
         }
     }
 
@@ -220,6 +242,12 @@ impl Problem {
             Self::Lame => lame_parts(&LameCylinder::default(), level),
             Self::Mms => Ok(mms_parts(&mms(), level)?.0),
             Self::Paper => paper_parts(&PaperEllipse::default(), level),
+            // not a linear problem: contact.rs solves it (never in `PROBLEMS`)
+            Self::Contact => Err(ElasticityError::InvalidParameter {
+                field: "--problems",
+                value: m as f64,
+                allowed: "lame, mms, paper have linear parts; contact is solved by contact.rs",
+            }),
         }
     }
 }
@@ -465,6 +493,29 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
             .map_or([f64::NAN; 2], |r| r.op.displacement_at(&r.v, x)) // never read unselected
     };
     let references: [Reference<'_>; 3] = [&lame_f, &mms_f, &paper_f];
+    let out = OutputDir::create(
+        args.out
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("out/work-precision")),
+    )?;
+    // the contact problem's reference (cached in the output directory)
+    let contact_reference = if args.selects_problem(Problem::Contact) {
+        let r = contact::reference(args.quick, &out)?;
+        eprintln!(
+            "work-precision: contact reference {} ({} unknowns{}): check {} changes slip {:.1e}, threshold {:.1e}, v2 {:.1e}",
+            r.method,
+            r.dofs,
+            if r.cached { ", cached" } else { "" },
+            r.check_method,
+            r.check_change[0],
+            r.check_change[1],
+            r.check_change[2]
+        );
+        Some(r)
+    } else {
+        None
+    };
+    let mut contact_failures = vec![];
     let threads = if args.threads.is_empty() {
         vec![rayon_threads()]
     } else {
@@ -486,6 +537,11 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
                 source: std::io::Error::other(e),
             })?;
         runs.extend(pool.install(|| capstan_pass(&levels, &references, use_vmhwm, args))?);
+        if let Some(reference) = &contact_reference {
+            runs.extend(
+                pool.install(|| contact::pass(args, reference, use_vmhwm, &mut contact_failures))?,
+            );
+        }
     }
     let mut statuses = vec![];
     if args.no_peer {
@@ -531,11 +587,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
     }
     let series = targets::series_times(&runs, &PROBLEMS.map(Problem::name));
     let headlines = targets::headlines(&series);
-    let out = OutputDir::create(
-        args.out
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("out/work-precision")),
-    )?;
+    let contact = contact_reference.map(|r| contact::summary(&runs, r, contact_failures));
     let files = write_outputs(&out, &runs)?;
     let report = WorkPrecisionReport {
         quick: args.quick,
@@ -551,6 +603,7 @@ pub fn report(args: &WorkPrecisionArgs) -> Result<WorkPrecisionReport, CliError>
         runs,
         series,
         headlines,
+        contact,
         files,
     };
     out.write_json("work-precision.json", &report)?;
@@ -746,6 +799,9 @@ pub fn table(r: &WorkPrecisionReport) -> String {
             s += &format!(", ratio {ratio:.2}x");
         }
         s.push('\n');
+    }
+    if let Some(c) = &r.contact {
+        s += &contact::table(c);
     }
     for f in &r.files {
         s += &format!("wrote {}\n", f.display());

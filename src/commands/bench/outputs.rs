@@ -103,11 +103,34 @@ pub(super) fn write_outputs(out: &OutputDir, runs: &[Run]) -> Result<Vec<PathBuf
             true,
         ),
     ];
-    for (problem, title, best) in plots {
+    // the contact problem's quantities (contact.rs): every series, no peers
+    let contact = [
+        (
+            "contact-slip",
+            "Default contact scene: slip measure, relative error (of the face length) vs time",
+        ),
+        (
+            "contact-threshold",
+            "Default contact scene: threshold ratio, relative error vs time",
+        ),
+        (
+            "contact-v2",
+            "Default contact scene: max |v2|, relative error vs time",
+        ),
+    ];
+    let plots = plots
+        .into_iter()
+        .map(|(p, t, b)| (p, t, b, "relative L2 error"))
+        .chain(
+            contact
+                .into_iter()
+                .map(|(p, t)| (p, t, false, "relative error of the quantity")),
+        );
+    for (problem, title, best, y_label) in plots {
         let mut plot = LinePlot::new(title)
             .size(1200, 800)
             .x_label("wall time (s)")
-            .y_label("relative L2 error")
+            .y_label(y_label)
             .log_log();
         let keys = if best {
             best_backends(runs, problem)

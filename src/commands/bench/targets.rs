@@ -20,7 +20,8 @@ pub struct SeriesTimes {
     pub backend: String,
     /// Threads.
     pub threads: usize,
-    /// Seconds to reach each of [`TARGETS`]; `None` where the series never gets there.
+    /// Seconds to reach each of [`TARGETS`] (the contact series: each of
+    /// [`super::contact::CONTACT_TARGETS`]); `None` where the series never gets there.
     pub seconds: Vec<Option<f64>>,
 }
 
@@ -90,6 +91,16 @@ pub fn series_runs<'a>(runs: &'a [Run], problem: &str, key: &SeriesKey) -> Vec<&
 
 /// The time to each of [`TARGETS`] of every series of every problem.
 pub fn series_times(runs: &[Run], problems: &[&'static str]) -> Vec<SeriesTimes> {
+    series_times_at(runs, problems, &TARGETS)
+}
+
+/// The time to each of `targets` of every series of every problem (`seconds` in the order of
+/// `targets`).
+pub fn series_times_at(
+    runs: &[Run],
+    problems: &[&'static str],
+    targets: &[f64],
+) -> Vec<SeriesTimes> {
     let mut out = vec![];
     for &problem in problems {
         for key in series_names(runs, problem) {
@@ -100,7 +111,7 @@ pub fn series_times(runs: &[Run], problems: &[&'static str]) -> Vec<SeriesTimes>
                 method,
                 backend,
                 threads,
-                seconds: TARGETS.iter().map(|&t| time_to_error(&series, t)).collect(),
+                seconds: targets.iter().map(|&t| time_to_error(&series, t)).collect(),
             });
         }
     }

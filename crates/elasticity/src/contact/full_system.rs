@@ -111,9 +111,9 @@ impl<'a, D, L: FrictionLaw<f64>> FullSystemProblem<'a, D, L> {
 }
 
 impl<D, L: FrictionLaw<f64>> Residual<f64> for FullSystemProblem<'_, D, L> {
-    type Error = core::convert::Infallible;
+    type Error = SolverError;
     fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
-        self.model.residual_with(&self.rhs, u, r, self.penalty);
+        self.model.residual_with(&self.rhs, u, r, self.penalty)?;
         self.last_set.set(Some(self.model.active_set(&self.rhs, u)));
         Ok(())
     }
@@ -338,7 +338,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             match LoadSteps::newton(self, loads, &mut v, &mut stats, observer) {
                 Ok(_) => {
                     check_lift_off(self.model, loads, &v)?;
-                    return Ok(ContactSolution::new(self.model, loads, v, stats));
+                    return Ok(ContactSolution::new(self.model, loads, v, stats)?);
                 }
                 Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
                     return Err(e.into());

@@ -195,5 +195,5 @@ pub(crate) fn solve_continued<D: ContactOperator, L: FrictionLaw<f64>, S: LoadSt
         v = current;
     }
     check_lift_off(model, loads, &v)?;
-    Ok(ContactSolution::new(model, loads, v, stats))
+    Ok(ContactSolution::new(model, loads, v, stats)?)
 }

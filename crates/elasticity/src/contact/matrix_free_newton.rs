@@ -90,7 +90,7 @@ impl<D, L: FrictionLaw<f64>> Step<'_, D, L> {
 
 impl<D, L: FrictionLaw<f64>> NewtonKrylovProblem for Step<'_, D, L> {
     fn residual(&mut self, u: &[f64], r: &mut [f64]) -> Result<(), SolverError> {
-        self.model.residual_into(&self.rhs, u, r);
+        self.model.residual_into(&self.rhs, u, r)?;
         Ok(())
     }
 
@@ -279,7 +279,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
         if start.iter().all(|x| x.is_finite()) {
             match LoadSteps::newton(self, loads, &mut v, &mut stats, observer) {
                 Ok(_) => {
-                    return Ok(ContactSolution::new(self.model, loads, v, stats));
+                    return Ok(ContactSolution::new(self.model, loads, v, stats)?);
                 }
                 Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
                     return Err(e.into());

@@ -63,8 +63,8 @@ pub(crate) fn extended_pattern(
     active: &[usize],
     sites: &Sites,
 ) -> Result<ExtendedPattern, ContactError> {
-    let mut entries: Vec<(usize, usize)> = a.entries().collect();
-    let na = entries.len();
+    // the friction entries, merged into `A`'s columns (`A`'s entries are not sorted again)
+    let mut entries: Vec<(usize, usize)> = Vec::new();
     let mut marks = Vec::with_capacity(active.len());
     for &k in active {
         let node = &nodes[k];
@@ -85,9 +85,9 @@ pub(crate) fn extended_pattern(
         }
     }
     let n = a.nrows();
-    let (pattern, slots) =
-        SparsityPattern::from_entries(n, n, &entries).map_err(crate::ElasticityError::from)?;
-    let a_slot = slots[..na].to_vec();
+    let (pattern, a_slot, slots) = a
+        .with_entries(n, n, &entries)
+        .map_err(crate::ElasticityError::from)?;
     let tangential_slot = marks.iter().map(|&m| slots[m]).collect();
     let normal_slots = active
         .iter()

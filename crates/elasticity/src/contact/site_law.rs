@@ -2,6 +2,7 @@
 //! site, the full residual and its Jacobian on the extended pattern.
 
 use capstan_friction::{ContactState, FrictionLaw};
+use capstan_solvers::SolverError;
 
 use super::{ContactModel, SiteTraction};
 use crate::contact::exact_friction::ContactRows;
@@ -104,11 +105,15 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// assembled over several processes, [`ContactModel::is_distributed`], each process
     /// evaluates its rows and gathers the others: collective).
     ///
+    /// # Errors
+    /// The gather's failure (only on a distributed model: [`SolverError::External`] of the
+    /// engine).
+    ///
     /// # Panics
-    /// If `v`, `rhs` or `r` have the wrong length; if the gather fails.
+    /// If `v`, `rhs` or `r` have the wrong length.
     #[track_caller]
-    pub fn residual_into(&self, rhs: &[f64], v: &[f64], r: &mut [f64]) {
-        self.residual_with(rhs, v, r, None);
+    pub fn residual_into(&self, rhs: &[f64], v: &[f64], r: &mut [f64]) -> Result<(), SolverError> {
+        self.residual_with(rhs, v, r, None)
     }
 
     /// [`ContactModel::residual_into`]; exact friction in its penalty start when `penalty`
@@ -119,7 +124,7 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         v: &[f64],
         r: &mut [f64],
         penalty: Option<f64>,
-    ) {
+    ) -> Result<(), SolverError> {
         self.system.pattern.matvec(&self.system.values, v, r);
         if let Some(bulk) = &self.bulk {
             // the bulk operator by its action (the assembled pattern is empty)
@@ -152,8 +157,9 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         if let Some((d, block)) = &self.distribution {
             // this process's rows are right; the others come from their owners
-            d.gather(r, *block);
+            d.gather(r, *block)?;
         }
+        Ok(())
     }
 
     /// The law at site `j` for `v` where the site is in contact: `None` where it has
@@ -185,12 +191,15 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     }
 
     /// `max_i |R(v)_i| / max(1, max_i |b_i|)`.
-    pub fn relative_residual(&self, loads: EndLoads, v: &[f64]) -> f64 {
+    ///
+    /// # Errors
+    /// As [`ContactModel::residual_into`].
+    pub fn relative_residual(&self, loads: EndLoads, v: &[f64]) -> Result<f64, SolverError> {
         let rhs = self.rhs(loads);
         let mut r = vec![0.0; v.len()];
-        self.residual_into(&rhs, v, &mut r);
+        self.residual_into(&rhs, v, &mut r)?;
         let b = rhs.iter().fold(0.0f64, |m, x| m.max(x.abs())).max(1.0);
-        r.iter().fold(0.0f64, |m, x| m.max(x.abs())) / b
+        Ok(r.iter().fold(0.0f64, |m, x| m.max(x.abs())) / b)
     }
 
     /// Values of the full Jacobian `dR/dv` on the extended pattern, for the loads'

@@ -136,12 +136,15 @@ pub struct ContactSolution {
 
 impl ContactSolution {
     /// Assembles the solution report from the displacement `v`.
+    ///
+    /// # Errors
+    /// The residual's gather on a distributed model ([`ContactModel::residual_into`]).
     pub fn new<D: ContactOperator, L: FrictionLaw<f64>>(
         model: &ContactModel<D, L>,
         loads: EndLoads,
         v: Vec<f64>,
         mut stats: SolveStats,
-    ) -> Self {
+    ) -> Result<Self, capstan_solvers::SolverError> {
         let disc = model.discretisation();
         let eps = model.slip_threshold();
         let nodes = model.contact_nodes();
@@ -291,7 +294,7 @@ impl ContactSolution {
             .max_by_key(|i| i.count)
             .copied();
         let [max_azimuthal_displacement, max_radial_displacement] = disc.extremes(&v);
-        stats.residual = model.relative_residual(loads, &v);
+        stats.residual = model.relative_residual(loads, &v)?;
         let tensile_contact_nodes = p
             .normal_stress
             .iter()
@@ -305,7 +308,7 @@ impl ContactSolution {
                 .copied()
                 .collect()
         });
-        Self {
+        Ok(Self {
             loads,
             displacement: v,
             unknowns: Vec::new(),
@@ -318,7 +321,7 @@ impl ContactSolution {
             tensile_contact_nodes,
             lift_off_intervals,
             stats,
-        }
+        })
     }
 
     /// The slip intervals (runs with state `+-1`).

@@ -158,7 +158,7 @@ impl<G: ShellGeometry + Sync> SolidNavier<G> {
         if let Some(d) = &distribution {
             // the right-hand side whole on every rank (the Dirichlet lifting of the other
             // rows was a partial sum)
-            d.gather(&mut system.rhs, COMPONENTS);
+            d.gather(&mut system.rhs, COMPONENTS)?;
         }
         // the element slots are dropped here: only the assembled values are kept
         Ok(Self {

@@ -309,9 +309,10 @@ impl SchurInput {
             dof_at.push(at(node.tangential_dof, &mut trailing));
         }
         let t = trailing.len();
-        // E = [A 0; N 1]: the normal-stress rows as rows n..n + m, with unit diagonal
-        let mut entries: Vec<(usize, usize)> = system.pattern.entries().collect();
-        let mut values = system.values.clone();
+        // E = [A 0; N 1]: the normal-stress rows as rows n..n + m, with unit diagonal, merged
+        // into `A`'s columns (`A`'s entries are not sorted again)
+        let mut entries: Vec<(usize, usize)> = Vec::new();
+        let mut values = Vec::new();
         for k in 0..m {
             let row = &model.active_node(k).normal_stress;
             for (&c, &v) in row.columns.iter().zip(&row.values) {
@@ -321,10 +322,14 @@ impl SchurInput {
             entries.push((n + k, n + k));
             values.push(1.0);
         }
-        let (pattern, slots) =
-            capstan_solvers::SparsityPattern::from_entries(n + m, n + m, &entries)
-                .map_err(ContactError::from)?;
+        let (pattern, a_slots, slots) = system
+            .pattern
+            .with_entries(n + m, n + m, &entries)
+            .map_err(ContactError::from)?;
         let mut placed = vec![0.0; pattern.nnz()];
+        for (&slot, &v) in a_slots.iter().zip(&system.values) {
+            placed[slot] += v;
+        }
         for (&slot, v) in slots.iter().zip(values) {
             placed[slot] += v;
         }

@@ -538,7 +538,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 linear_iterations: 0,
                 factorisations: 0,
             },
-        );
+        )?;
         if sol.stats.residual.is_nan() || sol.stats.residual > MAX_FULL_RESIDUAL {
             return Err(ContactError::NotConverged {
                 iterations,
