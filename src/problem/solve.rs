@@ -5,8 +5,8 @@ use std::time::Instant;
 use capstan_elasticity::PlaneOperator;
 use capstan_elasticity::contact::{
     BodyOperator, BoundarySolver, ContactError, ContactModel, ContactOperator, ContactSettings,
-    ContactSolution, FullSystemSolver, MatrixFreeNewton, ThresholdResult, ThresholdSettings,
-    solve_sequenced, threshold_ratio,
+    ContactSolution, FullSystemSolver, SEQUENCE_COARSEST_UNKNOWNS, ThresholdResult,
+    ThresholdSettings, solve_sequenced, threshold_ratio,
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
 use capstan_elasticity::solid::{SolidMultigridParams, SolidOutput};
@@ -305,23 +305,26 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 })
             }
             SolveMethod::FullNewton(linear) if linear == LinearBackend::MATRIX_FREE_MG => {
+                // grid sequencing: the body on its V-cycle's coarse grids first, each
+                // solution prolonged as the next grid's start; the models of every level
+                // are built inside the solve
                 let (law, params, eps) = self.friction.build()?;
-                observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 0, 1));
-                let model = self.body.matrix_free_model(
+                let setup = t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
+                let seq = self.body.solve_matrix_free_sequenced(
                     law,
                     params,
                     eps,
                     SolidMultigridParams::default(),
+                    self.solver.matrix_free_settings(),
+                    SEQUENCE_COARSEST_UNKNOWNS,
+                    loads,
+                    observer,
                 )?;
-                observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 1, 1));
-                let solver = MatrixFreeNewton::new(&model, self.solver.matrix_free_settings())?;
-                let setup = t0.elapsed().as_secs_f64();
-                let t1 = Instant::now();
-                let solution = solver.solve_observed(loads, observer)?;
                 let times = [setup, t1.elapsed().as_secs_f64()];
                 Ok(Solved::of_body(
-                    SolvedModel::Body(model),
-                    solution,
+                    SolvedModel::Body(seq.model),
+                    seq.solution,
                     choice,
                     times,
                 ))

@@ -14,7 +14,10 @@
 //! any element by `--order q1|q2|qpP`, `--width w` the body's width (aspect of the cells),
 //! `--forcing eta` every Newton step solved to the same relative tolerance `eta` (Eisenstat-
 //! Walker off: `eta_min = eta_max = eta`), so iterations per step compare across sizes at
-//! matched forcing.
+//! matched forcing; `--sequence` grid sequencing (the body solved on the V-cycle's coarse
+//! grids first, each solution prolonged as the next grid's start,
+//! `SolidBody::solve_matrix_free_sequenced`; `levels` then lists each grid's nodes, Newton
+//! steps and Krylov iterations, and the counts are the fine grid's).
 //! `multigrid` is the full-system Newton with GMRES and the geometric multigrid of the box
 //! (`--krylov-tol 1e-8` the relative tolerance of each linear solve, `--smoother jacobi` damped
 //! Jacobi instead of Chebyshev, `--power 12` power iterations of its eigenvalue estimate, `--restart m` of GMRES). `--save FILE` writes the
@@ -33,7 +36,9 @@ use std::time::Instant;
 use capstan_elasticity::contact::{
     BoundarySolver, ContactSettings, EndLoads, FullSystemSettings, FullSystemSolver,
 };
-use capstan_elasticity::contact::{MatrixFreeNewton, MatrixFreeSettings};
+use capstan_elasticity::contact::{
+    MatrixFreeNewton, MatrixFreeSettings, SEQUENCE_COARSEST_UNKNOWNS,
+};
 use capstan_elasticity::finite_element::ElementOrder;
 use capstan_elasticity::friction::{RegularisedCoulomb, RegularisedCoulombParams};
 use capstan_elasticity::solid::{HexElement, SolidBody, SolidMultigridParams};
@@ -86,6 +91,7 @@ fn main() {
         let forcing: Option<f64> = args
             .option("--forcing")
             .map(|s| s.parse().expect("--forcing eta in (0, 1)"));
+        let sequence = args.flag("--sequence");
         matrix_free(
             &body,
             params,
@@ -93,6 +99,7 @@ fn main() {
             progress,
             args.option("--reference"),
             forcing,
+            sequence,
         );
         return;
     }
@@ -208,34 +215,30 @@ fn matrix_free(
     progress: bool,
     reference: Option<&str>,
     forcing: Option<f64>,
+    sequence: bool,
 ) {
-    let t = Instant::now();
-    let model = body
-        .matrix_free_model(
-            RegularisedCoulomb,
-            params,
-            eps,
-            SolidMultigridParams::default(),
-        )
-        .expect("a valid model");
-    let model_seconds = t.elapsed().as_secs_f64();
     let mut settings = MatrixFreeSettings::default();
     if let Some(eta) = forcing {
         settings.forcing.eta_max = eta;
         settings.forcing.eta_min = eta;
     }
-    let solver = MatrixFreeNewton::new(&model, settings).expect("settings");
-    let t = Instant::now();
     let mut newton_steps: Vec<(usize, usize)> = Vec::new();
+    let mut level_steps: Vec<(usize, usize)> = Vec::new();
     let mut krylov_in_step = 0;
     let start = Instant::now();
+    let mut start_seconds: Option<f64> = None;
     let mut log = |p: &Progress<f64>| {
         match p.stage {
             SolveStage::Krylov => krylov_in_step += 1,
             SolveStage::Newton => {
+                if start_seconds.is_none() {
+                    start_seconds = Some(start.elapsed().as_secs_f64());
+                }
                 newton_steps.push((p.iteration, krylov_in_step));
                 krylov_in_step = 0;
             }
+            // a grid level of the sequence is done: its steps (the last level's are reported)
+            SolveStage::GridLevel => level_steps = std::mem::take(&mut newton_steps),
             _ => {}
         }
         if progress && p.stage != SolveStage::Krylov {
@@ -250,8 +253,37 @@ fn matrix_free(
         }
     };
     let loads = EndLoads::ratio(1.5);
-    let sol = solver.solve_observed(loads, &mut log).expect("a solution");
-    let solve_seconds = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    // sequenced: the models of every level are built inside (their time is solve time)
+    let (model, sol, levels, model_seconds) = if sequence {
+        let s = body
+            .solve_matrix_free_sequenced(
+                RegularisedCoulomb,
+                params,
+                eps,
+                SolidMultigridParams::default(),
+                settings,
+                SEQUENCE_COARSEST_UNKNOWNS,
+                loads,
+                &mut log,
+            )
+            .expect("a solution");
+        (s.model, s.solution, s.levels, 0.0)
+    } else {
+        let model = body
+            .matrix_free_model(
+                RegularisedCoulomb,
+                params,
+                eps,
+                SolidMultigridParams::default(),
+            )
+            .expect("a valid model");
+        let model_seconds = t.elapsed().as_secs_f64();
+        let solver = MatrixFreeNewton::new(&model, settings).expect("settings");
+        let sol = solver.solve_observed(loads, &mut log).expect("a solution");
+        (model, sol, Vec::new(), model_seconds)
+    };
+    let solve_seconds = t.elapsed().as_secs_f64() - model_seconds;
     let v = &sol.displacement;
     let difference = reference.map(|path| {
         let bytes = std::fs::read(path).expect("a readable --reference file");
@@ -263,19 +295,25 @@ fn matrix_free(
         max_abs_difference(&reference, v) / max_abs(&reference)
     });
     // Krylov iterations of each Newton step (the first event of a solve is its start)
-    let per_step: Vec<usize> = newton_steps
+    let steps = if sequence { level_steps } else { newton_steps };
+    let per_step: Vec<usize> = steps.iter().filter(|s| s.0 > 0).map(|s| s.1).collect();
+    // the start's Krylov iterations: those of the solve not inside a Newton step
+    let start_iterations = sol.stats.linear_iterations - per_step.iter().sum::<usize>();
+    // every grid level's [nodes, Newton steps, Krylov iterations], coarsest first
+    let levels: Vec<String> = levels
         .iter()
-        .filter(|s| s.0 > 0)
-        .map(|s| s.1)
+        .map(|(n, s, k)| format!("[{n:?},{s},{k}]"))
         .collect();
+    let levels = levels.join(",");
     println!(
-        "{{\"nodes\":{:?},\"order\":{:?},\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"mf\",\"model_seconds\":{model_seconds:.3},\"solve_seconds\":{solve_seconds:.3},\"newton_iterations\":{},\"krylov_iterations\":{},\"krylov_per_newton_step\":{per_step:?},\"relative_residual\":{:.2e},\"difference_to_reference\":{},\"max_v2\":{:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
+        "{{\"nodes\":{:?},\"order\":\"{:?}\",\"unknowns\":{},\"contact_unknowns\":{},\"solver\":\"mf\",\"model_seconds\":{model_seconds:.3},\"solve_seconds\":{solve_seconds:.3},\"newton_iterations\":{},\"krylov_iterations\":{},\"krylov_per_newton_step\":{per_step:?},\"start_krylov_iterations\":{start_iterations},\"levels\":[{levels}],\"start_seconds\":{:.3},\"relative_residual\":{:.2e},\"difference_to_reference\":{},\"max_v2\":{:.9e},\"cpu_seconds\":{:.1},\"vm_hwm_mib\":{:.0}}}",
         body.nodes,
         body.order,
         model.dof_count(),
         model.active().len(),
         sol.stats.newton_iterations,
         sol.stats.linear_iterations,
+        start_seconds.unwrap_or(f64::NAN),
         model.relative_residual(loads, v).expect("a residual"),
         difference.map_or("null".to_owned(), |d| format!("{d:.2e}")),
         sol.max_azimuthal_displacement.value,

@@ -223,7 +223,8 @@ impl CsrMatrix {
     /// ```text
     /// (P^T A P)_IJ = sum_i sum_j R_Ii a_ij P_jJ,   R = P^T
     /// ```
-    /// row by row of the result (one sparse accumulator per task; coarse rows in parallel):
+    /// row by row of the result (one sparse accumulator per task, at most about eight tasks per
+    /// thread; coarse rows in parallel):
     /// no intermediate `A P` is stored. Exact zeros that arise are kept, so the pattern
     /// depends only on the patterns of `A` and `P`.
     ///
@@ -239,9 +240,12 @@ impl CsrMatrix {
             "P^T A P: dimensions"
         );
         let m = prolongation.ncols;
+        // each task allocates two accumulators of length m: at most ~8 tasks per thread, so
+        // the set-up stays O(m) (not O(m^2 / 512)) on large coarse levels
+        let chunk = (ROWS_PER_TASK / 8).max(m.div_ceil(8 * rayon::current_num_threads()));
         let tasks: Vec<(usize, usize)> = (0..m)
-            .step_by(ROWS_PER_TASK / 8)
-            .map(|s| (s, (s + ROWS_PER_TASK / 8).min(m)))
+            .step_by(chunk)
+            .map(|s| (s, (s + chunk).min(m)))
             .collect();
         let parts: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = tasks
             .par_iter()

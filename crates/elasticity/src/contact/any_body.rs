@@ -4,12 +4,16 @@
 
 use capstan_friction::FrictionLaw;
 use capstan_geometry::{Obstacle, Surface};
+use capstan_solvers::Observer;
 
 use crate::contact::body::ThickBody;
 use crate::contact::body_force::BodyForceField;
 use crate::contact::error::ContactError;
+use crate::contact::loads::EndLoads;
+use crate::contact::matrix_free_newton::MatrixFreeSettings;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::BodyOperator;
+use crate::contact::solid_sequencing::MatrixFreeSequenced;
 use crate::contact::unilateral::ContactKind;
 use crate::error::ElasticityError;
 use crate::finite_element::DiscretisationMethod;
@@ -323,6 +327,20 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         slip_threshold: f64,
         multigrid: crate::solid::SolidMultigridParams,
     ) -> Result<ContactModel<BodyOperator, L>, ContactError> {
+        boxed_matrix_free_model(
+            &self.matrix_free_solid()?,
+            law,
+            params,
+            slip_threshold,
+            multigrid,
+        )
+    }
+
+    /// The 3-D body that [`Body::matrix_free_model`] discretises.
+    ///
+    /// # Errors
+    /// See [`Body::matrix_free_model`].
+    fn matrix_free_solid(&self) -> Result<SolidBody<S>, ContactError> {
         let Some(solid) = self.solid()? else {
             return Err(ContactError::Unsupported {
                 field: "solver.linear",
@@ -341,14 +359,63 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
                 message: "a body force is not applied matrix-free yet; use solver.linear = \"lu\" or \"multigrid\"",
             });
         }
-        let loads = solid.matrix_free_loads(multigrid)?;
-        ContactModel::new(
-            |tau0, tau_max| Ok(Box::new(loads.at(tau0, tau_max)) as BodyOperator),
-            law,
-            params,
-            slip_threshold,
+        Ok(solid)
+    }
+
+    /// The matrix-free Newton of the 3-D body with grid sequencing
+    /// ([`SolidBody::solve_matrix_free_sequenced`]), every level's model as
+    /// [`Body::matrix_free_model`] builds it.
+    ///
+    /// # Errors
+    /// [`Body::matrix_free_model`]'s refusals; the solve's errors.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_matrix_free_sequenced<L: FrictionLaw<f64> + Clone>(
+        &self,
+        law: L,
+        params: L::Params,
+        slip_threshold: f64,
+        multigrid: crate::solid::SolidMultigridParams,
+        settings: MatrixFreeSettings,
+        coarsest_unknowns: usize,
+        loads: EndLoads,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<MatrixFreeSequenced<BodyOperator, L>, ContactError>
+    where
+        L::Params: Clone,
+    {
+        self.matrix_free_solid()?.solve_sequenced_with(
+            |body: &SolidBody<S>| {
+                boxed_matrix_free_model(
+                    body,
+                    law.clone(),
+                    params.clone(),
+                    slip_threshold,
+                    multigrid,
+                )
+            },
+            settings,
+            coarsest_unknowns,
+            loads,
+            observer,
         )
     }
+}
+
+/// The matrix-free contact model of `solid` with its operator boxed ([`BodyOperator`]).
+fn boxed_matrix_free_model<S: Surface<f64> + Clone + Send + Sync + 'static, L: FrictionLaw<f64>>(
+    solid: &SolidBody<S>,
+    law: L,
+    params: L::Params,
+    slip_threshold: f64,
+    multigrid: crate::solid::SolidMultigridParams,
+) -> Result<ContactModel<BodyOperator, L>, ContactError> {
+    let loads = solid.matrix_free_loads(multigrid)?;
+    ContactModel::new(
+        |tau0, tau_max| Ok(Box::new(loads.at(tau0, tau_max)) as BodyOperator),
+        law,
+        params,
+        slip_threshold,
+    )
 }
 
 #[cfg(test)]

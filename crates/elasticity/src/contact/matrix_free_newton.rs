@@ -244,6 +244,54 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
         };
         solve_continued(self, loads, v, stats, observer)
     }
+    /// Solves for the loads by Newton from `start` (e.g. a coarser grid's solution
+    /// prolonged, [`crate::solid::SolidBody::solve_matrix_free_sequenced`]); if that Newton
+    /// fails (or `start` is not finite), by [`MatrixFreeNewton::solve_observed`] from the
+    /// stuck start, whose work is added. The answer is the same problem's: only the start
+    /// differs.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `start` for a start of the wrong length;
+    /// otherwise as [`MatrixFreeNewton::solve_observed`].
+    pub fn solve_from_observed(
+        &self,
+        loads: EndLoads,
+        start: &[f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
+        loads.check()?;
+        if start.len() != self.model.dof_count() {
+            return Err(ContactError::from(ElasticityError::InvalidParameter {
+                field: "start",
+                value: start.len() as f64,
+                allowed: "one value per unknown",
+            }));
+        }
+        let mut stats = SolveStats {
+            method: "full-newton",
+            newton_iterations: 0,
+            continuation_steps: 1,
+            residual: 0.0,
+            linear_iterations: 0,
+            factorisations: 0,
+        };
+        let mut v = start.to_vec();
+        if start.iter().all(|x| x.is_finite()) {
+            match LoadSteps::newton(self, loads, &mut v, &mut stats, observer) {
+                Ok(_) => {
+                    return Ok(ContactSolution::new(self.model, loads, v, stats)?);
+                }
+                Err(e @ (SolverError::Interrupted { .. } | SolverError::BudgetSpent { .. })) => {
+                    return Err(e.into());
+                }
+                Err(_) => {}
+            }
+        }
+        let mut sol = self.solve_observed(loads, observer)?;
+        sol.stats.newton_iterations += stats.newton_iterations;
+        sol.stats.linear_iterations += stats.linear_iterations;
+        Ok(sol)
+    }
 }
 
 impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for MatrixFreeNewton<'_, D, L> {

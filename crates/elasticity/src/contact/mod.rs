@@ -75,6 +75,7 @@ mod quantities;
 mod solid_body;
 mod solid_matrix_free;
 mod solid_operator;
+mod solid_sequencing;
 mod solution;
 mod threshold;
 mod unilateral;
@@ -98,6 +99,7 @@ pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use path::{PathSolver, PathStep, solve_path, solve_path_silent};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
 pub use solid_matrix_free::{MatrixFreeLoads, SolidMatrixFreeBody};
+pub use solid_sequencing::{MatrixFreeSequenced, SEQUENCE_COARSEST_UNKNOWNS};
 pub use solution::{
     ContactProfile, ContactSolution, SEPARATED, SolidContactProfile, SolveStats, StateInterval,
     classify, state_intervals,

@@ -146,6 +146,10 @@ pub trait MatrixFreeBulk: Sync {
     ) -> Result<OperatorMultigrid, ElasticityError>;
     /// Bytes held (operator data, transfers, the assembled coarse level).
     fn bytes(&self) -> usize;
+    /// `P`, the prolongation from the V-cycle's first coarse level (the Q1 grid below, in its
+    /// own dof numbering) to this operator's dofs: also the interpolation of a coarser
+    /// body's solution in grid sequencing.
+    fn prolongation(&self) -> &CsrMatrix;
 }
 
 /// A contact operator of either dimension, as [`crate::contact::Body::operator`] builds it.

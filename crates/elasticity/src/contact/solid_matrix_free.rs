@@ -138,6 +138,10 @@ impl<G: ShellGeometry + Send + Sync + 'static> MatrixFreeBulk for Shared<G> {
         )?)
     }
 
+    fn prolongation(&self) -> &CsrMatrix {
+        &self.prolongation
+    }
+
     fn bytes(&self) -> usize {
         self.operator.bytes()
             + 8 * self.diagonal.len()
