@@ -130,8 +130,8 @@ fn even_out_spring<D: ContactOperator, L: FrictionLaw<f64>>(
 /// diagonal grows like `1 / dx3^2` while their boundary stiffness falls like `h`), `s - C x`
 /// would cancel to rounding; the spring is then scaled by that singular value (down to the
 /// stiffest boundary mode) and the bulk condensed again. A spring spreading over more than
-/// [`SPRING_SPREAD`] along the face (a locally refined face) is first replaced by its face
-/// average ([`even_out_spring`]). With a rigid mode `z` (`s = s_p + a z`),
+/// 100x along the face (a locally refined face: `fem-qp-corner`) is first replaced by its
+/// face average `sum_k w_k c_k / sum_k w_k` (the solution does not depend on it). With a rigid mode `z` (`s = s_p + a z`),
 /// Newton keeps the amplitude `a` out of `s - C x` (it cancels there exactly) and, at every
 /// iterate, solves the scalar friction balance `y . G = 0` along the mode for `a` (`y` the left
 /// null vector of `I - C P Z`), where saturated friction leaves the Newton matrix no stiffness.
