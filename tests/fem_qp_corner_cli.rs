@@ -1,7 +1,8 @@
 //! `discretisation.method = "fem-qp-corner"` through `capstan contact` (issue 29): the corner
 //! mesh reaches the CLI, its contact profile carries the face's nodes in `x2` order (more
 //! near the ends), `auto` names the full-system Newton, zero corner layers give `fem-qp`'s
-//! answer, and bad corner keys are refused naming the key.
+//! answer, the condensed `newton` and `capstan threshold` agree with the full-system Newton on
+//! the default 5 layers, and bad corner keys are refused naming the key.
 
 mod common;
 
@@ -82,4 +83,53 @@ fn bad_corner_keys_are_refused_naming_the_key() {
     // e >= 2 cells of order p along each direction
     refused(&[corner, "grid.n3=5"], "grid.n3");
     refused(&[corner, "body.dimension=3"], "discretisation.method");
+}
+
+/// The condensed `newton` and `capstan threshold` (which runs it) on the default 5 corner
+/// layers (`p = 5`, `12 x 2` cells: face nodes down to about `2e-3` of a cell apart), where the
+/// condensed Newton stalled before its spring was evened out: the contact profile equals the
+/// full-system Newton's to 1e-8 relative and the threshold converges, equal to its limiting
+/// ratio to 1e-6 and within 1e-4 of the `p = 7`, 8-layer reference 3.3429618.
+#[test]
+fn condensed_newton_and_threshold_run_on_five_corner_layers() {
+    let mesh = [
+        "discretisation.method=\"fem-qp-corner\"",
+        "discretisation.order=5",
+        "grid.n2=61",
+        "grid.n3=11",
+    ];
+    let run = |solver: &str| {
+        let mut args = vec!["contact", "-q", "--set", solver];
+        for s in &mesh {
+            args.extend(["--set", s]);
+        }
+        let d = common::capstan_json(&args);
+        assert_eq!(d["status"], "converged", "{d}");
+        d
+    };
+    let (condensed, full) = (
+        run("solver.nonlinear=\"newton\""),
+        run("solver.nonlinear=\"full-newton\""),
+    );
+    for key in ["x2", "v2", "normal_stress", "slip"] {
+        let (a, b) = (
+            common::json_array(&condensed["contact"], key),
+            common::json_array(&full["contact"], key),
+        );
+        let scale = b.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let d = a
+            .iter()
+            .zip(&b)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        assert!(d <= 1e-8 * scale, "{key}: {d:e}");
+    }
+    let mut args = vec!["threshold", "-q"];
+    for s in &mesh {
+        args.extend(["--set", s]);
+    }
+    let t = common::capstan_json(&args);
+    let ratio = t["threshold_ratio"].as_f64().unwrap();
+    let limit = t["limiting_ratio"].as_f64().unwrap();
+    assert!((ratio - limit).abs() < 1e-6 * limit, "{ratio} {limit}");
+    assert!((ratio - 3.342_961_8).abs() < 1e-4 * ratio, "{ratio}");
 }

@@ -254,3 +254,42 @@ fn corner_mesh_converges_the_contact_answer_with_fewer_unknowns_than_the_tensor_
     let rate = (uniform[0].0 / uniform[2].0).ln() / 4f64.ln();
     assert!(rate > 0.3 && rate < 1.2, "{rate}");
 }
+
+/// The condensed Newton on the default 5 corner layers (12 x 2 cells, p = 5; face nodes down
+/// to about 2e-3 of a cell apart, the per-node spring `A_kk / w_k` spreading over three
+/// decades): it stalled at a relative residual of 19 from the stuck start before the spring
+/// was evened out. Now its contact answer at `tau_max / tau0 = 2` equals the full-system
+/// Newton's (profiles and max |v^2|: 3.7e-12 relative, asserted below 1e-10), and the
+/// threshold it brackets (3.3429438) equals the limiting ratio of whole sliding to 1e-10
+/// (asserted 1e-8) and lies within 5.4e-6 of the reference (p = 7, 8 layers: 3.3429618;
+/// asserted 2e-5).
+#[test]
+fn condensed_newton_and_threshold_on_five_corner_layers_match_the_full_system() {
+    let b = body("fem-qp-corner", 5, 61, 11, 5);
+    let m = model(&b);
+    let condensed = BoundarySolver::new(&m, ContactSettings::default()).unwrap();
+    let loads = EndLoads::new(1.0, 2.0);
+    let a = condensed
+        .solve(loads)
+        .expect("the condensed Newton converges");
+    let full = FullSystemSolver::new(&m, FullSystemSettings::default())
+        .unwrap()
+        .solve(loads)
+        .unwrap();
+    let d = profile_difference(&a, &full);
+    eprintln!("5 layers: condensed vs full-system max relative difference {d:.2e}");
+    assert!(d < 1e-10, "{d:e}");
+    assert!(a.slip_fraction > 0.0 && a.slip_fraction < 1.0);
+    let limit = condensed.sliding().expect("the circle slides").upper_ratio;
+    let settings = ThresholdSettings {
+        tolerance: 1e-10,
+        bracket_at_limit: true,
+        ..Default::default()
+    };
+    let t = threshold_ratio(&condensed, settings)
+        .expect("the threshold converges")
+        .ratio;
+    eprintln!("5 layers: threshold {t:.10}, limiting ratio {limit:.10}");
+    assert!((t - limit).abs() < 1e-8 * limit, "{t} {limit}");
+    assert!((t - 3.342_961_8).abs() < 2e-5 * t, "{t}");
+}
