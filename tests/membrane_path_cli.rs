@@ -101,12 +101,15 @@ fn bad_input_and_no_equilibrium_have_their_exit_codes() {
         common::capstan_status(&["membrane-path", &scene, "--set", "loads.path=[2.7]"]);
     assert_eq!(code, Some(3), "{err}");
     assert!(err.contains("slides as a whole"), "{err}");
-    // the thick body takes the nonsmooth law too, by the full-system semismooth Newton
-    // (tests/exact_friction_scene.rs); the condensed solver refuses it: exit 2, not a panic
+    // the thick body takes the nonsmooth law too (tests/exact_friction_scene.rs): on the
+    // condensed face when bilateral, by the full-system semismooth Newton when unilateral,
+    // where the condensed solver (which holds v^3 = 0) refuses it: exit 2, not a panic
     let (code, _, err) = common::capstan_status(&[
         "contact",
         "--set",
         "friction.law=exact-coulomb",
+        "--set",
+        "contact.kind=unilateral",
         "--set",
         "solver.nonlinear=newton",
         "--set",
