@@ -2,8 +2,8 @@
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
-    Observer, Progress, ResidualNorm, ShortStep, SolveStage, StepControl, newton_drive,
+    Flow, NewtonDirection, NewtonFailure, NewtonIterate, NewtonSystem, Observer, Progress,
+    SolveStage, newton_drive,
 };
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -227,20 +227,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         let accept_floor =
             |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
         self.rebalance(beta, &x0, &n0, s);
-        let policy = NewtonPolicy {
-            max_iterations: settings.max_iterations,
-            absolute_tolerance: tol,
-            relative_tolerance: 0.0,
-            norm: ResidualNorm::Max,
-            step: StepControl::Backtracking {
-                merit: Merit::SumOfSquares { armijo: 1e-4 },
-                min_step: 1e-8,
-                short_step: ShortStep::Fail,
-            },
-            divergence_limit: None,
-            step_stagnation: false,
-            check_finite: false,
-        };
+        let policy = settings.face_policy(tol);
         let mut system = CondensedSystem {
             solver: self,
             beta,

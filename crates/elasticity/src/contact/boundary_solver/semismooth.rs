@@ -4,8 +4,8 @@
 
 use capstan_friction::{FrictionLaw, FrictionState, Projection};
 use capstan_solvers::{
-    Flow, Merit, NewtonDirection, NewtonFailure, NewtonIterate, NewtonPolicy, NewtonSystem,
-    Observer, Progress, ResidualNorm, ShortStep, SolveStage, StepControl, newton_drive,
+    Flow, NewtonDirection, NewtonFailure, NewtonIterate, NewtonSystem, Observer, Progress,
+    SolveStage, newton_drive,
 };
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -97,20 +97,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
         let settings = &self.settings;
         let tol = settings.tolerance * scale;
-        let policy = NewtonPolicy {
-            max_iterations: settings.max_iterations,
-            absolute_tolerance: tol,
-            relative_tolerance: 0.0,
-            norm: ResidualNorm::Max,
-            step: StepControl::Backtracking {
-                merit: Merit::SumOfSquares { armijo: 1e-4 },
-                min_step: 1e-8,
-                short_step: ShortStep::Fail,
-            },
-            divergence_limit: None,
-            step_stagnation: false,
-            check_finite: false,
-        };
+        let policy = settings.face_policy(tol);
         let mut system = ExactFace {
             solver: self,
             exact,

@@ -1,6 +1,6 @@
 //! Settings of the contact Newton iterations and what the solver reports of its setup.
 
-use capstan_solvers::LinearBackend;
+use capstan_solvers::{LinearBackend, Merit, NewtonPolicy, ResidualNorm, ShortStep, StepControl};
 
 use crate::contact::error::ContactError;
 use crate::error::ElasticityError;
@@ -44,6 +44,27 @@ impl Default for ContactSettings {
 }
 
 impl ContactSettings {
+    /// The Newton policy of the condensed face systems (the regularised condensed Newton and
+    /// the semismooth exact-friction step): converged when `max_k |F_k| <= tol` (absolute),
+    /// at most `max_iterations` steps, backtracking on `|F|^2` with Armijo `1e-4` down to a
+    /// step of `1e-8`, a shorter step a failure.
+    pub(crate) fn face_policy(&self, tol: f64) -> NewtonPolicy {
+        NewtonPolicy {
+            max_iterations: self.max_iterations,
+            absolute_tolerance: tol,
+            relative_tolerance: 0.0,
+            norm: ResidualNorm::Max,
+            step: StepControl::Backtracking {
+                merit: Merit::SumOfSquares { armijo: 1e-4 },
+                min_step: 1e-8,
+                short_step: ShortStep::Fail,
+            },
+            divergence_limit: None,
+            step_stagnation: false,
+            check_finite: false,
+        }
+    }
+
     /// Checks every field.
     ///
     /// # Errors
