@@ -391,16 +391,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> NewtonSystem for CondensedSystem<'
             return Ok(Flow::Continue);
         }
         let (stick, slip) = self.solver.active_counts(self.beta, self.x0, at.u);
-        self.observer.iteration(
-            &Progress::new(
-                SolveStage::CondensedNewton,
-                at.iteration,
-                at.norm / self.scale,
-                at.step,
-            )
-            .with_active(stick, slip),
-        );
-        if self.observer.interrupted() {
+        if report_face_iterate(self.observer, at, self.scale, stick, slip) {
             return Ok(Flow::Interrupt);
         }
         if !at.norm.is_finite() {
@@ -408,4 +399,27 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> NewtonSystem for CondensedSystem<'
         }
         Ok(Flow::Continue)
     }
+}
+
+/// Reports an accepted iterate of a condensed face Newton (the regularised step and the
+/// semismooth exact-friction step) to `observer`: stage `CondensedNewton`, the residual norm
+/// relative to `scale`, the step length and the stick/slip counts. True when the observer
+/// asks to stop.
+pub(super) fn report_face_iterate(
+    observer: &mut dyn Observer<f64>,
+    at: &NewtonIterate<'_>,
+    scale: f64,
+    stick: usize,
+    slip: usize,
+) -> bool {
+    observer.iteration(
+        &Progress::new(
+            SolveStage::CondensedNewton,
+            at.iteration,
+            at.norm / scale,
+            at.step,
+        )
+        .with_active(stick, slip),
+    );
+    observer.interrupted()
 }

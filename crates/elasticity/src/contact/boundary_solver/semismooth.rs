@@ -2,10 +2,10 @@
 //! Alart–Curnier rows of [`crate::contact::ContactModel::into_exact_friction`] written in the
 //! condensed unknowns, reusing a [`BoundarySolver`]'s factorisation and condensed matrices.
 
+use super::newton::report_face_iterate;
 use capstan_friction::{FrictionLaw, FrictionState, Projection};
 use capstan_solvers::{
-    Flow, NewtonDirection, NewtonFailure, NewtonIterate, NewtonSystem, Observer, Progress,
-    SolveStage, newton_drive,
+    Flow, NewtonDirection, NewtonFailure, NewtonIterate, NewtonSystem, Observer, newton_drive,
 };
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -386,16 +386,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> NewtonSystem
         let mut g = std::mem::take(&mut self.g);
         let (stick, slip) = self.eval(at.u, &mut g, None);
         self.g = g;
-        self.observer.iteration(
-            &Progress::new(
-                SolveStage::CondensedNewton,
-                at.iteration,
-                at.norm / self.scale,
-                at.step,
-            )
-            .with_active(stick, slip),
-        );
-        if self.observer.interrupted() {
+        if report_face_iterate(self.observer, at, self.scale, stick, slip) {
             return Ok(Flow::Interrupt);
         }
         if !at.norm.is_finite() {
