@@ -49,7 +49,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// Damped by Armijo backtracking on `|G|_2^2`; converged when `max |G| <= tolerance *
     /// scale` (the condensed Newton's test and scale), or at the rounding floor of `G`. Every
     /// iterate reports its active set (stick and slip sites of the projection) to `observer`
-    /// ([`SolveStage::CondensedNewton`]).
+    /// ([`capstan_solvers::SolveStage::CondensedNewton`]).
     ///
     /// # Errors
     /// [`ContactError::Unsupported`] naming `friction.law` when `exact` has no exact friction,
