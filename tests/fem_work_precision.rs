@@ -63,7 +63,7 @@ fn work_precision_runs_can_be_restricted() {
     assert_eq!(a.peer_orders, [6, 8]);
     for bad in [
         ["--problems", "circle"],
-        ["--methods", "fem-qp9"],
+        ["--methods", "fem-qp11"],
         ["--peers", "fenics"],
         ["--peer-orders", "9"],
     ] {

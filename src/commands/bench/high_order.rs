@@ -1,10 +1,12 @@
 //! The `fem-qp` rows of `capstan bench work-precision`: tensor-product elements of order
-//! `p = 2 ... 8` (GLL nodes, static condensation, sparse Cholesky of the skeleton system).
+//! `p = 2 ... 10` (GLL nodes, static condensation, sparse Cholesky of the skeleton system).
 //!
 //! Grids: `k` elements through the thickness and `4k` (`lame`, `paper`) or `2k` (`mms`)
-//! around, i.e. the problem's level `m = k p`. On `paper` also the graded series
+//! around, i.e. the problem's level `m = k p`, `k = 1, 2, 3, 4, 6, 8, 12, 16, 24, 32`
+//! ([`LADDER`]) within [`MAX_DOFS`]. On `paper` also the graded series
 //! `fem-qpP-graded`: `n` geometric layers (ratio [`SIGMA`]) at each end of `x2` and `x3`
-//! around `6 x 1` middle elements ([`Grading`]), `n` growing along the series; the paper's
+//! around `6 x 1` middle elements ([`Grading`]), `n` growing along the series, orders up to
+//! [`PAPER_REFINED_MAX_ORDER`]; the paper's
 //! reference is the graded `p = 10`, `n = 12` solve ([`paper_reference`]). Time: build
 //! (geometry at the quadrature points, loads), condensation and skeleton assembly, and
 //! analyse, factor, solve and interior recovery. Error: as for Q1/Q2, Gauss quadrature
@@ -29,19 +31,29 @@ use super::run::{reset_peak, status_kib};
 use super::{PaperReferenceReport, Problem, REPEAT_RULE, Reference, Run};
 use crate::error::CliError;
 
-/// The orders of the bench.
-pub(super) const ORDERS: core::ops::RangeInclusive<usize> = 2..=8;
+/// The orders of the bench (uniform series of every problem).
+pub(super) const ORDERS: core::ops::RangeInclusive<usize> = 2..=10;
+
+/// The highest order of `paper`'s graded and corner-refined series: its reference is the
+/// graded `p = 10` solve, so those series stop two orders below it.
+pub(super) const PAPER_REFINED_MAX_ORDER: usize = 8;
+
+/// Elements through the thickness along a uniform series: about `sqrt(2)` apart, so that the
+/// time to a target, interpolated log-log between the two runs that bracket it, is not an
+/// artefact of a doubling ladder (at `p = 8` one doubling of `k` takes the `mms` error from
+/// 1e-5 to 2e-8).
+const LADDER: [usize; 10] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32];
+
+/// The ladder of `--quick`.
+const QUICK_LADDER: [usize; 3] = [1, 2, 4];
 
 /// Largest system of a `fem-qp` row (unknowns), about the size of the finest Q2 rows.
 const MAX_DOFS: usize = 140_000;
 
-/// Elements through the thickness per run.
+/// Elements through the thickness per run ([`LADDER`], `--quick` [`QUICK_LADDER`]) within
+/// [`MAX_DOFS`].
 pub(super) fn element_levels(problem: Problem, p: usize, quick: bool) -> Vec<usize> {
-    let ks: &[usize] = if quick {
-        &[1, 2, 4]
-    } else {
-        &[1, 2, 4, 8, 16, 32]
-    };
+    let ks: &[usize] = if quick { &QUICK_LADDER } else { &LADDER };
     ks.iter()
         .copied()
         .filter(|&k| {
@@ -303,4 +315,37 @@ pub(super) fn timed_condensed<O: CondensedSolve>(
             error,
         },
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The uniform ladder: `k = 1, 2, 3, 4, 6, 8, 12, 16, 24, 32` cut at [`MAX_DOFS`], no two
+    /// successive runs more than a factor 1.5 apart in `k` (so at most ~2.25x in unknowns),
+    /// every run within the budget and a whole number of elements of the problem's grid.
+    #[test]
+    fn uniform_ladder_is_fine_and_within_the_budget() {
+        for problem in [Problem::Lame, Problem::Mms, Problem::Paper] {
+            for p in ORDERS {
+                let ks = element_levels(problem, p, false);
+                assert_eq!(ks[..4], [1, 2, 3, 4], "{} p {p}", problem.name());
+                assert!(ks.len() >= 6, "{} p {p}: {ks:?}", problem.name());
+                for w in ks.windows(2) {
+                    assert!(w[1] > w[0] && 2 * w[1] <= 3 * w[0].max(2), "{ks:?}");
+                }
+                for &k in &ks {
+                    let l = problem.level(k * p);
+                    assert!(2 * l.n2 * l.n3 <= MAX_DOFS);
+                    assert!(problem.parts(k * p).is_ok());
+                }
+                // the next rung of the ladder is over the budget
+                if let Some(&next) = LADDER.iter().find(|&&k| k > *ks.last().unwrap()) {
+                    let l = problem.level(next * p);
+                    assert!(2 * l.n2 * l.n3 > MAX_DOFS, "{} p {p}", problem.name());
+                }
+            }
+            assert_eq!(element_levels(problem, 8, true), [1, 2, 4]);
+        }
+    }
 }

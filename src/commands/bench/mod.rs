@@ -1,5 +1,5 @@
 //! `capstan bench work-precision`: run time against error for the finite differences, the
-//! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp8`, `bench/high_order.rs`)
+//! Q1/Q2 finite elements and the Qp elements (`fem-qp2` ... `fem-qp10`, `bench/high_order.rs`)
 //! with each applicable linear backend, on three problems, beside peer FEM libraries (scikit-fem
 //! on the Lamé cylinder, NGSolve on all three: [`PEERS`]; on `paper` the peer's error is
 //! measured by capstan against its reference at the peer's quadrature points, `peer_error`).
@@ -124,7 +124,7 @@ pub struct WorkPrecisionArgs {
     /// series); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
-        "fem-qp7", "fem-qp8", "fem-qp-hp", "fem-qp-corner",
+        "fem-qp7", "fem-qp8", "fem-qp9", "fem-qp10", "fem-qp-hp", "fem-qp-corner",
     ])]
     pub methods: Vec<String>,
     /// Peers to run (e.g. `ngsolve`); default: all (`--no-peer` skips them all).
@@ -667,8 +667,8 @@ fn capstan_pass(
             }
         }
     }
-    // fem-qp, p = 2 ... 8 (static condensation, Cholesky of the skeleton): high_order.rs;
-    // on `paper` also graded meshes, and corner-refined ones (corner.rs)
+    // fem-qp, p = 2 ... 10 (static condensation, Cholesky of the skeleton): high_order.rs;
+    // on `paper` also graded meshes, and corner-refined ones (corner.rs), p <= 8
     for (problem, reference) in selected() {
         for p in high_order::ORDERS.filter(|&p| {
             WorkPrecisionArgs::selects(
@@ -680,7 +680,8 @@ fn capstan_pass(
                 .into_iter()
                 .map(high_order::QpMesh::Uniform)
                 .collect();
-            if problem == Problem::Paper {
+            let refined = problem == Problem::Paper && p <= high_order::PAPER_REFINED_MAX_ORDER;
+            if refined {
                 meshes.extend(
                     high_order::graded_layers(p, quick)
                         .into_iter()
@@ -690,7 +691,7 @@ fn capstan_pass(
             for mesh in meshes {
                 runs.push(high_order::run_qp(problem, mesh, p, *reference, use_vmhwm)?);
             }
-            if problem == Problem::Paper {
+            if refined {
                 for &n in corner::corner_layers(quick) {
                     runs.push(corner::run_corner(p, n, *reference, use_vmhwm)?);
                 }

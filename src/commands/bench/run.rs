@@ -8,7 +8,7 @@ use serde::Serialize;
 pub struct Run {
     /// `lame`, `mms`, `paper`.
     pub problem: &'static str,
-    /// `fd`, `fem-q1`, `fem-q2`, `fem-qp2` ... `fem-qp8`; peers: `skfem-q1`, `skfem-q2`,
+    /// `fd`, `fem-q1`, `fem-q2`, `fem-qp2` ... `fem-qp10`; peers: `skfem-q1`, `skfem-q2`,
     /// `ngsolve-p1` ... `ngsolve-p8`.
     pub method: String,
     /// `lu`, `cholesky`, `gauss-seidel`, ...; peers: `scipy-superlu`, `sparsecholesky`,
