@@ -63,7 +63,7 @@ fn corner(
     )
     .expect("a grid");
     let op = SolidCornerNavier::new(
-        ShellChart::new(b.surface.clone()),
+        ShellChart::new(b.surface),
         b.material,
         grid,
         &boundary(b),
@@ -79,7 +79,7 @@ fn uniform(b: &SolidBody<EllipticalPrism<f64>>, p: usize, ne: [usize; 3]) -> (us
     let mut b = b.clone();
     b.nodes = ne.map(|e| p * e + 1);
     let op = SolidNavier::new(
-        ShellChart::new(b.surface.clone()),
+        ShellChart::new(b.surface),
         b.material,
         b.grid().expect("a grid"),
         &boundary(&b),
