@@ -48,7 +48,7 @@ const SIDE_FACES: [(Face, u8); 4] = [
 /// ```
 /// and every Gauss point (`(p + 1)^3` per element) adds `B^T K B w` with the twelve-input
 /// energy matrix `K` of [`crate::continuum::SOLID`] (the point kernel of
-/// [`super::SolidNavier`]). Natural conditions: the face flux of [`face_flux`] per parameter
+/// [`super::SolidNavier`]). Natural conditions: the face flux of [`face_flux()`] per parameter
 /// area, `dx2 dx3 = det J dxi2 dxi3` on the `x1` faces, `dx1 ds = (L1 / 2)(|e| / 2) dxi1 dt`
 /// along an edge `e` of a quad on an `x2` or `x3` side. A dof on several faces takes the first
 /// `Displacement` condition in the order `x3`, `x1`, `x2` faces (as [`SolidBoundary`]).
