@@ -63,8 +63,26 @@ const SIDE_FACES: [(Face, u8); 4] = [
 /// solvers).
 pub struct SolidCornerNavier<G> {
     mesh: Extruded<G>,
+    material: Material,
     dirichlet: Vec<Option<f64>>,
     system: LinearSystem,
+}
+
+/// A node of the contact face `x3 = 0` with what its contact rows need.
+#[derive(Debug, Clone)]
+pub(crate) struct FaceNode {
+    /// The node (`i1 N + m`).
+    pub node: usize,
+    /// `i1` and the node's rank `k` in `x2` order along its `x1` line.
+    pub i1: usize,
+    /// Rank in `x2` order.
+    pub k: usize,
+    /// `int N dx1 dx2` of the node's basis function over the face (parameter area).
+    pub weight: f64,
+    /// `(node, [value, d_1, d_2, d_3])`: the value and the physical gradient at the node
+    /// from the element polynomials, averaged over the face elements holding it with the
+    /// weights of their share of `weight`.
+    pub stencil: Vec<(usize, [f64; 4])>,
 }
 
 /// The extruded mesh on the chart: what the assembly and the error norms share.
@@ -203,6 +221,7 @@ impl<G: ShellGeometry + Sync> SolidCornerNavier<G> {
         )?;
         Ok(Self {
             mesh: op,
+            material,
             dirichlet,
             system,
         })
@@ -235,6 +254,31 @@ impl<G: ShellGeometry + Sync> SolidCornerNavier<G> {
     #[track_caller]
     pub fn node_position(&self, m: usize) -> [f64; 3] {
         self.mesh.node_position(m)
+    }
+
+    /// The chart.
+    pub(crate) fn chart(&self) -> &G {
+        &self.mesh.chart
+    }
+
+    /// The material.
+    pub(crate) fn material(&self) -> Material {
+        self.material
+    }
+
+    /// The nodes of the contact face `x3 = 0`, by `x1` line and in increasing `x2` along it.
+    ///
+    /// # Math
+    /// ```text
+    /// weight = sum over face elements e holding the node of (w_a1 L1 / 2)(w_k |edge| / 2)
+    /// grad v(node) = sum_e theta_e grad v_e(node),  theta_e = its term / weight
+    /// ```
+    /// (`w` the GLL weights, `a1` and `k` the node's place in the element along `x1` and along
+    /// its face edge): the exact integral of the basis function over the face, and the
+    /// element gradients averaged by that share (equal shares on a uniform mesh: the tensor
+    /// grid's average).
+    pub(crate) fn face_nodes(&self) -> Vec<FaceNode> {
+        self.mesh.face_nodes()
     }
 
     /// The prescribed value of every dof (`None`: free).
@@ -430,6 +474,98 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
                 Ok((matrix, load))
             })
             .collect()
+    }
+
+    /// See [`SolidCornerNavier::face_nodes`].
+    fn face_nodes(&self) -> Vec<FaceNode> {
+        let p = self.settings.order;
+        let np = p + 1;
+        let (_, gw) = gll_rule(p);
+        let rect = self.rect();
+        let nq = self.layout.quads.len();
+        let n = self.layout.node_count;
+        // the quads' edges on x3 = 0: (q, local node, GLL weight times the half-length)
+        let mut holders: std::collections::BTreeMap<usize, Vec<(usize, usize, f64)>> =
+            std::collections::BTreeMap::new();
+        for q in 0..nq {
+            let nodes = &self.layout.element_nodes[q * np * np..(q + 1) * np * np];
+            for (edge, line) in self.quad_edges(q) {
+                let [xs, xe] = edge.map(|i| self.layout.vertices[i]);
+                if sides_of(xs, rect) & sides_of(xe, rect) & 4 == 0 {
+                    continue;
+                }
+                let half = 0.5 * ((xe[0] - xs[0]).powi(2) + (xe[1] - xs[1]).powi(2)).sqrt();
+                for (k, &m) in line.iter().enumerate() {
+                    let a = nodes.iter().position(|&x| x == m).unwrap_or(0);
+                    holders.entry(m).or_default().push((q, a, gw[k] * half));
+                }
+            }
+        }
+        let mut face: Vec<usize> = holders.keys().copied().collect();
+        face.sort_by(|&a, &b| self.positions[a][0].total_cmp(&self.positions[b][0]));
+        let n1 = self.x1_lines.len();
+        let l1 = self.x1_elements[1];
+        let mut out = Vec::with_capacity(n1 * face.len());
+        for i1 in 0..n1 {
+            // the x1 elements holding line i1 and the node's place in each
+            let along: Vec<(usize, usize)> = if i1 % p == 0 {
+                [
+                    (i1 / p).checked_sub(1).map(|e| (e, p)),
+                    (i1 / p < self.ne1).then_some((i1 / p, 0)),
+                ]
+                .into_iter()
+                .flatten()
+                .collect()
+            } else {
+                vec![(i1 / p, i1 % p)]
+            };
+            for (k, &m) in face.iter().enumerate() {
+                let mut weight = 0.0;
+                let mut grad: std::collections::BTreeMap<usize, [f64; 4]> =
+                    std::collections::BTreeMap::new();
+                let mut terms = Vec::new();
+                for &(e1, a1) in &along {
+                    for &(q, a, w) in &holders[&m] {
+                        let theta = gw[a1] * 0.5 * l1 * w;
+                        weight += theta;
+                        let e = e1 * nq + q;
+                        let xi = [self.gll[a1], self.gll[a / np], self.gll[a % np]];
+                        terms.push((e, xi, theta));
+                    }
+                }
+                for (e, xi, theta) in terms {
+                    let (phi, _, _) = self.shape_at(e, xi);
+                    for (f, node) in phi.iter().zip(self.element_nodes(e)) {
+                        let g = grad.entry(node).or_insert([0.0; 4]);
+                        for d in 1..4 {
+                            g[d] += theta / weight * f[d];
+                        }
+                    }
+                }
+                let node = i1 * n + m;
+                grad.entry(node).or_insert([0.0; 4])[0] = 1.0;
+                out.push(FaceNode {
+                    node,
+                    i1,
+                    k,
+                    weight,
+                    stencil: grad.into_iter().collect(),
+                });
+            }
+        }
+        out
+    }
+
+    /// The `(x2, x3)` rectangle.
+    fn rect(&self) -> [[f64; 2]; 2] {
+        let v = &self.layout.vertices;
+        let lo = v
+            .iter()
+            .fold([f64::INFINITY; 2], |a, x| [a[0].min(x[0]), a[1].min(x[1])]);
+        let hi = v.iter().fold([f64::NEG_INFINITY; 2], |a, x| {
+            [a[0].max(x[0]), a[1].max(x[1])]
+        });
+        [[lo[0], hi[0]], [lo[1], hi[1]]]
     }
 
     /// The 2-D nodes on each side of the rectangle: bit mask per node (`sides_of` bits).
