@@ -23,7 +23,7 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidCornerNavier<G> {
 
     /// The entries `v^1`, `v^2` of every face node, as the tensor grid's
     /// (`SolidSetup::contact_pair`) with the corner mesh's weights and gradients
-    /// ([`SolidCornerNavier::face_nodes`]):
+    /// (`SolidCornerNavier::face_nodes`):
     /// ```text
     /// T^3_j = sum_k u_k (lambda delta_3j tr M_k + 2 mu M_k[3][j])
     /// w = sqrt(g) sqrt(g^33) int N dx1 dx2
