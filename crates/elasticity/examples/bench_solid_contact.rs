@@ -229,8 +229,25 @@ fn matrix_free(
     let mut start_seconds: Option<f64> = None;
     let mut log = |p: &Progress<f64>| {
         match p.stage {
-            SolveStage::Krylov => krylov_in_step += 1,
+            SolveStage::Krylov => {
+                krylov_in_step += 1;
+                // a long Krylov solve shows its residual every 100 iterations
+                if progress && krylov_in_step % 100 == 0 {
+                    eprintln!(
+                        "{:8.1} s    krylov {:5}  residual {:.3e}",
+                        start.elapsed().as_secs_f64(),
+                        krylov_in_step,
+                        p.residual_norm
+                    );
+                }
+            }
             SolveStage::Newton => {
+                if progress && p.iteration > 0 {
+                    eprintln!(
+                        "           (step {}: {krylov_in_step} Krylov iterations)",
+                        p.iteration
+                    );
+                }
                 if start_seconds.is_none() {
                     start_seconds = Some(start.elapsed().as_secs_f64());
                 }
