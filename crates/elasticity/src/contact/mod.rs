@@ -73,6 +73,7 @@ mod path;
 mod pattern;
 mod quantities;
 mod solid_body;
+mod solid_corner;
 mod solid_matrix_free;
 mod solid_operator;
 mod solid_sequencing;

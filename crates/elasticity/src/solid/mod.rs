@@ -34,6 +34,9 @@
 
 mod body;
 mod boundary;
+mod corner;
+#[cfg(test)]
+mod corner_tests;
 mod element;
 mod fields;
 mod grid;
@@ -44,6 +47,7 @@ pub(crate) mod setup;
 
 pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
+pub use corner::SolidCornerNavier;
 pub use element::HexElement;
 pub use fields::{SolidFields, SolidOutput};
 pub use grid::BoxGrid;

@@ -69,7 +69,7 @@ impl<G> core::fmt::Debug for SolidNavier<G> {
 /// values `phi` at one point: `B` maps the local dofs to the twelve inputs
 /// (`v^c -> N_a`, `d_p v^c -> d_p N_a`). Only the upper triangle is accumulated.
 #[allow(clippy::needless_range_loop)] // mirrors B^T K B
-fn add_point(out: &mut [f64], k: &[[f64; 12]; 12], phi: &[[f64; 4]]) {
+pub(super) fn add_point(out: &mut [f64], k: &[[f64; 12]; 12], phi: &[[f64; 4]]) {
     let nen = phi.len();
     let l = COMPONENTS * nen;
     // kb[i][3 b + d] = (K B)_(i, (b, d))

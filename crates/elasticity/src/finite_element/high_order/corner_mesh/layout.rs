@@ -73,11 +73,11 @@ impl CornerSettings {
 
 /// One side of the parameter rectangle an element edge may lie on, in the order of
 /// `Side`'s normal index and sign.
-pub(super) type SideMask = u8;
+pub(crate) type SideMask = u8;
 
 /// The quadrilaterals and the Qp node numbering.
 #[derive(Debug, Clone)]
-pub(super) struct Layout {
+pub(crate) struct Layout {
     /// Vertex positions `[x2, x3]`.
     pub vertices: Vec<[f64; 2]>,
     /// Vertices of each element in the order `(xi, eta) = (-1,-1), (1,-1), (-1,1), (1,1)`,
@@ -93,7 +93,7 @@ pub(super) struct Layout {
 
 /// Bit of the side with `x2 = a2` (`1`), `x2 = b2` (`2`), `x3 = 0` (`4`), `x3 = h` (`8`) on
 /// which `x` lies (exact comparisons: boundary vertices are placed exactly).
-pub(super) fn sides_of(x: [f64; 2], [[a2, b2], [a3, b3]]: [[f64; 2]; 2]) -> SideMask {
+pub(crate) fn sides_of(x: [f64; 2], [[a2, b2], [a3, b3]]: [[f64; 2]; 2]) -> SideMask {
     u8::from(x[0] == a2)
         | (u8::from(x[0] == b2) << 1)
         | (u8::from(x[1] == a3) << 2)
@@ -237,13 +237,13 @@ impl Builder {
 
 /// The four edges of a quad as (start, end) vertices, in the local directions of increasing
 /// `xi` or `eta`: `xi = -1`, `xi = 1`, `eta = -1`, `eta = 1`.
-pub(super) fn local_edges(&[v00, v10, v01, v11]: &[usize; 4]) -> [[usize; 2]; 4] {
+pub(crate) fn local_edges(&[v00, v10, v01, v11]: &[usize; 4]) -> [[usize; 2]; 4] {
     [[v00, v01], [v10, v11], [v00, v10], [v01, v11]]
 }
 
 /// `x(xi, eta)` of the bilinear map through `v = [x00, x10, x01, x11]` and its Jacobian
 /// `[[d x2/d xi, d x2/d eta], [d x3/d xi, d x3/d eta]]`.
-pub(super) fn bilinear(v: &[[f64; 2]; 4], [xi, eta]: [f64; 2]) -> ([f64; 2], [[f64; 2]; 2]) {
+pub(crate) fn bilinear(v: &[[f64; 2]; 4], [xi, eta]: [f64; 2]) -> ([f64; 2], [[f64; 2]; 2]) {
     let n = [
         0.25 * (1.0 - xi) * (1.0 - eta),
         0.25 * (1.0 + xi) * (1.0 - eta),

@@ -18,7 +18,7 @@
 //! `8n` instead, and the element edges stay conforming (no hanging-node constraints).
 
 mod contact;
-mod layout;
+pub(crate) mod layout;
 mod operator;
 #[cfg(test)]
 mod tests;
