@@ -38,8 +38,11 @@ use super::solve::ProblemError;
 /// ```
 /// For an error falling geometrically by `q` per step (`E_k = C q^-k`), `d_k` lies between
 /// `(q - 1) E_k` (monotone) and `(q + 1) E_k` (alternating), so `e_k` is `2 ... 4` times the
-/// true error at the `q ~ 3` measured on the default scene; the floor `d_{k-1} / 4` keeps a
-/// step that happens to land near its predecessor from ending the refinement. Refinement
+/// true error at the `q ~ 3` measured on the default scene's threshold (the contact
+/// quantities converge less regularly: at `tol = 1e-3` their estimates are 1.7 ... 300 times
+/// the true error, docs/verification.md, "The contact tolerance table"); the floor
+/// `d_{k-1} / 4` keeps a step that happens to land near its predecessor from ending the
+/// refinement. Refinement
 /// stops at the first `k >= 2` (two differences) with `e_k(Q) <= tol * scale(Q)` for every
 /// `Q`; `scale(Q)` is the quantity's own magnitude, or for lengths along the contact face
 /// (slip measure, stick-zone ends) the face's measure.
@@ -58,7 +61,7 @@ use super::solve::ProblemError;
 /// the stick zone (about 0.03 long, under half of one interior element at `p = 6`) and the
 /// pollution it spreads along the face (`sigma_n` at the quarter point moves by `2.9e-3`
 /// relative from `p = 6` to its `h` step), an `x2` feature: doubling the thickness too changes
-/// every quantity by under `1e-6` relative at twice the unknowns, and put the step that settles
+/// every quantity by under `1e-6` relative at twice the unknowns, and puts the step that settles
 /// them over the default budget. A 3-D body keeps its
 /// method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
 /// own.
