@@ -55,7 +55,7 @@ pub enum ProblemError {
     },
     /// An accuracy target's work budget ran out before every estimate met the tolerance.
     #[error(
-        "accuracy target {tolerance:e} not reached: `{quantity}` still has a relative estimate of {estimate:.2e}, and the next refinement has {unknowns} unknowns, over the budget `accuracy.max_unknowns` = {max_unknowns}; raise it or loosen `accuracy.tol`"
+        "accuracy target {tolerance:e} not reached: `{quantity}` still has a relative estimate of {estimate:.2e} ({trend}), and the next refinement has {unknowns} unknowns, over the budget `accuracy.max_unknowns` = {max_unknowns}; raise it or loosen `accuracy.tol`"
     )]
     AccuracyNotReached {
         /// The tolerance asked for.
@@ -64,6 +64,9 @@ pub enum ProblemError {
         quantity: String,
         /// Its relative estimate.
         estimate: f64,
+        /// Its relative differences `d_k / scale` along the ladder and whether they fall
+        /// (converging, too slowly for the budget) or not (not converging on this ladder).
+        trend: String,
         /// Unknowns of the step that would come next.
         unknowns: usize,
         /// The budget.
