@@ -40,7 +40,13 @@ impl Drop for Gather {
 /// # Math
 /// ```text
 /// gather(x)_i = x_i on the rank owning row i       (every rank gets all n entries)
+/// fetch(x, I)_k = x_{I_k}                         (each rank its own global indices I)
+/// sum(a) = sum_r a_r,   max(a) = max_r a_r          (NaN on any rank: NaN)
 /// ```
+/// The fetch scatters from a distributed vector of the owned rows (`VecCreateMPI`) to one
+/// whose local part is the requested entries (`ISCreateGeneral`, `VecScatterCreate`; the
+/// scatter is kept for the last request); the reductions are `VecSum` / `VecMax` over a
+/// vector of one entry a rank.
 /// A failing PETSc or MPI call is [`PetscError::Call`] naming it, inside
 /// [`SolverError::External`]. The gather is collective: every rank must call it in the same
 /// order as its other PETSc calls, from the thread that started the [`Session`] (PETSc is
