@@ -313,3 +313,42 @@ fn unilateral_contact_on_a_body_assembled_over_ranks_is_refused_naming_the_key()
         "{stderr}"
     );
 }
+
+/// The stick/slip counts of every Newton iterate (`-v`): on 2 and 4 ranks each rank counts
+/// the sites whose rows it owns and the counts are summed over the ranks (a collective
+/// reduction), on 1 rank the whole face is counted; the same counts, iterate by iterate, on
+/// the 3-D band (each rank assembling its rows).
+#[test]
+fn stick_slip_counts_summed_over_ranks_equal_one_rank() {
+    if !have_mpirun() {
+        return;
+    }
+    let counts = |ranks: usize| -> Vec<(u64, u64)> {
+        let out = succeed(
+            mpirun(ranks)
+                .args(["-v", "contact"])
+                .args(CONE)
+                .args(PETSC)
+                .args(["--set", "output.error_estimate=false", "--json"]),
+        );
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        let number = |line: &str, key: &str| -> Option<u64> {
+            let mut words = line.split_whitespace();
+            words.find(|w| *w == key)?;
+            words.next()?.parse().ok()
+        };
+        stderr
+            .lines()
+            .filter(|l| l.starts_with("newton"))
+            .filter_map(|l| Some((number(l, "stick")?, number(l, "slip")?)))
+            .collect()
+    };
+    let one = counts(1);
+    assert!(one.len() > 3, "{one:?}");
+    // the band slips on all its 297 sites at the end
+    assert!(one.iter().any(|&(stick, _)| stick > 0));
+    assert_eq!(one.last().unwrap().0, 0);
+    for ranks in [2, 4] {
+        assert_eq!(counts(ranks), one, "{ranks} ranks");
+    }
+}

@@ -4,10 +4,10 @@
 //! Every rank runs the whole command: it reads the scene and owns a contiguous block of rows
 //! (whole nodes: [`capstan_petsc::owned_blocks`]). On more than one rank a
 //! [`capstan_petsc::PetscDistribution`] is installed, so the 3-D body assembles only its rows
-//! and the contact model gathers its residuals; the plane-strain body is assembled whole on
-//! every rank. The Newton iteration and the contact bookkeeping (on the contact face) run
-//! replicated on whole vectors; the linear solve of each Newton step is one distributed PETSc
-//! solve. Rank 0 alone prints and writes the outputs; the other ranks end quietly when the
+//! and the contact model gathers its residuals, evaluates the friction law on the contact
+//! sites of its rows and sums its stick/slip counts over the ranks; the plane-strain body is
+//! assembled whole on every rank. The Newton iteration runs replicated on whole vectors; the
+//! linear solve of each Newton step is one distributed PETSc solve. Rank 0 alone prints and writes the outputs; the other ranks end quietly when the
 //! solve is done.
 
 use capstan_petsc::Session;

@@ -46,6 +46,11 @@ pub struct _p_PetscSF {
 pub struct _p_MatNullSpace {
     _private: [u8; 0],
 }
+/// Opaque `struct _p_IS`.
+#[repr(C)]
+pub struct _p_IS {
+    _private: [u8; 0],
+}
 /// Opaque C `FILE`.
 #[repr(C)]
 pub struct FILE {
@@ -61,6 +66,8 @@ pub type Vec = *mut _p_Vec;
 pub type KSP = *mut _p_KSP;
 /// `VecScatter` (`PetscSF`).
 pub type VecScatter = *mut _p_PetscSF;
+/// `IS`: an index set.
+pub type IS = *mut _p_IS;
 
 /// `PETSC_DECIDE`: let PETSc choose.
 pub const PETSC_DECIDE: PetscInt = -1;
@@ -68,6 +75,8 @@ pub const PETSC_DECIDE: PetscInt = -1;
 pub const PETSC_DEFAULT: PetscInt = -2;
 /// `MAT_FINAL_ASSEMBLY` (`MatAssemblyType`).
 pub const MAT_FINAL_ASSEMBLY: c_int = 0;
+/// `PETSC_COPY_VALUES` (`PetscCopyMode`): the index set keeps its own copy.
+pub const PETSC_COPY_VALUES: c_int = 0;
 /// `INSERT_VALUES` (`InsertMode`).
 pub const INSERT_VALUES: c_int = 1;
 /// `SCATTER_FORWARD` (`ScatterMode`).
@@ -243,6 +252,30 @@ unsafe extern "C" {
     pub fn VecAXPY(y: Vec, alpha: PetscScalar, x: Vec) -> PetscErrorCode;
     /// `VecNormalize(x, &norm)`: `x /= |x|_2`, the norm before.
     pub fn VecNormalize(x: Vec, norm: *mut PetscReal) -> PetscErrorCode;
+    /// `VecSum(v, &sum)`: the global sum of the entries.
+    pub fn VecSum(v: Vec, sum: *mut PetscScalar) -> PetscErrorCode;
+    /// `VecMax(v, &index, &max)`: the global maximum entry (`index` may be null).
+    pub fn VecMax(v: Vec, index: *mut PetscInt, max: *mut PetscReal) -> PetscErrorCode;
+    /// `VecScatterCreate(x, ix, y, iy, &scatter)`: `y[iy[k]] = x[ix[k]]`, the local parts
+    /// of the index sets paired on each rank (`iy` null: `y`'s own entries in order).
+    pub fn VecScatterCreate(
+        x: Vec,
+        ix: IS,
+        y: Vec,
+        iy: IS,
+        scatter: *mut VecScatter,
+    ) -> PetscErrorCode;
+
+    /// `ISCreateGeneral(comm, n, indices, mode, &is)`: this rank's `n` global indices.
+    pub fn ISCreateGeneral(
+        comm: MPI_Comm,
+        n: PetscInt,
+        indices: *const PetscInt,
+        mode: c_int,
+        is: *mut IS,
+    ) -> PetscErrorCode;
+    /// `ISDestroy(&is)`.
+    pub fn ISDestroy(is: *mut IS) -> PetscErrorCode;
 
     /// `KSPCreate(comm, &ksp)`.
     pub fn KSPCreate(comm: MPI_Comm, ksp: *mut KSP) -> PetscErrorCode;

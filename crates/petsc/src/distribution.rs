@@ -40,7 +40,13 @@ impl Drop for Gather {
 /// # Math
 /// ```text
 /// gather(x)_i = x_i on the rank owning row i       (every rank gets all n entries)
+/// fetch(x, I)_k = x_{I_k}                         (each rank its own global indices I)
+/// sum(a) = sum_r a_r,   max(a) = max_r a_r          (NaN on any rank: NaN)
 /// ```
+/// The fetch scatters from a distributed vector of the owned rows (`VecCreateMPI`) to one
+/// whose local part is the requested entries (`ISCreateGeneral`, `VecScatterCreate`; the
+/// scatter is kept for the last request); the reductions are `VecSum` / `VecMax` over a
+/// vector of one entry a rank.
 /// A failing PETSc or MPI call is [`PetscError::Call`] naming it, inside
 /// [`SolverError::External`]. The gather is collective: every rank must call it in the same
 /// order as its other PETSc calls, from the thread that started the [`Session`] (PETSc is
@@ -51,6 +57,8 @@ pub struct PetscDistribution {
     rank: usize,
     size: usize,
     cache: Mutex<Option<Gather>>,
+    ghosts: Mutex<Option<Ghosts>>,
+    one: Mutex<Option<OnePerRank>>,
 }
 
 // SAFETY: the PETSc handles are only touched under the mutex; MPI is initialised
@@ -82,6 +90,8 @@ impl PetscDistribution {
             rank: session.rank(),
             size: session.size(),
             cache: Mutex::new(None),
+            ghosts: Mutex::new(None),
+            one: Mutex::new(None),
         })
     }
 
@@ -114,12 +124,10 @@ impl PetscDistribution {
             *cache = Some(g);
         }
         let g = cache.as_ref().expect("just made");
-        // SAFETY: live handles; `local` has the owned rows' length, `all` all n entries.
+        // SAFETY: live handles; `local` has the owned rows' length (possibly none: more ranks
+        // than nodes), `all` all n entries.
         unsafe {
-            let mut a: *mut f64 = core::ptr::null_mut();
-            check(sys::VecGetArray(g.local, &mut a), "VecGetArray")?;
-            core::slice::from_raw_parts_mut(a, rows.len()).copy_from_slice(&all[rows.clone()]);
-            check(sys::VecRestoreArray(g.local, &mut a), "VecRestoreArray")?;
+            set_local(g.local, &all[rows.clone()])?;
             for begin in [true, false] {
                 let f = if begin {
                     sys::VecScatterBegin
@@ -137,13 +145,7 @@ impl PetscDistribution {
                     "VecScatter",
                 )?;
             }
-            let mut x: *const f64 = core::ptr::null();
-            check(sys::VecGetArrayRead(g.all, &mut x), "VecGetArrayRead")?;
-            all.copy_from_slice(core::slice::from_raw_parts(x, n));
-            check(
-                sys::VecRestoreArrayRead(g.all, &mut x),
-                "VecRestoreArrayRead",
-            )?;
+            get_local(g.all, all)?;
         }
         Ok(())
     }
@@ -157,7 +159,257 @@ fn too_many(value: usize) -> PetscError {
     }
 }
 
+/// A scatter from a distributed vector of `n` entries to the entries `indices` of each rank
+/// (a distributed vector whose local part is this rank's requested entries, in order).
+struct Ghosts {
+    key: (usize, usize, Vec<usize>),
+    x: sys::Vec,
+    y: sys::Vec,
+    scatter: sys::VecScatter,
+}
+
+impl Drop for Ghosts {
+    fn drop(&mut self) {
+        if !running() {
+            return;
+        }
+        // SAFETY: created by PETSc in `PetscDistribution::fetch_checked`, destroyed once.
+        unsafe {
+            sys::VecScatterDestroy(&mut self.scatter);
+            sys::VecDestroy(&mut self.y);
+            sys::VecDestroy(&mut self.x);
+        }
+    }
+}
+
+/// A distributed vector of one entry per rank, for the reductions.
+struct OnePerRank {
+    v: sys::Vec,
+}
+
+impl Drop for OnePerRank {
+    fn drop(&mut self) {
+        if running() {
+            // SAFETY: created by PETSc in `PetscDistribution::reduce`, destroyed once.
+            unsafe {
+                sys::VecDestroy(&mut self.v);
+            }
+        }
+    }
+}
+
+/// Copies `values` into the local part of `v` (as long as `values`).
+///
+/// # Safety
+/// `v` is a live vector whose local part has `values.len()` entries.
+unsafe fn set_local(v: sys::Vec, values: &[f64]) -> Result<(), PetscError> {
+    let mut a: *mut f64 = core::ptr::null_mut();
+    // SAFETY: as the function's contract.
+    unsafe {
+        check(sys::VecGetArray(v, &mut a), "VecGetArray")?;
+        if !values.is_empty() {
+            core::slice::from_raw_parts_mut(a, values.len()).copy_from_slice(values);
+        }
+        check(sys::VecRestoreArray(v, &mut a), "VecRestoreArray")
+    }
+}
+
+/// Copies the local part of `v` into `out` (as long as it).
+///
+/// # Safety
+/// `v` is a live vector whose local part has `out.len()` entries.
+unsafe fn get_local(v: sys::Vec, out: &mut [f64]) -> Result<(), PetscError> {
+    let mut x: *const f64 = core::ptr::null();
+    // SAFETY: as the function's contract.
+    unsafe {
+        check(sys::VecGetArrayRead(v, &mut x), "VecGetArrayRead")?;
+        if !out.is_empty() {
+            out.copy_from_slice(core::slice::from_raw_parts(x, out.len()));
+        }
+        check(sys::VecRestoreArrayRead(v, &mut x), "VecRestoreArrayRead")
+    }
+}
+
+fn petsc_int(value: usize, quantity: &'static str) -> Result<sys::PetscInt, PetscError> {
+    sys::PetscInt::try_from(value).map_err(|_| PetscError::IndexOverflow {
+        quantity,
+        value,
+        bits: sys::PetscInt::BITS,
+    })
+}
+
+impl PetscDistribution {
+    fn fetch_checked(
+        &self,
+        owned: &[f64],
+        n: usize,
+        block: usize,
+        indices: &[usize],
+        out: &mut [f64],
+    ) -> Result<(), SolverError> {
+        on_session_thread("fetching entries of a distributed vector")?;
+        let rows = owned_blocks(n, block, self.rank, self.size);
+        if owned.len() != rows.len() {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "owned rows",
+                expected: rows.len(),
+                found: owned.len(),
+            });
+        }
+        if out.len() != indices.len() {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "fetched entries",
+                expected: indices.len(),
+                found: out.len(),
+            });
+        }
+        if let Some(&bad) = indices.iter().find(|&&i| i >= n) {
+            return Err(SolverError::InvalidParameter {
+                field: "index",
+                value: bad as f64,
+                allowed: "below the vector's length",
+            });
+        }
+        let mut cache = self.ghosts.lock().unwrap_or_else(|e| e.into_inner());
+        if cache
+            .as_ref()
+            .is_none_or(|g| g.key.0 != n || g.key.1 != block || g.key.2 != indices)
+        {
+            *cache = None;
+            let mut g = Ghosts {
+                key: (n, block, indices.to_vec()),
+                x: core::ptr::null_mut(),
+                y: core::ptr::null_mut(),
+                scatter: core::ptr::null_mut(),
+            };
+            let idx = indices
+                .iter()
+                .map(|&i| petsc_int(i, "unknowns"))
+                .collect::<Result<Vec<_>, _>>()?;
+            let (local, global) = (
+                petsc_int(rows.len(), "unknowns")?,
+                petsc_int(n, "unknowns")?,
+            );
+            let wanted = petsc_int(indices.len(), "fetched entries")?;
+            // SAFETY: PETSc is running; the handles are owned by `g` (destroyed by its Drop)
+            // but the index set, destroyed here after the scatter copied it.
+            unsafe {
+                check(
+                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, local, global, &mut g.x),
+                    "VecCreateMPI",
+                )?;
+                check(
+                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, wanted, sys::PETSC_DECIDE, &mut g.y),
+                    "VecCreateMPI",
+                )?;
+                let mut is: sys::IS = core::ptr::null_mut();
+                check(
+                    sys::ISCreateGeneral(
+                        sys::PETSC_COMM_WORLD,
+                        wanted,
+                        idx.as_ptr(),
+                        sys::PETSC_COPY_VALUES,
+                        &mut is,
+                    ),
+                    "ISCreateGeneral",
+                )?;
+                let made = check(
+                    sys::VecScatterCreate(g.x, is, g.y, core::ptr::null_mut(), &mut g.scatter),
+                    "VecScatterCreate",
+                );
+                check(sys::ISDestroy(&mut is), "ISDestroy")?;
+                made?;
+            }
+            *cache = Some(g);
+        }
+        let g = cache.as_ref().expect("just made");
+        // SAFETY: live handles; `x`'s local part has the owned rows' length, `y`'s the
+        // requested entries'.
+        unsafe {
+            set_local(g.x, owned)?;
+            check(
+                sys::VecScatterBegin(
+                    g.scatter,
+                    g.x,
+                    g.y,
+                    sys::INSERT_VALUES,
+                    sys::SCATTER_FORWARD,
+                ),
+                "VecScatterBegin",
+            )?;
+            check(
+                sys::VecScatterEnd(
+                    g.scatter,
+                    g.x,
+                    g.y,
+                    sys::INSERT_VALUES,
+                    sys::SCATTER_FORWARD,
+                ),
+                "VecScatterEnd",
+            )?;
+            get_local(g.y, out)?;
+        }
+        Ok(())
+    }
+
+    /// `VecSum` (`max = false`) or `VecMax` over one entry per rank.
+    fn reduce(&self, value: f64, max: bool) -> Result<f64, PetscError> {
+        on_session_thread("reducing over the ranks")?;
+        let mut one = self.one.lock().unwrap_or_else(|e| e.into_inner());
+        if one.is_none() {
+            let mut v: sys::Vec = core::ptr::null_mut();
+            // SAFETY: PETSc is running; `v` is owned by the cache, destroyed by its Drop.
+            unsafe {
+                check(
+                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, 1, sys::PETSC_DECIDE, &mut v),
+                    "VecCreateMPI",
+                )?;
+            }
+            *one = Some(OnePerRank { v });
+        }
+        let v = one.as_ref().expect("just made").v;
+        let mut out = 0.0;
+        // SAFETY: a live vector with one local entry.
+        unsafe {
+            if max {
+                // MPI's maximum drops a NaN of one rank: count them first (every rank makes
+                // both calls, in the same order)
+                set_local(v, &[f64::from(u8::from(value.is_nan()))])?;
+                check(sys::VecSum(v, &mut out), "VecSum")?;
+                if out > 0.0 {
+                    return Ok(f64::NAN);
+                }
+                set_local(v, &[value])?;
+                check(sys::VecMax(v, core::ptr::null_mut(), &mut out), "VecMax")?;
+            } else {
+                set_local(v, &[value])?;
+                check(sys::VecSum(v, &mut out), "VecSum")?;
+            }
+        }
+        Ok(out)
+    }
+}
+
 impl RowDistribution for PetscDistribution {
+    fn fetch(
+        &self,
+        owned: &[f64],
+        n: usize,
+        block: usize,
+        indices: &[usize],
+        out: &mut [f64],
+    ) -> Result<(), SolverError> {
+        self.fetch_checked(owned, n, block, indices, out)
+    }
+
+    fn sum(&self, value: f64) -> Result<f64, SolverError> {
+        self.reduce(value, false).map_err(SolverError::from)
+    }
+
+    fn max(&self, value: f64) -> Result<f64, SolverError> {
+        self.reduce(value, true).map_err(SolverError::from)
+    }
+
     fn rank(&self) -> usize {
         self.rank
     }

@@ -5,9 +5,11 @@
 //! Status: the linear algebra is distributed, each rank owning whole nodes
 //! (`owned_blocks`); GAMG is given the caller's near-null space and block size. A
 //! `PetscDistribution` installed as the process's row distribution lets the 3-D body
-//! assemble only its rows and the contact model gather its residuals; the caller's Newton
-//! iteration runs on whole vectors on every rank, each rank inserting its rows and receiving
-//! the whole solution. Built only with the system PETSc (Debian: `petsc-dev`, PETSc 3.18 on
+//! assemble only its rows and the contact model gather its residuals, evaluate the friction
+//! law on its own contact sites and sum its stick/slip counts over the ranks; it also fetches
+//! ghost entries of a vector held as each rank's rows (a `VecScatter` to given global
+//! indices) and reduces scalars (sum, max). The caller's Newton iteration still runs on whole
+//! vectors on every rank, each rank inserting its rows and receiving the whole solution. Built only with the system PETSc (Debian: `petsc-dev`, PETSc 3.18 on
 //! Open MPI), never by the default workspace build.
 //!
 //! Without the crate feature `petsc` (which the facade's feature `petsc` turns on) the crate

@@ -27,6 +27,44 @@ pub trait RowDistribution: Send + Sync {
     /// unusable and the job should end).
     fn gather(&self, all: &mut [f64], block: usize) -> Result<(), crate::SolverError>;
 
+    /// Entries of a distributed vector by their global index: `owned` is this process's
+    /// rows of a vector of `n` entries ([`owned_blocks`]`(n, block, ..)`), and on return
+    /// `out[k] = x[indices[k]]` for any global `indices` (the ghosts a process reads: rows
+    /// another process owns), without making `x` whole anywhere. Collective: every process
+    /// calls it in the same order (each with its own `indices`, possibly none).
+    ///
+    /// # Math
+    /// ```text
+    /// out_k = x_{indices_k},   x_i = owned_{i - first} on the process owning row i
+    /// ```
+    ///
+    /// # Errors
+    /// [`crate::SolverError::DimensionMismatch`] when `owned` is not this process's share of
+    /// `n` or `out` is not as long as `indices`, [`crate::SolverError::InvalidParameter`]
+    /// for an index not below `n`; the engine's failure as
+    /// [`crate::SolverError::External`].
+    fn fetch(
+        &self,
+        owned: &[f64],
+        n: usize,
+        block: usize,
+        indices: &[usize],
+        out: &mut [f64],
+    ) -> Result<(), crate::SolverError>;
+
+    /// The sum over all processes of `value` (each its own). Collective.
+    ///
+    /// # Errors
+    /// The engine's failure as [`crate::SolverError::External`].
+    fn sum(&self, value: f64) -> Result<f64, crate::SolverError>;
+
+    /// The maximum over all processes of `value` (each its own; a NaN anywhere gives NaN).
+    /// Collective.
+    ///
+    /// # Errors
+    /// The engine's failure as [`crate::SolverError::External`].
+    fn max(&self, value: f64) -> Result<f64, crate::SolverError>;
+
     /// The rows this process owns among `n` with `block` unknowns per node.
     fn owned(&self, n: usize, block: usize) -> Range<usize> {
         owned_blocks(n, block, self.rank(), self.size())

@@ -114,7 +114,9 @@ impl<D, L: FrictionLaw<f64>> Residual<f64> for FullSystemProblem<'_, D, L> {
     type Error = SolverError;
     fn residual(&self, u: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
         self.model.residual_with(&self.rhs, u, r, self.penalty)?;
-        self.last_set.set(Some(self.model.active_set(&self.rhs, u)));
+        // on a distributed model each process counts its sites (a collective sum)
+        self.last_set
+            .set(Some(self.model.active_set_reduced(&self.rhs, u)?));
         Ok(())
     }
 }

@@ -139,7 +139,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         if let Some(x) = &self.exact {
             x.residual_into(self, v, self.separated_sites(rhs, v).as_deref(), r, penalty);
         }
+        let owned = self.owned_rows(r.len());
         for (j, members) in self.sites.members.iter().enumerate() {
+            if !self.site_has_row_in(j, owned.as_ref()) {
+                // another process's rows: its owner computes them, the gather brings them
+                continue;
+            }
             let Some(st) = self
                 .site_traction_in_contact(j, v, contact.as_deref())
                 .filter(|_| self.exact.is_none())
@@ -160,6 +165,77 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             d.gather(r, *block)?;
         }
         Ok(())
+    }
+
+    /// This process's rows among `n` on a model assembled over several processes
+    /// ([`ContactModel::is_distributed`]); `None`: all rows are this process's.
+    pub(crate) fn owned_rows(&self, n: usize) -> Option<core::ops::Range<usize>> {
+        self.distribution
+            .as_ref()
+            .map(|(d, block)| d.owned(n, *block))
+    }
+
+    /// Whether a tangential row of site `j` lies in `owned` (`None`: every site's does):
+    /// the sites whose friction terms this process computes.
+    fn site_has_row_in(&self, j: usize, owned: Option<&core::ops::Range<usize>>) -> bool {
+        owned.is_none_or(|rows| {
+            self.sites.members[j].iter().any(|&k| {
+                self.active_node(k)
+                    .tangential_row
+                    .is_some_and(|row| rows.contains(&row))
+            })
+        })
+    }
+
+    /// [`ContactModel::active_set`] with each process counting only the sites whose first
+    /// tangential row it owns and the counts summed over the processes
+    /// ([`capstan_solvers::row_distribution::RowDistribution::sum`]: collective), on a
+    /// distributed model with a regularised law; otherwise [`ContactModel::active_set`]
+    /// itself (exact friction reads the free residual of the whole face).
+    ///
+    /// # Math
+    /// ```text
+    /// n_stick = sum_p #{ j owned by p : |u_j| <  eps },   n_slip likewise with |u_j| >= eps
+    /// ```
+    ///
+    /// # Errors
+    /// The reduction's failure ([`SolverError::External`] of the engine).
+    pub fn active_set_reduced(
+        &self,
+        rhs: &[f64],
+        v: &[f64],
+    ) -> Result<capstan_solvers::ActiveSet, SolverError> {
+        let Some((d, block)) = self
+            .distribution
+            .as_ref()
+            .filter(|_| self.exact.is_none() && self.unilateral.is_none())
+        else {
+            return Ok(self.active_set(rhs, v));
+        };
+        let rows = d.owned(v.len(), *block);
+        let (mut stick, mut slip) = (0usize, 0usize);
+        for j in 0..self.sites.members.len() {
+            let first = self.active_node(self.sites.members[j][0]);
+            if !first.tangential_row.is_some_and(|row| rows.contains(&row)) {
+                continue;
+            }
+            let u = self.site_slip(j, 1.0, |k| v[self.active_node(k).tangential_dof]);
+            if (u[0] * u[0] + u[1] * u[1]).sqrt() < self.slip_threshold {
+                stick += 1;
+            } else {
+                slip += 1;
+            }
+        }
+        // counts below 2^53 are exact in f64; one reduction for both (slip in units of the
+        // number of sites + 1)
+        let base = (self.sites.members.len() + 1) as f64;
+        let both = d.sum(stick as f64 + base * slip as f64)?;
+        let slip = (both / base).floor();
+        Ok(capstan_solvers::ActiveSet {
+            stick: (both - slip * base) as usize,
+            slip: slip as usize,
+            separated: 0,
+        })
     }
 
     /// The law at site `j` for `v` where the site is in contact: `None` where it has
@@ -231,7 +307,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
             x.jacobian_into(self, v, &r, separated.as_deref(), values, penalty);
             return;
         }
+        let owned = self.owned_rows(v.len());
         for (j, members) in self.sites.members.iter().enumerate() {
+            if !self.site_has_row_in(j, owned.as_ref()) {
+                // rows another process inserts into the distributed matrix
+                continue;
+            }
             let Some(st) = self.site_traction_in_contact(j, v, contact.as_deref()) else {
                 continue;
             };
