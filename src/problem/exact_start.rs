@@ -104,23 +104,23 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         };
         observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 0, 1));
         let model = regularised.model()?;
-        let exact = model
-            .with_params(model.params().clone())
-            .into_exact_friction(law)?;
+        let rows = model.exact_rows(law)?;
         observer.iteration(&Progress::set_up(SetUpPhase::Assembly, 1, 1));
         let solver = BoundarySolver::new_observed(&model, self.solver.budgets, observer)?;
         let setup = t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
         let start = solver.solve_observed(self.loads, observer)?;
-        let mut solution =
-            solver.solve_exact_from_observed(&exact, self.loads, &start.unknowns, observer)?;
+        let face =
+            solver.solve_exact_rows_observed(&rows, self.loads, &start.unknowns, observer)?;
+        let limiting = solver
+            .sliding_at(self.loads.tau0)?
+            .map(|m| [m.lower_ratio, m.upper_ratio]);
+        drop(solver);
+        let exact = model.with_exact_rows(rows)?;
+        let mut solution = face.into_solution(&exact)?;
         solution.stats.newton_iterations += start.stats.newton_iterations;
         solution.stats.continuation_steps = start.stats.continuation_steps;
-        let limiting = solver
-            .sliding_at(solution.loads.tau0)?
-            .map(|m| [m.lower_ratio, m.upper_ratio]);
         let times = [setup, t1.elapsed().as_secs_f64()];
-        drop(solver);
         Ok(Solved {
             model: SolvedModel::Body(exact),
             solution,

@@ -250,3 +250,59 @@ fn condensed_semismooth_newton_refuses_what_it_cannot_solve() {
         other => panic!("{other:?}"),
     }
 }
+
+/// The copy-free route (`ContactModel::exact_rows`, `BoundarySolver::solve_exact_rows_observed`,
+/// `ContactModel::with_exact_rows`, `ExactFaceSolution::into_solution`: what `Problem` runs)
+/// gives the copied exact model's solution bit for bit (displacement, stick/slip, residual,
+/// iterations), on the circle and on a 3-D body; rows of another body and a model without
+/// the rows are refused with typed errors.
+#[test]
+fn condensed_semismooth_newton_without_the_model_copy_is_the_same() {
+    let cases = [
+        ("circle 81 x 17, ratio 2", body(2.0, 2.0, 81, 17), 2.0),
+        (
+            "3-D Q1 3 x 21 x 5, ratio 1.5",
+            solid(body(2.0, 2.0, 21, 5), 3),
+            1.5,
+        ),
+    ];
+    for (name, b, ratio) in cases {
+        let loads = EndLoads::new(1.0, ratio);
+        let (copied, start) = condensed(&b, 1e-5, loads, &mut SilentObserver);
+        let model = regularised_model(&b, 1e-5);
+        let rows = model.exact_rows(exact_law()).unwrap();
+        let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let face = solver
+            .solve_exact_rows_observed(&rows, loads, &start.unknowns, &mut SilentObserver)
+            .unwrap();
+        assert_eq!(face.iterations(), copied.stats.newton_iterations, "{name}");
+        // the rows of another body are refused, by the solver and by the model
+        let other = regularised_model(&body(2.0, 2.0, 41, 11), 1e-5);
+        let other_rows = other.exact_rows(exact_law()).unwrap();
+        let e = solver
+            .solve_exact_rows_observed(&other_rows, loads, &start.unknowns, &mut SilentObserver)
+            .unwrap_err();
+        assert!(matches!(e, ContactError::DifferentBody { .. }), "{e:?}");
+        drop(solver);
+        let e = face.clone().into_solution(&model).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ContactError::Unsupported {
+                    field: "friction.law",
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
+        let e = other.with_exact_rows(rows.clone()).unwrap_err();
+        assert!(matches!(e, ContactError::DifferentBody { .. }), "{e:?}");
+        let exact = model.with_exact_rows(rows).unwrap();
+        let x = face.into_solution(&exact).unwrap();
+        assert_eq!(x.displacement, copied.displacement, "{name}");
+        assert_eq!(x.unknowns, copied.unknowns, "{name}");
+        assert_eq!(x.contact.state, copied.contact.state, "{name}");
+        assert_eq!(x.stats.residual, copied.stats.residual, "{name}");
+        assert_eq!(x.stats.method, CONDENSED_SEMISMOOTH, "{name}");
+    }
+}

@@ -85,7 +85,8 @@ pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
 pub use body_force::BodyForceField;
 pub use boundary_solver::{
-    BoundarySolver, CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode,
+    BoundarySolver, CONDENSED_SEMISMOOTH, ContactSettings, ExactFaceSolution, SetupStats,
+    SlidingMode,
 };
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{
@@ -95,7 +96,7 @@ pub use full_system::{
 pub use loads::{BODY_FORCE, END_LOADS, EndLoads};
 pub use matrix_free_newton::{MatrixFreeNewton, MatrixFreeSettings};
 pub use mesh_operator::MeshContactOperator;
-pub use model::{ContactModel, SiteTraction};
+pub use model::{ContactModel, ExactRows, SiteTraction};
 pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use path::{PathSolver, PathStep, solve_path, solve_path_silent};
 pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};

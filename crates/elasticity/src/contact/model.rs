@@ -68,6 +68,27 @@ pub(crate) fn add_slip(u: &mut [f64; 2], beta: f64, frame: [f64; 2], x: f64) {
     }
 }
 
+/// Exact (nonsmooth) friction rows built for one body ([`ContactModel::exact_rows`]): the
+/// projection law, the per-site data (frames, augmentation) and the extended pattern of the
+/// full-system Jacobian, to be installed by [`ContactModel::with_exact_rows`].
+#[derive(Debug, Clone)]
+pub struct ExactRows {
+    pub(crate) friction: ExactFriction,
+    ext: ExtendedPattern,
+    /// The number of unknowns of the body the rows were built for.
+    dimension: usize,
+    /// Its active contact entries.
+    active: Vec<usize>,
+}
+
+impl ExactRows {
+    /// Whether the rows were built for `model`'s body (its number of unknowns and active
+    /// contact entries).
+    pub(crate) fn built_for<D, L: FrictionLaw<f64>>(&self, model: &ContactModel<D, L>) -> bool {
+        self.dimension == model.system.dimension() && self.active == model.active
+    }
+}
+
 /// A frictional contact problem on a discretised thick body.
 ///
 /// # Math
@@ -435,13 +456,50 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// [`ElasticityError::InvalidParameter`] naming `friction.law` for a site whose frames are
     /// singular or whose tangential diagonal vanishes.
     pub fn into_exact_friction(
-        mut self,
+        self,
         law: std::sync::Arc<dyn DynNonsmoothLaw>,
     ) -> Result<Self, ContactError> {
-        let (exact, ext) =
-            ExactFriction::build(&self, &self.sites.members, self.active.len(), law)?;
-        self.ext = ext;
-        self.exact = Some(exact);
+        let rows = self.exact_rows(law)?;
+        self.with_exact_rows(rows)
+    }
+
+    /// The exact friction rows of [`ContactModel::into_exact_friction`] built for this body
+    /// without taking (or copying) the model: a [`crate::contact::BoundarySolver`] on this
+    /// model solves them on its condensed face
+    /// ([`crate::contact::BoundarySolver::solve_exact_rows_observed`]) and
+    /// [`ContactModel::with_exact_rows`] then installs them, so the exact model is this one
+    /// with its friction rows replaced and nothing assembled or copied twice.
+    ///
+    /// # Errors
+    /// As [`ContactModel::into_exact_friction`].
+    pub fn exact_rows(
+        &self,
+        law: std::sync::Arc<dyn DynNonsmoothLaw>,
+    ) -> Result<ExactRows, ContactError> {
+        let (friction, ext) =
+            ExactFriction::build(self, &self.sites.members, self.active.len(), law)?;
+        Ok(ExactRows {
+            friction,
+            ext,
+            dimension: self.system.dimension(),
+            active: self.active.clone(),
+        })
+    }
+
+    /// This model with the exact friction rows `rows` ([`ContactModel::exact_rows`]) in place
+    /// of its pointwise law: the same model as [`ContactModel::into_exact_friction`].
+    ///
+    /// # Errors
+    /// [`ContactError::DifferentBody`] when `rows` were built for another body (other
+    /// unknowns or contact entries).
+    pub fn with_exact_rows(mut self, rows: ExactRows) -> Result<Self, ContactError> {
+        if !rows.built_for(&self) {
+            return Err(ContactError::DifferentBody {
+                what: "contact nodes",
+            });
+        }
+        self.ext = rows.ext;
+        self.exact = Some(rows.friction);
         Ok(self)
     }
 

@@ -8,6 +8,7 @@ mod limits;
 mod newton;
 mod rigid;
 mod semismooth;
+pub use semismooth::ExactFaceSolution;
 mod settings;
 
 pub use settings::{CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode};
@@ -550,6 +551,18 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         steps: usize,
         method: &'static str,
     ) -> Result<ContactSolution, ContactError> {
+        let v = self.field_of(model, loads, s)?;
+        solution_of(model, loads, v, s, iterations, steps, method)
+    }
+
+    /// The field `v = A~^{-1} (b + W s)` of the condensed unknowns `s` on `model`'s body (one
+    /// solve on this solver's factorisation).
+    fn field_of<L2: FrictionLaw<f64>>(
+        &self,
+        model: &ContactModel<D, L2>,
+        loads: EndLoads,
+        s: &[f64],
+    ) -> Result<Vec<f64>, ContactError> {
         let mut v = model.rhs(loads);
         for (k, sk) in s.iter().enumerate() {
             let node = model.active_node(k);
@@ -560,29 +573,44 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner)
             .solve_in_place(&mut v)?;
-        let mut sol = ContactSolution::new(
-            model,
-            loads,
-            v,
-            SolveStats {
-                method,
-                newton_iterations: iterations,
-                continuation_steps: steps,
-                residual: 0.0,
-                linear_iterations: 0,
-                factorisations: 0,
-            },
-        )?;
-        if sol.stats.residual.is_nan() || sol.stats.residual > MAX_FULL_RESIDUAL {
-            return Err(ContactError::NotConverged {
-                iterations,
-                residual: sol.stats.residual,
-                load_factor: 1.0,
-            });
-        }
-        sol.unknowns = s.to_vec();
-        Ok(sol)
+        Ok(v)
     }
+}
+
+/// The solution of `model` with the field `v` of the condensed unknowns `s`; refused
+/// ([`ContactError::NotConverged`]) when its full-system residual is above
+/// `MAX_FULL_RESIDUAL`.
+fn solution_of<D: ContactOperator, L2: FrictionLaw<f64>>(
+    model: &ContactModel<D, L2>,
+    loads: EndLoads,
+    v: Vec<f64>,
+    s: &[f64],
+    iterations: usize,
+    steps: usize,
+    method: &'static str,
+) -> Result<ContactSolution, ContactError> {
+    let mut sol = ContactSolution::new(
+        model,
+        loads,
+        v,
+        SolveStats {
+            method,
+            newton_iterations: iterations,
+            continuation_steps: steps,
+            residual: 0.0,
+            linear_iterations: 0,
+            factorisations: 0,
+        },
+    )?;
+    if sol.stats.residual.is_nan() || sol.stats.residual > MAX_FULL_RESIDUAL {
+        return Err(ContactError::NotConverged {
+            iterations,
+            residual: sol.stats.residual,
+            load_factor: 1.0,
+        });
+    }
+    sol.unknowns = s.to_vec();
+    Ok(sol)
 }
 
 /// What differs between the bodies of two models (`None`: the same bulk operator, unit-load

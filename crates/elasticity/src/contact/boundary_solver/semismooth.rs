@@ -12,11 +12,11 @@ use faer::linalg::solvers::Solve;
 
 use super::newton::{MAX_ROUNDOFF_RESIDUAL, ROUNDOFF_FACTOR};
 use super::settings::CONDENSED_SEMISMOOTH;
-use super::{BoundarySolver, body_difference};
+use super::{BoundarySolver, body_difference, solution_of};
 use crate::contact::error::ContactError;
 use crate::contact::exact_friction::{ExactFriction, SLIP_JACOBIAN_BLEND};
 use crate::contact::loads::EndLoads;
-use crate::contact::model::ContactModel;
+use crate::contact::model::{ContactModel, ExactRows};
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::ContactSolution;
 
@@ -81,6 +81,61 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         if let Some(what) = body_difference(self.model, exact) {
             return Err(ContactError::DifferentBody { what });
         }
+        let (s, iterations) = self.semismooth_face(friction, loads, start, observer)?;
+        self.finish_on(exact, loads, &s, iterations, 1, CONDENSED_SEMISMOOTH)
+    }
+
+    /// [`BoundarySolver::solve_exact_from_observed`] on exact friction rows built for this
+    /// solver's own model ([`ContactModel::exact_rows`]), so that no second (exact) model is
+    /// needed while the solver borrows the first: the same semismooth Newton and the same
+    /// field, returned before the exact model exists. [`ExactFaceSolution::into_solution`]
+    /// then evaluates it on the exact model (this model with `rows` installed,
+    /// [`ContactModel::with_exact_rows`]), to the bit the solution of
+    /// [`BoundarySolver::solve_exact_from_observed`].
+    ///
+    /// # Errors
+    /// As [`BoundarySolver::solve_exact_from_observed`] ([`ContactError::DifferentBody`] when
+    /// `rows` were built for another body, `contact.kind` for a unilateral model).
+    pub fn solve_exact_rows_observed(
+        &self,
+        rows: &ExactRows,
+        loads: EndLoads,
+        start: &[f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ExactFaceSolution, ContactError> {
+        loads.check()?;
+        if self.model.is_unilateral() {
+            return Err(ContactError::Unsupported {
+                field: "contact.kind",
+                message: "the condensed semismooth Newton keeps v^3 = 0 on the contact face; unilateral contact needs `full-newton`",
+            });
+        }
+        if !rows.built_for(self.model) {
+            return Err(ContactError::DifferentBody {
+                what: "contact nodes",
+            });
+        }
+        let (unknowns, iterations) =
+            self.semismooth_face(&rows.friction, loads, start, observer)?;
+        let displacement = self.field_of(self.model, loads, &unknowns)?;
+        Ok(ExactFaceSolution {
+            unknowns,
+            displacement,
+            iterations,
+            loads,
+        })
+    }
+
+    /// The semismooth Newton on the condensed face for `friction` (built for this solver's
+    /// body) from `start`: the converged unknowns and the iteration count.
+    fn semismooth_face(
+        &self,
+        friction: &ExactFriction,
+        loads: EndLoads,
+        start: &[f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(Vec<f64>, usize), ContactError> {
+        let body = self.model;
         let m = self.bulk.pz.nrows();
         if start.len() != m {
             return Err(crate::ElasticityError::DimensionMismatch {
@@ -92,7 +147,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         }
         let (x0, n0) = self.loaded_base(loads);
         let gmax = (0..m)
-            .map(|k| exact.active_node(k).sqrt_g22)
+            .map(|k| body.active_node(k).sqrt_g22)
             .fold(0.0f64, f64::max);
         let scale = (loads.magnitude() * gmax).max(f64::MIN_POSITIVE);
         let settings = &self.settings;
@@ -100,7 +155,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         let policy = settings.face_policy(tol);
         let mut system = ExactFace {
             solver: self,
-            exact,
+            body,
             friction,
             x0: &x0,
             n0: &n0,
@@ -108,6 +163,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             max_iterations: settings.max_iterations,
             jac: Mat::<f64>::zeros(m, m),
             g: vec![0.0; m],
+            last: (Vec::new(), (0, 0)),
             observer,
         };
         let mut s = start.to_vec();
@@ -157,14 +213,71 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
                 return Err(not_converged(iteration, f64::INFINITY));
             }
         };
-        self.finish_on(exact, loads, &s, iterations, 1, CONDENSED_SEMISMOOTH)
+        Ok((s, iterations))
+    }
+}
+
+/// The solution of [`BoundarySolver::solve_exact_rows_observed`] before its exact model is
+/// installed: the condensed unknowns, the field and the semismooth iterations.
+#[derive(Debug, Clone)]
+pub struct ExactFaceSolution {
+    unknowns: Vec<f64>,
+    displacement: Vec<f64>,
+    iterations: usize,
+    loads: EndLoads,
+}
+
+impl ExactFaceSolution {
+    /// The semismooth Newton iterations.
+    pub fn iterations(&self) -> usize {
+        self.iterations
+    }
+
+    /// The solution on `exact`, the solver's model with the rows installed
+    /// ([`ContactModel::with_exact_rows`]): quantities, stick/slip and the full-system
+    /// residual of the exact rows, as [`BoundarySolver::solve_exact_from_observed`] gives them.
+    ///
+    /// # Errors
+    /// [`ContactError::Unsupported`] naming `friction.law` when `exact` has no exact friction;
+    /// [`crate::ElasticityError::DimensionMismatch`] for a model of another size;
+    /// [`ContactError::NotConverged`] when the full-system residual of `exact` is above the
+    /// condensed solver's bound (another body).
+    pub fn into_solution<D: ContactOperator, L2: FrictionLaw<f64>>(
+        self,
+        exact: &ContactModel<D, L2>,
+    ) -> Result<ContactSolution, ContactError> {
+        if !exact.is_exact_friction() {
+            return Err(ContactError::Unsupported {
+                field: "friction.law",
+                message: "the condensed semismooth solution is evaluated on the model with its exact friction rows installed (`ContactModel::with_exact_rows`)",
+            });
+        }
+        let expected = exact.rhs(self.loads).len();
+        if self.displacement.len() != expected || self.unknowns.len() != exact.active().len() {
+            return Err(crate::ElasticityError::DimensionMismatch {
+                quantity: "unknowns",
+                expected,
+                found: self.displacement.len(),
+            }
+            .into());
+        }
+        solution_of(
+            exact,
+            self.loads,
+            self.displacement,
+            &self.unknowns,
+            self.iterations,
+            1,
+            CONDENSED_SEMISMOOTH,
+        )
     }
 }
 
 /// [`BoundarySolver::solve_exact_from_observed`]'s problem for the Newton driver.
-struct ExactFace<'s, 'b, 'o, D, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> {
+struct ExactFace<'s, 'b, 'o, D, L: FrictionLaw<f64>> {
     solver: &'s BoundarySolver<'b, D, L>,
-    exact: &'s ContactModel<D, L2>,
+    /// The solver's model (its sites, frames and slip reference are the exact model's).
+    body: &'s ContactModel<D, L>,
     friction: &'s ExactFriction,
     x0: &'s [f64],
     n0: &'s [f64],
@@ -174,6 +287,9 @@ struct ExactFace<'s, 'b, 'o, D, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> {
     max_iterations: usize,
     jac: Mat<f64>,
     g: Vec<f64>,
+    /// The last point `G` was evaluated at and its `(stick, slip)` counts (the accepted
+    /// iterate is the line search's last evaluation: its report needs no new evaluation).
+    last: (Vec<f64>, (usize, usize)),
     observer: &'o mut dyn Observer<f64>,
 }
 
@@ -183,15 +299,9 @@ struct FaceFields {
     x: Vec<f64>,
     t: Vec<f64>,
     sigma: Vec<f64>,
-    /// `|x0| + sum_j |PZ_ij s_p,j|` per entry (the rounding scale of `x`).
-    x_abs: Vec<f64>,
-    /// `|s_p|` per entry.
-    s_abs: Vec<f64>,
 }
 
-impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
-    ExactFace<'_, '_, '_, D, L, L2>
-{
+impl<D: ContactOperator, L: FrictionLaw<f64>> ExactFace<'_, '_, '_, D, L> {
     fn fields(&self, s: &[f64]) -> FaceFields {
         let solver = self.solver;
         let m = s.len();
@@ -202,8 +312,6 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
             x: vec![0.0; m],
             t: vec![0.0; m],
             sigma: vec![0.0; m],
-            x_abs: vec![0.0; m],
-            s_abs: sp.iter().map(|v| v.abs()).collect(),
         };
         for i in 0..m {
             let xb = self.x0[i] + pzs[i];
@@ -211,18 +319,29 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
             f.t[i] = sp[i] - spring[i] * xb;
             f.sigma[i] = self.n0[i] + nzs[i];
         }
-        for (i, xa) in f.x_abs.iter_mut().enumerate() {
-            *xa = self.x0[i].abs()
-                + (0..m)
-                    .map(|j| (solver.bulk.pz[(i, j)] * sp[j]).abs())
-                    .sum::<f64>();
-        }
         f
+    }
+
+    /// `(|x0| + sum_j |PZ_ij s_p,j|, |s_p,i|)` per entry `i`: the rounding scales of `x` and
+    /// `s_p` (only [`ExactFace::roundoff_floor`] needs them).
+    fn rounding_scales(&self, s: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let solver = self.solver;
+        let m = s.len();
+        let (_, sp) = solver.split_rigid(s);
+        let x_abs = (0..m)
+            .map(|i| {
+                self.x0[i].abs()
+                    + (0..m)
+                        .map(|j| (solver.bulk.pz[(i, j)] * sp[j]).abs())
+                        .sum::<f64>()
+            })
+            .collect();
+        (x_abs, sp.iter().map(|v| v.abs()).collect())
     }
 
     /// The projection at site `j`: `P_C(sigma)(tau - r u)` with `tau`, `u` of the site.
     fn project(&self, j: usize, f: &FaceFields) -> (Projection<f64>, [f64; 2], [f64; 2]) {
-        let members = &self.exact.sites().members[j];
+        let members = &self.body.sites().members[j];
         let (inverse, r) = self.friction.site_data(j);
         let mut tau = [0.0; 2];
         for (e, &i) in members.iter().enumerate() {
@@ -230,7 +349,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
                 tau[c] += inverse[e][c] * f.t[i];
             }
         }
-        let u = self.exact.site_slip(j, 1.0, |k| f.x[k]);
+        let u = self.body.site_slip(j, 1.0, |k| f.x[k]);
         let trial = [tau[0] - r * u[0], tau[1] - r * u[1]];
         let sigma = f.sigma[members[0]];
         let projection = self
@@ -251,7 +370,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
         let m = s.len();
         let f = self.fields(s);
         let bulk = &self.solver.bulk;
-        let sites = self.exact.sites();
+        let sites = self.body.sites();
         let (mut stick, mut slip) = (0, 0);
         if let Some(jac) = jac.as_deref_mut() {
             for j in 0..m {
@@ -268,7 +387,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
                 FrictionState::Separated => {}
             }
             for &i in members {
-                let fe = self.exact.active_node(i).frame;
+                let fe = self.body.active_node(i).frame;
                 g[i] = f.t[i] - (fe[0] * pr.traction[0] + fe[1] * pr.traction[1]);
             }
             let Some(jac) = jac.as_deref_mut() else {
@@ -286,9 +405,9 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
             let (inverse, r) = self.friction.site_data(j);
             let first = members[0];
             for &i in members {
-                let fe = self.exact.active_node(i).frame;
+                let fe = self.body.active_node(i).frame;
                 for (ff, &k) in members.iter().enumerate() {
-                    let fk = self.exact.active_node(k).frame;
+                    let fk = self.body.active_node(k).frame;
                     let (mut mt, mut su) = (0.0, 0.0);
                     for c in 0..2 {
                         for d in 0..2 {
@@ -316,23 +435,31 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
         (stick, slip)
     }
 
+    /// Keeps `s` and its `(stick, slip)` counts as the last evaluation.
+    fn remember(&mut self, s: &[f64], counts: (usize, usize)) {
+        self.last.0.clear();
+        self.last.0.extend_from_slice(s);
+        self.last.1 = counts;
+    }
+
     /// The rounding-error bound of evaluating `G(s)` (max over the entries):
     /// `u (|s_p| + c X + |t| + |f| (|tau| + r |f| X))` with `X = |x0| + sum_j |PZ_ij s_p,j|`.
     fn roundoff_floor(&self, s: &[f64]) -> f64 {
         let f = self.fields(s);
-        let sites = self.exact.sites();
+        let (x_abs, s_abs) = self.rounding_scales(s);
+        let sites = self.body.sites();
         let mut floor = 0.0f64;
         for (j, members) in sites.members.iter().enumerate() {
             let (_, tau, _) = self.project(j, &f);
             let (_, r) = self.friction.site_data(j);
             for &i in members {
-                let fe = self.exact.active_node(i).frame;
+                let fe = self.body.active_node(i).frame;
                 let fnorm = fe[0].hypot(fe[1]);
                 let c = self.solver.bulk.spring[i];
-                let value = f.s_abs[i]
-                    + c * f.x_abs[i]
+                let value = s_abs[i]
+                    + c * x_abs[i]
                     + f.t[i].abs()
-                    + fnorm * (tau[0].hypot(tau[1]) + r * fnorm * f.x_abs[i]);
+                    + fnorm * (tau[0].hypot(tau[1]) + r * fnorm * x_abs[i]);
                 floor = floor.max(f64::EPSILON * value);
             }
         }
@@ -340,13 +467,12 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>>
     }
 }
 
-impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> NewtonSystem
-    for ExactFace<'_, '_, '_, D, L, L2>
-{
+impl<D: ContactOperator, L: FrictionLaw<f64>> NewtonSystem for ExactFace<'_, '_, '_, D, L> {
     type Error = ContactError;
 
     fn residual(&mut self, s: &[f64], g: &mut [f64]) -> Result<(), ContactError> {
-        self.eval(s, g, None);
+        let counts = self.eval(s, g, None);
+        self.remember(s, counts);
         Ok(())
     }
 
@@ -357,7 +483,8 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> NewtonSystem
     ) -> Result<NewtonDirection, ContactError> {
         let mut g = std::mem::take(&mut self.g);
         let mut jac = std::mem::replace(&mut self.jac, Mat::<f64>::zeros(0, 0));
-        self.eval(at.u, &mut g, Some(&mut jac));
+        let counts = self.eval(at.u, &mut g, Some(&mut jac));
+        self.remember(at.u, counts);
         let m = ds.len();
         let rhs = Mat::<f64>::from_fn(m, 1, |i, _| -g[i]);
         let step = jac.partial_piv_lu().solve(&rhs);
@@ -383,9 +510,14 @@ impl<D: ContactOperator, L: FrictionLaw<f64>, L2: FrictionLaw<f64>> NewtonSystem
         if at.iteration == self.max_iterations {
             return Ok(Flow::Continue);
         }
-        let mut g = std::mem::take(&mut self.g);
-        let (stick, slip) = self.eval(at.u, &mut g, None);
-        self.g = g;
+        let (stick, slip) = if self.last.0 == at.u {
+            self.last.1
+        } else {
+            let mut g = std::mem::take(&mut self.g);
+            let counts = self.eval(at.u, &mut g, None);
+            self.g = g;
+            counts
+        };
         if report_face_iterate(self.observer, at, self.scale, stick, slip) {
             return Ok(Flow::Interrupt);
         }
