@@ -43,6 +43,7 @@ mod path;
 mod solve;
 mod solver;
 mod target;
+mod transitions;
 
 pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
@@ -53,3 +54,4 @@ pub use solver::{
     AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,
 };
 pub use target::{AccuracyTarget, Refined, Scaled, Step};
+pub use transitions::{DEFAULT_TRANSITION_GRADING, TwoPass};

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
-use crate::finite_element::{Grading, VolumetricIntegration};
+use crate::finite_element::{Grading, TransitionGrading, VolumetricIntegration};
 use crate::mesh_discretisation::MeshOperator;
 use crate::plane_problem::PlaneProblem;
 use crate::shell_geometry::SharedChart;
@@ -37,6 +37,10 @@ pub struct DiscretisationSettings {
     /// `discretisation.corner_ratio`: the ratio of successive corner layers of
     /// `fem-qp-corner` (default [`DiscretisationSettings::DEFAULT_CORNER_RATIO`]).
     pub corner_ratio: f64,
+    /// `fem-qp-corner`'s `x2` layers toward interior points of the contact face (the stick/slip
+    /// transitions of a first solve: the two-pass solve of the root crate sets them; no scene
+    /// key). Default [`TransitionGrading::NONE`].
+    pub transitions: TransitionGrading,
     /// Every other key of `[discretisation]` (parameters of discretisations registered
     /// elsewhere).
     pub extra: BTreeMap<String, f64>,
@@ -50,6 +54,7 @@ impl Default for DiscretisationSettings {
             grading: Grading::UNIFORM,
             corner_layers: Self::DEFAULT_CORNER_LAYERS,
             corner_ratio: Self::DEFAULT_CORNER_RATIO,
+            transitions: TransitionGrading::NONE,
             extra: BTreeMap::new(),
         }
     }

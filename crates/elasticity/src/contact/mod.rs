@@ -99,7 +99,9 @@ pub use mesh_operator::MeshContactOperator;
 pub use model::{ContactModel, ExactRows, SiteTraction};
 pub use operator::{BodyOperator, ContactOperator, Extremum, MatrixFreeBulk};
 pub use path::{PathSolver, PathStep, solve_path, solve_path_silent};
-pub use quantities::{ContactQuantities, NormalStressProbe, default_probes, interpolate};
+pub use quantities::{
+    ContactQuantities, NormalStressProbe, default_probes, interpolate, slip_transitions,
+};
 pub use solid_matrix_free::{MatrixFreeLoads, SolidMatrixFreeBody};
 pub use solid_sequencing::{MatrixFreeSequenced, SEQUENCE_COARSEST_UNKNOWNS};
 pub use solution::{

@@ -172,6 +172,37 @@ impl ContactQuantities {
     }
 }
 
+/// The stick/slip transitions along the contact face of a plane-strain solution of `model`:
+/// the `x2` where the nodal slip `|u|` crosses the regularisation width `eps`, located as in
+/// the slip measure (the root of the cubic Lagrange interpolant of `u` on the four nodes
+/// around the interval: `O(h^4)` for a smooth slip), in increasing `x2`. Empty for a 3-D body
+/// (its transitions are curves) and for a face wholly stuck or wholly slipping.
+pub fn slip_transitions<D: ContactOperator, L: FrictionLaw<f64>>(
+    model: &ContactModel<D, L>,
+    solution: &ContactSolution,
+) -> Vec<f64> {
+    let c = &solution.contact;
+    if c.solid.is_some() {
+        return Vec::new();
+    }
+    line_transitions(&c.x2, &c.slip, model.slip_threshold())
+}
+
+/// The `x` where `|u| - eps` changes sign along one line (see [`slip_transitions`]).
+fn line_transitions(x: &[f64], u: &[f64], eps: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    for k in 1..x.len() {
+        for sign in [1.0, -1.0] {
+            let (fa, fb) = (sign * u[k - 1] - eps, sign * u[k] - eps);
+            if (fa >= 0.0) != (fb >= 0.0) {
+                let s = cubic_crossing(x, u, k, sign * eps).unwrap_or(fa / (fa - fb));
+                out.push(x[k - 1] + s * (x[k] - x[k - 1]));
+            }
+        }
+    }
+    out
+}
+
 /// The default probe points: the quarter points of `[theta0, theta1]`.
 pub fn default_probes(theta: [f64; 2]) -> Vec<f64> {
     [0.25, 0.5, 0.75]
@@ -497,6 +528,27 @@ mod tests {
         }
         assert!(orders[2] > 3.7, "orders {orders:?}");
         assert!(errors[3] < 1e-8, "{errors:?}");
+    }
+
+    #[test]
+    fn line_transitions_are_the_ends_of_the_measured_slip_set() {
+        // u = sin(3 x) + 0.2 x on [0, 2], eps = 0.5: the transitions bound the slip measure
+        let n = 161;
+        let x: Vec<f64> = (0..n).map(|i| 2.0 * i as f64 / (n - 1) as f64).collect();
+        let u: Vec<f64> = x.iter().map(|&t| (3.0 * t).sin() + 0.2 * t).collect();
+        let t = line_transitions(&x, &u, 0.5);
+        let (s, _, _) = measure_line(&x, &u, &vec![1.0; n], 0.5);
+        // |u| < eps at 0: the slip set is [t0, t1] u [t2, t3] u ...
+        let mut from_ends = 0.0;
+        for pair in t.chunks(2) {
+            from_ends += pair.get(1).copied().unwrap_or(2.0) - pair[0];
+        }
+        assert!(t.windows(2).all(|w| w[0] < w[1]), "{t:?}");
+        assert!((from_ends - s).abs() < 1e-13, "{from_ends} {s}");
+        for &r in &t {
+            let ur = (3.0 * r).sin() + 0.2 * r;
+            assert!((ur.abs() - 0.5).abs() < 1e-6, "{r}: {ur}");
+        }
     }
 
     #[test]

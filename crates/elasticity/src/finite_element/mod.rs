@@ -52,7 +52,7 @@ pub use element::{ElementOrder, gauss_rule};
 pub(crate) use element::{check_whole_elements, lumped_weight};
 pub use high_order::{
     CornerRefinedNavier, CornerSettings, Grading, HighOrderNavier, NodalRecovery, QpSettings,
-    gll_rule,
+    TransitionGrading, gll_rule,
 };
 pub use method::DiscretisationMethod;
 pub use norms::DisplacementErrors;

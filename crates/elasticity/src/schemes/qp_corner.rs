@@ -5,7 +5,9 @@
 use std::sync::Arc;
 
 use crate::error::ElasticityError;
-use crate::finite_element::high_order::{CornerRefinedNavier, CornerSettings, check_order};
+use crate::finite_element::high_order::{
+    CornerRefinedNavier, CornerSettings, TransitionGrading, check_order,
+};
 use crate::mesh_discretisation::MeshOperator;
 use crate::plane_problem::PlaneProblem;
 use crate::registration::{
@@ -20,7 +22,7 @@ use crate::shell_geometry::SharedChart;
 ///
 /// A plain function of `(order, grid, corner settings)`: [`FemQpCorner::settings_for`] gives
 /// the [`CornerSettings`] of a grid, [`CornerRefinedNavier::new`] builds the operator.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FemQpCorner {
     /// The order `p`.
     pub order: usize,
@@ -28,6 +30,8 @@ pub struct FemQpCorner {
     pub layers: usize,
     /// Ratio of successive layers (`0.05 ..= 0.95`).
     pub ratio: f64,
+    /// Layers toward interior `x2` points of the face ([`TransitionGrading`]; default none).
+    pub transitions: TransitionGrading,
 }
 
 impl FemQpCorner {
@@ -56,6 +60,7 @@ impl FemQpCorner {
             order,
             layers,
             ratio,
+            transitions: TransitionGrading::NONE,
         })
     }
 
@@ -101,7 +106,11 @@ impl DiscretisationScheme for FemQpCorner {
         problem: PlaneProblem<SharedChart>,
     ) -> Result<MeshOperator, ElasticityError> {
         let settings = self.settings_for(problem.grid.n2(), problem.grid.n3())?;
-        Ok(Box::new(CornerRefinedNavier::new(problem, settings)?))
+        Ok(Box::new(CornerRefinedNavier::with_transitions(
+            problem,
+            settings,
+            &self.transitions,
+        )?))
     }
 
     fn is_symmetric(&self) -> bool {
@@ -157,11 +166,10 @@ pub(crate) const REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisati
             "full (fem-qp-corner integrates fully)",
             "1 (fem-qp-corner refines the corners with discretisation.corner_layers)",
         )?;
-        Ok(Arc::new(FemQpCorner::new(
-            s.order,
-            s.corner_layers,
-            s.corner_ratio,
-        )?))
+        Ok(Arc::new(FemQpCorner {
+            transitions: s.transitions.clone(),
+            ..FemQpCorner::new(s.order, s.corner_layers, s.corner_ratio)?
+        }))
     },
 };
 

@@ -74,7 +74,7 @@ mod tests;
 /// dense condensation, `S = K_BB - K_BI K_II^-1 K_IB` by a Cholesky factorisation of `K_II`
 /// (see [`capstan_solvers::CondensedBlock`]).
 pub type CondensedElement = capstan_solvers::CondensedBlock;
-pub use corner_mesh::{CornerRefinedNavier, CornerSettings};
+pub use corner_mesh::{CornerRefinedNavier, CornerSettings, TransitionGrading};
 pub use gll::{basis_tables, elements_along, gauss_legendre, gll_rule, lagrange_basis};
 pub use kernel::{
     DIRECT_KERNEL_ORDERS, ElementTables, add_element_matrix, add_element_matrix_direct,

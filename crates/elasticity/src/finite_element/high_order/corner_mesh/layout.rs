@@ -71,6 +71,137 @@ impl CornerSettings {
     }
 }
 
+/// Geometric layers of `x2` lines toward interior points of the contact face (the stick/slip
+/// transitions of a frictional solve), added to the corner mesh ([`CornerSettings`]).
+///
+/// # Math
+/// With `H` the coarse cell width in `x2` and `sigma = ratio`, every point `t` strictly inside
+/// the non-corner cells becomes an element line, with lines at `t +- H sigma^k`,
+/// `k = k0 ... layers`: whole columns through the thickness, so the elements touching `t` are
+/// `H sigma^layers` wide and grow geometrically away from it (the hp mesh of a point
+/// singularity of the traction: Schwab, *p- and hp-FEM*, section 4.4). On each side
+/// separately, `k0 >= 1` is the least `k` with `H sigma^k <= 0.4 g`, `g` the distance to the
+/// next point on that side or twice the distance to the corner-cell line, so two points'
+/// layers never cross (the element between them is at least `0.2 g`); coarse lines on that
+/// side within `H sigma^k0 (1 + sigma) / (2 sigma)` of `t` are dropped (the graded region
+/// replaces them, leaving no element thinner than `H sigma^k0 (1 - sigma) / (2 sigma)` beside
+/// it).
+/// Points in the corner cells (or outside the face) are not graded: the corner layers serve
+/// there. `layers = 0` or no points is today's mesh exactly.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TransitionGrading {
+    /// The `x2` points (parameter units).
+    pub points: Vec<f64>,
+    /// Layers per side of every point, `0 ... 16`.
+    pub layers: usize,
+    /// The ratio `sigma` of successive layers, `0.05 ... 0.95`.
+    pub ratio: f64,
+}
+
+impl TransitionGrading {
+    /// No grading (today's corner mesh).
+    pub const NONE: Self = Self {
+        points: Vec::new(),
+        layers: 0,
+        ratio: 0.3,
+    };
+
+    /// Checks the ranges.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `transition_layers`, `transition_ratio`
+    /// or `transition_points` (not finite).
+    pub fn check(&self) -> Result<(), ElasticityError> {
+        if !CornerSettings::LAYERS.contains(&self.layers) {
+            return Err(ElasticityError::InvalidParameter {
+                field: "transition_layers",
+                value: self.layers as f64,
+                allowed: "0..=16",
+            });
+        }
+        if !(0.05..=0.95).contains(&self.ratio) {
+            return Err(ElasticityError::InvalidParameter {
+                field: "transition_ratio",
+                value: self.ratio,
+                allowed: "0.05 <= transition_ratio <= 0.95",
+            });
+        }
+        if let Some(&t) = self.points.iter().find(|t| !t.is_finite()) {
+            return Err(ElasticityError::InvalidParameter {
+                field: "transition_points",
+                value: t,
+                allowed: "finite x2 on the contact face",
+            });
+        }
+        Ok(())
+    }
+
+    /// The `x2` lines of the mesh: the `e2 + 1` equal cell lines of `[a, b]` (bit for bit those
+    /// of [`Layout::new`]) with the graded lines of the type's doc; the first and last
+    /// intervals are the corner cells, unchanged.
+    pub(super) fn x2_lines(&self, [a, b]: [f64; 2], e2: usize) -> Vec<f64> {
+        let uniform: Vec<f64> = (0..=e2)
+            .map(|j| {
+                if j == e2 {
+                    b
+                } else {
+                    a + (b - a) * j as f64 / e2 as f64
+                }
+            })
+            .collect();
+        if self.layers == 0 || self.points.is_empty() || e2 < 3 {
+            return uniform;
+        }
+        let (lo, hi) = (uniform[1], uniform[e2 - 1]);
+        let h = (b - a) / e2 as f64;
+        let sigma = self.ratio;
+        let mut points: Vec<f64> = self
+            .points
+            .iter()
+            .copied()
+            .filter(|&t| t > lo && t < hi)
+            .collect();
+        points.sort_by(f64::total_cmp);
+        points.dedup();
+        let mut keep = vec![true; uniform.len()];
+        let mut added = Vec::new();
+        for (i, &t) in points.iter().enumerate() {
+            added.push(t);
+            for side in [-1.0, 1.0] {
+                // the room on this side: half way to the next point, or up to the corner cell
+                let g = if side < 0.0 {
+                    i.checked_sub(1).map_or(2.0 * (t - lo), |j| t - points[j])
+                } else {
+                    points.get(i + 1).map_or(2.0 * (hi - t), |&u| u - t)
+                };
+                let Some(k0) = (1..=self.layers).find(|&k| h * sigma.powi(k as i32) <= 0.4 * g)
+                else {
+                    continue;
+                };
+                let reach = h * sigma.powi(k0 as i32) * (1.0 + sigma) / (2.0 * sigma);
+                for (j, &x) in uniform.iter().enumerate().take(e2 - 1).skip(2) {
+                    let d = side * (x - t);
+                    if (0.0..reach).contains(&d) {
+                        keep[j] = false;
+                    }
+                }
+                for k in k0..=self.layers {
+                    added.push(t + side * h * sigma.powi(k as i32));
+                }
+            }
+        }
+        let mut lines: Vec<f64> = uniform
+            .into_iter()
+            .zip(keep)
+            .filter_map(|(x, k)| k.then_some(x))
+            .chain(added)
+            .collect();
+        lines.sort_by(f64::total_cmp);
+        lines.dedup();
+        lines
+    }
+}
+
 /// One side of the parameter rectangle an element edge may lie on, in the order of
 /// `Side`'s normal index and sign.
 pub(crate) type SideMask = u8;
@@ -103,8 +234,20 @@ pub(crate) fn sides_of(x: [f64; 2], [[a2, b2], [a3, b3]]: [[f64; 2]; 2]) -> Side
 impl Layout {
     /// The mesh of `settings` on `rect = [[a2, b2], [a3, b3]]` and its Qp numbering.
     pub fn new(rect: [[f64; 2]; 2], settings: &CornerSettings) -> Self {
+        Self::graded(rect, settings, &TransitionGrading::NONE)
+    }
+
+    /// The mesh of `settings` with the `x2` lines graded toward `transitions`
+    /// ([`TransitionGrading`]); [`TransitionGrading::NONE`] gives [`Self::new`]'s mesh.
+    pub fn graded(
+        rect: [[f64; 2]; 2],
+        settings: &CornerSettings,
+        transitions: &TransitionGrading,
+    ) -> Self {
         let p = settings.order;
-        let [e2, e3] = settings.cells;
+        let e3 = settings.cells[1];
+        let columns = transitions.x2_lines(rect[0], settings.cells[0]);
+        let e2 = columns.len() - 1;
         let line = |[a, b]: [f64; 2], e: usize, j: usize| -> f64 {
             if j == e {
                 b
@@ -115,7 +258,7 @@ impl Layout {
         let mut builder = Builder::default();
         for i in 0..e2 {
             for j in 0..e3 {
-                let x = [line(rect[0], e2, i), line(rect[0], e2, i + 1)];
+                let x = [columns[i], columns[i + 1]];
                 let y = [line(rect[1], e3, j), line(rect[1], e3, j + 1)];
                 let corner_x = (i == 0).then_some(0).or((i == e2 - 1).then_some(1));
                 let corner_y = (j == 0).then_some(0).or((j == e3 - 1).then_some(1));
@@ -304,6 +447,72 @@ mod tests {
             l.element_nodes.iter().for_each(|&m| seen[m] = true);
             assert!(seen.iter().all(|&s| s));
         }
+    }
+
+    #[test]
+    fn transition_grading_adds_geometric_columns_around_interior_points() {
+        let rect = [[-1.5, 1.5], [0.0, 1.0]];
+        let s = CornerSettings {
+            cells: [12, 2],
+            ..settings(3, 2)
+        };
+        // none: the uniform lines bit for bit
+        let plain = Layout::new(rect, &s);
+        let none = Layout::graded(rect, &s, &TransitionGrading::NONE);
+        assert_eq!(plain.vertices, none.vertices);
+        assert_eq!(plain.quads, none.quads);
+        // two close points (a stick zone) and one in a corner cell (not graded)
+        let g = TransitionGrading {
+            points: vec![0.1, 0.13, -1.45],
+            layers: 4,
+            ratio: 0.3,
+        };
+        let lines = g.x2_lines(rect[0], 12);
+        let h = 0.25;
+        assert!(lines.windows(2).all(|w| w[1] > w[0]), "{lines:?}");
+        assert_eq!(lines[..2], [-1.5, -1.25]); // the corner cells unchanged
+        assert_eq!(lines[lines.len() - 2..], [1.25, 1.5]);
+        for t in [0.1, 0.13] {
+            let k = lines.iter().position(|&x| x == t).unwrap();
+            let d = h * 0.3f64.powi(4);
+            assert!((lines[k + 1] - t - d).abs() < 1e-15 && (t - lines[k - 1] - d).abs() < 1e-15);
+        }
+        // no sliver: every element at least 0.3 of its neighbour
+        let widths: Vec<f64> = lines.windows(2).map(|w| w[1] - w[0]).collect();
+        for w in widths.windows(2) {
+            let r = w[0] / w[1];
+            assert!((0.15..=1.0 / 0.15).contains(&r), "{widths:?}");
+        }
+        // the mesh tiles the rectangle with positive Jacobians
+        let l = Layout::graded(rect, &s, &g);
+        let q = 1.0 / 3f64.sqrt();
+        let mut area = 0.0;
+        for quad in &l.quads {
+            let v = quad.map(|i| l.vertices[i]);
+            for xi in [-q, q] {
+                for eta in [-q, q] {
+                    let (_, j) = bilinear(&v, [xi, eta]);
+                    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                    assert!(det > 0.0);
+                    area += det;
+                }
+            }
+        }
+        assert!((area - 3.0).abs() < 1e-13, "{area}");
+        assert_eq!(l.quads.len(), (lines.len() - 1) * 2 - 4 + 4 * (2 * 2 + 1));
+        let bad = TransitionGrading {
+            points: vec![f64::NAN],
+            ..g.clone()
+        };
+        assert!(matches!(
+            bad.check(),
+            Err(ElasticityError::InvalidParameter {
+                field: "transition_points",
+                ..
+            })
+        ));
+        let bad = TransitionGrading { layers: 17, ..g };
+        assert!(bad.check().is_err());
     }
 
     #[test]

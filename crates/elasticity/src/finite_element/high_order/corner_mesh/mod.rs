@@ -23,5 +23,5 @@ mod operator;
 #[cfg(test)]
 mod tests;
 
-pub use layout::CornerSettings;
+pub use layout::{CornerSettings, TransitionGrading};
 pub use operator::{CornerCondensed, CornerRefinedNavier};

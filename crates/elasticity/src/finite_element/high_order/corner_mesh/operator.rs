@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use super::super::gll::{gauss_legendre, gll_rule, lagrange_basis};
 use super::super::kernel::{ElementTables, add_element_matrix, symmetrise};
 use super::super::tensor_kernel::{X3Factors, condense_elements};
-use super::layout::{CornerSettings, Layout, bilinear, local_edges, sides_of};
+use super::layout::{CornerSettings, Layout, TransitionGrading, bilinear, local_edges, sides_of};
 use crate::boundary::{Component, ComponentCondition, Side};
 use crate::continuum::{PLANE_STRAIN, check_plane_strain, energy_matrix};
 use crate::discretisation::LinearSystem;
@@ -90,10 +90,25 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
     /// (`boundary.pinned`); geometry failures, [`ElasticityError::NotPlaneStrain`],
     /// [`ElasticityError::NonFinite`] for non-finite loads.
     pub fn new(
-        mut problem: PlaneProblem<G>,
+        problem: PlaneProblem<G>,
         settings: CornerSettings,
     ) -> Result<Self, ElasticityError> {
+        Self::with_transitions(problem, settings, &TransitionGrading::NONE)
+    }
+
+    /// [`Self::new`] with the `x2` lines also graded toward interior points of the face
+    /// ([`TransitionGrading`]: the stick/slip transitions of a first solve);
+    /// [`TransitionGrading::NONE`] is [`Self::new`].
+    ///
+    /// # Errors
+    /// As [`Self::new`], and [`TransitionGrading::check`]'s.
+    pub fn with_transitions(
+        mut problem: PlaneProblem<G>,
+        settings: CornerSettings,
+        transitions: &TransitionGrading,
+    ) -> Result<Self, ElasticityError> {
         settings.check()?;
+        transitions.check()?;
         if problem.grid.is_periodic() {
             return Err(ElasticityError::InvalidParameter {
                 field: "grid.periodic",
@@ -111,7 +126,11 @@ impl<G: ShellGeometry + Sync> CornerRefinedNavier<G> {
         let p = settings.order;
         let np = p + 1;
         let rect = [problem.grid.theta(), [0.0, problem.grid.thickness()]];
-        let layout = Layout::new(rect, &settings);
+        let layout = if *transitions == TransitionGrading::NONE {
+            Layout::new(rect, &settings)
+        } else {
+            Layout::graded(rect, &settings, transitions)
+        };
         let (gll, _) = gll_rule(p);
         let (gq, gw) = gauss_legendre(p + 1);
         let tables = ElementTables::new(&gll, &gq, [2.0, 2.0]);
