@@ -10,27 +10,46 @@ use capstan_solvers::row_distribution::{RowDistribution, owned_blocks};
 use crate::error::{PetscError, check};
 use crate::session::{Session, on_session_thread, running};
 
-/// A distributed vector of one length and its scatter to a full copy on every rank.
-struct Gather {
-    key: (usize, usize),
-    local: sys::Vec,
+/// A PETSc scatter between two vectors, cached under `key`: the full copy on every rank of a
+/// distributed vector ([`Gather`]), or the entries each rank asks for ([`Ghosts`]).
+struct Scatter<K> {
+    key: K,
+    /// The distributed vector scattered from (this rank's owned rows).
+    from: sys::Vec,
     scatter: sys::VecScatter,
-    all: sys::Vec,
+    /// The vector scattered into.
+    to: sys::Vec,
 }
 
-impl Drop for Gather {
+impl<K> Scatter<K> {
+    /// An empty scatter under `key`, its handles filled in by PETSc's create calls.
+    fn empty(key: K) -> Self {
+        Self {
+            key,
+            from: core::ptr::null_mut(),
+            scatter: core::ptr::null_mut(),
+            to: core::ptr::null_mut(),
+        }
+    }
+}
+
+impl<K> Drop for Scatter<K> {
     fn drop(&mut self) {
         if !running() {
             return;
         }
-        // SAFETY: created by PETSc in `PetscDistribution::gather_checked`, destroyed once.
+        // SAFETY: created by PETSc in `PetscDistribution::gather_checked` or `fetch_checked`
+        // (null handles are ignored by the destroy calls), destroyed once.
         unsafe {
             sys::VecScatterDestroy(&mut self.scatter);
-            sys::VecDestroy(&mut self.all);
-            sys::VecDestroy(&mut self.local);
+            sys::VecDestroy(&mut self.to);
+            sys::VecDestroy(&mut self.from);
         }
     }
 }
+
+/// A distributed vector of `(n, block)` and its scatter to a full copy on every rank.
+type Gather = Scatter<(usize, usize)>;
 
 /// The ranks of `PETSC_COMM_WORLD` as a [`RowDistribution`]: rank `r` owns
 /// [`owned_blocks`]`(n, block, r, K)` (the rows [`crate::PetscSolver`] owns), and
@@ -102,22 +121,17 @@ impl PetscDistribution {
         let mut cache = self.cache.lock().unwrap_or_else(|e| e.into_inner());
         if cache.as_ref().is_none_or(|g| g.key != (n, block)) {
             *cache = None;
-            let mut g = Gather {
-                key: (n, block),
-                local: core::ptr::null_mut(),
-                scatter: core::ptr::null_mut(),
-                all: core::ptr::null_mut(),
-            };
+            let mut g = Gather::empty((n, block));
             let local = sys::PetscInt::try_from(rows.len()).map_err(|_| too_many(rows.len()))?;
             let global = sys::PetscInt::try_from(n).map_err(|_| too_many(n))?;
             // SAFETY: PETSc is running; the handles are owned by `g` and destroyed by its Drop.
             unsafe {
                 check(
-                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, local, global, &mut g.local),
+                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, local, global, &mut g.from),
                     "VecCreateMPI",
                 )?;
                 check(
-                    sys::VecScatterCreateToAll(g.local, &mut g.scatter, &mut g.all),
+                    sys::VecScatterCreateToAll(g.from, &mut g.scatter, &mut g.to),
                     "VecScatterCreateToAll",
                 )?;
             }
@@ -127,7 +141,7 @@ impl PetscDistribution {
         // SAFETY: live handles; `local` has the owned rows' length (possibly none: more ranks
         // than nodes), `all` all n entries.
         unsafe {
-            set_local(g.local, &all[rows.clone()])?;
+            set_local(g.from, &all[rows.clone()])?;
             for begin in [true, false] {
                 let f = if begin {
                     sys::VecScatterBegin
@@ -137,15 +151,15 @@ impl PetscDistribution {
                 check(
                     f(
                         g.scatter,
-                        g.local,
-                        g.all,
+                        g.from,
+                        g.to,
                         sys::INSERT_VALUES,
                         sys::SCATTER_FORWARD,
                     ),
                     "VecScatter",
                 )?;
             }
-            get_local(g.all, all)?;
+            get_local(g.to, all)?;
         }
         Ok(())
     }
@@ -161,26 +175,7 @@ fn too_many(value: usize) -> PetscError {
 
 /// A scatter from a distributed vector of `n` entries to the entries `indices` of each rank
 /// (a distributed vector whose local part is this rank's requested entries, in order).
-struct Ghosts {
-    key: (usize, usize, Vec<usize>),
-    x: sys::Vec,
-    y: sys::Vec,
-    scatter: sys::VecScatter,
-}
-
-impl Drop for Ghosts {
-    fn drop(&mut self) {
-        if !running() {
-            return;
-        }
-        // SAFETY: created by PETSc in `PetscDistribution::fetch_checked`, destroyed once.
-        unsafe {
-            sys::VecScatterDestroy(&mut self.scatter);
-            sys::VecDestroy(&mut self.y);
-            sys::VecDestroy(&mut self.x);
-        }
-    }
-}
+type Ghosts = Scatter<(usize, usize, Vec<usize>)>;
 
 /// A distributed vector of one entry per rank, for the reductions.
 struct OnePerRank {
@@ -276,12 +271,7 @@ impl PetscDistribution {
             .is_none_or(|g| g.key.0 != n || g.key.1 != block || g.key.2 != indices)
         {
             *cache = None;
-            let mut g = Ghosts {
-                key: (n, block, indices.to_vec()),
-                x: core::ptr::null_mut(),
-                y: core::ptr::null_mut(),
-                scatter: core::ptr::null_mut(),
-            };
+            let mut g = Ghosts::empty((n, block, indices.to_vec()));
             let idx = indices
                 .iter()
                 .map(|&i| petsc_int(i, "unknowns"))
@@ -295,11 +285,11 @@ impl PetscDistribution {
             // but the index set, destroyed here after the scatter copied it.
             unsafe {
                 check(
-                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, local, global, &mut g.x),
+                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, local, global, &mut g.from),
                     "VecCreateMPI",
                 )?;
                 check(
-                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, wanted, sys::PETSC_DECIDE, &mut g.y),
+                    sys::VecCreateMPI(sys::PETSC_COMM_WORLD, wanted, sys::PETSC_DECIDE, &mut g.to),
                     "VecCreateMPI",
                 )?;
                 let mut is: sys::IS = core::ptr::null_mut();
@@ -314,7 +304,7 @@ impl PetscDistribution {
                     "ISCreateGeneral",
                 )?;
                 let made = check(
-                    sys::VecScatterCreate(g.x, is, g.y, core::ptr::null_mut(), &mut g.scatter),
+                    sys::VecScatterCreate(g.from, is, g.to, core::ptr::null_mut(), &mut g.scatter),
                     "VecScatterCreate",
                 );
                 check(sys::ISDestroy(&mut is), "ISDestroy")?;
@@ -326,12 +316,12 @@ impl PetscDistribution {
         // SAFETY: live handles; `x`'s local part has the owned rows' length, `y`'s the
         // requested entries'.
         unsafe {
-            set_local(g.x, owned)?;
+            set_local(g.from, owned)?;
             check(
                 sys::VecScatterBegin(
                     g.scatter,
-                    g.x,
-                    g.y,
+                    g.from,
+                    g.to,
                     sys::INSERT_VALUES,
                     sys::SCATTER_FORWARD,
                 ),
@@ -340,14 +330,14 @@ impl PetscDistribution {
             check(
                 sys::VecScatterEnd(
                     g.scatter,
-                    g.x,
-                    g.y,
+                    g.from,
+                    g.to,
                     sys::INSERT_VALUES,
                     sys::SCATTER_FORWARD,
                 ),
                 "VecScatterEnd",
             )?;
-            get_local(g.y, out)?;
+            get_local(g.to, out)?;
         }
         Ok(())
     }
