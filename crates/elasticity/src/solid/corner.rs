@@ -813,13 +813,7 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
                                 }
                             }
                             let u = exact(x);
-                            let norm2 = |d: [f64; 3]| -> f64 {
-                                (0..3)
-                                    .map(|i| {
-                                        (0..3).map(|j| pt.metric[i][j] * d[i] * d[j]).sum::<f64>()
-                                    })
-                                    .sum()
-                            };
+                            let norm2 = |d: [f64; 3]| super::length_squared(&pt.metric, d);
                             let w = gw[q1] * gw[q2] * gw[q3] * det * pt.sqrt_g;
                             s[0] += w * norm2([uh[0] - u[0], uh[1] - u[1], uh[2] - u[2]]);
                             s[1] += w * norm2(u);

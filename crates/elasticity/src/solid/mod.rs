@@ -56,3 +56,11 @@ pub use matrix_free::{
 };
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count, semicoarsening_hierarchy};
 pub use operator::{SolidForce, SolidNavier};
+
+/// The physical length squared of the contravariant vector `d` at a point of metric `g_ij`:
+/// `|d|^2 = g_ij d^i d^j` (the error norms of the 3-D operators and studies).
+pub(crate) fn length_squared(metric: &[[f64; 3]; 3], d: [f64; 3]) -> f64 {
+    (0..3)
+        .map(|i| (0..3).map(|j| metric[i][j] * d[i] * d[j]).sum::<f64>())
+        .sum()
+}

@@ -345,11 +345,7 @@ impl<G: ShellGeometry + Sync> SolidSetup<G> {
                         }
                     }
                     let u = exact(*x);
-                    let norm2 = |e: [f64; 3]| -> f64 {
-                        (0..3)
-                            .map(|i| (0..3).map(|j| p.metric[i][j] * e[i] * e[j]).sum::<f64>())
-                            .sum()
-                    };
+                    let norm2 = |e: [f64; 3]| super::length_squared(&p.metric, e);
                     let w = rule.weight(q) * p.sqrt_g;
                     s[0] += w * norm2([uh[0] - u[0], uh[1] - u[1], uh[2] - u[2]]);
                     s[1] += w * norm2(u);

@@ -381,9 +381,7 @@ impl Study for SolidStudy {
             let p = exact.chart.shell_point(x)?;
             let u = exact.field.displacement(x).0;
             let e: [f64; 3] = core::array::from_fn(|c| v[3 * m + c] - u[c]);
-            let norm2: f64 = (0..3)
-                .map(|i| (0..3).map(|j| p.metric[i][j] * e[i] * e[j]).sum::<f64>())
-                .sum();
+            let norm2 = crate::solid::length_squared(&p.metric, e);
             max = max.max(norm2.sqrt());
         }
         Ok(StudyPoint {
