@@ -813,19 +813,14 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
                                 }
                             }
                             let u = exact(x);
-                            let norm2 = |d: [f64; 3]| super::length_squared(&pt.metric, d);
                             let w = gw[q1] * gw[q2] * gw[q3] * det * pt.sqrt_g;
-                            s[0] += w * norm2([uh[0] - u[0], uh[1] - u[1], uh[2] - u[2]]);
-                            s[1] += w * norm2(u);
+                            super::add_error_point(&mut s, w, &pt.metric, uh, u);
                         }
                     }
                 }
                 Ok(s)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let s = sums
-            .iter()
-            .fold([0.0; 2], |acc, x| [acc[0] + x[0], acc[1] + x[1]]);
-        Ok((s[0].sqrt(), s[1].sqrt()))
+        Ok(super::error_norms(&sums))
     }
 }

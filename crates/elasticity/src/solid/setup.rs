@@ -345,19 +345,12 @@ impl<G: ShellGeometry + Sync> SolidSetup<G> {
                         }
                     }
                     let u = exact(*x);
-                    let norm2 = |e: [f64; 3]| super::length_squared(&p.metric, e);
-                    let w = rule.weight(q) * p.sqrt_g;
-                    s[0] += w * norm2([uh[0] - u[0], uh[1] - u[1], uh[2] - u[2]]);
-                    s[1] += w * norm2(u);
+                    super::add_error_point(&mut s, rule.weight(q) * p.sqrt_g, &p.metric, uh, u);
                 }
                 Ok(s)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        // sequential sum in element order: reproducible
-        let s = sums
-            .iter()
-            .fold([0.0; 2], |acc, x| [acc[0] + x[0], acc[1] + x[1]]);
-        Ok((s[0].sqrt(), s[1].sqrt()))
+        Ok(super::error_norms(&sums))
     }
 }
 
