@@ -84,9 +84,9 @@ mod unilateral;
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
 pub use body_force::BodyForceField;
+pub use boundary_solver::semismooth::ExactFaceSolution;
 pub use boundary_solver::{
-    BoundarySolver, CONDENSED_SEMISMOOTH, ContactSettings, ExactFaceSolution, SetupStats,
-    SlidingMode,
+    BoundarySolver, CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode,
 };
 pub use error::{ContactError, ContactErrorKind};
 pub use full_system::{

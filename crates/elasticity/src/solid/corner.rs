@@ -814,13 +814,13 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
                             }
                             let u = exact(x);
                             let w = gw[q1] * gw[q2] * gw[q3] * det * pt.sqrt_g;
-                            super::add_error_point(&mut s, w, &pt.metric, uh, u);
+                            super::norms::add_error_point(&mut s, w, &pt.metric, uh, u);
                         }
                     }
                 }
                 Ok(s)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(super::error_norms(&sums))
+        Ok(super::norms::error_norms(&sums))
     }
 }

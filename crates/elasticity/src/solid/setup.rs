@@ -345,12 +345,18 @@ impl<G: ShellGeometry + Sync> SolidSetup<G> {
                         }
                     }
                     let u = exact(*x);
-                    super::add_error_point(&mut s, rule.weight(q) * p.sqrt_g, &p.metric, uh, u);
+                    super::norms::add_error_point(
+                        &mut s,
+                        rule.weight(q) * p.sqrt_g,
+                        &p.metric,
+                        uh,
+                        u,
+                    );
                 }
                 Ok(s)
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(super::error_norms(&sums))
+        Ok(super::norms::error_norms(&sums))
     }
 }
 

@@ -7,8 +7,7 @@ mod continuation;
 mod limits;
 mod newton;
 mod rigid;
-mod semismooth;
-pub use semismooth::ExactFaceSolution;
+pub(crate) mod semismooth;
 mod settings;
 
 pub use settings::{CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode};
