@@ -160,7 +160,7 @@ pub use nonlinear_solver::{NonlinearSolver, SolveReport};
 pub use observer::{
     ActiveSet, Observer, Progress, SetUpPhase, SetUpWork, SilentObserver, SolveStage,
 };
-pub use operator_multigrid::{OperatorLevel, OperatorMultigrid};
+pub use operator_multigrid::{MATRIX_FREE_ESTIMATE_MARGIN, OperatorLevel, OperatorMultigrid};
 pub use ordering::{
     ColumnOrdering, GridShape, amd_compressed, amd_symmetrised, is_permutation,
     nested_dissection_elements, nested_dissection_grid,
