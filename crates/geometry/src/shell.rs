@@ -427,12 +427,16 @@ impl<S> ShellChart<S> {
     /// use capstan_geometry::{ad, CircularCylinder, ShellChart};
     /// let chart = ShellChart::new(CircularCylinder::new(2.0_f64).unwrap());
     /// // x2 along the inner direction, x3 along the outer: g_22 = r^2, r = 2 + x3
-    /// let d = |x, inner, outer| ad::seed(ad::seed(x, inner), ad::seed(outer, 0.0));
+    /// let d = |x: f64, inner: f64, outer: f64| ad::seed(ad::seed(x, inner), ad::seed(outer, 0.0));
     /// let frame = chart.frame_over([d(0.0, 0.0, 0.0), d(0.3, 1.0, 0.0)]).unwrap();
     /// let p = frame.point_over(d(0.5, 0.0, 1.0)).unwrap();
     /// let g22 = p.metric[1][1];
-    /// assert!((ad::value_part(ad::derivative_part(g22)) - 5.0).abs() < 1e-13); // d_3 g_22 = 2r
-    /// assert!(ad::derivative_part(ad::value_part(g22)).abs() < 1e-13); // d_2 g_22 = 0
+    /// let (d2, d3): (f64, f64) = (
+    ///     ad::derivative_part(ad::value_part(g22)),
+    ///     ad::value_part(ad::derivative_part(g22)),
+    /// );
+    /// assert!((d3 - 5.0).abs() < 1e-13); // d_3 g_22 = 2 r
+    /// assert!(d2.abs() < 1e-13); // d_2 g_22 = 0
     /// ```
     pub fn frame_over<F: Real, D: Scalar<F>>(
         &self,
