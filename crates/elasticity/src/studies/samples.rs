@@ -37,7 +37,7 @@ pub trait ManufacturedField: Send + Sync {
     fn value<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 2];
 
     /// The six inputs `[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]` of
-    /// [`PLANE_STRAIN`] at `(x2, x3)`, by AD through [`ManufacturedField::value`] (at dual
+    /// [`PLANE_STRAIN`](crate::continuum::PLANE_STRAIN) at `(x2, x3)`, by AD through [`ManufacturedField::value`] (at dual
     /// `x` they carry their own derivatives).
     fn inputs<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 6] {
         let (v, g) = ad::value_and_gradient(|y| self.value(y), x);
