@@ -114,6 +114,21 @@ impl PetscDistribution {
         })
     }
 
+    /// The distribution of the running PETSc of `rank` of `size` (for this crate's solver,
+    /// which has no [`Session`] at hand).
+    pub(crate) fn of_running(rank: usize, size: usize) -> Result<Self, PetscError> {
+        if !running() {
+            return Err(PetscError::NotStarted);
+        }
+        Ok(Self {
+            rank,
+            size,
+            cache: Mutex::new(None),
+            ghosts: Mutex::new(None),
+            one: Mutex::new(None),
+        })
+    }
+
     fn gather_checked(&self, all: &mut [f64], block: usize) -> Result<(), PetscError> {
         on_session_thread("gathering a distributed vector")?;
         let n = all.len();
