@@ -549,6 +549,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.distribution.is_some()
     }
 
+    /// The distribution of a model assembled over several processes and the unknowns per
+    /// node its rows are owned in ([`ContactModel::is_distributed`]); `None` on one process.
+    pub(crate) fn row_distribution(&self) -> Option<(Arc<dyn RowDistribution>, usize)> {
+        self.distribution.clone()
+    }
+
     /// Whether the model has unilateral (Signorini) contact.
     pub fn is_unilateral(&self) -> bool {
         self.unilateral.is_some()
