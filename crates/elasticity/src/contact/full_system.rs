@@ -238,6 +238,27 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         };
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
+        if let Some((d, block)) = model.row_distribution().filter(|(d, _)| {
+            model.unilateral().is_none()
+                && d.newton_on_owned_rows()
+                && linear.kind() == BackendKind::Krylov
+        }) {
+            // each process solves for its rows (no whole vector inside the backend), then
+            // the rows are gathered: the continuation reads the start whole
+            let rows = d.owned(model.dof_count(), block);
+            let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
+                let mut v = vec![0.0; model.dof_count()];
+                if i < 2 {
+                    let mut owned = model.rhs_basis(i)[rows.clone()].to_vec();
+                    lu.solve_owned_in_place_observed(rows.start, &mut owned, &mut SilentObserver)?;
+                    v[rows.clone()].copy_from_slice(&owned);
+                    d.gather(&mut v, block)?;
+                }
+                Ok(v)
+            };
+            let basis = [unit(0)?, unit(1)?, unit(2)?];
+            return Ok(self.stuck.get_or_init(|| basis));
+        }
         // unilateral contact: the closed start, v^3 = -g on the contact face
         let unilateral = model.unilateral();
         let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
@@ -266,9 +287,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             .collect())
     }
 
-    /// Newton on `problem` from `v`: on a model assembled over several processes (a
-    /// regularised law, bilateral contact) on each process's rows ([`OwnedContact`],
-    /// [`DistributedNewton`]), otherwise on whole vectors.
+    /// Newton on `problem` from `v` (whole vectors).
     fn newton_on(
         &self,
         problem: &FullSystemProblem<'_, D, L>,
@@ -276,12 +295,6 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         stats: &mut SolveStats,
         observer: &mut dyn Observer<f64>,
     ) -> Result<f64, SolverError> {
-        if self.settings.method == NonlinearMethod::Newton
-            && problem.penalty.is_none()
-            && let Some(owned) = OwnedContact::new(self.model, problem.rhs())
-        {
-            return self.newton_owned(&owned, v, stats, observer);
-        }
         let b = problem.rhs().iter().map(|x| x * x).sum::<f64>().sqrt();
         let params = NewtonParams {
             absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
@@ -476,6 +489,13 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for FullSystemSolv
             let penalty =
                 FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
             self.newton_on(&penalty, v, stats, observer)?;
+        }
+        // on a model assembled over several processes (a regularised law, bilateral
+        // contact): Newton on each process's rows
+        if self.settings.method == NonlinearMethod::Newton
+            && let Some(owned) = OwnedContact::new(self.model, loads)
+        {
+            return self.newton_owned(&owned, v, stats, observer);
         }
         self.newton_on(
             &FullSystemProblem::new(self.model, loads),

@@ -13,6 +13,7 @@ use capstan_friction::FrictionLaw;
 use capstan_solvers::row_distribution::RowDistribution;
 use capstan_solvers::{ActiveSet, OwnedRowsProblem, SolverError, SparsityPattern};
 
+use crate::contact::loads::EndLoads;
 use crate::contact::model::ContactModel;
 
 /// One process's rows of the full-system contact problem `R(v) = 0` under fixed loads (a
@@ -43,12 +44,16 @@ pub(crate) struct OwnedContact<'a, D, L: FrictionLaw<f64>> {
 }
 
 impl<'a, D, L: FrictionLaw<f64>> OwnedContact<'a, D, L> {
-    /// The problem for the right-hand side `rhs` (whole or this process's rows), `None` when
-    /// the model is not one it solves (one process, exact friction, unilateral contact, a
-    /// matrix-free bulk).
-    pub(crate) fn new(model: &'a ContactModel<D, L>, rhs: &[f64]) -> Option<Self> {
+    /// The problem for `loads`, `None` when the model is not one it solves (one process,
+    /// exact friction, unilateral contact, a matrix-free bulk) or the distribution asks for
+    /// whole vectors ([`RowDistribution::newton_on_owned_rows`]).
+    pub(crate) fn new(model: &'a ContactModel<D, L>, loads: EndLoads) -> Option<Self> {
         let (distribution, block) = model.row_distribution()?;
-        if model.is_exact_friction() || model.is_unilateral() || model.is_matrix_free() {
+        if model.is_exact_friction()
+            || model.is_unilateral()
+            || model.is_matrix_free()
+            || !distribution.newton_on_owned_rows()
+        {
             return None;
         }
         let n = model.dof_count();
@@ -83,11 +88,7 @@ impl<'a, D, L: FrictionLaw<f64>> OwnedContact<'a, D, L> {
         ghosts.retain(|g| !rows.contains(g));
         ghosts.sort_unstable();
         ghosts.dedup();
-        let rhs = if rhs.len() == n {
-            rhs[rows.clone()].to_vec()
-        } else {
-            rhs.to_vec()
-        };
+        let rhs = model.rhs_rows(loads, rows.clone());
         Some(Self {
             model,
             distribution,
