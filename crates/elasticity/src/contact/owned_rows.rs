@@ -235,10 +235,9 @@ impl<D, L: FrictionLaw<f64>> OwnedRowsProblem for OwnedContact<'_, D, L> {
                     continue; // no entry in this process's rows
                 }
             };
-            for s in a..b {
-                let i = row_idx[s];
+            for (&i, &a_ij) in row_idx[a..b].iter().zip(&system.values[a..b]) {
                 if self.rows.contains(&i) {
-                    r[i - first] += system.values[s] * xj;
+                    r[i - first] += a_ij * xj;
                 }
             }
         }
