@@ -104,10 +104,11 @@ unsafe extern "C" fn monitor(
 /// each MPI rank owns a contiguous block of rows ([`owned_rows`]), solved by KSP with the
 /// options of the [`crate::Session`] (default [`crate::DEFAULT_OPTIONS`]: GMRES + GAMG).
 ///
-/// Every rank calls every method with the same (replicated) pattern, values and right-hand
-/// side; each rank inserts only its own rows and entries of `b`, and every rank receives the
-/// whole solution (`VecScatterCreateToAll`), so the caller's Newton iteration stays
-/// replicated and identical on all ranks.
+/// Every rank calls every method with the same pattern and values (each rank's rows read);
+/// `solve_in_place` takes the whole right-hand side and gives every rank the whole solution
+/// (`VecScatterCreateToAll`, made at the first such solve), `solve_owned_in_place_observed`
+/// takes and gives only the rank's rows (a Newton on owned rows:
+/// `capstan_solvers::DistributedNewton`).
 ///
 /// # Math
 /// ```text
