@@ -352,3 +352,44 @@ fn stick_slip_counts_summed_over_ranks_equal_one_rank() {
         assert_eq!(counts(ranks), one, "{ranks} ranks");
     }
 }
+
+/// The full-system Newton on each rank's rows (the default: iterate, residual and update held
+/// as the rank's rows plus ghosts, norms by reductions) against the same Newton on whole
+/// vectors on every rank (`-capstan_owned_newton false`), the 3-D band on 2 and 4 ranks: the
+/// same Newton steps and the same answer to 1e-10 (and both the serial one to 1e-8).
+#[test]
+fn newton_on_owned_rows_equals_newton_on_whole_vectors() {
+    if !have_mpirun() {
+        return;
+    }
+    let serial = capstan_json(&[&["contact"][..], &CONE[..]].concat());
+    for ranks in [2, 4] {
+        let run = |options: &[&str]| {
+            json(&succeed(
+                mpirun(ranks)
+                    .arg("contact")
+                    .args(CONE)
+                    .args(PETSC)
+                    .args(options)
+                    .args(["--set", "output.error_estimate=false", "--json"]),
+            ))
+        };
+        let owned = run(&[]);
+        let whole = run(&[
+            "--set",
+            "solver.petsc_options=\"-capstan_owned_newton false\"",
+        ]);
+        for v in [&owned, &whole] {
+            assert_eq!(v["status"], "converged", "{ranks} ranks");
+        }
+        assert_eq!(
+            owned["newton_iterations"], whole["newton_iterations"],
+            "{ranks} ranks"
+        );
+        let d = relative_difference(&whole, &owned);
+        eprintln!("{ranks} ranks: owned rows against whole vectors {d:.3e}");
+        assert!(d < 1e-10, "{ranks} ranks: {d:.3e}");
+        let d = relative_difference(&serial, &owned);
+        assert!(d < 1e-8, "{ranks} ranks against serial: {d:.3e}");
+    }
+}

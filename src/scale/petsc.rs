@@ -6,9 +6,11 @@
 //! [`capstan_petsc::PetscDistribution`] is installed, so the 3-D body assembles only its rows
 //! and the contact model gathers its residuals, evaluates the friction law on the contact
 //! sites of its rows and sums its stick/slip counts over the ranks; the plane-strain body is
-//! assembled whole on every rank. The Newton iteration runs replicated on whole vectors; the
-//! linear solve of each Newton step is one distributed PETSc solve. Rank 0 alone prints and writes the outputs; the other ranks end quietly when the
-//! solve is done.
+//! assembled whole on every rank. On the 3-D body the full-system Newton holds its vectors as
+//! each rank's rows (`capstan_solvers::DistributedNewton`; `-capstan_owned_newton false` keeps
+//! them whole) and each step is one distributed PETSc solve on those rows; the continuation and
+//! the outputs read the converged iterate whole. Rank 0 alone prints and writes the outputs;
+//! the other ranks end quietly when the solve is done.
 
 use capstan_petsc::Session;
 

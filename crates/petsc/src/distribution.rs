@@ -10,6 +10,11 @@ use capstan_solvers::row_distribution::{RowDistribution, owned_blocks};
 use crate::error::{PetscError, check};
 use crate::session::{Session, on_session_thread, running};
 
+/// The PETSc option that keeps the full-system Newton's vectors whole on every rank
+/// (`solver.petsc_options = "-capstan_owned_newton false"`; default true: each rank holds its
+/// rows, [`capstan_solvers::DistributedNewton`]), for comparisons.
+pub const OWNED_NEWTON_OPTION: &str = "-capstan_owned_newton";
+
 /// A PETSc scatter between two vectors, cached under `key`: the full copy on every rank of a
 /// distributed vector ([`Gather`]), or the entries each rank asks for ([`Ghosts`]).
 struct Scatter<K> {
@@ -75,6 +80,8 @@ type Gather = Scatter<(usize, usize)>;
 pub struct PetscDistribution {
     rank: usize,
     size: usize,
+    /// [`OWNED_NEWTON_OPTION`] (default true).
+    owned_newton: bool,
     cache: Mutex<Option<Gather>>,
     ghosts: Mutex<Option<Ghosts>>,
     one: Mutex<Option<OnePerRank>>,
@@ -105,9 +112,41 @@ impl PetscDistribution {
         if !running() {
             return Err(PetscError::NotStarted);
         }
+        let name = std::ffi::CString::new(OWNED_NEWTON_OPTION).expect("no NUL");
+        let (mut value, mut set) = (1, 0);
+        // SAFETY: PETSc is running; the name outlives the call.
+        unsafe {
+            check(
+                sys::PetscOptionsGetBool(
+                    core::ptr::null_mut(),
+                    core::ptr::null(),
+                    name.as_ptr(),
+                    &mut value,
+                    &mut set,
+                ),
+                "PetscOptionsGetBool",
+            )?;
+        }
         Ok(Self {
             rank: session.rank(),
             size: session.size(),
+            owned_newton: set == 0 || value != 0,
+            cache: Mutex::new(None),
+            ghosts: Mutex::new(None),
+            one: Mutex::new(None),
+        })
+    }
+
+    /// The distribution of the running PETSc of `rank` of `size` (for this crate's solver,
+    /// which has no [`Session`] at hand).
+    pub(crate) fn of_running(rank: usize, size: usize) -> Result<Self, PetscError> {
+        if !running() {
+            return Err(PetscError::NotStarted);
+        }
+        Ok(Self {
+            rank,
+            size,
+            owned_newton: true,
             cache: Mutex::new(None),
             ghosts: Mutex::new(None),
             one: Mutex::new(None),
@@ -398,6 +437,10 @@ impl RowDistribution for PetscDistribution {
 
     fn max(&self, value: f64) -> Result<f64, SolverError> {
         self.reduce(value, true).map_err(SolverError::from)
+    }
+
+    fn newton_on_owned_rows(&self) -> bool {
+        self.owned_newton
     }
 
     fn rank(&self) -> usize {

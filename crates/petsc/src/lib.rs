@@ -31,7 +31,7 @@ mod session;
 mod solver;
 
 #[cfg(feature = "petsc")]
-pub use distribution::PetscDistribution;
+pub use distribution::{OWNED_NEWTON_OPTION, PetscDistribution};
 #[cfg(feature = "petsc")]
 pub use error::PetscError;
 #[cfg(feature = "petsc")]

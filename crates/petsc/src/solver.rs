@@ -104,10 +104,11 @@ unsafe extern "C" fn monitor(
 /// each MPI rank owns a contiguous block of rows ([`owned_rows`]), solved by KSP with the
 /// options of the [`crate::Session`] (default [`crate::DEFAULT_OPTIONS`]: GMRES + GAMG).
 ///
-/// Every rank calls every method with the same (replicated) pattern, values and right-hand
-/// side; each rank inserts only its own rows and entries of `b`, and every rank receives the
-/// whole solution (`VecScatterCreateToAll`), so the caller's Newton iteration stays
-/// replicated and identical on all ranks.
+/// Every rank calls every method with the same pattern and values (each rank's rows read);
+/// `solve_in_place` takes the whole right-hand side and gives every rank the whole solution
+/// (`VecScatterCreateToAll`, made at the first such solve), `solve_owned_in_place_observed`
+/// takes and gives only the rank's rows (a Newton on owned rows:
+/// `capstan_solvers::DistributedNewton`).
 ///
 /// # Math
 /// ```text
@@ -162,6 +163,9 @@ pub struct PetscSolver {
     tell_block_size: bool,
     /// Eisenstat–Walker forcing and preconditioner lagging across the Newton steps.
     policy: StepPolicy,
+    /// The reductions of the solves on owned rows (the norm of `b`, a non-finite entry on
+    /// any rank), made on first use.
+    reductions: Option<crate::distribution::PetscDistribution>,
 }
 
 // SAFETY: the PETSc handles are owned by this value alone and used from one thread at a time
@@ -219,6 +223,7 @@ impl PetscSolver {
             near_null_space: None,
             tell_block_size: true,
             policy: StepPolicy::off(),
+            reductions: None,
         })
     }
 
@@ -383,10 +388,6 @@ impl PetscSolver {
                 sys::MatCreateVecs(o.mat, &mut o.x, &mut o.b),
                 "MatCreateVecs",
             )?;
-            check(
-                sys::VecScatterCreateToAll(o.x, &mut o.scatter, &mut o.all),
-                "VecScatterCreateToAll",
-            )?;
             if let Some(space) = &self.near_null_space
                 && !space.vectors.is_empty()
             {
@@ -500,22 +501,85 @@ impl PetscSolver {
                 iteration: None,
             });
         }
-        let (mut rtol, mut atol, mut dtol, mut max_it) = (0.0, 0.0, 0.0, 0);
-        // SAFETY: the handles are live; the arrays are borrowed between Get/Restore only and
-        // have the local (or, for `all`, global) length PETSc created them with.
+        // SAFETY: the handle is live; the array is borrowed between Get/Restore only and has
+        // the local length PETSc created it with.
         unsafe {
             let mut b: *mut f64 = core::ptr::null_mut();
             check(sys::VecGetArray(o.b, &mut b), "VecGetArray")?;
             core::slice::from_raw_parts_mut(b, self.rows.len())
                 .copy_from_slice(&rhs[self.rows.clone()]);
             check(sys::VecRestoreArray(o.b, &mut b), "VecRestoreArray")?;
+        }
+        // the forcing term (rhs is whole on every rank: the same on all)
+        let rhs_norm = rhs.iter().map(|v| v * v).sum::<f64>().sqrt();
+        self.ksp_run(rhs_norm, observer)?;
+        let o = self.objects.as_mut().expect("checked above");
+        // SAFETY: as above; `all` holds all n entries on every rank after the scatter (made
+        // at the first solve of a whole vector: a Newton on owned rows never makes it).
+        unsafe {
+            if o.scatter.is_null() {
+                check(
+                    sys::VecScatterCreateToAll(o.x, &mut o.scatter, &mut o.all),
+                    "VecScatterCreateToAll",
+                )?;
+            }
+            check(
+                sys::VecScatterBegin(
+                    o.scatter,
+                    o.x,
+                    o.all,
+                    sys::INSERT_VALUES,
+                    sys::SCATTER_FORWARD,
+                ),
+                "VecScatterBegin",
+            )?;
+            check(
+                sys::VecScatterEnd(
+                    o.scatter,
+                    o.x,
+                    o.all,
+                    sys::INSERT_VALUES,
+                    sys::SCATTER_FORWARD,
+                ),
+                "VecScatterEnd",
+            )?;
+            let mut x: *const f64 = core::ptr::null();
+            check(sys::VecGetArrayRead(o.all, &mut x), "VecGetArrayRead")?;
+            rhs.copy_from_slice(core::slice::from_raw_parts(x, self.n));
+            check(
+                sys::VecRestoreArrayRead(o.all, &mut x),
+                "VecRestoreArrayRead",
+            )?;
+        }
+        if let Some(index) = rhs.iter().position(|v| !v.is_finite()) {
+            return Err(SolverError::NonFinite {
+                quantity: "solution",
+                index,
+                iteration: None,
+            });
+        }
+        Ok(())
+    }
+    /// KSP on the right-hand side already in `o.b` (`rhs_norm` its global 2-norm, for the
+    /// forcing term), with the preconditioner policy; the iterations reported to `observer`;
+    /// the solution in `o.x`.
+    fn ksp_run(
+        &mut self,
+        rhs_norm: f64,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(), SolverError> {
+        let o = self
+            .objects
+            .as_ref()
+            .expect("a factored solver has its objects");
+        let (mut rtol, mut atol, mut dtol, mut max_it) = (0.0, 0.0, 0.0, 0);
+        // SAFETY: the KSP is live.
+        unsafe {
             check(
                 sys::KSPGetTolerances(o.ksp, &mut rtol, &mut atol, &mut dtol, &mut max_it),
                 "KSPGetTolerances",
             )?;
         }
-        // the forcing term (rhs is whole on every rank: the same on all)
-        let rhs_norm = rhs.iter().map(|v| v * v).sum::<f64>().sqrt();
         let eta = self.policy.tolerance(rhs_norm, rtol);
         let (mut reason, mut iterations) =
             ksp_solve(o, &mut self.monitor, eta, (rtol, atol, dtol, max_it))?;
@@ -568,37 +632,64 @@ impl PetscSolver {
                 .into(),
             });
         }
-        // SAFETY: as above; `all` holds all n entries on every rank after the scatter.
-        unsafe {
-            check(
-                sys::VecScatterBegin(
-                    o.scatter,
-                    o.x,
-                    o.all,
-                    sys::INSERT_VALUES,
-                    sys::SCATTER_FORWARD,
-                ),
-                "VecScatterBegin",
-            )?;
-            check(
-                sys::VecScatterEnd(
-                    o.scatter,
-                    o.x,
-                    o.all,
-                    sys::INSERT_VALUES,
-                    sys::SCATTER_FORWARD,
-                ),
-                "VecScatterEnd",
-            )?;
-            let mut x: *const f64 = core::ptr::null();
-            check(sys::VecGetArrayRead(o.all, &mut x), "VecGetArrayRead")?;
-            rhs.copy_from_slice(core::slice::from_raw_parts(x, self.n));
-            check(
-                sys::VecRestoreArrayRead(o.all, &mut x),
-                "VecRestoreArrayRead",
-            )?;
+        Ok(())
+    }
+
+    /// [`LinearSolver::solve_owned_in_place_observed`]: `b` and `x` as this rank's rows only
+    /// (no gather of the solution).
+    fn solve_owned(
+        &mut self,
+        first: usize,
+        rhs: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(), SolverError> {
+        let Some(o) = self.objects.as_ref().filter(|_| self.factored) else {
+            return Err(SolverError::CallOrder {
+                called: "solve_owned_in_place_observed",
+                requires: "factor",
+            });
+        };
+        if first != self.rows.start || rhs.len() != self.rows.len() {
+            return Err(SolverError::DimensionMismatch {
+                quantity: "rhs (owned rows)",
+                expected: self.rows.len(),
+                found: rhs.len(),
+            });
         }
-        if let Some(index) = rhs.iter().position(|v| !v.is_finite()) {
+        // SAFETY: the handle is live; the array is borrowed between Get/Restore only and has
+        // the local length PETSc created it with.
+        unsafe {
+            let mut b: *mut f64 = core::ptr::null_mut();
+            check(sys::VecGetArray(o.b, &mut b), "VecGetArray")?;
+            core::slice::from_raw_parts_mut(b, rhs.len()).copy_from_slice(rhs);
+            check(sys::VecRestoreArray(o.b, &mut b), "VecRestoreArray")?;
+        }
+        let local_bad = rhs.iter().position(|v| !v.is_finite());
+        let norm = self.global_sum(if local_bad.is_some() {
+            f64::INFINITY
+        } else {
+            rhs.iter().map(|v| v * v).sum::<f64>()
+        })?;
+        if !norm.is_finite() {
+            // on every rank the same error: the first non-finite entry over all of them
+            let index = self.first_over_ranks(local_bad.map(|i| first + i))?;
+            return Err(SolverError::NonFinite {
+                quantity: "right-hand side",
+                index: index.unwrap_or(first),
+                iteration: None,
+            });
+        }
+        self.ksp_run(norm.sqrt(), observer)?;
+        let o = self.objects.as_ref().expect("checked above");
+        // SAFETY: as above, for `x`.
+        unsafe {
+            let mut x: *const f64 = core::ptr::null();
+            check(sys::VecGetArrayRead(o.x, &mut x), "VecGetArrayRead")?;
+            rhs.copy_from_slice(core::slice::from_raw_parts(x, rhs.len()));
+            check(sys::VecRestoreArrayRead(o.x, &mut x), "VecRestoreArrayRead")?;
+        }
+        let local_bad = rhs.iter().position(|v| !v.is_finite());
+        if let Some(index) = self.first_over_ranks(local_bad.map(|i| first + i))? {
             return Err(SolverError::NonFinite {
                 quantity: "solution",
                 index,
@@ -606,6 +697,30 @@ impl PetscSolver {
             });
         }
         Ok(())
+    }
+
+    /// The reductions over the ranks, made on first use.
+    fn reductions(&mut self) -> Result<&crate::distribution::PetscDistribution, SolverError> {
+        if self.reductions.is_none() {
+            self.reductions = Some(crate::distribution::PetscDistribution::of_running(
+                self.rank, self.size,
+            )?);
+        }
+        Ok(self.reductions.as_ref().expect("just made"))
+    }
+
+    /// `value` summed over the ranks (collective).
+    fn global_sum(&mut self, value: f64) -> Result<f64, SolverError> {
+        use capstan_solvers::row_distribution::RowDistribution;
+        self.reductions()?.sum(value)
+    }
+
+    /// The smallest of the ranks' global indices (`None` on a rank: none there); collective.
+    fn first_over_ranks(&mut self, local: Option<usize>) -> Result<Option<usize>, SolverError> {
+        use capstan_solvers::row_distribution::RowDistribution;
+        let value = local.map_or(f64::NEG_INFINITY, |i| -(i as f64));
+        let max = self.reductions()?.max(value)?;
+        Ok((max > f64::NEG_INFINITY).then(|| (-max) as usize))
     }
 }
 
@@ -721,6 +836,15 @@ impl LinearSolver<f64> for PetscSolver {
 
     fn last_iterations(&self) -> Option<usize> {
         self.last_iterations
+    }
+
+    fn solve_owned_in_place_observed(
+        &mut self,
+        first: usize,
+        rhs: &mut [f64],
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(), SolverError> {
+        self.solve_owned(first, rhs, observer)
     }
 }
 

@@ -96,6 +96,7 @@ mod condensation;
 mod csr_matrix;
 mod direct_params;
 mod direct_solve;
+mod distributed_newton;
 mod error;
 mod inexact_newton;
 mod iterative_params;
@@ -129,6 +130,7 @@ mod sparsity_pattern;
 pub use condensation::{CondensationScratch, CondensedBlock, schur_complement};
 pub use csr_matrix::CsrMatrix;
 pub use direct_params::DirectParams;
+pub use distributed_newton::{DistributedNewton, OwnedRowsProblem};
 pub use error::SolverError;
 pub use inexact_newton::{
     EisenstatWalker, INEXACT_NEWTON_BUDGET_FIELD, InexactNewtonParams, NewtonKrylovProblem,
@@ -153,7 +155,7 @@ pub use multigrid::{Multigrid, MultigridParams, MultigridPreconditioner, Smoothe
 pub use newton::{LineSearch, Newton, NewtonParams};
 pub use newton_driver::{
     Flow, Merit, NewtonDirection, NewtonDriven, NewtonFailure, NewtonIterate, NewtonPolicy,
-    NewtonSystem, ResidualNorm, ShortStep, StepControl, newton_drive,
+    NewtonSystem, Reduction, ResidualNorm, ShortStep, StepControl, newton_drive,
 };
 pub use nonlinear_method::{AnyNonlinearSolver, NonlinearMethod};
 pub use nonlinear_solver::{NonlinearSolver, SolveReport};

@@ -82,6 +82,31 @@ pub trait LinearSolver<F: SolverScalar> {
         self.solve_in_place(rhs)
     }
 
+    /// Solves `A x = b` of a distributed solve on this process's rows only: on entry `rhs`
+    /// holds rows `first .. first + rhs.len()` of `b`, on return the same rows of `x`; no
+    /// process holds either vector whole. Collective (every process calls it, in the same
+    /// order as every other collective call). Only a distributed backend (PETSc) can; the
+    /// default refuses.
+    ///
+    /// # Errors
+    /// [`SolverError::InvalidParameter`] naming `solver.linear` for a backend that is not
+    /// distributed; for one that is, [`SolverError::DimensionMismatch`] when the rows are not
+    /// the ones it owns, and the errors of [`LinearSolver::solve_in_place`] (a non-finite
+    /// entry of `b` on any process: [`SolverError::NonFinite`] on every process).
+    fn solve_owned_in_place_observed(
+        &mut self,
+        first: usize,
+        rhs: &mut [F],
+        observer: &mut dyn Observer<F>,
+    ) -> Result<(), SolverError> {
+        let _ = (first, rhs, observer);
+        Err(SolverError::InvalidParameter {
+            field: "solver.linear",
+            value: f64::NAN,
+            allowed: "a distributed backend (`petsc`) for a solve on each process's rows",
+        })
+    }
+
     /// Solves for `ncols` right-hand sides stored column after column in `rhs`
     /// (column-major, length `n * ncols`).
     ///
@@ -148,6 +173,14 @@ impl<F: SolverScalar, S: LinearSolver<F> + ?Sized> LinearSolver<F> for Box<S> {
     }
     fn solve_many_in_place(&mut self, rhs: &mut [F], ncols: usize) -> Result<(), SolverError> {
         (**self).solve_many_in_place(rhs, ncols)
+    }
+    fn solve_owned_in_place_observed(
+        &mut self,
+        first: usize,
+        rhs: &mut [F],
+        observer: &mut dyn Observer<F>,
+    ) -> Result<(), SolverError> {
+        (**self).solve_owned_in_place_observed(first, rhs, observer)
     }
 }
 

@@ -220,6 +220,105 @@ pub trait NewtonSystem {
     fn accepted(&mut self, _at: &NewtonIterate<'_>) -> Result<Flow, Self::Error> {
         Ok(Flow::Continue)
     }
+
+    /// The global index of this process's first row when `u`, `r` and the direction are one
+    /// process's rows of vectors distributed over several processes (a distributed Newton:
+    /// [`crate::DistributedNewton`]); `None` (the default) for whole vectors. When set, the
+    /// driver takes every norm, sum and non-finite test over all processes through
+    /// [`NewtonSystem::reduce`], so that every process takes the same decisions (line search,
+    /// convergence, failure) and reports the same global index of a non-finite entry.
+    fn row_offset(&self) -> Option<usize> {
+        None
+    }
+
+    /// `local` combined over all processes: their sum or maximum (a NaN on any process gives
+    /// NaN). Called only when [`NewtonSystem::row_offset`] is set; collective (every process
+    /// calls it in the same order). The default is `local` itself (one process).
+    ///
+    /// # Errors
+    /// The communication's failure.
+    fn reduce(&mut self, local: f64, _op: Reduction) -> Result<f64, Self::Error> {
+        Ok(local)
+    }
+}
+
+/// How [`NewtonSystem::reduce`] combines one value per process.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reduction {
+    /// The sum over the processes.
+    Sum,
+    /// The maximum over the processes (NaN if any is NaN).
+    Max,
+}
+
+/// `|x|` in `norm` over all processes: the driver's own norm for whole vectors; for one
+/// process's rows (`distributed`), the same norm of the whole vector by reductions.
+///
+/// # Math
+/// ```text
+/// Two:  s = max_p max_i |x_i|,  |x|_2 = s sqrt(sum_p sum_i (x_i / s)^2)   (NaN if any is; s if 0 or inf)
+/// Max:  max_p max_i |x_i|                                                 (inf if not finite)
+/// ```
+fn norm_over<P: NewtonSystem + ?Sized>(
+    problem: &mut P,
+    norm: ResidualNorm,
+    x: &[f64],
+    distributed: bool,
+) -> Result<f64, P::Error> {
+    if !distributed {
+        return Ok(norm.of(x));
+    }
+    let local_max = if x.iter().any(|v| v.is_nan()) {
+        f64::NAN
+    } else {
+        x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+    };
+    let scale = problem.reduce(local_max, Reduction::Max)?;
+    match norm {
+        ResidualNorm::Max => Ok(if scale.is_finite() {
+            scale
+        } else {
+            f64::INFINITY
+        }),
+        ResidualNorm::Two => {
+            if scale == 0.0 || !scale.is_finite() {
+                return Ok(scale);
+            }
+            let inv = 1.0 / scale;
+            let local = x.iter().fold(0.0, |s, v| s + (v * inv) * (v * inv));
+            Ok(scale * problem.reduce(local, Reduction::Sum)?.sqrt())
+        }
+    }
+}
+
+/// The global index of the first non-finite entry of `x` over all processes (`offset`: this
+/// process's first row when `x` is its rows; `None`: `x` is whole).
+fn first_non_finite_over<P: NewtonSystem + ?Sized>(
+    problem: &mut P,
+    x: &[f64],
+    offset: Option<usize>,
+) -> Result<Option<usize>, P::Error> {
+    let Some(first) = offset else {
+        return Ok(first_non_finite(x));
+    };
+    // the smallest global index as the maximum of its negative (exact below 2^53)
+    let local = first_non_finite(x).map_or(f64::NEG_INFINITY, |i| -((first + i) as f64));
+    let global = problem.reduce(local, Reduction::Max)?;
+    Ok((global > f64::NEG_INFINITY).then(|| (-global) as usize))
+}
+
+/// `sum_i x_i^2` over all processes.
+fn sum_of_squares_over<P: NewtonSystem + ?Sized>(
+    problem: &mut P,
+    x: &[f64],
+    distributed: bool,
+) -> Result<f64, P::Error> {
+    let local = x.iter().map(|v| v * v).sum::<f64>();
+    if distributed {
+        problem.reduce(local, Reduction::Sum)
+    } else {
+        Ok(local)
+    }
 }
 
 /// Why [`newton_drive`] stopped without converging; `u` holds the last accepted iterate.
@@ -318,8 +417,10 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
 ) -> Result<NewtonDriven, NewtonFailure<P::Error>> {
     use NewtonFailure as F;
     let n = u.len();
+    let offset = problem.row_offset();
+    let distributed = offset.is_some();
     if policy.check_finite
-        && let Some(index) = first_non_finite(u)
+        && let Some(index) = first_non_finite_over(problem, u, offset).map_err(F::Problem)?
     {
         return Err(F::NonFinite {
             quantity: "initial guess",
@@ -330,7 +431,7 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
     let mut r = vec![0.0; n];
     problem.residual(u, &mut r).map_err(F::Problem)?;
     if policy.check_finite
-        && let Some(index) = first_non_finite(&r)
+        && let Some(index) = first_non_finite_over(problem, &r, offset).map_err(F::Problem)?
     {
         return Err(F::NonFinite {
             quantity: "residual",
@@ -338,7 +439,7 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
             iteration: 0,
         });
     }
-    let mut norm = policy.norm.of(&r);
+    let mut norm = norm_over(problem, policy.norm, &r, distributed).map_err(F::Problem)?;
     let target = policy
         .absolute_tolerance
         .max(policy.relative_tolerance * norm);
@@ -375,7 +476,13 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
                     residual: norm,
                 });
             }
-            if policy.step_stagnation && norm > target && step_norm <= f64::EPSILON * norm2(u) {
+            if policy.step_stagnation
+                && norm > target
+                && step_norm
+                    <= f64::EPSILON
+                        * norm_over(problem, ResidualNorm::Two, u, distributed)
+                            .map_err(F::Problem)?
+            {
                 return Err(F::Stagnated {
                     iterations: k,
                     residual: norm,
@@ -401,7 +508,7 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
         let found = problem.direction(&at, &mut d).map_err(F::Problem)?;
         done.factorisations += found.factorisations;
         done.linear_iterations += found.linear_iterations;
-        if let Some(index) = first_non_finite(&d) {
+        if let Some(index) = first_non_finite_over(problem, &d, offset).map_err(F::Problem)? {
             return Err(F::NonFinite {
                 quantity: "step",
                 index,
@@ -414,7 +521,7 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
             StepControl::Backtracking {
                 merit: Merit::SumOfSquares { .. },
                 ..
-            } => r.iter().map(|x| x * x).sum::<f64>(),
+            } => sum_of_squares_over(problem, &r, distributed).map_err(F::Problem)?,
             _ => 0.0,
         };
         let trial_norm = loop {
@@ -423,14 +530,17 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
             }
             problem.project(&mut trial);
             problem.residual(&trial, &mut r_trial).map_err(F::Problem)?;
-            let value = policy.norm.of(&r_trial);
+            let value =
+                norm_over(problem, policy.norm, &r_trial, distributed).map_err(F::Problem)?;
             let StepControl::Backtracking {
                 merit,
                 min_step,
                 short_step,
             } = policy.step
             else {
-                if let Some(index) = first_non_finite(&r_trial) {
+                if let Some(index) =
+                    first_non_finite_over(problem, &r_trial, offset).map_err(F::Problem)?
+                {
                     return Err(F::NonFinite {
                         quantity: "residual",
                         index,
@@ -445,7 +555,8 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
                     value * value <= (1.0 - 2.0 * c * alpha) * norm * norm
                 }
                 Merit::SumOfSquares { armijo } => {
-                    let phi = r_trial.iter().map(|x| x * x).sum::<f64>();
+                    let phi =
+                        sum_of_squares_over(problem, &r_trial, distributed).map_err(F::Problem)?;
                     phi.is_finite() && phi <= (1.0 - armijo * found.armijo_scale * alpha) * phi0
                 }
                 Merit::Norm { armijo } => {
@@ -461,12 +572,14 @@ pub fn newton_drive<P: NewtonSystem + ?Sized>(
                 return Err(F::LineSearch {
                     iterations: k,
                     residual: norm,
-                    non_finite: first_non_finite(&r_trial),
+                    non_finite: first_non_finite_over(problem, &r_trial, offset)
+                        .map_err(F::Problem)?,
                 });
             }
         };
         if policy.step_stagnation {
-            step_norm = alpha * norm2(&d);
+            step_norm = alpha
+                * norm_over(problem, ResidualNorm::Two, &d, distributed).map_err(F::Problem)?;
         }
         u.copy_from_slice(&trial);
         core::mem::swap(&mut r, &mut r_trial);

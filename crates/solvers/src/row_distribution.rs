@@ -65,6 +65,13 @@ pub trait RowDistribution: Send + Sync {
     /// The engine's failure as [`crate::SolverError::External`].
     fn max(&self, value: f64) -> Result<f64, crate::SolverError>;
 
+    /// Whether a Newton iteration over this distribution holds its vectors as each
+    /// process's rows ([`crate::DistributedNewton`]; the default) rather than whole on every
+    /// process (for comparisons: `-capstan_owned_newton false` under PETSc).
+    fn newton_on_owned_rows(&self) -> bool {
+        true
+    }
+
     /// The rows this process owns among `n` with `block` unknowns per node.
     fn owned(&self, n: usize, block: usize) -> Range<usize> {
         owned_blocks(n, block, self.rank(), self.size())

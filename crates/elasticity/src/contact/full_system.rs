@@ -7,9 +7,9 @@ use std::sync::OnceLock;
 
 use capstan_friction::FrictionLaw;
 use capstan_solvers::{
-    ActiveSet, BackendKind, BoxedLinearSolver, Jacobian, LinearBackend, Newton, NewtonParams,
-    NonlinearMethod, NonlinearSolver, Observer, Progress, Residual, SilentObserver, SolveStage,
-    SolverError, SparsityPattern,
+    ActiveSet, BackendKind, BoxedLinearSolver, DistributedNewton, Jacobian, LinearBackend, Newton,
+    NewtonParams, NonlinearMethod, NonlinearSolver, Observer, OwnedRowsProblem, Progress, Residual,
+    SilentObserver, SolveStage, SolverError, SparsityPattern,
 };
 
 use crate::contact::body::ThickBody;
@@ -20,6 +20,7 @@ use crate::contact::load_continuation::{LoadSteps, check_lift_off, solve_continu
 use crate::contact::loads::EndLoads;
 use crate::contact::model::ContactModel;
 use crate::contact::operator::ContactOperator;
+use crate::contact::owned_rows::OwnedContact;
 use crate::contact::solution::{ContactSolution, SolveStats};
 use crate::discretisation::interpolate_nodal;
 use crate::error::ElasticityError;
@@ -237,6 +238,27 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         };
         lu.analyse(&ext.pattern)?;
         lu.factor(&values)?;
+        if let Some((d, block)) = model.row_distribution().filter(|(d, _)| {
+            model.unilateral().is_none()
+                && d.newton_on_owned_rows()
+                && linear.kind() == BackendKind::Krylov
+        }) {
+            // each process solves for its rows (no whole vector inside the backend), then
+            // the rows are gathered: the continuation reads the start whole
+            let rows = d.owned(model.dof_count(), block);
+            let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
+                let mut v = vec![0.0; model.dof_count()];
+                if i < 2 {
+                    let mut owned = model.rhs_basis(i)[rows.clone()].to_vec();
+                    lu.solve_owned_in_place_observed(rows.start, &mut owned, &mut SilentObserver)?;
+                    v[rows.clone()].copy_from_slice(&owned);
+                    d.gather(&mut v, block)?;
+                }
+                Ok(v)
+            };
+            let basis = [unit(0)?, unit(1)?, unit(2)?];
+            return Ok(self.stuck.get_or_init(|| basis));
+        }
         // unilateral contact: the closed start, v^3 = -g on the contact face
         let unilateral = model.unilateral();
         let mut unit = |i: usize| -> Result<Vec<f64>, ContactError> {
@@ -265,7 +287,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             .collect())
     }
 
-    /// Newton on `problem` from `v`.
+    /// Newton on `problem` from `v` (whole vectors).
     fn newton_on(
         &self,
         problem: &FullSystemProblem<'_, D, L>,
@@ -283,7 +305,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         // every Newton iterate reported with the active set it ended on
         let mut observer = WithActiveSet {
             inner: observer,
-            problem,
+            last: &problem.last_set,
         };
         let observer: &mut dyn Observer<f64> = &mut observer;
         let result = match self.settings.method {
@@ -296,6 +318,43 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
             }
             method => method.build(params)?.solve(problem, v, observer),
         };
+        tally(result, stats)
+    }
+
+    /// Newton on this process's rows of the model ([`OwnedContact`]) from `v` (whole on
+    /// entry; on return the last iterate, gathered whole on every process: the continuation
+    /// and the outputs read it whole). Collective.
+    fn newton_owned(
+        &self,
+        owned: &OwnedContact<'_, D, L>,
+        v: &mut [f64],
+        stats: &mut SolveStats,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<f64, SolverError> {
+        let rows = owned.rows();
+        let distribution = owned.distribution();
+        let b = distribution
+            .sum(owned.rhs().iter().map(|x| x * x).sum::<f64>())?
+            .sqrt();
+        let params = NewtonParams {
+            absolute_tolerance: self.settings.continuation.tolerance * b.max(1.0),
+            relative_tolerance: 0.0,
+            max_iterations: self.settings.continuation.max_iterations,
+            ..self.settings.newton
+        };
+        let linear = self.backend(params.linear, false).map_err(|e| match e {
+            ContactError::Solver(s) => s,
+            other => SolverError::problem("jacobian", other),
+        })?;
+        let mut observer = WithActiveSet {
+            inner: observer,
+            last: owned.last_set(),
+        };
+        let mut u = v[rows.clone()].to_vec();
+        let result = DistributedNewton::new(params, linear)?.solve(owned, &mut u, &mut observer);
+        v[rows].copy_from_slice(&u);
+        drop(u);
+        owned.gather(v)?;
         tally(result, stats)
     }
 
@@ -431,6 +490,13 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for FullSystemSolv
                 FullSystemProblem::penalty_start(self.model, loads, self.model.slip_threshold());
             self.newton_on(&penalty, v, stats, observer)?;
         }
+        // on a model assembled over several processes (a regularised law, bilateral
+        // contact): Newton on each process's rows
+        if self.settings.method == NonlinearMethod::Newton
+            && let Some(owned) = OwnedContact::new(self.model, loads)
+        {
+            return self.newton_owned(&owned, v, stats, observer);
+        }
         self.newton_on(
             &FullSystemProblem::new(self.model, loads),
             v,
@@ -442,14 +508,14 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> LoadSteps<D, L> for FullSystemSolv
 
 /// Passes every event on, the full-system Newton iterates with the contact active set of the
 /// last residual evaluation (the accepted iterate).
-struct WithActiveSet<'o, 'p, 'a, D, L: FrictionLaw<f64>> {
+struct WithActiveSet<'o, 'p> {
     inner: &'o mut dyn Observer<f64>,
-    problem: &'p FullSystemProblem<'a, D, L>,
+    last: &'p std::cell::Cell<Option<ActiveSet>>,
 }
 
-impl<D, L: FrictionLaw<f64>> Observer<f64> for WithActiveSet<'_, '_, '_, D, L> {
+impl Observer<f64> for WithActiveSet<'_, '_> {
     fn iteration(&mut self, progress: &Progress<f64>) {
-        match (progress.stage, self.problem.last_active_set()) {
+        match (progress.stage, self.last.get()) {
             (SolveStage::Newton | SolveStage::JacobiNewton, Some(set))
                 if progress.active.is_none() =>
             {

@@ -69,6 +69,7 @@ mod matrix_free_newton;
 mod mesh_operator;
 mod model;
 mod operator;
+mod owned_rows;
 mod path;
 mod pattern;
 mod quantities;

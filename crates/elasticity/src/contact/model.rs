@@ -549,6 +549,12 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         self.distribution.is_some()
     }
 
+    /// The distribution of a model assembled over several processes and the unknowns per
+    /// node its rows are owned in ([`ContactModel::is_distributed`]); `None` on one process.
+    pub(crate) fn row_distribution(&self) -> Option<(Arc<dyn RowDistribution>, usize)> {
+        self.distribution.clone()
+    }
+
     /// Whether the model has unilateral (Signorini) contact.
     pub fn is_unilateral(&self) -> bool {
         self.unilateral.is_some()
@@ -663,6 +669,27 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         let mut m = loads.magnitudes().to_vec();
         m.extend_from_slice(&self.fixed);
         self.rhs_of(&m)
+    }
+
+    /// Rows `rows` of [`ContactModel::rhs`] (the same arithmetic, entry by entry), without
+    /// the whole vector.
+    ///
+    /// # Panics
+    /// If `rows` reaches past the unknowns.
+    #[track_caller]
+    pub(crate) fn rhs_rows(&self, loads: EndLoads, rows: core::ops::Range<usize>) -> Vec<f64> {
+        let mut m = loads.magnitudes().to_vec();
+        m.extend_from_slice(&self.fixed);
+        let mut b: Vec<f64> = self.rhs_basis[0][rows.clone()]
+            .iter()
+            .map(|x| m[0] * x)
+            .collect();
+        for (mk, basis) in m.iter().zip(&self.rhs_basis).skip(1) {
+            for (bi, x) in b.iter_mut().zip(&basis[rows.clone()]) {
+                *bi += mk * x;
+            }
+        }
+        b
     }
 
     /// `b(m) = sum_k m_k b_k` over the first `magnitudes.len()` loads (the others at zero).
