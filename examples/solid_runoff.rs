@@ -6,8 +6,8 @@
 //! the first failed one. Prints per converged ratio the Slip measure, `max |v|` on the contact
 //! face and the separated sites.
 //!
-//! Run: `cargo run --release --example solid_runoff -- N1 N2 N3 [unilateral|bilateral]`
-//! (default 3 20 3 unilateral). Look at: the bracket, and `max |v|` growing towards it.
+//! Run: `cargo run --release --example solid_runoff -- N1 N2 N3 [unilateral|bilateral] [EPS]`
+//! (default 3 20 3 unilateral 1e-5; `EPS` is `friction.eps`). Look at: the bracket, and `max |v|` growing towards it.
 
 use capstan::Scene;
 use capstan_elasticity::contact::{EndLoads, FullSystemSolver};
@@ -26,6 +26,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("grid.n3", n(2, "3")),
         ("contact.kind", format!("\"{kind}\"")),
         ("solver.nonlinear", "\"full-newton\"".to_owned()),
+        ("friction.eps", n(4, "1e-5")),
     ] {
         scene = scene.with_raw(key, &value, "runoff")?;
     }

@@ -109,17 +109,15 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let solver = BoundarySolver::new_observed(&model, self.solver.budgets, observer)?;
         let setup = t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
-        let start = solver.solve_observed(self.loads, observer)?;
-        let face =
-            solver.solve_exact_rows_observed(&rows, self.loads, &start.unknowns, observer)?;
+        let started = solver.solve_exact_rows_started_observed(&rows, self.loads, observer)?;
         let limiting = solver
             .sliding_at(self.loads.tau0)?
             .map(|m| [m.lower_ratio, m.upper_ratio]);
         drop(solver);
         let exact = model.with_exact_rows(rows)?;
-        let mut solution = face.into_solution(&exact)?;
-        solution.stats.newton_iterations += start.stats.newton_iterations;
-        solution.stats.continuation_steps = start.stats.continuation_steps;
+        let mut solution = started.face.into_solution(&exact)?;
+        solution.stats.newton_iterations += started.start_iterations;
+        solution.stats.continuation_steps = started.start_steps;
         let times = [setup, t1.elapsed().as_secs_f64()];
         Ok(Solved {
             model: SolvedModel::Body(exact),

@@ -306,3 +306,57 @@ fn condensed_semismooth_newton_without_the_model_copy_is_the_same() {
         assert_eq!(x.stats.method, CONDENSED_SEMISMOOTH, "{name}");
     }
 }
+
+/// The loose regularised start (`BoundarySolver::solve_exact_rows_started_observed`: the
+/// regularised plain Newton stopped at `EXACT_START_TOLERANCE`, no field solve, then the
+/// semismooth Newton) gives the solution of the converged start (the route before) to the
+/// semismooth tolerance, with fewer regularised iterations and no more semismooth ones, on
+/// the circle and on a 3-D body.
+#[test]
+fn condensed_semismooth_newton_from_the_loose_start_is_the_same() {
+    let cases = [
+        ("circle 81 x 17, ratio 2", body(2.0, 2.0, 81, 17), 2.0),
+        (
+            "ellipse 2 x 1.5, 61 x 13, ratio 1.8",
+            body(2.0, 1.5, 61, 13),
+            1.8,
+        ),
+        (
+            "3-D Q1 3 x 21 x 5, ratio 1.5",
+            solid(body(2.0, 2.0, 21, 5), 3),
+            1.5,
+        ),
+    ];
+    for (name, b, ratio) in cases {
+        let loads = EndLoads::new(1.0, ratio);
+        let (converged, start) = condensed(&b, 1e-5, loads, &mut SilentObserver);
+        let model = regularised_model(&b, 1e-5);
+        let rows = model.exact_rows(exact_law()).unwrap();
+        let solver = BoundarySolver::new(&model, ContactSettings::default()).unwrap();
+        let started = solver
+            .solve_exact_rows_started_observed(&rows, loads, &mut SilentObserver)
+            .unwrap();
+        drop(solver);
+        let (regularised, semismooth) = (started.start_iterations, started.face.iterations());
+        let exact = model.with_exact_rows(rows).unwrap();
+        let x = started.face.into_solution(&exact).unwrap();
+        let difference = relative_difference(&x, &converged);
+        println!(
+            "{name}: start {regularised} (converged {}) + semismooth {semismooth} (from converged {}), difference {difference:.2e}",
+            start.stats.newton_iterations, converged.stats.newton_iterations
+        );
+        assert!(difference < 1e-9, "{name}: {difference:e}");
+        assert_eq!(x.contact.state, converged.contact.state, "{name}");
+        assert!(x.stats.residual < 1e-9, "{name}: {}", x.stats.residual);
+        assert!(
+            regularised < start.stats.newton_iterations,
+            "{name}: {regularised} against {}",
+            start.stats.newton_iterations
+        );
+        assert!(
+            semismooth <= converged.stats.newton_iterations,
+            "{name}: {semismooth} against {}",
+            converged.stats.newton_iterations
+        );
+    }
+}

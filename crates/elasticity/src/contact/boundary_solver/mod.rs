@@ -4,6 +4,7 @@
 
 mod condensation;
 mod continuation;
+pub(crate) mod exact_start;
 mod limits;
 mod newton;
 mod rigid;
@@ -493,6 +494,22 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         guess: Option<&[f64]>,
         observer: &mut dyn Observer<f64>,
     ) -> Result<ContactSolution, ContactError> {
+        let (s, iterations, steps) =
+            self.unknowns_from(loads, guess, self.settings.tolerance, observer)?;
+        self.finish_on(self.model, loads, &s, iterations, steps, "condensed")
+    }
+
+    /// The contact unknowns of [`BoundarySolver::solve_from_observed`] without the field:
+    /// `(s, Newton iterations, continuation steps)`. The plain Newton from `guess` (or the
+    /// stuck state) stops at `max |G| <= plain_tolerance * scale`; the slip homotopy and the
+    /// load continuation it falls back to keep `settings.tolerance`.
+    fn unknowns_from(
+        &self,
+        loads: EndLoads,
+        guess: Option<&[f64]>,
+        plain_tolerance: f64,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<(Vec<f64>, usize, usize), ContactError> {
         loads.check()?;
         self.check_equilibrium(loads)?;
         let m = self.bulk.pz.nrows();
@@ -510,6 +527,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
         let mut steps = 1;
         let plain = ContactSettings {
             max_iterations: self.settings.max_iterations.min(25),
+            tolerance: plain_tolerance,
             ..self.settings
         };
         match self.newton_with(&plain, 1.0, loads, &mut s, observer) {
@@ -536,7 +554,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'a, D, L> {
                 }
             }
         }
-        self.finish_on(self.model, loads, &s, iterations, steps, "condensed")
+        Ok((s, iterations, steps))
     }
 
     /// The solution of `model` (this solver's body) for the contact unknowns `s`:
