@@ -104,6 +104,16 @@ fn no_corner_layers_give_the_uniform_fem_qp_body_with_the_same_keys() {
     }
     let v = |d: &serde_json::Value| d["max_azimuthal_displacement"]["value"].as_f64().unwrap();
     assert!((v(&flat) / v(&qp) - 1.0).abs() < 1e-12);
+    // unilateral contact: the free face with the semismooth Newton, the same answer
+    let unilateral = "contact.kind=\"unilateral\"";
+    let flat = contact(&[
+        "discretisation.method=\"fem-qp-corner\"",
+        "discretisation.corner_layers=0",
+        unilateral,
+    ]);
+    let qp = contact(&["discretisation.method=\"fem-qp\"", unilateral]);
+    assert!((v(&flat) / v(&qp) - 1.0).abs() < 1e-10);
+    assert_eq!(flat["slip_fraction"], qp["slip_fraction"]);
 }
 
 #[test]
