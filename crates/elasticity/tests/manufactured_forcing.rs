@@ -256,3 +256,53 @@ fn field_gradients_by_ad_match_their_closed_forms() {
         assert!((u.gradient[0][1] - d23).abs() < 1e-15);
     }
 }
+
+/// The forcing with a column cache ([`ExactSolution::cached_forcing`]) equals the uncached
+/// one bit for bit, whatever the order of the points (column by column, alternating columns,
+/// two caches interleaved on one thread, two threads at once).
+#[test]
+fn cached_forcing_is_the_forcing_in_any_order() {
+    use capstan_elasticity::studies::ColumnCache;
+    let level = capstan_elasticity::verification::GridLevel { n2: 5, n3: 3 };
+    let exact = PrismMms::ellipse(2.0, MmsBoundaries::TractionContact)
+        .parts(level)
+        .unwrap()
+        .1;
+    let other = PrismMms::expression_prism(MmsBoundaries::TractionContact)
+        .parts(level)
+        .unwrap()
+        .1;
+    let points: Vec<[f64; 2]> = [-1.2, -0.4, 0.35, 1.0]
+        .iter()
+        .flat_map(|&x2| [0.0, 0.1, 0.27, 0.5].map(|x3| [x2, x3]))
+        .collect();
+    let alternating: Vec<[f64; 2]> = (0..points.len())
+        .map(|i| points[(i % 4) * 4 + i / 4])
+        .collect();
+    let (cache, other_cache) = (ColumnCache::default(), ColumnCache::default());
+    for order in [&points, &alternating] {
+        for x in order.iter() {
+            assert_eq!(
+                exact.cached_forcing(&cache, *x).unwrap(),
+                exact.forcing(*x).unwrap()
+            );
+            assert_eq!(
+                other.cached_forcing(&other_cache, *x).unwrap(),
+                other.forcing(*x).unwrap()
+            );
+        }
+    }
+    std::thread::scope(|s| {
+        for order in [&points, &alternating] {
+            let (exact, cache) = (&*exact, &cache);
+            s.spawn(move || {
+                for x in order.iter() {
+                    assert_eq!(
+                        exact.cached_forcing(cache, *x).unwrap(),
+                        exact.forcing(*x).unwrap()
+                    );
+                }
+            });
+        }
+    });
+}

@@ -6,6 +6,7 @@
 //! This room sits above the discretisations (it builds every one of them); nothing below
 //! imports it.
 
+mod column_forcing;
 mod fem;
 pub(crate) mod high_order;
 mod parts;
@@ -14,6 +15,7 @@ pub mod signorini;
 pub mod solid;
 pub mod solid_signorini;
 
+pub use column_forcing::{ColumnCache, Dual2, ForcingColumn};
 pub use fem::{FemProblem, FemStudy, fem_studies, lame_parts, mms_parts, paper_parts};
 pub use high_order::{HighOrderStudy, high_order_studies};
 pub use parts::{ProblemParts, SampleChart};

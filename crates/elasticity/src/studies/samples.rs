@@ -9,13 +9,14 @@ use capstan_geometry::{
     ShellChart, ShellPoint, Surface,
 };
 
+use super::column_forcing::{ColumnCache, ForcingColumn};
 use super::parts::ProblemParts;
 use crate::boundary::{
     BoundaryConditions, BoundaryFunction, Component, ComponentCondition, PinnedDof, Side,
     SideCondition, X2Ends,
 };
 use crate::continuum::kinematics::{LocalDisplacement, christoffel_contraction, mixed_stress};
-use crate::continuum::{InputLayout, PLANE_STRAIN, mixed_stress_of};
+use crate::continuum::{InputLayout, mixed_stress_of};
 use crate::discretisation::Discretisation;
 use crate::error::ElasticityError;
 use crate::finite_difference::FiniteDifferenceNavier;
@@ -36,7 +37,7 @@ pub trait ManufacturedField: Send + Sync {
     fn value<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 2];
 
     /// The six inputs `[v^2, v^3, d_2 v^2, d_2 v^3, d_3 v^2, d_3 v^3]` of
-    /// [`PLANE_STRAIN`] at `(x2, x3)`, by AD through [`ManufacturedField::value`] (at dual
+    /// [`PLANE_STRAIN`](crate::continuum::PLANE_STRAIN) at `(x2, x3)`, by AD through [`ManufacturedField::value`] (at dual
     /// `x` they carry their own derivatives).
     fn inputs<S: Scalar<f64>>(&self, x: [S; 2]) -> [S; 6] {
         let (v, g) = ad::value_and_gradient(|y| self.value(y), x);
@@ -220,22 +221,34 @@ impl<Surf: Surface<f64>, M: ManufacturedField> ExactSolution<ShellChart<Surf>, M
     /// ```text
     /// nabla_i T^i_j = (1/sqrt(g)) d_a (sqrt(g) T^a_j) - Gamma^k_ij T^i_k     (a = 2, 3)
     /// ```
-    /// `d_a (sqrt(g) T^a_j)` by forward-mode AD: the shell point at dual coordinates
-    /// ([`ShellChart::point_over`], fourth derivatives of `sigma`) and the field's inputs at
-    /// dual coordinates ([`ManufacturedField::inputs`], second derivatives of the field).
+    /// `d_a (sqrt(g) T^a_j)` by forward-mode AD, both directions from one evaluation: the
+    /// shell point at nested dual coordinates (`x2` inner, `x3` outer; [`ForcingColumn`]: the
+    /// dual frame of the column `x2`, fourth derivatives of `sigma`) and the field's inputs at
+    /// the same coordinates ([`ManufacturedField::inputs`], second derivatives of the field).
     ///
     /// # Errors
     /// Geometry failures.
     pub fn forcing(&self, x: [f64; 2]) -> Result<[f64; 2], ElasticityError> {
-        let f = manufactured_forcing(
-            &self.chart,
-            &self.material,
-            &PLANE_STRAIN,
-            [0.0, x[0], x[1]],
-            &[1, 2],
-            |y| self.field.inputs([y[1], y[2]]),
-        )?;
-        Ok([f[1], f[2]])
+        self.forcing_in(&ForcingColumn::new(&self.chart, x[0])?, x[1])
+    }
+
+    /// [`ExactSolution::forcing`] at `(x2, x3)` with the column of `x2` from `cache` (built
+    /// once per column and thread while the points come column by column, as the quadrature
+    /// loops visit them): the same numbers.
+    ///
+    /// # Errors
+    /// Geometry failures.
+    pub fn cached_forcing(
+        &self,
+        cache: &ColumnCache,
+        x: [f64; 2],
+    ) -> Result<[f64; 2], ElasticityError> {
+        cache.with(&self.chart, x[0], |column| self.forcing_in(column, x[1]))
+    }
+
+    /// The forcing at height `x3` of `column`.
+    fn forcing_in(&self, column: &ForcingColumn, x3: f64) -> Result<[f64; 2], ElasticityError> {
+        column.forcing(&self.material, x3, |y| self.field.inputs(y))
     }
 }
 
@@ -388,8 +401,9 @@ impl PrismMms {
                 pinned: vec![],
             },
         };
-        let ex = exact.clone();
-        let force: BodyForce = Arc::new(move |x| ex.forcing(x).unwrap_or([f64::NAN; 2]));
+        let (ex, cache) = (exact.clone(), ColumnCache::default());
+        let force: BodyForce =
+            Arc::new(move |x| ex.cached_forcing(&cache, x).unwrap_or([f64::NAN; 2]));
         let parts = ProblemParts {
             chart: ShellChart::new(self.obstacle.clone()),
             material: self.material,
@@ -680,5 +694,49 @@ impl PaperEllipse {
         level: GridLevel,
     ) -> Result<FiniteDifferenceNavier<SampleChart>, ElasticityError> {
         self.parts(level)?.finite_difference()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::continuum::PLANE_STRAIN;
+
+    /// The forcing from one nested-dual evaluation per point on a column frame equals the one
+    /// direction at a time of [`manufactured_forcing`] (two dual chart points per point) to
+    /// round-off, on the ellipse and the expression prism, at both fields.
+    #[test]
+    fn column_forcing_equals_the_forcing_one_direction_at_a_time() {
+        for mms in [
+            PrismMms::ellipse(2.0, MmsBoundaries::TractionContact),
+            PrismMms {
+                field: PrismField::Oscillatory,
+                ..PrismMms::expression_prism(MmsBoundaries::BilateralContact)
+            },
+        ] {
+            let exact = mms.exact();
+            for x in [[-1.1, 0.0], [-0.3, 0.21], [0.4, 0.5], [0.97, 0.33]] {
+                let column = exact.forcing(x).unwrap();
+                let axes = manufactured_forcing(
+                    &exact.chart,
+                    &exact.material,
+                    &PLANE_STRAIN,
+                    [0.0, x[0], x[1]],
+                    &[1, 2],
+                    |y| exact.field.inputs([y[1], y[2]]),
+                )
+                .unwrap();
+                for j in 0..2 {
+                    let scale = axes[1].abs().max(axes[2].abs());
+                    assert!(
+                        (column[j] - axes[j + 1]).abs() <= 1e-14 * scale,
+                        "{} {x:?} j {j}: {} against {}",
+                        mms.geometry,
+                        column[j],
+                        axes[j + 1]
+                    );
+                }
+            }
+        }
     }
 }

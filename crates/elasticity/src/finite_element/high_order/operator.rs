@@ -558,6 +558,11 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
         let (gp, gw) = gauss_legendre(self.degree + 1);
         let (p, np) = (self.degree, self.np());
         let (n2, n3) = (self.problem.grid.n2(), self.problem.grid.n3());
+        // the shape functions at the edge's Gauss points, the same on every edge
+        let shapes: Vec<Vec<f64>> = gp
+            .iter()
+            .map(|&xi| super::gll::lagrange_basis(&self.gll, xi).0)
+            .collect();
         for side in Side::ALL {
             let Some(cond) = self.problem.boundary.side(side).cloned() else {
                 continue; // periodic x2
@@ -567,8 +572,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
             let axis = usize::from(!along_x2);
             for e in 0..self.elements[axis] {
                 let (origin, length) = self.span(axis, e);
-                for (&xi, &w) in gp.iter().zip(&gw) {
-                    let (shape, _) = super::gll::lagrange_basis(&self.gll, xi);
+                for ((&xi, &w), shape) in gp.iter().zip(&gw).zip(&shapes) {
                     let along = origin + 0.5 * (xi + 1.0) * length;
                     let (x, nodes): ([f64; 2], Vec<[usize; 2]>) = if along_x2 {
                         let i3 = if side == Side::X3Min { 0 } else { n3 - 1 };
@@ -589,7 +593,7 @@ impl<G: ShellGeometry + Sync> HighOrderNavier<G> {
                     let grid = &self.problem.grid;
                     let shape = nodes
                         .iter()
-                        .zip(&shape)
+                        .zip(shape)
                         .map(|(m, n)| (grid.node_index(*m), *n));
                     let weight = [w, 0.5 * length];
                     add_side_point_load(&mut self.load, &cond, side, &pt, x, weight, shape)?;
