@@ -82,7 +82,16 @@ fn bad_corner_keys_are_refused_naming_the_key() {
     );
     // e >= 2 cells of order p along each direction
     refused(&[corner, "grid.n3=5"], "grid.n3");
-    refused(&[corner, "body.dimension=3"], "discretisation.method");
+    // the 3-D corner body is assembled on its mesh: no box-grid multigrid
+    refused(
+        &[
+            corner,
+            "body.dimension=3",
+            "solver.nonlinear=\"full-newton\"",
+            "solver.linear=\"multigrid\"",
+        ],
+        "solver.linear",
+    );
 }
 
 /// The condensed `newton` and `capstan threshold` (which runs it) on the default 5 corner

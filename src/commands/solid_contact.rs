@@ -12,7 +12,8 @@ use crate::output::solid_body::{solid_grid, write_solid_body};
 use crate::scene::Scene;
 
 /// The 3-D body's hexahedra, nodal fields and node coordinates `(x1, x2, x3)` for the
-/// solution.
+/// solution: the box grid's tensor product, or a mesh's own nodes and linear sub-hexahedra
+/// ([`SolidOutput::output_mesh`]: `fem-qp-corner`).
 ///
 /// # Errors
 /// Geometry failures.
@@ -21,6 +22,20 @@ pub fn body_fields(
     body: &dyn SolidOutput,
     solution: &ContactSolution,
 ) -> Result<(QuadGrid, SolidFields, Vec<[f64; 3]>), CliError> {
+    let fields = body.nodal_fields(&solution.displacement)?;
+    if let Some(mesh) = body.output_mesh() {
+        // a mesh (fem-qp-corner): its own nodes and linear sub-hexahedra
+        let chart = capstan_geometry::ShellChart::new(scene.obstacle.build()?);
+        let mut points = Vec::with_capacity(mesh.nodes.len());
+        let mut bases = Vec::with_capacity(mesh.nodes.len());
+        for &x in &mesh.nodes {
+            let p = chart.point(x).map_err(crate::output::OutputError::from)?;
+            points.push(p.position);
+            bases.push(p.covariant_basis);
+        }
+        let hexahedra = QuadGrid::hexahedra(points, Some(bases), mesh.hexahedra)?;
+        return Ok((hexahedra, fields, mesh.nodes));
+    }
     let grid = body.box_grid();
     let [n1, n2, n3] = grid.counts();
     let axis = |a: usize, n: usize| -> Vec<f64> {
@@ -34,7 +49,6 @@ pub fn body_fields(
     };
     let (x1, x2, x3) = (axis(0, n1), axis(1, n2), axis(2, n3));
     let hexahedra = solid_grid(&scene.obstacle.build()?, &x1, &x2, &x3)?;
-    let fields = body.nodal_fields(&solution.displacement)?;
     let coordinates: Vec<[f64; 3]> = (0..grid.node_count())
         .map(|k| grid.coordinates(grid.node(k)))
         .collect();

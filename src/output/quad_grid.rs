@@ -38,6 +38,8 @@ pub struct QuadGrid {
     periodic: bool,
     points: Vec<[f64; 3]>,
     bases: Option<Vec<[[f64; 3]; 3]>>,
+    /// The hexahedra of an unstructured grid ([`QuadGrid::hexahedra`]); `None`: structured.
+    hexahedra: Option<Vec<[usize; 8]>>,
 }
 
 impl QuadGrid {
@@ -83,7 +85,56 @@ impl QuadGrid {
             periodic,
             points,
             bases: None,
+            hexahedra: None,
         })
+    }
+
+    /// An unstructured grid of linear hexahedra on `points` (a 3-D body on a mesh: node `k`
+    /// at `points[k]`, each cell in VTK's hexahedron order), with the covariant bases at the
+    /// nodes when given (for [`QuadGrid::to_cartesian`]). Its `n1`, `n2`, `n3` are 0.
+    ///
+    /// # Errors
+    /// [`OutputError::InvalidParameter`] for no cells or a node number out of range;
+    /// [`OutputError::LengthMismatch`] unless there is one basis per point;
+    /// [`OutputError::NonFinite`] for a non-finite coordinate.
+    pub fn hexahedra(
+        points: Vec<[f64; 3]>,
+        bases: Option<Vec<[[f64; 3]; 3]>>,
+        cells: Vec<[usize; 8]>,
+    ) -> Result<Self, OutputError> {
+        let n = points.len();
+        if cells.is_empty() || cells.iter().flatten().any(|&k| k >= n) {
+            return Err(OutputError::InvalidParameter {
+                field: "hexahedra",
+                value: cells.len() as f64,
+                allowed: "at least one cell, node numbers below the number of points",
+            });
+        }
+        if let Some(b) = &bases
+            && b.len() != n
+        {
+            return Err(OutputError::LengthMismatch {
+                column: "bases".to_owned(),
+                expected: n,
+                found: b.len(),
+            });
+        }
+        check_all_finite("points", points.as_flattened())?;
+        Ok(Self {
+            n1: 0,
+            n2: 0,
+            n3: 0,
+            periodic: false,
+            points,
+            bases,
+            hexahedra: Some(cells),
+        })
+    }
+
+    /// Whether the grid is an unstructured one of [`QuadGrid::hexahedra`] (no `(i1, i2, i3)`
+    /// numbering).
+    pub fn is_unstructured(&self) -> bool {
+        self.hexahedra.is_some()
     }
 
     /// The grid `Theta(x1, x2[i2], x3[i3])` of a shell chart, keeping the covariant bases
@@ -141,10 +192,9 @@ impl QuadGrid {
                 allowed: "[2, inf)",
             });
         }
-        if layers
-            .iter()
-            .any(|l| l.n1 != 1 || l.n2 != n2 || l.n3 != n3 || l.periodic != periodic)
-        {
+        if layers.iter().any(|l| {
+            l.is_unstructured() || l.n1 != 1 || l.n2 != n2 || l.n3 != n3 || l.periodic != periodic
+        }) {
             return Err(OutputError::InvalidParameter {
                 field: "layers",
                 value: layers.len() as f64,
@@ -166,6 +216,7 @@ impl QuadGrid {
                 .flat_map(|l| l.points.iter().copied())
                 .collect(),
             bases,
+            hexahedra: None,
         })
     }
 
@@ -189,9 +240,9 @@ impl QuadGrid {
         self.periodic
     }
 
-    /// Number of nodes, `n1 n2 n3`.
+    /// Number of nodes, `n1 n2 n3` (the points of an unstructured grid).
     pub fn node_count(&self) -> usize {
-        self.n1 * self.n2 * self.n3
+        self.points.len()
     }
 
     /// Cells in `x2`: `n2` when periodic, `n2 - 1` otherwise.
@@ -199,8 +250,11 @@ impl QuadGrid {
         if self.periodic { self.n2 } else { self.n2 - 1 }
     }
 
-    /// Number of cells: quads, or hexahedra of a layered grid.
+    /// Number of cells: quads, or hexahedra of a layered or an unstructured grid.
     pub fn cell_count(&self) -> usize {
+        if let Some(h) = &self.hexahedra {
+            return h.len();
+        }
         self.cells2() * (self.n3 - 1) * (self.n1 - 1).max(1)
     }
 
@@ -212,6 +266,9 @@ impl QuadGrid {
     /// The VTK cells: connectivity, nodes per cell and cell type (quads, or the hexahedra of a
     /// layered grid, in the order `(i1, i2, i3)`).
     pub fn topology(&self) -> (Vec<usize>, usize, u8) {
+        if let Some(h) = &self.hexahedra {
+            return (h.as_flattened().to_vec(), 8, VTK_HEXAHEDRON);
+        }
         let quads = self.cells();
         if self.n1 == 1 {
             return (quads.into_iter().flatten().collect(), 4, VTK_QUAD);
@@ -228,8 +285,11 @@ impl QuadGrid {
     }
 
     /// The node numbers of every quad cell, in cell order (see the type's docs); of one layer
-    /// for a layered grid.
+    /// for a layered grid; none for an unstructured grid.
     pub fn cells(&self) -> Vec<[usize; 4]> {
+        if self.is_unstructured() {
+            return Vec::new();
+        }
         let (n2, n3) = (self.n2, self.n3);
         let mut cells = Vec::with_capacity(self.cell_count());
         for i2 in 0..self.cells2() {

@@ -151,12 +151,18 @@ pub fn solid_vtu<'g>(
     contact: &ContactProfile,
 ) -> Vtu<'g> {
     let n = fields.displacement.len();
-    let n3 = grid.n3();
     let solid = contact.solid.as_ref();
-    // contact node (i1, i2) is entry i1 n2 + i2 of the profile: the column of node k
-    let column = |k: usize| k / n3;
+    // the profile entry of each node: on the box grid the contact node (i1, i2) below it
+    // (entry i1 n2 + i2: the column of node k); on a mesh the face node of its x1 line
+    // nearest in x2
+    let columns: Vec<usize> = if grid.is_unstructured() {
+        nearest_face_entries(coordinates, contact)
+    } else {
+        let n3 = grid.n3();
+        (0..n).map(|k| k / n3).collect()
+    };
     let per_node =
-        |f: &dyn Fn(usize) -> f64| -> Vec<f64> { (0..n).map(|k| f(column(k))).collect() };
+        |f: &dyn Fn(usize) -> f64| -> Vec<f64> { columns.iter().map(|&c| f(c)).collect() };
     let state = per_node(&|c| contact.state.get(c).map_or(0.0, |&s| f64::from(s)));
     let slip = per_node(&|c| contact.slip.get(c).copied().unwrap_or(0.0));
     let slip_1 = per_node(&|c| solid.and_then(|s| s.slip_1.get(c)).copied().unwrap_or(0.0));
@@ -174,6 +180,45 @@ pub fn solid_vtu<'g>(
     )
     .point_scalars("contact_slip_1", slip_1)
     .point_scalars("x1", coordinate(0))
+}
+
+/// For every node `(x1, x2, x3)` of a mesh, the entry of the 3-D contact `profile` on the
+/// same `x1` line (equal `x1` to 1e-12 of the width) whose `x2` is nearest; `usize::MAX` (no
+/// entry: state and slip 0) where the profile has no such line.
+fn nearest_face_entries(coordinates: &[[f64; 3]], profile: &ContactProfile) -> Vec<usize> {
+    let Some(solid) = profile.solid.as_ref() else {
+        return vec![usize::MAX; coordinates.len()];
+    };
+    // the profile's x1 lines: (x1, first entry, end), entries in increasing x2 along each
+    let mut lines: Vec<(f64, usize, usize)> = Vec::new();
+    for (k, &x1) in solid.x1.iter().enumerate() {
+        match lines.last_mut() {
+            Some(line) if line.0 == x1 => line.2 = k + 1,
+            _ => lines.push((x1, k, k + 1)),
+        }
+    }
+    let span = solid
+        .x1
+        .iter()
+        .fold([f64::INFINITY, f64::NEG_INFINITY], |[a, b], &x| {
+            [a.min(x), b.max(x)]
+        });
+    let tol = 1e-12 * (span[1] - span[0]).abs().max(1.0);
+    coordinates
+        .iter()
+        .map(|x| {
+            let Some(&(_, from, to)) = lines.iter().find(|l| (l.0 - x[0]).abs() <= tol) else {
+                return usize::MAX;
+            };
+            let x2 = &profile.x2[from..to];
+            let i = x2.partition_point(|&c| c < x[1]);
+            [i.checked_sub(1), (i < x2.len()).then_some(i)]
+                .into_iter()
+                .flatten()
+                .min_by(|&a, &b| (x2[a] - x[1]).abs().total_cmp(&(x2[b] - x[1]).abs()))
+                .map_or(usize::MAX, |j| from + j)
+        })
+        .collect()
 }
 
 #[cfg(test)]

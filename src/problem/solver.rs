@@ -63,13 +63,19 @@ impl Solver {
             Dimension::Solid { n1, .. } => 2 * n1 * body.n2,
         };
         let solid = matches!(body.dimension, Dimension::Solid { .. });
-        let matrix_free = auto_matrix_free(
-            solid,
-            m,
-            body.contact.is_unilateral(),
-            body.body_force.is_some(),
-            body.settings.volumetric == VolumetricIntegration::Full,
-        );
+        let mesh = body
+            .method
+            .scheme(&body.settings)
+            .is_ok_and(|s| s.is_mesh());
+        // a mesh (fem-qp-corner) is assembled on its own nodes: no matrix-free operator
+        let matrix_free = !mesh
+            && auto_matrix_free(
+                solid,
+                m,
+                body.contact.is_unilateral(),
+                body.body_force.is_some(),
+                body.settings.volumetric == VolumetricIntegration::Full,
+            );
         let (method, reason) = match self.method {
             SolveMethod::Auto if matrix_free => (
                 SolveMethod::FullNewton(LinearBackend::MATRIX_FREE_MG),
@@ -84,19 +90,12 @@ impl Solver {
             ),
             // measured (docs/high-order.md): the condensed Newton stalls at its first iterate
             // once the corner layers' contact nodes are 1e-3 of a cell apart
-            SolveMethod::Auto
-                if body
-                    .method
-                    .scheme(&body.settings)
-                    .is_ok_and(|s| s.is_mesh()) =>
-            {
-                (
-                    SolveMethod::FullNewton(LinearBackend::LU),
-                    format!(
-                        "{m} grid contact nodes on a corner-refined mesh: the full-system Newton, sparse LU"
-                    ),
-                )
-            }
+            SolveMethod::Auto if mesh => (
+                SolveMethod::FullNewton(LinearBackend::LU),
+                format!(
+                    "{m} grid contact nodes on a corner-refined mesh: the full-system Newton, sparse LU"
+                ),
+            ),
             SolveMethod::Auto => (
                 SolveMethod::Condensed,
                 format!("{m} contact unknowns: condensed onto the contact face (Schur complement)"),

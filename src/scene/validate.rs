@@ -119,8 +119,9 @@ impl Scene {
     }
 
     /// `discretisation.corner_layers` in `0..=16` and `discretisation.corner_ratio` in
-    /// `[0.05, 0.95]`, only with `fem-qp-corner` on the plane-strain body, which needs `e >= 2`
-    /// element cells along `grid.n2` and `grid.n3` (each corner its own cell).
+    /// `[0.05, 0.95]`, only with `fem-qp-corner`, which needs `e >= 2` element cells along
+    /// `grid.n2` and `grid.n3` (each corner its own cell); with `body.dimension = 3` an
+    /// assembled linear backend (`lu`, `cholesky`, `jacobi`, `gauss-seidel`).
     fn validate_corner(
         &self,
         bad: &dyn Fn(&str, String, &str) -> CliError,
@@ -149,11 +150,16 @@ impl Scene {
         if !corner {
             return Ok(());
         }
-        if self.body.dimension != 2 {
+        if self.body.dimension == 3
+            && matches!(
+                self.solver.linear.as_str(),
+                "multigrid" | "matrix-free-mg" | "petsc"
+            )
+        {
             return Err(bad(
-                "discretisation.method",
-                "\"fem-qp-corner\"".into(),
-                "a 3-D method with body.dimension = 3 (fem-q1, fem-q2, fem-qp): the corner mesh is plane strain only",
+                "solver.linear",
+                format!("{:?}", self.solver.linear),
+                "`lu`, `cholesky`, `jacobi` or `gauss-seidel` with discretisation.method = \"fem-qp-corner\" and body.dimension = 3 (the corner-refined body is assembled on its mesh: no box-grid multigrid, matrix-free operator or PETSc distribution yet)",
             ));
         }
         let named = |e: ElasticityError| match e {
@@ -608,13 +614,14 @@ impl Scene {
             });
         }
         let order = self.discretisation.order;
-        if self.discretisation.method == DiscretisationMethod::FemQp
+        let method = self.discretisation.method;
+        if (method == DiscretisationMethod::FemQp || method == DiscretisationMethod::FemQpCorner)
             && !(g.n1 - 1).is_multiple_of(order)
         {
             return Err(CliError::Scene {
                 origin: at.locate("grid.n1"),
                 message: format!(
-                    "`grid.n1` = {} is outside p e + 1 nodes (e elements of order p = discretisation.order = {order}) with fem-qp",
+                    "`grid.n1` = {} is outside p e + 1 nodes (e elements of order p = discretisation.order = {order}) with {method}",
                     g.n1
                 ),
             });
@@ -622,8 +629,23 @@ impl Scene {
         if self.solver.linear == "petsc" {
             return self.check_petsc_memory(at, "grid.n1", 3 * g.n1 * g.n2 * g.n3);
         }
-        // what `auto` picks (crate::problem::Solver::resolved)
+        // a mesh method's layout (fem-qp-corner): K face nodes and N nodes in every x1 line,
+        // sized as the box grid n1 x K x N/K
+        let layout = self
+            .discretisation
+            .settings()
+            .and_then(|s| method.scheme(&s))
+            .and_then(|s| s.solid_layout(g.n2, g.n3))
+            .ok()
+            .flatten();
+        let nodes = layout.map_or([g.n1, g.n2, g.n3], |l| {
+            let k = l.face_node_count();
+            [g.n1, k, l.node_count().div_ceil(k)]
+        });
+        // what `auto` picks (crate::problem::Solver::resolved): the full-system Newton with
+        // LU on a mesh
         let auto_mf = self.solver.nonlinear == "auto"
+            && layout.is_none()
             && crate::problem::auto_matrix_free(
                 true,
                 2 * g.n1 * g.n2,
@@ -632,7 +654,11 @@ impl Scene {
                 self.discretisation.volumetric == VolumetricIntegration::Full,
             );
         let matrix_free = self.solver.matrix_free() || auto_mf;
-        let condensed = self.solver.condenses() && !auto_mf;
+        let condensed = if layout.is_some() {
+            self.solver.nonlinear == "newton"
+        } else {
+            self.solver.condenses() && !auto_mf
+        };
         let multigrid = self.solver.linear == "multigrid";
         let settings = capstan_elasticity::registration::DiscretisationSettings {
             order,
@@ -646,11 +672,11 @@ impl Scene {
             .map_or(1, |e| e.degree());
         let need = if matrix_free {
             let (cell, varies) = self.solid_cells(at)?;
-            solid_matrix_free_memory_estimate([g.n1, g.n2, g.n3], degree, cell, varies)
+            solid_matrix_free_memory_estimate(nodes, degree, cell, varies)
         } else if multigrid {
-            solid_multigrid_memory_estimate([g.n1, g.n2, g.n3])
+            solid_multigrid_memory_estimate(nodes)
         } else {
-            solid_memory_estimate([g.n1, g.n2, g.n3], condensed, degree)
+            solid_memory_estimate(nodes, condensed, degree)
         };
         check_memory(at, "grid.n1", need, |have| {
             format!(

@@ -220,8 +220,26 @@ pub trait DiscretisationScheme: core::fmt::Debug + Send + Sync {
         Err(ElasticityError::InvalidParameter {
             field: "discretisation.method",
             value: f64::NAN,
-            allowed: "a finite-element method (fem-q1, fem-q2, fem-qp) with body.dimension = 3: this one is plane strain only",
+            allowed: "a finite-element method (fem-q1, fem-q2, fem-qp, fem-qp-corner) with body.dimension = 3: this one is plane strain only",
         })
+    }
+
+    /// The 2-D layout of the `(x2, x3)` rectangle whose extrusion along `x1` carries the 3-D
+    /// body's hexahedra ([`DiscretisationScheme::solid_element`]) for a method on a mesh
+    /// (`fem-qp-corner`: the corner layout of an `n2 x n3` grid, built by
+    /// [`crate::solid::SolidCornerNavier`]); `None` (the default) for a method whose 3-D body
+    /// is on the box grid's nodes.
+    ///
+    /// # Errors
+    /// [`ElasticityError::InvalidParameter`] naming `grid.n2` or `grid.n3` when the grid does
+    /// not fit the layout.
+    fn solid_layout(
+        &self,
+        n2: usize,
+        n3: usize,
+    ) -> Result<Option<crate::finite_element::high_order::CornerSettings>, ElasticityError> {
+        let _ = (n2, n3);
+        Ok(None)
     }
 }
 

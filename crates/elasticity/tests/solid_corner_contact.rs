@@ -131,24 +131,27 @@ fn no_layers_give_the_tensor_grid_contact_solution() {
 fn layered_face_is_ordered_in_x2_and_its_weights_sum_to_the_face() {
     let (p, ne) = (3, [2, 4, 2]);
     let b = body(p, ne, 2.0);
+    let settings = CornerSettings {
+        order: p,
+        cells: [ne[1], ne[2]],
+        layers: 3,
+        ratio: 0.3,
+    };
     let op = SolidCornerNavier::new(
         ShellChart::new(b.surface),
         b.material,
         b.grid().unwrap(),
         &b.boundary(1.0, 2.0),
         None,
-        CornerSettings {
-            order: p,
-            cells: [ne[1], ne[2]],
-            layers: 3,
-            ratio: 0.3,
-        },
+        settings,
     )
     .unwrap();
     let entries = op.contact_entries().unwrap();
     let n1 = p * ne[0] + 1;
     // p nodes more per layer at each end of every x1 line
     let per_line = p * ne[1] + 1 + 2 * 3 * p;
+    assert_eq!(settings.face_node_count(), per_line);
+    assert_eq!(op.node_count(), n1 * settings.node_count());
     assert_eq!(entries.len(), 2 * n1 * per_line);
     let mut area = 0.0;
     for (k, pair) in entries.chunks(2).enumerate() {

@@ -487,7 +487,11 @@ fn contact<'py>(
                     &coordinates,
                     &solution.contact,
                 );
-                let shape = vec![grid.n1(), grid.n2(), grid.n3()];
+                let shape = if grid.is_unstructured() {
+                    vec![grid.node_count()] // a mesh (fem-qp-corner): one axis of nodes
+                } else {
+                    vec![grid.n1(), grid.n2(), grid.n3()]
+                };
                 return Ok((json, field_bytes(grid.points(), vtu.point_arrays()), shape));
             }
         };

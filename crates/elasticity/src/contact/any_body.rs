@@ -186,6 +186,22 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         }))
     }
 
+    /// The 2-D layout whose extrusion along `x1` carries the 3-D body's hexahedra
+    /// ([`DiscretisationScheme::solid_layout`]: `fem-qp-corner`), `None` in plane strain and
+    /// for a method on the box grid's nodes.
+    ///
+    /// # Errors
+    /// The registered builder's errors; [`ElasticityError::InvalidParameter`] naming `grid.n2`
+    /// or `grid.n3` when the grid does not fit the layout.
+    pub fn solid_layout(
+        &self,
+    ) -> Result<Option<crate::finite_element::high_order::CornerSettings>, ElasticityError> {
+        match self.dimension {
+            Dimension::Plane => Ok(None),
+            Dimension::Solid { .. } => self.scheme()?.solid_layout(self.n2, self.n3),
+        }
+    }
+
     /// The assembled contact operator with end loads `tau0`, `tau_max`, of either dimension.
     ///
     /// # Errors
@@ -207,9 +223,18 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
             _ => None,
         };
         Ok(match self.solid()? {
-            Some(solid) => {
-                Box::new(solid.operator_with_force(magnitudes[0], magnitudes[1], force.as_ref())?)
-            }
+            Some(solid) => match self.solid_layout()? {
+                Some(layout) => Box::new(solid.corner_operator(
+                    layout,
+                    &solid.boundary(magnitudes[0], magnitudes[1]),
+                    force.as_ref(),
+                )?),
+                None => Box::new(solid.operator_with_force(
+                    magnitudes[0],
+                    magnitudes[1],
+                    force.as_ref(),
+                )?),
+            },
             None => {
                 let plane = self.plane();
                 match self.mesh_operator(|| {
@@ -251,7 +276,14 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
         tau_max: f64,
     ) -> Result<BodyOperator, ElasticityError> {
         Ok(match self.solid()? {
-            Some(solid) => Box::new(solid.operator_free_face(tau0, tau_max)?),
+            Some(solid) => match self.solid_layout()? {
+                Some(layout) => Box::new(solid.corner_operator(
+                    layout,
+                    &solid.boundary_free_face(tau0, tau_max),
+                    None,
+                )?),
+                None => Box::new(solid.operator_free_face(tau0, tau_max)?),
+            },
             None => {
                 let plane = self.plane();
                 let free = || {
@@ -347,6 +379,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Body<S> {
                 message: "`matrix-free-mg` is the 3-D body's (body.dimension = 3); in plane strain use \"lu\"",
             });
         };
+        if self.solid_layout()?.is_some() {
+            return Err(ContactError::Unsupported {
+                field: "solver.linear",
+                message: "the corner-refined 3-D body (discretisation.method = \"fem-qp-corner\") is assembled, not matrix-free: use solver.linear = \"lu\" or \"cholesky\"",
+            });
+        }
         if self.contact.is_unilateral() {
             return Err(ContactError::Unsupported {
                 field: "contact.kind",

@@ -9,7 +9,8 @@ use crate::ElasticityError;
 use crate::contact::body_force::BodyForceField;
 use crate::contact::error::ContactError;
 use crate::contact::model::ContactModel;
-use crate::solid::{SolidBody, SolidNavier};
+use crate::finite_element::high_order::CornerSettings;
+use crate::solid::{SolidBody, SolidBoundary, SolidCornerNavier, SolidNavier};
 
 impl<S: Surface<f64> + Clone + Send + Sync> SolidBody<S> {
     /// The contact model with the friction law `law` (stick/slip threshold `slip_threshold`).
@@ -54,6 +55,33 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
             covariant.as_ref(),
             self.order,
             self.volumetric,
+        )
+    }
+
+    /// The operator of the body on the corner-refined mesh `layout` extruded along `x1`
+    /// ([`SolidCornerNavier`]: Qp hexahedra, layers toward the four edges where the contact
+    /// and top faces meet the loaded ends) with the face conditions `boundary`
+    /// ([`SolidBody::boundary`] or [`SolidBody::boundary_free_face`]) and the body force
+    /// `force` (physical components).
+    ///
+    /// # Errors
+    /// As [`SolidCornerNavier::new`] (naming `grid.n1`, `layers`, `ratio`, ...); grid and
+    /// geometry errors; [`ElasticityError::NonFinite`] where the force is not finite.
+    pub fn corner_operator(
+        &self,
+        layout: CornerSettings,
+        boundary: &SolidBoundary,
+        force: Option<&BodyForceField>,
+    ) -> Result<SolidCornerNavier<ShellChart<S>>, ElasticityError> {
+        let chart = ShellChart::new(self.surface.clone());
+        let covariant = force.map(|f| f.solid(chart.clone()));
+        SolidCornerNavier::new(
+            chart,
+            self.material,
+            self.grid()?,
+            boundary,
+            covariant.as_ref(),
+            layout,
         )
     }
 }

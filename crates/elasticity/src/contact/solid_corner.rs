@@ -88,6 +88,10 @@ impl<G: ShellGeometry + Sync> ContactOperator for SolidCornerNavier<G> {
         Ok(out)
     }
 
+    fn solid(&self) -> Option<&dyn crate::solid::SolidOutput> {
+        Some(self)
+    }
+
     fn extremes(&self, v: &[f64]) -> [Extremum; 2] {
         [1, 2].map(|c| {
             extremum(

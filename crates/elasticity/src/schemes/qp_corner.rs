@@ -15,6 +15,7 @@ use crate::registration::{
     SchemeParameter, check_element_nodes, nearest_element_nodes,
 };
 use crate::shell_geometry::SharedChart;
+use crate::solid::HexElement;
 
 /// `fem-qp-corner`: Qp elements of order `p` on the grid's `e2 x e3` element cells
 /// (`n = p e + 1` nodes, `e >= 2`), each corner cell cut into `layers` geometric trapezoid
@@ -142,12 +143,28 @@ impl DiscretisationScheme for FemQpCorner {
     fn memory_width(&self) -> f64 {
         4.0
     }
+
+    /// Qp hexahedra (GLL nodes), placed on the extruded corner layout
+    /// ([`DiscretisationScheme::solid_layout`]), not on the box grid's nodes.
+    fn solid_element(&self) -> Result<HexElement, ElasticityError> {
+        HexElement::gll(self.order)
+    }
+
+    /// The corner layout of the grid ([`FemQpCorner::settings_for`]), extruded along `x1` by
+    /// [`crate::solid::SolidCornerNavier`].
+    fn solid_layout(
+        &self,
+        n2: usize,
+        n3: usize,
+    ) -> Result<Option<CornerSettings>, ElasticityError> {
+        self.settings_for(n2, n3).map(Some)
+    }
 }
 
 /// `fem-qp-corner` in the registry.
 pub(crate) const REGISTRATION: RegisteredDiscretisation = RegisteredDiscretisation {
     name: "fem-qp-corner",
-    summary: "Qp elements on the grid's p e + 1 cells with geometric layers toward the four corners only (plane strain)",
+    summary: "Qp elements on the grid's p e + 1 cells with geometric layers toward the four corners only (plane strain; in 3-D extruded along x1)",
     parameters: &[
         super::qp::ORDER_PARAMETER,
         SchemeParameter {
@@ -223,5 +240,17 @@ mod tests {
         assert!(scheme.check_nodes("grid.n3", 10).is_err());
         assert_eq!(scheme.coarser_nodes(17), None);
         assert_eq!(scheme.admissible_nodes(3), 9);
+        // the 3-D body: GLL hexahedra on the layout of the grid's cells
+        assert_eq!(scheme.solid_element().unwrap(), HexElement::Gll(4));
+        let layout = scheme.solid_layout(9, 13).unwrap().unwrap();
+        assert_eq!(
+            (layout.cells, layout.layers, layout.ratio),
+            ([2, 3], 5, 0.3)
+        );
+        assert!(scheme.solid_layout(5, 13).is_err());
+        let qp = crate::finite_element::DiscretisationMethod::FemQp
+            .scheme(&d())
+            .unwrap();
+        assert_eq!(qp.solid_layout(9, 13).unwrap(), None);
     }
 }

@@ -62,7 +62,9 @@ const SIDE_FACES: [(Face, u8); 4] = [
 /// Scope: non-periodic `x2`, no pinned dofs, full integration, assembled (sparse direct
 /// solvers).
 pub struct SolidCornerNavier<G> {
-    mesh: Extruded<G>,
+    pub(super) mesh: Extruded<G>,
+    /// The box the mesh fills (its ranges and `n1`; its `n2 x n3` nodes are not the mesh's).
+    grid: BoxGrid,
     material: Material,
     dirichlet: Vec<Option<f64>>,
     system: LinearSystem,
@@ -85,8 +87,8 @@ pub(crate) struct FaceNode {
     pub stencil: Vec<(usize, [f64; 4])>,
 }
 
-/// The extruded mesh on the chart: what the assembly and the error norms share.
-struct Extruded<G> {
+/// The extruded mesh on the chart: what the assembly, the error norms and the outputs share.
+pub(super) struct Extruded<G> {
     chart: G,
     settings: CornerSettings,
     layout: Layout,
@@ -96,7 +98,8 @@ struct Extruded<G> {
     x1_elements: [f64; 2],
     /// Elements along `x1`.
     ne1: usize,
-    gll: Vec<f64>,
+    /// The GLL nodes of order `p` on `[-1, 1]`.
+    pub(super) gll: Vec<f64>,
     /// `[x2, x3]` of every 2-D node.
     positions: Vec<[f64; 2]>,
 }
@@ -221,10 +224,17 @@ impl<G: ShellGeometry + Sync> SolidCornerNavier<G> {
         )?;
         Ok(Self {
             mesh: op,
+            grid,
             material,
             dirichlet,
             system,
         })
+    }
+
+    /// The box the mesh fills: its `x1`, `x2` ranges, thickness and `n1` node lines (its
+    /// `n2 x n3` nodes are not the mesh's: [`crate::solid::SolidOutput::output_mesh`]).
+    pub fn box_grid(&self) -> &BoxGrid {
+        &self.grid
     }
 
     /// The corner layout's settings.
@@ -323,12 +333,12 @@ impl<G: ShellGeometry + Sync> SolidCornerNavier<G> {
 
 impl<G: ShellGeometry + Sync> Extruded<G> {
     /// Number of hexahedra: `(n1 - 1)/p` times the quads of the corner layout.
-    fn element_count(&self) -> usize {
+    pub(super) fn element_count(&self) -> usize {
         self.ne1 * self.layout.quads.len()
     }
 
     /// Number of nodes, `n1 N`.
-    fn node_count(&self) -> usize {
+    pub(super) fn node_count(&self) -> usize {
         self.x1_lines.len() * self.layout.node_count
     }
 
@@ -342,14 +352,14 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
     /// # Panics
     /// For `m` outside the nodes.
     #[track_caller]
-    fn node_position(&self, m: usize) -> [f64; 3] {
+    pub(super) fn node_position(&self, m: usize) -> [f64; 3] {
         let n = self.layout.node_count;
         let [x2, x3] = self.positions[m % n];
         [self.x1_lines[m / n], x2, x3]
     }
 
     /// The nodes of element `e = e1 Q + q` (`Q` quads), local order `(a1 np + a2) np + a3`.
-    fn element_nodes(&self, e: usize) -> Vec<usize> {
+    pub(super) fn element_nodes(&self, e: usize) -> Vec<usize> {
         let p = self.settings.order;
         let np = p + 1;
         let nq = self.layout.quads.len();
@@ -375,7 +385,10 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
     }
 
     /// The chart at `x`, checked non-degenerate.
-    fn point(&self, x: [f64; 3]) -> Result<capstan_geometry::ShellPoint<f64>, ElasticityError> {
+    pub(super) fn point(
+        &self,
+        x: [f64; 3],
+    ) -> Result<capstan_geometry::ShellPoint<f64>, ElasticityError> {
         let p = self.chart.shell_point(x)?;
         if !(p.sqrt_g > 0.0 && p.sqrt_g.is_finite()) {
             return Err(capstan_geometry::GeometryError::Degenerate {
@@ -389,7 +402,7 @@ impl<G: ShellGeometry + Sync> Extruded<G> {
 
     /// `[N_a, d_1 N_a, d_2 N_a, d_3 N_a]` of every node at the reference point `xi` of
     /// element `e`, with the point `(x1, x2, x3)` and the volume factor `(L1 / 2) det J`.
-    fn shape_at(&self, e: usize, xi: [f64; 3]) -> (Vec<[f64; 4]>, [f64; 3], f64) {
+    pub(super) fn shape_at(&self, e: usize, xi: [f64; 3]) -> (Vec<[f64; 4]>, [f64; 3], f64) {
         let (b1, d1) = lagrange_basis(&self.gll, xi[0]);
         let (b2, d2) = lagrange_basis(&self.gll, xi[1]);
         let (b3, d3) = lagrange_basis(&self.gll, xi[2]);

@@ -145,6 +145,84 @@ fn no_layers_reproduce_the_tensor_grid_operator() {
     println!(
         "3-D corner, no layers: nodal values {worst:.2e} of {scale:.2e}, L2 errors {ec:.6e} {et:.6e}"
     );
+    // the nodal fields of the outputs: the element gradients averaged over the hexahedra
+    // holding a node are the tensor grid's line averages
+    let (fc, ft) = (corner.fields(&vc).unwrap(), tensor.fields(&vt).unwrap());
+    let stress_scale = ft
+        .stress
+        .iter()
+        .flatten()
+        .flatten()
+        .fold(0.0f64, |a, s| a.max(s.abs()));
+    let mut worst_stress = 0.0f64;
+    for m in 0..corner.node_count() {
+        let t = index[&key(corner.node_position(m))];
+        for (a, b) in fc.stress[m]
+            .iter()
+            .flatten()
+            .zip(ft.stress[t].iter().flatten())
+        {
+            worst_stress = worst_stress.max((a - b).abs());
+        }
+        for (a, b) in fc.cartesian_displacement[m]
+            .iter()
+            .zip(&ft.cartesian_displacement[t])
+        {
+            assert!((a - b).abs() < 1e-12 * scale);
+        }
+    }
+    assert!(
+        worst_stress < 1e-10 * stress_scale,
+        "{worst_stress} against {stress_scale}"
+    );
+}
+
+#[test]
+fn output_hexahedra_cover_the_layered_mesh_with_positive_volume() {
+    use crate::solid::SolidOutput;
+    let mms = SolidMms::circular_cone();
+    let (p, layers) = (2, 3);
+    let settings = CornerSettings {
+        order: p,
+        cells: [3, 2],
+        layers,
+        ratio: 0.3,
+    };
+    let op = corner_operator(&mms, 2 * p + 1, settings).unwrap();
+    let mesh = op.output_mesh().unwrap();
+    assert_eq!(mesh.nodes.len(), op.node_count());
+    assert_eq!(op.node_count(), (2 * p + 1) * settings.node_count());
+    // every hexahedron, every layer: p^3 sub-hexahedra of each of the 2 x1 elements times
+    // the 3 x 2 cells with 2 trapezoids per layer at each of the four corners
+    let quads = 3 * 2 + 4 * 2 * layers;
+    assert_eq!(mesh.hexahedra.len(), 2 * quads * p * p * p);
+    // volumes in the parameters (x2, x3, x1) (VTK's bottom quad, then the top): positive
+    // and summing to the box
+    let mut total = 0.0;
+    for h in &mesh.hexahedra {
+        let x = h.map(|k| {
+            let [a, b, c] = mesh.nodes[k];
+            [b, c, a]
+        });
+        let d = |i: usize, j: usize| -> [f64; 3] { core::array::from_fn(|c| x[j][c] - x[i][c]) };
+        // the parallelepiped at corner 0 of the (affine in x1, bilinear in x2, x3) cell
+        let (u, v, w) = (d(0, 1), d(0, 3), d(0, 4));
+        let det = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+            + u[2] * (v[0] * w[1] - v[1] * w[0]);
+        assert!(det > 0.0, "{h:?}: {det}");
+        // the cell's exact volume: affine in x1 times the bilinear quad's area
+        let q = [x[0], x[1], x[2], x[3]];
+        let area = 0.5
+            * ((q[0][0] - q[2][0]) * (q[1][1] - q[3][1])
+                - (q[1][0] - q[3][0]) * (q[0][1] - q[2][1]))
+                .abs();
+        total += area * w[2];
+    }
+    let box_volume = (mms.x1[1] - mms.x1[0]) * (mms.x2[1] - mms.x2[0]) * mms.thickness;
+    assert!(
+        (total - box_volume).abs() < 1e-12 * box_volume,
+        "{total} {box_volume}"
+    );
 }
 
 #[test]

@@ -65,6 +65,25 @@ pub trait SolidOutput {
     /// # Errors
     /// As [`SolidNavier::fields`].
     fn nodal_fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError>;
+    /// The nodes and hexahedra of the output when they are not the box grid's tensor
+    /// product (a mesh discretisation: [`super::SolidCornerNavier`]); `None` (the default):
+    /// the nodes of [`SolidOutput::box_grid`] in its node order, its hexahedra.
+    fn output_mesh(&self) -> Option<SolidOutputMesh> {
+        None
+    }
+}
+
+/// The nodes and linear hexahedra of a 3-D body on a mesh, for outputs: node `k` of
+/// [`SolidOutput::nodal_fields`] is at the parameters `nodes[k] = (x1, x2, x3)`, and a Qp
+/// hexahedron of order `p` is written as its `p^3` linear sub-hexahedra between GLL nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolidOutputMesh {
+    /// `(x1, x2, x3)` of every node.
+    pub nodes: Vec<[f64; 3]>,
+    /// The linear hexahedra, in VTK's order: the quad `(x2, x3)` counter-clockwise at the
+    /// lower `x1`, then the same quad at the upper `x1` (the order of the box grid's
+    /// hexahedra).
+    pub hexahedra: Vec<[usize; 8]>,
 }
 
 impl<G: ShellGeometry + Sync> SolidOutput for SolidNavier<G> {
@@ -102,18 +121,10 @@ impl<G: ShellGeometry + Sync> SolidSetup<G> {
     ///
     /// # Errors
     /// [`ElasticityError::DimensionMismatch`] for a wrong length; geometry failures.
-    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
     pub(crate) fn fields(&self, v: &[f64]) -> Result<SolidFields, ElasticityError> {
         ElasticityError::check_length("displacement", self.dof_count(), v.len())?;
         let n = self.grid.node_count();
-        let mut out = SolidFields {
-            displacement: Vec::with_capacity(n),
-            cartesian_displacement: Vec::with_capacity(n),
-            stress: Vec::with_capacity(n),
-            strain: Vec::with_capacity(n),
-            scale: Vec::with_capacity(n),
-        };
-        let (lambda, two_mu) = (self.material.lambda(), 2.0 * self.material.mu());
+        let mut out = SolidFields::with_capacity(n);
         for m in 0..n {
             let node = self.grid.node(m);
             let p = self.chart.shell_point(self.grid.coordinates(node))?;
@@ -129,40 +140,66 @@ impl<G: ShellGeometry + Sync> SolidSetup<G> {
                     }
                 }
             }
-            let strains = mixed_strains(&p, &SOLID);
-            let mut mixed = [[0.0; 3]; 3];
-            for (mk, uk) in strains.iter().zip(&u) {
-                for i in 0..3 {
-                    for j in 0..3 {
-                        mixed[i][j] += uk * mk[i][j];
-                    }
-                }
-            }
-            let trace = mixed[0][0] + mixed[1][1] + mixed[2][2];
-            let (g, gi) = (&p.metric, &p.inverse_metric);
-            let mut strain = [[0.0; 3]; 3];
-            let mut stress = [[0.0; 3]; 3];
-            for i in 0..3 {
-                for j in 0..3 {
-                    strain[i][j] = (0..3).map(|k| g[i][k] * mixed[k][j]).sum();
-                    stress[i][j] = (0..3)
-                        .map(|k| {
-                            let t =
-                                if i == k { lambda * trace } else { 0.0 } + two_mu * mixed[i][k];
-                            t * gi[k][j]
-                        })
-                        .sum();
-                }
-            }
-            let basis = &p.covariant_basis;
-            out.cartesian_displacement.push(core::array::from_fn(|a| {
-                (0..3).map(|i| value[i] * basis[i][a]).sum()
-            }));
-            out.scale.push(core::array::from_fn(|i| g[i][i].sqrt()));
-            out.displacement.push(value);
-            out.strain.push(strain);
-            out.stress.push(stress);
+            out.push_node(&p, u, self.material);
         }
         Ok(out)
+    }
+}
+
+impl SolidFields {
+    /// An empty set of fields for `n` nodes.
+    pub(crate) fn with_capacity(n: usize) -> Self {
+        Self {
+            displacement: Vec::with_capacity(n),
+            cartesian_displacement: Vec::with_capacity(n),
+            stress: Vec::with_capacity(n),
+            strain: Vec::with_capacity(n),
+            scale: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends the fields of a node at the chart point `p` from its twelve inputs
+    /// `u = [v^c, d_p v^c]` (input `3 + 3 p + c`), by the formulas of [`SolidFields`].
+    #[allow(clippy::needless_range_loop)] // index loops mirror the tensor formulas
+    pub(crate) fn push_node(
+        &mut self,
+        p: &capstan_geometry::ShellPoint<f64>,
+        u: [f64; 12],
+        material: crate::material::Material,
+    ) {
+        let (lambda, two_mu) = (material.lambda(), 2.0 * material.mu());
+        let value: [f64; 3] = [u[0], u[1], u[2]];
+        let strains = mixed_strains(p, &SOLID);
+        let mut mixed = [[0.0; 3]; 3];
+        for (mk, uk) in strains.iter().zip(&u) {
+            for i in 0..3 {
+                for j in 0..3 {
+                    mixed[i][j] += uk * mk[i][j];
+                }
+            }
+        }
+        let trace = mixed[0][0] + mixed[1][1] + mixed[2][2];
+        let (g, gi) = (&p.metric, &p.inverse_metric);
+        let mut strain = [[0.0; 3]; 3];
+        let mut stress = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                strain[i][j] = (0..3).map(|k| g[i][k] * mixed[k][j]).sum();
+                stress[i][j] = (0..3)
+                    .map(|k| {
+                        let t = if i == k { lambda * trace } else { 0.0 } + two_mu * mixed[i][k];
+                        t * gi[k][j]
+                    })
+                    .sum();
+            }
+        }
+        let basis = &p.covariant_basis;
+        self.cartesian_displacement.push(core::array::from_fn(|a| {
+            (0..3).map(|i| value[i] * basis[i][a]).sum()
+        }));
+        self.scale.push(core::array::from_fn(|i| g[i][i].sqrt()));
+        self.displacement.push(value);
+        self.strain.push(strain);
+        self.stress.push(stress);
     }
 }

@@ -35,6 +35,7 @@
 mod body;
 mod boundary;
 mod corner;
+mod corner_output;
 #[cfg(test)]
 mod corner_tests;
 mod element;
@@ -50,7 +51,7 @@ pub use body::{SideFaces, SolidBody};
 pub use boundary::{Face, FaceComponent, FaceCondition, FaceFunction, SolidBoundary};
 pub use corner::SolidCornerNavier;
 pub use element::HexElement;
-pub use fields::{SolidFields, SolidOutput};
+pub use fields::{SolidFields, SolidOutput, SolidOutputMesh};
 pub use grid::BoxGrid;
 pub use matrix_free::{
     MultigridParts, SolidMatrixFree, SolidMultigridParams, cell_sizes, coarse_level_nodes,

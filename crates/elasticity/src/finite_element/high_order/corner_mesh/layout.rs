@@ -69,6 +69,25 @@ impl CornerSettings {
         }
         Ok(())
     }
+
+    /// The nodes of the Qp mesh of these settings on a rectangle (any: the count does not
+    /// depend on its size), the `N` of a plane-strain body's `2 N` unknowns and of a 3-D
+    /// body's `3 n1 N`.
+    pub fn node_count(&self) -> usize {
+        Layout::new([[0.0, 1.0], [0.0, 1.0]], self).node_count
+    }
+
+    /// The nodes on the contact face `x3 = 0` of the mesh (per `x1` line of a 3-D body):
+    /// `p cells[0] + 1` of the coarse cells and `p` more for every layer at each of the
+    /// face's two corners.
+    ///
+    /// # Math
+    /// ```text
+    /// K = p e2 + 1 + 2 layers p
+    /// ```
+    pub fn face_node_count(&self) -> usize {
+        self.order * (self.cells[0] + 2 * self.layers) + 1
+    }
 }
 
 /// Geometric layers of `x2` lines toward interior points of the contact face (the stick/slip
