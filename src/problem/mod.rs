@@ -36,6 +36,7 @@
 
 mod accuracy;
 mod builder;
+pub mod estimate;
 mod exact_start;
 mod friction;
 pub mod nonlinear_registry;
