@@ -181,9 +181,7 @@ impl AccuracyReport {
 
 /// The quantities of a contact solution with the scales their tolerances are relative to:
 /// lengths along the contact face (`slip_measure`, `stick_from`, `stick_to`) the face's
-/// measure, every other quantity its own magnitude. The slip measures and the stick-zone ends
-/// are located between nodes (their estimate along a ladder is the last change,
-/// [`Behaviour::Located`]); the others converge at a rate ([`Behaviour::Smooth`]).
+/// measure, every other quantity its own magnitude; the behaviour of each from [`behaviour`].
 pub fn scaled(
     quantities: &ContactQuantities,
     solution: &ContactSolution,
@@ -197,12 +195,7 @@ pub fn scaled(
                 _ => value.abs(),
             };
             let scale = scale.max(f64::MIN_POSITIVE);
-            let behaviour = match name.as_str() {
-                "slip_measure" | "slip_physical_measure" | "stick_from" | "stick_to" => {
-                    Behaviour::Located
-                }
-                _ => Behaviour::Smooth,
-            };
+            let behaviour = behaviour(&name);
             (
                 name,
                 Scaled {
@@ -213,6 +206,16 @@ pub fn scaled(
             )
         })
         .collect()
+}
+
+/// How a contact quantity converges along a ladder, by its name: the slip measures and the
+/// stick-zone ends are located between nodes ([`Behaviour::Located`]), every other quantity
+/// converges at a rate ([`Behaviour::Smooth`]).
+pub fn behaviour(name: &str) -> Behaviour {
+    match name {
+        "slip_measure" | "slip_physical_measure" | "stick_from" | "stick_to" => Behaviour::Located,
+        _ => Behaviour::Smooth,
+    }
 }
 
 /// Solves a scene's contact problem to its accuracy target: the solution of the chosen step,

@@ -11,7 +11,7 @@ use capstan_elasticity::finite_element::{DiscretisationMethod, Grading};
 use capstan_geometry::Surface;
 
 use super::builder::Problem;
-use super::estimate::{Behaviour, estimate};
+use super::estimate::{Behaviour, SequenceEstimate, estimate};
 
 /// The highest order of the plane ladder: order 7 with 7 layers of ratio 0.15 (elements
 /// `H 0.15^6 ~ 1e-5 H`) gives a singular factorisation at `nu = 0.45`, order 8 already at the
@@ -22,7 +22,7 @@ const MAX_ORDER: usize = 6;
 const GRADING: f64 = 0.15;
 
 /// The least index of the step that may end the refinement (three solves: two differences).
-pub const MIN_STEPS: usize = 2;
+const MIN_STEPS: usize = 2;
 use super::solve::ProblemError;
 
 /// What an accuracy target asks for, with its work budget.
@@ -97,6 +97,16 @@ impl AccuracyTarget {
             tolerance,
             max_unknowns: Self::DEFAULT_MAX_UNKNOWNS,
         })
+    }
+
+    /// Whether step `k` with `assessment` ends the refinement: `k >= 2` (two changes) and every
+    /// quantity's relative estimate at most the tolerance.
+    pub fn met(&self, k: usize, assessment: &Assessment) -> bool {
+        k >= MIN_STEPS
+            && assessment
+                .worst
+                .as_ref()
+                .is_some_and(|(_, w)| *w <= self.tolerance)
     }
 
     /// With the work budget `max_unknowns`.
@@ -220,11 +230,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         mut eval: impl FnMut(&Self) -> Result<(T, BTreeMap<String, Scaled>), ProblemError>,
     ) -> Result<Refined<T, S>, ProblemError> {
         let mut steps: Vec<Step> = Vec::new();
-        // every quantity's values along the ladder, up to the step before (contiguous: a
-        // quantity missing on a step starts again)
-        let mut history: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-        // every quantity's relative differences d_k / scale, for the budget's error
-        let mut trail: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        // every step's quantities, coarsest first
+        let mut seen: Vec<BTreeMap<String, Scaled>> = Vec::new();
         for k in 0.. {
             let problem = self.accuracy_step(k)?;
             let unknowns = problem.unknowns();
@@ -233,7 +240,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     .last()
                     .and_then(|s| s.worst.clone())
                     .unwrap_or_else(|| ("every quantity".to_owned(), f64::INFINITY));
-                let trend = trend(trail.get(&quantity).map_or(&[][..], Vec::as_slice));
+                let trend = trend(&relative_changes(&seen, &quantity));
                 return Err(ProblemError::AccuracyNotReached {
                     tolerance: target.tolerance,
                     quantity,
@@ -245,39 +252,9 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             }
             let t = Instant::now();
             let (value, quantities) = eval(&problem)?;
-            let mut estimates = BTreeMap::new();
-            let mut rules = BTreeMap::new();
-            let mut worst: Option<(String, f64)> = None;
-            history.retain(|name, _| quantities.contains_key(name));
-            for (name, q) in &quantities {
-                let values = history.entry(name.clone()).or_default();
-                values.push(q.value);
-                let relative = match estimate(values, q.behaviour) {
-                    Some(e) => {
-                        let d = values[values.len() - 1] - values[values.len() - 2];
-                        trail
-                            .entry(name.clone())
-                            .or_default()
-                            .push(d.abs() / q.scale);
-                        estimates.insert(name.clone(), e.error);
-                        rules.insert(name.clone(), e.rule);
-                        e.error / q.scale
-                    }
-                    None => f64::INFINITY,
-                };
-                if k > 0 && worst.as_ref().is_none_or(|w| relative > w.1) {
-                    worst = Some((name.clone(), relative));
-                }
-            }
-            if let Some(before) = steps.last() {
-                for name in before
-                    .values
-                    .keys()
-                    .filter(|n| !quantities.contains_key(*n))
-                {
-                    worst = Some((name.clone(), f64::INFINITY));
-                }
-            }
+            let seconds = t.elapsed().as_secs_f64();
+            seen.push(quantities);
+            let assessment = assess(&seen);
             steps.push(Step {
                 method: problem.body.method.name(),
                 order: (problem.body.method == DiscretisationMethod::FemQp)
@@ -285,28 +262,95 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 grading: problem.body.settings.grading.ratio(),
                 grid: problem.grid(),
                 unknowns,
-                seconds: t.elapsed().as_secs_f64(),
-                worst: worst.clone(),
-                values: quantities
-                    .iter()
-                    .map(|(k, q)| (k.clone(), q.value))
-                    .collect(),
+                seconds,
+                worst: assessment.worst.clone(),
+                values: seen[k].iter().map(|(k, q)| (k.clone(), q.value)).collect(),
             });
-            if let Some((_, w)) = worst
-                && w <= target.tolerance
-                && k >= MIN_STEPS
-            {
+            if target.met(k, &assessment) {
                 return Ok(Refined {
                     value,
                     problem,
-                    estimates,
-                    rules,
+                    estimates: assessment
+                        .estimates
+                        .iter()
+                        .map(|(n, e)| (n.clone(), e.error))
+                        .collect(),
+                    rules: assessment
+                        .estimates
+                        .iter()
+                        .map(|(n, e)| (n.clone(), e.rule))
+                        .collect(),
                     steps,
                 });
             }
         }
         unreachable!("the budget ends the ladder")
     }
+}
+
+/// The estimates of the last step of a ladder: every quantity's [`SequenceEstimate`] from its
+/// values on the steps so far, and the worst relative estimate.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Assessment {
+    /// The estimate of every quantity of the last step that has one (two or more steps).
+    pub estimates: BTreeMap<String, SequenceEstimate>,
+    /// The largest `e_k(Q) / scale(Q)` and its quantity: infinite for a quantity with no
+    /// estimate yet or missing on the last step; `None` on the first step.
+    pub worst: Option<(String, f64)>,
+}
+
+/// The contiguous run of values of `name` ending at the last of `steps` (a quantity missing on
+/// a step starts again after it).
+fn run(steps: &[BTreeMap<String, Scaled>], name: &str) -> Vec<Scaled> {
+    let mut run: Vec<Scaled> = steps
+        .iter()
+        .rev()
+        .map_while(|s| s.get(name).copied())
+        .collect();
+    run.reverse();
+    run
+}
+
+/// The relative changes `|d_j| / scale_j` of `name` along its run, for the budget's error.
+fn relative_changes(steps: &[BTreeMap<String, Scaled>], name: &str) -> Vec<f64> {
+    run(steps, name)
+        .windows(2)
+        .map(|w| (w[1].value - w[0].value).abs() / w[1].scale)
+        .collect()
+}
+
+/// Assesses the last of `steps` (every step's quantities along the ladder, coarsest first):
+/// each quantity's estimate from its run of values ([`estimate`], the rule of
+/// [`AccuracyTarget`]) and the worst relative estimate. The same function serves
+/// [`Problem::refine_to`] and the cached ladders of examples/contact_accuracy.rs.
+pub fn assess(steps: &[BTreeMap<String, Scaled>]) -> Assessment {
+    let mut out = Assessment::default();
+    let Some(last) = steps.last() else {
+        return out;
+    };
+    if steps.len() < 2 {
+        return out;
+    }
+    for (name, q) in last {
+        let values: Vec<f64> = run(steps, name).iter().map(|s| s.value).collect();
+        let relative = match estimate(&values, q.behaviour) {
+            Some(e) => {
+                out.estimates.insert(name.clone(), e);
+                e.error / q.scale
+            }
+            None => f64::INFINITY,
+        };
+        if out.worst.as_ref().is_none_or(|w| relative > w.1) {
+            out.worst = Some((name.clone(), relative));
+        }
+    }
+    for name in steps[steps.len() - 2]
+        .keys()
+        .filter(|n| !last.contains_key(*n))
+    {
+        out.worst = Some((name.clone(), f64::INFINITY));
+    }
+    out
 }
 
 /// How a quantity's relative differences `r_1, ..., r_k` along the ladder went, for the
