@@ -1,42 +1,49 @@
 //! The estimate of the accuracy targets (`capstan::problem::estimate`) against true errors:
 //! on synthetic sequences with a known limit through `Problem::refine_to`, and on the default
-//! scene's own ladder (cached in docs/data/contact_ladder.json by
-//! `cargo run --release --example contact_accuracy -- --solve 8`: the values of every step, no
-//! solve here). The old rule `max(|d_k|, |d_{k-1}| / 4)` fails the same checks.
+//! scene's own ladder (cached in docs/data/contact_ladder.json by `cargo run --release
+//! --example contact_accuracy -- --solve 7 --reference-elements 240`: the values of every
+//! step, no solve here). The old rule `max(|d_k|, |d_{k-1}| / 4)` fails the same checks.
 
 use std::collections::BTreeMap;
 
 use capstan::commands::accuracy::behaviour;
 use capstan::problem::{AccuracyTarget, Problem, Scaled, assess};
 
-/// Every cached step's quantities, as `refine_to` saw them, and the steps' unknowns.
-fn ladder() -> (Vec<BTreeMap<String, Scaled>>, Vec<usize>) {
+/// One cached solve's quantities, as `refine_to` saw them.
+fn quantities(s: &serde_json::Value) -> BTreeMap<String, Scaled> {
+    s["values"]
+        .as_object()
+        .unwrap()
+        .iter()
+        .map(|(n, v)| {
+            let q = Scaled {
+                value: v.as_f64().unwrap(),
+                scale: s["scales"][n].as_f64().unwrap(),
+                behaviour: behaviour(n),
+            };
+            (n.clone(), q)
+        })
+        .collect()
+}
+
+/// Every cached step's quantities, their unknowns, and the reference outside the ladder.
+fn ladder() -> (
+    Vec<BTreeMap<String, Scaled>>,
+    Vec<usize>,
+    BTreeMap<String, Scaled>,
+) {
     let cache: serde_json::Value =
         serde_json::from_str(include_str!("../docs/data/contact_ladder.json")).unwrap();
     let steps = cache["steps"].as_array().unwrap();
-    let quantities = steps
-        .iter()
-        .map(|s| {
-            s["values"]
-                .as_object()
-                .unwrap()
-                .iter()
-                .map(|(n, v)| {
-                    let q = Scaled {
-                        value: v.as_f64().unwrap(),
-                        scale: s["scales"][n].as_f64().unwrap(),
-                        behaviour: behaviour(n),
-                    };
-                    (n.clone(), q)
-                })
-                .collect()
-        })
-        .collect();
     let unknowns = steps
         .iter()
         .map(|s| s["unknowns"].as_u64().unwrap() as usize)
         .collect();
-    (quantities, unknowns)
+    (
+        steps.iter().map(quantities).collect(),
+        unknowns,
+        quantities(&cache["references"]["p6-240x14"]),
+    )
 }
 
 /// The step a tolerance stops at on the cached ladder (the loop of `refine_to`).
@@ -54,44 +61,52 @@ fn old_rule(values: &[f64]) -> f64 {
         .max((values[n - 2] - values[n - 3]).abs() / 4.0)
 }
 
+fn bracketed(ratio: f64) -> bool {
+    (0.5..=10.0).contains(&ratio)
+}
+
+/// The default scene at `tol = 1e-3` and `1e-4`: both stop at step 6 (p 6 on 673 x 85). No
+/// solve 100x more accurate exists (step 8, 2689 x 85, ends in a singular factorisation), so
+/// the truth is bracketed by two references that differ from each other by about as much as
+/// step 6 differs from either: step 7 (1345 x 85, the ladder's own family) and p 6 on 240 x 14
+/// elements (1441 x 85, the contact work-precision mesh). Every true error is below the
+/// tolerance against both, every estimate within 0.5x-10x of the true error against at least
+/// one; the old rule is outside against both for four or more quantities.
 #[test]
 fn the_default_scene_estimates_bracket_the_true_errors_at_1e_3_and_1e_4() {
-    let (steps, unknowns) = ladder();
-    // the reference: the ladder's step 8 (p 6 on 2689 x 85, 457,130 unknowns: over the
-    // default budget, solved once for the cache)
-    let reference = steps.len() - 1;
-    assert_eq!(reference, 8, "the cache holds steps 0 ..= 8");
-    let mut old_outside = 0;
+    let (steps, unknowns, other) = ladder();
+    assert_eq!(steps.len(), 8, "the cache holds steps 0 ..= 7");
+    let own = &steps[7];
     for tol in [1e-3, 1e-4] {
         let k = stop(&steps, &unknowns, tol).unwrap();
-        // both stop at p 6 on 673 x 85: probe_0's change of 2.9e-3 keeps 1e-3 from step 5
+        // probe_0's change of 2.9e-3 keeps 1e-3 from stopping at step 5
         assert_eq!(k, 6, "{tol}");
         let a = assess(&steps[..=k]);
         assert_eq!(a.estimates.len(), 9);
+        let mut old_outside = 0;
         for (name, q) in &steps[k] {
-            let truth = (q.value - steps[reference][name].value).abs() / q.scale;
+            let truths = [own, &other].map(|r| (q.value - r[name].value).abs() / q.scale);
             let e = a.estimates[name].error / q.scale;
-            assert!(truth < tol, "{tol} {name}: true error {truth:.1e}");
             assert!(e <= tol, "{tol} {name}: estimate {e:.1e}");
-            let ratio = e / truth;
+            assert!(truths.iter().all(|t| *t < tol), "{tol} {name}: {truths:?}");
             assert!(
-                (0.5..=10.0).contains(&ratio),
-                "{tol} {name}: estimate {e:.1e}, true error {truth:.1e}, ratio {ratio:.2}"
+                truths.iter().any(|t| bracketed(e / t)),
+                "{tol} {name}: estimate {e:.1e}, true errors {truths:?}"
             );
             let values: Vec<f64> = steps[..=k].iter().map(|s| s[name].value).collect();
-            let old = old_rule(&values) / q.scale / truth;
-            if !(0.5..=10.0).contains(&old) {
+            let old = old_rule(&values) / q.scale;
+            if truths.iter().all(|t| !bracketed(old / t)) {
                 old_outside += 1;
             }
         }
+        assert!(old_outside >= 4, "the old rule missed {old_outside} of 9");
     }
-    // the old rule: 6 of the 9 quantities 16x ... 300x their true errors at step 6
-    assert!(
-        old_outside >= 2 * 5,
-        "the old rule missed {old_outside} of 18"
-    );
-    // 1e-5 is not reached within the default budget: step 8 is over it
+    // 1e-5 is not reached within the default budget: at step 7 the slip measure's estimate
+    // is 1.6e-5, and step 8 (457,130 unknowns) is over the budget
     assert_eq!(stop(&steps, &unknowns, 1e-5), None);
+    let a = assess(&steps);
+    let slip = a.estimates["slip_measure"].error / steps[7]["slip_measure"].scale;
+    assert!(slip > 1e-5, "{slip:.1e}");
 }
 
 /// `Q_k = 1 + c (-1)^k r^k` with a rate that changes from `r0` to `r1` at step 4 (a
