@@ -26,12 +26,11 @@ fn quantities(s: &serde_json::Value) -> BTreeMap<String, Scaled> {
         .collect()
 }
 
+/// A solve's quantities by name.
+type Quantities = BTreeMap<String, Scaled>;
+
 /// Every cached step's quantities, their unknowns, and the reference outside the ladder.
-fn ladder() -> (
-    Vec<BTreeMap<String, Scaled>>,
-    Vec<usize>,
-    BTreeMap<String, Scaled>,
-) {
+fn ladder() -> (Vec<Quantities>, Vec<usize>, Quantities) {
     let cache: serde_json::Value =
         serde_json::from_str(include_str!("../docs/data/contact_ladder.json")).unwrap();
     let steps = cache["steps"].as_array().unwrap();

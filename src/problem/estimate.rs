@@ -32,9 +32,9 @@
 //! [`SAFETY`] `= 2` covers a next rate up to twice as slow as the one used (the estimate is
 //! then still at least the error) and keeps the estimate at most `2 * CONSISTENT = 6` times
 //! the error when the next rate is as fast as the faster observed one. On the default scene's
-//! threshold ladder (rates 0.12, 0.20, 0.21) it is 1.1x ... 1.8x the error; on its contact
-//! quantities at the step `tol = 1e-3` chooses, 0.5x ... 6x (docs/verification.md, "The
-//! contact tolerance table").
+//! threshold ladder (rates 0.12, 0.20, 0.21) it is 1.1x ... 1.7x the error; on its contact
+//! quantities at the step `tol = 1e-3` chooses, 0.57x ... 5.0x against one of the two finest
+//! solves at least (docs/verification.md, "The contact tolerance table").
 //!
 //! The estimate is the last change `e_k = |d_k|` (rule `last-change`) where no rate can be
 //! read:

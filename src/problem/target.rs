@@ -41,8 +41,9 @@ use super::solve::ProblemError;
 /// Refinement stops at the first `k >= 2` (two differences) with `e_k(Q) <= tol * scale(Q)`
 /// for every `Q`; `scale(Q)` is the quantity's own magnitude, or for lengths along the contact
 /// face (slip measure, stick-zone ends) the face's measure. On the default scene the estimates
-/// of the chosen step are within 0.5x-10x of the true errors at `tol = 1e-3` and `1e-4`
-/// (docs/verification.md, "The contact tolerance table").
+/// of the chosen step are within 0.5x-10x of the true errors at `tol = 1e-3` and `1e-4`,
+/// against at least one of the two finest solves (docs/verification.md, "The contact
+/// tolerance table").
 ///
 /// # The ladder
 /// Plane strain: `fem-qp` of order `p = 2, 3, ..., 6` (GLL nodes) with `p` geometric layers of
