@@ -149,6 +149,43 @@ fn contact_series_measure_three_quantities_against_a_cached_reference() {
 }
 
 #[test]
+fn transition_series_runs_both_passes_on_the_graded_mesh() {
+    // `fem-qp-transition` (quick: p = 2, 3 on 24 x 8 cells, graded toward the transitions of a
+    // p = 2 first pass on 12 x 2 cells); its accuracy is tests/transition_grading.rs'
+    let dir = common::scratch_dir("wp-transition");
+    let r = report(&WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        problems: vec![Problem::Contact],
+        methods: vec!["fem-qp-transition".to_owned()],
+        ..Default::default()
+    })
+    .unwrap();
+    for quantity in ["contact-slip", "contact-v2"] {
+        let rows: Vec<_> = r
+            .runs
+            .iter()
+            .filter(|x| x.problem == quantity && x.backend == "newton")
+            .collect();
+        assert_eq!(rows.len(), 2, "{:?}", r.runs);
+        for (run, order) in rows.iter().zip([2, 3]) {
+            // the grid of the cells, and the graded mesh's own unknowns: more x2 lines
+            assert_eq!([run.n2, run.n3], [24 * order + 1, 8 * order + 1]);
+            assert!(run.dofs > 2 * run.n2 * run.n3, "{run:?}");
+            assert!(run.error.is_finite() && run.seconds > 0.0, "{run:?}");
+        }
+    }
+    let threshold = r
+        .runs
+        .iter()
+        .filter(|x| x.problem == "contact-threshold")
+        .count();
+    assert_eq!(threshold, 2);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn paper_corner_series_converges_with_the_layers() {
     // fem-qp6 on `paper` (quick): the corner-refined rows, 1, 2, 3 layers of 0.3 on 12 x 2
     // cells, beside the uniform and graded ones

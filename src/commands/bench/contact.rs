@@ -12,7 +12,12 @@
 //!   [`crate::problem::Problem::accuracy_step`]), both solvers;
 //! - `fem-qp-corner`: the corner-refined mesh of order `p = 2 ... 6` on `12 x 2` cells (five
 //!   layers of `0.3`, the scheme's defaults), both solvers (a solver that does not converge on a
-//!   mesh is reported in `contact.failures` and its point left out).
+//!   mesh is reported in `contact.failures` and its point left out);
+//! - `fem-qp-transition`: two passes ([`crate::problem::Problem::graded_toward`]): a first
+//!   solve of order 2 on `12 x 2` cells locates the stick/slip transitions, the second of order
+//!   `p = 2 ... 6` on `24 x 8` cells has its `x2` lines graded toward them
+//!   ([`crate::problem::DEFAULT_TRANSITION_GRADING`]); the time is both passes', the values the
+//!   second's. Its threshold (full slip: no transition) is the `24 x 8` corner mesh's.
 //!
 //! The threshold is the condensed solver's search bracketed from the rigid-sliding limit
 //! (`ThresholdSettings::bracket_at_limit`, tolerance [`THRESHOLD_TOLERANCE`]), the same for
@@ -307,14 +312,46 @@ pub fn grid_levels(quick: bool) -> Vec<usize> {
         .collect()
 }
 
-/// One series of the contact bench: its name (`method` of the runs) and its problems.
+/// One series of the contact bench: its name (`method` of the runs), its problems and, for a
+/// two-pass series, the first pass that locates the stick/slip transitions the problems are
+/// graded toward.
 struct ContactSeries {
     method: &'static str,
     problems: Vec<Problem>,
+    first_pass: Option<Problem>,
+}
+
+/// The first pass of the `fem-qp-transition` series: order 2 on `12 x 2` cells (it only
+/// locates the transitions: 3.8e-3 of `pi` off in the slip measure, its transitions within
+/// 0.02 of the converged ones).
+fn transition_first_pass(base: &Problem) -> Problem {
+    corner_problem(base, 2, [12, 2])
+}
+
+/// `fem-qp-corner` of order `p` on `cells` element cells (the scheme's corner layers).
+fn corner_problem(base: &Problem, p: usize, cells: [usize; 2]) -> Problem {
+    let mut q = base.clone().with_grid(cells[0] * p + 1, cells[1] * p + 1);
+    q.body.method = DiscretisationMethod::FemQpCorner;
+    q.body.settings.order = p;
+    q
+}
+
+/// Solves `p`, graded toward the transitions of `first_pass` when given (both passes solved
+/// here, by `p`'s solver: the caller's timing includes them).
+fn solve_series_problem(p: &Problem, first_pass: Option<&Problem>) -> Result<Solved, CliError> {
+    Ok(match first_pass {
+        Some(first) => {
+            let mut first = first.clone();
+            first.solver.method = p.solver.method;
+            let (layers, ratio) = crate::problem::DEFAULT_TRANSITION_GRADING;
+            p.solve_graded_after(&first, layers, ratio)?.second
+        }
+        None => p.solve()?,
+    })
 }
 
 /// Every series selected by `--methods` (`fd`, `fem-q1`, `fem-q2`, `fem-qp-hp`,
-/// `fem-qp-corner`).
+/// `fem-qp-corner`, `fem-qp-transition`).
 fn contact_series(quick: bool, methods: &[String]) -> Result<Vec<ContactSeries>, CliError> {
     let base = default_problem()?;
     let mut out = vec![];
@@ -334,6 +371,7 @@ fn contact_series(quick: bool, methods: &[String]) -> Result<Vec<ContactSeries>,
         out.push(ContactSeries {
             method: name,
             problems,
+            first_pass: None,
         });
     }
     let steps = if quick { 0..=1 } else { 0..=5 };
@@ -342,18 +380,21 @@ fn contact_series(quick: bool, methods: &[String]) -> Result<Vec<ContactSeries>,
         problems: steps
             .map(|k| base.accuracy_step(k))
             .collect::<Result<_, _>>()?,
+        first_pass: None,
     });
     let orders = if quick { 2..=3 } else { 2..=6 };
     out.push(ContactSeries {
         method: "fem-qp-corner",
         problems: orders
-            .map(|p| {
-                let mut q = base.clone().with_grid(12 * p + 1, 2 * p + 1);
-                q.body.method = DiscretisationMethod::FemQpCorner;
-                q.body.settings.order = p;
-                q
-            })
+            .clone()
+            .map(|p| corner_problem(&base, p, [12, 2]))
             .collect(),
+        first_pass: None,
+    });
+    out.push(ContactSeries {
+        method: "fem-qp-transition",
+        problems: orders.map(|p| corner_problem(&base, p, [24, 8])).collect(),
+        first_pass: Some(transition_first_pass(&base)),
     });
     out.retain(|s| methods.is_empty() || methods.iter().any(|m| m == s.method));
     Ok(out)
@@ -447,21 +488,18 @@ pub fn pass(
                 p.solver.method = method;
                 let mut v2_error = f64::NAN;
                 let slip = REPEAT_RULE.fastest(|| -> Result<Run, CliError> {
-                    let ((slip, v2), timing) = timed(use_vmhwm, || {
-                        let solved = p.solve()?;
+                    let ((slip, v2, dofs), timing) = timed(use_vmhwm, || {
+                        let solved = solve_series_problem(&p, series.first_pass.as_ref())?;
                         let (slip, v2, _) = values_of(&solved)?;
-                        Ok(((slip, v2), solved.times[0]))
+                        let dofs = solved.model.operator().dof_count();
+                        Ok(((slip, v2, dofs), solved.times[0]))
                     })?;
                     v2_error = (v2 - r.max_abs_v2).abs() / r.max_abs_v2.abs();
                     let e = (slip - r.slip_measure).abs() / measure;
-                    Ok(run_of(
-                        "contact-slip",
-                        series.method,
-                        solver,
-                        &p,
-                        &timing,
-                        e,
-                    ))
+                    // the solved body's unknowns (a graded second pass has more x2 lines)
+                    let mut run = run_of("contact-slip", series.method, solver, &p, &timing, e);
+                    run.dofs = dofs;
+                    Ok(run)
                 });
                 match slip {
                     Ok(slip) => {

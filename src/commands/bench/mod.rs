@@ -120,11 +120,12 @@ pub struct WorkPrecisionArgs {
     pub problems: Vec<Problem>,
     /// capstan methods to run (e.g. `fem-qp6,fem-qp7`; `fem-qpP` also selects the graded
     /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper`;
-    /// `fem-qp-hp` and `fem-qp-corner` are the `contact` problem's ladder and corner-mesh
-    /// series); default: all.
+    /// `fem-qp-hp`, `fem-qp-corner` and `fem-qp-transition` are the `contact` problem's
+    /// ladder, corner-mesh and two-pass transition-graded series); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
         "fem-qp7", "fem-qp8", "fem-qp9", "fem-qp10", "fem-qp-hp", "fem-qp-corner",
+        "fem-qp-transition",
     ])]
     pub methods: Vec<String>,
     /// Peers to run (e.g. `ngsolve`); default: all (`--no-peer` skips them all).
