@@ -1,140 +1,341 @@
 //! The contact quantities of the default scene at accuracy targets (issue 28's tolerance
-//! table): for each tolerance, `capstan contact --tol TOL` through the library, and for every
-//! reported quantity its value, its relative estimate, its true relative error against a
-//! reference run and the ratio estimate / true error; then the wall time of each tolerance.
+//! table), from a cache of the accuracy ladder: for each tolerance, the step `capstan contact
+//! --tol TOL` stops at, and for every reported quantity its value, its relative estimate and
+//! rule, its true relative error against a reference and the ratio estimate / true error,
+//! with the old rule's ratio beside it; then the time of each tolerance.
 //!
 //! # Problem
-//! The paper's body on the circle (`Scene::default()`, ratio 2, `eps` regularised Coulomb).
-//! Under `accuracy.tol` the ladder of `src/problem/target.rs` (Qp `p = 2 ... 6` graded toward
-//! the corners, then the order-6 mesh with 2, 4, 8, ... times the elements along `x2`) refines
-//! until every quantity's estimate `e_k = max(|Q_k - Q_{k-1}|, |Q_{k-1} - Q_{k-2}| / 4)` is
-//! below `tol` relative (the face's measure `pi` for slip measure and stick-zone ends).
+//! The paper's body on the circle (`Scene::default()`, ratio 2, `eps` regularised Coulomb,
+//! the default probes at the quarter points). Step `k` of the ladder is
+//! `Problem::accuracy_step(k)`: Qp `p = 2 ... 6` graded toward the ends, then the order-6
+//! mesh with 2, 4, 8, ... times the elements along `x2`.
+//!
+//! # Cache
+//! `docs/data/contact_ladder.json`: every solved step's quantities, scales, grid, unknowns,
+//! wall and CPU time and load average. The ladder is deterministic, so the stop of a
+//! tolerance is [`capstan::problem::assess`] and [`AccuracyTarget::met`] on the cached steps,
+//! the very functions `Problem::refine_to` calls after each solve; its time is the sum of the
+//! cached steps' times (refine_to solves each step once). `--solve LAST` solves the steps up
+//! to `LAST` missing from the cache (the cache is rewritten after each); `--live TOL` also
+//! runs `contact_to` at `TOL` and checks that it stops where the cache says with the same
+//! estimates.
 //!
 //! # Reference
-//! The ladder step `--reference-step K` (default: one step past the last step of the
-//! tightest run), solved once with no budget: its relative difference to each run is the
-//! "true error" column. A tolerance the budget cannot reach prints the typed error (which
-//! quantity missed, its differences and whether they fall) in place of its row.
+//! The cached step `--reference-step K` (default: the last cached): the "true error" column.
+//! Beside it a reference outside the ladder's family: the cached `p6-240x14` (p 6 on 240 x 14
+//! elements with the ladder's grading, 1441 x 85 nodes: `--reference-elements 240`; the mesh of
+//! the contact work-precision reference, docs/work-precision/contact/contact-reference.json,
+//! which it reproduces, and whose values stand in where the cache lacks it).
 //!
-//! Run: `cargo run --release --example contact_accuracy -- [TOL ...] [--reference-step K]`
-//! (default `1e-3 1e-4 1e-5`). Look at: every true error below its tolerance and every
-//! `estimate / true` between 0.5 and 10 (docs/verification.md, "Accuracy targets").
+//! Run: `cargo run --release --example contact_accuracy -- [TOL ...] [--solve LAST]
+//! [--reference-step K] [--live TOL] [--cache PATH]` (default `1e-3 1e-4 1e-5`). Look at: every
+//! true error below its tolerance and every `estimate / true` between 0.5 and 10
+//! (docs/verification.md, "The contact tolerance table").
 
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use capstan::commands::accuracy::{contact_to, probes, scaled};
-use capstan::problem::Scaled;
+use capstan::commands::accuracy::{behaviour, contact_to, probes, scaled};
+use capstan::problem::{AccuracyTarget, Scaled, assess};
 use capstan::scene::Scene;
 use capstan_elasticity::solvers::SilentObserver;
+use serde::{Deserialize, Serialize};
 
-/// One tolerance's run: the chosen step, its quantities and estimates, the wall time.
-struct Run {
-    tol: f64,
-    chosen: String,
+/// One ladder step as cached.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+struct CachedStep {
     step: usize,
-    values: BTreeMap<String, Scaled>,
-    estimates: BTreeMap<String, Option<f64>>,
+    grid: Vec<usize>,
+    unknowns: usize,
+    /// Wall time of the solve, seconds.
     seconds: f64,
+    /// CPU time (user + system) of the solve, seconds.
+    cpu_seconds: f64,
+    /// The one-minute load average when the step finished.
+    load_average: f64,
+    values: BTreeMap<String, f64>,
+    scales: BTreeMap<String, f64>,
+}
+
+/// The cache file.
+#[derive(Debug, Default, Serialize, Deserialize)]
+struct Cache {
+    scene: String,
+    steps: Vec<CachedStep>,
+    /// Solves outside the ladder (`--reference-elements E`: p 6, `E x 14` elements, the
+    /// ladder's grading), by name `p6-Ex14`.
+    #[serde(default)]
+    references: BTreeMap<String, CachedStep>,
+}
+
+impl CachedStep {
+    /// The step's quantities as `refine_to` saw them (the behaviour by name, as the contact
+    /// report classifies them).
+    fn scaled(&self) -> BTreeMap<String, Scaled> {
+        self.values
+            .iter()
+            .map(|(n, &value)| {
+                let behaviour = behaviour(n);
+                let scale = self.scales[n];
+                (
+                    n.clone(),
+                    Scaled {
+                        value,
+                        scale,
+                        behaviour,
+                    },
+                )
+            })
+            .collect()
+    }
+}
+
+/// User + system CPU seconds of this process (`/proc/self/stat`, clock ticks of 1/100 s).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // after the command name in parentheses: utime and stime are the 12th and 13th fields
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let f: Vec<f64> = after
+        .split_whitespace()
+        .map(|x| x.parse().unwrap_or(0.0))
+        .collect();
+    (f.get(11).copied().unwrap_or(0.0) + f.get(12).copied().unwrap_or(0.0)) / 100.0
+}
+
+fn load_average() -> f64 {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().and_then(|x| x.parse().ok()))
+        .unwrap_or(f64::NAN)
+}
+
+/// Solves one problem of the ladder (or beside it) and records it.
+fn solve_step(
+    k: usize,
+    problem: &capstan::problem::Problem,
+    probes: &[f64],
+) -> Result<CachedStep, Box<dyn std::error::Error>> {
+    let (t, c) = (Instant::now(), cpu_seconds());
+    let solved = problem.solve()?;
+    let q = scaled(&solved.quantities(probes)?, &solved.solution);
+    let step = CachedStep {
+        step: k,
+        grid: problem.grid(),
+        unknowns: problem.unknowns(),
+        seconds: t.elapsed().as_secs_f64(),
+        cpu_seconds: cpu_seconds() - c,
+        load_average: load_average(),
+        values: q.iter().map(|(n, v)| (n.clone(), v.value)).collect(),
+        scales: q.iter().map(|(n, v)| (n.clone(), v.scale)).collect(),
+    };
+    eprintln!(
+        "step {k}: {:?}, {} unknowns, {:.1} s wall, {:.1} s CPU, load {:.1}",
+        step.grid, step.unknowns, step.seconds, step.cpu_seconds, step.load_average
+    );
+    Ok(step)
+}
+
+/// The old rule (before h28-est): `max(|d_k|, |d_{k-1}| / 4)` on the values up to step `k`.
+fn old_estimate(values: &[f64]) -> Option<f64> {
+    let n = values.len();
+    (n >= 2).then(|| {
+        let d = (values[n - 1] - values[n - 2]).abs();
+        if n >= 3 {
+            d.max((values[n - 2] - values[n - 3]).abs() / 4.0)
+        } else {
+            d
+        }
+    })
+}
+
+/// Where a tolerance stops on the cached ladder.
+enum Stop {
+    /// At this step.
+    At(usize),
+    /// The next step is over the budget: the worst quantity, its relative estimate, the next
+    /// step's unknowns.
+    Budget(usize, String, f64, usize),
+    /// The cache ends first.
+    Uncached(usize),
+}
+
+fn stop(cache: &Cache, target: &AccuracyTarget) -> Stop {
+    let mut seen = Vec::new();
+    for (k, s) in cache.steps.iter().enumerate() {
+        if s.unknowns > target.max_unknowns {
+            let a = assess(&seen);
+            let (q, w) = a.worst.unwrap_or_default();
+            return Stop::Budget(k, q, w, s.unknowns);
+        }
+        seen.push(s.scaled());
+        if target.met(k, &assess(&seen)) {
+            return Stop::At(k);
+        }
+    }
+    // past the cache: the next step's size from the ladder itself
+    let n = cache.steps.len();
+    let next = Scene::default()
+        .build()
+        .and_then(|p| Ok(p.accuracy_step(n)?.unknowns()));
+    match next {
+        Ok(u) if u > target.max_unknowns => {
+            let (q, w) = assess(&seen).worst.unwrap_or_default();
+            Stop::Budget(n, q, w, u)
+        }
+        _ => Stop::Uncached(n),
+    }
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let mut reference_step: Option<usize> = None;
+    let (mut solve, mut reference_step, mut live, mut path) =
+        (None, None, None, "docs/data/contact_ladder.json".to_owned());
+    let mut elements: Option<usize> = None;
     let mut tolerances: Vec<f64> = Vec::new();
     let mut i = 0;
     while i < args.len() {
-        if args[i] == "--reference-step" {
-            reference_step = args.get(i + 1).and_then(|k| k.parse().ok());
-            i += 2;
-        } else {
-            tolerances.extend(args[i].parse::<f64>().ok());
-            i += 1;
+        let next = args.get(i + 1).cloned().unwrap_or_default();
+        match args[i].as_str() {
+            "--solve" => solve = next.parse::<usize>().ok(),
+            "--reference-step" => reference_step = next.parse::<usize>().ok(),
+            "--live" => live = next.parse::<f64>().ok(),
+            "--reference-elements" => elements = next.parse::<usize>().ok(),
+            "--cache" => path = next,
+            a => {
+                tolerances.extend(a.parse::<f64>().ok());
+                i += 1;
+                continue;
+            }
         }
+        i += 2;
     }
     if tolerances.is_empty() {
         tolerances = vec![1e-3, 1e-4, 1e-5];
     }
-    let mut runs: Vec<Run> = Vec::new();
-    let mut failed: Vec<(f64, String, f64)> = Vec::new();
+    let mut cache: Cache = std::fs::read_to_string(&path)
+        .ok()
+        .and_then(|s| serde_json::from_str(&s).ok())
+        .unwrap_or_default();
+    let scene = Scene::default();
+    if let Some(last) = solve {
+        cache.scene = "Scene::default() (the paper's body, ratio 2, default probes)".to_owned();
+        let base = scene.build()?;
+        let probes = probes(&scene);
+        for k in cache.steps.len()..=last {
+            let problem = base.accuracy_step(k)?;
+            let step = solve_step(k, &problem, &probes)?;
+            cache.steps.push(step);
+            // after every step: a long run interrupted keeps what it solved
+            std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
+        }
+    }
+    if let Some(e) = elements {
+        // the order-6 step with its grading, `e` elements along x2
+        let mut problem = scene.build()?.accuracy_step(4)?;
+        problem.body.n2 = 6 * e + 1;
+        let name = format!("p6-{e}x14");
+        if let std::collections::btree_map::Entry::Vacant(v) = cache.references.entry(name) {
+            v.insert(solve_step(usize::MAX, &problem, &probes(&scene))?);
+            std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
+        }
+    }
+    let Some(reference) = reference_step
+        .or(cache.steps.len().checked_sub(1))
+        .and_then(|k| cache.steps.get(k))
+    else {
+        return Err(format!("no cached ladder in {path}: run with --solve LAST").into());
+    };
+    let wp: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(
+        "docs/work-precision/contact/contact-reference.json",
+    )?)?;
+    println!(
+        "reference: ladder step {}, grid {:?}, {} unknowns ({:.1} s CPU); WP: {}",
+        reference.step, reference.grid, reference.unknowns, reference.cpu_seconds, wp["method"]
+    );
+    println!(
+        "| tol | stop (grid, unknowns) | CPU / wall (load) | quantity | value | estimate (rel) | rule | true error (rel) | est / true | vs p 6 240 x 14: true, est / true | old rule est / true |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for &tol in &tolerances {
+        let target = AccuracyTarget::new(tol)?;
+        let k = match stop(&cache, &target) {
+            Stop::At(k) => k,
+            Stop::Budget(k, q, w, u) => {
+                let cpu: f64 = cache.steps[..k].iter().map(|s| s.cpu_seconds).sum();
+                println!(
+                    "| {tol:.0e} | not reached: step {k} ({u} unknowns) is over the budget {}; at step {} the worst is {q} at {w:.1e} ({cpu:.1} s CPU spent) |",
+                    target.max_unknowns,
+                    k - 1
+                );
+                continue;
+            }
+            Stop::Uncached(n) => {
+                println!("| {tol:.0e} | not reached on the {n} cached steps |");
+                continue;
+            }
+        };
+        let steps: Vec<_> = cache.steps[..=k].iter().map(CachedStep::scaled).collect();
+        let a = assess(&steps);
+        let s = &cache.steps[k];
+        let cpu: f64 = cache.steps[..=k].iter().map(|s| s.cpu_seconds).sum();
+        let wall: f64 = cache.steps[..=k].iter().map(|s| s.seconds).sum();
+        let load = cache.steps[..=k]
+            .iter()
+            .map(|s| s.load_average)
+            .fold(0.0, f64::max);
+        for (name, q) in &steps[k] {
+            let e = a.estimates.get(name);
+            let est = e.map_or(f64::NAN, |e| e.error / q.scale);
+            let rule = e.map_or("-".to_owned(), |e| match e.rate {
+                Some(r) => format!("richardson r = {r:.3}"),
+                None => "last-change".to_owned(),
+            });
+            let truth = (q.value - reference.values[name]).abs() / q.scale;
+            let other = cache
+                .references
+                .get("p6-240x14")
+                .and_then(|r| r.values.get(name).copied())
+                .or_else(|| wp["values"][name].as_f64());
+            let wp_cell = other.map_or("-".to_owned(), |v| {
+                let t = (q.value - v).abs() / q.scale;
+                format!("{t:.1e}, {:.2}", est / t)
+            });
+            let values: Vec<f64> = steps.iter().map(|s| s[name].value).collect();
+            let old = old_estimate(&values).map_or(f64::NAN, |o| o / q.scale / truth);
+            println!(
+                "| {tol:.0e} | {k} ({:?}, {}) | {cpu:.1} s / {wall:.0} s ({load:.0}) | {name} | {:.10} | {est:.1e} | {rule} | {truth:.1e} | {:.2} | {wp_cell} | {old:.1} |",
+                s.grid,
+                s.unknowns,
+                q.value,
+                est / truth
+            );
+        }
+    }
+    if let Some(tol) = live {
         let mut scene = Scene::default();
         scene.accuracy.tol = Some(tol);
         let target = scene.accuracy.target()?.expect("accuracy.tol is set");
         let t = Instant::now();
-        match contact_to(&scene, &target, &mut SilentObserver) {
-            Ok((solved, _problem, estimate, report)) => {
-                let probes = probes(&scene);
-                let q = solved.quantities(&probes)?;
-                let c = &report.chosen;
-                runs.push(Run {
-                    tol,
-                    chosen: format!("p {}, {} x {}", c.order.unwrap_or(0), c.grid[0], c.grid[1]),
-                    step: report.steps.len() - 1,
-                    values: scaled(&q, &solved.solution),
-                    estimates: estimate.quantities,
-                    seconds: t.elapsed().as_secs_f64(),
-                });
-            }
-            Err(e) => failed.push((tol, e.to_string(), t.elapsed().as_secs_f64())),
-        }
-    }
-    let Some(last) = runs.iter().map(|r| r.step).max() else {
-        for (tol, e, s) in &failed {
-            println!("tol {tol:.0e}: {e} ({s:.1} s)");
-        }
-        return Ok(());
-    };
-    let k = reference_step.unwrap_or(last + 1);
-    let scene = Scene::default();
-    let t = Instant::now();
-    let reference = scene.build()?.accuracy_step(k)?;
-    let solved = reference.solve()?;
-    let rq = solved.quantities(&probes(&scene))?;
-    let truth = scaled(&rq, &solved.solution);
-    println!(
-        "reference: ladder step {k}, grid {:?}, {} unknowns ({:.1} s)",
-        reference.grid(),
-        reference.unknowns(),
-        t.elapsed().as_secs_f64()
-    );
-    println!(
-        "| tol | chosen (step) | wall | quantity | value | estimate (rel) | true error (rel) | estimate / true | true < tol | 0.5 <= ratio <= 10 |"
-    );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
-    for r in &runs {
-        for (name, q) in &r.values {
-            let est = r
-                .estimates
-                .get(name)
-                .copied()
-                .flatten()
-                .map(|e| e / q.scale);
-            let err = truth.get(name).map(|t| (q.value - t.value).abs() / q.scale);
-            let (est_s, ratio) = match (est, err) {
-                (Some(e), Some(t)) => (format!("{e:.1e}"), e / t),
-                (Some(e), None) => (format!("{e:.1e}"), f64::NAN),
-                _ => ("-".to_owned(), f64::NAN),
-            };
-            let err = err.unwrap_or(f64::NAN);
-            println!(
-                "| {:.0e} | {} ({}) | {:.1} s | {name} | {:.9} | {est_s} | {err:.1e} | {ratio:.1} | {} | {} |",
-                r.tol,
-                r.chosen,
-                r.step,
-                r.seconds,
-                q.value,
-                if err < r.tol { "yes" } else { "no" },
-                if (0.5..=10.0).contains(&ratio) {
-                    "yes"
-                } else {
-                    "no"
-                },
-            );
-        }
-    }
-    for (tol, e, s) in &failed {
-        println!("| {tol:.0e} | not reached ({s:.1} s): {e} |");
+        let (_, _, estimate, report) = contact_to(&scene, &target, &mut SilentObserver)?;
+        let k = report.steps.len() - 1;
+        let cached = match stop(&cache, &target) {
+            Stop::At(c) => Some(c),
+            _ => None,
+        };
+        let steps: Vec<_> = cache.steps[..=k].iter().map(CachedStep::scaled).collect();
+        let a = assess(&steps);
+        let worst = estimate
+            .quantities
+            .iter()
+            .map(|(n, e)| {
+                let c = a.estimates[n].error;
+                (e.unwrap_or(f64::NAN) - c).abs() / c
+            })
+            .fold(0.0, f64::max);
+        println!(
+            "live contact_to at {tol:.0e}: stopped at step {k} (cache: {cached:?}) in {:.1} s wall; estimates against the cache's: largest relative difference {worst:.1e}",
+            t.elapsed().as_secs_f64()
+        );
     }
     Ok(())
 }

@@ -31,6 +31,7 @@ use serde::Serialize;
 use capstan_elasticity::contact::{ContactQuantities, ContactSolution};
 
 use crate::error::CliError;
+use crate::problem::estimate::{Behaviour, Rule};
 use crate::problem::{AccuracyTarget, Problem, Refined, Scaled, Step};
 use crate::scene::Scene;
 
@@ -43,8 +44,13 @@ pub struct ErrorEstimate {
     pub quantities: BTreeMap<String, Option<f64>>,
     /// `[n2, n3]` of the coarser grid (`[n1, n2, n3]` on a 3-D body).
     pub coarser_grid: Vec<usize>,
-    /// How the estimate was made: `one-level-coarser`.
+    /// How the estimate was made: `one-level-coarser`, or `previous-refinement` under an
+    /// accuracy target.
     pub method: &'static str,
+    /// Under an accuracy target, the rule of each quantity's estimate along the ladder
+    /// (`richardson` or `last-change`: [`crate::problem::estimate`]); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rules: Option<BTreeMap<String, Rule>>,
 }
 
 impl ErrorEstimate {
@@ -65,6 +71,7 @@ impl ErrorEstimate {
             quantities,
             coarser_grid,
             method: "one-level-coarser",
+            rules: None,
         }
     }
 }
@@ -125,8 +132,9 @@ impl AccuracyReport {
         })
     }
 
-    /// The estimate of a refinement: `|Q_k - Q_{k-1}|` of every quantity, against the grid of
-    /// the step before (method `previous-refinement`).
+    /// The estimate of a refinement: `e_k(Q)` of every quantity along the ladder (Richardson
+    /// with the observed rate, or the last change: [`crate::problem::AccuracyTarget`]), with
+    /// the grid of the step before (method `previous-refinement`).
     pub fn estimate<T, S>(refined: &Refined<T, S>) -> ErrorEstimate {
         let n = refined.steps.len();
         ErrorEstimate {
@@ -137,6 +145,7 @@ impl AccuracyReport {
                 .collect(),
             coarser_grid: refined.steps[n.saturating_sub(2)].grid.clone(),
             method: "previous-refinement",
+            rules: Some(refined.rules.clone()),
         }
     }
 
@@ -172,7 +181,7 @@ impl AccuracyReport {
 
 /// The quantities of a contact solution with the scales their tolerances are relative to:
 /// lengths along the contact face (`slip_measure`, `stick_from`, `stick_to`) the face's
-/// measure, every other quantity its own magnitude.
+/// measure, every other quantity its own magnitude; the behaviour of each from [`behaviour`].
 pub fn scaled(
     quantities: &ContactQuantities,
     solution: &ContactSolution,
@@ -186,9 +195,27 @@ pub fn scaled(
                 _ => value.abs(),
             };
             let scale = scale.max(f64::MIN_POSITIVE);
-            (name, Scaled { value, scale })
+            let behaviour = behaviour(&name);
+            (
+                name,
+                Scaled {
+                    value,
+                    scale,
+                    behaviour,
+                },
+            )
         })
         .collect()
+}
+
+/// How a contact quantity converges along a ladder, by its name: the slip measures and the
+/// stick-zone ends are located between nodes ([`Behaviour::Located`]), every other quantity
+/// converges at a rate ([`Behaviour::Smooth`]).
+pub fn behaviour(name: &str) -> Behaviour {
+    match name {
+        "slip_measure" | "slip_physical_measure" | "stick_from" | "stick_to" => Behaviour::Located,
+        _ => Behaviour::Smooth,
+    }
 }
 
 /// Solves a scene's contact problem to its accuracy target: the solution of the chosen step,

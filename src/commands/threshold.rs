@@ -87,10 +87,7 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
                 ..Default::default()
             };
             let mu = membrane::infer_mu(&p.body.surface, &membrane, r.ratio)?.mu;
-            let q = |v: f64| Scaled {
-                value: v,
-                scale: v.abs().max(f64::MIN_POSITIVE),
-            };
+            let q = |v: f64| Scaled::smooth(v, v.abs().max(f64::MIN_POSITIVE));
             let quantities = BTreeMap::from([
                 ("threshold_ratio".to_owned(), q(r.ratio)),
                 ("implied_mu".to_owned(), q(mu)),

@@ -36,6 +36,7 @@
 
 mod accuracy;
 mod builder;
+pub mod estimate;
 mod exact_start;
 mod friction;
 pub mod nonlinear_registry;
@@ -53,5 +54,5 @@ pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{
     AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,
 };
-pub use target::{AccuracyTarget, Refined, Scaled, Step};
+pub use target::{AccuracyTarget, Assessment, Refined, Scaled, Step, assess};
 pub use transitions::{DEFAULT_TRANSITION_GRADING, TwoPass};
