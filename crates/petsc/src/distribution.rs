@@ -8,7 +8,7 @@ use capstan_solvers::SolverError;
 use capstan_solvers::row_distribution::{RowDistribution, owned_blocks};
 
 use crate::error::{PetscError, check};
-use crate::session::{Session, on_session_thread, running};
+use crate::session::{Session, on_session_thread, option_bool, running};
 
 /// The PETSc option that keeps the full-system Newton's vectors whole on every rank
 /// (`solver.petsc_options = "-capstan_owned_newton false"`; default true: each rank holds its
@@ -112,25 +112,11 @@ impl PetscDistribution {
         if !running() {
             return Err(PetscError::NotStarted);
         }
-        let name = std::ffi::CString::new(OWNED_NEWTON_OPTION).expect("no NUL");
-        let (mut value, mut set) = (1, 0);
-        // SAFETY: PETSc is running; the name outlives the call.
-        unsafe {
-            check(
-                sys::PetscOptionsGetBool(
-                    core::ptr::null_mut(),
-                    core::ptr::null(),
-                    name.as_ptr(),
-                    &mut value,
-                    &mut set,
-                ),
-                "PetscOptionsGetBool",
-            )?;
-        }
+        let owned_newton = option_bool(OWNED_NEWTON_OPTION)?.unwrap_or(true);
         Ok(Self {
             rank: session.rank(),
             size: session.size(),
-            owned_newton: set == 0 || value != 0,
+            owned_newton,
             cache: Mutex::new(None),
             ghosts: Mutex::new(None),
             one: Mutex::new(None),

@@ -159,6 +159,30 @@ pub(crate) fn on_session_thread(what: &'static str) -> Result<(), PetscError> {
     }
 }
 
+/// The boolean option `-name` of PETSc's options database: `Some(value)` when it is set,
+/// `None` when not (PETSc must be running).
+///
+/// # Errors
+/// PETSc's error of `PetscOptionsGetBool`.
+pub(crate) fn option_bool(name: &str) -> Result<Option<bool>, PetscError> {
+    let name = CString::new(name).expect("option names have no NUL");
+    let (mut value, mut set) = (0, 0);
+    // SAFETY: the caller runs PETSc; the name outlives the call.
+    unsafe {
+        check(
+            sys::PetscOptionsGetBool(
+                core::ptr::null_mut(),
+                core::ptr::null(),
+                name.as_ptr(),
+                &mut value,
+                &mut set,
+            ),
+            "PetscOptionsGetBool",
+        )?;
+    }
+    Ok((set != 0).then_some(value != 0))
+}
+
 /// Whether PETSc is running (started and not finalised).
 pub fn running() -> bool {
     let (mut started, mut finalised) = (0, 0);

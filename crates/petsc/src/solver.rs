@@ -12,7 +12,7 @@ use capstan_solvers::{
 
 use crate::error::{PetscError, check, diverged_name};
 use crate::policy::{FORCING_ETA_MAX_OPTION, FORCING_OPTION, PC_LAG_OPTION, StepPolicy};
-use crate::session::{on_session_thread, running};
+use crate::session::{on_session_thread, option_bool, running};
 
 /// The name of the backend in `solver.linear`.
 pub const NAME: &str = "petsc";
@@ -247,22 +247,7 @@ impl PetscSolver {
     /// `-capstan_near_null_space false` (for comparisons: GAMG then coarsens as for a scalar
     /// problem); the rows stay owned in whole nodes.
     fn read_near_null_option(&mut self) -> Result<(), PetscError> {
-        let name = CString::new(NEAR_NULL_OPTION).expect("no NUL");
-        let (mut value, mut set) = (1, 0);
-        // SAFETY: PETSc is running (checked in `new`); the name outlives the call.
-        unsafe {
-            check(
-                sys::PetscOptionsGetBool(
-                    core::ptr::null_mut(),
-                    core::ptr::null(),
-                    name.as_ptr(),
-                    &mut value,
-                    &mut set,
-                ),
-                "PetscOptionsGetBool",
-            )?;
-        }
-        if set != 0 && value == 0 {
+        if option_bool(NEAR_NULL_OPTION)? == Some(false) {
             // the rows stay owned in whole nodes (as the caller may have assembled them)
             self.near_null_space = self.near_null_space.take().map(|z| {
                 Arc::new(NearNullSpace {
