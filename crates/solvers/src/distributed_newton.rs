@@ -11,8 +11,7 @@ use crate::linear_registration::BoxedLinearSolver;
 use crate::linear_solver::LinearSolver;
 use crate::newton::NewtonParams;
 use crate::newton_driver::{
-    Flow, NewtonDirection, NewtonIterate, NewtonPolicy, NewtonSystem, Reduction, ResidualNorm,
-    newton_drive,
+    Flow, NewtonDirection, NewtonIterate, NewtonSystem, Reduction, newton_drive,
 };
 use crate::nonlinear_solver::SolveReport;
 use crate::observer::{Observer, Progress, SolveStage};
@@ -125,16 +124,7 @@ impl DistributedNewton {
             self.analysed = Some(pattern.clone());
         }
         let params = self.params;
-        let policy = NewtonPolicy {
-            max_iterations: params.max_iterations,
-            absolute_tolerance: params.absolute_tolerance,
-            relative_tolerance: params.relative_tolerance,
-            norm: ResidualNorm::Two,
-            step: params.line_search.step_control(),
-            divergence_limit: Some(params.divergence_limit),
-            step_stagnation: true,
-            check_finite: true,
-        };
+        let policy = params.policy();
         let mut system = OwnedSystem {
             problem,
             linear: self.linear.as_mut(),

@@ -104,6 +104,22 @@ impl Default for NewtonParams {
 }
 
 impl NewtonParams {
+    /// The driver's policy of the sparse Newtons ([`Newton`], [`crate::DistributedNewton`]):
+    /// these tolerances, cap and line search, the two-norm of the residual, divergence at
+    /// `divergence_limit`, step stagnation and non-finite values as failures.
+    pub(crate) fn policy(&self) -> NewtonPolicy {
+        NewtonPolicy {
+            max_iterations: self.max_iterations,
+            absolute_tolerance: self.absolute_tolerance,
+            relative_tolerance: self.relative_tolerance,
+            norm: ResidualNorm::Two,
+            step: self.line_search.step_control(),
+            divergence_limit: Some(self.divergence_limit),
+            step_stagnation: true,
+            check_finite: true,
+        }
+    }
+
     /// The settings of the linear backends, as [`LinearBackend::build`] reads them.
     pub fn linear_settings(&self) -> LinearSettings {
         LinearSettings {
@@ -418,16 +434,7 @@ impl NonlinearSolver<f64> for Newton {
             self.linear.analyse(pattern)?;
             self.analysed = Some(pattern.clone());
         }
-        let policy = NewtonPolicy {
-            max_iterations: params.max_iterations,
-            absolute_tolerance: params.absolute_tolerance,
-            relative_tolerance: params.relative_tolerance,
-            norm: ResidualNorm::Two,
-            step: params.line_search.step_control(),
-            divergence_limit: Some(params.divergence_limit),
-            step_stagnation: true,
-            check_finite: true,
-        };
+        let policy = params.policy();
         let mut system = SparseSystem {
             problem,
             linear: self.linear.as_mut(),
