@@ -50,7 +50,8 @@ fn to_py(py: Python<'_>, e: &CliError) -> PyErr {
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
 /// Runs `f` on a worker thread while this (the interpreter's) thread waits without the GIL and
-/// checks for signals every [`SIGNAL_POLL`]. Ctrl-C raises `KeyboardInterrupt` at once and sets
+/// checks for signals every [`SIGNAL_POLL`] and once more when the result arrives. Ctrl-C raises
+/// `KeyboardInterrupt` at once (or when a solve shorter than one poll returns) and sets
 /// the stop flag `f` receives: an observed solve stops at its next iteration, anything else
 /// finishes in the background and is discarded. A panic becomes a `CapstanError` rather than
 /// crossing the boundary.
@@ -79,6 +80,11 @@ fn run<T: Send + 'static>(
         // the receiver is not `Sync`: it goes into the GIL-free closure and comes back
         let (received, back) = py.detach(move || (rx.recv_timeout(SIGNAL_POLL), rx));
         rx = back;
+        // A Ctrl-C that arrived while the solve finished within one poll still raises: the
+        // result is discarded, as an interrupted `time.sleep` discards its remaining wait.
+        if received.is_ok() {
+            py.check_signals()?;
+        }
         match received {
             Ok(Ok(Ok(t))) => return Ok(t),
             Ok(Ok(Err(e))) => return Err(to_py(py, &e)),
