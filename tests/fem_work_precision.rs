@@ -219,6 +219,43 @@ fn paper_corner_series_converges_with_the_layers() {
 }
 
 #[test]
+fn mms_x2_series_refines_where_the_error_is() {
+    // fem-qp6 on `mms` (quick): the uniform rows `2k x k` (k = 1, 2, 4) and the `fem-qp6-x2`
+    // rows `e2 x 1` (e2 = 2, 3, 4)
+    let dir = common::scratch_dir("wp-mms-x2");
+    let r = report(&WorkPrecisionArgs {
+        quick: true,
+        out: Some(dir.clone()),
+        no_peer: true,
+        problems: vec![Problem::Mms],
+        methods: vec!["fem-qp6".to_owned()],
+        ..Default::default()
+    })
+    .unwrap();
+    let rows = |method: &str| -> Vec<_> { r.runs.iter().filter(|x| x.method == method).collect() };
+    let (uniform, x2) = (rows("fem-qp6"), rows("fem-qp6-x2"));
+    assert_eq!(x2.len(), 3, "{:?}", r.runs);
+    assert!(x2.iter().map(|x| x.n2).eq([13, 19, 25]), "{x2:?}"); // 6 e2 + 1 nodes
+    assert!(x2.iter().all(|x| x.n3 == 7), "{x2:?}"); // one element through the thickness
+    // the first rung is the uniform series' first grid (2 x 1 elements): the same solve
+    assert_eq!(x2[0].error, uniform[0].error);
+    assert!(
+        x2.windows(2)
+            .all(|w| w[1].error < w[0].error && w[1].dofs > w[0].dofs),
+        "{x2:?}"
+    );
+    // why the series exists: the uniform k = 2 run (4 x 2 elements) has the error of the
+    // 4 x 1 one, so its second layer through the thickness buys nothing (5.48e-7 both)
+    assert_eq!((uniform[1].n2, uniform[1].n3), (25, 13));
+    let ratio = uniform[1].error / x2[2].error;
+    assert!((ratio - 1.0).abs() < 1e-3, "{ratio}: {uniform:?} {x2:?}");
+    // ... at 350 unknowns instead of 650
+    assert!(x2[2].error < 1e-6 && 1.8 * (x2[2].dofs as f64) < uniform[1].dofs as f64);
+    assert!(r.series.iter().any(|s| s.method == "fem-qp6-x2"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 #[ignore = "runs every method on three grids per problem: several seconds"]
 fn quick_work_precision_writes_csv_and_plots() {
     let dir = common::scratch_dir("wp");

@@ -3,7 +3,10 @@
 //!
 //! Grids: `k` elements through the thickness and `4k` (`lame`, `paper`) or `2k` (`mms`)
 //! around, i.e. the problem's level `m = k p`, `k = 1, 2, 3, 4, 6, 8, 12, 16, 24, 32`
-//! ([`LADDER`]) within [`MAX_DOFS`]. On `paper` also the graded series
+//! ([`LADDER`]) within [`MAX_DOFS`]. On `mms` also the series `fem-qpP-x2`: one element
+//! through the thickness and `e2 = 2, 3, 4, 5, 6, 8, ...` along `x2` ([`X2_LADDER`]), the
+//! refinement where `mms`'s error is (its error does not change when the elements through
+//! the thickness are doubled, from `p = 5` on). On `paper` also the graded series
 //! `fem-qpP-graded`: `n` geometric layers (ratio [`SIGMA`]) at each end of `x2` and `x3`
 //! around `6 x 1` middle elements ([`Grading`]), `n` growing along the series, orders up to
 //! [`PAPER_REFINED_MAX_ORDER`]; the paper's
@@ -23,7 +26,7 @@ use capstan_elasticity::finite_element::{
 };
 use capstan_elasticity::samples::PaperEllipse;
 use capstan_elasticity::solvers::SparseCholesky;
-use capstan_elasticity::studies::{SampleChart, paper_parts};
+use capstan_elasticity::studies::{SampleChart, mms_parts, paper_parts};
 use capstan_elasticity::verification::GridLevel;
 use capstan_elasticity::{Discretisation, ElasticityError};
 
@@ -47,6 +50,15 @@ const LADDER: [usize; 10] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32];
 /// The ladder of `--quick`.
 const QUICK_LADDER: [usize; 3] = [1, 2, 4];
 
+/// Elements along `x2` of the `fem-qpP-x2` series on `mms` (one element through the
+/// thickness): no two successive rungs more than a factor 1.5 apart from `e2 = 4` on. It
+/// stops at 32: by then every order has reached the floor of its single element through
+/// the thickness (`p = 5`: 1.4e-8 from `e2 = 10`, `p = 6`: 9.8e-10 from `e2 = 12`).
+const X2_LADDER: [usize; 12] = [2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32];
+
+/// The `fem-qpP-x2` ladder of `--quick`.
+const QUICK_X2_LADDER: [usize; 3] = [2, 3, 4];
+
 /// Largest system of a `fem-qp` row (unknowns), about the size of the finest Q2 rows.
 const MAX_DOFS: usize = 140_000;
 
@@ -61,6 +73,27 @@ pub(super) fn element_levels(problem: Problem, p: usize, quick: bool) -> Vec<usi
             2 * l.n2 * l.n3 <= MAX_DOFS
         })
         .collect()
+}
+
+/// The `fem-qpP-x2` series' elements along `x2` (`mms` only; [`X2_LADDER`], `--quick`
+/// [`QUICK_X2_LADDER`]) within [`MAX_DOFS`].
+pub(super) fn x2_levels(p: usize, quick: bool) -> Vec<usize> {
+    let e2s: &[usize] = if quick { &QUICK_X2_LADDER } else { &X2_LADDER };
+    e2s.iter()
+        .copied()
+        .filter(|&e2| {
+            let l = x2_level(p, e2);
+            2 * l.n2 * l.n3 <= MAX_DOFS
+        })
+        .collect()
+}
+
+/// `e2 x 1` elements of order `p`: `(p e2 + 1) x (p + 1)` nodes.
+fn x2_level(p: usize, e2: usize) -> GridLevel {
+    GridLevel {
+        n2: e2 * p + 1,
+        n3: p + 1,
+    }
 }
 
 /// Grading ratio of the graded `paper` runs. With a fixed order the layer elements converge
@@ -78,6 +111,8 @@ pub(super) enum QpMesh {
     Uniform(usize),
     /// `paper` only: `n` geometric layers at each end around `6 x 1` middle elements.
     Graded(usize),
+    /// `mms` only: `e2` uniform elements along `x2`, one through the thickness.
+    AlongX2(usize),
 }
 
 /// The graded series' layer counts of order `p` within [`MAX_DOFS`].
@@ -116,6 +151,9 @@ fn build(
                 grading: Grading::geometric(SIGMA, n)?,
                 ..QpSettings::order(p)
             }),
+        QpMesh::AlongX2(e2) => mms_parts(&super::mms(), x2_level(p, e2))?
+            .0
+            .high_order(p, VolumetricIntegration::Full),
     }
 }
 
@@ -175,6 +213,7 @@ pub(super) fn run_qp(
         let method = match mesh {
             QpMesh::Uniform(_) => name.to_owned(),
             QpMesh::Graded(_) => format!("{name}-graded"),
+            QpMesh::AlongX2(_) => format!("{name}-x2"),
         };
         Ok(t.run(problem, method, [grid.n2(), grid.n3()], op.dof_count()))
     })
@@ -347,5 +386,31 @@ mod tests {
             }
             assert_eq!(element_levels(problem, 8, true), [1, 2, 4]);
         }
+    }
+
+    /// The `fem-qpP-x2` ladder of `mms`: starts at the uniform series' first run (`2 x 1`
+    /// elements, the same grid), successive rungs at most 1.5x apart from `e2 = 4` on, every
+    /// run within the budget and buildable, the next rung over it.
+    #[test]
+    fn x2_ladder_is_fine_and_within_the_budget() {
+        for p in ORDERS {
+            let e2s = x2_levels(p, false);
+            assert_eq!(e2s[..4], [2, 3, 4, 5], "p {p}");
+            assert_eq!(x2_level(p, 2), Problem::Mms.level(p), "p {p}");
+            for w in e2s.windows(2) {
+                assert!(w[1] > w[0] && 2 * w[1] <= 3 * w[0].max(4), "{e2s:?}");
+            }
+            for &e2 in &e2s {
+                let l = x2_level(p, e2);
+                assert!(2 * l.n2 * l.n3 <= MAX_DOFS);
+                let op = build(Problem::Mms, p, QpMesh::AlongX2(e2)).unwrap();
+                assert_eq!(op.element_counts(), [e2, 1]);
+            }
+            if let Some(&next) = X2_LADDER.iter().find(|&&e| e > *e2s.last().unwrap()) {
+                let l = x2_level(p, next);
+                assert!(2 * l.n2 * l.n3 > MAX_DOFS, "p {p}");
+            }
+        }
+        assert_eq!(x2_levels(8, true), [2, 3, 4]);
     }
 }

@@ -7,7 +7,7 @@
 //! # Problems
 //! - `lame`: the Lamé thick cylinder (exact), full wrap, `n2 = 4m`, `n3 = m + 1`;
 //! - `mms`: the manufactured solution on the ellipse `b/a = 2` (traction-contact set),
-//!   `n2 = 2m + 1`, `n3 = m + 1`;
+//!   `n2 = 2m + 1`, `n3 = m + 1`, plus the `fem-qpP-x2` series (`e2 x 1` elements);
 //! - `paper`: the paper's default linear stand-in ([`PaperEllipse`]), `n2 = 4m + 1`,
 //!   `n3 = m + 1`, against the graded `fem-qp` reference of `bench/high_order.rs`
 //!   (`high_order::paper_reference`: `p = 10`, 12 geometric layers per end, its change from
@@ -119,7 +119,8 @@ pub struct WorkPrecisionArgs {
     #[arg(long, value_delimiter = ',', value_enum)]
     pub problems: Vec<Problem>,
     /// capstan methods to run (e.g. `fem-qp6,fem-qp7`; `fem-qpP` also selects the graded
-    /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper`;
+    /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper` and the
+    /// `fem-qpP-x2` series of `mms` (one element through the thickness);
     /// `fem-qp-hp`, `fem-qp-corner` and `fem-qp-transition` are the `contact` problem's
     /// ladder, corner-mesh and two-pass transition-graded series); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
@@ -681,6 +682,13 @@ fn capstan_pass(
                 .into_iter()
                 .map(high_order::QpMesh::Uniform)
                 .collect();
+            if problem == Problem::Mms {
+                meshes.extend(
+                    high_order::x2_levels(p, quick)
+                        .into_iter()
+                        .map(high_order::QpMesh::AlongX2),
+                );
+            }
             let refined = problem == Problem::Paper && p <= high_order::PAPER_REFINED_MAX_ORDER;
             if refined {
                 meshes.extend(
