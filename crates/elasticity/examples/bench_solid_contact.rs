@@ -17,10 +17,12 @@
 //! matched forcing; `--sequence` grid sequencing (the body solved on the V-cycle's coarse
 //! grids first, each solution prolonged as the next grid's start,
 //! `SolidBody::solve_matrix_free_sequenced`; `levels` then lists each grid's nodes, Newton
-//! steps and Krylov iterations, and the counts are the fine grid's).
+//! steps and Krylov iterations, and the counts are the fine grid's); `--no-p-levels` takes the
+//! V-cycle of `p >= 4` straight from the fine level to Q1 (no intermediate p-levels: the
+//! V-cycle before issue 30's p-levels, for comparison).
 //! `multigrid` is the full-system Newton with GMRES and the geometric multigrid of the box
 //! (`--krylov-tol 1e-8` the relative tolerance of each linear solve, `--smoother jacobi` damped
-//! Jacobi instead of Chebyshev, `--power 12` power iterations of its eigenvalue estimate, `--restart m` of GMRES). `--save FILE` writes the
+//! Jacobi instead of Chebyshev, `--power 12` power iterations of its eigenvalue estimate, `--restart m` of GMRES). `--save FILE` (any path) writes the
 //! displacement (raw little-endian f64), `--reference FILE` reports the relative max-norm
 //! difference `max |v - v_ref| / max |v_ref|` to a saved one (work-precision); `--progress`
 //! prints every Newton iterate (seconds since the solve began) to stderr.
@@ -92,12 +94,17 @@ fn main() {
             .option("--forcing")
             .map(|s| s.parse().expect("--forcing eta in (0, 1)"));
         let sequence = args.flag("--sequence");
+        let multigrid = SolidMultigridParams {
+            p_levels: !args.flag("--no-p-levels"),
+            ..Default::default()
+        };
         matrix_free(
             &body,
+            multigrid,
             params,
             eps,
             progress,
-            args.option("--reference"),
+            [args.option("--save"), args.option("--reference")],
             forcing,
             sequence,
         );
@@ -208,12 +215,14 @@ fn main() {
 
 /// The matrix-free path: model (operator, V-cycle transfers and coarse level), solve; one
 /// JSON line as the assembled paths print (`vm_hwm_mib` the whole process).
+#[allow(clippy::too_many_arguments)] // the example's flags, passed as they are parsed
 fn matrix_free(
     body: &SolidBody<Obstacle>,
+    multigrid: SolidMultigridParams,
     params: RegularisedCoulombParams<f64>,
     eps: f64,
     progress: bool,
-    reference: Option<&str>,
+    [save, reference]: [Option<&str>; 2],
     forcing: Option<f64>,
     sequence: bool,
 ) {
@@ -278,7 +287,7 @@ fn matrix_free(
                 RegularisedCoulomb,
                 params,
                 eps,
-                SolidMultigridParams::default(),
+                multigrid,
                 settings,
                 SEQUENCE_COARSEST_UNKNOWNS,
                 loads,
@@ -288,12 +297,7 @@ fn matrix_free(
         (s.model, s.solution, s.levels, 0.0)
     } else {
         let model = body
-            .matrix_free_model(
-                RegularisedCoulomb,
-                params,
-                eps,
-                SolidMultigridParams::default(),
-            )
+            .matrix_free_model(RegularisedCoulomb, params, eps, multigrid)
             .expect("a valid model");
         let model_seconds = t.elapsed().as_secs_f64();
         let solver = MatrixFreeNewton::new(&model, settings).expect("settings");
@@ -302,6 +306,10 @@ fn matrix_free(
     };
     let solve_seconds = t.elapsed().as_secs_f64() - model_seconds;
     let v = &sol.displacement;
+    if let Some(path) = save {
+        let bytes: Vec<u8> = v.iter().flat_map(|x| x.to_le_bytes()).collect();
+        std::fs::write(path, bytes).expect("writable --save file");
+    }
     let difference = reference.map(|path| {
         let bytes = std::fs::read(path).expect("a readable --reference file");
         let reference: Vec<f64> = bytes

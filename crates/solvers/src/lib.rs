@@ -126,6 +126,7 @@ mod scalar;
 mod sparse_cholesky;
 mod sparse_lu;
 mod sparsity_pattern;
+mod spectrum_estimate;
 
 pub use condensation::{CondensationScratch, CondensedBlock, schur_complement};
 pub use csr_matrix::CsrMatrix;
@@ -173,3 +174,4 @@ pub use scalar::{SolverScalar, max_abs, max_abs_difference};
 pub use sparse_cholesky::SparseCholesky;
 pub use sparse_lu::SparseLu;
 pub use sparsity_pattern::SparsityPattern;
+pub use spectrum_estimate::lanczos_estimate;

@@ -121,7 +121,8 @@ impl<D, L: FrictionLaw<f64>> NewtonKrylovProblem for Step<'_, D, L> {
 /// step k: GMRES on J d = -R to |J d + R| <= eta_k |R|  (Eisenstat–Walker), preconditioned by
 ///         a V-cycle: fine level J by its action (Chebyshev–Jacobi on diag(A) + diag(F), its
 ///         interval up to 1.1 x 1.15 x the power estimate of lambda_max: MATRIX_FREE_ESTIMATE_MARGIN),
-///         coarse level A_c + P^T F P assembled (A_c the rediscretised Q1 operator)
+///         coarse level A_c + P^T F P assembled (A_c the rediscretised Q1 operator); for
+///         p >= 4 matrix-free p-levels A_l + F_l in between (F_{l+1} = P_l^T F_l P_l)
 /// start:  the stuck solution (A + S) v = b, S = 1e4 max(|A_ii|, 1) on the tangential contact
 ///         entries (as the assembled full-system Newton), by the same GMRES
 /// ```

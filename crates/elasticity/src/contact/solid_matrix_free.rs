@@ -17,27 +17,66 @@ use crate::error::ElasticityError;
 use crate::shell_geometry::ShellGeometry;
 use crate::solid::{SolidBody, SolidMatrixFree, SolidMultigridParams};
 
+/// An intermediate p-level of the V-cycle ([`crate::solid::PLevel`]) with its diagonal and
+/// the transfer (and its transpose) from the level below it (the next p-level, or Q1).
+struct SharedPLevel {
+    operator: Arc<dyn LinearOperator + Send>,
+    diagonal: Vec<f64>,
+    bytes: usize,
+    from_below: CsrMatrix,
+    to_below: CsrMatrix,
+}
+
 /// What every load's operator of one matrix-free body shares: the operator, its diagonal
 /// and the transfers and assembled coarse level of its V-cycle.
 struct Shared<G> {
     operator: Arc<SolidMatrixFree<G>>,
     diagonal: Vec<f64>,
+    /// From the Q1 level to the fine level (the V-cycle's `P_0` without p-levels; grid
+    /// sequencing's prolongation in any case).
     prolongation: CsrMatrix,
     restriction: CsrMatrix,
+    /// With p-levels: from the first p-level to the fine level, and its transpose.
+    fine_transfer: Option<(CsrMatrix, CsrMatrix)>,
+    p_levels: Vec<SharedPLevel>,
     coarse: CsrMatrix,
     below: Arc<[CsrMatrix]>,
     multigrid: MultigridParams,
 }
 
 /// `A + F`: the matrix-free bulk plus the sparse face term (rows `face_rows` only).
-struct StepOperator<G> {
-    bulk: Arc<SolidMatrixFree<G>>,
+struct StepOperator {
+    bulk: Arc<dyn LinearOperator + Send>,
     face: CsrMatrix,
     face_rows: Vec<usize>,
     diagonal: Vec<f64>,
 }
 
-impl<G: Send + Sync> LinearOperator for StepOperator<G> {
+impl StepOperator {
+    /// `bulk + face` with the diagonal `bulk_diagonal + diag(face)`.
+    fn new(bulk: Arc<dyn LinearOperator + Send>, bulk_diagonal: &[f64], face: CsrMatrix) -> Self {
+        let mut diagonal = bulk_diagonal.to_vec();
+        let mut face_rows = Vec::new();
+        for (i, d) in diagonal.iter_mut().enumerate() {
+            let (cols, vals) = face.row(i);
+            if cols.is_empty() {
+                continue;
+            }
+            face_rows.push(i);
+            if let Some(k) = cols.iter().position(|&c| c as usize == i) {
+                *d += vals[k];
+            }
+        }
+        Self {
+            bulk,
+            face,
+            face_rows,
+            diagonal,
+        }
+    }
+}
+
+impl LinearOperator for StepOperator {
     fn dimension(&self) -> usize {
         self.diagonal.len()
     }
@@ -98,39 +137,56 @@ impl<G: ShellGeometry + Send + Sync + 'static> MatrixFreeBulk for Shared<G> {
     }
 
     fn step_operator(&self, face: CsrMatrix) -> Arc<dyn LinearOperator + Send> {
-        let mut diagonal = self.diagonal.clone();
-        let mut face_rows = Vec::new();
-        for (i, d) in diagonal.iter_mut().enumerate() {
-            let (cols, vals) = face.row(i);
-            if cols.is_empty() {
-                continue;
-            }
-            face_rows.push(i);
-            if let Some(k) = cols.iter().position(|&c| c as usize == i) {
-                *d += vals[k];
-            }
-        }
-        Arc::new(StepOperator {
-            bulk: Arc::clone(&self.operator),
+        Arc::new(StepOperator::new(
+            Arc::clone(&self.operator) as Arc<dyn LinearOperator + Send>,
+            &self.diagonal,
             face,
-            face_rows,
-            diagonal,
-        })
+        ))
     }
 
+    /// The V-cycle of `A + F`: the fine level `step`; each p-level `A_l + F_l` with the face
+    /// term carried down by Galerkin products (`F_{l+1} = P_l^T F_l P_l`, `F_0 = F`); the
+    /// assembled Q1 level `A_c + P^T F_m P`.
     fn preconditioner(
         &self,
         step: Arc<dyn LinearOperator + Send>,
         face: &CsrMatrix,
         estimates: Option<&[f64]>,
     ) -> Result<OperatorMultigrid, ElasticityError> {
-        let coarse_face = face.galerkin(&self.prolongation, &self.restriction);
-        let coarse = sum(&self.coarse, &coarse_face)?;
+        let Some((p0, r0)) = &self.fine_transfer else {
+            let coarse_face = face.galerkin(&self.prolongation, &self.restriction);
+            let coarse = sum(&self.coarse, &coarse_face)?;
+            return Ok(OperatorMultigrid::with_estimates(
+                vec![OperatorLevel {
+                    operator: step,
+                    prolongation: self.prolongation.clone(),
+                }],
+                coarse,
+                Arc::clone(&self.below),
+                self.multigrid,
+                estimates,
+            )?);
+        };
+        let mut levels = vec![OperatorLevel {
+            operator: step,
+            prolongation: p0.clone(),
+        }];
+        let mut level_face = face.galerkin(p0, r0);
+        for level in &self.p_levels {
+            let next_face = level_face.galerkin(&level.from_below, &level.to_below);
+            levels.push(OperatorLevel {
+                operator: Arc::new(StepOperator::new(
+                    Arc::clone(&level.operator),
+                    &level.diagonal,
+                    level_face,
+                )),
+                prolongation: level.from_below.clone(),
+            });
+            level_face = next_face;
+        }
+        let coarse = sum(&self.coarse, &level_face)?;
         Ok(OperatorMultigrid::with_estimates(
-            vec![OperatorLevel {
-                operator: step,
-                prolongation: self.prolongation.clone(),
-            }],
+            levels,
             coarse,
             Arc::clone(&self.below),
             self.multigrid,
@@ -147,6 +203,15 @@ impl<G: ShellGeometry + Send + Sync + 'static> MatrixFreeBulk for Shared<G> {
             + 8 * self.diagonal.len()
             + self.prolongation.bytes()
             + self.restriction.bytes()
+            + self
+                .fine_transfer
+                .as_ref()
+                .map_or(0, |(p, r)| p.bytes() + r.bytes())
+            + self
+                .p_levels
+                .iter()
+                .map(|l| l.bytes + 8 * l.diagonal.len() + l.from_below.bytes() + l.to_below.bytes())
+                .sum::<usize>()
             + self.coarse.bytes()
             + self.below.iter().map(CsrMatrix::bytes).sum::<usize>()
     }
@@ -259,11 +324,34 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> SolidBody<S> {
             operator.rhs_for(&self.boundary(0.0, 1.0), None)?,
         ];
         let parts = multigrid.parts(&operator, &unit)?;
+        // with p-levels: the transfer of each level from the one below it
+        let (fine_transfer, p_levels) = match &parts.p_coarse {
+            None => (None, Vec::new()),
+            Some(_) => {
+                let transfers = parts.transfers();
+                let levels = parts
+                    .p_levels
+                    .iter()
+                    .zip(&transfers[1..])
+                    .map(|(l, &p)| SharedPLevel {
+                        diagonal: l.operator.diagonal(),
+                        operator: Arc::clone(&l.operator),
+                        bytes: l.bytes,
+                        to_below: p.transpose(),
+                        from_below: p.clone(),
+                    })
+                    .collect();
+                let p0 = transfers[0];
+                (Some((p0.clone(), p0.transpose())), levels)
+            }
+        };
         let shared = Arc::new(Shared {
             diagonal: operator.diagonal(),
             operator: Arc::new(operator),
             restriction: parts.prolongation.transpose(),
             prolongation: parts.prolongation,
+            fine_transfer,
+            p_levels,
             coarse: parts.coarse,
             below: parts.below,
             multigrid: multigrid.multigrid,

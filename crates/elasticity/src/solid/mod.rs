@@ -54,7 +54,7 @@ pub use element::HexElement;
 pub use fields::{SolidFields, SolidOutput, SolidOutputMesh};
 pub use grid::BoxGrid;
 pub use matrix_free::{
-    MultigridParts, SolidMatrixFree, SolidMultigridParams, cell_sizes, coarse_level_nodes,
+    MultigridParts, PLevel, SolidMatrixFree, SolidMultigridParams, cell_sizes, coarse_level_nodes,
 };
 pub use multigrid::{BoxHierarchy, box_hierarchy, coarser_count, semicoarsening_hierarchy};
 pub(crate) use norms::length_squared;

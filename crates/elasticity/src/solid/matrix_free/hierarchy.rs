@@ -7,6 +7,7 @@ use std::sync::Arc;
 use capstan_solvers::{CsrMatrix, MultigridParams, OperatorLevel, OperatorMultigrid};
 
 use super::operator::SolidMatrixFree;
+use super::p_levels::{PLevel, p_levels};
 use crate::error::ElasticityError;
 use crate::finite_element::{ElementOrder, VolumetricIntegration};
 use crate::shell_geometry::ShellGeometry;
@@ -27,18 +28,45 @@ pub struct SolidMultigridParams {
     /// The assembled hierarchy below the matrix-free level coarsens until a level has at most
     /// this many unknowns (solved by a sparse LU).
     pub coarsest_unknowns: usize,
+    /// Intermediate matrix-free p-levels for elements of degree `p >= 4` (`p -> p/2 -> ... ->
+    /// 2`, then Q1; default `true`); `false` goes from the fine level straight to Q1.
+    pub p_levels: bool,
 }
 
 /// The pieces of the V-cycle of a [`SolidMatrixFree`] operator
 /// ([`SolidMultigridParams::parts`]).
 #[derive(Debug, Clone)]
 pub struct MultigridParts {
-    /// `P_0` from the assembled Q1 level to the matrix-free fine level.
+    /// `P_0` from the assembled Q1 level to the matrix-free fine level (the field on the
+    /// element vertices for `p > 1`; with p-levels the product of their transfers, kept for
+    /// grid sequencing).
     pub prolongation: CsrMatrix,
     /// The assembled Q1 operator of the coarse level (rediscretised).
     pub coarse: CsrMatrix,
     /// The box's (semi-coarsening) prolongations below the coarse level, finest first.
     pub below: Arc<[CsrMatrix]>,
+    /// The intermediate matrix-free p-levels between the fine level and the Q1 level, finest
+    /// first (empty for `p <= 3` or without [`SolidMultigridParams::p_levels`]).
+    pub p_levels: Vec<PLevel>,
+    /// With p-levels: the transfer from the assembled Q1 level to the last p-level.
+    pub p_coarse: Option<CsrMatrix>,
+}
+
+impl MultigridParts {
+    /// The prolongation of each matrix-free level of the V-cycle from the level below it,
+    /// finest first: `prolongation` alone without p-levels; else the fine level's from the
+    /// first p-level, each p-level's from the next, the last one's from Q1 (`p_coarse`).
+    pub fn transfers(&self) -> Vec<&CsrMatrix> {
+        match &self.p_coarse {
+            None => vec![&self.prolongation],
+            Some(last) => self
+                .p_levels
+                .iter()
+                .map(|l| &l.prolongation)
+                .chain([last])
+                .collect(),
+        }
+    }
 }
 
 impl Default for SolidMultigridParams {
@@ -46,6 +74,7 @@ impl Default for SolidMultigridParams {
         Self {
             multigrid: MultigridParams::default(),
             coarsest_unknowns: 5_000,
+            p_levels: true,
         }
     }
 }
@@ -140,8 +169,12 @@ impl SolidMultigridParams {
     /// # Math
     /// ```text
     /// level 0:  A_0 = fine (matrix-free), Chebyshev on D^-1 A_0 (D computed matrix-free)
+    /// p >= 4:   p-levels of degree p/2, p/4, ... >= 2 on the same elements (GLL nodes),
+    ///           matrix-free, each with its Chebyshev smoother; the transfer between two of
+    ///           them interpolates the coarser degree's field at the finer level's nodes
     /// P_0:      p > 1: the Q1 field on the element vertices interpolated at the GLL (or
-    ///           uniform) nodes (p-multigrid straight to Q1: (n - 1)/p + 1 nodes per direction)
+    ///           uniform) nodes ((n - 1)/p + 1 nodes per direction; from the last p-level
+    ///           when there are p-levels, else straight from the fine level)
     ///           p = 1: trilinear from the grid with every halvable direction halved (semi-
     ///           coarsening of stretched cells); the same grid if none can be halved
     /// level 1:  A_1 = the Q1 operator rediscretised on the coarse grid (assembled)
@@ -161,12 +194,18 @@ impl SolidMultigridParams {
         boundary: &SolidBoundary,
     ) -> Result<OperatorMultigrid, ElasticityError> {
         let parts = self.parts(fine, boundary)?;
-        let level = OperatorLevel {
-            operator: Arc::clone(fine) as Arc<dyn capstan_solvers::LinearOperator + Send>,
-            prolongation: parts.prolongation,
-        };
+        let operators =
+            core::iter::once(Arc::clone(fine) as Arc<dyn capstan_solvers::LinearOperator + Send>)
+                .chain(parts.p_levels.iter().map(|l| Arc::clone(&l.operator)));
+        let levels = operators
+            .zip(parts.transfers())
+            .map(|(operator, p)| OperatorLevel {
+                operator,
+                prolongation: p.clone(),
+            })
+            .collect();
         Ok(OperatorMultigrid::new(
-            vec![level],
+            levels,
             parts.coarse,
             parts.below,
             self.multigrid,
@@ -208,6 +247,20 @@ impl SolidMultigridParams {
         };
         let (prolongation, coarse_counts, coarse_mask) =
             tensor_prolongation(n, &w, fine.constrained());
+        let (p_levels, last) = if self.p_levels && k > 1 {
+            p_levels(fine, boundary)?
+        } else {
+            (Vec::new(), None)
+        };
+        let p_coarse = last.map(|(counts, constrained, element)| {
+            let nodes = element.reference_nodes();
+            let q = element.degree();
+            let w: [Vec<Vec<(usize, f64)>>; 3] =
+                core::array::from_fn(|d| p_interpolation(counts[d], q, &nodes, per[d]));
+            let (p, c, mask) = tensor_prolongation(counts, &w, &constrained);
+            debug_assert!(c == coarse_counts && mask == coarse_mask, "one Q1 level");
+            p
+        });
         debug_assert!(
             periodic || coarse_counts == coarse_level_nodes(n, k, cell_sizes(&chart, grid)?),
             "the memory estimate's coarse level is the one built"
@@ -261,6 +314,8 @@ impl SolidMultigridParams {
             prolongation,
             coarse: matrix,
             below: below.prolongations,
+            p_levels,
+            p_coarse,
         })
     }
 }

@@ -7,7 +7,9 @@ mod hierarchy;
 mod kernel;
 mod lanes;
 mod operator;
+mod p_levels;
 
 pub(crate) use hierarchy::p_prolongation;
 pub use hierarchy::{MultigridParts, SolidMultigridParams, cell_sizes, coarse_level_nodes};
 pub use operator::SolidMatrixFree;
+pub use p_levels::PLevel;
