@@ -73,7 +73,8 @@ struct SiteProjection {
 
 impl ExactFriction {
     /// The exact friction `law` on the contact sites `members` (active entries per site, of
-    /// `active` in all) of `rows`, with the extended pattern it needs (see
+    /// `active` in all) of `rows`, with the extended pattern it needs (`None`: the pattern of
+    /// `rows` as it is, when no site has two entries; see
     /// [`crate::contact::ContactModel::into_exact_friction`](crate::contact::ContactModel::into_exact_friction)).
     ///
     /// # Errors
@@ -84,7 +85,7 @@ impl ExactFriction {
         members: &[Vec<usize>],
         active: usize,
         law: Arc<dyn DynNonsmoothLaw>,
-    ) -> Result<(Self, ExtendedPattern), ContactError> {
+    ) -> Result<(Self, Option<ExtendedPattern>), ContactError> {
         let invalid = |value: f64, allowed: &'static str| {
             ContactError::from(ElasticityError::InvalidParameter {
                 field: "friction.law",
@@ -173,7 +174,13 @@ impl ExactFriction {
                 augmentation: r,
             });
         }
-        let (new_ext, extra_slots) = extend_pattern(ext, &extra)?;
+        // one-entry sites (2-D) couple no entries: the pattern stays (no copy of it)
+        let (new_ext, extra_slots) = if extra.is_empty() {
+            (None, Vec::new())
+        } else {
+            let (new_ext, slots) = extend_pattern(ext, &extra)?;
+            (Some(new_ext), slots)
+        };
         for site in &mut sites {
             for row in &mut site.cross {
                 for list in row {
@@ -193,9 +200,6 @@ fn extend_pattern(
     ext: &ExtendedPattern,
     extra: &[(usize, usize)],
 ) -> Result<(ExtendedPattern, Vec<usize>), ContactError> {
-    if extra.is_empty() {
-        return Ok((ext.clone(), Vec::new()));
-    }
     let mut entries: Vec<(usize, usize)> = ext.pattern.entries().collect();
     let old = entries.len();
     entries.extend_from_slice(extra);

@@ -74,7 +74,8 @@ pub(crate) fn add_slip(u: &mut [f64; 2], beta: f64, frame: [f64; 2], x: f64) {
 #[derive(Debug, Clone)]
 pub struct ExactRows {
     pub(crate) friction: ExactFriction,
-    ext: ExtendedPattern,
+    /// The extended pattern with the rows' cross-entry slots (`None`: the model's own).
+    ext: Option<ExtendedPattern>,
     /// The number of unknowns of the body the rows were built for.
     dimension: usize,
     /// Its active contact entries.
@@ -498,7 +499,9 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
                 what: "contact nodes",
             });
         }
-        self.ext = rows.ext;
+        if let Some(ext) = rows.ext {
+            self.ext = ext;
+        }
         self.exact = Some(rows.friction);
         Ok(self)
     }

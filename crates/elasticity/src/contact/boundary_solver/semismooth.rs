@@ -11,6 +11,7 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 use super::newton::{MAX_ROUNDOFF_RESIDUAL, ROUNDOFF_FACTOR};
+use super::rigid::{REBALANCE_ITERATIONS, set_rigid};
 use super::settings::CONDENSED_SEMISMOOTH;
 use super::{BoundarySolver, body_difference, solution_of};
 use crate::contact::error::ContactError;
@@ -46,6 +47,11 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// so each semismooth step is one dense LU of size `m` (no sparse factorisation). With a
     /// rigid sliding mode `z` the residual is evaluated as in [`BoundarySolver`]'s Newton
     /// (`s = s_p + a z`, `a` only in the displacement), the Jacobian being the same matrix.
+    /// When no site of `start` sticks and the body has a rigid mode (the regularised start on
+    /// the circle), the iteration starts at the rigid amplitude that balances the loads
+    /// against friction along the mode (`y . G = 0`, a scalar root, where the neutral site
+    /// sticks), not at `start`'s: there every site slides, `J` has only the blend `delta`
+    /// along `z`, and the first full step would slide the body.
     /// Damped by Armijo backtracking on `|G|_2^2`; converged when `max |G| <= tolerance *
     /// scale` (the condensed Newton's test and scale), or at the rounding floor of `G`. Every
     /// iterate reports its active set (stick and slip sites of the projection) to `observer`
@@ -167,6 +173,9 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             observer,
         };
         let mut s = start.to_vec();
+        // no site on the stick branch (the regularised start): the step has no stiffness
+        // along the rigid mode; start from the balanced amplitude instead
+        system.balance_unstuck(&mut s);
         let accept_floor =
             |floor: f64| (ROUNDOFF_FACTOR * floor).min(MAX_ROUNDOFF_RESIDUAL * scale);
         let not_converged = |iterations, residual: f64| ContactError::NotConverged {
@@ -216,6 +225,9 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
         Ok((s, iterations))
     }
 }
+
+/// Doubling steps of the bracket search of [`ExactFace::balanced_amplitude`].
+const BALANCE_DOUBLINGS: usize = 200;
 
 /// The solution of [`BoundarySolver::solve_exact_rows_observed`] before its exact model is
 /// installed: the condensed unknowns, the field and the semismooth iterations.
@@ -433,6 +445,152 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ExactFace<'_, '_, '_, D, L> {
             }
         }
         (stick, slip)
+    }
+
+    /// The rigid amplitude `a` that balances the loads against friction along the rigid
+    /// sliding mode at `s` (its part `s_p` off the mode kept), `None` without a rigid mode or
+    /// without a root.
+    ///
+    /// # Math
+    /// With `s = s_p + a z`, the tractions `t` and stresses `sigma` do not depend on `a`
+    /// (`(I - C P Z) z = 0`, `N Z z = 0`); only the slip does, `u_j(a) = u_j(0) + a F_j x_r`.
+    /// The component of `G` along the left null vector `y` of `I - C P Z` is the balance of
+    /// the loads against friction along the mode,
+    /// ```text
+    /// phi(a) = y . G(s_p + a z) = sum_i y_i (t_i - f_i . P_C(sigma)(tau - r u(a)))
+    /// ```
+    /// a scalar function that changes only while a site's trial `tau - r u(a)` is inside its
+    /// friction set (in 2-D `phi` is piecewise linear, constant where every site slides).
+    /// Its root puts at least one site (the neutral point) on the stick branch: the
+    /// generalised Jacobian there has stiffness along `z`, where on the slip branch at every
+    /// site it has only the blend `delta`. Bracketed by doubling steps from the current
+    /// amplitude (the first the amplitude change that reverses the nearest site's trial,
+    /// `min_j |tau_j - r u_j| / (r |F_j x_r|)`, over 16), then the Illinois false position.
+    /// Each evaluation costs `O(m)` (no matrix product).
+    fn balanced_amplitude(&self, s: &[f64]) -> Option<f64> {
+        let solver = self.solver;
+        let (y, xr) = (&solver.rigid_balance, &solver.rigid_shift);
+        if y.is_empty() {
+            return None;
+        }
+        let m = s.len();
+        let (a0, _) = solver.split_rigid(s);
+        let mut f = self.fields(s);
+        let base: Vec<f64> = (0..m).map(|i| f.x[i] - a0 * xr[i]).collect();
+        let sites = self.body.sites();
+        let mut h = f64::INFINITY;
+        for j in 0..sites.members.len() {
+            let (_, tau, u) = self.project(j, &f);
+            let (_, r) = self.friction.site_data(j);
+            let du = self.body.site_frame_slip(j, 1.0, |k| xr[k]);
+            let rate = r * du[0].hypot(du[1]);
+            if rate > 0.0 {
+                h = h.min((tau[0] - r * u[0]).hypot(tau[1] - r * u[1]) / rate);
+            }
+        }
+        h /= 16.0;
+        if !(h.is_finite() && h > 0.0) {
+            return None;
+        }
+        let h0 = h;
+        let mut phi = |a: f64| -> f64 {
+            for i in 0..m {
+                f.x[i] = base[i] + a * xr[i];
+            }
+            let mut sum = 0.0;
+            for (j, members) in sites.members.iter().enumerate() {
+                let (pr, _, _) = self.project(j, &f);
+                for &i in members {
+                    let fe = self.body.active_node(i).frame;
+                    sum += y[i] * (f.t[i] - (fe[0] * pr.traction[0] + fe[1] * pr.traction[1]));
+                }
+            }
+            sum
+        };
+        let f0 = phi(a0);
+        if f0 == 0.0 {
+            return Some(a0);
+        }
+        if !f0.is_finite() {
+            return None;
+        }
+        // bracket [lo, hi]: phi(lo) on f0's side, phi(hi) across zero
+        let (mut lo, mut flo) = (a0, f0);
+        let mut bracket = None;
+        'search: for _ in 0..BALANCE_DOUBLINGS {
+            for a in [a0 + h, a0 - h] {
+                let fa = phi(a);
+                if !fa.is_finite() {
+                    return None;
+                }
+                if fa.signum() != f0.signum() {
+                    bracket = Some((a, fa));
+                    break 'search;
+                }
+            }
+            h *= 2.0;
+        }
+        let (mut hi, mut fhi) = bracket?;
+        // the last point on f0's side towards `hi` (phi is monotone along the mode)
+        let inner = hi - (hi - a0) / 2.0;
+        if (hi - a0).abs() > h0 {
+            let fi = phi(inner);
+            if fi.is_finite() && fi.signum() == f0.signum() {
+                (lo, flo) = (inner, fi);
+            }
+        }
+        // Illinois false position on [lo, hi]
+        let mut side = 0i8;
+        for _ in 0..REBALANCE_ITERATIONS {
+            let a = (lo * fhi - hi * flo) / (fhi - flo);
+            let fa = phi(a);
+            if fa == 0.0 || (hi - lo).abs() <= 1e-15 * a.abs().max(h0) {
+                return Some(a);
+            }
+            if fa.signum() == flo.signum() {
+                (lo, flo) = (a, fa);
+                if side == -1 {
+                    fhi *= 0.5;
+                }
+                side = -1;
+            } else {
+                (hi, fhi) = (a, fa);
+                if side == 1 {
+                    flo *= 0.5;
+                }
+                side = 1;
+            }
+        }
+        Some(if flo.abs() <= fhi.abs() { lo } else { hi })
+    }
+
+    /// Moves `s` along the rigid mode to the balanced amplitude
+    /// ([`ExactFace::balanced_amplitude`], `s_p` kept) when no site of `s` is on the stick
+    /// branch of the projection; true when it moved.
+    ///
+    /// # Math
+    /// At the regularised start every site is on the slip branch (also the neutral one,
+    /// whose regularised slip `u` is small but `r u` is not), so `J z = delta (..)`: the
+    /// Newton step's rigid component is of order `(y . G) / delta` and the full step slides
+    /// the body (the line search then backtracked it to `alpha = 2^-9` on the paper's
+    /// circle). At the balanced amplitude the neutral site sticks, `J` is regular along `z`
+    /// and the Newton steps from there are full (2 steps instead of 3 on the default scene).
+    fn balance_unstuck(&mut self, s: &mut [f64]) -> bool {
+        if self.solver.rigid_mode.is_empty() {
+            return false;
+        }
+        let mut g = std::mem::take(&mut self.g);
+        let (stick, _) = self.eval(s, &mut g, None);
+        self.g = g;
+        if stick > 0 {
+            return false;
+        }
+        let Some(a) = self.balanced_amplitude(s) else {
+            return false;
+        };
+        let (_, sp) = self.solver.split_rigid(s);
+        set_rigid(s, &sp, &self.solver.rigid_mode, a);
+        true
     }
 
     /// Keeps `s` and its `(stick, slip)` counts as the last evaluation.
