@@ -329,7 +329,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
         }
     }
-    if cache.steps.len() > 0 {
+    if !cache.steps.is_empty() {
         // every step's values, for the record
         for s in &cache.steps {
             eprintln!(

@@ -62,7 +62,8 @@ use super::solve::ProblemError;
 /// every quantity by under `1e-6` relative at twice the unknowns, and puts the step that settles
 /// them over the default budget. A 3-D body keeps its
 /// method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
-/// own.
+/// own. The contact quantities of a plane body climb the transition-graded ladder instead
+/// ([`Problem::transition_step`] through [`Problem::refine_along`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AccuracyTarget {
     /// The relative tolerance every quantity's estimated error must meet.
@@ -159,9 +160,9 @@ pub struct Step {
     pub worst: Option<(String, f64)>,
     /// Every quantity's value on this step.
     pub values: BTreeMap<String, f64>,
-    /// `fem-qp-corner`: the `x2` points its mesh is graded toward (the stick/slip transitions
-    /// of the transition-graded ladder's first pass, [`Problem::transition_step`]); absent on
-    /// other methods.
+    /// `fem-qp-corner`: the `x2` points its mesh is graded toward (on the transition-graded
+    /// ladder, [`Problem::transition_step`], the stick/slip transitions the first pass or the
+    /// step before located); absent on other methods.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub transitions: Option<Vec<f64>>,
 }
