@@ -36,6 +36,7 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use capstan::commands::accuracy::{behaviour, contact_to, probes, scaled};
+use capstan::problem::estimate::Behaviour;
 use capstan::problem::{AccuracyTarget, Scaled, assess};
 use capstan::scene::Scene;
 use capstan_elasticity::solvers::SilentObserver;
@@ -55,6 +56,9 @@ struct CachedStep {
     load_average: f64,
     values: BTreeMap<String, f64>,
     scales: BTreeMap<String, f64>,
+    /// The stick/slip transitions this step's solution located (the next graded step's points).
+    #[serde(default)]
+    located: Vec<f64>,
 }
 
 /// The cache file.
@@ -66,16 +70,59 @@ struct Cache {
     /// ladder's grading), by name `p6-Ex14`.
     #[serde(default)]
     references: BTreeMap<String, CachedStep>,
+    /// The ladder: `hp` (`Problem::accuracy_step`, the cache before h28-acc) or
+    /// `transition-graded` (`Problem::transition_step`, what `contact_to` climbs since).
+    #[serde(default = "hp")]
+    ladder: String,
+    /// The transition-graded ladder's first pass (`Problem::transition_first_pass`).
+    #[serde(default)]
+    first_pass: Option<CachedStep>,
+    /// The stick/slip transitions the first pass located (the graded ladder's points).
+    #[serde(default)]
+    transitions: Vec<f64>,
+}
+
+fn hp() -> String {
+    "hp".to_owned()
+}
+
+impl Cache {
+    /// Step `k` of the cached ladder.
+    fn problem(
+        &self,
+        base: &capstan::problem::Problem,
+        k: usize,
+    ) -> Result<capstan::problem::Problem, capstan::problem::ProblemError> {
+        match self.ladder.as_str() {
+            "hp" => base.accuracy_step(k),
+            // graded toward the transitions the step before located (the first pass's at k = 0),
+            // as `contact_to` does
+            _ => {
+                let before = k
+                    .checked_sub(1)
+                    .and_then(|j| self.steps.get(j))
+                    .map(|s| &s.located)
+                    .filter(|l| !l.is_empty())
+                    .unwrap_or(&self.transitions);
+                base.transition_step(k, before)
+            }
+        }
+    }
 }
 
 impl CachedStep {
     /// The step's quantities as `refine_to` saw them (the behaviour by name, as the contact
-    /// report classifies them).
-    fn scaled(&self) -> BTreeMap<String, Scaled> {
+    /// report classifies them on the hp ladder; every quantity smooth on the graded one:
+    /// `scaled_graded`).
+    fn scaled(&self, graded: bool) -> BTreeMap<String, Scaled> {
         self.values
             .iter()
             .map(|(n, &value)| {
-                let behaviour = behaviour(n);
+                let behaviour = if graded {
+                    Behaviour::Smooth
+                } else {
+                    behaviour(n)
+                };
                 let scale = self.scales[n];
                 (
                     n.clone(),
@@ -121,12 +168,13 @@ fn solve_step(
     let step = CachedStep {
         step: k,
         grid: problem.grid(),
-        unknowns: problem.unknowns(),
+        unknowns: solved.model.operator().dof_count(),
         seconds: t.elapsed().as_secs_f64(),
         cpu_seconds: cpu_seconds() - c,
         load_average: load_average(),
         values: q.iter().map(|(n, v)| (n.clone(), v.value)).collect(),
         scales: q.iter().map(|(n, v)| (n.clone(), v.scale)).collect(),
+        located: solved.transitions(),
     };
     eprintln!(
         "step {k}: {:?}, {} unknowns, {:.1} s wall, {:.1} s CPU, load {:.1}",
@@ -167,7 +215,7 @@ fn stop(cache: &Cache, target: &AccuracyTarget) -> Stop {
             let (q, w) = a.worst.unwrap_or_default();
             return Stop::Budget(k, q, w, s.unknowns);
         }
-        seen.push(s.scaled());
+        seen.push(s.scaled(cache.ladder != "hp"));
         if target.met(k, &assess(&seen)) {
             return Stop::At(k);
         }
@@ -176,7 +224,7 @@ fn stop(cache: &Cache, target: &AccuracyTarget) -> Stop {
     let n = cache.steps.len();
     let next = Scene::default()
         .build()
-        .and_then(|p| Ok(p.accuracy_step(n)?.unknowns()));
+        .and_then(|p| Ok(cache.problem(&p, n)?.unknowns()));
     match next {
         Ok(u) if u > target.max_unknowns => {
             let (q, w) = assess(&seen).worst.unwrap_or_default();
@@ -191,6 +239,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (mut solve, mut reference_step, mut live, mut path) =
         (None, None, None, "docs/data/contact_ladder.json".to_owned());
     let mut elements: Option<usize> = None;
+    let (mut ladder, mut graded): (Option<String>, Option<String>) = (None, None);
     let mut tolerances: Vec<f64> = Vec::new();
     let mut i = 0;
     while i < args.len() {
@@ -201,6 +250,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--live" => live = next.parse::<f64>().ok(),
             "--reference-elements" => elements = next.parse::<usize>().ok(),
             "--cache" => path = next,
+            "--ladder" => ladder = Some(next),
+            "--graded-reference" => graded = Some(next),
             a => {
                 tolerances.extend(a.parse::<f64>().ok());
                 i += 1;
@@ -217,12 +268,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|s| serde_json::from_str(&s).ok())
         .unwrap_or_default();
     let scene = Scene::default();
+    if let Some(l) = ladder {
+        if !cache.steps.is_empty() && cache.ladder != l {
+            return Err(format!("{path} caches the {} ladder, not {l}", cache.ladder).into());
+        }
+        cache.ladder = l;
+    }
     if let Some(last) = solve {
         cache.scene = "Scene::default() (the paper's body, ratio 2, default probes)".to_owned();
         let base = scene.build()?;
         let probes = probes(&scene);
+        if cache.ladder != "hp" && cache.first_pass.is_none() {
+            let first = base.transition_first_pass();
+            let (t, c) = (Instant::now(), cpu_seconds());
+            let solved = first.solve()?;
+            cache.transitions = solved.transitions();
+            let mut step = solve_step(usize::MAX, &first, &probes)?;
+            // the first pass is solved once: its time is the first solve's
+            step.seconds = t.elapsed().as_secs_f64();
+            step.cpu_seconds = cpu_seconds() - c - step.cpu_seconds;
+            eprintln!("first pass: transitions {:?}", cache.transitions);
+            cache.first_pass = Some(step);
+        }
         for k in cache.steps.len()..=last {
-            let problem = base.accuracy_step(k)?;
+            let problem = cache.problem(&base, k)?;
             let step = solve_step(k, &problem, &probes)?;
             cache.steps.push(step);
             // after every step: a long run interrupted keeps what it solved
@@ -239,9 +308,58 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
         }
     }
+    if let Some(spec) = graded {
+        // `P,E2,E3[,STEP]`: order P on E2 x E3 cells graded toward the transitions of the cached
+        // step STEP (default the last): located by a fine solve, not the first pass
+        let f: Vec<usize> = spec.split(',').filter_map(|x| x.parse().ok()).collect();
+        let (p, e2, e3) = (f[0], f[1], f[2]);
+        let k = f.get(3).copied().unwrap_or(cache.steps.len() - 1);
+        let name = format!("graded-p{p}-{e2}x{e3}");
+        if !cache.references.contains_key(&name) {
+            let base = scene.build()?;
+            let at = cache.problem(&base, k)?.solve()?.transitions();
+            eprintln!("{name}: graded toward step {k}'s transitions {at:?}");
+            let (layers, ratio) = capstan::problem::DEFAULT_TRANSITION_GRADING;
+            let mut problem = base
+                .corner_mesh(p, [e2, e3])
+                .graded_toward(at, layers, ratio)?;
+            problem.body.settings.corner_layers = capstan::problem::transition_corner_layers(p);
+            let step = solve_step(usize::MAX, &problem, &probes(&scene))?;
+            cache.references.insert(name, step);
+            std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
+        }
+    }
+    if !cache.steps.is_empty() {
+        // every step's values, for the record
+        for s in &cache.steps {
+            eprintln!(
+                "step {} {:?} {}: slip {:.10} stick [{:.10}, {:.10}] v2 {:.10e} probe0 {:.10}",
+                s.step,
+                s.grid,
+                s.unknowns,
+                s.values["slip_measure"],
+                s.values.get("stick_from").copied().unwrap_or(f64::NAN),
+                s.values.get("stick_to").copied().unwrap_or(f64::NAN),
+                s.values["max_abs_v2"],
+                s.values["normal_stress_probe_0"]
+            );
+        }
+    }
+    // the reference: `--reference-step K`, else the finest graded reference cached, else the
+    // last step
+    let graded_reference = cache
+        .references
+        .iter()
+        .filter(|(n, _)| n.starts_with("graded-"))
+        .max_by_key(|(_, s)| s.unknowns)
+        .map(|(n, s)| (n.clone(), s.clone()));
+    if let Some((n, _)) = &graded_reference {
+        println!("reference {n}");
+    }
     let Some(reference) = reference_step
-        .or(cache.steps.len().checked_sub(1))
         .and_then(|k| cache.steps.get(k))
+        .or(graded_reference.as_ref().map(|(_, s)| s))
+        .or(cache.steps.last())
     else {
         return Err(format!("no cached ladder in {path}: run with --solve LAST").into());
     };
@@ -274,7 +392,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 continue;
             }
         };
-        let steps: Vec<_> = cache.steps[..=k].iter().map(CachedStep::scaled).collect();
+        let steps: Vec<_> = cache.steps[..=k]
+            .iter()
+            .map(|s| s.scaled(cache.ladder != "hp"))
+            .collect();
         let a = assess(&steps);
         let s = &cache.steps[k];
         let cpu: f64 = cache.steps[..=k].iter().map(|s| s.cpu_seconds).sum();
@@ -322,7 +443,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Stop::At(c) => Some(c),
             _ => None,
         };
-        let steps: Vec<_> = cache.steps[..=k].iter().map(CachedStep::scaled).collect();
+        let steps: Vec<_> = cache.steps[..=k]
+            .iter()
+            .map(|s| s.scaled(cache.ladder != "hp"))
+            .collect();
         let a = assess(&steps);
         let worst = estimate
             .quantities

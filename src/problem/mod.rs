@@ -55,4 +55,7 @@ pub use solver::{
     AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,
 };
 pub use target::{AccuracyTarget, Assessment, Refined, Scaled, Step, assess};
-pub use transitions::{DEFAULT_TRANSITION_GRADING, TwoPass};
+pub use transitions::{
+    DEFAULT_TRANSITION_GRADING, TRANSITION_FIRST_PASS, TRANSITION_LADDER_CELLS, TwoPass,
+    transition_corner_layers,
+};

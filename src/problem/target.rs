@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 
 use capstan_elasticity::contact::Dimension;
-use capstan_elasticity::finite_element::{DiscretisationMethod, Grading};
+use capstan_elasticity::finite_element::{CornerSettings, DiscretisationMethod, Grading};
 use capstan_geometry::Surface;
 
 use super::builder::Problem;
@@ -62,7 +62,8 @@ use super::solve::ProblemError;
 /// every quantity by under `1e-6` relative at twice the unknowns, and puts the step that settles
 /// them over the default budget. A 3-D body keeps its
 /// method and doubles every direction per step (`n -> 2 n - 1`). The solver is the problem's
-/// own.
+/// own. The contact quantities of a plane body climb the transition-graded ladder instead
+/// ([`Problem::transition_step`] through [`Problem::refine_along`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AccuracyTarget {
     /// The relative tolerance every quantity's estimated error must meet.
@@ -159,6 +160,11 @@ pub struct Step {
     pub worst: Option<(String, f64)>,
     /// Every quantity's value on this step.
     pub values: BTreeMap<String, f64>,
+    /// `fem-qp-corner`: the `x2` points its mesh is graded toward (on the transition-graded
+    /// ladder, [`Problem::transition_step`], the stick/slip transitions the first pass or the
+    /// step before located); absent on other methods.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub transitions: Option<Vec<f64>>,
 }
 
 /// The result of [`Problem::refine_to`]: the last step's result and problem, the estimate of
@@ -207,11 +213,28 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         Ok(p)
     }
 
-    /// The number of unknowns of the body (2 per node in plane strain, 3 in 3-D).
+    /// The number of unknowns of the body (2 per node in plane strain, 3 in 3-D). For
+    /// `fem-qp-corner` an upper bound: the corner mesh's nodes with `2 layers` more element
+    /// columns per transition point (each point adds at most `layers` lines on each side; the
+    /// dropped coarse lines are not subtracted).
     pub fn unknowns(&self) -> usize {
+        let nodes_2d = if self.body.method == DiscretisationMethod::FemQpCorner {
+            let s = &self.body.settings;
+            let p = s.order.max(1);
+            let extra = 2 * s.transitions.layers * s.transitions.points.len();
+            CornerSettings {
+                order: p,
+                cells: [(self.body.n2 - 1) / p + extra, (self.body.n3 - 1) / p],
+                layers: s.corner_layers,
+                ratio: s.corner_ratio,
+            }
+            .node_count()
+        } else {
+            self.body.n2 * self.body.n3
+        };
         match self.body.dimension {
-            Dimension::Plane => 2 * self.body.n2 * self.body.n3,
-            Dimension::Solid { n1, .. } => 3 * n1 * self.body.n2 * self.body.n3,
+            Dimension::Plane => 2 * nodes_2d,
+            Dimension::Solid { n1, .. } => 3 * n1 * nodes_2d,
         }
     }
 
@@ -228,13 +251,29 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     pub fn refine_to<T>(
         &self,
         target: &AccuracyTarget,
+        eval: impl FnMut(&Self) -> Result<(T, BTreeMap<String, Scaled>), ProblemError>,
+    ) -> Result<Refined<T, S>, ProblemError> {
+        self.refine_along(target, |k| self.accuracy_step(k), eval)
+    }
+
+    /// [`Self::refine_to`] along the ladder `ladder(k)`, `k = 0, 1, ...` (the hp ladder
+    /// [`Self::accuracy_step`], or the transition-graded [`Self::transition_step`]), with the
+    /// same estimate and stopping rule.
+    ///
+    /// # Errors
+    /// `ladder`'s and `eval`'s errors; [`ProblemError::AccuracyNotReached`] when the next
+    /// step would exceed `target.max_unknowns` ([`Self::unknowns`]).
+    pub fn refine_along<T>(
+        &self,
+        target: &AccuracyTarget,
+        ladder: impl Fn(usize) -> Result<Self, ProblemError>,
         mut eval: impl FnMut(&Self) -> Result<(T, BTreeMap<String, Scaled>), ProblemError>,
     ) -> Result<Refined<T, S>, ProblemError> {
         let mut steps: Vec<Step> = Vec::new();
         // every step's quantities, coarsest first
         let mut seen: Vec<BTreeMap<String, Scaled>> = Vec::new();
         for k in 0.. {
-            let problem = self.accuracy_step(k)?;
+            let problem = ladder(k)?;
             let unknowns = problem.unknowns();
             if unknowns > target.max_unknowns {
                 let (quantity, estimate) = steps
@@ -256,16 +295,23 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             let seconds = t.elapsed().as_secs_f64();
             seen.push(quantities);
             let assessment = assess(&seen);
+            let method = problem.body.method;
+            let corner = method == DiscretisationMethod::FemQpCorner;
             steps.push(Step {
-                method: problem.body.method.name(),
-                order: (problem.body.method == DiscretisationMethod::FemQp)
+                method: method.name(),
+                order: (method == DiscretisationMethod::FemQp || corner)
                     .then_some(problem.body.settings.order),
-                grading: problem.body.settings.grading.ratio(),
+                grading: if corner {
+                    problem.body.settings.corner_ratio
+                } else {
+                    problem.body.settings.grading.ratio()
+                },
                 grid: problem.grid(),
                 unknowns,
                 seconds,
                 worst: assessment.worst.clone(),
                 values: seen[k].iter().map(|(k, q)| (k.clone(), q.value)).collect(),
+                transitions: corner.then(|| problem.body.settings.transitions.points.clone()),
             });
             if target.met(k, &assessment) {
                 return Ok(Refined {

@@ -10,8 +10,9 @@
 //! layers toward it, every element sees a smooth field again (the hp mesh of a point
 //! singularity: Schwab, *p- and hp-FEM*, section 4.4).
 
-use capstan_elasticity::contact::slip_transitions;
+use capstan_elasticity::contact::{Dimension, slip_transitions};
 use capstan_elasticity::finite_element::{DiscretisationMethod, TransitionGrading};
+use capstan_elasticity::registration::DiscretisationSettings;
 use capstan_geometry::Surface;
 
 use super::builder::Problem;
@@ -20,6 +21,29 @@ use super::solve::{ProblemError, Solved, SolvedModel};
 /// The grading of the second pass by default: 4 layers of ratio `0.3` on each side of a
 /// transition (elements `H 0.3^4 ~ 8e-3 H` at it, `H` the coarse cell).
 pub const DEFAULT_TRANSITION_GRADING: (usize, f64) = (4, 0.3);
+
+/// The first pass of the transition-graded ladder ([`Problem::transition_step`]): order 2 on
+/// `12 x 2` cells of `fem-qp-corner` (833 nodes). It only locates the stick/slip transitions:
+/// on the default scene within 0.02 of the converged ones, its slip measure `3.8e-3` of `pi`
+/// off.
+pub const TRANSITION_FIRST_PASS: (usize, [usize; 2]) = (2, [12, 2]);
+
+/// The cells of the transition-graded ladder's order steps (`p = 2 ... 10`); past `p = 10`
+/// its `h` steps double them in both directions.
+pub const TRANSITION_LADDER_CELLS: [usize; 2] = [24, 8];
+
+/// The highest order of the transition-graded ladder (the highest Qp order).
+const TRANSITION_MAX_ORDER: usize = 10;
+
+/// The corner layers of the transition-graded ladder's order-`p` step: `p + 3` (of ratio
+/// `0.3`: the smallest corner element `0.3^(p+3)` of the cell, `2e-3` at `p = 2`, `1.6e-6` at
+/// `p = 8`). hp theory asks for layers growing linearly with `p` (Schwab, section 4.4); with
+/// the default 5 layers the order-6 step's max `|v2|` is `1e-5` off and does not settle when
+/// the cells are refined (measured: `3.58785e-3` at 5 layers against `3.587884e-3` at 11,
+/// where orders 7 ... 10 agree to `1e-8` relative).
+pub fn transition_corner_layers(order: usize) -> usize {
+    order + 3
+}
 
 /// The two passes of [`Problem::solve_transition_graded`].
 #[derive(Debug)]
@@ -82,6 +106,80 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         let mut p = self.clone();
         p.body.settings.transitions = grading;
         Ok(p)
+    }
+
+    /// This problem's body on the `fem-qp-corner` mesh of order `order` on `cells` element
+    /// cells (`n = p e + 1` nodes per direction), with the default corner layers
+    /// ([`DiscretisationSettings::DEFAULT_CORNER_LAYERS`] of
+    /// [`DiscretisationSettings::DEFAULT_CORNER_RATIO`]) and no transition grading.
+    pub fn corner_mesh(&self, order: usize, cells: [usize; 2]) -> Self {
+        let mut q = self.clone();
+        q.body.method = DiscretisationMethod::FemQpCorner;
+        q.body.settings.order = order;
+        q.body.settings.corner_layers = DiscretisationSettings::DEFAULT_CORNER_LAYERS;
+        q.body.settings.corner_ratio = DiscretisationSettings::DEFAULT_CORNER_RATIO;
+        q.body.settings.transitions = TransitionGrading::NONE;
+        q.body.n2 = cells[0] * order + 1;
+        q.body.n3 = cells[1] * order + 1;
+        q
+    }
+
+    /// The first pass of the transition-graded ladder ([`TRANSITION_FIRST_PASS`]).
+    pub fn transition_first_pass(&self) -> Self {
+        let (order, cells) = TRANSITION_FIRST_PASS;
+        self.corner_mesh(order, cells)
+    }
+
+    /// Step `k` of the transition-graded ladder of the contact quantities: `fem-qp-corner`
+    /// with its `x2` lines graded toward `transitions` by [`DEFAULT_TRANSITION_GRADING`]
+    /// (the accuracy target passes the first pass's transitions at `k = 0`, and the ones step
+    /// `k - 1` located after that: `capstan::commands::accuracy::contact_to`).
+    ///
+    /// # Math
+    /// ```text
+    /// k = 0 ... 8:   order p = 2 + k on 24 x 8 cells, p + 3 corner layers of 0.3
+    /// k = 9, 10, ...: p = 10 on (24 x 8) 2^(k-8) cells, 13 corner layers
+    /// ```
+    /// Every step has an element line at each transition with 4 geometric layers of ratio
+    /// `0.3` on both sides, so the kink of the friction traction at `|u| = eps` lies on (within
+    /// the previous step's location error of) an element line, and the slip measure and the
+    /// stick-zone ends converge geometrically in `p` where the uniform interior of the hp
+    /// ladder ([`Self::accuracy_step`]) stalls: the stick zone (~0.03 long) is under half an
+    /// element there. The corner layers grow with `p`
+    /// ([`transition_corner_layers`]) for the end corners' singular stresses.
+    ///
+    /// # Errors
+    /// [`ProblemError::Elasticity`] naming `body.dimension` for a 3-D body (the ladder is
+    /// plane strain), or [`Self::graded_toward`]'s (a non-finite transition).
+    pub fn transition_step(&self, k: usize, transitions: &[f64]) -> Result<Self, ProblemError> {
+        self.transition_step_on(k, transitions, TRANSITION_LADDER_CELLS)
+    }
+
+    /// [`Self::transition_step`] with the order steps on `cells` instead of
+    /// [`TRANSITION_LADDER_CELLS`] (a cheaper ladder for tests and quick studies).
+    ///
+    /// # Errors
+    /// As [`Self::transition_step`].
+    pub fn transition_step_on(
+        &self,
+        k: usize,
+        transitions: &[f64],
+        cells: [usize; 2],
+    ) -> Result<Self, ProblemError> {
+        if self.body.dimension != Dimension::Plane {
+            return Err(capstan_elasticity::ElasticityError::InvalidParameter {
+                field: "body.dimension",
+                value: 3.0,
+                allowed: "2 (the transition-graded ladder is plane strain)",
+            }
+            .into());
+        }
+        let order = (2 + k).min(TRANSITION_MAX_ORDER);
+        let h = k.saturating_sub(TRANSITION_MAX_ORDER - 2);
+        let mut q = self.corner_mesh(order, cells.map(|c| c << h));
+        q.body.settings.corner_layers = transition_corner_layers(order);
+        let (layers, ratio) = DEFAULT_TRANSITION_GRADING;
+        q.graded_toward(transitions.to_vec(), layers, ratio)
     }
 
     /// Two passes: solves the problem, locates its stick/slip transitions
