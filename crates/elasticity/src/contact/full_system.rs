@@ -202,6 +202,16 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
         )
     }
 
+    /// The Newton linear backend (`newton.linear`) for the model's Jacobians.
+    pub(crate) fn linear_backend(&self) -> Result<BoxedLinearSolver, ContactError> {
+        self.backend(self.settings.newton.linear, false)
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> FullSystemSettings {
+        self.settings
+    }
+
     /// Whether the bulk operator `A` is symmetric (then the stuck start's matrix, `A` with a
     /// positive spring on diagonal entries, is symmetric positive definite).
     fn symmetric_bulk(&self) -> bool {

@@ -73,6 +73,7 @@ mod owned_rows;
 mod path;
 mod pattern;
 mod quantities;
+mod ratio_arclength;
 mod solid_body;
 mod solid_corner;
 mod solid_matrix_free;

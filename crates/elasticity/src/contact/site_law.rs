@@ -145,8 +145,8 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
                 // another process's rows: its owner computes them, the gather brings them
                 continue;
             }
-            let Some(st) = self
-                .site_traction_in_contact(j, v, contact.as_deref())
+            let Some((st, _)) = self
+                .site_traction_in_contact(j, v, rhs, contact.as_deref())
                 .filter(|_| self.exact.is_none())
             else {
                 continue;
@@ -241,15 +241,18 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
     /// The law at site `j` for `v` where the site is in contact: `None` where it has
     /// separated (unilateral contact, `contact` the contact set of the normal rows); the
     /// normal stress seen by the law is `min(sigma_n, 0)` under unilateral contact (its
-    /// derivative zero where `sigma_n > 0`).
+    /// derivative zero where `sigma_n > 0`), capped by the contact reaction
+    /// ([`ContactModel::friction_normal_stress`]; with the capping row, whose reaction the
+    /// Jacobian then differentiates).
     fn site_traction_in_contact(
         &self,
         j: usize,
         v: &[f64],
+        rhs: &[f64],
         contact: Option<&[bool]>,
-    ) -> Option<SiteTraction> {
+    ) -> Option<(SiteTraction, Option<usize>)> {
         let (Some(contact), Some(u)) = (contact, &self.unilateral) else {
-            return Some(self.site_traction(j, v));
+            return Some((self.site_traction(j, v), None));
         };
         if let Some(row) = u.site_row[j]
             && !contact[row]
@@ -258,12 +261,44 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         }
         let first = self.active_node(self.sites.members[j][0]);
         let slip = self.site_slip(j, 1.0, |k| v[self.active_node(k).tangential_dof]);
-        let sigma = first.normal_stress.dot(v);
-        let mut st = self.site_traction_at_slip(j, slip, sigma.min(0.0));
-        if sigma > 0.0 {
+        let (pressure, capped) = self.friction_normal_stress(j, v, rhs);
+        let mut st = self.site_traction_at_slip(j, slip, pressure);
+        if capped.is_none() && first.normal_stress.dot(v) > 0.0 {
             st.d_normal_stress = [0.0; 2];
         }
-        Some(st)
+        Some((st, capped))
+    }
+
+    /// The normal stress the friction law reads at site `j` under unilateral contact,
+    /// `max(min(sigma_n, 0), -cap)` with the reaction cap of
+    /// [`crate::contact::unilateral::FRICTION_PRESSURE_CAP`], and the site's normal row when
+    /// the cap is the one that holds (`None`: `min(sigma_n, 0)`; also on a bilateral model,
+    /// where it is `sigma_n` itself).
+    pub(crate) fn friction_normal_stress(
+        &self,
+        j: usize,
+        v: &[f64],
+        rhs: &[f64],
+    ) -> (f64, Option<usize>) {
+        let first = self.active_node(self.sites.members[j][0]);
+        let sigma = first.normal_stress.dot(v);
+        let Some(u) = &self.unilateral else {
+            return (sigma, None);
+        };
+        let pressure = sigma.min(0.0);
+        match u.site_row[j] {
+            Some(row) => {
+                let cap = u.rows[row]
+                    .friction_cap(v, rhs, first.traction_weight)
+                    .max(0.0);
+                if -pressure > cap {
+                    (-cap, Some(row))
+                } else {
+                    (pressure, None)
+                }
+            }
+            None => (pressure, None),
+        }
     }
 
     /// `max_i |R(v)_i| / max(1, max_i |b_i|)`.
@@ -313,15 +348,27 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
                 // rows another process inserts into the distributed matrix
                 continue;
             }
-            let Some(st) = self.site_traction_in_contact(j, v, contact.as_deref()) else {
+            let Some((st, capped)) = self.site_traction_in_contact(j, v, rhs, contact.as_deref())
+            else {
                 continue;
             };
+            let first_weight = self.active_node(members[0]).traction_weight;
             for (e, &k) in members.iter().enumerate() {
                 let node = self.active_node(k);
                 let w = node.traction_weight;
                 values[self.ext.tangential_slot[k]] -= w * st.d_tangential[e][e];
                 if let Some(slot) = self.ext.partner_slot[k] {
                     values[slot] -= w * st.d_tangential[e][1 - e];
+                }
+                if let (Some(row), Some(u)) = (capped, &self.unilateral) {
+                    // the law reads -cap: d t / d v = -(dt/dsigma) d cap / d v
+                    let tangential = node.tangential_row.expect("active nodes have a row");
+                    for (c, g) in u.rows[row].friction_cap_gradient(first_weight) {
+                        if let Some(slot) = self.ext.pattern.slot(tangential, c) {
+                            values[slot] += w * st.d_normal_stress[e] * g;
+                        }
+                    }
+                    continue;
                 }
                 for (c, &slot) in node
                     .normal_stress

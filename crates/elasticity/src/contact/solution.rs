@@ -186,6 +186,15 @@ impl ContactSolution {
             let r = model.free_residual(&rhs, &v);
             x.profile(model, &v, &r, model.separated_sites(&rhs, &v).as_deref())
         });
+        let cap_row = model.unilateral().map(|u| {
+            let rows: std::collections::HashMap<usize, usize> = u
+                .rows
+                .iter()
+                .enumerate()
+                .map(|(r, row)| (row.dof, r))
+                .collect();
+            (u, rows)
+        });
         for entries in &sites {
             let lifted = separated_dof
                 .as_ref()
@@ -205,11 +214,22 @@ impl ContactSolution {
             }
             let first = entries[0];
             let sigma = first.normal_stress.dot(&v);
+            // unilateral: min(sigma_n, 0) capped by the contact reaction (the residual's law)
+            let cap = cap_row
+                .as_ref()
+                .and_then(|(u, rows)| {
+                    rows.get(&first.normal_dof).map(|&r| {
+                        u.rows[r]
+                            .friction_cap(&v, &rhs, first.traction_weight)
+                            .max(0.0)
+                    })
+                })
+                .unwrap_or(f64::INFINITY);
             let mut st = model.entries_traction(
                 entries,
                 u,
                 if separated_dof.is_some() {
-                    sigma.min(0.0)
+                    sigma.min(0.0).max(-cap)
                 } else {
                     sigma
                 },

@@ -1,0 +1,149 @@
+//! The default cone (`obstacle.shape = "cone"`, Q1 `3 x 20 x 3`, width 1, `mu = 0.5`) under
+//! unilateral contact, by continuation in the tension ratio as `examples/solid_runoff.rs`
+//! runs it: past the old stall at 1.348 (issue 27), where a site about to lift off carried
+//! the friction of its recovered normal stress and the residual jumped when it separated.
+
+use capstan::Scene;
+use capstan_elasticity::contact::{
+    ContactError, ContactErrorKind, ContactModel, ContactOperator, ContactSolution, EndLoads,
+    FullSystemProblem, FullSystemSolver,
+};
+use capstan_elasticity::friction::FrictionLaw;
+use capstan_elasticity::solvers::{Jacobian, Residual};
+
+fn cone_model() -> (capstan::Problem, f64) {
+    let mut scene = Scene::default();
+    for (key, value) in [
+        ("body.dimension", "3"),
+        ("discretisation.method", "\"fem-q1\""),
+        ("obstacle.shape", "\"cone\""),
+        ("grid.n1", "3"),
+        ("grid.n2", "20"),
+        ("grid.n3", "3"),
+        ("contact.kind", "\"unilateral\""),
+        ("solver.nonlinear", "\"full-newton\""),
+    ] {
+        scene = scene.with_raw(key, value, "test").unwrap();
+    }
+    let problem = scene.build().unwrap();
+    let mu = 0.5; // the default scene's friction.mu
+    (problem, mu)
+}
+
+/// The ratios 1, 1.05, ..., `last`, each solved from the one before.
+fn continue_to<D: ContactOperator, L: FrictionLaw<f64>>(
+    solver: &FullSystemSolver<'_, D, L>,
+    last: f64,
+) -> Vec<(f64, ContactSolution)> {
+    let mut out = vec![(1.0, solver.solve(EndLoads::new(1.0, 1.0)).unwrap())];
+    let mut ratio = 1.0;
+    while ratio < last - 1e-12 {
+        ratio += 0.05;
+        let start = &out.last().unwrap().1.displacement;
+        let s = solver
+            .solve_from(EndLoads::new(1.0, ratio), start)
+            .unwrap_or_else(|e| panic!("ratio {ratio}: {e}"));
+        out.push((ratio, s));
+    }
+    out
+}
+
+#[test]
+fn the_unilateral_cone_converges_past_the_old_stall_in_a_few_newton_steps() {
+    let (problem, mu) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    // before: 1.30 -> 1.35 failed (plain Newton frozen at residual 1.6e-2, then the stuck
+    // start and load continuation failing at load factor 5e-4)
+    let path = continue_to(&solver, 1.35);
+    let (ratio, s) = path.last().unwrap();
+    assert!((ratio - 1.35).abs() < 1e-12);
+    // measured 4 (release and debug alike: the iterations do not depend on the build)
+    assert!(
+        s.stats.newton_iterations <= 8,
+        "{}",
+        s.stats.newton_iterations
+    );
+    assert_eq!(s.slip_fraction, 1.0);
+    let separated = s.contact.separated.as_ref().unwrap();
+    assert_eq!(separated.iter().filter(|&&x| x).count(), 29);
+    // friction only where in contact, and never above mu |sigma_n|; at least one site in
+    // contact carries less (the reaction cap holds there)
+    let capped = (0..separated.len())
+        .filter(|&k| !separated[k])
+        .filter(|&k| {
+            let t = capstan_friction_norm(s, k);
+            let full = mu * s.contact.normal_stress[k].min(0.0).abs();
+            assert!(t <= full * (1.0 + 1e-9) + 1e-14, "site {k}: {t} > {full}");
+            t < 0.99 * full
+        })
+        .count();
+    assert!(capped > 0);
+    check_jacobian(&model, *ratio, &s.displacement);
+}
+
+/// `|t|` at site `k` (both components on the 3-D body).
+fn capstan_friction_norm(s: &ContactSolution, k: usize) -> f64 {
+    let t2 = s.contact.friction_traction[k];
+    let t1 = s
+        .contact
+        .solid
+        .as_ref()
+        .map_or(0.0, |p| p.friction_traction_1[k]);
+    t1.hypot(t2)
+}
+
+/// The Jacobian along a fixed direction against central differences of the residual.
+fn check_jacobian<D, L: FrictionLaw<f64>>(model: &ContactModel<D, L>, ratio: f64, v: &[f64]) {
+    let p = FullSystemProblem::new(model, EndLoads::new(1.0, ratio));
+    let n = v.len();
+    let d: Vec<f64> = (0..n)
+        .map(|i| ((i * 7919) % 101) as f64 / 101.0 - 0.5)
+        .collect();
+    let mut values = vec![0.0; p.pattern().nnz()];
+    p.jacobian(v, &mut values).unwrap();
+    let mut jd = vec![0.0; n];
+    for ((i, j), a) in p.pattern().entries().zip(&values) {
+        jd[i] += a * d[j];
+    }
+    let h = 1e-8;
+    let shifted = |s: f64| {
+        let w: Vec<f64> = v.iter().zip(&d).map(|(a, b)| a + s * b).collect();
+        let mut r = vec![0.0; n];
+        p.residual(&w, &mut r).unwrap();
+        r
+    };
+    let (plus, minus) = (shifted(h), shifted(-h));
+    let err = (0..n)
+        .map(|i| ((plus[i] - minus[i]) / (2.0 * h) - jd[i]).abs())
+        .fold(0.0f64, f64::max);
+    let size = jd.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    // central differences with h = 1e-8 on entries of size 1e3: round-off about 1e-5
+    assert!(err <= 1e-6 * size, "{err:e} of {size:e}");
+}
+
+/// Past 1.35 the pseudo-arclength continuation in the ratio follows the path to its fold
+/// `r* = 1.439790` (the dense arclength of the whole system agrees to 7 digits) and reports
+/// no equilibrium beyond it; below the fold it converges.
+#[test]
+fn the_unilateral_cone_has_no_equilibrium_beyond_the_fold_of_its_path() {
+    let (problem, _) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    let path = continue_to(&solver, 1.35);
+    let (ratio, s) = path.last().unwrap();
+    let below = solver
+        .continue_ratio(1.0, *ratio, &s.displacement, 1.4375)
+        .unwrap();
+    assert_eq!(below.slip_fraction, 1.0);
+    let err = solver
+        .continue_ratio(1.0, 1.4375, &below.displacement, 1.45)
+        .unwrap_err();
+    assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium, "{err}");
+    let ContactError::NoEquilibrium { upper, ratio, .. } = err else {
+        unreachable!("kind checked above")
+    };
+    assert_eq!(ratio, 1.45);
+    // the largest converged point of the steps lies within the arclength step of the fold
+    assert!((1.4395..=1.43980).contains(&upper), "{upper}");
+}
