@@ -86,7 +86,9 @@ mod unilateral;
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
 pub use body_force::BodyForceField;
-pub use boundary_solver::exact_start::{EXACT_START_TOLERANCE, StartedExactFace};
+pub use boundary_solver::exact_start::{
+    EXACT_START_TOLERANCE, EXACT_START_TOLERANCE_SLIDING, StartedExactFace,
+};
 pub use boundary_solver::semismooth::ExactFaceSolution;
 pub use boundary_solver::{
     BoundarySolver, CONDENSED_SEMISMOOTH, ContactSettings, SetupStats, SlidingMode,
