@@ -10,6 +10,46 @@ use crate::contact::operator::ContactOperator;
 /// False-position iterations of [`BoundarySolver::rebalance`].
 pub(super) const REBALANCE_ITERATIONS: usize = 100;
 
+/// The Illinois false position on a bracket `[lo, hi]` of a scalar `phi` (`phi(lo)` and
+/// `phi(hi)` of opposite signs, given as `flo`, `fhi`):
+/// ```text
+/// a = (lo phi(hi) - hi phi(lo)) / (phi(hi) - phi(lo)),
+/// ```
+/// the end on `phi(a)`'s side replaced by `a`; when the same end is kept twice in a row, the
+/// other end's value is halved (Illinois), which keeps the convergence superlinear where plain
+/// false position would stall at one end. Stops at `phi(a) = 0` or a bracket shorter than
+/// `1e-15 max(|a|, scale)` and returns `a`; after [`REBALANCE_ITERATIONS`] the end with the
+/// smaller `|phi|`.
+pub(super) fn illinois(
+    mut phi: impl FnMut(f64) -> f64,
+    (mut lo, mut flo): (f64, f64),
+    (mut hi, mut fhi): (f64, f64),
+    scale: f64,
+) -> f64 {
+    let mut side = 0i8;
+    for _ in 0..REBALANCE_ITERATIONS {
+        let a = (lo * fhi - hi * flo) / (fhi - flo);
+        let fa = phi(a);
+        if fa == 0.0 || (hi - lo).abs() <= 1e-15 * a.abs().max(scale) {
+            return a;
+        }
+        if fa.signum() == flo.signum() {
+            (lo, flo) = (a, fa);
+            if side == -1 {
+                fhi *= 0.5;
+            }
+            side = -1;
+        } else {
+            (hi, fhi) = (a, fa);
+            if side == 1 {
+                flo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    if flo.abs() <= fhi.abs() { lo } else { hi }
+}
+
 /// `s = s_p + a z`.
 pub(super) fn set_rigid(s: &mut [f64], sp: &[f64], z: &[f64], a: f64) {
     for ((s, p), z) in s.iter_mut().zip(sp).zip(z) {
@@ -112,30 +152,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
             (lo, flo) = (hi, fhi);
             step = (2.0 * step).min(limit);
         }
-        // Illinois false position on [lo, hi]
-        let mut side = 0i8;
-        for _ in 0..REBALANCE_ITERATIONS {
-            let a = (lo * fhi - hi * flo) / (fhi - flo);
-            let fa = phi(a);
-            if fa == 0.0 || (hi - lo).abs() <= 1e-15 * a.abs().max(per_a.recip() * eps) {
-                lo = a;
-                break;
-            }
-            if fa.signum() == flo.signum() {
-                (lo, flo) = (a, fa);
-                if side == -1 {
-                    fhi *= 0.5;
-                }
-                side = -1;
-            } else {
-                (hi, fhi) = (a, fa);
-                if side == 1 {
-                    flo *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        let a = if flo.abs() <= fhi.abs() { lo } else { hi };
+        let a = illinois(phi, (lo, flo), (hi, fhi), per_a.recip() * eps);
         set_rigid(s, &sp, z, a);
     }
 }

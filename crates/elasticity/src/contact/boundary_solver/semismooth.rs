@@ -11,7 +11,7 @@ use faer::Mat;
 use faer::linalg::solvers::Solve;
 
 use super::newton::{MAX_ROUNDOFF_RESIDUAL, ROUNDOFF_FACTOR};
-use super::rigid::{REBALANCE_ITERATIONS, set_rigid};
+use super::rigid::{illinois, set_rigid};
 use super::settings::CONDENSED_SEMISMOOTH;
 use super::{BoundarySolver, body_difference, solution_of};
 use crate::contact::error::ContactError;
@@ -539,29 +539,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ExactFace<'_, '_, '_, D, L> {
                 (lo, flo) = (inner, fi);
             }
         }
-        // Illinois false position on [lo, hi]
-        let mut side = 0i8;
-        for _ in 0..REBALANCE_ITERATIONS {
-            let a = (lo * fhi - hi * flo) / (fhi - flo);
-            let fa = phi(a);
-            if fa == 0.0 || (hi - lo).abs() <= 1e-15 * a.abs().max(h0) {
-                return Some(a);
-            }
-            if fa.signum() == flo.signum() {
-                (lo, flo) = (a, fa);
-                if side == -1 {
-                    fhi *= 0.5;
-                }
-                side = -1;
-            } else {
-                (hi, fhi) = (a, fa);
-                if side == 1 {
-                    flo *= 0.5;
-                }
-                side = 1;
-            }
-        }
-        Some(if flo.abs() <= fhi.abs() { lo } else { hi })
+        Some(illinois(phi, (lo, flo), (hi, fhi), h0))
     }
 
     /// Moves `s` along the rigid mode to the balanced amplitude

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use capstan_solvers::{CsrMatrix, MultigridParams, OperatorLevel, OperatorMultigrid};
 
 use super::operator::SolidMatrixFree;
-use super::p_levels::{PLevel, p_levels};
+use super::p_levels::{PLevel, inject_pinned, p_levels};
 use crate::error::ElasticityError;
 use crate::finite_element::{ElementOrder, VolumetricIntegration};
 use crate::shell_geometry::ShellGeometry;
@@ -273,18 +273,11 @@ impl SolidMultigridParams {
             periodic,
         )?;
         let mut coarse_boundary = boundary.clone();
-        for (node, _, _) in &mut coarse_boundary.pinned {
-            for d in 0..3 {
-                match w[d].get(node[d]).map(|v| &v[..]) {
-                    Some([(c, 1.0)]) => node[d] = *c,
-                    _ => {
-                        return Err(ElasticityError::InconsistentBoundary {
-                            what: "a pinned node is off the coarse grid of the multigrid",
-                        });
-                    }
-                }
-            }
-        }
+        inject_pinned(
+            &mut coarse_boundary,
+            &w,
+            "a pinned node is off the coarse grid of the multigrid",
+        )?;
         let coarse = SolidNavier::new(
             chart.clone(),
             fine.material(),

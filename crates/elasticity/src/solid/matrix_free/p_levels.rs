@@ -18,6 +18,29 @@ use crate::solid::multigrid::tensor_prolongation;
 /// to Q1, as before).
 pub(crate) const P_LEVELS_FROM_DEGREE: usize = 4;
 
+/// Moves each pinned node of `boundary` to its node on a coarser level, given per direction
+/// the interpolation rows `w[d][fine] = [(coarse, weight)]`: a pinned node must be a node of
+/// the coarse level too (its row is the single entry `(c, 1)`), so the pinned set injects.
+///
+/// # Errors
+/// [`ElasticityError::InconsistentBoundary`] naming `what` for a pinned node off the coarse
+/// level's node lines.
+pub(super) fn inject_pinned(
+    boundary: &mut SolidBoundary,
+    w: &[Vec<Vec<(usize, f64)>>; 3],
+    what: &'static str,
+) -> Result<(), ElasticityError> {
+    for (node, _, _) in &mut boundary.pinned {
+        for d in 0..3 {
+            match w[d].get(node[d]).map(|v| &v[..]) {
+                Some([(c, 1.0)]) => node[d] = *c,
+                _ => return Err(ElasticityError::InconsistentBoundary { what }),
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The degrees of the intermediate p-levels below a fine level of degree `p`, finest first:
 /// `p / 2, p / 4, ...` while at least 2 (none below [`P_LEVELS_FROM_DEGREE`]).
 ///
@@ -136,18 +159,11 @@ pub(crate) fn p_levels<G: ShellGeometry + Clone + Send + Sync + 'static>(
             core::array::from_fn(|d| p_to_p_interpolation(counts[d], p, &nodes, coarse, per[d]));
         let (prolongation, coarse_counts, coarse_mask) =
             tensor_prolongation(counts, &w, &constrained);
-        for (node, _, _) in &mut pinned.pinned {
-            for d in 0..3 {
-                match w[d].get(node[d]).map(|v| &v[..]) {
-                    Some([(c, 1.0)]) => node[d] = *c,
-                    _ => {
-                        return Err(ElasticityError::InconsistentBoundary {
-                            what: "a pinned node is off the lines of a p-level of the multigrid",
-                        });
-                    }
-                }
-            }
-        }
+        inject_pinned(
+            &mut pinned,
+            &w,
+            "a pinned node is off the lines of a p-level of the multigrid",
+        )?;
         let level_grid = BoxGrid::new(
             grid.x1_range(),
             grid.x2_range(),
