@@ -530,7 +530,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> ExactFace<'_, '_, '_, D, L> {
             }
             h *= 2.0;
         }
-        let (mut hi, mut fhi) = bracket?;
+        let (hi, fhi) = bracket?;
         // the last point on f0's side towards `hi` (phi is monotone along the mode)
         let inner = hi - (hi - a0) / 2.0;
         if (hi - a0).abs() > h0 {
