@@ -86,6 +86,21 @@ impl BoxGrid {
         })
     }
 
+    /// The same box (`x1` and `x2` ranges, thickness, periodicity) with `n` uniformly spaced
+    /// nodes per direction: a coarser (or p-) level of a multigrid hierarchy on this body.
+    ///
+    /// # Errors
+    /// As [`BoxGrid::new`] for the counts `n`.
+    pub fn with_counts(&self, n: [usize; 3]) -> Result<Self, ElasticityError> {
+        Self::new(
+            self.x1_range(),
+            self.x2_range(),
+            self.thickness(),
+            n,
+            self.is_periodic(),
+        )
+    }
+
     /// The same grid with the node lines of every element of degree `p` at the GLL points
     /// (see [`BoxGrid`]); `p = 1` is the uniform grid.
     ///

@@ -265,13 +265,7 @@ impl SolidMultigridParams {
             periodic || coarse_counts == coarse_level_nodes(n, k, cell_sizes(&chart, grid)?),
             "the memory estimate's coarse level is the one built"
         );
-        let coarse_grid = BoxGrid::new(
-            grid.x1_range(),
-            grid.x2_range(),
-            grid.thickness(),
-            coarse_counts,
-            periodic,
-        )?;
+        let coarse_grid = grid.with_counts(coarse_counts)?;
         let mut coarse_boundary = boundary.clone();
         inject_pinned(
             &mut coarse_boundary,

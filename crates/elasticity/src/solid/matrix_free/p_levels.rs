@@ -11,7 +11,6 @@ use crate::finite_element::VolumetricIntegration;
 use crate::shell_geometry::ShellGeometry;
 use crate::solid::boundary::SolidBoundary;
 use crate::solid::element::HexElement;
-use crate::solid::grid::BoxGrid;
 use crate::solid::multigrid::tensor_prolongation;
 
 /// The smallest degree that gets intermediate p-levels: `p >= 4` (Qp3 and below go straight
@@ -164,13 +163,7 @@ pub(crate) fn p_levels<G: ShellGeometry + Clone + Send + Sync + 'static>(
             &w,
             "a pinned node is off the lines of a p-level of the multigrid",
         )?;
-        let level_grid = BoxGrid::new(
-            grid.x1_range(),
-            grid.x2_range(),
-            grid.thickness(),
-            coarse_counts,
-            periodic,
-        )?;
+        let level_grid = grid.with_counts(coarse_counts)?;
         let operator = SolidMatrixFree::new(
             fine.setup.chart.clone(),
             fine.material(),
