@@ -35,8 +35,8 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use capstan::commands::accuracy::{behaviour, contact_to, probes, scaled};
-use capstan::problem::estimate::Behaviour;
+use capstan::commands::accuracy::{behaviour, contact_to, graded_behaviour, probes, scaled};
+use capstan::problem::estimate::Rule;
 use capstan::problem::{AccuracyTarget, Scaled, assess};
 use capstan::scene::Scene;
 use capstan_elasticity::solvers::SilentObserver;
@@ -112,14 +112,13 @@ impl Cache {
 
 impl CachedStep {
     /// The step's quantities as `refine_to` saw them (the behaviour by name, as the contact
-    /// report classifies them on the hp ladder; every quantity smooth on the graded one:
-    /// `scaled_graded`).
+    /// report classifies them on the hp ladder, and on the graded one: `scaled_graded`).
     fn scaled(&self, graded: bool) -> BTreeMap<String, Scaled> {
         self.values
             .iter()
             .map(|(n, &value)| {
                 let behaviour = if graded {
-                    Behaviour::Smooth
+                    graded_behaviour(n)
                 } else {
                     behaviour(n)
                 };
@@ -407,9 +406,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (name, q) in &steps[k] {
             let e = a.estimates.get(name);
             let est = e.map_or(f64::NAN, |e| e.error / q.scale);
-            let rule = e.map_or("-".to_owned(), |e| match e.rate {
-                Some(r) => format!("richardson r = {r:.3}"),
-                None => "last-change".to_owned(),
+            let rule = e.map_or("-".to_owned(), |e| match (e.rule, e.rate) {
+                (Rule::Richardson, Some(r)) => format!("richardson r = {r:.3}"),
+                (Rule::LadderRate, Some(r)) => format!("ladder-rate rho = {r:.3}"),
+                _ => "last-change".to_owned(),
             });
             let truth = (q.value - reference.values[name]).abs() / q.scale;
             let other = cache

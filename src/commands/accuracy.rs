@@ -51,7 +51,8 @@ pub struct ErrorEstimate {
     /// accuracy target.
     pub method: &'static str,
     /// Under an accuracy target, the rule of each quantity's estimate along the ladder
-    /// (`richardson` or `last-change`: [`crate::problem::estimate`]); absent otherwise.
+    /// (`richardson`, `ladder-rate` or `last-change`: [`crate::problem::estimate`]); absent
+    /// otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rules: Option<BTreeMap<String, Rule>>,
 }
@@ -260,21 +261,35 @@ pub fn behaviour(name: &str) -> Behaviour {
     }
 }
 
+/// How a contact quantity converges along the transition-graded ladder
+/// ([`crate::problem::Problem::transition_step`]), by its name: the slip measures and the
+/// stick-zone ends converge at a rate that is the ladder's ([`Behaviour::Transition`]), every
+/// other quantity at a rate of its own ([`Behaviour::Smooth`]), which the ladder's bounds
+/// (`capstan::problem::estimate`, "The ladder's rate").
+pub fn graded_behaviour(name: &str) -> Behaviour {
+    match behaviour(name) {
+        Behaviour::Located => Behaviour::Transition,
+        other => other,
+    }
+}
+
 /// [`scaled`] on the transition-graded ladder ([`crate::problem::Problem::transition_step`]):
-/// every quantity converges at a rate ([`Behaviour::Smooth`]), the located ones too. With an
+/// every quantity converges at a rate, the located ones too ([`graded_behaviour`]). With an
 /// element line at each transition, relocated on every step, the slip measure and the
 /// stick-zone ends lose the grid-dependent jitter that makes the hp ladder read their rates
 /// as noise, and fall geometrically: on the default scene at the observed rate `0.47 ... 0.52`
 /// per order (differences `3.2e-5, 1.6e-5, 7.5e-6, 3.4e-6, 1.6e-6, 8.4e-7` of `pi` over
 /// `p = 4 ... 10`), where the last change alone is `|r| / |1 - r| ~ 1` times the error, and
-/// less (an underestimate) when the rate is slower (`0.6` on `12 x 2` cells).
+/// less (an underestimate) when the rate is slower (`0.6` on `12 x 2` cells). Their last rates
+/// are the ladder's rate, which the other quantities' estimates use where their own rates are
+/// faster than it allows.
 pub fn scaled_graded(
     quantities: &ContactQuantities,
     solution: &ContactSolution,
 ) -> BTreeMap<String, Scaled> {
     let mut q = scaled(quantities, solution);
-    for s in q.values_mut() {
-        s.behaviour = Behaviour::Smooth;
+    for (name, s) in &mut q {
+        s.behaviour = graded_behaviour(name);
     }
     q
 }

@@ -1,6 +1,8 @@
 //! The error estimate of a quantity from its values along a refinement ladder (the accuracy
 //! targets of [`crate::problem::AccuracyTarget`]): Richardson extrapolation with the observed
-//! rate where the sequence is in its asymptotic range, the plain last change where it is not.
+//! rate where the sequence is in its asymptotic range, the plain last change where it is not,
+//! and on a ladder graded toward the stick/slip transitions the ladder's rate where a
+//! quantity's own rate is faster than the ladder allows.
 //!
 //! A leaf module: it knows sequences of numbers, nothing of problems or solvers.
 //!
@@ -33,7 +35,7 @@
 //! then still at least the error) and keeps the estimate at most `2 * CONSISTENT = 6` times
 //! the error when the next rate is as fast as the faster observed one. On the default scene's
 //! threshold ladder (rates 0.12, 0.20, 0.21) it is 1.1x ... 1.7x the error; on its contact
-//! quantities at the step `tol = 1e-3` chooses, 0.57x ... 5.0x against one of the two finest
+//! quantities along the hp ladder at the step `tol = 1e-3` chooses, 0.57x ... 5.0x against one of the two finest
 //! solves at least (docs/verification.md, "The contact tolerance table").
 //!
 //! The estimate is the last change `e_k = |d_k|` (rule `last-change`) where no rate can be
@@ -51,15 +53,71 @@
 //!   meshes of 112 and 120 elements), so a rate read from its changes is the jitter's, not the
 //!   error's. The last change is the size of that jitter.
 //!
+//! # The ladder's rate (the transition-graded ladder)
+//! On the transition-graded ladder (`Problem::transition_step`: order `p = 2 + k` on one mesh
+//! with an element line at each stick/slip transition the step before located) every
+//! quantity's error has a part set by the transitions. The kink of the friction traction at
+//! `|u| = eps` lies a distance `delta_{k-1}` (the location error of step `k - 1`) from the
+//! element line meant for it; the element holding it converges only algebraically, and the
+//! whole solution, the displacements and the stresses at the probes too, carries an error of
+//! the order of that misfit. The quantities set by the transitions (the slip measure and the
+//! stick-zone ends: [`Behaviour::Transition`]) measure the misfit itself, which falls at the
+//! rate `rho` of the location (`0.46 ... 0.52` per order on the default scene). The rest of
+//! the error (the smooth field; the end corners, with `p + 3` layers) falls exponentially in
+//! `p`, faster (Schwab, *p- and hp-FEM*, section 4.4). So every quantity's error is
+//! `A rho^k + B s^k` with `|s| < rho`, and its asymptotic rate is `rho`: on the default scene
+//! the last changes (`p = 9` to `10`) of max `|v2|` and of probes 1 and 2 are `0.47 ... 0.50`
+//! times the ones before, like the slip measure's `0.52`. The ladder's rate is
+//! ```text
+//! rho = max |r_k|   over the Transition quantities with a rate                 (ladder_rate)
+//! ```
+//! their *last* rates: the one before may still carry the relocation from the first pass
+//! (`stick_from`: `-0.05, 0.63, 0.48` at steps 2, 3, 4 on the default scene).
+//!
+//! A quantity whose rate `r` (the one the Richardson rule would use) agrees with `rho` within
+//! [`CONSISTENT`] (`|r| >= rho / CONSISTENT`, as two rates of one sequence must agree; a
+//! slower rate is a quantity not yet asymptotic, which its own rate covers) keeps rule
+//! `richardson`. A faster rate contradicts the ladder: the part falling at `rho` cannot have
+//! fallen so fast, so step `k` landed near the limit by a cancellation between the parts, and
+//! the changes cannot say how much of the error is left. Two readings bound it:
+//! ```text
+//! lower:  c_k rho / (1 - rho),          c_k = max(|d_k|, R_MIN |d_{k-1}|)
+//!         the fall was real, the error falls at rho from step k on
+//! upper:  rho |d_{k-1}| rho / (1 - rho)
+//!         the fall was a landing, the part at rho goes on from d_{k-1}
+//! ```
+//! They differ by the factor `rho / max(|r|, R_MIN) > CONSISTENT`. With the error anywhere
+//! between them, the estimate off by the least factor in the worst case is their geometric
+//! mean, off by at most `sqrt(rho / max(|r|, R_MIN)) <= sqrt(64 rho)` (5.5 at `rho = 0.47`):
+//! ```text
+//! e_k = SAFETY sqrt(c_k rho |d_{k-1}|) rho / (1 - rho)                      (rule `ladder-rate`)
+//! ```
+//! (`rho / (1 - rho)`: the monotone reading, larger than the alternating `rho / (1 + rho)`).
+//! On the default scene at `tol = 1e-5` (step 6, `p = 8`) the true errors of max `|v2|`,
+//! max `|v3|` and the probes (`1.7e-8 ... 6.8e-7`) all lie between the two readings and the
+//! estimates are 2.5x ... 6.9x them, where `richardson` with the `R_MIN` cap gave
+//! 0.01x ... 0.27x; at step 2 the stick ends, whose first change is the relocation from the
+//! first pass (rates `-0.05`, `0.06` after it), get 3.3x and 5.2x where `richardson` gave
+//! 0.08x and 0.17x (docs/verification.md, "The transition-graded ladder"). A plain floor
+//! `|r| >= rho` would also overrule rates within the band: probe 0 at step 2 (rate `0.19`,
+//! `rho = 0.41`) from 2.1x its true error to 6.4x and above `1e-3`, moving that tolerance's
+//! stop a step later for nothing. A ladder without Transition quantities (the hp ladder, the
+//! threshold's) has no `rho` and keeps the rules above.
+//!
+//! # Limits
 //! The estimate is of the error of `Q_k` against the ladder's limit from the changes alone: a
 //! quantity that stagnates for several steps (its changes small while its error is not: a
 //! stick zone not yet resolved) is underestimated by any such rule; docs/verification.md
-//! records where that happens on the default scene (the slip measure at `tol = 1e-2`).
+//! records where that happens on the default scene (the slip measure at `tol = 1e-2` on the hp
+//! ladder). A quantity that lands near its limit by accident is overestimated by any such
+//! rule: at step 2 of the transition-graded ladder max `|v3|` is `1.3e-7` from its limit after
+//! a change of `3.8e-4`, and nothing before step 3 shows it.
 
 /// The safety factor of the Richardson estimate (see the module docs).
 pub const SAFETY: f64 = 2.0;
 
-/// The largest ratio between the last two observed rates of a sequence counted as asymptotic.
+/// The largest ratio between two observed rates counted as agreeing: the last two rates of a
+/// sequence (its asymptotic range), or a quantity's rate and the ladder's ([`ladder_rate`]).
 pub const CONSISTENT: f64 = 3.0;
 
 /// The fastest contraction per step the estimate believes: `2^-6`, a stress under one halving
@@ -76,8 +134,13 @@ pub enum Behaviour {
     /// stress at a point): Richardson with the observed rate.
     Smooth,
     /// A quantity set by a stick/slip transition located between nodes (slip measure,
-    /// stick-zone ends): the last change.
+    /// stick-zone ends) on a ladder that does not follow the transitions: the last change.
     Located,
+    /// A quantity set by a stick/slip transition on a ladder graded toward the transitions
+    /// (the slip measure and the stick-zone ends of the transition-graded ladder): it
+    /// converges at a rate like [`Behaviour::Smooth`], and its last rate sets the ladder's
+    /// ([`ladder_rate`]).
+    Transition,
 }
 
 /// Which rule made an estimate.
@@ -89,6 +152,9 @@ pub enum Rule {
     /// `|d_k|`: one change, a growing change, a change at the solvers' tolerances, or a
     /// located quantity.
     LastChange,
+    /// `SAFETY sqrt(max(|d_k|, R_MIN |d_{k-1}|) rho |d_{k-1}|) rho / (1 - rho)`: a quantity
+    /// whose rate is faster than the ladder's `rho` allows ([`ladder_rate`]).
+    LadderRate,
 }
 
 /// The estimate of the error of the last value of a sequence.
@@ -98,47 +164,120 @@ pub struct SequenceEstimate {
     pub error: f64,
     /// The rule that made it.
     pub rule: Rule,
-    /// The observed rate `r` the Richardson rule used (`None` for the last change).
+    /// The rate `r` the rule used: the observed one (`richardson`), the ladder's `rho`
+    /// (`ladder-rate`); `None` for the last change.
     pub rate: Option<f64>,
 }
 
-/// The estimate of the error of the last of `values` (a quantity along the ladder, coarsest
-/// first; see the module docs). `None` with fewer than two values or a non-finite change.
-pub fn estimate(values: &[f64], behaviour: Behaviour) -> Option<SequenceEstimate> {
+/// What the last changes of a sequence show, before any ladder-wide rate.
+enum Observed {
+    /// No estimate (fewer than two values, a non-finite change).
+    Nothing,
+    /// No rate can be read: the last change `|d_k|` is the estimate.
+    LastChange(f64),
+    /// A rate: the last two changes `d_k`, `d_{k-1}`, the last rate `r_k` and the rate the
+    /// Richardson rule uses (the slower of two agreeing, else `r_k`).
+    Rates {
+        last: f64,
+        before: f64,
+        last_rate: f64,
+        rate: f64,
+    },
+}
+
+/// The changes and rates of `values` (see the module docs), `behaviour` deciding whether a
+/// rate is read at all.
+fn observe(values: &[f64], behaviour: Behaviour) -> Observed {
     let n = values.len();
     if n < 2 {
-        return None;
+        return Observed::Nothing;
     }
     let d = |j: usize| values[j] - values[j - 1];
     let last = d(n - 1);
     if !last.is_finite() {
-        return None;
+        return Observed::Nothing;
     }
-    let plain = SequenceEstimate {
-        error: last.abs(),
-        rule: Rule::LastChange,
-        rate: None,
-    };
     if behaviour == Behaviour::Located || n < 3 || last.abs() <= NOISE * values[n - 1].abs() {
-        return Some(plain);
+        return Observed::LastChange(last.abs());
     }
     let before = d(n - 2);
     let r1 = last / before;
     if before == 0.0 || r1.abs() >= 1.0 {
-        return Some(plain);
+        return Observed::LastChange(last.abs());
     }
-    let mut r = r1;
+    let mut rate = r1;
     if n >= 4 {
         let r0 = before / d(n - 3);
         let agree = r0 * r1 > 0.0
             && r0.abs() < 1.0
             && r0.abs().max(r1.abs()) <= CONSISTENT * r0.abs().min(r1.abs());
         if agree && r0.abs() > r1.abs() {
-            r = r0;
+            rate = r0;
         }
     }
-    let r = r.signum() * r.abs().max(R_MIN);
+    Observed::Rates {
+        last,
+        before,
+        last_rate: r1,
+        rate,
+    }
+}
+
+/// The ladder's rate `rho` from the sequences of its [`Behaviour::Transition`] quantities
+/// (each coarsest first): the slowest of their last observed rates, `max |r_k|`, over those
+/// that have one (see the module docs, "The ladder's rate"). `None` when none has a rate
+/// (before step 2, or every change grew or is at the solvers' tolerances).
+pub fn ladder_rate<'a>(sequences: impl IntoIterator<Item = &'a [f64]>) -> Option<f64> {
+    sequences
+        .into_iter()
+        .filter_map(|values| match observe(values, Behaviour::Transition) {
+            Observed::Rates { last_rate, .. } => Some(last_rate.abs()),
+            _ => None,
+        })
+        .reduce(f64::max)
+}
+
+/// The estimate of the error of the last of `values` (a quantity along the ladder, coarsest
+/// first; see the module docs) on a ladder without a ladder-wide rate: [`estimate_on`] with
+/// `None`. `None` with fewer than two values or a non-finite change.
+pub fn estimate(values: &[f64], behaviour: Behaviour) -> Option<SequenceEstimate> {
+    estimate_on(values, behaviour, None)
+}
+
+/// The estimate of the error of the last of `values` on a ladder whose rate is `ladder`
+/// ([`ladder_rate`]; `None` on a ladder without one): rule `richardson` with the observed rate
+/// where it agrees with `ladder` (or there is none), rule `ladder-rate` where it is faster than
+/// `ladder / CONSISTENT`, rule `last-change` where no rate can be read (see the module docs).
+/// `None` with fewer than two values or a non-finite change.
+pub fn estimate_on(
+    values: &[f64],
+    behaviour: Behaviour,
+    ladder: Option<f64>,
+) -> Option<SequenceEstimate> {
+    let (last, before, rate) = match observe(values, behaviour) {
+        Observed::Nothing => return None,
+        Observed::LastChange(change) => {
+            return Some(SequenceEstimate {
+                error: change,
+                rule: Rule::LastChange,
+                rate: None,
+            });
+        }
+        Observed::Rates {
+            last, before, rate, ..
+        } => (last, before, rate),
+    };
+    // the change of the lower reading: a change of zero does not give a zero estimate
     let change = last.abs().max(R_MIN * before.abs());
+    if let Some(rho) = ladder.filter(|rho| rate.abs() < rho / CONSISTENT) {
+        let upper = rho * before.abs();
+        return Some(SequenceEstimate {
+            error: SAFETY * (change * upper).sqrt() * rho / (1.0 - rho),
+            rule: Rule::LadderRate,
+            rate: Some(rho),
+        });
+    }
+    let r = rate.signum() * rate.abs().max(R_MIN);
     Some(SequenceEstimate {
         error: SAFETY * change * r.abs() / (1.0 - r).abs(),
         rule: Rule::Richardson,
@@ -214,5 +353,67 @@ mod tests {
         assert_eq!(e.rule, Rule::LastChange);
         assert!((e.error - (q[5] - q[4]).abs()).abs() < 1e-15);
         assert_eq!(estimate(&[1.0, f64::NAN], Behaviour::Smooth), None);
+    }
+
+    #[test]
+    fn the_ladder_rate_is_the_slowest_last_rate_of_the_sequences_that_have_one() {
+        let slow = geometric(0.1, 0.5, 5); // last rate 0.5
+        let fast = geometric(0.1, -0.3, 5); // last rate -0.3: modulus 0.3
+        let short = [1.0, 2.0]; // one change: no rate
+        let growing = [0.0, 0.1, 0.3]; // rate 2: no rate
+        let rho = ladder_rate([&fast[..], &slow[..], &short[..], &growing[..]]).unwrap();
+        assert!((rho - 0.5).abs() < 1e-12, "{rho}");
+        // the last rate, not the slower of two agreeing: changes 1, 0.6, 0.3 (rates 0.6, 0.5)
+        let q = [0.0, 1.0, 1.6, 1.9];
+        assert!((ladder_rate([&q[..]]).unwrap() - 0.5).abs() < 1e-12);
+        assert_eq!(ladder_rate([&short[..], &growing[..]]), None);
+        assert_eq!(ladder_rate(std::iter::empty::<&[f64]>()), None);
+    }
+
+    #[test]
+    fn a_rate_within_the_ladders_band_keeps_richardson_and_no_ladder_changes_nothing() {
+        for r in [0.5, 0.2, -0.3, 0.9] {
+            let q = geometric(0.1, r, 6);
+            // rho = 0.5: rates down to 0.5 / CONSISTENT agree with it
+            let e = estimate_on(&q, Behaviour::Smooth, Some(0.5)).unwrap();
+            assert_eq!(Some(e), estimate(&q, Behaviour::Smooth), "{r}");
+            assert_eq!(e.rule, Rule::Richardson);
+        }
+        // without a ladder rate: the old rules, R_MIN cap included
+        let q = geometric(0.1, 0.01, 6);
+        let e = estimate_on(&q, Behaviour::Transition, None).unwrap();
+        assert_eq!((e.rule, e.rate), (Rule::Richardson, Some(R_MIN)));
+        // a located quantity keeps its last change whatever the ladder
+        let q = geometric(0.1, 0.01, 6);
+        let e = estimate_on(&q, Behaviour::Located, Some(0.5)).unwrap();
+        assert_eq!(e.rule, Rule::LastChange);
+    }
+
+    /// `Q_j = 2^-j` with a fast part on step 3 alone that all but cancels the change of step 4
+    /// (the landing: `d_4 = -1e-3` after `d_3 = -0.1865`), the error of `Q_4` still `2^-4`.
+    #[test]
+    fn a_rate_faster_than_the_ladder_allows_takes_the_geometric_mean_of_the_two_readings() {
+        let mut q = geometric(1.0, 0.5, 5);
+        q[3] -= 0.0615;
+        let truth = q[4];
+        let before = q[3] - q[2]; // -0.1865
+        let rho = 0.5;
+        let e = estimate_on(&q, Behaviour::Smooth, Some(rho)).unwrap();
+        assert_eq!((e.rule, e.rate), (Rule::LadderRate, Some(rho)));
+        let lower = R_MIN * before.abs() * rho / (1.0 - rho);
+        let upper = rho * before.abs() * rho / (1.0 - rho);
+        assert!(lower < truth && truth < upper, "{lower} {truth} {upper}");
+        assert!((e.error - SAFETY * (lower * upper).sqrt()).abs() < 1e-15);
+        // within SAFETY / sqrt(rho / R_MIN) ... SAFETY sqrt(rho / R_MIN) of any error between
+        // the readings: here 0.53x, where Richardson with the R_MIN cap gives 0.0015x
+        let worst = (rho / R_MIN).sqrt();
+        let ratio = e.error / truth;
+        assert!(
+            ratio >= SAFETY / worst && ratio <= SAFETY * worst,
+            "{ratio}"
+        );
+        assert!((0.5..=10.0).contains(&ratio), "{ratio}");
+        let plain = estimate(&q, Behaviour::Smooth).unwrap();
+        assert!(plain.error / truth < 0.01, "{}", plain.error / truth);
     }
 }
