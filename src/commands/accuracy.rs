@@ -164,7 +164,8 @@ impl AccuracyReport {
     }
 
     /// The estimate of a refinement: `e_k(Q)` of every quantity along the ladder (Richardson
-    /// with the observed rate, or the last change: [`crate::problem::AccuracyTarget`]), with
+    /// with the observed rate, with the ladder's rate, or the last change:
+    /// [`crate::problem::AccuracyTarget`]), with
     /// the grid of the step before (method `previous-refinement`).
     pub fn estimate<T, S>(refined: &Refined<T, S>) -> ErrorEstimate {
         let n = refined.steps.len();
