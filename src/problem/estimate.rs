@@ -35,8 +35,8 @@
 //! then still at least the error) and keeps the estimate at most `2 * CONSISTENT = 6` times
 //! the error when the next rate is as fast as the faster observed one. On the default scene's
 //! threshold ladder (rates 0.12, 0.20, 0.21) it is 1.1x ... 1.7x the error; on its contact
-//! quantities along the hp ladder at the step `tol = 1e-3` chooses, 0.57x ... 5.0x against one of the two finest
-//! solves at least (docs/verification.md, "The contact tolerance table").
+//! quantities along the hp ladder at the step `tol = 1e-3` chooses, 0.57x ... 5.0x against one
+//! of the two finest solves at least (docs/verification.md, "The contact tolerance table").
 //!
 //! The estimate is the last change `e_k = |d_k|` (rule `last-change`) where no rate can be
 //! read:
@@ -79,7 +79,7 @@
 //! slower rate is a quantity not yet asymptotic, which its own rate covers) keeps rule
 //! `richardson`. A faster rate contradicts the ladder: the part falling at `rho` cannot have
 //! fallen so fast, so step `k` landed near the limit by a cancellation between the parts, and
-//! the changes cannot say how much of the error is left. Two readings bound it:
+//! the changes cannot say how much of the error is left. Two readings span it:
 //! ```text
 //! lower:  c_k rho / (1 - rho),          c_k = max(|d_k|, R_MIN |d_{k-1}|)
 //!         the fall was real, the error falls at rho from step k on
@@ -88,11 +88,15 @@
 //! ```
 //! They differ by the factor `rho / max(|r|, R_MIN) > CONSISTENT`. With the error anywhere
 //! between them, the estimate off by the least factor in the worst case is their geometric
-//! mean, off by at most `sqrt(rho / max(|r|, R_MIN)) <= sqrt(64 rho)` (5.5 at `rho = 0.47`):
+//! mean, off by at most `w = sqrt(rho / max(|r|, R_MIN)) <= sqrt(64 rho)` (5.5 at
+//! `rho = 0.47`):
 //! ```text
 //! e_k = SAFETY sqrt(c_k rho |d_{k-1}|) rho / (1 - rho)                      (rule `ladder-rate`)
 //! ```
-//! (`rho / (1 - rho)`: the monotone reading, larger than the alternating `rho / (1 + rho)`).
+//! (`rho / (1 - rho)`: the monotone reading, larger than the alternating `rho / (1 + rho)`),
+//! within `SAFETY / w ... SAFETY w` of an error between the readings (`0.36 ... 11` at worst
+//! for `rho = 0.47`). An error outside them (a quantity that stagnates, or lands closer than
+//! the lower reading) is outside this bracket, as it is outside any rule's on the changes.
 //! On the default scene at `tol = 1e-5` (step 6, `p = 8`) the true errors of max `|v2|`,
 //! max `|v3|` and the probes (`1.7e-8 ... 6.8e-7`) all lie between the two readings and the
 //! estimates are 2.5x ... 6.9x them, where `richardson` with the `R_MIN` cap gave
