@@ -6,13 +6,12 @@
 //! `assess` and `AccuracyTarget::met` on the cached values, as `Problem::refine_along` calls
 //! them after each solve. The counterpart of `accuracy_estimate.rs` (the hp ladder's cache).
 //!
-//! The reference is good to about `1e-8` relative for max `|v2|`, max `|v3|` and probes 1, 2
-//! (it agrees with step 8 to `4e-9, 1.7e-9, 8e-9, 8e-9`), to `6e-8` for probe 0, and to about
-//! `1e-6` of `pi` for the slip measure and the stick ends (`1.25e-6` and `6.3e-7` from step 8,
-//! whose own Richardson rest at the ladder's rate 0.5 is about `9e-7`): 100x tighter than
-//! `1e-5` for the smooth quantities, only about 3x tighter than the located ones' true errors
-//! at `1e-5` (`1.9e-6 ... 3.7e-6`), which is why their bracket there is checked with margin
-//! (the ratios are 1.7x, and a reference error of `1e-6` moves them to at most 2.3x).
+//! The reference is h28-ref's (p 10 on `24 x 8` cells, 13 corner layers, the transition
+//! grading and 3 rows of ratio 0.3 toward the contact face; docs/data/contact_reference.json,
+//! cached as `graded-p10-24x8-f3` beside the ladder): good to `1e-8` relative for every
+//! quantity (2.5x its change from order 9 to 10), 1000x tighter than `1e-5`. The cache's own
+//! `graded-p10-48x16` (no face rows) is as good for the smooth quantities (within `1.6e-8` of
+//! it) but off by `4e-7` of `pi` on the slip measure and `2e-7` on the stick ends.
 
 use std::collections::BTreeMap;
 
@@ -41,8 +40,21 @@ fn quantities(s: &serde_json::Value) -> Quantities {
         .collect()
 }
 
-/// Every cached step's quantities, their unknowns, and the reference.
-fn ladder() -> (Vec<Quantities>, Vec<usize>, Quantities) {
+/// h28-ref's reference values (see the module docs), relative error bound `1e-8` each.
+const REFERENCE: [(&str, f64); 9] = [
+    ("max_abs_v2", 3.587_886_465_783_339e-3),
+    ("max_abs_v3", 1.249_165_012_642_354_4e-3),
+    ("normal_stress_probe_0", -0.293_122_969_967_011_04),
+    ("normal_stress_probe_1", -0.504_252_302_861_181_2),
+    ("normal_stress_probe_2", -0.669_865_737_866_074_6),
+    ("slip_measure", 3.112_298_878_948_767),
+    ("slip_physical_measure", 6.224_597_757_897_532_4),
+    ("stick_from", -0.923_422_276_792_296_5),
+    ("stick_to", -0.894_128_502_160_137_1),
+];
+
+/// Every cached step's quantities, their unknowns, and the reference values by name.
+fn ladder() -> (Vec<Quantities>, Vec<usize>, BTreeMap<String, f64>) {
     let cache: serde_json::Value =
         serde_json::from_str(include_str!("../docs/data/contact_graded_ladder.json")).unwrap();
     assert_eq!(cache["ladder"], "transition-graded");
@@ -51,11 +63,8 @@ fn ladder() -> (Vec<Quantities>, Vec<usize>, Quantities) {
         .iter()
         .map(|s| s["unknowns"].as_u64().unwrap() as usize)
         .collect();
-    (
-        steps.iter().map(quantities).collect(),
-        unknowns,
-        quantities(&cache["references"]["graded-p10-48x16"]),
-    )
+    let reference = REFERENCE.map(|(n, v)| (n.to_owned(), v)).into();
+    (steps.iter().map(quantities).collect(), unknowns, reference)
 }
 
 /// The step a tolerance stops at on the cached ladder (the loop of `refine_along`).
@@ -86,9 +95,9 @@ const LANDED_AT_STEP_2: [&str; 4] = [
 /// The default scene at `tol = 1e-3, 1e-4, 1e-5` stops at steps 2, 4, 6 (`p = 4, 6, 8`) with
 /// every true error below the tolerance and every estimate within 0.5x-10x of it, but for the
 /// four quantities of [`LANDED_AT_STEP_2`] at `1e-3`, which are over it (not under). Before the
-/// ladder's rate, the smooth quantities at `1e-5` were at 0.01x-0.27x (the `R_MIN` cap on rates
-/// that fell 30x-70x in one step), probe 0 at `1e-4` at 0.02x, and the stick ends at `1e-3` at
-/// 0.08x and 0.17x (their first change is the relocation from the first pass).
+/// ladder's rate, the smooth quantities at `1e-5` were at 0.008x-0.26x (the `R_MIN` cap on
+/// rates that fell 9x-96x in one step), probe 0 at `1e-4` at 0.02x, and the stick ends at
+/// `1e-3` at 0.08x and 0.17x (their first change is the relocation from the first pass).
 #[test]
 fn the_graded_ladder_estimates_bracket_the_true_errors_at_1e_3_1e_4_and_1e_5() {
     let (steps, unknowns, reference) = ladder();
@@ -100,7 +109,7 @@ fn the_graded_ladder_estimates_bracket_the_true_errors_at_1e_3_1e_4_and_1e_5() {
         let a = assess(&steps[..=k]);
         assert_eq!(a.estimates.len(), 9);
         for (name, q) in &steps[k] {
-            let truth = (q.value - reference[name].value).abs() / q.scale;
+            let truth = (q.value - reference[name]).abs() / q.scale;
             let e = &a.estimates[name];
             let estimate = e.error / q.scale;
             let ratio = estimate / truth;

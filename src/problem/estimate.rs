@@ -98,9 +98,9 @@
 //! for `rho = 0.47`). An error outside them (a quantity that stagnates, or lands closer than
 //! the lower reading) is outside this bracket, as it is outside any rule's on the changes.
 //! On the default scene at `tol = 1e-5` (step 6, `p = 8`) the true errors of max `|v2|`,
-//! max `|v3|` and the probes (`1.7e-8 ... 6.8e-7`) all lie between the two readings and the
-//! estimates are 2.5x ... 6.9x them, where `richardson` with the `R_MIN` cap gave
-//! 0.01x ... 0.27x; at step 2 the stick ends, whose first change is the relocation from the
+//! max `|v3|` and the probes (`1.9e-8 ... 6.9e-7`) all lie between the two readings and the
+//! estimates are 2.2x ... 5.9x them, where `richardson` with the `R_MIN` cap gave
+//! 0.008x ... 0.26x; at step 2 the stick ends, whose first change is the relocation from the
 //! first pass (rates `-0.05`, `0.06` after it), get 3.3x and 5.2x where `richardson` gave
 //! 0.08x and 0.17x (docs/verification.md, "The transition-graded ladder"). A plain floor
 //! `|r| >= rho` would also overrule rates within the band: probe 0 at step 2 (rate `0.19`,
