@@ -50,7 +50,7 @@ use super::run::{REPEAT_RULE, reset_peak, seconds_cell, status_kib};
 use super::targets::{SeriesTimes, series_times_at};
 use crate::error::CliError;
 use crate::output::OutputDir;
-use crate::problem::{Problem, SolveMethod, Solved};
+use crate::problem::{Problem, SolveMethod, Solved, TRANSITION_LADDER_CELLS};
 use crate::scene::Scene;
 
 /// The target relative errors of the contact quantities.
@@ -321,21 +321,6 @@ struct ContactSeries {
     first_pass: Option<Problem>,
 }
 
-/// The first pass of the `fem-qp-transition` series: order 2 on `12 x 2` cells (it only
-/// locates the transitions: 3.8e-3 of `pi` off in the slip measure, its transitions within
-/// 0.02 of the converged ones).
-fn transition_first_pass(base: &Problem) -> Problem {
-    corner_problem(base, 2, [12, 2])
-}
-
-/// `fem-qp-corner` of order `p` on `cells` element cells (the scheme's corner layers).
-fn corner_problem(base: &Problem, p: usize, cells: [usize; 2]) -> Problem {
-    let mut q = base.clone().with_grid(cells[0] * p + 1, cells[1] * p + 1);
-    q.body.method = DiscretisationMethod::FemQpCorner;
-    q.body.settings.order = p;
-    q
-}
-
 /// Solves `p`, graded toward the transitions of `first_pass` when given (both passes solved
 /// here, by `p`'s solver: the caller's timing includes them).
 fn solve_series_problem(p: &Problem, first_pass: Option<&Problem>) -> Result<Solved, CliError> {
@@ -387,14 +372,16 @@ fn contact_series(quick: bool, methods: &[String]) -> Result<Vec<ContactSeries>,
         method: "fem-qp-corner",
         problems: orders
             .clone()
-            .map(|p| corner_problem(&base, p, [12, 2]))
+            .map(|p| base.corner_mesh(p, [12, 2]))
             .collect(),
         first_pass: None,
     });
     out.push(ContactSeries {
         method: "fem-qp-transition",
-        problems: orders.map(|p| corner_problem(&base, p, [24, 8])).collect(),
-        first_pass: Some(transition_first_pass(&base)),
+        problems: orders
+            .map(|p| base.corner_mesh(p, TRANSITION_LADDER_CELLS))
+            .collect(),
+        first_pass: Some(base.transition_first_pass()),
     });
     out.retain(|s| methods.is_empty() || methods.iter().any(|m| m == s.method));
     Ok(out)
