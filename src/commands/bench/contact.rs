@@ -13,11 +13,18 @@
 //! - `fem-qp-corner`: the corner-refined mesh of order `p = 2 ... 6` on `12 x 2` cells (five
 //!   layers of `0.3`, the scheme's defaults), both solvers (a solver that does not converge on a
 //!   mesh is reported in `contact.failures` and its point left out);
-//! - `fem-qp-transition`: two passes ([`crate::problem::Problem::graded_toward`]): a first
-//!   solve of order 2 on `12 x 2` cells locates the stick/slip transitions, the second of order
-//!   `p = 2 ... 6` on `24 x 8` cells has its `x2` lines graded toward them
+//! - `fem-qp-transition`: two passes a run ([`crate::problem::Problem::solve_graded_after`]):
+//!   the accuracy ladder's first pass ([`crate::problem::Problem::transition_first_pass`],
+//!   order 2 on `12 x 2` cells) locates the stick/slip transitions, the second,
+//!   [`crate::problem::Problem::corner_mesh`] of order `p = 2 ... 6` on
+//!   [`crate::problem::TRANSITION_LADDER_CELLS`] (`24 x 8`, the default five corner layers at
+//!   every `p`), has its `x2` lines graded toward them
 //!   ([`crate::problem::DEFAULT_TRANSITION_GRADING`]); the time is both passes', the values the
-//!   second's. Its threshold (full slip: no transition) is the `24 x 8` corner mesh's.
+//!   second's. Every order is graded toward the same first-pass transitions: the ladder of
+//!   `capstan contact --tol` ([`crate::problem::Problem::transition_step`]) relocates them on
+//!   every step and has `p + 3` corner layers (the same mesh at `p = 2`; docs/work-precision.md
+//!   compares the two). Its threshold (full slip: no transition) is the ungraded `24 x 8`
+//!   corner mesh's.
 //!
 //! The threshold is the condensed solver's search bracketed from the rigid-sliding limit
 //! (`ThresholdSettings::bracket_at_limit`, tolerance [`THRESHOLD_TOLERANCE`]), the same for
