@@ -182,10 +182,16 @@ pub const SOLID_MATRIX_FREE_BYTES_PER_CHART_POINT: f64 = 2.0 * 31.0 * 8.0;
 /// Fitted to the measured peaks (VmHWM of `capstan contact`, release, `full-newton` +
 /// `matrix-free-mg`) at 1,048,707 unknowns (33 x 321 x 33), 12-16 % above each: the ellipse
 /// `a = 2, b = 1.5` body of width 1 and thickness 1 (before the GMRES term) at Q1 1,011 MiB (N_c = N/7.5), Q2
-/// 979 MiB, Qp4 1,020 MiB, Q1 of width 0.25 (aspect 4: the coarse level halves x1 only,
-/// N_c = N/1.9) 2,509 MiB, and the cone band of examples/scenes/contact_solid_cone.toml
-/// (chart stored whole, N_c = N/3.9) 2,497 MiB; at 111,843 unknowns (17 x 129 x 17) the
-/// fixed 128 MiB puts the estimate 1.4-1.8x above the peaks (134-308 MiB). See docs/solid.md.
+/// 979 MiB, Qp4 1,020 MiB (its V-cycle then straight to Q1), Q1 of width 0.25 (aspect 4: the
+/// coarse level halves x1 only, N_c = N/1.9) 2,509 MiB, and the cone band of
+/// examples/scenes/contact_solid_cone.toml (chart stored whole, N_c = N/3.9) 2,497 MiB; at
+/// 111,843 unknowns (17 x 129 x 17) the fixed 128 MiB puts the estimate 1.5-2.0x above the
+/// peaks (142-308 MiB). Qp4 with the p-levels of its V-cycle
+/// (`capstan_elasticity::solid::SolidMultigridParams::p_levels`: the Qp2 level's operator
+/// and transfers) peaks higher, and the estimate still lies above (re-measured, GMRES term
+/// included): 1,048,707 unknowns 1,203 MiB (`capstan contact`) and 1,274 MiB (every Newton
+/// step solved to `1e-6`), the estimate (1,499 MiB) 1.25x and 1.18x above them; 111,843
+/// 160 MiB (1.75x); 15,795 (9 x 65 x 9) 32 MiB against 151 MiB. See docs/solid.md.
 pub fn solid_matrix_free_memory_estimate(
     nodes: [usize; 3],
     degree: usize,

@@ -13,11 +13,18 @@
 //! - `fem-qp-corner`: the corner-refined mesh of order `p = 2 ... 6` on `12 x 2` cells (five
 //!   layers of `0.3`, the scheme's defaults), both solvers (a solver that does not converge on a
 //!   mesh is reported in `contact.failures` and its point left out);
-//! - `fem-qp-transition`: two passes ([`crate::problem::Problem::graded_toward`]): a first
-//!   solve of order 2 on `12 x 2` cells locates the stick/slip transitions, the second of order
-//!   `p = 2 ... 6` on `24 x 8` cells has its `x2` lines graded toward them
+//! - `fem-qp-transition`: two passes a run ([`crate::problem::Problem::solve_graded_after`]):
+//!   the accuracy ladder's first pass ([`crate::problem::Problem::transition_first_pass`],
+//!   order 2 on `12 x 2` cells) locates the stick/slip transitions, the second,
+//!   [`crate::problem::Problem::corner_mesh`] of order `p = 2 ... 6` on
+//!   [`crate::problem::TRANSITION_LADDER_CELLS`] (`24 x 8`, the default five corner layers at
+//!   every `p`), has its `x2` lines graded toward them
 //!   ([`crate::problem::DEFAULT_TRANSITION_GRADING`]); the time is both passes', the values the
-//!   second's. Its threshold (full slip: no transition) is the `24 x 8` corner mesh's.
+//!   second's. Every order is graded toward the same first-pass transitions: the ladder of
+//!   `capstan contact --tol` ([`crate::problem::Problem::transition_step`]) relocates them on
+//!   every step and has `p + 3` corner layers (the same mesh at `p = 2`; docs/work-precision.md
+//!   compares the two). Its threshold (full slip: no transition) is the ungraded `24 x 8`
+//!   corner mesh's.
 //!
 //! The threshold is the condensed solver's search bracketed from the rigid-sliding limit
 //! (`ThresholdSettings::bracket_at_limit`, tolerance [`THRESHOLD_TOLERANCE`]), the same for
@@ -50,7 +57,7 @@ use super::run::{REPEAT_RULE, reset_peak, seconds_cell, status_kib};
 use super::targets::{SeriesTimes, series_times_at};
 use crate::error::CliError;
 use crate::output::OutputDir;
-use crate::problem::{Problem, SolveMethod, Solved};
+use crate::problem::{Problem, SolveMethod, Solved, TRANSITION_LADDER_CELLS};
 use crate::scene::Scene;
 
 /// The target relative errors of the contact quantities.
@@ -321,21 +328,6 @@ struct ContactSeries {
     first_pass: Option<Problem>,
 }
 
-/// The first pass of the `fem-qp-transition` series: order 2 on `12 x 2` cells (it only
-/// locates the transitions: 3.8e-3 of `pi` off in the slip measure, its transitions within
-/// 0.02 of the converged ones).
-fn transition_first_pass(base: &Problem) -> Problem {
-    corner_problem(base, 2, [12, 2])
-}
-
-/// `fem-qp-corner` of order `p` on `cells` element cells (the scheme's corner layers).
-fn corner_problem(base: &Problem, p: usize, cells: [usize; 2]) -> Problem {
-    let mut q = base.clone().with_grid(cells[0] * p + 1, cells[1] * p + 1);
-    q.body.method = DiscretisationMethod::FemQpCorner;
-    q.body.settings.order = p;
-    q
-}
-
 /// Solves `p`, graded toward the transitions of `first_pass` when given (both passes solved
 /// here, by `p`'s solver: the caller's timing includes them).
 fn solve_series_problem(p: &Problem, first_pass: Option<&Problem>) -> Result<Solved, CliError> {
@@ -387,14 +379,16 @@ fn contact_series(quick: bool, methods: &[String]) -> Result<Vec<ContactSeries>,
         method: "fem-qp-corner",
         problems: orders
             .clone()
-            .map(|p| corner_problem(&base, p, [12, 2]))
+            .map(|p| base.corner_mesh(p, [12, 2]))
             .collect(),
         first_pass: None,
     });
     out.push(ContactSeries {
         method: "fem-qp-transition",
-        problems: orders.map(|p| corner_problem(&base, p, [24, 8])).collect(),
-        first_pass: Some(transition_first_pass(&base)),
+        problems: orders
+            .map(|p| base.corner_mesh(p, TRANSITION_LADDER_CELLS))
+            .collect(),
+        first_pass: Some(base.transition_first_pass()),
     });
     out.retain(|s| methods.is_empty() || methods.iter().any(|m| m == s.method));
     Ok(out)

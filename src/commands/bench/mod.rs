@@ -122,7 +122,8 @@ pub struct WorkPrecisionArgs {
     /// `fem-qpP-graded` and the corner-refined `fem-qpP-corner` series of `paper` and the
     /// `fem-qpP-x2` series of `mms` (one element through the thickness);
     /// `fem-qp-hp`, `fem-qp-corner` and `fem-qp-transition` are the `contact` problem's
-    /// ladder, corner-mesh and two-pass transition-graded series); default: all.
+    /// ladder, corner-mesh and two-pass transition-graded series, the last graded toward one
+    /// first pass's transitions, not relocated as by `--tol`); default: all.
     #[arg(long, value_delimiter = ',', value_parser = [
         "fd", "fem-q1", "fem-q2", "fem-qp2", "fem-qp3", "fem-qp4", "fem-qp5", "fem-qp6",
         "fem-qp7", "fem-qp8", "fem-qp9", "fem-qp10", "fem-qp-hp", "fem-qp-corner",
