@@ -27,6 +27,12 @@
 //! the contact work-precision reference, docs/work-precision/contact/contact-reference.json,
 //! which it reproduces, and whose values stand in where the cache lacks it).
 //!
+//! On the transition-graded cache, `--graded-reference P,E2,E3[,STEP] [--face-layers M]` solves
+//! a reference outside the ladder (order P on `E2 x E3` cells graded toward the transitions;
+//! with M rows toward the contact face, `Problem::face_graded`, graded toward its order-(P-1)
+//! twin's transitions when that is cached). The table takes the finest face-graded one
+//! (`graded-p10-24x8-f3`, docs/data/contact_reference.json), else the finest graded one.
+//!
 //! Run: `cargo run --release --example contact_accuracy -- [TOL ...] [--solve LAST]
 //! [--reference-step K] [--live TOL] [--cache PATH]` (default `1e-3 1e-4 1e-5`). Look at: every
 //! true error below its tolerance and every `estimate / true` between 0.5 and 10
@@ -239,6 +245,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (None, None, None, "docs/data/contact_ladder.json".to_owned());
     let mut elements: Option<usize> = None;
     let (mut ladder, mut graded): (Option<String>, Option<String>) = (None, None);
+    let mut face_layers = 0;
     let mut tolerances: Vec<f64> = Vec::new();
     let mut i = 0;
     while i < args.len() {
@@ -251,6 +258,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--cache" => path = next,
             "--ladder" => ladder = Some(next),
             "--graded-reference" => graded = Some(next),
+            "--face-layers" => face_layers = next.parse::<usize>().unwrap_or(0),
             a => {
                 tolerances.extend(a.parse::<f64>().ok());
                 i += 1;
@@ -309,19 +317,40 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(spec) = graded {
         // `P,E2,E3[,STEP]`: order P on E2 x E3 cells graded toward the transitions of the cached
-        // step STEP (default the last): located by a fine solve, not the first pass
+        // step STEP (default the last): located by a fine solve, not the first pass; with
+        // `--face-layers M` also M rows toward the face (`Problem::face_graded`), graded toward
+        // the transitions of the cached reference `graded-p(P-1)-E2xE3-fM` when there is one
+        // (the order below it, located with the rows: the first pass is off by its 1e-6)
         let f: Vec<usize> = spec.split(',').filter_map(|x| x.parse().ok()).collect();
         let (p, e2, e3) = (f[0], f[1], f[2]);
         let k = f.get(3).copied().unwrap_or(cache.steps.len() - 1);
-        let name = format!("graded-p{p}-{e2}x{e3}");
+        let name = if face_layers > 0 {
+            format!("graded-p{p}-{e2}x{e3}-f{face_layers}")
+        } else {
+            format!("graded-p{p}-{e2}x{e3}")
+        };
         if !cache.references.contains_key(&name) {
             let base = scene.build()?;
-            let at = cache.problem(&base, k)?.solve()?.transitions();
-            eprintln!("{name}: graded toward step {k}'s transitions {at:?}");
+            let below = format!("graded-p{}-{e2}x{e3}-f{face_layers}", p.saturating_sub(1));
+            let at = match cache.references.get(&below).filter(|_| face_layers > 0) {
+                Some(r) => {
+                    eprintln!(
+                        "{name}: graded toward {below}'s transitions {:?}",
+                        r.located
+                    );
+                    r.located.clone()
+                }
+                None => {
+                    let at = cache.problem(&base, k)?.solve()?.transitions();
+                    eprintln!("{name}: graded toward step {k}'s transitions {at:?}");
+                    at
+                }
+            };
             let (layers, ratio) = capstan::problem::DEFAULT_TRANSITION_GRADING;
             let mut problem = base
                 .corner_mesh(p, [e2, e3])
-                .graded_toward(at, layers, ratio)?;
+                .graded_toward(at, layers, ratio)?
+                .face_graded(face_layers)?;
             problem.body.settings.corner_layers = capstan::problem::transition_corner_layers(p);
             let step = solve_step(usize::MAX, &problem, &probes(&scene))?;
             cache.references.insert(name, step);
@@ -344,13 +373,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
-    // the reference: `--reference-step K`, else the finest graded reference cached, else the
-    // last step
+    // the reference: `--reference-step K`, else the finest graded reference cached (one with
+    // rows toward the face before one without: h28-ref), else the last step
     let graded_reference = cache
         .references
         .iter()
         .filter(|(n, _)| n.starts_with("graded-"))
-        .max_by_key(|(_, s)| s.unknowns)
+        .max_by_key(|(n, s)| (n.contains("-f"), s.unknowns))
         .map(|(n, s)| (n.clone(), s.clone()));
     if let Some((n, _)) = &graded_reference {
         println!("reference {n}");

@@ -224,15 +224,19 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     /// The number of unknowns of the body (2 per node in plane strain, 3 in 3-D). For
     /// `fem-qp-corner` an upper bound: the corner mesh's nodes with `2 layers` more element
     /// columns per transition point (each point adds at most `layers` lines on each side; the
-    /// dropped coarse lines are not subtracted).
+    /// dropped coarse lines are not subtracted) and `2 face_layers` more columns and rows.
     pub fn unknowns(&self) -> usize {
         let nodes_2d = if self.body.method == DiscretisationMethod::FemQpCorner {
             let s = &self.body.settings;
             let p = s.order.max(1);
             let extra = 2 * s.transitions.layers * s.transitions.points.len();
+            let face = 2 * s.transitions.face_layers;
             CornerSettings {
                 order: p,
-                cells: [(self.body.n2 - 1) / p + extra, (self.body.n3 - 1) / p],
+                cells: [
+                    (self.body.n2 - 1) / p + extra + face,
+                    (self.body.n3 - 1) / p + face,
+                ],
                 layers: s.corner_layers,
                 ratio: s.corner_ratio,
             }

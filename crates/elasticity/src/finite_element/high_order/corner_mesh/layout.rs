@@ -107,6 +107,19 @@ impl CornerSettings {
 /// it).
 /// Points in the corner cells (or outside the face) are not graded: the corner layers serve
 /// there. `layers = 0` or no points is today's mesh exactly.
+///
+/// `face_layers = m > 0` also grades the rows toward the contact face: a stick zone is a
+/// feature of the face of its own length (on the default scene `0.03`, with the elastic length
+/// `G eps / (mu |sigma_n|) ~ 0.03` of the regularised law's stick stiffness), which the
+/// columns resolve in `x2` but a coarse row (`H3 = h / e3`, `0.125` on `24 x 8` cells) does
+/// not in `x3`. The first and the last row and column (the corner cells' own) get lines at
+/// ```text
+/// x3 = H3 sigma^k,  h - H3 sigma^k,  x2 = a + H2 sigma^k,  b - H2 sigma^k   (k = 1 ... m)
+/// ```
+/// so the corner cells stay squares (of side `H sigma^m`, with their corner layers inside)
+/// when the coarse cells are, and the rows at the face are `H3 sigma^m` high. The cells of
+/// this band are anisotropic (up to `sigma^-m`) only where they are thin across a direction
+/// in which the solution varies slowly (along the face, along the ends).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct TransitionGrading {
     /// The `x2` points (parameter units).
@@ -115,6 +128,9 @@ pub struct TransitionGrading {
     pub layers: usize,
     /// The ratio `sigma` of successive layers, `0.05 ... 0.95`.
     pub ratio: f64,
+    /// Layers of rows toward the faces `x3 = 0, h` (and of columns toward the ends, keeping
+    /// the corner cells square), `0 ... 16`; `0`: none.
+    pub face_layers: usize,
 }
 
 impl TransitionGrading {
@@ -123,18 +139,26 @@ impl TransitionGrading {
         points: Vec::new(),
         layers: 0,
         ratio: 0.3,
+        face_layers: 0,
     };
 
     /// Checks the ranges.
     ///
     /// # Errors
-    /// [`ElasticityError::InvalidParameter`] naming `transition_layers`, `transition_ratio`
-    /// or `transition_points` (not finite).
+    /// [`ElasticityError::InvalidParameter`] naming `transition_layers`, `transition_ratio`,
+    /// `face_layers` or `transition_points` (not finite).
     pub fn check(&self) -> Result<(), ElasticityError> {
         if !CornerSettings::LAYERS.contains(&self.layers) {
             return Err(ElasticityError::InvalidParameter {
                 field: "transition_layers",
                 value: self.layers as f64,
+                allowed: "0..=16",
+            });
+        }
+        if !CornerSettings::LAYERS.contains(&self.face_layers) {
+            return Err(ElasticityError::InvalidParameter {
+                field: "face_layers",
+                value: self.face_layers as f64,
                 allowed: "0..=16",
             });
         }
@@ -221,6 +245,26 @@ impl TransitionGrading {
     }
 }
 
+/// `lines` (increasing) with `m` geometric lines of ratio `sigma` in its first and its last
+/// interval, toward the ends: `l0 + (l1 - l0) sigma^k`, `ln - (ln - l(n-1)) sigma^k`,
+/// `k = 1 ... m` ([`TransitionGrading`]'s `face_layers`). The ends stay bit for bit.
+fn toward_ends(lines: Vec<f64>, m: usize, sigma: f64) -> Vec<f64> {
+    let n = lines.len();
+    if m == 0 || n < 3 {
+        return lines;
+    }
+    let (first, last) = ((lines[0], lines[1]), (lines[n - 1], lines[n - 2]));
+    let mut out = lines;
+    for k in 1..=m {
+        let s = sigma.powi(k as i32);
+        out.push(first.0 + (first.1 - first.0) * s);
+        out.push(last.0 - (last.0 - last.1) * s);
+    }
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
+}
+
 /// One side of the parameter rectangle an element edge may lie on, in the order of
 /// `Side`'s normal index and sign.
 pub(crate) type SideMask = u8;
@@ -264,8 +308,8 @@ impl Layout {
         transitions: &TransitionGrading,
     ) -> Self {
         let p = settings.order;
-        let e3 = settings.cells[1];
-        let columns = transitions.x2_lines(rect[0], settings.cells[0]);
+        let (m, sigma) = (transitions.face_layers, transitions.ratio);
+        let columns = toward_ends(transitions.x2_lines(rect[0], settings.cells[0]), m, sigma);
         let e2 = columns.len() - 1;
         let line = |[a, b]: [f64; 2], e: usize, j: usize| -> f64 {
             if j == e {
@@ -274,11 +318,16 @@ impl Layout {
                 a + (b - a) * j as f64 / e as f64
             }
         };
+        let uniform_rows = (0..=settings.cells[1])
+            .map(|j| line(rect[1], settings.cells[1], j))
+            .collect();
+        let rows = toward_ends(uniform_rows, m, sigma);
+        let e3 = rows.len() - 1;
         let mut builder = Builder::default();
         for i in 0..e2 {
             for j in 0..e3 {
                 let x = [columns[i], columns[i + 1]];
-                let y = [line(rect[1], e3, j), line(rect[1], e3, j + 1)];
+                let y = [rows[j], rows[j + 1]];
                 let corner_x = (i == 0).then_some(0).or((i == e2 - 1).then_some(1));
                 let corner_y = (j == 0).then_some(0).or((j == e3 - 1).then_some(1));
                 match (corner_x, corner_y) {
@@ -485,6 +534,7 @@ mod tests {
             points: vec![0.1, 0.13, -1.45],
             layers: 4,
             ratio: 0.3,
+            face_layers: 0,
         };
         let lines = g.x2_lines(rect[0], 12);
         let h = 0.25;
@@ -532,6 +582,81 @@ mod tests {
         ));
         let bad = TransitionGrading { layers: 17, ..g };
         assert!(bad.check().is_err());
+    }
+
+    #[test]
+    fn face_layers_grade_rows_toward_the_faces_and_keep_the_corner_cells_square() {
+        // 12 x 4 cells of 0.25 x 0.25 on [-1.5, 1.5] x [0, 1], two face layers of 0.3
+        let rect = [[-1.5, 1.5], [0.0, 1.0]];
+        let s = CornerSettings {
+            cells: [12, 4],
+            ..settings(3, 2)
+        };
+        let g = TransitionGrading {
+            face_layers: 2,
+            ..TransitionGrading::NONE
+        };
+        assert!(g.check().is_ok());
+        let l = Layout::graded(rect, &s, &g);
+        // the rows: 0, H sigma^2, H sigma, H, 2H, 3H, 1 - H sigma, 1 - H sigma^2, 1
+        let mut ys: Vec<f64> = l.vertices.iter().map(|v| v[1]).collect();
+        ys.sort_by(f64::total_cmp);
+        ys.dedup();
+        let h = 0.25;
+        for y in [
+            h * 0.09,
+            h * 0.3,
+            h,
+            2.0 * h,
+            3.0 * h,
+            1.0 - h * 0.3,
+            1.0 - h * 0.09,
+        ] {
+            assert!(
+                ys.iter().any(|&v| (v - y).abs() < 1e-15),
+                "{y} not in {ys:?}"
+            );
+        }
+        // the corner cell at (-1.5, 0) is the square of side H sigma^2 = 0.0225, its corner
+        // layers inside: the smallest element at the corner is 0.0225 0.3^2
+        let side = h * 0.09;
+        let smallest = l
+            .quads
+            .iter()
+            .map(|q| q.map(|i| l.vertices[i]))
+            .filter(|v| v[0] == [-1.5, 0.0])
+            .map(|v| (v[1][0] - v[0][0], v[2][1] - v[0][1]))
+            .next()
+            .expect("an element at the corner");
+        assert!((smallest.0 - side * 0.09).abs() < 1e-15, "{smallest:?}");
+        assert!((smallest.1 - side * 0.09).abs() < 1e-15, "{smallest:?}");
+        // 16 columns, 8 rows, 4 corner cells of 2 * 2 + 1 elements
+        assert_eq!(l.quads.len(), 16 * 8 - 4 + 4 * 5);
+        let q = 1.0 / 3f64.sqrt();
+        let mut area = 0.0;
+        for quad in &l.quads {
+            let v = quad.map(|i| l.vertices[i]);
+            for xi in [-q, q] {
+                for eta in [-q, q] {
+                    let (_, j) = bilinear(&v, [xi, eta]);
+                    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                    assert!(det > 0.0);
+                    area += det;
+                }
+            }
+        }
+        assert!((area - 3.0).abs() < 1e-13, "{area}");
+        let bad = TransitionGrading {
+            face_layers: 17,
+            ..g
+        };
+        assert!(matches!(
+            bad.check(),
+            Err(ElasticityError::InvalidParameter {
+                field: "face_layers",
+                ..
+            })
+        ));
     }
 
     #[test]
