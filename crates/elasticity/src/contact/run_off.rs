@@ -169,7 +169,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
     ) -> Result<RunOff, ContactError> {
         settings.validate()?;
         EndLoads::new(tau0, tau0 * to).check()?;
-        if !(to > from) {
+        if to.partial_cmp(&from) != Some(core::cmp::Ordering::Greater) {
             return Err(ElasticityError::InvalidParameter {
                 field: "to",
                 value: to,
