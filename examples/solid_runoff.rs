@@ -1,19 +1,24 @@
 //! The 3-D run-off ratio of the default cone (`obstacle.shape = "cone"`, `ubar = 0.5 sin t`,
 //! width 1, `h = 1`, `mu = 0.5`, Q1) under unilateral or bilateral contact, by continuation in
-//! the tension ratio on the full-system Newton: from ratio 1 up, each ratio reached from the
-//! last converged one by pseudo-arclength continuation in `(v, r)`
-//! ([`FullSystemSolver::continue_ratio`]), the ratio step halved on a failure until it is below
-//! `1e-3`, the stop bracketed by the last converged ratio and the first failed one. When the
+//! the tension ratio on the full-system Newton ([`FullSystemSolver::run_off`], the loop
+//! `capstan contact` and `capstan threshold` run too): from ratio 1 up, each ratio reached
+//! from the last converged one by pseudo-arclength continuation in `(v, r)`
+//! ([`FullSystemSolver::continue_ratio`]), the ratio step 0.05 halved on a failure until it is
+//! below `1e-3`, the stop bracketed by the last converged ratio and the first failed one. When the
 //! equilibrium path folds back (a limit point `r*`: no equilibrium beyond it on the path) it
 //! prints "no equilibrium beyond r* in [lower, upper]" and exits with status 3. Prints per
 //! converged ratio the Slip measure, `max |v|` on the contact face and the separated sites.
 //!
-//! Run: `cargo run --release --example solid_runoff -- N1 N2 N3 [unilateral|bilateral] [EPS]`
-//! (default 3 20 3 unilateral 1e-5; `EPS` is `friction.eps`). Look at: the fold ratio `r*`
+//! Run: `cargo run --release --example solid_runoff -- N1 N2 N3 [unilateral|bilateral] [EPS]
+//! [MIN_STEP]` (default 3 20 3 unilateral 1e-5 1e-3; `EPS` is `friction.eps`, `MIN_STEP` the
+//! smallest ratio step, [`RunOffSettings::min_step`]). Look at: the fold ratio `r*`
 //! (3 x 20 x 3 unilateral: in [1.439063, 1.440625]), and `max |v|` growing towards it.
 
 use capstan::Scene;
-use capstan_elasticity::contact::{ContactError, EndLoads, FullSystemSolver};
+use capstan_elasticity::contact::{
+    ContactError, ContactSolution, FullSystemSolver, RunOffEnd, RunOffSettings, RunOffTrial,
+};
+use capstan_elasticity::solvers::SilentObserver;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -37,13 +42,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let model = problem.model()?;
     let solver = FullSystemSolver::new(&model, problem.solver.full_settings())?;
     let tau0 = problem.loads.tau0;
-    let (mut ratio, mut step) = (1.0, 0.05);
-    let mut last = solver.solve(EndLoads::new(tau0, tau0 * ratio))?;
-    let mut failed = f64::INFINITY;
-    let mut fold = None;
     println!("| ratio | Newton iterations | Slip | max |v| on the face | separated sites |");
     println!("|---|---|---|---|---|");
-    let report = |r: f64, s: &capstan_elasticity::contact::ContactSolution| {
+    let report = |r: f64, s: &ContactSolution| {
         let p = &s.contact;
         let vmax =
             p.v2.iter()
@@ -59,40 +60,38 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s.stats.newton_iterations, s.slip_fraction
         );
     };
-    report(ratio, &last);
-    while step >= 1e-3 && ratio < 10.0 {
-        let trial = ratio + step;
-        match solver.continue_ratio(tau0, ratio, &last.displacement, trial) {
-            Ok(s) => {
-                ratio = trial;
-                if failed <= ratio {
-                    // an earlier attempt from another start failed here: not the stop
-                    failed = f64::INFINITY;
-                }
-                report(ratio, &s);
-                last = s;
-            }
-            Err(ContactError::NoEquilibrium { upper, .. }) => {
-                // the path folds back before `trial`: bracket the fold with a smaller step
-                eprintln!("ratio {trial:.6}: the equilibrium path folds back at {upper:.6}");
-                fold = Some(fold.map_or(upper, |f: f64| f.max(upper)));
-                failed = failed.min(trial);
-                step /= 2.0;
-            }
-            Err(e) => {
-                failed = failed.min(trial);
-                eprintln!("ratio {trial:.6}: {e}");
-                step /= 2.0;
-            }
+    // the budget of the example: as many arclength steps as it takes (the CLI's is
+    // `solver.max_continuation_steps`)
+    let settings = RunOffSettings {
+        max_arclength_steps: usize::MAX,
+        min_step: n(5, "1e-3").parse()?,
+        ..Default::default()
+    };
+    let mut trace = |(trial, result): RunOffTrial<'_>| match result {
+        Ok(s) => report(trial, s),
+        Err(ContactError::NoEquilibrium { upper, .. }) => {
+            eprintln!("ratio {trial:.6}: the equilibrium path folds back at {upper:.6}");
         }
+        Err(e) => eprintln!("ratio {trial:.6}: {e}"),
+    };
+    let run = solver.run_off(tau0, 1.0, 10.0, settings, &mut SilentObserver, &mut trace)?;
+    eprintln!(
+        "{} ratio steps, {} arclength steps",
+        run.ratio_steps, run.arclength_steps
+    );
+    match run.end {
+        RunOffEnd::Folded { fold, upper } => {
+            println!(
+                "no equilibrium beyond r* in [{:.6}, {upper:.6}] ({kind}: the equilibrium path \
+                 folds back there; largest ratio reached on the path {fold:.6})",
+                run.lower
+            );
+            std::process::exit(3);
+        }
+        RunOffEnd::Stalled { upper, .. } => {
+            println!("run-off bracket ({kind}): [{:.6}, {upper:.6}]", run.lower);
+        }
+        RunOffEnd::Reached => println!("reached ratio {:.6} ({kind})", run.lower),
     }
-    if let Some(upper) = fold {
-        println!(
-            "no equilibrium beyond r* in [{ratio:.6}, {failed:.6}] ({kind}: the equilibrium path \
-             folds back there; largest ratio reached on the path {upper:.6})"
-        );
-        std::process::exit(3);
-    }
-    println!("run-off bracket ({kind}): [{ratio:.6}, {failed:.6}]");
     Ok(())
 }

@@ -6,9 +6,10 @@
 use capstan::Scene;
 use capstan_elasticity::contact::{
     ContactError, ContactErrorKind, ContactModel, ContactOperator, ContactSolution, EndLoads,
-    FullSystemProblem, FullSystemSolver,
+    FullSystemProblem, FullSystemSolver, RunOffEnd, RunOffSettings, RunOffTrial,
 };
 use capstan_elasticity::friction::FrictionLaw;
+use capstan_elasticity::solvers::SilentObserver;
 use capstan_elasticity::solvers::{Jacobian, Residual};
 
 fn cone_model() -> (capstan::Problem, f64) {
@@ -146,4 +147,124 @@ fn the_unilateral_cone_has_no_equilibrium_beyond_the_fold_of_its_path() {
     assert_eq!(ratio, 1.45);
     // the largest converged point of the steps lies within the arclength step of the fold
     assert!((1.4395..=1.43980).contains(&upper), "{upper}");
+}
+
+/// The run-off driver (`examples/solid_runoff.rs`, `capstan contact`, `capstan threshold`)
+/// from ratio 1 towards 2: the path folds; the bracket and `r*` of the example, and the work
+/// it took (17 ratio steps, 72 arclength steps measured).
+#[test]
+fn run_off_brackets_the_fold_of_the_unilateral_cone() {
+    let (problem, _) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    let mut converged = Vec::new();
+    let mut trace = |(ratio, result): RunOffTrial<'_>| {
+        if result.is_ok() {
+            converged.push(ratio);
+        }
+    };
+    let run = solver
+        .run_off(
+            1.0,
+            1.0,
+            2.0,
+            RunOffSettings::default(),
+            &mut SilentObserver,
+            &mut trace,
+        )
+        .unwrap();
+    let RunOffEnd::Folded { fold, upper } = run.end else {
+        panic!("{:?}", run.end)
+    };
+    // 1.0 + 0.05 k, then steps of 0.025, 0.0125, ... (halved after a fold): binary fractions
+    assert!((run.lower - 1.4390625).abs() < 1e-12, "{}", run.lower);
+    assert!((upper - 1.440625).abs() < 1e-12, "{upper}");
+    assert!((1.4395..=1.43980).contains(&fold), "{fold}");
+    assert_eq!(converged.first(), Some(&1.0));
+    assert_eq!(converged.last(), Some(&run.lower));
+    assert_eq!(run.ratio_steps, 17);
+    assert!(run.arclength_steps <= 80, "{}", run.arclength_steps);
+    assert_eq!(run.last.stats.continuation_steps, run.arclength_steps);
+    assert!((run.last.loads.tension_ratio() - run.lower).abs() < 1e-12);
+    // as a solve at ratio 2: no equilibrium beyond r*, with the bracket
+    let err = run.into_solution(ContactError::NoContactNodes).unwrap_err();
+    assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium);
+    let ContactError::NoEquilibriumBeyond { ratio, .. } = err else {
+        panic!("{err}")
+    };
+    assert_eq!(ratio, 2.0);
+}
+
+/// Below the fold the run-off reaches the ratio asked for, with the plain Newton's answer
+/// there (both converged to the solver tolerance).
+#[test]
+fn run_off_reaches_a_ratio_below_the_fold_with_the_plain_newton_answer() {
+    let (problem, _) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    let plain = solver.solve(EndLoads::new(1.0, 1.43)).unwrap();
+    let run = solver
+        .run_off(
+            1.0,
+            1.0,
+            1.43,
+            RunOffSettings::default(),
+            &mut SilentObserver,
+            &mut |_| {},
+        )
+        .unwrap();
+    assert!(matches!(run.end, RunOffEnd::Reached), "{:?}", run.end);
+    assert_eq!(run.lower, 1.43);
+    let size = plain
+        .displacement
+        .iter()
+        .fold(0.0f64, |m, x| m.max(x.abs()));
+    let diff = plain
+        .displacement
+        .iter()
+        .zip(&run.last.displacement)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    // residual tolerance 1e-10 relative; the Jacobian's conditioning (smallest singular value
+    // 1e-2 of entries 1e3) loses up to 5 digits of it
+    assert!(diff <= 1e-7 * size, "{diff:e} of {size:e}");
+    let solution = run.into_solution(ContactError::NoContactNodes).unwrap();
+    assert_eq!(solution.slip_fraction, plain.slip_fraction);
+}
+
+/// The run-off's budget: arclength steps over every continuation; spent, a typed error with
+/// the ratio reached.
+#[test]
+fn run_off_spends_its_budget_as_a_typed_error() {
+    let (problem, _) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    let settings = RunOffSettings {
+        max_arclength_steps: 10,
+        ..Default::default()
+    };
+    let err = solver
+        .run_off(1.0, 1.0, 2.0, settings, &mut SilentObserver, &mut |_| {})
+        .unwrap_err();
+    assert_eq!(err.kind(), ContactErrorKind::NotConverged, "{err}");
+    let ContactError::ContinuationBudgetSpent {
+        steps,
+        reached,
+        ratio,
+    } = err
+    else {
+        panic!("{err}")
+    };
+    assert_eq!((steps, ratio), (10, 2.0));
+    // the first steps of 0.05 take two or three arclength steps each
+    assert!((1.05..1.4).contains(&reached), "{reached}");
+    // and bad settings are refused
+    let bad = RunOffSettings {
+        min_step: 0.1,
+        ..Default::default()
+    };
+    assert!(
+        solver
+            .run_off(1.0, 1.0, 2.0, bad, &mut SilentObserver, &mut |_| {})
+            .is_err()
+    );
 }

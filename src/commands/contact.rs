@@ -581,6 +581,11 @@ pub(crate) fn contact_budget(
                 ""
             }
         }
+        ContactError::ContinuationBudgetSpent { steps, .. } => format!(
+            "`solver.max_continuation_steps` = {} arclength steps of the continuation in the tension ratio (after Newton failed at the ratio asked for); raise it (--set solver.max_continuation_steps={})",
+            solver.max_continuation_steps,
+            steps.saturating_mul(4)
+        ),
         ContactError::Solver(SolverError::BudgetSpent { iterations, .. })
             if solver.linear == "petsc" =>
         {

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
-use capstan_elasticity::contact::ThresholdSettings;
+use capstan_elasticity::contact::{ContactError, ThresholdSettings};
 use capstan_friction::membrane::{self, MembraneProblem};
 use serde::Serialize;
 
@@ -42,6 +42,11 @@ pub struct ThresholdReport {
     /// `grid.n1` of a 3-D body (`body.dimension = 3`); absent in plane strain.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid_n1: Option<usize>,
+    /// When the threshold is the fold of the equilibrium path (a 3-D body under unilateral
+    /// contact, from ratio 1 by continuation in the ratio): the fold ratio `r*` and its
+    /// bracket; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run_off: Option<RunOffReport>,
     /// The estimated discretisation error of `threshold_ratio` and `implied_mu`: the difference
     /// to the threshold one grid level coarser ([`crate::commands::accuracy`]); absent with
     /// `output.error_estimate = false` or when the method has no coarser level.
@@ -51,6 +56,17 @@ pub struct ThresholdReport {
     /// and solver, and every refinement step; absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub accuracy: Option<AccuracyReport>,
+}
+
+/// The fold of a 3-D unilateral body's equilibrium path (`run_off` of
+/// [`ThresholdReport`]): no equilibrium beyond `fold_ratio` on the path.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunOffReport {
+    /// `r*`: the largest ratio the equilibrium path reached before it turned back.
+    pub fold_ratio: f64,
+    /// `[lower, upper]`: the largest ratio converged at and the smallest the path folded back
+    /// before (`below` and `threshold_ratio`); `lower <= r* < upper`.
+    pub bracket: [f64; 2],
 }
 
 /// Computes the report.
@@ -100,7 +116,13 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         problem = chosen;
         (r, mu, Some(estimate))
     } else {
-        let r = problem.threshold()?;
+        let r = problem.threshold().map_err(|e| match CliError::from(e) {
+            // the run-off of a 3-D unilateral body spent its budget: name the key
+            CliError::Contact(e @ ContactError::ContinuationBudgetSpent { .. }) => {
+                crate::commands::contact::contact_budget(e, &scene.solver)
+            }
+            e => e,
+        })?;
         let mu = implied_mu(scene, r.ratio)?;
         (r, mu, plain_estimate(scene, &problem, r.ratio, mu)?)
     };
@@ -117,6 +139,10 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         grid: [problem.body.n2, problem.body.n3],
         seconds: t.elapsed().as_secs_f64(),
         grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
+        run_off: r.fold.map(|fold_ratio| RunOffReport {
+            fold_ratio,
+            bracket: [r.below, r.above],
+        }),
         estimated_error,
         accuracy,
     })
@@ -173,8 +199,13 @@ pub fn table(r: &ThresholdReport) -> String {
         .accuracy
         .as_ref()
         .map_or_else(String::new, AccuracyReport::table);
+    // a fold of the equilibrium path: no stick node needed at `below`
+    let (what, below) = match r.run_off {
+        Some(_) => ("the equilibrium path folds back", "last converged ratio"),
+        None => ("Slip = 1", "last ratio with a stick node"),
+    };
     let text = format!(
-        "threshold tension ratio {:.6}{} (Slip = 1{}), grid {} x {}\n  implied capstan mu {:.6}{} (thick-body mu {})\n  last ratio with a stick node {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
+        "threshold tension ratio {:.6}{} ({what}{}), grid {} x {}\n  implied capstan mu {:.6}{} (thick-body mu {})\n  {below} {:.6} (Slip {:.4}); {} solves, {:.2} s\n",
         r.threshold_ratio,
         estimate("threshold_ratio"),
         if r.no_equilibrium_beyond {
@@ -192,5 +223,11 @@ pub fn table(r: &ThresholdReport) -> String {
         r.solves,
         r.seconds
     );
-    text + &accuracy
+    let run_off = r.run_off.as_ref().map_or_else(String::new, |f| {
+        format!(
+            "  no equilibrium beyond r* = {:.6} in [{:.6}, {:.6}] (the equilibrium path folds back there)\n",
+            f.fold_ratio, f.bracket[0], f.bracket[1]
+        )
+    });
+    text + &run_off + &accuracy
 }

@@ -4,9 +4,10 @@ use std::time::Instant;
 
 use capstan_elasticity::PlaneOperator;
 use capstan_elasticity::contact::{
-    BodyOperator, BoundarySolver, ContactError, ContactModel, ContactOperator, ContactSettings,
-    ContactSolution, FullSystemSolver, SEQUENCE_COARSEST_UNKNOWNS, ThresholdResult,
-    ThresholdSettings, solve_sequenced, threshold_ratio,
+    BodyOperator, BoundarySolver, ContactError, ContactErrorKind, ContactModel, ContactOperator,
+    ContactSettings, ContactSolution, FullSystemSolver, RunOffEnd, RunOffSettings,
+    SEQUENCE_COARSEST_UNKNOWNS, ThresholdResult, ThresholdSettings, solve_sequenced,
+    threshold_ratio,
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
 use capstan_elasticity::solid::{SolidMultigridParams, SolidOutput};
@@ -386,6 +387,14 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                         }),
                     None => solver.solve_observed(loads, observer),
                 };
+                // a 3-D body's Newton failed: the continuation in the ratio tells a fold of
+                // the equilibrium path (no equilibrium) from a solver failure
+                let solved = match solved {
+                    Err(e) if !plane && e.kind() == ContactErrorKind::NotConverged => {
+                        self.run_off(&solver, e, observer)
+                    }
+                    solved => solved,
+                };
                 let times = [setup, t1.elapsed().as_secs_f64()];
                 drop(solver);
                 match solved {
@@ -422,8 +431,110 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         settings: ThresholdSettings,
     ) -> Result<ThresholdResult, ProblemError> {
         let model = self.model()?;
+        let solid = matches!(self.body.dimension, Dimension::Solid { .. });
+        if solid && self.body.contact.is_unilateral() {
+            let (method, _) = self.solver.resolved(&self.body);
+            if matches!(
+                method,
+                SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton
+            ) {
+                let full = Solver {
+                    method,
+                    ..self.solver
+                }
+                .full_settings();
+                return Ok(self.threshold_run_off(&FullSystemSolver::new(&model, full)?, settings)?);
+            }
+        }
         let solver = BoundarySolver::new(&model, self.solver.budgets)?;
         Ok(threshold_ratio(&solver, settings)?)
+    }
+
+    /// The threshold of a 3-D body under unilateral contact: the fold `r*` of its equilibrium
+    /// path from ratio 1 ([`FullSystemSolver::run_off`] towards `settings.max_ratio`, `tau0 =
+    /// 1`, the smallest ratio step `tolerance / 2`, so the bracket is at most `tolerance`
+    /// wide): the result's `below` and `above` (= `ratio`) are the bracket, `fold` is `r*`.
+    /// Under a growing ratio the body slides and peels off until friction on the shrinking
+    /// contact can no longer hold the load along the sliding mode; past `r*` no equilibrium
+    /// lies on the path (`above_is_no_equilibrium`).
+    ///
+    /// # Errors
+    /// The solves' and the continuation's ([`ContactError::ContinuationBudgetSpent`]:
+    /// `solver.max_continuation_steps` arclength steps); [`ContactError::NotConverged`] when
+    /// the path reaches `settings.max_ratio` without a fold; the last error of a continuation
+    /// that stalls.
+    fn threshold_run_off(
+        &self,
+        solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
+        settings: ThresholdSettings,
+    ) -> Result<ThresholdResult, ContactError> {
+        let run_off = RunOffSettings {
+            min_step: 0.5 * settings.tolerance,
+            ..self.run_off_settings()
+        };
+        let run = solver.run_off(
+            1.0,
+            1.0,
+            settings.max_ratio,
+            run_off,
+            &mut SilentObserver,
+            &mut |_| {},
+        )?;
+        match run.end {
+            RunOffEnd::Folded { fold, upper } => Ok(ThresholdResult {
+                ratio: upper,
+                below: run.lower,
+                above: upper,
+                slip_fraction_below: run.last.slip_fraction,
+                above_is_no_equilibrium: true,
+                solves: run.ratio_steps + 1,
+                limiting_ratio: None,
+                fold: Some(fold),
+            }),
+            RunOffEnd::Reached => Err(ContactError::NotConverged {
+                iterations: run.last.stats.newton_iterations,
+                residual: f64::NAN,
+                load_factor: 1.0,
+            }),
+            RunOffEnd::Stalled { error, .. } => Err(error),
+        }
+    }
+
+    /// The run-off settings of the problem: the defaults with the budget
+    /// `solver.max_continuation_steps` in arclength steps.
+    fn run_off_settings(&self) -> RunOffSettings {
+        RunOffSettings {
+            max_arclength_steps: self.solver.budgets.max_continuation_steps,
+            ..Default::default()
+        }
+    }
+
+    /// After the full-system Newton failed (`failed`) at the problem's ratio `r > 1`
+    /// (`tau0 > 0`): the equilibrium followed from ratio 1 to `r`
+    /// ([`FullSystemSolver::run_off`]): its solution at `r` when the path reaches it,
+    /// [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r`, else
+    /// `failed`.
+    ///
+    /// # Errors
+    /// As above; [`ContactError::ContinuationBudgetSpent`] (`solver.max_continuation_steps`
+    /// arclength steps); an interrupted solve.
+    fn run_off(
+        &self,
+        solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
+        failed: ContactError,
+        observer: &mut dyn Observer<f64>,
+    ) -> Result<ContactSolution, ContactError> {
+        let (tau0, ratio) = (self.loads.tau0, self.loads.tension_ratio());
+        if !(tau0 > 0.0 && ratio > 1.0) {
+            return Err(failed);
+        }
+        let settings = self.run_off_settings();
+        match solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
+            Ok(run) => run.into_solution(failed),
+            Err(e @ ContactError::ContinuationBudgetSpent { .. }) => Err(e),
+            Err(e) if e.kind() == ContactErrorKind::Interrupted => Err(e),
+            Err(_) => Err(failed),
+        }
     }
 
     /// A full-system non-convergence, told apart: no equilibrium (checked by the condensed

@@ -40,6 +40,37 @@ pub enum ContactError {
         /// Largest ratio friction can hold.
         upper: f64,
     },
+    /// No static equilibrium beyond a limit point of the equilibrium path: the continuation in
+    /// the tension ratio ([`crate::contact::FullSystemSolver::run_off`]) found the path to turn
+    /// back at `fold` (the largest ratio it reached), between the last ratio it converged at
+    /// (`lower`) and the first it could not reach (`upper`), below the ratio asked for.
+    #[error(
+        "no static equilibrium at tension ratio {ratio:.6}: the equilibrium path folds back at r* = {fold:.6}; no equilibrium beyond r* in [{lower:.6}, {upper:.6}]"
+    )]
+    NoEquilibriumBeyond {
+        /// `tau_max / tau0` asked for.
+        ratio: f64,
+        /// The fold ratio `r*`: the largest ratio reached on the path (an equilibrium there).
+        fold: f64,
+        /// The largest ratio of the continuation's steps that converged.
+        lower: f64,
+        /// The smallest ratio of its steps that the path folded back before.
+        upper: f64,
+    },
+    /// The continuation in the tension ratio ([`crate::contact::FullSystemSolver::run_off`])
+    /// spent its budget of arclength steps
+    /// ([`crate::contact::ContactSettings::max_continuation_steps`]).
+    #[error(
+        "the continuation in the tension ratio spent its budget of {steps} arclength steps (`max_continuation_steps`) at ratio {reached:.6} on the way to {ratio:.6}"
+    )]
+    ContinuationBudgetSpent {
+        /// The budget (steps taken).
+        steps: usize,
+        /// The largest ratio converged at.
+        reached: f64,
+        /// `tau_max / tau0` asked for.
+        ratio: f64,
+    },
     /// Unilateral contact: the solution has every contact node separated from the obstacle.
     /// The body is then free, and a free body has rigid motions: its static equilibrium under
     /// the loads is not unique (balanced loads) or does not exist (unbalanced ones; Newton then
@@ -128,8 +159,12 @@ impl ContactError {
     pub fn kind(&self) -> ContactErrorKind {
         match self {
             Self::PathStep { source, .. } => source.kind(),
-            Self::NoEquilibrium { .. } | Self::LiftedOff { .. } => ContactErrorKind::NoEquilibrium,
-            Self::NotConverged { .. } => ContactErrorKind::NotConverged,
+            Self::NoEquilibrium { .. }
+            | Self::NoEquilibriumBeyond { .. }
+            | Self::LiftedOff { .. } => ContactErrorKind::NoEquilibrium,
+            Self::NotConverged { .. } | Self::ContinuationBudgetSpent { .. } => {
+                ContactErrorKind::NotConverged
+            }
             Self::Interrupted { .. } | Self::Solver(SolverError::Interrupted { .. }) => {
                 ContactErrorKind::Interrupted
             }

@@ -74,6 +74,7 @@ mod path;
 mod pattern;
 mod quantities;
 mod ratio_arclength;
+mod run_off;
 mod solid_body;
 mod solid_corner;
 mod solid_matrix_free;
@@ -107,6 +108,7 @@ pub use path::{PathSolver, PathStep, solve_path, solve_path_silent};
 pub use quantities::{
     ContactQuantities, NormalStressProbe, default_probes, interpolate, slip_transitions,
 };
+pub use run_off::{RunOff, RunOffEnd, RunOffSettings, RunOffTrial};
 pub use solid_matrix_free::{MatrixFreeLoads, SolidMatrixFreeBody};
 pub use solid_sequencing::{MatrixFreeSequenced, SEQUENCE_COARSEST_UNKNOWNS};
 pub use solution::{

@@ -54,6 +54,10 @@ pub struct ThresholdResult {
     /// (on a 3-D body whose bound is unbounded, the run-off ratio
     /// [`SlidingMode::runaway_ratios`]: no equilibrium past it along the load path).
     pub limiting_ratio: Option<f64>,
+    /// When the threshold is a fold of the equilibrium path (a 3-D body under unilateral
+    /// contact: [`crate::contact::FullSystemSolver::run_off`]): the fold ratio `r*`, the
+    /// largest ratio the path reached, in `[below, above]`; `None` otherwise.
+    pub fold: Option<f64>,
 }
 
 /// The solve at `tau_max / tau0 = ratio` (`tau0 = 1`, from `warm` if given) when it lies below
@@ -142,6 +146,7 @@ pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
                 above_is_no_equilibrium: false,
                 solves,
                 limiting_ratio,
+                fold: None,
             });
         }
     };
@@ -206,5 +211,6 @@ pub fn threshold_ratio<D: ContactOperator, L: FrictionLaw<f64>>(
         above_is_no_equilibrium,
         solves,
         limiting_ratio,
+        fold: None,
     })
 }
