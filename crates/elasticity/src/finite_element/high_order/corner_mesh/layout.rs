@@ -484,6 +484,25 @@ mod tests {
         }
     }
 
+    /// The layout's quads have positive Jacobians at the 2 x 2 Gauss points and their areas
+    /// (the Gauss rule is exact for a bilinear map's determinant) sum to `area`.
+    fn assert_tiles(l: &Layout, area: f64) {
+        let q = 1.0 / 3f64.sqrt();
+        let mut sum = 0.0;
+        for quad in &l.quads {
+            let v = quad.map(|i| l.vertices[i]);
+            for xi in [-q, q] {
+                for eta in [-q, q] {
+                    let (_, j) = bilinear(&v, [xi, eta]);
+                    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                    assert!(det > 0.0);
+                    sum += det;
+                }
+            }
+        }
+        assert!((sum - area).abs() < 1e-13, "{sum}");
+    }
+
     #[test]
     fn corner_mesh_tiles_the_rectangle_with_positive_jacobians() {
         let rect = [[-1.5, 1.5], [0.0, 1.0]];
@@ -554,20 +573,7 @@ mod tests {
         }
         // the mesh tiles the rectangle with positive Jacobians
         let l = Layout::graded(rect, &s, &g);
-        let q = 1.0 / 3f64.sqrt();
-        let mut area = 0.0;
-        for quad in &l.quads {
-            let v = quad.map(|i| l.vertices[i]);
-            for xi in [-q, q] {
-                for eta in [-q, q] {
-                    let (_, j) = bilinear(&v, [xi, eta]);
-                    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-                    assert!(det > 0.0);
-                    area += det;
-                }
-            }
-        }
-        assert!((area - 3.0).abs() < 1e-13, "{area}");
+        assert_tiles(&l, 3.0);
         assert_eq!(l.quads.len(), (lines.len() - 1) * 2 - 4 + 4 * (2 * 2 + 1));
         let bad = TransitionGrading {
             points: vec![f64::NAN],
@@ -632,20 +638,7 @@ mod tests {
         assert!((smallest.1 - side * 0.09).abs() < 1e-15, "{smallest:?}");
         // 16 columns, 8 rows, 4 corner cells of 2 * 2 + 1 elements
         assert_eq!(l.quads.len(), 16 * 8 - 4 + 4 * 5);
-        let q = 1.0 / 3f64.sqrt();
-        let mut area = 0.0;
-        for quad in &l.quads {
-            let v = quad.map(|i| l.vertices[i]);
-            for xi in [-q, q] {
-                for eta in [-q, q] {
-                    let (_, j) = bilinear(&v, [xi, eta]);
-                    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-                    assert!(det > 0.0);
-                    area += det;
-                }
-            }
-        }
-        assert!((area - 3.0).abs() < 1e-13, "{area}");
+        assert_tiles(&l, 3.0);
         let bad = TransitionGrading {
             face_layers: 17,
             ..g
