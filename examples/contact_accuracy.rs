@@ -40,7 +40,8 @@
 //! ladder's own estimates beside them ("ladder's rule est / true").
 //!
 //! Run: `cargo run --release --example contact_accuracy -- [TOL ...] [--solve LAST]
-//! [--reference-step K] [--live TOL] [--twin K,...] [--cache PATH]` (default `1e-3 1e-4 1e-5`). Look at: every
+//! [--reference-step K] [--live TOL] [--twin K,...] [--cache PATH]` (default `1e-3 1e-4
+//! 1e-5`). Look at: every
 //! true error below its tolerance and every `estimate / true` between 0.5 and 10
 //! (docs/verification.md, "The contact tolerance table").
 

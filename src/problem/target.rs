@@ -193,10 +193,11 @@ pub struct Refined<T, S> {
     pub rules: BTreeMap<String, super::estimate::Rule>,
     /// The steps, coarsest first.
     pub steps: Vec<Step>,
-    /// The twins solved at the stops the ladder's estimates met ([`Problem::refine_along_twinned`]:
-    /// the same order on a mesh refined where the stop's error lives), coarsest first: the last
-    /// is the stop's, whose differences from the stop are the estimates (`worst`: the worst of
-    /// them); an earlier one's estimates missed the tolerance. Empty on a ladder without twins.
+    /// The twins solved at the stops the ladder's estimates met
+    /// ([`Problem::refine_along_twinned`]: the same order on a mesh refined where the stop's
+    /// error lives), coarsest first: the last is the stop's, whose differences from the stop
+    /// are the estimates (`worst`: the worst of them); an earlier one's estimates missed the
+    /// tolerance. Empty on a ladder without twins.
     pub twins: Vec<Step>,
 }
 
@@ -294,7 +295,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     }
 
     /// [`Self::refine_along`] with a twin at the stop: where the estimates along the ladder meet
-    /// the tolerance at step `k`, `twin(step k)` (the same order on a mesh refined where the
+    /// the tolerance at step `k`, `twin_of(step k)` (the same order on a mesh refined where the
     /// step's error lives: [`Self::transition_twin`]; `None`: no twin, the ladder's estimates
     /// stand) is solved by `eval` too, and every quantity's estimate is
     /// `SAFETY |Q_k - Q'_k|` (rule `twin`, `capstan::problem::estimate`, "The twin at the
@@ -303,7 +304,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     /// [`Refined::twins`].
     ///
     /// # Errors
-    /// As [`Self::refine_along`]; `twin`'s errors; [`ProblemError::AccuracyNotReached`] when a
+    /// As [`Self::refine_along`]; `twin_of`'s errors; [`ProblemError::AccuracyNotReached`] when a
     /// twin would exceed `target.max_unknowns`.
     pub fn refine_along_twinned<T>(
         &self,

@@ -228,8 +228,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     /// The rows refine the stop's mesh where its error lives: the band at the contact face,
     /// where the `0.03`-long stick zone sits in rows `0.125` high on `24 x 8` cells, and the
     /// corner cells (squares of side `H 0.3^3` with the corner layers inside). On the default
-    /// scene the twin of the order-4 step locates the stick ends 2000x closer and has the
-    /// smooth quantities (displacements, probe stresses) 0.12 ... 0.55 times the step's errors,
+    /// scene the twin of the order-4 step has the stick ends 160x ... 200x closer and the
+    /// smooth quantities (displacements, probe stresses) at 0.12 ... 0.55 times the step's errors,
     /// max `|v3|` aside (3.7 times: the step landed `1.3e-7` from its limit); its unknowns are
     /// 1.8x the step's (docs/verification.md, "The transition-graded ladder").
     ///
