@@ -33,8 +33,15 @@
 //! twin's transitions when that is cached). The table takes the finest face-graded one
 //! (`graded-p10-24x8-f3`, docs/data/contact_reference.json), else the finest graded one.
 //!
+//! On the transition-graded cache, `--twin K[,K...]` solves the twins of the cached steps K
+//! (`Problem::transition_twin`: the step with 3 rows toward the contact face), cached by step:
+//! `contact_to` solves the twin of its stop and reports its differences as the estimates (rule
+//! `twin`), so the table takes the stop's twin's estimates (and its time), and shows the
+//! ladder's own estimates beside them ("ladder's rule est / true").
+//!
 //! Run: `cargo run --release --example contact_accuracy -- [TOL ...] [--solve LAST]
-//! [--reference-step K] [--live TOL] [--cache PATH]` (default `1e-3 1e-4 1e-5`). Look at: every
+//! [--reference-step K] [--live TOL] [--twin K,...] [--cache PATH]` (default `1e-3 1e-4
+//! 1e-5`). Look at: every
 //! true error below its tolerance and every `estimate / true` between 0.5 and 10
 //! (docs/verification.md, "The contact tolerance table").
 
@@ -43,7 +50,7 @@ use std::time::Instant;
 
 use capstan::commands::accuracy::{behaviour, contact_to, graded_behaviour, probes, scaled};
 use capstan::problem::estimate::Rule;
-use capstan::problem::{AccuracyTarget, Scaled, assess};
+use capstan::problem::{AccuracyTarget, Scaled, assess, assess_twin};
 use capstan::scene::Scene;
 use capstan_elasticity::solvers::SilentObserver;
 use serde::{Deserialize, Serialize};
@@ -86,6 +93,11 @@ struct Cache {
     /// The stick/slip transitions the first pass located (the graded ladder's points).
     #[serde(default)]
     transitions: Vec<f64>,
+    /// The twins of the transition-graded ladder's steps (`Problem::transition_twin`: the
+    /// step with rows toward the contact face), by step (`--twin K`): `contact_to` solves the
+    /// stop's twin and takes its differences as the estimates.
+    #[serde(default)]
+    twins: BTreeMap<usize, CachedStep>,
 }
 
 fn hp() -> String {
@@ -210,6 +222,16 @@ enum Stop {
     Budget(usize, String, f64, usize),
     /// The cache ends first.
     Uncached(usize),
+    /// The ladder's estimates meet the tolerance at this step, whose twin is not cached.
+    NoTwin(usize),
+}
+
+impl CachedStep {
+    /// The twin's estimates of this step, `None` when it is not cached (`--twin K`).
+    fn twinned(&self, cache: &Cache) -> Option<capstan::problem::Assessment> {
+        let twin = cache.twins.get(&self.step)?;
+        Some(assess_twin(&self.scaled(true), &twin.scaled(true)))
+    }
 }
 
 fn stop(cache: &Cache, target: &AccuracyTarget) -> Stop {
@@ -222,7 +244,21 @@ fn stop(cache: &Cache, target: &AccuracyTarget) -> Stop {
         }
         seen.push(s.scaled(cache.ladder != "hp"));
         if target.met(k, &assess(&seen)) {
-            return Stop::At(k);
+            if cache.ladder == "hp" {
+                return Stop::At(k);
+            }
+            // the transition-graded ladder: the stop's twin has the last word (`contact_to`)
+            match s.twinned(cache) {
+                None => return Stop::NoTwin(k),
+                Some(a)
+                    if a.worst
+                        .as_ref()
+                        .is_some_and(|(_, w)| *w <= target.tolerance) =>
+                {
+                    return Stop::At(k);
+                }
+                Some(_) => {}
+            }
         }
     }
     // past the cache: the next step's size from the ladder itself
@@ -246,6 +282,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut elements: Option<usize> = None;
     let (mut ladder, mut graded): (Option<String>, Option<String>) = (None, None);
     let mut face_layers = 0;
+    let mut twin_steps: Vec<usize> = Vec::new();
     let mut tolerances: Vec<f64> = Vec::new();
     let mut i = 0;
     while i < args.len() {
@@ -259,6 +296,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--ladder" => ladder = Some(next),
             "--graded-reference" => graded = Some(next),
             "--face-layers" => face_layers = next.parse::<usize>().unwrap_or(0),
+            "--twin" => twin_steps.extend(next.split(',').filter_map(|x| x.parse::<usize>().ok())),
             a => {
                 tolerances.extend(a.parse::<f64>().ok());
                 i += 1;
@@ -302,6 +340,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let step = solve_step(k, &problem, &probes)?;
             cache.steps.push(step);
             // after every step: a long run interrupted keeps what it solved
+            std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
+        }
+    }
+    for k in twin_steps {
+        // the twin of cached step k: its problem (graded toward the transitions step k - 1
+        // located) with rows toward the contact face
+        if cache.ladder != "hp" && k < cache.steps.len() && !cache.twins.contains_key(&k) {
+            let problem = cache.problem(&scene.build()?, k)?.transition_twin()?;
+            let mut twin = solve_step(k, &problem, &probes(&scene))?;
+            twin.step = k;
+            cache.twins.insert(k, twin);
             std::fs::write(&path, serde_json::to_string_pretty(&cache)? + "\n")?;
         }
     }
@@ -399,9 +448,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         reference.step, reference.grid, reference.unknowns, reference.cpu_seconds, wp["method"]
     );
     println!(
-        "| tol | stop (grid, unknowns) | CPU / wall (load) | quantity | value | estimate (rel) | rule | true error (rel) | est / true | vs p 6 240 x 14: true, est / true | old rule est / true |"
+        "| tol | stop (grid, unknowns) | CPU / wall (load) | quantity | value | estimate (rel) | rule | true error (rel) | est / true | vs p 6 240 x 14: true, est / true | old rule est / true | ladder's rule est / true |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for &tol in &tolerances {
         let target = AccuracyTarget::new(tol)?;
         let k = match stop(&cache, &target) {
@@ -419,25 +468,42 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 println!("| {tol:.0e} | not reached on the {n} cached steps |");
                 continue;
             }
+            Stop::NoTwin(k) => {
+                println!(
+                    "| {tol:.0e} | step {k} meets it along the ladder; its twin is not cached (--twin {k}) |"
+                );
+                continue;
+            }
         };
         let steps: Vec<_> = cache.steps[..=k]
             .iter()
             .map(|s| s.scaled(cache.ladder != "hp"))
             .collect();
-        let a = assess(&steps);
+        let ladder_assessment = assess(&steps);
         let s = &cache.steps[k];
-        let cpu: f64 = cache.steps[..=k].iter().map(|s| s.cpu_seconds).sum();
-        let wall: f64 = cache.steps[..=k].iter().map(|s| s.seconds).sum();
-        let load = cache.steps[..=k]
+        // the estimates the target reports: the stop's twin's on the graded ladder
+        let a = s
+            .twinned(&cache)
+            .unwrap_or_else(|| ladder_assessment.clone());
+        // the time of a tolerance: every step to the stop and the stop's twin
+        let solved: Vec<&CachedStep> = cache.steps[..=k]
             .iter()
-            .map(|s| s.load_average)
-            .fold(0.0, f64::max);
+            .chain(cache.twins.get(&k))
+            .collect();
+        let cpu: f64 = solved.iter().map(|s| s.cpu_seconds).sum();
+        let wall: f64 = solved.iter().map(|s| s.seconds).sum();
+        let load = solved.iter().map(|s| s.load_average).fold(0.0, f64::max);
         for (name, q) in &steps[k] {
+            let ladder_ratio = ladder_assessment
+                .estimates
+                .get(name)
+                .map_or(f64::NAN, |e| e.error / q.scale);
             let e = a.estimates.get(name);
             let est = e.map_or(f64::NAN, |e| e.error / q.scale);
             let rule = e.map_or("-".to_owned(), |e| match (e.rule, e.rate) {
                 (Rule::Richardson, Some(r)) => format!("richardson r = {r:.3}"),
                 (Rule::LadderRate, Some(r)) => format!("ladder-rate rho = {r:.3}"),
+                (Rule::Twin, _) => "twin".to_owned(),
                 _ => "last-change".to_owned(),
             });
             let truth = (q.value - reference.values[name]).abs() / q.scale;
@@ -453,11 +519,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let values: Vec<f64> = steps.iter().map(|s| s[name].value).collect();
             let old = old_estimate(&values).map_or(f64::NAN, |o| o / q.scale / truth);
             println!(
-                "| {tol:.0e} | {k} ({:?}, {}) | {cpu:.1} s / {wall:.0} s ({load:.0}) | {name} | {:.10} | {est:.1e} | {rule} | {truth:.1e} | {:.2} | {wp_cell} | {old:.1} |",
+                "| {tol:.0e} | {k} ({:?}, {}) | {cpu:.1} s / {wall:.0} s ({load:.0}) | {name} | {:.10} | {est:.1e} | {rule} | {truth:.1e} | {:.2} | {wp_cell} | {old:.1} | {:.2} |",
                 s.grid,
                 s.unknowns,
                 q.value,
-                est / truth
+                est / truth,
+                ladder_ratio / truth
             );
         }
     }
@@ -476,7 +543,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .iter()
             .map(|s| s.scaled(cache.ladder != "hp"))
             .collect();
-        let a = assess(&steps);
+        let a = cache.steps[k]
+            .twinned(&cache)
+            .unwrap_or_else(|| assess(&steps));
         let worst = estimate
             .quantities
             .iter()

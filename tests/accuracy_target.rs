@@ -72,6 +72,7 @@ fn a_sweep_with_a_target_solves_every_point_to_it() {
 #[test]
 fn contact_to_1e_2_is_within_tolerance_of_the_hp_ladder_at_order_6() {
     use capstan::commands::accuracy::{contact_to, probes, scaled};
+    use capstan::problem::estimate::Rule;
     use capstan_elasticity::solvers::SilentObserver;
     let mut scene = Scene::default();
     scene.accuracy.tol = Some(1e-2);
@@ -91,6 +92,13 @@ fn contact_to_1e_2_is_within_tolerance_of_the_hp_ladder_at_order_6() {
     assert_eq!(report.chosen.order, Some(4));
     assert_eq!(report.steps.len(), 3);
     assert_eq!(q.len(), 9, "{q:?}");
+    // the estimates are the stop's twin's: the same order with 3 rows toward the face
+    assert_eq!(estimate.method, "stop-twin");
+    assert_eq!(report.twins.len(), 1);
+    assert_eq!(report.twins[0].order, Some(4));
+    assert!(report.twins[0].unknowns > report.chosen.unknowns);
+    let rules = estimate.rules.as_ref().unwrap();
+    assert!(rules.values().all(|r| *r == Rule::Twin), "{rules:?}");
     for (name, v) in &q {
         let truth = (v.value - reference[name].value).abs() / v.scale;
         let e = estimate.quantities[name].unwrap() / v.scale;

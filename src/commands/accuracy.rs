@@ -47,12 +47,13 @@ pub struct ErrorEstimate {
     pub quantities: BTreeMap<String, Option<f64>>,
     /// `[n2, n3]` of the coarser grid (`[n1, n2, n3]` on a 3-D body).
     pub coarser_grid: Vec<usize>,
-    /// How the estimate was made: `one-level-coarser`, or `previous-refinement` under an
-    /// accuracy target.
+    /// How the estimate was made: `one-level-coarser`, or under an accuracy target
+    /// `previous-refinement` (along the ladder) or `stop-twin` (the difference from the stop's
+    /// twin, `accuracy.twins`, on the transition-graded ladder).
     pub method: &'static str,
-    /// Under an accuracy target, the rule of each quantity's estimate along the ladder
-    /// (`richardson`, `ladder-rate` or `last-change`: [`crate::problem::estimate`]); absent
-    /// otherwise.
+    /// Under an accuracy target, the rule of each quantity's estimate (`richardson`,
+    /// `ladder-rate`, `last-change` along the ladder, `twin` from the stop's twin:
+    /// [`crate::problem::estimate`]); absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rules: Option<BTreeMap<String, Rule>>,
 }
@@ -124,6 +125,13 @@ pub struct AccuracyReport {
     /// 3-D bodies).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub transition_grading: Option<TransitionChoice>,
+    /// The twins solved at the stops of the transition-graded ladder
+    /// ([`crate::problem::Problem::transition_twin`]: the stop's order with rows toward the
+    /// contact face), coarsest first; the last is the chosen step's, whose differences from it
+    /// are `estimated_error` (rule `twin`; `worst`: the largest relative one). Absent on the
+    /// hp ladder.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub twins: Vec<Step>,
 }
 
 /// `accuracy.transition_grading`: how the transition-graded ladder was placed.
@@ -160,13 +168,15 @@ impl AccuracyReport {
             solver: scene.solver.nonlinear.clone(),
             steps: refined.steps.clone(),
             transition_grading: None,
+            twins: refined.twins.clone(),
         })
     }
 
     /// The estimate of a refinement: `e_k(Q)` of every quantity along the ladder (Richardson
     /// with the observed rate, with the ladder's rate, or the last change:
     /// [`crate::problem::AccuracyTarget`]), with
-    /// the grid of the step before (method `previous-refinement`).
+    /// the grid of the step before (method `previous-refinement`); on a ladder with a twin at
+    /// the stop, the twin's `SAFETY |Q_k - Q'_k|` (method `stop-twin`).
     pub fn estimate<T, S>(refined: &Refined<T, S>) -> ErrorEstimate {
         let n = refined.steps.len();
         ErrorEstimate {
@@ -176,7 +186,11 @@ impl AccuracyReport {
                 .map(|(k, v)| (k.clone(), Some(*v)))
                 .collect(),
             coarser_grid: refined.steps[n.saturating_sub(2)].grid.clone(),
-            method: "previous-refinement",
+            method: if refined.twins.is_empty() {
+                "previous-refinement"
+            } else {
+                "stop-twin"
+            },
             rules: Some(refined.rules.clone()),
         }
     }
@@ -213,6 +227,20 @@ impl AccuracyReport {
                 step.grid,
                 step.seconds,
                 step.worst
+                    .as_ref()
+                    .map_or_else(String::new, |(q, e)| format!(
+                        ", worst relative estimate {e:.2e} ({q})"
+                    ))
+            );
+        }
+        for twin in &self.twins {
+            s += &format!(
+                "    twin: p = {} on {:?} with rows toward the contact face ({} unknowns): {:.3} s{}\n",
+                twin.order.unwrap_or_default(),
+                twin.grid,
+                twin.unknowns,
+                twin.seconds,
+                twin.worst
                     .as_ref()
                     .map_or_else(String::new, |(q, e)| format!(
                         ", worst relative estimate {e:.2e} ({q})"
@@ -335,8 +363,9 @@ pub fn contact_to(
         }
         Dimension::Solid { .. } => None,
     };
-    // the actual unknowns of every step (`Problem::unknowns` bounds a graded corner mesh's)
-    let mut unknowns = Vec::new();
+    // the actual unknowns of every step and of every twin (`Problem::unknowns` bounds a
+    // graded corner mesh's); the ladder's steps have no rows toward the face, its twins have
+    let (mut unknowns, mut twin_unknowns) = (Vec::new(), Vec::new());
     // the transitions the next step is graded toward: the first pass's, then each step's own
     // (located ever more sharply: the first pass is 0.016 off on the default scene, step 2
     // within 1e-4)
@@ -348,10 +377,17 @@ pub fn contact_to(
     let graded = choice.is_some();
     let eval = |p: &Problem| {
         let solved = p.solve_observed(observer)?;
-        unknowns.push(solved.model.operator().dof_count());
-        let located = solved.transitions();
-        if !located.is_empty() {
-            *points.borrow_mut() = located;
+        let n = solved.model.operator().dof_count();
+        if p.body.settings.transitions.face_layers > 0 {
+            // a twin: the next step (after a twin that missed) stays graded toward the
+            // transitions its step located, as on the cached ladder
+            twin_unknowns.push(n);
+        } else {
+            unknowns.push(n);
+            let located = solved.transitions();
+            if !located.is_empty() {
+                *points.borrow_mut() = located;
+            }
         }
         let q = solved.quantities(&probes)?;
         let scaled = match graded {
@@ -361,15 +397,19 @@ pub fn contact_to(
         Ok((solved, scaled))
     };
     let mut refined = match &choice {
-        Some(_) => problem.refine_along(
+        Some(_) => problem.refine_along_twinned(
             target,
             |k| problem.transition_step(k, &points.borrow()),
+            |stop| stop.transition_twin().map(Some),
             eval,
         )?,
         None => problem.refine_to(target, eval)?,
     };
     for (step, n) in refined.steps.iter_mut().zip(unknowns) {
         step.unknowns = n;
+    }
+    for (twin, n) in refined.twins.iter_mut().zip(twin_unknowns) {
+        twin.unknowns = n;
     }
     let estimate = AccuracyReport::estimate(&refined);
     let mut report = AccuracyReport::new(scene, target, &refined).ok_or(CliError::Scene {

@@ -2,7 +2,8 @@
 //! targets of [`crate::problem::AccuracyTarget`]): Richardson extrapolation with the observed
 //! rate where the sequence is in its asymptotic range, the plain last change where it is not,
 //! and on a ladder graded toward the stick/slip transitions the ladder's rate where a
-//! quantity's own rate is faster than the ladder allows.
+//! quantity's own rate is faster than the ladder allows; at the stop of that ladder, the
+//! difference from a twin solve of the same order on a mesh refined toward the contact face.
 //!
 //! A leaf module: it knows sequences of numbers, nothing of problems or solvers.
 //!
@@ -108,6 +109,44 @@
 //! stop a step later for nothing. A ladder without Transition quantities (the hp ladder, the
 //! threshold's) has no `rho` and keeps the rules above.
 //!
+//! # The twin at the stop
+//! A quantity that lands near its limit at step `k` (its error `e_k` far below the change
+//! `d_k`, which is about `e_{k-1}`) shows it only in the next change `d_{k+1}`: no rule on
+//! `d_1 ... d_k` can tell it from a quantity still `|d_k|` off. On the transition-graded
+//! ladder of the default scene four smooth quantities land at step 2 (`p = 4`, the stop of
+//! `tol = 1e-3`): max `|v2|`, max `|v3|` and probes 1 and 2 are `2.7e-6, 1.3e-7, 7.4e-6,
+//! 6.1e-6` from their limits after changes of `3.9e-4 ... 6.2e-4`, and the rules above
+//! overestimate them 51x ... 6301x. A second solve at the stop with an error of its own sees
+//! it: the *twin* (`Problem::transition_twin`), the stop's problem (its order, cells, corner
+//! layers and transition grading) with 3 rows of ratio `0.3` toward the contact face, which
+//! refine the stop's mesh where its error lives (the band of the `0.03`-long stick zone, rows
+//! `0.125` high on `24 x 8` cells; the corner cells, shrunk to squares of side `H 0.3^3` with
+//! their corner layers inside). With `e = Q_k - Q` and `e' = Q'_k - Q` the errors of the step
+//! and of its twin,
+//! ```text
+//! |Q_k - Q'_k| = |e - e'|,        e_k = SAFETY |Q_k - Q'_k|                 (rule `twin`)
+//! |e'| <= q |e|, q < 1:   2 (1 - q) |e| <= e_k <= 2 (1 + q) |e|    within 0.5x-10x for q <= 3/4
+//! |e'| =  Q |e|, Q > 1:   2 (Q - 1) |e| <= e_k <= 2 (Q + 1) |e|    within 0.5x-10x for Q <= 4
+//! ```
+//! so the estimate is the error of the less accurate of the two: of the step where the twin
+//! is closer to the limit (a landing of the twin alone is then harmless: `q ~ 0`), and an
+//! overestimate by the twin's error where the step alone landed (bounded by `|e'|`, not by
+//! the change `|d_k|`). It fails low only where the two share their error (`q` near 1, the same
+//! sign): an error the rows do not touch, where the step and its twin land together. Measured
+//! on the default scene at the twins of steps 2 ... 7 (`p = 4 ... 9`; docs/verification.md,
+//! "The transition-graded ladder"): `|q| <= 0.57` for every quantity but max `|v3|` at step 2
+//! (`Q = 3.7`: the step landed, the twin did not; the estimate is 5.5x) and at step 5
+//! (`q = 0.93` at `|e| = 2.4e-9`, the reference's own level), and probe 0 at step 3
+//! (`q = 1.08`: both land; the estimate is 0.15x; not a stop). At the stops of `tol = 1e-3,
+//! 1e-4, 1e-5` (steps 2, 4, 6) the estimates are 0.85x ... 5.5x the true errors.
+//!
+//! The twin's estimate replaces the ladder's rather than joining it: their smaller would
+//! inherit the low failures of both (the ladder's where a quantity stagnates, the twin's where
+//! the two land together), their larger the ladder's landings, which are what the twin is for.
+//! The ladder's rules still choose the stop (no twin before it); the refinement stops where the
+//! twin's estimates meet the tolerance too, and climbs on where they do not
+//! (`Problem::refine_along_twinned`). Its cost is one solve with 1.8x the stop's unknowns.
+//!
 //! # Limits
 //! The estimate is of the error of `Q_k` against the ladder's limit from the changes alone: a
 //! quantity that stagnates for several steps (its changes small while its error is not: a
@@ -115,7 +154,7 @@
 //! records where that happens on the default scene (the slip measure at `tol = 1e-2` on the hp
 //! ladder). A quantity that lands near its limit by accident is overestimated by any such
 //! rule: at step 2 of the transition-graded ladder max `|v3|` is `1.3e-7` from its limit after
-//! a change of `3.8e-4`, and nothing before step 3 shows it.
+//! a change of `3.8e-4`, and nothing before step 3 shows it; the twin at the stop does (above).
 
 /// The safety factor of the Richardson estimate (see the module docs).
 pub const SAFETY: f64 = 2.0;
@@ -159,6 +198,9 @@ pub enum Rule {
     /// `SAFETY sqrt(max(|d_k|, R_MIN |d_{k-1}|) rho |d_{k-1}|) rho / (1 - rho)`: a quantity
     /// whose rate is faster than the ladder's `rho` allows ([`ladder_rate`]).
     LadderRate,
+    /// `SAFETY |Q_k - Q'_k|`: the difference from the stop's twin, the same order on a mesh
+    /// refined toward the contact face ([`twin`]).
+    Twin,
 }
 
 /// The estimate of the error of the last value of a sequence.
@@ -239,6 +281,19 @@ pub fn ladder_rate<'a>(sequences: impl IntoIterator<Item = &'a [f64]>) -> Option
             _ => None,
         })
         .reduce(f64::max)
+}
+
+/// The estimate of the error of `value` (a quantity of the stop) from its value `twin` on the
+/// stop's twin (the same order on a mesh refined where the stop's error lives; see the module
+/// docs, "The twin at the stop"): `SAFETY |value - twin|`, rule [`Rule::Twin`]. `None` for a
+/// non-finite difference.
+pub fn twin(value: f64, twin: f64) -> Option<SequenceEstimate> {
+    let difference = (value - twin).abs();
+    difference.is_finite().then_some(SequenceEstimate {
+        error: SAFETY * difference,
+        rule: Rule::Twin,
+        rate: None,
+    })
 }
 
 /// The estimate of the error of the last of `values` (a quantity along the ladder, coarsest
@@ -391,6 +446,20 @@ mod tests {
         let q = geometric(0.1, 0.01, 6);
         let e = estimate_on(&q, Behaviour::Located, Some(0.5)).unwrap();
         assert_eq!(e.rule, Rule::LastChange);
+    }
+
+    #[test]
+    fn the_twin_estimate_is_twice_the_difference_and_brackets_a_closer_twin() {
+        // the step 1e-6 off; twins 0.7e-6 and -0.7e-6 off (q = 0.7 on either side): 0.6x, 3.4x
+        for (twin_error, ratio) in [(0.7e-6, 0.6), (-0.7e-6, 3.4)] {
+            let e = twin(1.0 + 1e-6, 1.0 + twin_error).unwrap();
+            assert_eq!((e.rule, e.rate), (Rule::Twin, None));
+            assert!((e.error / 1e-6 - ratio).abs() < 1e-9, "{}", e.error);
+        }
+        // a twin 4x as far: 2 (4 + 1) = 10x at most, the less accurate one's error
+        let e = twin(1.0 + 1e-6, 1.0 - 4e-6).unwrap();
+        assert!((e.error / 1e-6 - 10.0).abs() < 1e-9);
+        assert_eq!(twin(1.0, f64::NAN), None);
     }
 
     /// `Q_j = 2^-j` with a fast part on step 3 alone that all but cancels the change of step 4

@@ -54,8 +54,8 @@ pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{
     AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,
 };
-pub use target::{AccuracyTarget, Assessment, Refined, Scaled, Step, assess};
+pub use target::{AccuracyTarget, Assessment, Refined, Scaled, Step, assess, assess_twin};
 pub use transitions::{
-    DEFAULT_TRANSITION_GRADING, TRANSITION_FIRST_PASS, TRANSITION_LADDER_CELLS, TwoPass,
-    transition_corner_layers,
+    DEFAULT_TRANSITION_GRADING, TRANSITION_FIRST_PASS, TRANSITION_LADDER_CELLS, TWIN_FACE_LAYERS,
+    TwoPass, transition_corner_layers,
 };

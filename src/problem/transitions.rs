@@ -35,6 +35,10 @@ pub const TRANSITION_LADDER_CELLS: [usize; 2] = [24, 8];
 /// The highest order of the transition-graded ladder (the highest Qp order).
 const TRANSITION_MAX_ORDER: usize = 10;
 
+/// The rows toward the contact face of the stop's twin ([`Problem::transition_twin`]): 3 of
+/// the transition ratio `0.3`, h28-ref's reference mesh (4 rows stall Newton at `p >= 8`).
+pub const TWIN_FACE_LAYERS: usize = 3;
+
 /// The corner layers of the transition-graded ladder's order-`p` step: `p + 3` (of ratio
 /// `0.3`: the smallest corner element `0.3^(p+3)` of the cell, `2e-3` at `p = 2`, `1.6e-6` at
 /// `p = 8`). hp theory asks for layers growing linearly with `p` (Schwab, section 4.4); with
@@ -212,6 +216,27 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         q.body.settings.corner_layers = transition_corner_layers(order);
         let (layers, ratio) = DEFAULT_TRANSITION_GRADING;
         q.graded_toward(transitions.to_vec(), layers, ratio)
+    }
+
+    /// The twin of a step of the transition-graded ladder ([`Self::transition_step`]): the same
+    /// order, cells, corner layers and transition grading with [`TWIN_FACE_LAYERS`] rows toward
+    /// the contact face ([`Self::face_graded`]). The accuracy target solves it at the stop and
+    /// takes `SAFETY |Q_k - Q'_k|` as every quantity's estimate (`capstan::problem::estimate`,
+    /// "The twin at the stop").
+    ///
+    /// # Math
+    /// The rows refine the stop's mesh where its error lives: the band at the contact face,
+    /// where the `0.03`-long stick zone sits in rows `0.125` high on `24 x 8` cells, and the
+    /// corner cells (squares of side `H 0.3^3` with the corner layers inside). On the default
+    /// scene the twin of the order-4 step has the stick ends 160x ... 200x closer and the
+    /// smooth quantities (displacements, probe stresses) at 0.12 ... 0.55 times the step's errors,
+    /// max `|v3|` aside (3.7 times: the step landed `1.3e-7` from its limit); its unknowns are
+    /// 1.8x the step's (docs/verification.md, "The transition-graded ladder").
+    ///
+    /// # Errors
+    /// As [`Self::face_graded`] (not `fem-qp-corner`).
+    pub fn transition_twin(&self) -> Result<Self, ProblemError> {
+        self.face_graded(TWIN_FACE_LAYERS)
     }
 
     /// Two passes: solves the problem, locates its stick/slip transitions
