@@ -6,12 +6,13 @@ mod common;
 
 const UNILATERAL: &str = "contact.kind=\"unilateral\"";
 
-/// Where the upper end must lie on the default grid (`[a, b)`): at or above 3.342344, the largest ratio the
-/// run-off of the unilateral body (`FullSystemSolver::run_off` from 3.2 in steps of 0.02
-/// halved to 1e-4) converged at, Slip 0.988 (every step from 3.3425 failed: the Jacobian is
-/// singular near full slip); below the bilateral end 3.344063, since at full slip a node next
-/// to the loaded end separates and carries no friction. (The run-off in steps of 0.05 from 1
-/// stalls earlier, after 3.340625: its stall is the solver's, not the limit.)
+/// Where the upper end must lie on the default grid (`[a, b)`; measured 3.344004): at or above
+/// 3.342344, the largest ratio the run-off of the unilateral body (`FullSystemSolver::run_off`
+/// from 3.2 in steps of 0.02 halved to 1e-4) converged at, Slip 0.988 (every step from 3.3425
+/// failed: the Jacobian is singular near full slip; from 1 in steps of 0.05 it stalls after
+/// 3.340625, so its stall is the solver's, not the limit); below the bilateral end 3.344063
+/// (at full slip a node next to the loaded end separates), so that a range ignoring the
+/// unilateral rows fails.
 const UPPER_END: [f64; 2] = [3.342344, 3.344063];
 
 /// `[lower, upper]` of "outside the limiting range [lower, upper]" in `text`.

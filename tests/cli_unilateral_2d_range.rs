@@ -55,8 +55,9 @@ fn the_full_slip_range_of_a_bilateral_body_is_the_condensed_range() {
 
 /// Where no node separates and no cap binds at full slip (21 x 5: every node presses),
 /// unilateral contact has the bilateral equations, so its limiting range is the bilateral
-/// one to round-off. On 41 x 9 nothing separates either, but the reaction cap binds at a
-/// node next to a loaded end, and the upper end falls (3.320840 against 3.322448).
+/// one to round-off. On 41 x 9 nothing separates either, but the law differs at some node
+/// (the reaction cap or `min(sigma_n, 0)`), and the upper end falls (3.320840 against
+/// 3.322448): the comparison can fail.
 #[test]
 fn the_unilateral_range_equals_the_bilateral_one_where_nothing_lifts_off() {
     let condensed = condensed_range(21, 5);

@@ -370,13 +370,13 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton => {
                 let model = self.model_observed(observer)?;
                 let solver = FullSystemSolver::new(&model, full)?;
+                let setup = t0.elapsed().as_secs_f64();
+                let t1 = Instant::now();
                 // a plane body under unilateral contact: a ratio outside its limiting range
                 // (the full-slip balance along the rigid sliding mode) refused now
                 if let Some(e) = self.outside_unilateral_range(&solver) {
                     return Err(e.into());
                 }
-                let setup = t0.elapsed().as_secs_f64();
-                let t1 = Instant::now();
                 // exact friction starts from its regularisation's solution (exact_start.rs)
                 let start = if exact {
                     self.regularised_start(observer)

@@ -188,7 +188,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
 
     /// `backend` with the Newton settings, for the model's matrices (`spd`: symmetric positive
     /// definite ones), the discretisation's ordering unless one is set.
-    fn backend(
+    pub(crate) fn backend(
         &self,
         backend: LinearBackend,
         spd: bool,

@@ -3,7 +3,7 @@
 //! contact set an unknown of the full-slip solve.
 
 use capstan_friction::FrictionLaw;
-use capstan_solvers::BoxedLinearSolver;
+use capstan_solvers::{BackendKind, BoxedLinearSolver, LinearBackend};
 
 use crate::contact::error::ContactError;
 use crate::contact::full_system::FullSystemSolver;
@@ -213,7 +213,13 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
             full_slip_residual(model, &rhs, v, &slips, &mut out);
             out
         };
-        let mut lu: BoxedLinearSolver = self.linear_backend()?;
+        // the Newton backend, or sparse LU for a stationary sweep (slow on the stiff rows,
+        // and no convergence promised on the bordered matrix)
+        let linear = self.settings().newton.linear;
+        let mut lu: BoxedLinearSolver = match linear.kind() {
+            BackendKind::Direct | BackendKind::Krylov => self.backend(linear, false)?,
+            _ => self.backend(LinearBackend::LU, false)?,
+        };
         lu.analyse(&ext.pattern)?;
         let mut values = vec![0.0; ext.pattern.nnz()];
         let mut r = 1.0;
