@@ -568,7 +568,7 @@ pub(crate) fn contact_budget(
         && solver.nonlinear != "newton"
         || solver.nonlinear == "jacobi-newton";
     let budget = match &e {
-        ContactError::NotConverged { .. } => {
+        ContactError::NotConverged { .. } | ContactError::LoadStepFailed { .. } => {
             format!(
                 "`solver.max_iterations` = {} Newton iterations per load step, `solver.max_continuation_steps` = {} steps, `solver.min_load_step` = {}; raise the first two or lower the third (--set solver.max_iterations={})",
                 solver.max_iterations,

@@ -200,8 +200,17 @@ pub fn table(r: &ThresholdReport) -> String {
         .as_ref()
         .map_or_else(String::new, AccuracyReport::table);
     // a fold of the equilibrium path: no stick node needed at `below`
+    // the limiting equilibrium solved directly (a plane body under unilateral contact): the
+    // bracket is the ratio itself
+    let direct = r.run_off.is_none()
+        && r.below == r.threshold_ratio
+        && r.limiting_ratio == Some(r.threshold_ratio);
     let (what, below) = match r.run_off {
         Some(_) => ("the equilibrium path folds back", "last converged ratio"),
+        None if direct => (
+            "Slip = 1: the full-slip balance along the rigid sliding mode",
+            "solved directly at",
+        ),
         None => ("Slip = 1", "last ratio with a stick node"),
     };
     let text = format!(

@@ -5,7 +5,7 @@ use std::time::Instant;
 use capstan_elasticity::PlaneOperator;
 use capstan_elasticity::contact::{
     BodyOperator, BoundarySolver, ContactError, ContactErrorKind, ContactModel, ContactOperator,
-    ContactSettings, ContactSolution, FullSystemSolver, RunOffEnd, RunOffSettings,
+    ContactSettings, ContactSolution, FullSystemSolver, LimitingRange, RunOffEnd, RunOffSettings,
     SEQUENCE_COARSEST_UNKNOWNS, ThresholdResult, ThresholdSettings, solve_sequenced,
     threshold_ratio,
 };
@@ -361,7 +361,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                             coarser,
                         })
                     }
-                    Err(e @ ContactError::NotConverged { .. }) => {
+                    Err(e) if e.kind() == ContactErrorKind::NotConverged => {
                         Err(self.explain_not_converged(&self.model()?, e))
                     }
                     Err(e) => Err(e.into()),
@@ -372,6 +372,11 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let solver = FullSystemSolver::new(&model, full)?;
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
+                // a plane body under unilateral contact: a ratio outside its limiting range
+                // (the full-slip balance along the rigid sliding mode) refused now
+                if let Some(e) = self.outside_unilateral_range(&solver) {
+                    return Err(e.into());
+                }
                 // exact friction starts from its regularisation's solution (exact_start.rs)
                 let start = if exact {
                     self.regularised_start(observer)
@@ -404,7 +409,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                         choice,
                         times,
                     )),
-                    Err(e @ ContactError::NotConverged { .. }) if plane => {
+                    Err(e) if plane && e.kind() == ContactErrorKind::NotConverged => {
                         Err(self.explain_not_converged(&model, e))
                     }
                     Err(e) => Err(e.into()),
@@ -432,7 +437,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     ) -> Result<ThresholdResult, ProblemError> {
         let model = self.model()?;
         let solid = matches!(self.body.dimension, Dimension::Solid { .. });
-        if solid && self.body.contact.is_unilateral() {
+        if self.body.contact.is_unilateral() {
             let (method, _) = self.solver.resolved(&self.body);
             if matches!(
                 method,
@@ -443,7 +448,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     ..self.solver
                 }
                 .full_settings();
-                return Ok(self.threshold_run_off(&FullSystemSolver::new(&model, full)?, settings)?);
+                let solver = FullSystemSolver::new(&model, full)?;
+                return Ok(if solid {
+                    self.threshold_run_off(&solver, settings)?
+                } else {
+                    threshold_at_limit(&solver)?
+                });
             }
         }
         let solver = BoundarySolver::new(&model, self.solver.budgets)?;
@@ -537,8 +547,42 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         }
     }
 
+    /// [`ContactError::NoEquilibrium`] when the problem is a plane body under unilateral
+    /// contact whose ratio `r` (`tau0 > 0`) lies outside its limiting range: the end on `r`'s
+    /// side first ([`FullSystemSolver::limiting_end`], upward for `r >= 1`), the other only to
+    /// name the range when `r` lies beyond. `None` otherwise: inside, another body, no rigid
+    /// sliding mode, or a full-slip solve that failed (the solve then runs unchecked, and a
+    /// failure stays the solver's). One full-slip solve on a converging run (measured on the
+    /// default grid: 0.3 CPU-s).
+    fn outside_unilateral_range(
+        &self,
+        solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
+    ) -> Option<ContactError> {
+        let plane = matches!(self.body.dimension, Dimension::Plane);
+        let (tau0, ratio) = (self.loads.tau0, self.loads.tension_ratio());
+        if !(plane && self.body.contact.is_unilateral() && tau0 > 0.0) {
+            return None;
+        }
+        let direction = if ratio >= 1.0 { 1.0 } else { -1.0 };
+        let near = solver.limiting_end(tau0, direction).ok().flatten()?;
+        let tol = 1e-9 * ratio.abs().max(1.0);
+        if direction * (ratio - near.ratio) <= tol {
+            return None;
+        }
+        let far = solver.limiting_end(tau0, -direction).ok().flatten()?;
+        let range = LimitingRange::from_ends(near, far);
+        Some(ContactError::NoEquilibrium {
+            ratio,
+            lower: range.lower,
+            upper: range.upper,
+        })
+    }
+
     /// A full-system non-convergence, told apart: no equilibrium (checked by the condensed
-    /// solver's limiting ratios of `model`) rather than a solver failure.
+    /// solver's limiting ratios of `model`) rather than a solver failure. (A plane body under
+    /// unilateral contact was checked against its own range before the solve,
+    /// [`Problem::outside_unilateral_range`]; the condensed solver refuses its model, so its
+    /// error stays.)
     fn explain_not_converged(&self, model: &Model, e: ContactError) -> ProblemError {
         let check = || -> Result<(), ContactError> {
             BoundarySolver::new(model, ContactSettings::default())?.check_equilibrium(self.loads)
@@ -548,4 +592,38 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             _ => e.into(),
         }
     }
+}
+
+/// The threshold of a plane body under unilateral contact: the upper end `r_L` of its limiting
+/// range ([`FullSystemSolver::limiting_end`] upward, `tau0 = 1`), the ratio at which the whole
+/// contact slides rigidly with friction on the nodes still in contact; no equilibrium beyond.
+/// The full-slip balance is solved directly (to the Newton tolerance), so the result's
+/// bracket is `[r_L, r_L]` (`below = above = ratio`, Slip 1 there) and `limiting_ratio` is
+/// `r_L`; `solves` counts the one full-slip solve.
+///
+/// # Errors
+/// The full-slip solve's ([`FullSystemSolver::full_slip_ratio`]);
+/// [`ContactError::Unsupported`] naming `contact.kind` when the body has no rigid sliding
+/// mode or friction holds every ratio upward (no full-slip threshold of this kind).
+fn threshold_at_limit(
+    solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
+) -> Result<ThresholdResult, ContactError> {
+    let upper = solver
+        .limiting_end(1.0, 1.0)?
+        .map(|end| end.ratio)
+        .filter(|r| r.is_finite())
+        .ok_or(ContactError::Unsupported {
+            field: "contact.kind",
+            message: "the threshold of a plane body under unilateral contact is the full-slip limit along a rigid sliding mode (a circular obstacle); this body has none, or friction holds every ratio upward",
+        })?;
+    Ok(ThresholdResult {
+        ratio: upper,
+        below: upper,
+        above: upper,
+        slip_fraction_below: 1.0,
+        above_is_no_equilibrium: true,
+        solves: 1,
+        limiting_ratio: Some(upper),
+        fold: None,
+    })
 }

@@ -96,6 +96,22 @@ pub enum ContactError {
         /// The last load factor in `[0, 1]` that converged.
         load_factor: f64,
     },
+    /// The load continuation stopped at a step whose Newton solve failed without a residual to
+    /// report (a singular Jacobian, a failed linear solve): `source` is that failure, the
+    /// solver's own, rather than a residual of `inf`.
+    #[error(
+        "contact Newton did not converge: the Newton solve of the load step to load factor {attempted:.4} failed: {source} (after {iterations} iterations in total; load factor reached {load_factor:.4})"
+    )]
+    LoadStepFailed {
+        /// Newton iterations spent in total.
+        iterations: usize,
+        /// The last load factor in `[0, 1]` that converged.
+        load_factor: f64,
+        /// The load factor of the failed step.
+        attempted: f64,
+        /// Why its Newton solve failed.
+        source: SolverError,
+    },
     /// The chosen solver does not handle this contact model (e.g. the condensed solver and
     /// unilateral contact); `field` names the key that picks another.
     #[error("`{field}`: {message}")]
@@ -162,9 +178,9 @@ impl ContactError {
             Self::NoEquilibrium { .. }
             | Self::NoEquilibriumBeyond { .. }
             | Self::LiftedOff { .. } => ContactErrorKind::NoEquilibrium,
-            Self::NotConverged { .. } | Self::ContinuationBudgetSpent { .. } => {
-                ContactErrorKind::NotConverged
-            }
+            Self::NotConverged { .. }
+            | Self::LoadStepFailed { .. }
+            | Self::ContinuationBudgetSpent { .. } => ContactErrorKind::NotConverged,
             Self::Interrupted { .. } | Self::Solver(SolverError::Interrupted { .. }) => {
                 ContactErrorKind::Interrupted
             }

@@ -188,7 +188,7 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
 
     /// `backend` with the Newton settings, for the model's matrices (`spd`: symmetric positive
     /// definite ones), the discretisation's ordering unless one is set.
-    fn backend(
+    pub(crate) fn backend(
         &self,
         backend: LinearBackend,
         spd: bool,
@@ -442,7 +442,8 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'a, D, L> {
     /// Solves for the loads.
     ///
     /// # Errors
-    /// [`ContactError::NotConverged`] when the continuation fails; invalid loads;
+    /// [`ContactError::NotConverged`] (or [`ContactError::LoadStepFailed`], a step failing
+    /// without a residual) when the continuation fails; invalid loads;
     /// [`SolverError::BudgetSpent`] (inside [`ContactError::Solver`], naming
     /// `krylov.max_iterations`) when an iterative bulk solve spends its budget (no
     /// continuation is tried: a smaller load step does not make the linear solves cheaper).

@@ -122,7 +122,8 @@ pub(crate) fn check_lift_off<D, L: FrictionLaw<f64>>(
 /// An interrupted solve or a spent iterative budget (at once: a smaller load step does not
 /// make the linear solves cheaper); [`ContactError::LiftedOff`] when the last attempt ended
 /// with the body off the obstacle; [`ContactError::NotConverged`] when the load step falls
-/// below `min_load_step` or the steps run out.
+/// below `min_load_step` or the steps run out, [`ContactError::LoadStepFailed`] instead when
+/// the last failed step's solve had no residual (a singular Jacobian: its error, not `inf`).
 pub(crate) fn solve_continued<D: ContactOperator, L: FrictionLaw<f64>, S: LoadSteps<D, L>>(
     steps: &S,
     loads: EndLoads,
@@ -142,6 +143,8 @@ pub(crate) fn solve_continued<D: ContactOperator, L: FrictionLaw<f64>, S: LoadSt
         let mut step = c.initial_load_step;
         stats.continuation_steps = 0;
         let mut last = f64::INFINITY;
+        // the last failed step when its solve failed without a residual: (load factor, why)
+        let mut failure: Option<(f64, SolverError)> = None;
         let mut separated = all_separated(model, loads, &v);
         while lambda < 1.0 && stats.continuation_steps < c.max_continuation_steps {
             stats.continuation_steps += 1;
@@ -168,11 +171,11 @@ pub(crate) fn solve_continued<D: ContactOperator, L: FrictionLaw<f64>, S: LoadSt
                 }
                 Err(e) => {
                     separated = all_separated(model, loads.scaled(next), &trial);
-                    last = match e {
+                    (last, failure) = match e {
                         SolverError::Stagnated { residual, .. }
                         | SolverError::NotConverged { residual, .. }
-                        | SolverError::Diverged { residual, .. } => residual,
-                        _ => f64::INFINITY,
+                        | SolverError::Diverged { residual, .. } => (residual, None),
+                        e => (f64::INFINITY, Some((next, e))),
                     };
                     step *= 0.5;
                     if step < c.min_load_step {
@@ -185,6 +188,15 @@ pub(crate) fn solve_continued<D: ContactOperator, L: FrictionLaw<f64>, S: LoadSt
             if separated {
                 // the last attempt ended with the body off the obstacle
                 return Err(lifted_off(model, loads));
+            }
+            if let Some((attempted, source)) = failure {
+                // no residual to report: the solver's own failure (a singular Jacobian, ...)
+                return Err(ContactError::LoadStepFailed {
+                    iterations: stats.newton_iterations,
+                    load_factor: lambda,
+                    attempted,
+                    source,
+                });
             }
             return Err(ContactError::NotConverged {
                 iterations: stats.newton_iterations,

@@ -225,7 +225,8 @@ impl<'a, D: ContactOperator, L: FrictionLaw<f64>> MatrixFreeNewton<'a, D, L> {
     /// converged load step ([`SolveStage::Continuation`]) goes to `observer`.
     ///
     /// # Errors
-    /// Invalid loads; [`ContactError::NotConverged`] when the continuation fails;
+    /// Invalid loads; [`ContactError::NotConverged`] (or [`ContactError::LoadStepFailed`])
+    /// when the continuation fails;
     /// [`SolverError::BudgetSpent`] (inside [`ContactError::Solver`]) naming
     /// `solver.max_sweeps` when the Krylov total of a Newton solve is spent, or
     /// `krylov.max_iterations` for the stuck start; an interrupted solve.

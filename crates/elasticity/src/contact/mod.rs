@@ -83,6 +83,7 @@ mod solid_sequencing;
 mod solution;
 mod threshold;
 mod unilateral;
+mod unilateral_limits;
 
 pub use any_body::{Body, Dimension};
 pub use body::{ThickBody, ThickBodyOperator};
@@ -117,6 +118,9 @@ pub use solution::{
 };
 pub use threshold::{ThresholdResult, ThresholdSettings, solve_below_threshold, threshold_ratio};
 pub use unilateral::{ContactKind, Gap};
+pub use unilateral_limits::{
+    FULL_SLIP_NEWTON_ITERATIONS, FullSlip, FullSlipEnd, LimitingRange, RIGID_MODE_DEFECT,
+};
 
 /// Makes faer's dense and sparse kernels sequential (`Par::Seq`), for callers that run many
 /// contact solves in parallel themselves (rayon sweeps): avoids oversubscription.
