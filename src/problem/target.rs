@@ -321,19 +321,11 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             let problem = ladder(k)?;
             let unknowns = problem.unknowns();
             if unknowns > target.max_unknowns {
-                let (quantity, estimate) = steps
+                let worst = steps
                     .last()
                     .and_then(|s| s.worst.clone())
                     .unwrap_or_else(|| ("every quantity".to_owned(), f64::INFINITY));
-                let trend = trend(&relative_changes(&seen, &quantity));
-                return Err(ProblemError::AccuracyNotReached {
-                    tolerance: target.tolerance,
-                    quantity,
-                    estimate,
-                    trend,
-                    unknowns,
-                    max_unknowns: target.max_unknowns,
-                });
+                return Err(not_reached(target, &seen, worst, unknowns));
             }
             let t = Instant::now();
             let (value, quantities) = eval(&problem)?;
@@ -351,15 +343,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             };
             let unknowns = twin_problem.unknowns();
             if unknowns > target.max_unknowns {
-                let (quantity, estimate) = assessment.worst.clone().unwrap_or_default();
-                return Err(ProblemError::AccuracyNotReached {
-                    tolerance: target.tolerance,
-                    trend: trend(&relative_changes(&seen, &quantity)),
-                    quantity,
-                    estimate,
-                    unknowns,
-                    max_unknowns: target.max_unknowns,
-                });
+                let worst = assessment.worst.clone().unwrap_or_default();
+                return Err(not_reached(target, &seen, worst, unknowns));
             }
             let t = Instant::now();
             let (_, twin_quantities) = eval(&twin_problem)?;
@@ -534,6 +519,24 @@ pub fn assess(steps: &[BTreeMap<String, Scaled>]) -> Assessment {
         out.worst = Some((name.clone(), f64::INFINITY));
     }
     out
+}
+
+/// The error of a refinement stopped by `target.max_unknowns` before a step (or its twin) of
+/// `unknowns` unknowns: the worst quantity and its estimate, with its trend along `seen`.
+fn not_reached(
+    target: &AccuracyTarget,
+    seen: &[BTreeMap<String, Scaled>],
+    (quantity, estimate): (String, f64),
+    unknowns: usize,
+) -> ProblemError {
+    ProblemError::AccuracyNotReached {
+        tolerance: target.tolerance,
+        trend: trend(&relative_changes(seen, &quantity)),
+        quantity,
+        estimate,
+        unknowns,
+        max_unknowns: target.max_unknowns,
+    }
 }
 
 /// How a quantity's relative differences `r_1, ..., r_k` along the ladder went, for the

@@ -21,6 +21,7 @@ use capstan_friction::nonsmooth_law::DynNonsmoothLaw;
 // kept in its own file beside the path solver
 #[path = "slip_reference.rs"]
 mod slip_reference;
+pub(crate) use slip_reference::slide_along;
 
 // the friction law on the contact rows: site tractions, the residual and its Jacobian (a
 // child module: it reads the model's private fields)

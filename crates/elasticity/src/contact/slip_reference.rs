@@ -83,3 +83,18 @@ impl<D, L: FrictionLaw<f64>> ContactModel<D, L> {
         u
     }
 }
+
+/// A slide of length `size` (signed by `direction = +-1`) along a site's frame slip `w` of a
+/// sliding mode: `direction size w / |w|`, or along `x2` (`[0, direction size]`) at a site the
+/// mode does not move (`w = 0`, or not finite).
+pub(crate) fn slide_along(w: [f64; 2], direction: f64, size: f64) -> [f64; 2] {
+    let norm = (w[0] * w[0] + w[1] * w[1]).sqrt();
+    if norm > 0.0 && norm.is_finite() {
+        [
+            direction * size * w[0] / norm,
+            direction * size * w[1] / norm,
+        ]
+    } else {
+        [0.0, direction * size]
+    }
+}

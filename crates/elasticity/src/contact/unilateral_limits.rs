@@ -10,6 +10,7 @@ use crate::contact::full_system::FullSystemSolver;
 use crate::contact::load_continuation::LoadSteps;
 use crate::contact::loads::EndLoads;
 use crate::contact::model::ContactModel;
+use crate::contact::model::slide_along;
 use crate::contact::operator::ContactOperator;
 use crate::contact::solution::SolveStats;
 
@@ -341,15 +342,7 @@ fn full_slips<D, L: FrictionLaw<f64>>(model: &ContactModel<D, L>, direction: f64
     (0..model.site_count())
         .map(|j| {
             let w = model.site_frame_slip(j, 1.0, |_| 1.0);
-            let norm = (w[0] * w[0] + w[1] * w[1]).sqrt();
-            if norm > 0.0 && norm.is_finite() {
-                [
-                    direction * size * w[0] / norm,
-                    direction * size * w[1] / norm,
-                ]
-            } else {
-                [0.0, direction * size]
-            }
+            slide_along(w, direction, size)
         })
         .collect()
 }

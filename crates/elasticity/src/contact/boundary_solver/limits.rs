@@ -9,6 +9,7 @@ use super::condensation::frictionless_operator;
 use super::{BoundarySolver, SlidingMode};
 use crate::contact::error::ContactError;
 use crate::contact::loads::EndLoads;
+use crate::contact::model::slide_along;
 use crate::contact::operator::ContactOperator;
 
 /// Relative singular value below which the frictionless bulk counts as having a sliding mode.
@@ -163,15 +164,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> BoundarySolver<'_, D, L> {
     /// (`F x_r = 0`) slides along `x2`.
     fn full_slip(&self, j: usize, direction: f64, size: f64) -> [f64; 2] {
         let w = self.model.site_frame_slip(j, 1.0, |k| self.rigid_shift[k]);
-        let norm = (w[0] * w[0] + w[1] * w[1]).sqrt();
-        if norm > 0.0 && norm.is_finite() {
-            [
-                direction * size * w[0] / norm,
-                direction * size * w[1] / norm,
-            ]
-        } else {
-            [0.0, direction * size]
-        }
+        slide_along(w, direction, size)
     }
 
     /// The limiting ratios `tau_max / tau0` of rigid sliding for the given `tau0`, and on a
