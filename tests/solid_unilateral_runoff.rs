@@ -173,19 +173,23 @@ fn run_off_brackets_the_fold_of_the_unilateral_cone() {
             &mut trace,
         )
         .unwrap();
-    let RunOffEnd::Folded { fold, upper } = run.end else {
+    let RunOffEnd::Folded {
+        fold,
+        beyond: upper,
+    } = run.end
+    else {
         panic!("{:?}", run.end)
     };
     // 1.0 + 0.05 k, then steps of 0.025, 0.0125, ... (halved after a fold): binary fractions
-    assert!((run.lower - 1.4390625).abs() < 1e-12, "{}", run.lower);
+    assert!((run.reached - 1.4390625).abs() < 1e-12, "{}", run.reached);
     assert!((upper - 1.440625).abs() < 1e-12, "{upper}");
     assert!((1.4395..=1.43980).contains(&fold), "{fold}");
     assert_eq!(converged.first(), Some(&1.0));
-    assert_eq!(converged.last(), Some(&run.lower));
+    assert_eq!(converged.last(), Some(&run.reached));
     assert_eq!(run.ratio_steps, 17);
     assert!(run.arclength_steps <= 80, "{}", run.arclength_steps);
     assert_eq!(run.last.stats.continuation_steps, run.arclength_steps);
-    assert!((run.last.loads.tension_ratio() - run.lower).abs() < 1e-12);
+    assert!((run.last.loads.tension_ratio() - run.reached).abs() < 1e-12);
     // as a solve at ratio 2: no equilibrium beyond r*, with the bracket
     let err = run.into_solution(ContactError::NoContactNodes).unwrap_err();
     assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium);
@@ -214,7 +218,7 @@ fn run_off_reaches_a_ratio_below_the_fold_with_the_plain_newton_answer() {
         )
         .unwrap();
     assert!(matches!(run.end, RunOffEnd::Reached), "{:?}", run.end);
-    assert_eq!(run.lower, 1.43);
+    assert_eq!(run.reached, 1.43);
     let size = plain
         .displacement
         .iter()
