@@ -19,6 +19,7 @@ use capstan_geometry::Surface;
 use capstan_elasticity::contact::Dimension;
 
 use super::builder::Problem;
+use super::run_off::{PlainAttempts, run_off_may_explain};
 use super::solver::{SolveMethod, Solver, SolverChoice};
 
 /// The contact model of a [`Problem`] (either dimension, any registered friction law).
@@ -385,13 +386,23 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                             solution.stats.newton_iterations += s.iterations;
                             solution
                         }),
+                    // a run-off follows a failure: the load continuation stops once it is
+                    // futile (run_off.rs, PLAIN_ATTEMPTS)
+                    None if !plane && self.runs_off() => {
+                        let mut watch = PlainAttempts::new(observer);
+                        let solved = solver.solve_observed(loads, &mut watch);
+                        match solved {
+                            Err(_) if watch.stopped => Err(watch.failure()),
+                            solved => solved,
+                        }
+                    }
                     None => solver.solve_observed(loads, observer),
                 };
                 // a 3-D body's Newton failed: the continuation in the ratio tells a fold of
                 // the equilibrium path (no equilibrium) from a solver failure
                 let solved = match solved {
-                    Err(e) if !plane && e.kind() == ContactErrorKind::NotConverged => {
-                        self.run_off(&solver, e, observer)
+                    Err(e) if !plane && run_off_may_explain(&e) => {
+                        self.run_off(&model, &solver, method, e, observer, &mut choice)
                     }
                     solved => solved,
                 };
@@ -443,6 +454,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     ..self.solver
                 }
                 .full_settings();
+                // an iterative backend fails next to the fold: the run-off on sparse LU
+                let full = self.run_off_lu_settings(method).unwrap_or(full);
                 return Ok(self.threshold_run_off(&FullSystemSolver::new(&model, full)?, settings)?);
             }
         }
@@ -481,10 +494,10 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             &mut |_| {},
         )?;
         match run.end {
-            RunOffEnd::Folded { fold, upper } => Ok(ThresholdResult {
-                ratio: upper,
-                below: run.lower,
-                above: upper,
+            RunOffEnd::Folded { fold, beyond } => Ok(ThresholdResult {
+                ratio: beyond,
+                below: run.reached,
+                above: beyond,
                 slip_fraction_below: run.last.slip_fraction,
                 above_is_no_equilibrium: true,
                 solves: run.ratio_steps + 1,
@@ -502,34 +515,55 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
 
     /// The run-off settings of the problem: the defaults with the budget
     /// `solver.max_continuation_steps` in arclength steps.
-    fn run_off_settings(&self) -> RunOffSettings {
+    pub(super) fn run_off_settings(&self) -> RunOffSettings {
         RunOffSettings {
             max_arclength_steps: self.solver.budgets.max_continuation_steps,
             ..Default::default()
         }
     }
 
-    /// After the full-system Newton failed (`failed`) at the problem's ratio `r > 1`
-    /// (`tau0 > 0`): the equilibrium followed from ratio 1 to `r`
-    /// ([`FullSystemSolver::run_off`]): its solution at `r` when the path reaches it,
-    /// [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r`, else
-    /// `failed`.
+    /// After the full-system Newton (`method`, with `solver` of `model`) failed (`failed`) at
+    /// the problem's ratio `r != 1` (`tau0 > 0`): the equilibrium followed from ratio 1 up or
+    /// down to `r` ([`FullSystemSolver::run_off`]): its solution at `r` when the path reaches
+    /// it, [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r > 1`,
+    /// [`ContactError::NoEquilibriumBelow`] above `r < 1`, else `failed`. When `method` is not
+    /// Newton with sparse LU the run-off runs on Newton with sparse LU (a Krylov or stationary
+    /// iteration fails next to the fold), and `choice` says so.
     ///
     /// # Errors
     /// As above; [`ContactError::ContinuationBudgetSpent`] (`solver.max_continuation_steps`
     /// arclength steps); an interrupted solve.
     fn run_off(
         &self,
+        model: &Model,
         solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
+        method: SolveMethod,
         failed: ContactError,
         observer: &mut dyn Observer<f64>,
+        choice: &mut SolverChoice,
     ) -> Result<ContactSolution, ContactError> {
         let (tau0, ratio) = (self.loads.tau0, self.loads.tension_ratio());
-        if !(tau0 > 0.0 && ratio > 1.0) {
+        if !self.runs_off() {
             return Err(failed);
         }
+        let lu = match self.run_off_lu_settings(method) {
+            Some(settings) => Some(FullSystemSolver::new(model, settings)?),
+            None => None,
+        };
+        let solver = lu.as_ref().unwrap_or(solver);
         let settings = self.run_off_settings();
-        match solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
+        let run = solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {});
+        if lu.is_some()
+            && run
+                .as_ref()
+                .is_ok_and(|r| matches!(r.end, RunOffEnd::Reached))
+        {
+            choice.reason = format!(
+                "{}; the plain Newton with `{}` failed ({failed}): the run-off in the tension ratio from 1 reached it on the full-system Newton with sparse LU",
+                choice.reason, choice.linear
+            );
+        }
+        match run {
             Ok(run) => run.into_solution(failed),
             Err(e @ ContactError::ContinuationBudgetSpent { .. }) => Err(e),
             Err(e) if e.kind() == ContactErrorKind::Interrupted => Err(e),

@@ -1,0 +1,214 @@
+//! The run-off of a 3-D body around [`Problem::solve`] and [`Problem::threshold`]: the watch
+//! that ends the plain Newton's futile load continuation early when a run-off follows, the
+//! sparse-LU solver of a run-off after an iterative backend failed, and the lower end of the
+//! equilibrium range (the fold `r_*` below ratio 1) of `capstan threshold`.
+
+use capstan_elasticity::contact::{
+    BodyOperator, ContactError, FullSystemSolver, RunOffEnd, RunOffSettings, ThresholdSettings,
+};
+use capstan_elasticity::friction::AnyFrictionLaw;
+use capstan_elasticity::solvers::{
+    LinearBackend, Observer, Progress, SilentObserver, SolveStage, SolverError,
+};
+use capstan_geometry::Surface;
+
+use super::builder::Problem;
+use super::solve::{Model, ProblemError};
+use super::solver::{SolveMethod, Solver};
+
+/// Newton solves the plain solve of a 3-D body may start, before a run-off follows, while no
+/// load step has converged: the full load, then the load continuation's first steps at the
+/// fractions `1/4, 1/8, ..., 1/4 2^-(PLAIN_ATTEMPTS - 2)` (`1/128` with 7).
+///
+/// Why the rest is futile: with no step converged every trial starts from the stuck start at
+/// its fraction `s`, `v = s v_stuck(1)`, and elasticity, contact and the loads are
+/// homogeneous of degree 1 in `(v, loads)`; only the regularised friction law is not (its
+/// width `eps` against the slips `s |u|`), so the trial at `s` is the full problem with the
+/// width `eps / s`. Halving `s` widens the friction's regularisation; once it is wider than
+/// the slips friction is linear and every further trial repeats the last one scaled. Measured
+/// (release, cone Q1 `3 x 20 x 3`, ratios 0.3 to 3.8): the bilateral load continuations that
+/// converge do so at the fraction 1/16 or 1/32 (the 4th or 5th solve); the unilateral ones
+/// that fail run all 13 solves down to `1.2e-4` without converging one (docs/models.md).
+pub(crate) const PLAIN_ATTEMPTS: usize = 7;
+
+/// An observer around the plain solve before a run-off: it passes every event on, and stops
+/// the solve (as an interrupt, which the load continuation returns at once) when a Newton
+/// solve beyond the [`PLAIN_ATTEMPTS`]-th starts before any load step has converged. After a
+/// converged load step it never stops the solve: the continuation is on its way.
+pub(crate) struct PlainAttempts<'a> {
+    /// The caller's observer (its interrupts are its own).
+    inner: &'a mut dyn Observer<f64>,
+    /// Newton solves started (iteration-0 events), `None` once a load step converged.
+    attempts: Option<usize>,
+    /// Newton iterations seen (events past iteration 0).
+    pub iterations: usize,
+    /// The residual of the last Newton event.
+    pub residual: f64,
+    /// Whether this watch stopped the solve.
+    pub stopped: bool,
+}
+
+impl<'a> PlainAttempts<'a> {
+    /// A watch around `inner`.
+    pub fn new(inner: &'a mut dyn Observer<f64>) -> Self {
+        Self {
+            inner,
+            attempts: Some(0),
+            iterations: 0,
+            residual: f64::INFINITY,
+            stopped: false,
+        }
+    }
+
+    /// The plain solve's failure when the watch stopped it: not converged at load factor 0,
+    /// with the iterations and the last residual seen.
+    pub fn failure(&self) -> ContactError {
+        ContactError::NotConverged {
+            iterations: self.iterations,
+            residual: self.residual,
+            load_factor: 0.0,
+        }
+    }
+}
+
+impl Observer<f64> for PlainAttempts<'_> {
+    fn iteration(&mut self, progress: &Progress<f64>) {
+        match progress.stage {
+            SolveStage::Newton | SolveStage::JacobiNewton => {
+                if progress.iteration == 0 {
+                    self.attempts = self.attempts.map(|a| a + 1);
+                } else {
+                    self.iterations += 1;
+                }
+                self.residual = progress.residual_norm;
+            }
+            SolveStage::Continuation => self.attempts = None,
+            _ => {}
+        }
+        self.inner.iteration(progress);
+    }
+
+    fn interrupted(&mut self) -> bool {
+        if self.inner.interrupted() {
+            return true;
+        }
+        if self.attempts.is_some_and(|a| a > PLAIN_ATTEMPTS) {
+            self.stopped = true;
+        }
+        self.stopped
+    }
+}
+
+/// The lower end of a 3-D unilateral body's equilibrium range from ratio 1
+/// ([`Problem::threshold_lower_end`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LowerEnd {
+    /// `r_*`: the smallest ratio the path reached before it turned back (an equilibrium
+    /// there); `None` when the path reached the smallest ratio searched without a fold.
+    pub fold: Option<f64>,
+    /// `[lower, upper]`: the largest ratio the path folded back before and the smallest it
+    /// converged at (`lower <= r_* <= upper`); with no fold, the smallest ratio searched twice.
+    pub bracket: [f64; 2],
+    /// Ratio steps of the run-off down.
+    pub solves: usize,
+}
+
+impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
+    /// Whether a failed plain solve of this problem is followed by a run-off (3-D bodies on
+    /// the full-system route): the loads pull at the near end (`tau0 > 0`) and the ratio is
+    /// finite and not 1.
+    pub(crate) fn runs_off(&self) -> bool {
+        let ratio = self.loads.tension_ratio();
+        self.loads.tau0 > 0.0 && ratio.is_finite() && ratio != 1.0
+    }
+
+    /// The full-system solver of a run-off after `method`'s plain solve failed: `None` when
+    /// `method` is Newton with sparse LU (its own solver runs the run-off), else the settings
+    /// of Newton with sparse LU. The continuation's bordered solves sit next to a singular
+    /// Jacobian (the fold), where Krylov and stationary iterations fail or spend their budget
+    /// (measured: `multigrid` on the unilateral cone `3 x 20 x 3` at ratio 2 spends 500
+    /// GMRES iterations in the plain Newton), and a factorisation does not.
+    pub(crate) fn run_off_lu_settings(
+        &self,
+        method: SolveMethod,
+    ) -> Option<capstan_elasticity::contact::FullSystemSettings> {
+        match method {
+            SolveMethod::FullNewton(l) if l == LinearBackend::LU => None,
+            _ => Some(
+                Solver {
+                    method: SolveMethod::FullNewton(LinearBackend::LU),
+                    ..self.solver
+                }
+                .full_settings(),
+            ),
+        }
+    }
+
+    /// The lower end of a 3-D unilateral body's equilibrium range: the run-off from ratio 1
+    /// down towards `1 / settings.max_ratio` (`tau0 = 1`, the smallest ratio step
+    /// `tolerance / 2`, as [`Problem::threshold`] climbs), with its fold `r_*` and bracket;
+    /// `None` for every other body (its threshold is not a run-off). The far end pulled less
+    /// than the near one: the body slides the other way and peels off until friction can no
+    /// longer hold it below `r_*`.
+    ///
+    /// # Errors
+    /// The model's; the solves' and the continuation's
+    /// ([`ContactError::ContinuationBudgetSpent`]); the last error of a continuation that
+    /// stalls.
+    pub fn threshold_lower_end(
+        &self,
+        settings: ThresholdSettings,
+    ) -> Result<Option<LowerEnd>, ProblemError> {
+        let solid = !matches!(
+            self.body.dimension,
+            capstan_elasticity::contact::Dimension::Plane
+        );
+        let (method, _) = self.solver.resolved(&self.body);
+        if !(solid
+            && self.body.contact.is_unilateral()
+            && matches!(
+                method,
+                SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton
+            ))
+        {
+            return Ok(None);
+        }
+        let model: Model = self.model()?;
+        let full = self.run_off_lu_settings(method).unwrap_or_else(|| {
+            Solver {
+                method,
+                ..self.solver
+            }
+            .full_settings()
+        });
+        let solver: FullSystemSolver<'_, BodyOperator, AnyFrictionLaw> =
+            FullSystemSolver::new(&model, full)?;
+        let run_off = RunOffSettings {
+            min_step: 0.5 * settings.tolerance,
+            ..self.run_off_settings()
+        };
+        let bottom = 1.0 / settings.max_ratio;
+        let run = solver.run_off(1.0, 1.0, bottom, run_off, &mut SilentObserver, &mut |_| {})?;
+        let (solves, bracket) = (run.ratio_steps + 1, run.bracket());
+        match (run.end, bracket) {
+            (RunOffEnd::Folded { fold, .. }, Some(bracket)) => Ok(Some(LowerEnd {
+                fold: Some(fold),
+                bracket,
+                solves,
+            })),
+            (RunOffEnd::Stalled { error, .. }, _) => Err(error.into()),
+            _ => Ok(Some(LowerEnd {
+                fold: None,
+                bracket: [bottom, bottom],
+                solves,
+            })),
+        }
+    }
+}
+
+/// Whether a plain solve's error is one a run-off may explain: not converged, or an iterative
+/// backend's Krylov budget spent (next to a fold the Jacobian is near singular).
+pub(crate) fn run_off_may_explain(e: &ContactError) -> bool {
+    e.kind() == capstan_elasticity::contact::ContactErrorKind::NotConverged
+        || matches!(e, ContactError::Solver(SolverError::BudgetSpent { .. }))
+}
