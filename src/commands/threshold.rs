@@ -80,7 +80,8 @@ pub struct LowerEndReport {
     /// reached `1 / max_ratio` without a fold.
     pub fold_ratio: Option<f64>,
     /// `[lower, upper]`: the largest ratio the path folded back before and the smallest it
-    /// converged at; `lower < r_* <= upper`, at most the threshold tolerance (relative) wide.
+    /// converged at; `lower < r_* <= upper`, at most the threshold tolerance `1e-6` wide
+    /// (the smallest ratio step is half of it).
     pub bracket: [f64; 2],
     /// Ratio steps of the run-off down (and its start at ratio 1).
     pub solves: usize,

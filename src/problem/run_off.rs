@@ -20,15 +20,18 @@ use super::solver::{SolveMethod, Solver};
 /// load step has converged: the full load, then the load continuation's first steps at the
 /// fractions `1/4, 1/8, ..., 1/4 2^-(PLAIN_ATTEMPTS - 2)` (`1/128` with 7).
 ///
-/// Why the rest is futile: with no step converged every trial starts from the stuck start at
-/// its fraction `s`, `v = s v_stuck(1)`, and elasticity, contact and the loads are
-/// homogeneous of degree 1 in `(v, loads)`; only the regularised friction law is not (its
-/// width `eps` against the slips `s |u|`), so the trial at `s` is the full problem with the
-/// width `eps / s`. Halving `s` widens the friction's regularisation; once it is wider than
-/// the slips friction is linear and every further trial repeats the last one scaled. Measured
-/// (release, cone Q1 `3 x 20 x 3`, ratios 0.3 to 3.8): the bilateral load continuations that
-/// converge do so at the fraction 1/16 or 1/32 (the 4th or 5th solve); the unilateral ones
-/// that fail run all 13 solves down to `1.2e-4` without converging one (docs/models.md).
+/// Why: with no step converged every trial starts from the stuck start at its fraction `s`,
+/// `v = s v_stuck(1)`, and elasticity, contact with zero gap and the loads are homogeneous of
+/// degree 1 in `(v, loads)`; only the regularised friction law (its width `eps` against the
+/// slips `s |u|`) and a gap are not, so the trial at `s` is the full problem with the width
+/// `eps / s`: halving `s` only widens the regularisation. That helps where the small slips of
+/// a stick zone are what Newton trips on, not past a fold. Measured (release, cone Q1): the
+/// bilateral load continuations that converge (`3 x 20 x 3` at ratios 0.3 to 3.8, `6 x 40 x 5`
+/// at 1.5) do so at the fractions 1/4 to 1/32 (the 2nd to 5th solve); on the unilateral cone
+/// past its fold all 13 trials down to `1.2e-4` fail, each ending near half its starting
+/// residual. The cut at `1/128` leaves two halvings below the latest converging trial
+/// measured. It is a measured bound, not a proof: a continuation that would first converge
+/// below `1/128` now goes to the run-off, which reaches the ratio if the path from 1 does.
 pub(crate) const PLAIN_ATTEMPTS: usize = 7;
 
 /// An observer around the plain solve before a run-off: it passes every event on, and stops
@@ -211,4 +214,82 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
 pub(crate) fn run_off_may_explain(e: &ContactError) -> bool {
     e.kind() == capstan_elasticity::contact::ContactErrorKind::NotConverged
         || matches!(e, ContactError::Solver(SolverError::BudgetSpent { .. }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Records the events it hears and interrupts when told.
+    #[derive(Default)]
+    struct Inner {
+        events: usize,
+        stop: bool,
+    }
+
+    impl Observer<f64> for Inner {
+        fn iteration(&mut self, _: &Progress<f64>) {
+            self.events += 1;
+        }
+        fn interrupted(&mut self) -> bool {
+            self.stop
+        }
+    }
+
+    fn newton(iteration: usize) -> Progress<f64> {
+        Progress::new(SolveStage::Newton, iteration, 0.5, 1.0)
+    }
+
+    /// `solves` Newton solves of 3 iterations each to `watch`; whether it stopped after each.
+    fn run(watch: &mut PlainAttempts<'_>, solves: usize) -> Vec<bool> {
+        (0..solves)
+            .map(|_| {
+                watch.iteration(&newton(0));
+                (1..=3).any(|k| {
+                    watch.iteration(&newton(k));
+                    watch.interrupted()
+                })
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_watch_stops_the_solve_that_starts_after_the_seventh_and_passes_every_event_on() {
+        let mut inner = Inner::default();
+        let mut watch = PlainAttempts::new(&mut inner);
+        let stopped = run(&mut watch, PLAIN_ATTEMPTS + 1);
+        assert!(stopped[..PLAIN_ATTEMPTS].iter().all(|s| !s), "{stopped:?}");
+        assert!(stopped[PLAIN_ATTEMPTS]);
+        assert!(watch.stopped);
+        // 3 iterations of each of the first 7, the 8th stopped at its first
+        assert_eq!(watch.iterations, 3 * PLAIN_ATTEMPTS + 1);
+        let ContactError::NotConverged { load_factor, .. } = watch.failure() else {
+            panic!("{}", watch.failure())
+        };
+        assert_eq!(load_factor, 0.0);
+        // the watch's borrow of `inner` ends here
+        assert_eq!(inner.events, 4 * PLAIN_ATTEMPTS + 2);
+    }
+
+    #[test]
+    fn after_a_converged_load_step_the_watch_never_stops_the_solve() {
+        let mut inner = Inner::default();
+        let mut watch = PlainAttempts::new(&mut inner);
+        run(&mut watch, 3);
+        watch.iteration(&Progress::new(SolveStage::Continuation, 3, 1e-12, 0.1));
+        assert!(run(&mut watch, 3 * PLAIN_ATTEMPTS).iter().all(|s| !s));
+        assert!(!watch.stopped);
+    }
+
+    #[test]
+    fn the_callers_interrupt_is_its_own() {
+        let mut inner = Inner {
+            stop: true,
+            ..Default::default()
+        };
+        let mut watch = PlainAttempts::new(&mut inner);
+        watch.iteration(&newton(0));
+        assert!(watch.interrupted());
+        assert!(!watch.stopped);
+    }
 }
