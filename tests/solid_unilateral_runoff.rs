@@ -308,4 +308,70 @@ fn the_plain_solve_before_a_run_off_stops_after_seven_newton_solves() {
             starts[0]
         );
     }
+    // a `solver.min_load_step` below the default asks for the longer continuation: no cut
+    // (down to the fraction 6.1e-5 here, 14 solves, then the run-off's start)
+    let mut problem = problem;
+    problem.solver.budgets.min_load_step = 5e-5;
+    let mut longer = 0;
+    let mut observer = |p: &Progress<f64>| {
+        if p.stage == SolveStage::Newton && p.iteration == 0 {
+            longer += 1;
+        }
+    };
+    assert!(problem.solve_observed(&mut observer).is_err());
+    assert_eq!(longer, 15);
+}
+
+/// The run-off down from ratio 1 towards 0.5 (the far end pulled by half the near one's
+/// traction): the path folds at `r_*`, the smallest ratio it reached, with the bracket
+/// `[beyond, reached]` below the start and the error `NoEquilibriumBelow`; the continuation
+/// itself reports the fold as `NoEquilibrium` with `lower = r_*` and `upper = +inf`. Before:
+/// the run-off refused a target below its start (`to` must lie above `from`).
+#[test]
+fn run_off_down_brackets_the_lower_fold_of_the_unilateral_cone() {
+    let (problem, _) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    let mut folds = Vec::new();
+    let mut trace = |(_, result): RunOffTrial<'_>| {
+        if let Err(ContactError::NoEquilibrium { lower, upper, .. }) = result {
+            folds.push((*lower, *upper));
+        }
+    };
+    let run = solver
+        .run_off(
+            1.0,
+            1.0,
+            0.5,
+            RunOffSettings::default(),
+            &mut SilentObserver,
+            &mut trace,
+        )
+        .unwrap();
+    let RunOffEnd::Folded { fold, beyond } = run.end else {
+        panic!("{:?}", run.end)
+    };
+    // 1 - 0.05 k down to 0.7, then steps of 0.025, 0.0125, ... (binary fractions, measured)
+    assert!((run.reached - 0.6953125).abs() < 1e-12, "{}", run.reached);
+    assert!((beyond - 0.69375).abs() < 1e-12, "{beyond}");
+    assert!(beyond < fold && fold <= run.reached, "{fold}");
+    assert_eq!(run.bracket(), Some([beyond, run.reached]));
+    let reached = run.reached;
+    assert!((run.last.loads.tension_ratio() - run.reached).abs() < 1e-12);
+    assert!(!folds.is_empty());
+    for (lower, upper) in folds {
+        assert!(lower < 1.0 && upper == f64::INFINITY, "{lower} {upper}");
+    }
+    let err = run.into_solution(ContactError::NoContactNodes).unwrap_err();
+    assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium);
+    let ContactError::NoEquilibriumBelow {
+        ratio,
+        lower,
+        upper,
+        ..
+    } = err
+    else {
+        panic!("{err}")
+    };
+    assert_eq!((ratio, lower, upper), (0.5, beyond, reached));
 }

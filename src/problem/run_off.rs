@@ -125,6 +125,15 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         self.loads.tau0 > 0.0 && ratio.is_finite() && ratio != 1.0
     }
 
+    /// Whether the plain solve runs under [`PlainAttempts`]: a run-off follows a failure
+    /// ([`Problem::runs_off`]) and `solver.min_load_step` is not below its default `1e-4` (a
+    /// smaller one asks for the longer load continuation, which then runs in full).
+    pub(crate) fn watches_plain_solve(&self) -> bool {
+        self.runs_off()
+            && self.solver.budgets.min_load_step
+                >= capstan_elasticity::contact::ContactSettings::default().min_load_step
+    }
+
     /// The full-system solver of a run-off after `method`'s plain solve failed: `None` when
     /// `method` is Newton with sparse LU (its own solver runs the run-off), else the settings
     /// of Newton with sparse LU. The continuation's bordered solves sit next to a singular

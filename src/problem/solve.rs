@@ -388,7 +388,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                         }),
                     // a run-off follows a failure: the load continuation stops once it is
                     // futile (run_off.rs, PLAIN_ATTEMPTS)
-                    None if !plane && self.runs_off() => {
+                    None if !plane && self.watches_plain_solve() => {
                         let mut watch = PlainAttempts::new(observer);
                         let solved = solver.solve_observed(loads, &mut watch);
                         match solved {
