@@ -260,7 +260,7 @@ fn a_forced_multigrid_newton_past_the_fold_exits_3_by_the_sparse_lu_run_off() {
     assert_eq!(report["solver_choice"]["linear"], "multigrid");
     let reason = report["solver_choice"]["reason"].as_str().unwrap();
     assert!(
-        reason.contains("the plain Newton with `multigrid` failed")
+        reason.contains("the plain solve (`full-newton`, `multigrid`) failed")
             && reason.contains("on the full-system Newton with sparse LU"),
         "{reason}"
     );

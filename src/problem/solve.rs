@@ -559,8 +559,8 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 .is_ok_and(|r| matches!(r.end, RunOffEnd::Reached))
         {
             choice.reason = format!(
-                "{}; the plain Newton with `{}` failed ({failed}): the run-off in the tension ratio from 1 reached it on the full-system Newton with sparse LU",
-                choice.reason, choice.linear
+                "{}; the plain solve (`{}`, `{}`) failed ({failed}): the run-off in the tension ratio from 1 reached it on the full-system Newton with sparse LU",
+                choice.reason, choice.nonlinear, choice.linear
             );
         }
         match run {
