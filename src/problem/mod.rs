@@ -41,6 +41,7 @@ mod exact_start;
 mod friction;
 pub mod nonlinear_registry;
 mod path;
+mod plain_attempts;
 mod run_off;
 mod solve;
 mod solver;

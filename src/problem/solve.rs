@@ -19,7 +19,7 @@ use capstan_geometry::Surface;
 use capstan_elasticity::contact::Dimension;
 
 use super::builder::Problem;
-use super::run_off::{PlainAttempts, run_off_may_explain};
+use super::plain_attempts::{PlainAttempts, run_off_may_explain};
 use super::solver::{SolveMethod, Solver, SolverChoice};
 
 /// The contact model of a [`Problem`] (either dimension, any registered friction law).
@@ -387,7 +387,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                             solution
                         }),
                     // a run-off follows a failure: the load continuation stops once it is
-                    // futile (run_off.rs, PLAIN_ATTEMPTS)
+                    // futile (plain_attempts.rs, PLAIN_ATTEMPTS)
                     None if !plane && self.watches_plain_solve() => {
                         let mut watch = PlainAttempts::new(observer);
                         let solved = solver.solve_observed(loads, &mut watch);
