@@ -113,12 +113,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             && self.solver.budgets.min_load_step >= ContactSettings::default().min_load_step
     }
 
-    /// The full-system solver of a run-off after `method`'s plain solve failed: `None` when
-    /// `method` is Newton with sparse LU (its own solver runs the run-off), else the settings
-    /// of Newton with sparse LU. The continuation's bordered solves sit next to a singular
-    /// Jacobian (the fold), where Krylov and stationary iterations fail or spend their budget
-    /// (measured: `multigrid` on the unilateral cone `3 x 20 x 3` at ratio 2 spends 500
-    /// GMRES iterations in the plain Newton), and a factorisation does not.
+    /// The settings of Newton with sparse LU for the run-off after `method`'s plain solve of a
+    /// unilateral body failed: `None` when `method` is Newton with sparse LU (its own run-off
+    /// is the run-off). The continuation's bordered solves sit next to a singular Jacobian
+    /// (the fold), where Krylov and stationary iterations may fail or spend their budget
+    /// (measured: the plain `multigrid` Newton on the unilateral cone `3 x 20 x 3` at ratio 2
+    /// spends its 500 GMRES iterations), and a factorisation does not.
     pub(crate) fn run_off_lu_settings(&self, method: SolveMethod) -> Option<FullSystemSettings> {
         match method {
             SolveMethod::FullNewton(l) if l == LinearBackend::LU => None,

@@ -402,7 +402,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 // the equilibrium path (no equilibrium) from a solver failure
                 let solved = match solved {
                     Err(e) if !plane && run_off_may_explain(&e) => {
-                        self.run_off(&model, &solver, method, e, observer, &mut choice)
+                        self.run_off(&model, &solver, method, e, observer)
                     }
                     solved => solved,
                 };
@@ -524,15 +524,18 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
 
     /// After the full-system Newton (`method`, with `solver` of `model`) failed (`failed`) at
     /// the problem's ratio `r != 1` (`tau0 > 0`): the equilibrium followed from ratio 1 up or
-    /// down to `r` ([`FullSystemSolver::run_off`]): its solution at `r` when the path reaches
-    /// it, [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r > 1`,
-    /// [`ContactError::NoEquilibriumBelow`] above `r < 1`, else `failed`. When `method` is not
-    /// Newton with sparse LU the run-off runs on Newton with sparse LU (a Krylov or stationary
-    /// iteration fails next to the fold), and `choice` says so.
+    /// down to `r` ([`FullSystemSolver::run_off`]) by `solver` when the plain solve did not
+    /// converge: its solution at `r` when the path reaches it,
+    /// [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r > 1`,
+    /// [`ContactError::NoEquilibriumBelow`] above `r < 1`. A unilateral body on another method
+    /// than Newton with sparse LU, whose run-off stalled or whose plain solve spent its Krylov
+    /// budget (next to a fold the Jacobian is near singular): the run-off on Newton with sparse
+    /// LU, and only a fold it finds replaces `failed` (a spent budget of the scene stays the
+    /// error otherwise). Else `failed`.
     ///
     /// # Errors
     /// As above; [`ContactError::ContinuationBudgetSpent`] (`solver.max_continuation_steps`
-    /// arclength steps); an interrupted solve.
+    /// arclength steps) of `solver`'s run-off; an interrupted solve.
     fn run_off(
         &self,
         model: &Model,
@@ -540,34 +543,35 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         method: SolveMethod,
         failed: ContactError,
         observer: &mut dyn Observer<f64>,
-        choice: &mut SolverChoice,
     ) -> Result<ContactSolution, ContactError> {
         let (tau0, ratio) = (self.loads.tau0, self.loads.tension_ratio());
         if !self.runs_off() {
             return Err(failed);
         }
-        let lu = match self.run_off_lu_settings(method) {
-            Some(settings) => Some(FullSystemSolver::new(model, settings)?),
-            None => None,
-        };
-        let solver = lu.as_ref().unwrap_or(solver);
         let settings = self.run_off_settings();
-        let run = solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {});
-        if lu.is_some()
-            && run
-                .as_ref()
-                .is_ok_and(|r| matches!(r.end, RunOffEnd::Reached))
-        {
-            choice.reason = format!(
-                "{}; the plain solve (`{}`, `{}`) failed ({failed}): the run-off in the tension ratio from 1 reached it on the full-system Newton with sparse LU",
-                choice.reason, choice.nonlinear, choice.linear
-            );
+        if failed.kind() == ContactErrorKind::NotConverged {
+            match solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
+                Ok(run) if !matches!(run.end, RunOffEnd::Stalled { .. }) => {
+                    return run.into_solution(failed);
+                }
+                Ok(_) => {}
+                Err(e @ ContactError::ContinuationBudgetSpent { .. }) => return Err(e),
+                Err(e) if e.kind() == ContactErrorKind::Interrupted => return Err(e),
+                Err(_) => {}
+            }
         }
-        match run {
-            Ok(run) => run.into_solution(failed),
-            Err(e @ ContactError::ContinuationBudgetSpent { .. }) => Err(e),
-            Err(e) if e.kind() == ContactErrorKind::Interrupted => Err(e),
-            Err(_) => Err(failed),
+        match self.run_off_lu_settings(method) {
+            Some(lu) if self.body.contact.is_unilateral() => {
+                let lu = FullSystemSolver::new(model, lu)?;
+                match lu.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
+                    Ok(run) if matches!(run.end, RunOffEnd::Folded { .. }) => {
+                        run.into_solution(failed)
+                    }
+                    Err(e) if e.kind() == ContactErrorKind::Interrupted => Err(e),
+                    _ => Err(failed),
+                }
+            }
+            _ => Err(failed),
         }
     }
 
