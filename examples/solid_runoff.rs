@@ -80,18 +80,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         run.ratio_steps, run.arclength_steps
     );
     match run.end {
-        RunOffEnd::Folded { fold, upper } => {
+        RunOffEnd::Folded { fold, beyond } => {
             println!(
-                "no equilibrium beyond r* in [{:.6}, {upper:.6}] ({kind}: the equilibrium path \
+                "no equilibrium beyond r* in [{:.6}, {beyond:.6}] ({kind}: the equilibrium path \
                  folds back there; largest ratio reached on the path {fold:.6})",
-                run.lower
+                run.reached
             );
             std::process::exit(3);
         }
-        RunOffEnd::Stalled { upper, .. } => {
-            println!("run-off bracket ({kind}): [{:.6}, {upper:.6}]", run.lower);
+        RunOffEnd::Stalled { beyond, .. } => {
+            println!(
+                "run-off bracket ({kind}): [{:.6}, {beyond:.6}]",
+                run.reached
+            );
         }
-        RunOffEnd::Reached => println!("reached ratio {:.6} ({kind})", run.lower),
+        RunOffEnd::Reached => println!("reached ratio {:.6} ({kind})", run.reached),
     }
     Ok(())
 }

@@ -154,3 +154,148 @@ fn a_tiny_continuation_budget_is_a_typed_error_naming_the_key() {
         );
     }
 }
+
+/// Below ratio 1 (the far end pulled by half the near one's traction) the body slides the
+/// other way: the plain Newton fails, the run-off goes down from ratio 1 and finds the lower
+/// fold `r_*`, and the command exits 3 naming it and its bracket, in text and with `--json`.
+/// Before: exit 4 ("did not converge ... load factor reached 0.0000"; the run-off only
+/// climbed). The cone is symmetric under `x2 -> -x2`, which swaps the ends: the lower fold is
+/// `1 / r*` (`r_* r*` = 1 + 1.6e-8, the threshold's brackets; docs/models.md).
+#[test]
+fn contact_below_the_lower_fold_exits_3_naming_r_star_below_and_its_bracket() {
+    for json in [false, true] {
+        let mut args = vec!["contact"];
+        args.extend(cone(&["loads.tau_max=0.5"]));
+        if json {
+            args.push("--json");
+        }
+        let (code, out, err) = common::capstan_status(&args);
+        assert_eq!(code, Some(3), "{err}");
+        assert!(out.trim().is_empty(), "{out}");
+        assert!(err.contains("no equilibrium below r_* in ["), "{err}");
+        assert!(err.contains("at tension ratio 0.500000"), "{err}");
+        let fold = number_after(&err, "r_* = ");
+        let lower = number_after(&err, "in [");
+        let upper = number_after(&err, &format!("in [{lower:.6}, "));
+        // steps of 0.05 down from 1 to 0.7, then halved below 1e-3 (measured)
+        assert!((lower - 0.693750).abs() < 1e-6, "{err}");
+        assert!((upper - 0.695312).abs() < 1e-6, "{err}");
+        assert!(lower < fold && fold <= upper, "{err}");
+        // the mirror image of the upper fold, to the bracket's width
+        assert!((fold - 1.0 / 1.439790).abs() < upper - lower, "{err}");
+    }
+}
+
+/// Just above the lower fold (ratio 0.7) the plain Newton fails but the run-off down reaches
+/// the ratio: the answer, with the body sliding backwards (Slip -1). Before: exit 4.
+#[test]
+fn contact_between_the_lower_fold_and_1_converges_by_the_run_off_down() {
+    let mut args = vec!["contact"];
+    args.extend(cone(&["loads.tau_max=0.7"]));
+    let report = common::capstan_json(&args);
+    assert_eq!(report["status"], "converged");
+    assert_eq!(report["slip_fraction"], -1.0);
+    // the arclength steps of the run-off (measured 20)
+    assert!(report["continuation_steps"].as_u64().unwrap() > 1);
+    assert!((report["tension_ratio"].as_f64().unwrap() - 0.7).abs() < 1e-15);
+}
+
+/// `capstan threshold` reports the other end of the unilateral cone's equilibrium range too:
+/// the run-off down from 1 folds at `r_* = 0.694546` (the mirror image `1 / r*` of the upper
+/// fold to the threshold's tolerance), bracketed to `1e-6`, in `run_off.lower_end` and the
+/// text. Before: no lower end (the key absent).
+#[test]
+fn threshold_of_the_unilateral_cone_reports_the_lower_end_of_its_range() {
+    let mut args = vec!["threshold"];
+    args.extend(cone(&[]));
+    let report = common::capstan_json(&args);
+    let upper = report["run_off"]["fold_ratio"].as_f64().unwrap();
+    let lower_end = &report["run_off"]["lower_end"];
+    let fold = lower_end["fold_ratio"].as_f64().unwrap();
+    let bracket = common::json_array(lower_end, "bracket");
+    assert!(bracket[0] < fold && fold <= bracket[1], "{report}");
+    // the smallest ratio step is half the tolerance 1e-6: the bracket at most 1e-6 wide
+    assert!(bracket[1] - bracket[0] <= 1e-6, "{report}");
+    assert!((fold - 0.694546).abs() < 1e-6, "{fold}");
+    // r_* r* = 1 within the brackets (both 1e-6 wide): the scene's mirror symmetry
+    assert!((fold * upper - 1.0).abs() < 2e-6, "{}", fold * upper);
+    assert!(lower_end["solves"].as_u64().unwrap() > 1);
+    let (code, out, err) = common::capstan_status(&args);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("no equilibrium below r_* = 0.69454"), "{out}");
+}
+
+/// A forced `multigrid` Newton (GMRES with the geometric multigrid) past the fold: its plain
+/// solve spends the Krylov budget next to the singular Jacobian (before: exit 4, "500 Krylov
+/// iterations spent", and no run-off); the run-off on sparse LU finds the fold, which replaces
+/// the failure (exit 3, the bracket of the LU route), above and below ratio 1. Where the plain
+/// solve does not converge but the path from 1 reaches the ratio (1.43 with 8 Newton
+/// iterations per step), the method's own run-off answers as before: the plain LU Newton's
+/// answer, the choice as named.
+#[test]
+fn a_forced_multigrid_newton_past_the_fold_exits_3_by_the_sparse_lu_run_off() {
+    let multigrid = [
+        "solver.nonlinear=\"full-newton\"",
+        "solver.linear=\"multigrid\"",
+    ];
+    for (ratio, expected) in [
+        (
+            "loads.tau_max=2",
+            "no equilibrium beyond r* in [1.439063, 1.440625]",
+        ),
+        (
+            "loads.tau_max=0.5",
+            "no equilibrium below r_* in [0.693750, 0.695312]",
+        ),
+    ] {
+        let mut args = vec!["contact"];
+        args.extend(cone(&[multigrid[0], multigrid[1], ratio]));
+        let (code, _, err) = common::capstan_status(&args);
+        assert_eq!(code, Some(3), "{err}");
+        assert!(err.contains(expected), "{err}");
+    }
+    let mut plain = vec!["contact"];
+    plain.extend(cone(&["loads.tau_max=1.43"]));
+    let reference = common::capstan_json(&plain);
+    let mut args = vec!["contact"];
+    args.extend(cone(&[
+        multigrid[0],
+        multigrid[1],
+        "loads.tau_max=1.43",
+        "solver.max_iterations=8",
+    ]));
+    let report = common::capstan_json(&args);
+    assert_eq!(report["status"], "converged");
+    assert_eq!(report["solver_choice"]["linear"], "multigrid");
+    assert_eq!(
+        report["solver_choice"]["reason"],
+        "named by the solver settings"
+    );
+    for key in ["max_azimuthal_displacement", "max_radial_displacement"] {
+        let (a, b) = (
+            report[key]["value"].as_f64().unwrap(),
+            reference[key]["value"].as_f64().unwrap(),
+        );
+        assert!((a - b).abs() < 1e-8 * b.abs(), "{key}: {a} vs {b}");
+    }
+}
+
+/// A load continuation that converges keeps its work: the bilateral cone on the full-system
+/// Newton at ratio 3.8 fails at the full load and converges only at the load fraction 1/32
+/// (the 5th Newton solve), then climbs to 1; a run-off would follow a failure, so the plain
+/// solve runs under the watch that stops it after 7 solves with no converged step, and the
+/// watch must not fire here. Measured on main before the watch: 102 Newton iterations in 10
+/// continuation steps.
+#[test]
+fn a_load_continuation_that_converges_before_a_run_off_keeps_its_work() {
+    let mut args = vec!["contact"];
+    args.extend(cone(&[
+        "contact.kind=\"bilateral\"",
+        "solver.nonlinear=\"full-newton\"",
+        "loads.tau_max=3.8",
+    ]));
+    let report = common::capstan_json(&args);
+    assert_eq!(report["status"], "converged");
+    assert_eq!(report["newton_iterations"], 102);
+    assert_eq!(report["continuation_steps"], 10);
+}

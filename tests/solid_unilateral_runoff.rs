@@ -9,8 +9,8 @@ use capstan_elasticity::contact::{
     FullSystemProblem, FullSystemSolver, RunOffEnd, RunOffSettings, RunOffTrial,
 };
 use capstan_elasticity::friction::FrictionLaw;
-use capstan_elasticity::solvers::SilentObserver;
 use capstan_elasticity::solvers::{Jacobian, Residual};
+use capstan_elasticity::solvers::{Progress, SilentObserver, SolveStage};
 
 fn cone_model() -> (capstan::Problem, f64) {
     let mut scene = Scene::default();
@@ -173,19 +173,23 @@ fn run_off_brackets_the_fold_of_the_unilateral_cone() {
             &mut trace,
         )
         .unwrap();
-    let RunOffEnd::Folded { fold, upper } = run.end else {
+    let RunOffEnd::Folded {
+        fold,
+        beyond: upper,
+    } = run.end
+    else {
         panic!("{:?}", run.end)
     };
     // 1.0 + 0.05 k, then steps of 0.025, 0.0125, ... (halved after a fold): binary fractions
-    assert!((run.lower - 1.4390625).abs() < 1e-12, "{}", run.lower);
+    assert!((run.reached - 1.4390625).abs() < 1e-12, "{}", run.reached);
     assert!((upper - 1.440625).abs() < 1e-12, "{upper}");
     assert!((1.4395..=1.43980).contains(&fold), "{fold}");
     assert_eq!(converged.first(), Some(&1.0));
-    assert_eq!(converged.last(), Some(&run.lower));
+    assert_eq!(converged.last(), Some(&run.reached));
     assert_eq!(run.ratio_steps, 17);
     assert!(run.arclength_steps <= 80, "{}", run.arclength_steps);
     assert_eq!(run.last.stats.continuation_steps, run.arclength_steps);
-    assert!((run.last.loads.tension_ratio() - run.lower).abs() < 1e-12);
+    assert!((run.last.loads.tension_ratio() - run.reached).abs() < 1e-12);
     // as a solve at ratio 2: no equilibrium beyond r*, with the bracket
     let err = run.into_solution(ContactError::NoContactNodes).unwrap_err();
     assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium);
@@ -214,7 +218,7 @@ fn run_off_reaches_a_ratio_below_the_fold_with_the_plain_newton_answer() {
         )
         .unwrap();
     assert!(matches!(run.end, RunOffEnd::Reached), "{:?}", run.end);
-    assert_eq!(run.lower, 1.43);
+    assert_eq!(run.reached, 1.43);
     let size = plain
         .displacement
         .iter()
@@ -267,4 +271,107 @@ fn run_off_spends_its_budget_as_a_typed_error() {
             .run_off(1.0, 1.0, 2.0, bad, &mut SilentObserver, &mut |_| {})
             .is_err()
     );
+}
+
+/// The plain solve before a run-off stops once its load continuation is futile: at ratio 2
+/// the full load fails, then the continuation's steps at the fractions 1/4, 1/8, ..., 1/128
+/// (every Newton solve starts from the stuck start, whose residual scales with the load);
+/// the 8th solve (1/256) is stopped at its first iteration, and the run-off starts at ratio 1
+/// (its continuation steps report to no observer). Before: 13 solves of the plain problem,
+/// down to the fraction 1.2e-4, 14 solve starts in all.
+#[test]
+fn the_plain_solve_before_a_run_off_stops_after_seven_newton_solves() {
+    let (problem, _) = cone_model();
+    assert_eq!(problem.loads.tension_ratio(), 2.0);
+    let mut starts = Vec::new();
+    let mut observer = |p: &Progress<f64>| {
+        if p.stage == SolveStage::Newton && p.iteration == 0 {
+            starts.push(p.residual_norm);
+        }
+    };
+    let err = problem.solve_observed(&mut observer).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            capstan::problem::ProblemError::Contact(ContactError::NoEquilibriumBeyond { .. })
+        ),
+        "{err}"
+    );
+    assert_eq!(starts.len(), 9, "{starts:?}");
+    for (k, r) in starts.iter().enumerate().take(8).skip(1) {
+        let fraction = 0.25 / f64::from(1 << (k - 1));
+        // the stuck start is linear in the load, its residual nearly so (the regularised
+        // friction is not homogeneous: measured 4e-4 off at 1/4); halvings are a factor 2
+        assert!(
+            (r - fraction * starts[0]).abs() <= 1e-2 * r,
+            "solve {k}: {r} against {fraction} x {}",
+            starts[0]
+        );
+    }
+    // a `solver.min_load_step` below the default asks for the longer continuation: no cut
+    // (down to the fraction 6.1e-5 here, 14 solves, then the run-off's start)
+    let mut problem = problem;
+    problem.solver.budgets.min_load_step = 5e-5;
+    let mut longer = 0;
+    let mut observer = |p: &Progress<f64>| {
+        if p.stage == SolveStage::Newton && p.iteration == 0 {
+            longer += 1;
+        }
+    };
+    assert!(problem.solve_observed(&mut observer).is_err());
+    assert_eq!(longer, 15);
+}
+
+/// The run-off down from ratio 1 towards 0.5 (the far end pulled by half the near one's
+/// traction): the path folds at `r_*`, the smallest ratio it reached, with the bracket
+/// `[beyond, reached]` below the start and the error `NoEquilibriumBelow`; the continuation
+/// itself reports the fold as `NoEquilibrium` with `lower = r_*` and `upper = +inf`. Before:
+/// the run-off refused a target below its start (`to` must lie above `from`).
+#[test]
+fn run_off_down_brackets_the_lower_fold_of_the_unilateral_cone() {
+    let (problem, _) = cone_model();
+    let model = problem.model().unwrap();
+    let solver = FullSystemSolver::new(&model, problem.solver.full_settings()).unwrap();
+    let mut folds = Vec::new();
+    let mut trace = |(_, result): RunOffTrial<'_>| {
+        if let Err(ContactError::NoEquilibrium { lower, upper, .. }) = result {
+            folds.push((*lower, *upper));
+        }
+    };
+    let run = solver
+        .run_off(
+            1.0,
+            1.0,
+            0.5,
+            RunOffSettings::default(),
+            &mut SilentObserver,
+            &mut trace,
+        )
+        .unwrap();
+    let RunOffEnd::Folded { fold, beyond } = run.end else {
+        panic!("{:?}", run.end)
+    };
+    // 1 - 0.05 k down to 0.7, then steps of 0.025, 0.0125, ... (binary fractions, measured)
+    assert!((run.reached - 0.6953125).abs() < 1e-12, "{}", run.reached);
+    assert!((beyond - 0.69375).abs() < 1e-12, "{beyond}");
+    assert!(beyond < fold && fold <= run.reached, "{fold}");
+    assert_eq!(run.bracket(), Some([beyond, run.reached]));
+    let reached = run.reached;
+    assert!((run.last.loads.tension_ratio() - run.reached).abs() < 1e-12);
+    assert!(!folds.is_empty());
+    for (lower, upper) in folds {
+        assert!(lower < 1.0 && upper == f64::INFINITY, "{lower} {upper}");
+    }
+    let err = run.into_solution(ContactError::NoContactNodes).unwrap_err();
+    assert_eq!(err.kind(), ContactErrorKind::NoEquilibrium);
+    let ContactError::NoEquilibriumBelow {
+        ratio,
+        lower,
+        upper,
+        ..
+    } = err
+    else {
+        panic!("{err}")
+    };
+    assert_eq!((ratio, lower, upper), (0.5, beyond, reached));
 }

@@ -67,6 +67,24 @@ pub struct RunOffReport {
     /// `[lower, upper]`: the largest ratio converged at and the smallest the path folded back
     /// before (`below` and `threshold_ratio`); `lower <= r* < upper`.
     pub bracket: [f64; 2],
+    /// The other end of the equilibrium range: the path from ratio 1 down towards
+    /// `1 / max_ratio` (`1e-4`), the far end pulled less than the near one.
+    pub lower_end: LowerEndReport,
+}
+
+/// The lower end of a 3-D unilateral body's equilibrium range (`run_off.lower_end` of
+/// [`ThresholdReport`]): no equilibrium below `fold_ratio` on the path down from ratio 1.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LowerEndReport {
+    /// `r_*`: the smallest ratio the path down reached before it turned back; `null` when it
+    /// reached `1 / max_ratio` without a fold.
+    pub fold_ratio: Option<f64>,
+    /// `[lower, upper]`: the largest ratio the path folded back before and the smallest it
+    /// converged at; `lower < r_* <= upper`, at most the threshold tolerance `1e-6` wide
+    /// (the smallest ratio step is half of it).
+    pub bracket: [f64; 2],
+    /// Ratio steps of the run-off down (and its start at ratio 1).
+    pub solves: usize,
 }
 
 /// Computes the report.
@@ -126,6 +144,18 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         let mu = implied_mu(scene, r.ratio)?;
         (r, mu, plain_estimate(scene, &problem, r.ratio, mu)?)
     };
+    // a fold: the run-off down from 1 for the other end (3-D unilateral bodies)
+    let lower_end = match r.fold {
+        Some(_) => problem
+            .threshold_lower_end(ThresholdSettings::default())
+            .map_err(|e| match CliError::from(e) {
+                CliError::Contact(e @ ContactError::ContinuationBudgetSpent { .. }) => {
+                    crate::commands::contact::contact_budget(e, &scene.solver)
+                }
+                e => e,
+            })?,
+        None => None,
+    };
     Ok(ThresholdReport {
         status: "converged",
         threshold_ratio: r.ratio,
@@ -139,10 +169,18 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         grid: [problem.body.n2, problem.body.n3],
         seconds: t.elapsed().as_secs_f64(),
         grid_n1: (scene.body.dimension == 3).then_some(scene.grid.n1),
-        run_off: r.fold.map(|fold_ratio| RunOffReport {
-            fold_ratio,
-            bracket: [r.below, r.above],
-        }),
+        run_off: r
+            .fold
+            .zip(lower_end)
+            .map(|(fold_ratio, lower)| RunOffReport {
+                fold_ratio,
+                bracket: [r.below, r.above],
+                lower_end: LowerEndReport {
+                    fold_ratio: lower.fold,
+                    bracket: lower.bracket,
+                    solves: lower.solves,
+                },
+            }),
         estimated_error,
         accuracy,
     })
@@ -233,8 +271,19 @@ pub fn table(r: &ThresholdReport) -> String {
         r.seconds
     );
     let run_off = r.run_off.as_ref().map_or_else(String::new, |f| {
+        let lower = &f.lower_end;
+        let below = match lower.fold_ratio {
+            Some(fold) => format!(
+                "  no equilibrium below r_* = {fold:.6} in [{:.6}, {:.6}] (the path down from ratio 1 folds back there)\n",
+                lower.bracket[0], lower.bracket[1]
+            ),
+            None => format!(
+                "  the path down from ratio 1 reached {:.6} without a fold\n",
+                lower.bracket[0]
+            ),
+        };
         format!(
-            "  no equilibrium beyond r* = {:.6} in [{:.6}, {:.6}] (the equilibrium path folds back there)\n",
+            "  no equilibrium beyond r* = {:.6} in [{:.6}, {:.6}] (the equilibrium path folds back there)\n{below}",
             f.fold_ratio, f.bracket[0], f.bracket[1]
         )
     });

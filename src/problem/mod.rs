@@ -41,6 +41,8 @@ mod exact_start;
 mod friction;
 pub mod nonlinear_registry;
 mod path;
+mod plain_attempts;
+mod run_off;
 mod solve;
 mod solver;
 mod target;
@@ -50,6 +52,7 @@ pub use builder::Problem;
 pub use capstan_elasticity::contact::{Body, ContactKind, Dimension, EndLoads, Gap};
 pub use friction::Friction;
 pub use path::SolvedPath;
+pub use run_off::LowerEnd;
 pub use solve::{Model, ProblemError, Solved, SolvedModel};
 pub use solver::{
     AUTO_MATRIX_FREE_CONTACT_UNKNOWNS, SolveMethod, Solver, SolverChoice, auto_matrix_free,

@@ -19,6 +19,7 @@ use capstan_geometry::Surface;
 use capstan_elasticity::contact::Dimension;
 
 use super::builder::Problem;
+use super::plain_attempts::{PlainAttempts, run_off_may_explain};
 use super::solver::{SolveMethod, Solver, SolverChoice};
 
 /// The contact model of a [`Problem`] (either dimension, any registered friction law).
@@ -390,13 +391,23 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                             solution.stats.newton_iterations += s.iterations;
                             solution
                         }),
+                    // a run-off follows a failure: the load continuation stops once it is
+                    // futile (plain_attempts.rs, PLAIN_ATTEMPTS)
+                    None if !plane && self.watches_plain_solve() => {
+                        let mut watch = PlainAttempts::new(observer);
+                        let solved = solver.solve_observed(loads, &mut watch);
+                        match solved {
+                            Err(_) if watch.stopped => Err(watch.failure()),
+                            solved => solved,
+                        }
+                    }
                     None => solver.solve_observed(loads, observer),
                 };
                 // a 3-D body's Newton failed: the continuation in the ratio tells a fold of
                 // the equilibrium path (no equilibrium) from a solver failure
                 let solved = match solved {
-                    Err(e) if !plane && e.kind() == ContactErrorKind::NotConverged => {
-                        self.run_off(&solver, e, observer)
+                    Err(e) if !plane && run_off_may_explain(&e) => {
+                        self.run_off(&model, &solver, method, e, observer)
                     }
                     solved => solved,
                 };
@@ -448,11 +459,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                     ..self.solver
                 }
                 .full_settings();
-                let solver = FullSystemSolver::new(&model, full)?;
                 return Ok(if solid {
-                    self.threshold_run_off(&solver, settings)?
+                    // an iterative backend fails next to the fold: the run-off on sparse LU
+                    let full = self.run_off_lu_settings(method).unwrap_or(full);
+                    self.threshold_run_off(&FullSystemSolver::new(&model, full)?, settings)?
                 } else {
-                    threshold_at_limit(&solver)?
+                    threshold_at_limit(&FullSystemSolver::new(&model, full)?)?
                 });
             }
         }
@@ -491,10 +503,10 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             &mut |_| {},
         )?;
         match run.end {
-            RunOffEnd::Folded { fold, upper } => Ok(ThresholdResult {
-                ratio: upper,
-                below: run.lower,
-                above: upper,
+            RunOffEnd::Folded { fold, beyond } => Ok(ThresholdResult {
+                ratio: beyond,
+                below: run.reached,
+                above: beyond,
                 slip_fraction_below: run.last.slip_fraction,
                 above_is_no_equilibrium: true,
                 solves: run.ratio_steps + 1,
@@ -512,38 +524,63 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
 
     /// The run-off settings of the problem: the defaults with the budget
     /// `solver.max_continuation_steps` in arclength steps.
-    fn run_off_settings(&self) -> RunOffSettings {
+    pub(super) fn run_off_settings(&self) -> RunOffSettings {
         RunOffSettings {
             max_arclength_steps: self.solver.budgets.max_continuation_steps,
             ..Default::default()
         }
     }
 
-    /// After the full-system Newton failed (`failed`) at the problem's ratio `r > 1`
-    /// (`tau0 > 0`): the equilibrium followed from ratio 1 to `r`
-    /// ([`FullSystemSolver::run_off`]): its solution at `r` when the path reaches it,
-    /// [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r`, else
-    /// `failed`.
+    /// After the full-system Newton (`method`, with `solver` of `model`) failed (`failed`) at
+    /// the problem's ratio `r != 1` (`tau0 > 0`): the equilibrium followed from ratio 1 up or
+    /// down to `r` ([`FullSystemSolver::run_off`]) by `solver` when the plain solve did not
+    /// converge: its solution at `r` when the path reaches it,
+    /// [`ContactError::NoEquilibriumBeyond`] when the path folds back below `r > 1`,
+    /// [`ContactError::NoEquilibriumBelow`] above `r < 1`. A unilateral body on another method
+    /// than Newton with sparse LU, whose run-off stalled or whose plain solve spent its Krylov
+    /// budget (next to a fold the Jacobian is near singular): the run-off on Newton with sparse
+    /// LU, and only a fold it finds replaces `failed` (a spent budget of the scene stays the
+    /// error otherwise). Else `failed`.
     ///
     /// # Errors
     /// As above; [`ContactError::ContinuationBudgetSpent`] (`solver.max_continuation_steps`
-    /// arclength steps); an interrupted solve.
+    /// arclength steps) of `solver`'s run-off; an interrupted solve.
     fn run_off(
         &self,
+        model: &Model,
         solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
+        method: SolveMethod,
         failed: ContactError,
         observer: &mut dyn Observer<f64>,
     ) -> Result<ContactSolution, ContactError> {
         let (tau0, ratio) = (self.loads.tau0, self.loads.tension_ratio());
-        if !(tau0 > 0.0 && ratio > 1.0) {
+        if !self.runs_off() {
             return Err(failed);
         }
         let settings = self.run_off_settings();
-        match solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
-            Ok(run) => run.into_solution(failed),
-            Err(e @ ContactError::ContinuationBudgetSpent { .. }) => Err(e),
-            Err(e) if e.kind() == ContactErrorKind::Interrupted => Err(e),
-            Err(_) => Err(failed),
+        if failed.kind() == ContactErrorKind::NotConverged {
+            match solver.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
+                Ok(run) if !matches!(run.end, RunOffEnd::Stalled { .. }) => {
+                    return run.into_solution(failed);
+                }
+                Ok(_) => {}
+                Err(e @ ContactError::ContinuationBudgetSpent { .. }) => return Err(e),
+                Err(e) if e.kind() == ContactErrorKind::Interrupted => return Err(e),
+                Err(_) => {}
+            }
+        }
+        match self.run_off_lu_settings(method) {
+            Some(lu) if self.body.contact.is_unilateral() => {
+                let lu = FullSystemSolver::new(model, lu)?;
+                match lu.run_off(tau0, 1.0, ratio, settings, observer, &mut |_| {}) {
+                    Ok(run) if matches!(run.end, RunOffEnd::Folded { .. }) => {
+                        run.into_solution(failed)
+                    }
+                    Err(e) if e.kind() == ContactErrorKind::Interrupted => Err(e),
+                    _ => Err(failed),
+                }
+            }
+            _ => Err(failed),
         }
     }
 

@@ -57,6 +57,24 @@ pub enum ContactError {
         /// The smallest ratio of its steps that the path folded back before.
         upper: f64,
     },
+    /// No static equilibrium below a limit point of the equilibrium path: the continuation in
+    /// the tension ratio down from 1 ([`crate::contact::FullSystemSolver::run_off`]) found the
+    /// path to turn back at `fold` (`r_*`, the smallest ratio it reached), between the first
+    /// ratio it could not reach (`lower`) and the last it converged at (`upper`), above the
+    /// ratio asked for.
+    #[error(
+        "no static equilibrium at tension ratio {ratio:.6}: the equilibrium path folds back at r_* = {fold:.6}; no equilibrium below r_* in [{lower:.6}, {upper:.6}]"
+    )]
+    NoEquilibriumBelow {
+        /// `tau_max / tau0` asked for.
+        ratio: f64,
+        /// The fold ratio `r_*`: the smallest ratio reached on the path (an equilibrium there).
+        fold: f64,
+        /// The largest ratio of the continuation's steps that the path folded back before.
+        lower: f64,
+        /// The smallest ratio of its steps that converged.
+        upper: f64,
+    },
     /// The continuation in the tension ratio ([`crate::contact::FullSystemSolver::run_off`])
     /// spent its budget of arclength steps
     /// ([`crate::contact::ContactSettings::max_continuation_steps`]).
@@ -177,6 +195,7 @@ impl ContactError {
             Self::PathStep { source, .. } => source.kind(),
             Self::NoEquilibrium { .. }
             | Self::NoEquilibriumBeyond { .. }
+            | Self::NoEquilibriumBelow { .. }
             | Self::LiftedOff { .. } => ContactErrorKind::NoEquilibrium,
             Self::NotConverged { .. }
             | Self::LoadStepFailed { .. }

@@ -30,13 +30,15 @@ const MIN_STEP: f64 = 1e-6;
 
 impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
     /// Continues the equilibrium `v_start` at `tau_max / tau0 = from` (converged, e.g. by
-    /// [`FullSystemSolver::solve_from`]) to the ratio `to > from` by pseudo-arclength
-    /// continuation in `(v, r)`, and solves there; or reports the fold of the path below
-    /// `to` as [`ContactError::NoEquilibrium`] with `upper` the largest ratio the path reached.
+    /// [`FullSystemSolver::solve_from`]) to the ratio `to` by pseudo-arclength continuation in
+    /// `(v, r)`, and solves there; or reports the fold of the path before `to` as
+    /// [`ContactError::NoEquilibrium`]: with `upper` the largest ratio the path reached when
+    /// it climbs (`to > from`), with `lower` the smallest when it goes down (`to < from`).
     ///
     /// # Math
     /// ```text
     /// R(v, r) = R(v; tau0, r tau0) = 0,    x = (v, r),    |t| = 1,  t = (t_v, t_r)
+    /// d = sign(to - from): the first tangent has d t_r > 0
     /// tangent:    J t_v + R_r t_r = 0      (J = dR/dv, R_r = dR/dr)
     /// predictor:  x_p = x + ds t
     /// corrector:  [J    R_r] [dv]     [R          ]
@@ -46,19 +48,20 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
     ///   dv = a + dr b
     /// ```
     /// `R` is affine in `r` (the end loads), so `R_r = R(v, r + 1) - R(v, r)` at fixed `v` and
-    /// contact set. Where `dr/ds = t_r` changes sign from positive to negative the path has a
-    /// limit point `r* = max r` (a fold: `J` singular along the sliding mode there, the net
-    /// load along the mode no longer balanced by friction); a load-controlled path has no
-    /// equilibrium nearby past it. The path is only piecewise smooth (the contact and slip
+    /// contact set. Where `d dr/ds = d t_r` changes sign from positive to negative the path
+    /// has a limit point `r* = max d r` (a fold: `J` singular along the sliding mode there,
+    /// the net load along the mode no longer balanced by friction); a load-controlled path has
+    /// no equilibrium nearby past it. The path is only piecewise smooth (the contact and slip
     /// sets change along it), so a fold is reported once the path has fallen back by half the
-    /// ratio step `(to - from) / 2` below the largest ratio it reached, not at the first
-    /// negative `t_r`. Steps grow by 1.5 after a converged corrector and halve
+    /// ratio step `|to - from| / 2` from the furthest ratio it reached along `d`, not at the
+    /// first sign change of `d t_r`. Steps grow by 1.5 after a converged corrector and halve
     /// after a failed one. The fold found is one of this path; another branch (a different
     /// contact set) is not searched.
     ///
     /// # Errors
-    /// [`ContactError::NoEquilibrium`] (`lower` = `-inf`, `upper` = the fold's ratio) when
-    /// the path turns back below `to`; [`ContactError::NotConverged`] when the steps fall
+    /// [`ContactError::NoEquilibrium`] when the path turns back before `to` (climbing:
+    /// `lower` = `-inf`, `upper` = the fold's ratio; going down: `lower` = the fold's ratio,
+    /// `upper` = `+inf`); [`ContactError::NotConverged`] when the steps fall
     /// below their minimum or run out; linear solver failures; invalid loads.
     pub fn continue_ratio(
         &self,
@@ -114,18 +117,21 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
             .max(1.0);
         let tolerance = self.settings().continuation.tolerance * b_norm;
         let (mut v, mut r) = (v_start.to_vec(), from);
-        // the first tangent: t_v = -J^{-1} R_r t_r, t_r > 0
+        // d = +1 climbing, -1 going down
+        let d = if to >= from { 1.0 } else { -1.0 };
+        // the first tangent: t_v = -J^{-1} R_r t_r, d t_r > 0
         let rr = factor(&mut lu, &mut values, &v, r)?;
-        let mut tv: Vec<f64> = rr.iter().map(|x| -x).collect();
+        let mut tv: Vec<f64> = rr.iter().map(|x| -d * x).collect();
         lu.solve_in_place(&mut tv)?;
-        let mut tr = 1.0;
+        let mut tr = d;
         let size = (dot(&tv, &tv) + 1.0).sqrt();
         tv.iter_mut().for_each(|x| *x /= size);
         tr /= size;
-        // first step: a ratio step of (to - from) / 4
+        // first step: a ratio step of (to - from) / 4 (ds > 0: to - from and t_r share d)
         let first = 0.25 * (to - from) / tr;
         let mut ds = first;
-        let mut upper = r;
+        // the furthest ratio along d the path reached
+        let mut furthest = r;
         let mut iterations = 0;
         for _ in 0..MAX_STEPS {
             budget.spend(r, to)?;
@@ -179,7 +185,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
             let size = (dot(&nv, &nv) + nr * nr).sqrt();
             nv.iter_mut().for_each(|y| *y /= size);
             nr /= size;
-            if xr >= to {
+            if d * (xr - to) >= 0.0 {
                 // past the target: Newton there from the point interpolated on the chord
                 let s = (to - r) / (xr - r);
                 let start: Vec<f64> = v.iter().zip(&x).map(|(a, b)| a + s * (b - a)).collect();
@@ -187,13 +193,20 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
                 sol.stats.newton_iterations += iterations;
                 return Ok(sol);
             }
-            upper = upper.max(xr);
+            if d * xr > d * furthest {
+                furthest = xr;
+            }
             (v, r, tv, tr) = (x, xr, nv, nr);
-            if r < upper - FOLD_RETURN * (to - from) {
-                // a limit point: the path has turned back well below its largest ratio
+            if d * r < d * furthest - FOLD_RETURN * (to - from).abs() {
+                // a limit point: the path has turned back well before its furthest ratio
+                let (lower, upper) = if d > 0.0 {
+                    (f64::NEG_INFINITY, furthest)
+                } else {
+                    (furthest, f64::INFINITY)
+                };
                 return Err(ContactError::NoEquilibrium {
                     ratio: to,
-                    lower: f64::NEG_INFINITY,
+                    lower,
                     upper,
                 });
             }

@@ -1,8 +1,10 @@
 //! The run-off of a body under a growing tension ratio: the equilibrium followed from a low
 //! ratio up to the one asked for by pseudo-arclength continuation
 //! ([`FullSystemSolver::continue_ratio`]), in ratio steps halved on a failure, until the path
-//! reaches the ratio asked for or folds back below it (no equilibrium beyond the fold `r*`,
-//! bracketed). The driver of `examples/solid_runoff.rs`, of `capstan contact` when the plain
+//! reaches the ratio asked for or folds back before it (no equilibrium beyond the fold `r*`,
+//! bracketed). From ratio 1 the run-off climbs to a ratio above 1 and goes down to one below
+//! (the far end pulled less than the near one, or pushed): a fold there, `r_*`, bounds the
+//! equilibria from below. The driver of `examples/solid_runoff.rs`, of `capstan contact` when the plain
 //! Newton fails on a 3-D body, and of `capstan threshold` on a 3-D unilateral body.
 
 use capstan_friction::FrictionLaw;
@@ -68,20 +70,22 @@ impl RunOffSettings {
 pub enum RunOffEnd {
     /// The path reached the ratio asked for ([`RunOff::last`] is the equilibrium there).
     Reached,
-    /// The equilibrium path folds back below the ratio asked for: no equilibrium beyond `fold`
-    /// on the path, which lies in `[RunOff::lower, upper]`.
+    /// The equilibrium path folds back before the ratio asked for: no equilibrium beyond
+    /// `fold` on the path (above it when the run-off climbs, below it when it goes down),
+    /// which lies between [`RunOff::reached`] and `beyond` ([`RunOff::bracket`]).
     Folded {
-        /// `r*`: the largest ratio the path reached (an equilibrium there), at least
-        /// [`RunOff::lower`].
+        /// `r*` (or `r_*` going down): the ratio furthest from the start that the path reached
+        /// (an equilibrium there), at or beyond [`RunOff::reached`].
         fold: f64,
-        /// The smallest ratio the path folded back before.
-        upper: f64,
+        /// The ratio nearest the start that the path folded back before (above
+        /// [`RunOff::reached`] when climbing, below it going down).
+        beyond: f64,
     },
-    /// The continuation failed below `upper` for another reason than a fold (steps too small,
-    /// a singular corrector): `error` is the last such failure.
+    /// The continuation failed before `beyond` for another reason than a fold (steps too
+    /// small, a singular corrector): `error` is the last such failure.
     Stalled {
-        /// The smallest ratio the continuation failed to reach.
-        upper: f64,
+        /// The ratio nearest the start that the continuation failed to reach.
+        beyond: f64,
         /// Why the last step failed.
         error: ContactError,
     },
@@ -94,9 +98,10 @@ pub struct RunOff {
     pub end: RunOffEnd,
     /// The tension ratio asked for.
     pub target: f64,
-    /// The largest ratio converged at (the target when [`RunOffEnd::Reached`]).
-    pub lower: f64,
-    /// The equilibrium at `lower`. Its statistics count the Newton iterations of every
+    /// The converged ratio nearest the target (the target when [`RunOffEnd::Reached`]): the
+    /// largest converged ratio when the run-off climbs, the smallest when it goes down.
+    pub reached: f64,
+    /// The equilibrium at `reached`. Its statistics count the Newton iterations of every
     /// converged step of the run-off (the start's and each continuation's corrector and final
     /// Newton) and, as `continuation_steps`, its arclength steps.
     pub last: ContactSolution,
@@ -107,20 +112,41 @@ pub struct RunOff {
 }
 
 impl RunOff {
-    /// The run-off as a solve at [`RunOff::target`]: the equilibrium if reached,
-    /// [`ContactError::NoEquilibriumBeyond`] if the path folded, else `stalled` (the error of
-    /// the solve the run-off was to replace).
+    /// The bracket of the stop, `[lower, upper]` in increasing order: the converged
+    /// [`RunOff::reached`] and the first ratio not reached (`beyond`); `None` when the run-off
+    /// reached its target.
+    pub fn bracket(&self) -> Option<[f64; 2]> {
+        match self.end {
+            RunOffEnd::Reached => None,
+            RunOffEnd::Folded { beyond, .. } | RunOffEnd::Stalled { beyond, .. } => {
+                Some([self.reached.min(beyond), self.reached.max(beyond)])
+            }
+        }
+    }
+
+    /// The run-off as a solve at [`RunOff::target`]: the equilibrium if reached;
+    /// [`ContactError::NoEquilibriumBeyond`] if the path folded on its way up,
+    /// [`ContactError::NoEquilibriumBelow`] on its way down; else `stalled` (the error of the
+    /// solve the run-off was to replace).
     ///
     /// # Errors
     /// As above.
     pub fn into_solution(self, stalled: ContactError) -> Result<ContactSolution, ContactError> {
         match self.end {
             RunOffEnd::Reached => Ok(self.last),
-            RunOffEnd::Folded { fold, upper } => Err(ContactError::NoEquilibriumBeyond {
+            RunOffEnd::Folded { fold, beyond } if beyond < self.reached => {
+                Err(ContactError::NoEquilibriumBelow {
+                    ratio: self.target,
+                    fold,
+                    lower: beyond,
+                    upper: self.reached,
+                })
+            }
+            RunOffEnd::Folded { fold, beyond } => Err(ContactError::NoEquilibriumBeyond {
                 ratio: self.target,
                 fold,
-                lower: self.lower,
-                upper,
+                lower: self.reached,
+                upper: beyond,
             }),
             RunOffEnd::Stalled { .. } => Err(stalled),
         }
@@ -133,29 +159,31 @@ pub type RunOffTrial<'a> = (f64, Result<&'a ContactSolution, &'a ContactError>);
 
 impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
     /// Follows the equilibrium from the ratio `from` (solved here from the stuck start) to
-    /// `to > from` with `tau0` held: each ratio `r + step` continued from the last converged
-    /// one `r` by [`FullSystemSolver::continue_ratio`], `step` from `settings.first_step`,
-    /// halved after a failed step (whether the path folded back or the continuation failed
-    /// otherwise) until it falls below `settings.min_step`. The start and every ratio step are
-    /// reported to `trace`; `observer` hears the start's solve and may stop the run-off
-    /// between steps.
+    /// `to` with `tau0` held, up (`to > from`) or down (`to < from`: the far end pulled less,
+    /// or pushed): each ratio `r + d step` (`d = sign(to - from)`) continued from the last
+    /// converged one `r` by [`FullSystemSolver::continue_ratio`], `step` from
+    /// `settings.first_step`, halved after a failed step (whether the path folded back or the
+    /// continuation failed otherwise) until it falls below `settings.min_step`. The start and
+    /// every ratio step are reported to `trace`; `observer` hears the start's solve and may
+    /// stop the run-off between steps.
     ///
     /// # Math
     /// ```text
-    /// r_0 = from,   trial = min(r + step, to)
-    /// trial reached:        r = trial                     (the next step from there)
-    /// trial not reached:    upper = min(upper, trial),  step = step / 2
+    /// r_0 = from,   d = sign(to - from),   trial = r + d step  (not past `to`)
+    /// trial reached:        r = trial                          (the next step from there)
+    /// trial not reached:    beyond = the one of (beyond, trial) nearer `from`,  step = step / 2
     /// stop: r = to (reached), or step < min_step:
-    ///   folded  when the path folded back before `upper`, at its largest ratio r* (an
-    ///           equilibrium), so  r <= r* < upper:  no equilibrium beyond r* on the path
+    ///   folded  when the path folded back before `beyond`, at its ratio r* furthest along d
+    ///           (an equilibrium), so r* lies between r and beyond: no equilibrium beyond r*
+    ///           on the path (above it for d = +1, below it for d = -1)
     ///   stalled otherwise
     /// ```
-    /// A later step that converges at or past `upper` (from a start further along) clears it:
+    /// A later step that converges at or past `beyond` (from a start further along) clears it:
     /// the path has small local folds where its contact set changes, and a fold seen from one
     /// start may be passed from the next.
     ///
     /// # Errors
-    /// Invalid settings or loads (`to <= from`); the solve at `from`;
+    /// Invalid settings or loads (`to = from`, or not finite); the solve at `from`;
     /// [`ContactError::ContinuationBudgetSpent`] when the arclength steps run out;
     /// [`ContactError::Interrupted`] when `observer` stops it.
     pub fn run_off(
@@ -169,14 +197,18 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
     ) -> Result<RunOff, ContactError> {
         settings.validate()?;
         EndLoads::new(tau0, tau0 * to).check()?;
-        if to.partial_cmp(&from) != Some(core::cmp::Ordering::Greater) {
+        EndLoads::new(tau0, tau0 * from).check()?;
+        if to == from {
             return Err(ElasticityError::InvalidParameter {
                 field: "to",
                 value: to,
-                allowed: "above the start ratio `from`",
+                allowed: "a ratio other than the start ratio `from`",
             }
             .into());
         }
+        // d = +1 climbing, -1 going down; `further(a, b)`: a lies past b along d
+        let d = if to > from { 1.0 } else { -1.0 };
+        let further = |a: f64, b: f64| d * a > d * b;
         let mut last = self.solve_observed(EndLoads::new(tau0, tau0 * from), observer)?;
         trace((from, Ok(&last)));
         let mut budget = ArclengthBudget {
@@ -185,16 +217,20 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
         };
         let mut iterations = last.stats.newton_iterations;
         let (mut ratio, mut step) = (from, settings.first_step);
-        // the smallest ratio not reached, and the fold seen there (the largest ratio on the
-        // path before it turned back)
-        let (mut failed, mut fold): (f64, Option<f64>) = (f64::INFINITY, None);
+        // the ratio nearest `from` not reached, and the fold seen there (the ratio furthest
+        // along d on the path before it turned back)
+        let (mut failed, mut fold): (f64, Option<f64>) = (d * f64::INFINITY, None);
         let mut error = None;
         let mut ratio_steps = 0;
         while step >= settings.min_step {
             if observer.interrupted() {
                 return Err(ContactError::Interrupted { iterations });
             }
-            let trial = (ratio + step).min(to);
+            let trial = if further(ratio + d * step, to) {
+                to
+            } else {
+                ratio + d * step
+            };
             ratio_steps += 1;
             let result =
                 self.continue_ratio_counted(tau0, ratio, &last.displacement, trial, &mut budget);
@@ -204,11 +240,11 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
                     ratio = trial;
                     iterations += solution.stats.newton_iterations;
                     last = solution;
-                    if failed <= ratio {
+                    if !further(failed, ratio) {
                         // an earlier step from another start failed here: not the stop
-                        (failed, fold) = (f64::INFINITY, None);
+                        (failed, fold) = (d * f64::INFINITY, None);
                     }
-                    if ratio >= to {
+                    if ratio == to {
                         return Ok(self.finish(
                             RunOffEnd::Reached,
                             to,
@@ -231,15 +267,18 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
                     return Err(e);
                 }
                 Err(e) => {
+                    // the path's end along d: `upper` climbing, `lower` going down
                     let folded = match e {
-                        ContactError::NoEquilibrium { upper, .. } => Some(upper),
+                        ContactError::NoEquilibrium { lower, upper, .. } => {
+                            Some(if d > 0.0 { upper } else { lower })
+                        }
                         _ => None,
                     };
-                    if trial < failed {
+                    if further(failed, trial) {
                         (failed, fold) = (trial, folded);
                     } else if trial == failed {
                         fold = match (fold, folded) {
-                            (Some(a), Some(b)) => Some(a.max(b)),
+                            (Some(a), Some(b)) => Some(if further(b, a) { b } else { a }),
                             (a, b) => a.or(b),
                         };
                     }
@@ -250,16 +289,16 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
         }
         let end = match (fold, error) {
             (Some(fold), _) => RunOffEnd::Folded {
-                fold: fold.max(ratio),
-                upper: failed,
+                fold: if further(ratio, fold) { ratio } else { fold },
+                beyond: failed,
             },
             (None, Some(error)) => RunOffEnd::Stalled {
-                upper: failed,
+                beyond: failed,
                 error,
             },
             // not met: the step falls below `min_step` only after a failed continuation
             (None, None) => RunOffEnd::Stalled {
-                upper: failed,
+                beyond: failed,
                 error: ContactError::NotConverged {
                     iterations,
                     residual: f64::NAN,
@@ -276,7 +315,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
         &self,
         end: RunOffEnd,
         target: f64,
-        lower: f64,
+        reached: f64,
         mut last: ContactSolution,
         iterations: usize,
         budget: ArclengthBudget,
@@ -287,7 +326,7 @@ impl<D: ContactOperator, L: FrictionLaw<f64>> FullSystemSolver<'_, D, L> {
         RunOff {
             end,
             target,
-            lower,
+            reached,
             last,
             arclength_steps: budget.spent,
             ratio_steps,
