@@ -373,11 +373,6 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let solver = FullSystemSolver::new(&model, full)?;
                 let setup = t0.elapsed().as_secs_f64();
                 let t1 = Instant::now();
-                // a plane body under unilateral contact: a ratio outside its limiting range
-                // (the full-slip balance along the rigid sliding mode) refused now
-                if let Some(e) = self.outside_unilateral_range(&solver) {
-                    return Err(e.into());
-                }
                 // exact friction starts from its regularisation's solution (exact_start.rs)
                 let start = if exact {
                     self.regularised_start(observer)
@@ -408,6 +403,14 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 let solved = match solved {
                     Err(e) if !plane && run_off_may_explain(&e) => {
                         self.run_off(&model, &solver, method, e, observer)
+                    }
+                    solved => solved,
+                };
+                // a plane body under unilateral contact failed: a ratio outside its limiting
+                // range (the full-slip balance along the rigid sliding mode) has no equilibrium
+                let solved = match solved {
+                    Err(e) if plane && e.kind() == ContactErrorKind::NotConverged => {
+                        Err(self.outside_unilateral_range(&solver).unwrap_or(e))
                     }
                     solved => solved,
                 };
@@ -588,9 +591,11 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     /// contact whose ratio `r` (`tau0 > 0`) lies outside its limiting range: the end on `r`'s
     /// side first ([`FullSystemSolver::limiting_end`], upward for `r >= 1`), the other only to
     /// name the range when `r` lies beyond. `None` otherwise: inside, another body, no rigid
-    /// sliding mode, or a full-slip solve that failed (the solve then runs unchecked, and a
-    /// failure stays the solver's). One full-slip solve on a converging run (measured on the
-    /// default grid: 0.3 CPU-s).
+    /// sliding mode, or a full-slip solve that failed (the failure then stays the solver's).
+    /// Asked only after the full-system Newton failed, as the bilateral body's condensed check
+    /// ([`Problem::explain_not_converged`]): a converging run does no extra work, and an
+    /// equilibrium the regularised law holds past the full-slip balance (docs/models.md) is
+    /// returned rather than refused.
     fn outside_unilateral_range(
         &self,
         solver: &FullSystemSolver<'_, BodyOperator, AnyFrictionLaw>,
@@ -617,7 +622,7 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
 
     /// A full-system non-convergence, told apart: no equilibrium (checked by the condensed
     /// solver's limiting ratios of `model`) rather than a solver failure. (A plane body under
-    /// unilateral contact was checked against its own range before the solve,
+    /// unilateral contact was checked against its own range first,
     /// [`Problem::outside_unilateral_range`]; the condensed solver refuses its model, so its
     /// error stays.)
     fn explain_not_converged(&self, model: &Model, e: ContactError) -> ProblemError {
