@@ -431,19 +431,10 @@ pub fn assess_twin(
 ) -> Assessment {
     let mut out = Assessment::default();
     for (name, q) in stop {
-        let relative = match twin_quantities
+        let estimate = twin_quantities
             .get(name)
-            .and_then(|t| twin(q.value, t.value))
-        {
-            Some(e) => {
-                out.estimates.insert(name.clone(), e);
-                e.error / q.scale
-            }
-            None => f64::INFINITY,
-        };
-        if out.worst.as_ref().is_none_or(|w| relative > w.1) {
-            out.worst = Some((name.clone(), relative));
-        }
+            .and_then(|t| twin(q.value, t.value));
+        out.record(name, estimate, q.scale);
     }
     out
 }
@@ -457,6 +448,23 @@ pub struct Assessment {
     /// The largest `e_k(Q) / scale(Q)` and its quantity: infinite for a quantity with no
     /// estimate yet or missing on the last step; `None` on the first step.
     pub worst: Option<(String, f64)>,
+}
+
+impl Assessment {
+    /// Records quantity `name`'s `estimate` (none: not yet estimable) and keeps the worst
+    /// relative one, `e(Q) / scale(Q)` (infinite without an estimate).
+    fn record(&mut self, name: &str, estimate: Option<SequenceEstimate>, scale: f64) {
+        let relative = match estimate {
+            Some(e) => {
+                self.estimates.insert(name.to_owned(), e);
+                e.error / scale
+            }
+            None => f64::INFINITY,
+        };
+        if self.worst.as_ref().is_none_or(|w| relative > w.1) {
+            self.worst = Some((name.to_owned(), relative));
+        }
+    }
 }
 
 /// The contiguous run of values of `name` ending at the last of `steps` (a quantity missing on
@@ -501,16 +509,11 @@ pub fn assess(steps: &[BTreeMap<String, Scaled>]) -> Assessment {
         .collect();
     let ladder = ladder_rate(transitions.iter().map(Vec::as_slice));
     for (name, q) in last {
-        let relative = match estimate_on(&values(name), q.behaviour, ladder) {
-            Some(e) => {
-                out.estimates.insert(name.clone(), e);
-                e.error / q.scale
-            }
-            None => f64::INFINITY,
-        };
-        if out.worst.as_ref().is_none_or(|w| relative > w.1) {
-            out.worst = Some((name.clone(), relative));
-        }
+        out.record(
+            name,
+            estimate_on(&values(name), q.behaviour, ladder),
+            q.scale,
+        );
     }
     for name in steps[steps.len() - 2]
         .keys()
