@@ -36,8 +36,9 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
     ///
     /// # Errors
     /// The model's; the solves' and the continuation's
-    /// ([`ContactError::ContinuationBudgetSpent`]); the last error of a continuation that
-    /// stalls.
+    /// ([`ContinuationBudgetSpent`]); the last error of a continuation that stalls.
+    ///
+    /// [`ContinuationBudgetSpent`]: capstan_elasticity::contact::ContactError::ContinuationBudgetSpent
     pub fn threshold_lower_end(
         &self,
         settings: ThresholdSettings,
