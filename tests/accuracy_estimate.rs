@@ -4,6 +4,8 @@
 //! --example contact_accuracy -- --solve 7 --reference-elements 240`: the values of every
 //! step, no solve here). The old rule `max(|d_k|, |d_{k-1}| / 4)` fails the same checks.
 
+mod common;
+
 use std::collections::BTreeMap;
 
 use capstan::commands::accuracy::behaviour;
@@ -11,19 +13,7 @@ use capstan::problem::{AccuracyTarget, Problem, Scaled, assess};
 
 /// One cached solve's quantities, as `refine_to` saw them.
 fn quantities(s: &serde_json::Value) -> BTreeMap<String, Scaled> {
-    s["values"]
-        .as_object()
-        .unwrap()
-        .iter()
-        .map(|(n, v)| {
-            let q = Scaled {
-                value: v.as_f64().unwrap(),
-                scale: s["scales"][n].as_f64().unwrap(),
-                behaviour: behaviour(n),
-            };
-            (n.clone(), q)
-        })
-        .collect()
+    common::cached_quantities(s, behaviour)
 }
 
 /// A solve's quantities by name.

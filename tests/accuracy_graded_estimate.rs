@@ -15,6 +15,8 @@
 //! `graded-p10-48x16` (no face rows) is as good for the smooth quantities (within `1.6e-8` of
 //! it) but off by `4e-7` of `pi` on the slip measure and `2e-7` on the stick ends.
 
+mod common;
+
 use std::collections::BTreeMap;
 
 use capstan::commands::accuracy::graded_behaviour;
@@ -26,20 +28,8 @@ type Quantities = BTreeMap<String, Scaled>;
 
 /// One cached solve's quantities, as `refine_along` saw them on the graded ladder
 /// (`scaled_graded`: the slip measures and the stick ends set the ladder's rate).
-fn quantities(s: &serde_json::Value) -> Quantities {
-    s["values"]
-        .as_object()
-        .unwrap()
-        .iter()
-        .map(|(n, v)| {
-            let q = Scaled {
-                value: v.as_f64().unwrap(),
-                scale: s["scales"][n].as_f64().unwrap(),
-                behaviour: graded_behaviour(n),
-            };
-            (n.clone(), q)
-        })
-        .collect()
+fn quantities(s: &serde_json::Value) -> BTreeMap<String, Scaled> {
+    common::cached_quantities(s, graded_behaviour)
 }
 
 /// h28-ref's reference values (see the module docs), relative error bound `1e-8` each.

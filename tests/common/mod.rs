@@ -172,3 +172,25 @@ pub fn json_array(v: &serde_json::Value, key: &str) -> Vec<f64> {
         .map(|x| x.as_f64().unwrap())
         .collect()
 }
+
+/// One cached solve's quantities of an accuracy ladder (docs/data/contact_*ladder.json: its
+/// `values` and `scales` by name), with each quantity's `behaviour` along the ladder, as the
+/// refinement saw them after the solve.
+pub fn cached_quantities(
+    s: &serde_json::Value,
+    behaviour: fn(&str) -> capstan::problem::estimate::Behaviour,
+) -> std::collections::BTreeMap<String, capstan::problem::Scaled> {
+    s["values"]
+        .as_object()
+        .unwrap()
+        .iter()
+        .map(|(n, v)| {
+            let q = capstan::problem::Scaled {
+                value: v.as_f64().unwrap(),
+                scale: s["scales"][n].as_f64().unwrap(),
+                behaviour: behaviour(n),
+            };
+            (n.clone(), q)
+        })
+        .collect()
+}
