@@ -99,6 +99,13 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
             message: "`loads.body_force` is set: the full-slip threshold is a tension ratio of loads linear in the end tractions, and a body force held fixed is not; use `capstan sweep --param loads.tau_max` to follow Slip under the force".into(),
         });
     }
+    // the run-off of a 3-D unilateral body spent its budget: name the key
+    let run_off_budget = |e| match CliError::from(e) {
+        CliError::Contact(e @ ContactError::ContinuationBudgetSpent { .. }) => {
+            crate::commands::contact::contact_budget(e, &scene.solver)
+        }
+        e => e,
+    };
     let t = Instant::now();
     let mut problem = scene.build()?;
     let mut accuracy = None;
@@ -134,13 +141,7 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
         problem = chosen;
         (r, mu, Some(estimate))
     } else {
-        let r = problem.threshold().map_err(|e| match CliError::from(e) {
-            // the run-off of a 3-D unilateral body spent its budget: name the key
-            CliError::Contact(e @ ContactError::ContinuationBudgetSpent { .. }) => {
-                crate::commands::contact::contact_budget(e, &scene.solver)
-            }
-            e => e,
-        })?;
+        let r = problem.threshold().map_err(run_off_budget)?;
         let mu = implied_mu(scene, r.ratio)?;
         (r, mu, plain_estimate(scene, &problem, r.ratio, mu)?)
     };
@@ -148,12 +149,7 @@ pub fn report(scene: &Scene) -> Result<ThresholdReport, CliError> {
     let lower_end = match r.fold {
         Some(_) => problem
             .threshold_lower_end(ThresholdSettings::default())
-            .map_err(|e| match CliError::from(e) {
-                CliError::Contact(e @ ContactError::ContinuationBudgetSpent { .. }) => {
-                    crate::commands::contact::contact_budget(e, &scene.solver)
-                }
-                e => e,
-            })?,
+            .map_err(run_off_budget)?,
         None => None,
     };
     Ok(ThresholdReport {

@@ -2,7 +2,8 @@
 //! run-off from ratio 1 down to its fold `r_*` ([`Problem::threshold_lower_end`]).
 
 use capstan_elasticity::contact::{
-    BodyOperator, FullSystemSolver, RunOffEnd, RunOffSettings, ThresholdSettings,
+    BodyOperator, FullSystemSettings, FullSystemSolver, RunOffEnd, RunOffSettings,
+    ThresholdSettings,
 };
 use capstan_elasticity::friction::AnyFrictionLaw;
 use capstan_elasticity::solvers::SilentObserver;
@@ -47,24 +48,10 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
             self.body.dimension,
             capstan_elasticity::contact::Dimension::Plane
         );
-        let (method, _) = self.solver.resolved(&self.body);
-        if !(solid
-            && self.body.contact.is_unilateral()
-            && matches!(
-                method,
-                SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton
-            ))
-        {
+        let Some(full) = self.unilateral_threshold_settings().filter(|_| solid) else {
             return Ok(None);
-        }
+        };
         let model: Model = self.model()?;
-        let full = self.run_off_lu_settings(method).unwrap_or_else(|| {
-            Solver {
-                method,
-                ..self.solver
-            }
-            .full_settings()
-        });
         let solver: FullSystemSolver<'_, BodyOperator, AnyFrictionLaw> =
             FullSystemSolver::new(&model, full)?;
         let run_off = RunOffSettings {
@@ -87,5 +74,33 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
                 solves,
             })),
         }
+    }
+
+    /// The full-system settings of the threshold of a body under unilateral contact on the
+    /// full-system route (Newton or Jacobi-Newton after `auto`), `None` for every other body
+    /// (the condensed solver's bisection): the scene's, and on a 3-D body sparse LU where the
+    /// method's backend is iterative ([`Problem::run_off_lu_settings`]: the run-off's bordered
+    /// solves sit next to the fold's singular Jacobian).
+    pub(crate) fn unilateral_threshold_settings(&self) -> Option<FullSystemSettings> {
+        let (method, _) = self.solver.resolved(&self.body);
+        if !(self.body.contact.is_unilateral()
+            && matches!(
+                method,
+                SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton
+            ))
+        {
+            return None;
+        }
+        let lu = match self.body.dimension {
+            capstan_elasticity::contact::Dimension::Plane => None,
+            _ => self.run_off_lu_settings(method),
+        };
+        Some(lu.unwrap_or_else(|| {
+            Solver {
+                method,
+                ..self.solver
+            }
+            .full_settings()
+        }))
     }
 }

@@ -450,26 +450,12 @@ impl<S: Surface<f64> + Clone + Send + Sync + 'static> Problem<S> {
         settings: ThresholdSettings,
     ) -> Result<ThresholdResult, ProblemError> {
         let model = self.model()?;
-        let solid = matches!(self.body.dimension, Dimension::Solid { .. });
-        if self.body.contact.is_unilateral() {
-            let (method, _) = self.solver.resolved(&self.body);
-            if matches!(
-                method,
-                SolveMethod::FullNewton(_) | SolveMethod::JacobiNewton
-            ) {
-                let full = Solver {
-                    method,
-                    ..self.solver
-                }
-                .full_settings();
-                return Ok(if solid {
-                    // an iterative backend fails next to the fold: the run-off on sparse LU
-                    let full = self.run_off_lu_settings(method).unwrap_or(full);
-                    self.threshold_run_off(&FullSystemSolver::new(&model, full)?, settings)?
-                } else {
-                    threshold_at_limit(&FullSystemSolver::new(&model, full)?)?
-                });
-            }
+        if let Some(full) = self.unilateral_threshold_settings() {
+            let solver = FullSystemSolver::new(&model, full)?;
+            return Ok(match self.body.dimension {
+                Dimension::Solid { .. } => self.threshold_run_off(&solver, settings)?,
+                Dimension::Plane => threshold_at_limit(&solver)?,
+            });
         }
         let solver = BoundarySolver::new(&model, self.solver.budgets)?;
         Ok(threshold_ratio(&solver, settings)?)
